@@ -1,0 +1,436 @@
+//! Bit-exact conversions between shader values and channel codes.
+//!
+//! These are the CPU mirrors of the WGSL helpers in [`crate::emit::wgsl`]: the same algorithm,
+//! on the same integer operations, so that a G-buffer packed on the CPU and on any conforming
+//! adapter holds the same bits. No step relies on float rounding, which differs between a
+//! plain multiply, a fused multiply-add and a GPU's builtins.
+//!
+//! The rules, per encoding:
+//! - unorm: `floor(0.5 + (2^n - 1) * clamp(x, 0, 1))`, evaluated exactly; NaN gives 0.
+//! - half and the unsigned small floats of `r11f_g11f_b10f`: round to nearest even, denormals
+//!   kept, values past the largest finite value give that value (never infinity), NaN gives 0;
+//!   the unsigned floats store negatives as 0, half keeps the sign.
+//! - r32f: the f32 bits unchanged.
+//! - integers: clamped to the channel's range.
+
+use crate::format::{Channel, ChannelEncoding, Format};
+
+/// The bits of +infinity as f32; a magnitude above it is a NaN.
+const F32_INFINITY_BITS: u32 = 0x7f80_0000;
+/// The bits of 1.0 as f32.
+const F32_ONE_BITS: u32 = 0x3f80_0000;
+/// The largest code of an unsigned integer of `bits` bits (`bits` from 1 to 32).
+pub fn max_code(bits: u32) -> u32 {
+    u32::MAX >> (32 - bits)
+}
+
+/// Unsigned normalized encode: `floor(0.5 + (2^bits - 1) * clamp(value, 0, 1))`, exact.
+///
+/// Works on the float's bits: `value = significand * 2^-shift` with a 24-bit significand, and
+/// the product with `2^bits - 1` (at most 16 bits) is formed in two 12-bit halves so that every
+/// step fits a u32, as it must on the GPU. Valid for `bits` from 1 to 16.
+pub fn unorm_from_f32(value: f32, bits: u32) -> u32 {
+    let max_code = max_code(bits);
+    let value_bits = value.to_bits();
+    if value_bits > F32_INFINITY_BITS {
+        return 0; // NaN, or the sign bit is set (negatives and -0.0)
+    }
+    if value_bits >= F32_ONE_BITS {
+        return max_code; // 1.0 and above, +infinity included
+    }
+    let exponent = value_bits >> 23;
+    let (significand, shift) = if exponent == 0 {
+        (value_bits & 0x7f_ffff, 149) // f32 denormal
+    } else {
+        ((value_bits & 0x7f_ffff) | 0x80_0000, 150 - exponent)
+    };
+    // value < 1 gives shift >= 24. For shift > 40 the product is below 2^40 <= 2^(shift - 1),
+    // under one half: the code is 0.
+    if shift > 40 {
+        return 0;
+    }
+    // product = max_code * significand = high * 2^12 + low_remainder, with low_remainder < 2^12;
+    // since shift >= 24 the remainder cannot carry into the rounded result.
+    let high = max_code * (significand >> 12) + ((max_code * (significand & 0xfff)) >> 12);
+    (high + (1 << (shift - 13))) >> (shift - 12)
+}
+
+/// Unsigned normalized decode: the exact quotient `code / (2^bits - 1)`, correctly rounded.
+pub fn f32_from_unorm(code: u32, bits: u32) -> f32 {
+    code as f32 / max_code(bits) as f32
+}
+
+/// The largest finite code of a float with a 5-bit exponent and `mantissa_bits` of mantissa.
+pub fn small_float_max_code(mantissa_bits: u32) -> u32 {
+    (30 << mantissa_bits) | ((1 << mantissa_bits) - 1)
+}
+
+/// Rounds a non-negative f32, given as its bits with the sign bit clear, to a float with a
+/// 5-bit exponent (bias 15) and `mantissa_bits` of mantissa: round to nearest even, denormals
+/// kept, saturating at the largest finite code. NaN gives 0.
+///
+/// One formula covers normal and denormal results: the code is `exponent_part + significand >>
+/// shift`, rounded, where a normal result's implicit bit carries into the exponent field.
+pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u32 {
+    if magnitude_bits > F32_INFINITY_BITS {
+        return 0; // NaN
+    }
+    let dropped_bits = 23 - mantissa_bits;
+    let exponent = magnitude_bits >> 23;
+    let (significand, shift, exponent_part) = if exponent >= 113 {
+        // 2^-14 and above: a normal result (f32 exponent 113 is 2^-14).
+        let significand = (magnitude_bits & 0x7f_ffff) | 0x80_0000;
+        (significand, dropped_bits, (exponent - 113) << mantissa_bits)
+    } else if exponent > 0 {
+        let significand = (magnitude_bits & 0x7f_ffff) | 0x80_0000;
+        (significand, dropped_bits + 113 - exponent, 0)
+    } else {
+        (magnitude_bits, dropped_bits + 112, 0) // f32 denormal
+    };
+    // A significand below 2^24 shifted by 25 or more is under one half: code 0.
+    if shift > 24 {
+        return 0;
+    }
+    let kept = significand >> shift;
+    let remainder = significand & ((1 << shift) - 1);
+    let halfway = 1 << (shift - 1);
+    let round_up = remainder > halfway || (remainder == halfway && kept & 1 == 1);
+    let code = exponent_part + kept + u32::from(round_up);
+    code.min(small_float_max_code(mantissa_bits))
+}
+
+/// f32 to the 16-bit code of an IEEE binary16, sign kept, saturating at +-65504. NaN gives 0.
+pub fn half_from_f32(value: f32) -> u32 {
+    let value_bits = value.to_bits();
+    let magnitude = value_bits & 0x7fff_ffff;
+    if magnitude > F32_INFINITY_BITS {
+        return 0; // NaN, whatever its sign
+    }
+    ((value_bits >> 16) & 0x8000) | small_float_from_magnitude(magnitude, 10)
+}
+
+/// f32 to an unsigned small float (`mantissa_bits` 6 for r11f and g11f, 5 for b10f).
+/// Negatives and NaN give 0.
+pub fn unsigned_float_from_f32(value: f32, mantissa_bits: u32) -> u32 {
+    let value_bits = value.to_bits();
+    if value_bits >> 31 == 1 {
+        return 0;
+    }
+    small_float_from_magnitude(value_bits, mantissa_bits)
+}
+
+/// Decodes an unsigned small float code, exactly. Exponent 31 decodes to infinity or NaN as
+/// the format defines (the encoders never produce it).
+pub fn f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
+    let exponent = code >> mantissa_bits;
+    let mantissa = code & ((1 << mantissa_bits) - 1);
+    if exponent == 0 {
+        // Denormal: mantissa * 2^-(14 + mantissa_bits); the power of two is exact.
+        return mantissa as f32 * f32::from_bits((113 - mantissa_bits) << 23);
+    }
+    let f32_exponent = if exponent == 31 { 255 } else { exponent + 112 };
+    f32::from_bits((f32_exponent << 23) | (mantissa << (23 - mantissa_bits)))
+}
+
+/// Decodes the 16-bit code of an IEEE binary16, exactly.
+pub fn f32_from_half(code: u32) -> f32 {
+    let magnitude = f32_from_small_float(code & 0x7fff, 10);
+    f32::from_bits(magnitude.to_bits() | ((code & 0x8000) << 16))
+}
+
+/// Clamps an unsigned integer to `bits` bits.
+pub fn uint_saturate(value: u32, bits: u32) -> u32 {
+    value.min(max_code(bits))
+}
+
+/// Clamps a signed integer to the range of `bits` bits and returns its two's complement code.
+pub fn sint_saturate(value: i32, bits: u32) -> u32 {
+    let highest = (max_code(bits) >> 1) as i32;
+    (value.clamp(-highest - 1, highest) as u32) & max_code(bits)
+}
+
+/// Sign-extends a `bits`-bit two's complement code.
+pub fn i32_from_sint(code: u32, bits: u32) -> i32 {
+    ((code << (32 - bits)) as i32) >> (32 - bits)
+}
+
+/// A scalar a field can hold: f32, u32 or i32. Each converts to and from any channel; the
+/// layout check pairs float fields with float and unorm formats and integer fields with their
+/// integer formats, and the other pairings saturate as Rust's `as` does.
+pub trait Scalar: Copy + Default {
+    /// The channel's code, in its low bits.
+    fn encode(self, channel: Channel) -> u32;
+    /// The value of a channel's code.
+    fn decode(code: u32, channel: Channel) -> Self;
+}
+
+impl Scalar for f32 {
+    fn encode(self, channel: Channel) -> u32 {
+        match channel.encoding {
+            ChannelEncoding::Unorm => unorm_from_f32(self, channel.bits),
+            ChannelEncoding::Float32 => self.to_bits(),
+            ChannelEncoding::Half => half_from_f32(self),
+            ChannelEncoding::UnsignedFloat { mantissa_bits } => {
+                unsigned_float_from_f32(self, mantissa_bits)
+            }
+            ChannelEncoding::Uint => uint_saturate(self as u32, channel.bits),
+            ChannelEncoding::Sint => sint_saturate(self as i32, channel.bits),
+        }
+    }
+
+    fn decode(code: u32, channel: Channel) -> f32 {
+        match channel.encoding {
+            ChannelEncoding::Unorm => f32_from_unorm(code, channel.bits),
+            ChannelEncoding::Float32 => f32::from_bits(code),
+            ChannelEncoding::Half => f32_from_half(code),
+            ChannelEncoding::UnsignedFloat { mantissa_bits } => {
+                f32_from_small_float(code, mantissa_bits)
+            }
+            ChannelEncoding::Uint => code as f32,
+            ChannelEncoding::Sint => i32_from_sint(code, channel.bits) as f32,
+        }
+    }
+}
+
+impl Scalar for u32 {
+    fn encode(self, channel: Channel) -> u32 {
+        match channel.encoding {
+            ChannelEncoding::Uint => uint_saturate(self, channel.bits),
+            ChannelEncoding::Sint => sint_saturate(self.min(i32::MAX as u32) as i32, channel.bits),
+            _ => (self as f32).encode(channel),
+        }
+    }
+
+    fn decode(code: u32, channel: Channel) -> u32 {
+        match channel.encoding {
+            ChannelEncoding::Uint => code,
+            ChannelEncoding::Sint => i32_from_sint(code, channel.bits).max(0) as u32,
+            _ => f32::decode(code, channel) as u32,
+        }
+    }
+}
+
+impl Scalar for i32 {
+    fn encode(self, channel: Channel) -> u32 {
+        match channel.encoding {
+            ChannelEncoding::Sint => sint_saturate(self, channel.bits),
+            ChannelEncoding::Uint => uint_saturate(self.max(0) as u32, channel.bits),
+            _ => (self as f32).encode(channel),
+        }
+    }
+
+    fn decode(code: u32, channel: Channel) -> i32 {
+        match channel.encoding {
+            ChannelEncoding::Sint => i32_from_sint(code, channel.bits),
+            ChannelEncoding::Uint => code.min(i32::MAX as u32) as i32,
+            _ => f32::decode(code, channel) as i32,
+        }
+    }
+}
+
+impl Format {
+    /// Packs up to four channel values into the format's word. Channels the format lacks are
+    /// ignored; a field with fewer components passes zeros, which encode as zero bits.
+    pub fn encode<S: Scalar>(self, values: [S; 4]) -> u32 {
+        self.channels()
+            .iter()
+            .zip(values)
+            .fold(0, |word, (channel, value)| {
+                word | (value.encode(*channel) << channel.offset)
+            })
+    }
+
+    /// Unpacks a word into its channel values; channels the format lacks read as zero.
+    pub fn decode<S: Scalar>(self, word: u32) -> [S; 4] {
+        let mut values = [S::default(); 4];
+        for (value, channel) in values.iter_mut().zip(self.channels()) {
+            *value = S::decode((word >> channel.offset) & channel.mask(), *channel);
+        }
+        values
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `floor(0.5 + (2^bits - 1) * clamp(x, 0, 1))` in f64, where it is exact for f32 inputs:
+    /// the product has at most 40 significant bits and adding one half cannot reach the next
+    /// integer by rounding.
+    fn unorm_reference(value: f32, bits: u32) -> u32 {
+        if value.is_nan() {
+            return 0;
+        }
+        let clamped = f64::from(value).clamp(0.0, 1.0);
+        (0.5 + f64::from(max_code(bits)) * clamped).floor() as u32
+    }
+
+    /// Round to nearest even in f64 arithmetic, the textbook way, for comparison.
+    fn small_float_reference(value: f32, mantissa_bits: u32) -> u32 {
+        let max = f64::from(f32_from_small_float(
+            small_float_max_code(mantissa_bits),
+            mantissa_bits,
+        ));
+        let value = f64::from(value);
+        if value.is_nan() || value <= 0.0 {
+            return 0;
+        }
+        if value >= max {
+            return small_float_max_code(mantissa_bits);
+        }
+        // Quantization step of the binade (or of the denormal range).
+        let exponent = value.log2().floor().max(-14.0);
+        let step = (exponent - f64::from(mantissa_bits)).exp2();
+        let quotient = value / step;
+        let mut rounded = quotient.round();
+        if (quotient - quotient.floor() - 0.5).abs() == 0.0 && rounded % 2.0 != 0.0 {
+            rounded -= 1.0;
+        }
+        // In the binade of 2^exponent the code is (exponent + 14) << mantissa_bits plus the
+        // rounded quotient (which carries into the exponent when it reaches 2^(mantissa + 1)).
+        let code = (((exponent + 14.0) as u32) << mantissa_bits) + rounded as u32;
+        code.min(small_float_max_code(mantissa_bits))
+    }
+
+    #[test]
+    fn unorm_matches_the_exact_formula_at_every_midpoint() {
+        for bits in [2, 8, 10, 16] {
+            let max = max_code(bits);
+            for code in 0..max {
+                let midpoint = (f64::from(code) + 0.5) / f64::from(max);
+                let nearest = midpoint as f32;
+                for value in [
+                    nearest,
+                    f32::from_bits(nearest.to_bits() - 1),
+                    f32::from_bits(nearest.to_bits() + 1),
+                ] {
+                    assert_eq!(
+                        unorm_from_f32(value, bits),
+                        unorm_reference(value, bits),
+                        "{value:e} at {bits} bits"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn unorm_edges() {
+        for bits in [2, 8, 10, 16] {
+            let max = max_code(bits);
+            for (value, expected) in [
+                (0.0, 0),
+                (-0.0, 0),
+                (-1.0, 0),
+                (f32::NAN, 0),
+                (-f32::NAN, 0),
+                (f32::NEG_INFINITY, 0),
+                (f32::INFINITY, max),
+                (1.0, max),
+                (2.5, max),
+                (f32::from_bits(1), 0),
+                (0.5 / max as f32 * 0.999, 0),
+            ] {
+                assert_eq!(
+                    unorm_from_f32(value, bits),
+                    expected,
+                    "{value:e} at {bits} bits"
+                );
+            }
+            for code in 0..=max {
+                assert_eq!(unorm_from_f32(f32_from_unorm(code, bits), bits), code);
+            }
+        }
+    }
+
+    #[test]
+    fn small_floats_match_a_textbook_rounding_on_every_boundary() {
+        for mantissa_bits in [5, 6, 10] {
+            let max = small_float_max_code(mantissa_bits);
+            for code in 0..max {
+                let low = f64::from(f32_from_small_float(code, mantissa_bits));
+                let high = f64::from(f32_from_small_float(code + 1, mantissa_bits));
+                let midpoint = ((low + high) / 2.0) as f32;
+                for value in [
+                    low as f32,
+                    midpoint,
+                    f32::from_bits(midpoint.to_bits() - 1),
+                    f32::from_bits(midpoint.to_bits() + 1),
+                ] {
+                    assert_eq!(
+                        small_float_from_magnitude(value.to_bits(), mantissa_bits),
+                        small_float_reference(value, mantissa_bits),
+                        "{value:e} with {mantissa_bits} mantissa bits"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn half_agrees_with_known_codes() {
+        for (value, code) in [
+            (0.0f32, 0x0000),
+            (-0.0, 0x8000),
+            (1.0, 0x3c00),
+            (-2.0, 0xc000),
+            (65504.0, 0x7bff),
+            (65519.0, 0x7bff),
+            (65520.0, 0x7bff), // rounds to 65536, saturates
+            (1e9, 0x7bff),
+            (f32::INFINITY, 0x7bff),
+            (f32::NEG_INFINITY, 0xfbff),
+            (f32::NAN, 0),
+            (-f32::NAN, 0),
+            (5.960_464_5e-8, 0x0001), // smallest denormal
+            (2.980_232_2e-8, 0x0000), // exactly half of it: ties to even
+            (2.980_233e-8, 0x0001),
+            (6.097_555e-5, 0x03ff),   // largest denormal
+            (6.103_515_6e-5, 0x0400), // smallest normal
+        ] {
+            assert_eq!(half_from_f32(value), code, "{value:e}");
+        }
+        for code in 0..0x10000 {
+            let exponent = (code >> 10) & 31;
+            if exponent == 31 {
+                continue;
+            }
+            assert_eq!(half_from_f32(f32_from_half(code)), code, "code {code:#06x}");
+        }
+    }
+
+    #[test]
+    fn unsigned_floats_store_negatives_as_zero_and_saturate() {
+        assert_eq!(unsigned_float_from_f32(-1.0, 6), 0);
+        assert_eq!(unsigned_float_from_f32(f32::INFINITY, 6), 0x7bf);
+        assert_eq!(unsigned_float_from_f32(f32::INFINITY, 5), 0x3df);
+        assert_eq!(f32_from_small_float(0x7bf, 6), 65024.0);
+        assert_eq!(f32_from_small_float(0x3df, 5), 64512.0);
+        assert_eq!(f32_from_small_float(0x7c0, 6), f32::INFINITY);
+    }
+
+    #[test]
+    fn integers_clamp_and_sign_extend() {
+        assert_eq!(sint_saturate(-200, 8), 0x80);
+        assert_eq!(sint_saturate(200, 8), 0x7f);
+        assert_eq!(sint_saturate(-1, 16), 0xffff);
+        assert_eq!(i32_from_sint(0x80, 8), -128);
+        assert_eq!(i32_from_sint(0xffff, 16), -1);
+        assert_eq!(uint_saturate(300, 8), 255);
+        assert_eq!(uint_saturate(7, 2), 3);
+        assert_eq!(uint_saturate(u32::MAX, 32), u32::MAX);
+    }
+
+    #[test]
+    fn words_put_channels_from_the_least_significant_bit_up() {
+        let word = Format::Rgb10A2.encode([1.0f32, 0.0, 1.0, 1.0]);
+        assert_eq!(word, 0x3ff | (0x3ff << 20) | (3 << 30));
+        let word = Format::Rgba8ui.encode([1u32, 2, 3, 4]);
+        assert_eq!(word, 0x0403_0201);
+        assert_eq!(Format::Rgba8ui.decode::<u32>(word), [1, 2, 3, 4]);
+        assert_eq!(
+            Format::Rg16i.decode::<i32>(Format::Rg16i.encode([-5i32, 7, 0, 0])),
+            [-5, 7, 0, 0]
+        );
+    }
+}

@@ -1,0 +1,372 @@
+//! The layout model: named fields, each one word of a pixel local storage format, under a bit
+//! budget. The derive and the layout files both build a [`Layout`]; [`Layout::check`] is the
+//! one place that decides what is valid.
+
+use std::fmt::Write as _;
+
+use crate::format::{Format, ScalarKind};
+use crate::naming;
+
+/// The type of a field: a scalar or a vector of 2 to 4 components.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct FieldType {
+    pub scalar: ScalarKind,
+    /// 1 to 4.
+    pub components: usize,
+}
+
+impl FieldType {
+    /// Every supported type.
+    pub const ALL: [FieldType; 12] = {
+        let kinds = [ScalarKind::Float, ScalarKind::Uint, ScalarKind::Sint];
+        let mut all = [FieldType {
+            scalar: ScalarKind::Float,
+            components: 1,
+        }; 12];
+        let mut index = 0;
+        while index < 12 {
+            all[index] = FieldType {
+                scalar: kinds[index / 4],
+                components: index % 4 + 1,
+            };
+            index += 1;
+        }
+        all
+    };
+
+    pub fn new(scalar: ScalarKind, components: usize) -> Self {
+        FieldType { scalar, components }
+    }
+
+    /// The Rust type's name as the derive sees it: `f32`, `Vec3`, `UVec2`, `i32`, ...
+    pub fn rust_name(self) -> &'static str {
+        const NAMES: [[&str; 4]; 3] = [
+            ["f32", "Vec2", "Vec3", "Vec4"],
+            ["u32", "UVec2", "UVec3", "UVec4"],
+            ["i32", "IVec2", "IVec3", "IVec4"],
+        ];
+        let row = match self.scalar {
+            ScalarKind::Float => 0,
+            ScalarKind::Uint => 1,
+            ScalarKind::Sint => 2,
+        };
+        NAMES[row][self.components - 1]
+    }
+
+    /// Recognises a Rust type name (the last segment of its path).
+    pub fn from_rust_name(name: &str) -> Option<FieldType> {
+        FieldType::ALL.into_iter().find(|ty| ty.rust_name() == name)
+    }
+
+    /// The WGSL type: `f32`, `vec3<f32>`, ...
+    pub fn wgsl(self) -> String {
+        match self.components {
+            1 => self.scalar.wgsl().to_string(),
+            n => format!("vec{n}<{}>", self.scalar.wgsl()),
+        }
+    }
+}
+
+/// One field of a layout: a name, the format of its word and the type it holds.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Field {
+    pub name: String,
+    pub format: Format,
+    pub ty: FieldType,
+}
+
+impl Field {
+    /// The bits of the channels this field uses; the rest of its word is padding.
+    pub fn used_bits(&self) -> u32 {
+        self.format.used_bits(self.ty.components)
+    }
+}
+
+/// A G-buffer layout: field i is word i.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Layout {
+    /// The struct's name, in UpperCamelCase.
+    pub name: String,
+    /// Bits of tile memory available per pixel: a positive multiple of 32.
+    pub budget: u32,
+    pub fields: Vec<Field>,
+}
+
+/// The budget when a layout names none: PowerVR Series6 and Mali pixel local storage.
+pub const DEFAULT_BUDGET: u32 = 128;
+
+/// What a diagnostic is about, so each front end can point at it (a span, a file position).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Subject {
+    /// The layout's name.
+    Name,
+    /// The budget setting (or the name, where the budget is the default).
+    Budget,
+    /// Field `index`'s name.
+    FieldName(usize),
+    /// Field `index`'s format.
+    FieldFormat(usize),
+    /// Field `index`'s type.
+    FieldType(usize),
+}
+
+/// One problem with a layout.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Diagnostic {
+    pub subject: Subject,
+    pub message: String,
+}
+
+impl Layout {
+    /// Builds a layout from borrowed parts (what the generated `layout()` functions call).
+    pub fn from_parts(name: &str, budget: u32, fields: &[(&str, Format, FieldType)]) -> Self {
+        Layout {
+            name: name.to_string(),
+            budget,
+            fields: fields
+                .iter()
+                .map(|&(name, format, ty)| Field {
+                    name: name.to_string(),
+                    format,
+                    ty,
+                })
+                .collect(),
+        }
+    }
+
+    /// Bits the layout occupies: 32 per field.
+    pub fn bits(&self) -> u32 {
+        32 * self.fields.len() as u32
+    }
+
+    /// Bits of the channels the fields use.
+    pub fn used_bits(&self) -> u32 {
+        self.fields.iter().map(Field::used_bits).sum()
+    }
+
+    /// Number of 32-bit words.
+    pub fn words(&self) -> usize {
+        self.fields.len()
+    }
+
+    /// Number of `Rgba32Uint` render targets (128 bits each) the words need.
+    pub fn targets(&self) -> usize {
+        self.words().div_ceil(4)
+    }
+
+    /// The name in snake_case, used to name the generated WGSL functions.
+    pub fn snake_name(&self) -> String {
+        naming::snake_case(&self.name)
+    }
+
+    /// Every problem with the layout, in source order; empty when it is valid.
+    pub fn check(&self) -> Vec<Diagnostic> {
+        let mut diagnostics = Vec::new();
+        let mut report =
+            |subject, message: String| diagnostics.push(Diagnostic { subject, message });
+
+        if let Err(reason) = naming::check_identifier(&self.name) {
+            report(
+                Subject::Name,
+                format!("layout name `{}` {reason}", self.name),
+            );
+        }
+        if self.budget == 0 || self.budget % 32 != 0 {
+            report(
+                Subject::Budget,
+                format!(
+                    "budget must be a positive multiple of 32 bits (each field is one 32-bit \
+                     word), not {}",
+                    self.budget
+                ),
+            );
+        }
+        if self.fields.is_empty() {
+            report(
+                Subject::Name,
+                format!(
+                    "layout `{}` has no fields: a G-buffer needs at least one word",
+                    self.name
+                ),
+            );
+        }
+        for (index, field) in self.fields.iter().enumerate() {
+            if let Err(reason) = naming::check_identifier(&field.name) {
+                report(
+                    Subject::FieldName(index),
+                    format!("field name `{}` {reason}", field.name),
+                );
+            }
+            if let Some(first) = self.fields[..index]
+                .iter()
+                .position(|other| other.name == field.name)
+            {
+                report(
+                    Subject::FieldName(index),
+                    format!(
+                        "field `{}` is declared twice (first as field {first})",
+                        field.name
+                    ),
+                );
+            }
+            if let Some(reason) = type_mismatch(field) {
+                report(Subject::FieldType(index), reason);
+            }
+        }
+        if self.budget > 0 && self.budget % 32 == 0 && self.bits() > self.budget {
+            report(Subject::Budget, self.over_budget_message());
+        }
+        diagnostics
+    }
+
+    fn over_budget_message(&self) -> String {
+        let mut message = format!(
+            "layout `{}` needs {} bits but the budget is {}: ",
+            self.name,
+            self.bits(),
+            self.budget
+        );
+        let terms: Vec<String> = self
+            .fields
+            .iter()
+            .map(|field| format!("{} ({}) 32", field.name, field.format))
+            .collect();
+        let spill = self.bits() - self.budget;
+        let _ = write!(
+            message,
+            "{} = {} > {}; {} bits ({} word{}) would spill to main memory",
+            terms.join(" + "),
+            self.bits(),
+            self.budget,
+            spill,
+            spill / 32,
+            if spill == 32 { "" } else { "s" }
+        );
+        message
+    }
+}
+
+/// Why a field's type cannot be stored in its format, if it cannot.
+fn type_mismatch(field: &Field) -> Option<String> {
+    let format = field.format;
+    let channels = format.channels().len();
+    let ty = field.ty;
+    let fitting = fitting_types(format);
+    if ty.scalar != format.scalar_kind() {
+        let holds = match format.scalar_kind() {
+            ScalarKind::Float => "floats",
+            ScalarKind::Uint => "unsigned integers",
+            ScalarKind::Sint => "signed integers",
+        };
+        return Some(format!(
+            "`{}` cannot be stored in `{format}`, which holds {holds}: use {fitting}",
+            ty.rust_name()
+        ));
+    }
+    if ty.components > channels {
+        return Some(format!(
+            "`{}` has {} components but `{format}` has {channels} channel{}: use {fitting}",
+            ty.rust_name(),
+            ty.components,
+            if channels == 1 { "" } else { "s" }
+        ));
+    }
+    None
+}
+
+/// The types that fit a format, as a phrase: "`f32`, `Vec2` or `Vec3`".
+pub fn fitting_types(format: Format) -> String {
+    let names: Vec<String> = (1..=format.channels().len())
+        .map(|components| {
+            format!(
+                "`{}`",
+                FieldType::new(format.scalar_kind(), components).rust_name()
+            )
+        })
+        .collect();
+    match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => names.concat(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn field(name: &str, format: Format, ty: &str) -> Field {
+        Field {
+            name: name.into(),
+            format,
+            ty: FieldType::from_rust_name(ty).unwrap(),
+        }
+    }
+
+    fn listing_2_1(budget: u32) -> Layout {
+        Layout {
+            name: "SpecularWorkflow".into(),
+            budget,
+            fields: vec![
+                field("light_accumulation", Format::Rgb10A2, "Vec3"),
+                field("depth", Format::R32f, "f32"),
+                field("normals_roughness", Format::Rgba8, "Vec4"),
+                field("base_colour", Format::Rgba8, "Vec3"),
+                field("specular_colour", Format::Rgba8, "Vec3"),
+            ],
+        }
+    }
+
+    #[test]
+    fn listing_2_1_uses_142_of_160_bits_and_spills_at_128() {
+        let layout = listing_2_1(128);
+        assert_eq!((layout.bits(), layout.used_bits()), (160, 142));
+        let diagnostics = layout.check();
+        assert_eq!(diagnostics.len(), 1);
+        assert!(
+            diagnostics[0].message.contains("= 160 > 128"),
+            "{}",
+            diagnostics[0].message
+        );
+        assert!(listing_2_1(256).check().is_empty());
+    }
+
+    #[test]
+    fn type_names_round_trip() {
+        for ty in FieldType::ALL {
+            assert_eq!(FieldType::from_rust_name(ty.rust_name()), Some(ty));
+        }
+        assert_eq!(FieldType::new(ScalarKind::Uint, 3).wgsl(), "vec3<u32>");
+    }
+
+    #[test]
+    fn mismatched_types_name_what_fits() {
+        let layout = Layout {
+            name: "Bad".into(),
+            budget: 96,
+            fields: vec![
+                field("a", Format::R32f, "Vec4"),
+                field("b", Format::Rgba8, "i32"),
+                field("c", Format::R11fG11fB10f, "Vec3"),
+            ],
+        };
+        let messages: Vec<String> = layout.check().into_iter().map(|d| d.message).collect();
+        assert_eq!(
+            messages,
+            [
+                "`Vec4` has 4 components but `r32f` has 1 channel: use `f32`",
+                "`i32` cannot be stored in `rgba8`, which holds floats: use `f32`, `Vec2`, `Vec3` or `Vec4`",
+            ]
+        );
+    }
+
+    #[test]
+    fn budget_and_emptiness_are_checked() {
+        let layout = Layout {
+            name: "Empty".into(),
+            budget: 100,
+            fields: vec![],
+        };
+        let subjects: Vec<Subject> = layout.check().into_iter().map(|d| d.subject).collect();
+        assert_eq!(subjects, [Subject::Budget, Subject::Name]);
+    }
+}

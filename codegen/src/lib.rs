@@ -1,0 +1,22 @@
+//! The G-buffer layout model and everything generated from it.
+//!
+//! One implementation serves every front end: the `#[derive(GBufferLayout)]` macro and the
+//! `codegen` command both build a [`Layout`], [`Layout::check`] it, and hand it to the
+//! emitters. The pipeline, front to back:
+//!
+//! - [`format`]: the twelve pixel local storage formats and their channels;
+//! - [`layout`]: fields, types, the bit budget and its checks;
+//! - [`convert`]: the bit-exact conversions (the CPU side of the generated WGSL);
+//! - [`emit`]: WGSL and Rust mirror emitters;
+//! - [`report`]: the bit report and the WebGPU render-target cost.
+
+pub mod convert;
+pub mod emit;
+pub mod format;
+pub mod layout;
+pub mod naming;
+pub mod report;
+
+pub use format::{Channel, ChannelEncoding, Format, ScalarKind};
+pub use layout::{Diagnostic, Field, FieldType, Layout, Subject, DEFAULT_BUDGET};
+pub use report::Report;

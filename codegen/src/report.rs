@@ -1,0 +1,265 @@
+//! The bit report of a layout, and what the same fields would cost as separate WebGPU render
+//! targets: users choose between one packed `Rgba32Uint` target per 128 bits and several
+//! native-format targets, and WebGPU limits the bytes a sample may carry across all targets.
+
+use std::fmt;
+
+use crate::format::Format;
+use crate::layout::Layout;
+
+/// WebGPU's default `maxColorAttachmentBytesPerSample`.
+pub const WEBGPU_BYTES_PER_SAMPLE_LIMIT: u32 = 32;
+/// WebGPU's default `maxColorAttachments`.
+pub const WEBGPU_COLOR_ATTACHMENT_LIMIT: usize = 8;
+
+/// The WebGPU texture format a field would use as its own render target.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WebGpuTarget {
+    /// The WebGPU name, e.g. `rgb10a2unorm`.
+    pub name: &'static str,
+    /// The "render target pixel byte cost" of the WebGPU spec (what wgpu counts).
+    pub byte_cost: u32,
+    /// The "render target component alignment": the running total is rounded up to it first.
+    pub alignment: u32,
+    /// Whether core WebGPU has it as a render target; `rg16unorm` needs a native feature
+    /// (`TEXTURE_FORMAT_16BIT_NORM` in wgpu).
+    pub core: bool,
+}
+
+/// The WebGPU render-target format closest to a pixel local storage format. rgba8unorm,
+/// rgb10a2unorm and rg11b10ufloat cost 8 bytes although they hold 4: the spec charges them
+/// for the wider formats implementations may use to blend them.
+pub fn webgpu_target(format: Format) -> WebGpuTarget {
+    let (name, byte_cost, alignment, core) = match format {
+        Format::R11fG11fB10f => ("rg11b10ufloat", 8, 4, true),
+        Format::R32f => ("r32float", 4, 4, true),
+        Format::Rg16f => ("rg16float", 4, 2, true),
+        Format::Rgb10A2 => ("rgb10a2unorm", 8, 4, true),
+        Format::Rgba8 => ("rgba8unorm", 8, 1, true),
+        Format::Rg16 => ("rg16unorm", 4, 2, false),
+        Format::Rgba8i => ("rgba8sint", 4, 1, true),
+        Format::Rg16i => ("rg16sint", 4, 2, true),
+        Format::Rgb10A2ui => ("rgb10a2uint", 8, 4, true),
+        Format::Rgba8ui => ("rgba8uint", 4, 1, true),
+        Format::Rg16ui => ("rg16uint", 4, 2, true),
+        Format::R32ui => ("r32uint", 4, 4, true),
+    };
+    WebGpuTarget {
+        name,
+        byte_cost,
+        alignment,
+        core,
+    }
+}
+
+/// The bytes per sample of a list of render targets, as WebGPU validates it: for each target
+/// in order, round the total up to its alignment, then add its cost.
+pub fn bytes_per_sample(targets: impl IntoIterator<Item = WebGpuTarget>) -> u32 {
+    targets.into_iter().fold(0, |total, target| {
+        total.next_multiple_of(target.alignment) + target.byte_cost
+    })
+}
+
+/// Tile memory budgets of mobile GPUs, for the "fits" column.
+pub const TILE_BUDGETS: [(&str, u32); 3] = [
+    ("PowerVR Series6", 128),
+    ("PowerVR Series6XT and later", 256),
+    ("Arm Mali PLS", 128),
+];
+
+/// A layout's bit report. Its `Display` is the text the examples and the `codegen` tool print.
+#[derive(Clone, Debug)]
+pub struct Report {
+    pub layout: Layout,
+}
+
+impl Report {
+    pub fn new(layout: &Layout) -> Self {
+        Report {
+            layout: layout.clone(),
+        }
+    }
+
+    /// Bytes per sample if every field were its own render target.
+    pub fn separate_targets_bytes(&self) -> u32 {
+        bytes_per_sample(
+            self.layout
+                .fields
+                .iter()
+                .map(|field| webgpu_target(field.format)),
+        )
+    }
+
+    /// Bytes per sample of the packed form: one `Rgba32Uint` (16 bytes) per 128 bits.
+    pub fn packed_targets_bytes(&self) -> u32 {
+        16 * self.layout.targets() as u32
+    }
+}
+
+impl fmt::Display for Report {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let layout = &self.layout;
+        let bits = layout.bits();
+        writeln!(
+            out,
+            "{}: {} words, {bits} bits, {} used, budget {}",
+            layout.name,
+            layout.words(),
+            layout.used_bits(),
+            layout.budget
+        )?;
+        writeln!(
+            out,
+            "  {:<4} {:<28} {:<15} {:<6} {:>4} {:>4}",
+            "word", "field", "format", "type", "bits", "used"
+        )?;
+        for (word, field) in layout.fields.iter().enumerate() {
+            writeln!(
+                out,
+                "  {word:<4} {:<28} {:<15} {:<6} {:>4} {:>4}",
+                field.name,
+                field.format.name(),
+                field.ty.rust_name(),
+                32,
+                field.used_bits()
+            )?;
+        }
+        writeln!(out, "  {:<55} {bits:>4} {:>4}", "total", layout.used_bits())?;
+        if bits <= layout.budget {
+            writeln!(
+                out,
+                "  fits the {}-bit budget with {} bits of headroom",
+                layout.budget,
+                layout.budget - bits
+            )?;
+        } else {
+            writeln!(
+                out,
+                "  OVER the {}-bit budget: {} > {}, {} bits spill",
+                layout.budget,
+                bits,
+                layout.budget,
+                bits - layout.budget
+            )?;
+        }
+        let fits: Vec<&str> = TILE_BUDGETS
+            .iter()
+            .filter(|(_, budget)| bits <= *budget)
+            .map(|(gpu, _)| *gpu)
+            .collect();
+        writeln!(
+            out,
+            "  tile memory: fits {}",
+            if fits.is_empty() {
+                "none of the listed GPUs".to_string()
+            } else {
+                fits.join(", ")
+            }
+        )?;
+
+        writeln!(out, "  as separate WebGPU render targets (one per field):")?;
+        for field in &layout.fields {
+            let target = webgpu_target(field.format);
+            let note = if target.core {
+                ""
+            } else {
+                "  (not core WebGPU: needs a native feature)"
+            };
+            writeln!(
+                out,
+                "    {:<28} {:<15} {} bytes{note}",
+                field.name, target.name, target.byte_cost
+            )?;
+        }
+        let separate = self.separate_targets_bytes();
+        let verdict = if separate > WEBGPU_BYTES_PER_SAMPLE_LIMIT {
+            "exceeds"
+        } else {
+            "within"
+        };
+        writeln!(out, "    total {separate} bytes per sample: {verdict} the default limit of {WEBGPU_BYTES_PER_SAMPLE_LIMIT}")?;
+        if layout.fields.len() > WEBGPU_COLOR_ATTACHMENT_LIMIT {
+            writeln!(out, "    {} targets exceed the default limit of {WEBGPU_COLOR_ATTACHMENT_LIMIT} colour attachments", layout.fields.len())?;
+        }
+        let packed = self.packed_targets_bytes();
+        let verdict = if packed > WEBGPU_BYTES_PER_SAMPLE_LIMIT {
+            "exceeds"
+        } else {
+            "within"
+        };
+        writeln!(
+            out,
+            "  packed: {} x rgba32uint = {packed} bytes per sample: {verdict} the default limit",
+            layout.targets()
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::layout::{Field, FieldType};
+
+    #[test]
+    fn separate_targets_follow_webgpu_alignment_rules() {
+        let rg16f = webgpu_target(Format::Rg16f);
+        let rgba8 = webgpu_target(Format::Rgba8);
+        let r32f = webgpu_target(Format::R32f);
+        // rgba8unorm (8, align 1) then r32float (4, align 4): 8 is aligned, 12.
+        assert_eq!(bytes_per_sample([rgba8, r32f]), 12);
+        // rg16float (4) then rgba8uint (4, align 1) then r32float: 4 + 4 = 8, aligned, 12.
+        assert_eq!(
+            bytes_per_sample([rg16f, webgpu_target(Format::Rgba8ui), r32f]),
+            12
+        );
+        // rgba8sint (4, align 1) then rg16float (align 2) then rg11b10ufloat (8, align 4).
+        assert_eq!(
+            bytes_per_sample([
+                webgpu_target(Format::Rgba8i),
+                rg16f,
+                webgpu_target(Format::R11fG11fB10f)
+            ]),
+            16
+        );
+    }
+
+    #[test]
+    fn mobile_metallic_costs_28_bytes_separate_and_16_packed() {
+        let ty = |name| FieldType::from_rust_name(name).unwrap();
+        let layout = Layout {
+            name: "MobileMetallic".into(),
+            budget: 128,
+            fields: vec![
+                Field {
+                    name: "light_accumulation".into(),
+                    format: Format::Rgb10A2,
+                    ty: ty("Vec3"),
+                },
+                Field {
+                    name: "depth".into(),
+                    format: Format::R32f,
+                    ty: ty("f32"),
+                },
+                Field {
+                    name: "normals_roughness".into(),
+                    format: Format::Rgba8,
+                    ty: ty("Vec4"),
+                },
+                Field {
+                    name: "albedo_metallic".into(),
+                    format: Format::Rgba8,
+                    ty: ty("Vec4"),
+                },
+            ],
+        };
+        let report = Report::new(&layout);
+        assert_eq!(report.separate_targets_bytes(), 28);
+        assert_eq!(report.packed_targets_bytes(), 16);
+        let text = report.to_string();
+        assert!(
+            text.contains("4 words, 128 bits, 126 used, budget 128"),
+            "{text}"
+        );
+        assert!(text.contains("total 28 bytes per sample: within"), "{text}");
+    }
+}
