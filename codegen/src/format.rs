@@ -185,6 +185,14 @@ impl Format {
         Format::ALL.into_iter().find(|format| format.name() == name)
     }
 
+    /// The format whose name is closest to `name` (by edit distance), for "did you mean".
+    pub fn nearest(name: &str) -> Format {
+        Format::ALL
+            .into_iter()
+            .min_by_key(|format| edit_distance(name, format.name()))
+            .unwrap_or(Format::Rgba8)
+    }
+
     /// The Rust variant name, e.g. `Rgb10A2`, for generated code.
     pub fn variant_name(self) -> &'static str {
         match self {
@@ -254,6 +262,22 @@ impl Format {
     }
 }
 
+/// Levenshtein distance: the fewest single-character insertions, deletions and substitutions
+/// that turn `a` into `b`.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut previous: Vec<usize> = (0..=b.len()).collect();
+    for (i, a_char) in a.chars().enumerate() {
+        let mut current = vec![i + 1; b.len() + 1];
+        for (j, b_char) in b.iter().enumerate() {
+            let substitution = previous[j] + usize::from(a_char != *b_char);
+            current[j + 1] = substitution.min(previous[j + 1] + 1).min(current[j] + 1);
+        }
+        previous = current;
+    }
+    previous[b.len()]
+}
+
 impl fmt::Display for Format {
     fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
         formatter.write_str(self.name())
@@ -293,5 +317,13 @@ mod tests {
         }
         assert_eq!(Format::from_name("rgb10a2"), Some(Format::Rgb10A2));
         assert_eq!(Format::from_name("rgba16f"), None);
+    }
+
+    #[test]
+    fn nearest_names_the_likely_typo() {
+        assert_eq!(Format::nearest("rgba16f"), Format::Rg16f);
+        assert_eq!(Format::nearest("rgb10_a2u"), Format::Rgb10A2ui);
+        assert_eq!(Format::nearest("r32"), Format::R32f);
+        assert_eq!(Format::nearest("rgba8_unorm"), Format::Rgba8);
     }
 }

@@ -100,6 +100,13 @@ impl fmt::Display for Report {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
         let layout = &self.layout;
         let bits = layout.bits();
+        let width = layout
+            .fields
+            .iter()
+            .map(|field| field.name.len())
+            .max()
+            .unwrap_or(0)
+            .max(5);
         writeln!(
             out,
             "{}: {} words, {bits} bits, {} used, budget {}",
@@ -110,13 +117,13 @@ impl fmt::Display for Report {
         )?;
         writeln!(
             out,
-            "  {:<4} {:<28} {:<15} {:<6} {:>4} {:>4}",
+            "  {:<4} {:<width$} {:<15} {:<6} {:>4} {:>4}",
             "word", "field", "format", "type", "bits", "used"
         )?;
         for (word, field) in layout.fields.iter().enumerate() {
             writeln!(
                 out,
-                "  {word:<4} {:<28} {:<15} {:<6} {:>4} {:>4}",
+                "  {word:<4} {:<width$} {:<15} {:<6} {:>4} {:>4}",
                 field.name,
                 field.format.name(),
                 field.ty.rust_name(),
@@ -124,7 +131,13 @@ impl fmt::Display for Report {
                 field.used_bits()
             )?;
         }
-        writeln!(out, "  {:<55} {bits:>4} {:>4}", "total", layout.used_bits())?;
+        writeln!(
+            out,
+            "  {:<total_width$} {bits:>4} {:>4}",
+            "total",
+            layout.used_bits(),
+            total_width = width + 27
+        )?;
         if bits <= layout.budget {
             writeln!(
                 out,
@@ -167,7 +180,7 @@ impl fmt::Display for Report {
             };
             writeln!(
                 out,
-                "    {:<28} {:<15} {} bytes{note}",
+                "    {:<width$} {:<15} {} bytes{note}",
                 field.name, target.name, target.byte_cost
             )?;
         }

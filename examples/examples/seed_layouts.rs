@@ -1,1 +1,20 @@
-fn main() {}
+//! Prints the bit report of every seed layout: per field the format, bits and used bits, the
+//! total against the budget, and what the same fields cost as separate WebGPU render targets.
+//!
+//! Run with `cargo run --release --example seed_layouts`; add `-- --wgsl` to print the
+//! generated WGSL as well.
+
+use shaderlib::packing::Report;
+use shaderlib::seed_layouts;
+
+fn main() {
+    let print_wgsl = std::env::args()
+        .skip(1)
+        .any(|argument| argument == "--wgsl");
+    for (layout, wgsl) in seed_layouts::all() {
+        println!("{}", Report::new(&layout));
+        if print_wgsl {
+            println!("{wgsl}\n");
+        }
+    }
+}

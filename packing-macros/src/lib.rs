@@ -1,1 +1,47 @@
+//! `#[derive(GBufferLayout)]`, used through its re-export `shaderlib::GBufferLayout`.
+//!
+//! A derive in three stages, as serde_derive and thiserror do it:
+//! 1. [`parse`]: read the struct and its `#[gbuffer]` / `#[pls]` attributes into a
+//!    [`codegen::Layout`], remembering the span of everything a message may point at;
+//! 2. check: [`codegen::Layout::check`] judges the layout (budget, types, names), the same
+//!    check the `codegen` tool runs on layout files;
+//! 3. expand: [`codegen::emit`] writes the WGSL and the Rust mirror.
+//!
+//! Every problem becomes a `syn::Error` at its span, and all of them are reported together.
+//! The derive never panics.
 
+mod parse;
+
+use proc_macro::TokenStream;
+
+/// Derives `shaderlib::GBufferLayout`: the bit budget check, the WGSL pack/unpack code and a
+/// bit-exact Rust mirror of it. See the `shaderlib` crate for the attributes.
+#[proc_macro_derive(GBufferLayout, attributes(gbuffer, pls))]
+pub fn derive_gbuffer_layout(input: TokenStream) -> TokenStream {
+    let input = syn::parse_macro_input!(input as syn::DeriveInput);
+    expand(&input)
+        .unwrap_or_else(syn::Error::into_compile_error)
+        .into()
+}
+
+fn expand(input: &syn::DeriveInput) -> syn::Result<proc_macro2::TokenStream> {
+    let parsed = parse::parse(input)?;
+    let mut errors = parsed.errors;
+    for diagnostic in parsed.layout.check() {
+        let error = syn::Error::new(parsed.spans.span_of(diagnostic.subject), diagnostic.message);
+        combine(&mut errors, error);
+    }
+    if let Some(errors) = errors {
+        return Err(errors);
+    }
+    let wgsl = codegen::emit::wgsl::emit(&parsed.layout);
+    Ok(codegen::emit::rust::emit_impl(&parsed.layout, &wgsl))
+}
+
+/// Adds `error` to the collected errors.
+fn combine(errors: &mut Option<syn::Error>, error: syn::Error) {
+    match errors {
+        Some(errors) => errors.combine(error),
+        None => *errors = Some(error),
+    }
+}

@@ -1,1 +1,83 @@
+//! Deferred shading on tile memory: declare a G-buffer once, get everything that must agree
+//! with it.
+//!
+//! ```
+//! use shaderlib::{GBufferLayout, glam::{Vec3, Vec4}};
+//!
+//! #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+//! #[gbuffer(budget = 128)] // bits of tile memory; default 128; a positive multiple of 32
+//! struct MobileMetallic {
+//!     #[pls(rgb10_a2)] light_accumulation: Vec3, // alpha unused: 30 of 32 bits used
+//!     #[pls(r32f)]     depth: f32,
+//!     #[pls(rgba8)]    normals_roughness: Vec4,
+//!     #[pls(rgba8)]    albedo_metallic: Vec4,
+//! }
+//!
+//! assert_eq!((MobileMetallic::BITS, MobileMetallic::USED_BITS), (128, 126));
+//! let texel = MobileMetallic {
+//!     light_accumulation: Vec3::new(0.25, 0.5, 1.0),
+//!     depth: 0.75,
+//!     normals_roughness: Vec4::new(0.5, 0.5, 1.0, 0.3),
+//!     albedo_metallic: Vec4::new(1.0, 0.8, 0.2, 1.0),
+//! };
+//! let words: [u32; 4] = texel.pack(); // the same bits as the WGSL `pack_mobile_metallic`
+//! assert_eq!(MobileMetallic::unpack(&words).depth, 0.75);
+//! assert!(MobileMetallic::WGSL.contains("fn unpack_mobile_metallic(w: array<u32, 4>) -> MobileMetallic"));
+//! ```
+//!
+//! Each field is one 32-bit word of a format of EXT_shader_pixel_local_storage, named in
+//! `#[pls(...)]`: `r11f_g11f_b10f`, `r32f`, `rg16f`, `rgb10_a2` (or `rgb10a2`), `rgba8`,
+//! `rg16`, `rgba8i`, `rg16i`, `rgb10_a2ui`, `rgba8ui`, `rg16ui`, `r32ui`. A field holds `f32`
+//! or `Vec2`..`Vec4` in float and unorm formats, `u32` or `UVec2`..`UVec4` in `ui` formats,
+//! `i32` or `IVec2`..`IVec4` in `i` formats; channels it does not fill are zero padding.
+//!
+//! A layout over its budget does not compile, and the error lists every field's bits.
 
+// The derive's expansion names `::shaderlib`; this lets the seed layouts below use it too.
+extern crate self as shaderlib;
+
+pub mod seed_layouts;
+
+pub use glam;
+pub use packing_macros::GBufferLayout;
+
+/// The layout model and the bit-exact conversions that derived code calls.
+pub mod packing {
+    pub use codegen::convert::Scalar;
+    pub use codegen::report::Report;
+    pub use codegen::{Field, FieldType, Format, Layout, ScalarKind};
+}
+
+/// A pixel local storage G-buffer layout. Derive it with `#[derive(GBufferLayout)]`.
+///
+/// Field i of the struct is word i of [`Self::Packed`]; inside a word the channels r, g, b, a
+/// sit from the least significant bit up, so the words load unchanged into `Rgba32Uint`
+/// render targets.
+pub trait GBufferLayout: Sized {
+    /// Bits the layout occupies: 32 per field.
+    const BITS: u32;
+    /// Bits of the channels the fields use (the rest is zero padding).
+    const USED_BITS: u32;
+    /// The tile memory budget the layout was checked against.
+    const BUDGET: u32;
+    /// Number of 32-bit words: one per field.
+    const WORDS: usize;
+    /// `[u32; WORDS]`.
+    type Packed: Copy + AsRef<[u32]> + AsMut<[u32]>;
+    /// The WGSL: the struct, `pack_<snake>`, `unpack_<snake>`, `load_<snake>_<field>` and the
+    /// `Rgba32Uint` target helpers. Valid on its own and beside other layouts' WGSL.
+    const WGSL: &'static str;
+
+    /// Packs the texel, bit for bit as the WGSL `pack_<snake>` does.
+    fn pack(&self) -> Self::Packed;
+    /// Unpacks a texel: floats and integers exactly, unorm as the correctly rounded quotient.
+    fn unpack(words: &Self::Packed) -> Self;
+    /// The layout's description: fields, formats, types and budget.
+    fn layout() -> packing::Layout;
+
+    /// The bit report: per field the format, bits and used bits; the total against the
+    /// budget; and the WebGPU cost of the same fields as separate render targets.
+    fn report() -> packing::Report {
+        packing::Report::new(&Self::layout())
+    }
+}

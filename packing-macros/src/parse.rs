@@ -1,0 +1,241 @@
+//! Stage 1 of the derive: the struct and its attributes to a [`Layout`], with the span of each
+//! part so that the check's diagnostics can point at it.
+
+use codegen::{Field, FieldType, Format, Layout, Subject, DEFAULT_BUDGET};
+use proc_macro2::Span;
+use syn::spanned::Spanned;
+use syn::{Data, DeriveInput, Fields};
+
+use crate::combine;
+
+/// The spans the check's [`Subject`]s refer to.
+pub struct Spans {
+    name: Span,
+    budget: Option<Span>,
+    /// Per field of the layout: its name, its format and its type.
+    fields: Vec<[Span; 3]>,
+}
+
+impl Spans {
+    pub fn span_of(&self, subject: Subject) -> Span {
+        match subject {
+            Subject::Name => self.name,
+            Subject::Budget => self.budget.unwrap_or(self.name),
+            Subject::FieldName(index) => self.fields[index][0],
+            Subject::FieldFormat(index) => self.fields[index][1],
+            Subject::FieldType(index) => self.fields[index][2],
+        }
+    }
+}
+
+/// What parsing produced: the layout of every field that parsed, their spans, and the errors
+/// found on the way (a field with an error is left out of the layout).
+pub struct Parsed {
+    pub layout: Layout,
+    pub spans: Spans,
+    pub errors: Option<syn::Error>,
+}
+
+/// Reads the input. Returns `Err` only when there is no struct to read at all.
+pub fn parse(input: &DeriveInput) -> syn::Result<Parsed> {
+    let named_fields =
+        match &input.data {
+            Data::Struct(data) => match &data.fields {
+                Fields::Named(fields) => fields.named.iter().collect::<Vec<_>>(),
+                Fields::Unnamed(fields) => return Err(syn::Error::new(
+                    fields.span(),
+                    "a G-buffer layout needs named fields: they name the WGSL struct's members \
+                     and functions",
+                )),
+                Fields::Unit => Vec::new(),
+            },
+            Data::Enum(data) => return Err(syn::Error::new(
+                data.enum_token.span,
+                "`GBufferLayout` can only be derived for a struct with named fields, not an enum",
+            )),
+            Data::Union(data) => return Err(syn::Error::new(
+                data.union_token.span,
+                "`GBufferLayout` can only be derived for a struct with named fields, not a union",
+            )),
+        };
+
+    let mut errors = None;
+    if !input.generics.params.is_empty() || input.generics.where_clause.is_some() {
+        combine(
+            &mut errors,
+            syn::Error::new(
+                input.generics.span(),
+                "a G-buffer layout cannot be generic: its WGSL struct needs concrete field types",
+            ),
+        );
+    }
+
+    let (budget, budget_span) = parse_gbuffer_attributes(input, &mut errors);
+    let mut layout = Layout {
+        name: input.ident.to_string(),
+        budget,
+        fields: Vec::new(),
+    };
+    let mut spans = Spans {
+        name: input.ident.span(),
+        budget: budget_span,
+        fields: Vec::new(),
+    };
+
+    for field in named_fields {
+        let Some(ident) = &field.ident else { continue };
+        let name = ident.to_string().trim_start_matches("r#").to_string();
+        let format = parse_pls_attribute(field, &name, &mut errors);
+        let ty = parse_field_type(&field.ty, &mut errors);
+        if let (Some((format, format_span)), Some(ty)) = (format, ty) {
+            layout.fields.push(Field { name, format, ty });
+            spans
+                .fields
+                .push([ident.span(), format_span, field.ty.span()]);
+        }
+    }
+    Ok(Parsed {
+        layout,
+        spans,
+        errors,
+    })
+}
+
+/// `#[gbuffer(budget = 128)]`: the budget and the span of its value.
+fn parse_gbuffer_attributes(
+    input: &DeriveInput,
+    errors: &mut Option<syn::Error>,
+) -> (u32, Option<Span>) {
+    let mut budget = None;
+    let mut seen_attribute = false;
+    for attribute in input
+        .attrs
+        .iter()
+        .filter(|attribute| attribute.path().is_ident("gbuffer"))
+    {
+        if seen_attribute {
+            combine(
+                errors,
+                syn::Error::new(
+                    attribute.span(),
+                    "`#[gbuffer]` is given twice: merge its options into one attribute",
+                ),
+            );
+            continue;
+        }
+        seen_attribute = true;
+        let result = attribute.parse_nested_meta(|meta| {
+            if !meta.path.is_ident("budget") {
+                return Err(meta.error("unknown `gbuffer` option: expected `budget = <bits>`"));
+            }
+            let literal: syn::LitInt = meta.value()?.parse()?;
+            let value = literal.base10_parse::<u32>().map_err(|_| {
+                syn::Error::new(
+                    literal.span(),
+                    "budget must be a whole number of bits that fits a u32",
+                )
+            })?;
+            if budget.is_some() {
+                return Err(syn::Error::new(literal.span(), "`budget` is given twice"));
+            }
+            budget = Some((value, literal.span()));
+            Ok(())
+        });
+        if let Err(error) = result {
+            combine(errors, error);
+        }
+    }
+    match budget {
+        Some((value, span)) => (value, Some(span)),
+        None => (DEFAULT_BUDGET, None),
+    }
+}
+
+/// `#[pls(rgba8)]`: the field's format and the span of its name.
+fn parse_pls_attribute(
+    field: &syn::Field,
+    name: &str,
+    errors: &mut Option<syn::Error>,
+) -> Option<(Format, Span)> {
+    let attributes: Vec<&syn::Attribute> = field
+        .attrs
+        .iter()
+        .filter(|attribute| attribute.path().is_ident("pls"))
+        .collect();
+    let Some(first) = attributes.first() else {
+        combine(
+            errors,
+            syn::Error::new(
+                field.ident.span(),
+                format!("field `{name}` needs a `#[pls(<format>)]` attribute naming its pixel local storage format, e.g. `#[pls(rgba8)]`"),
+            ),
+        );
+        return None;
+    };
+    for repeated in &attributes[1..] {
+        combine(
+            errors,
+            syn::Error::new(
+                repeated.span(),
+                format!("field `{name}` has more than one `#[pls]` attribute"),
+            ),
+        );
+    }
+    let format_ident = match first.parse_args::<syn::Ident>() {
+        Ok(ident) => ident,
+        Err(_) => {
+            combine(
+                errors,
+                syn::Error::new(
+                    first.span(),
+                    format!("expected `#[pls(<format>)]` with one of: {}", format_list()),
+                ),
+            );
+            return None;
+        }
+    };
+    let format_name = format_ident.to_string();
+    match Format::from_name(&format_name) {
+        Some(format) => Some((format, format_ident.span())),
+        None => {
+            let nearest = Format::nearest(&format_name);
+            combine(
+                errors,
+                syn::Error::new(
+                    format_ident.span(),
+                    format!("unknown pixel local storage format `{format_name}`; did you mean `{nearest}`? The formats are: {}", format_list()),
+                ),
+            );
+            None
+        }
+    }
+}
+
+fn format_list() -> String {
+    Format::ALL.map(Format::name).join(", ")
+}
+
+/// The field's type, recognised by the last segment of its path.
+fn parse_field_type(ty: &syn::Type, errors: &mut Option<syn::Error>) -> Option<FieldType> {
+    let recognised = match ty {
+        syn::Type::Path(path) if path.qself.is_none() => path
+            .path
+            .segments
+            .last()
+            .filter(|segment| segment.arguments.is_none())
+            .and_then(|segment| FieldType::from_rust_name(&segment.ident.to_string())),
+        _ => None,
+    };
+    if recognised.is_none() {
+        combine(
+            errors,
+            syn::Error::new(
+                ty.span(),
+                "unsupported G-buffer field type: use `f32`, `Vec2`, `Vec3` or `Vec4` for float and \
+                 unorm formats, `u32` or `UVec2`..`UVec4` for the `ui` formats, `i32` or \
+                 `IVec2`..`IVec4` for the `i` formats (glam types, re-exported as `shaderlib::glam`)",
+            ),
+        );
+    }
+    recognised
+}

@@ -1,0 +1,115 @@
+//! The G-buffer layouts of the texts the project started from, ready to use and to compare.
+//!
+//! From "Physically Based Deferred Shading on Mobile" (GPU Pro 7, chapter 2): Listing 2.1
+//! (specular workflow, 160 bits of which 142 used: over the 128 bits of a PowerVR Series6
+//! tile, so it is declared here with a 256-bit budget), Listing 2.2 (metallic workflow,
+//! 128/126), and the 256-bit layouts of Listings 2.7 and 2.8. From Arm's "deferred shading on
+//! tile memory" post: its pixel local storage block.
+
+use crate::glam::{Vec2, Vec3, Vec4};
+use crate::GBufferLayout;
+
+/// Listing 2.1: specular workflow, 160 bits (142 used). Light accumulation is HDR (scale it
+/// into 0..1 for `rgb10_a2`); base and specular colour are stored in gamma space.
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 256)]
+pub struct SpecularWorkflow {
+    #[pls(rgb10a2)]
+    pub light_accumulation: Vec3,
+    #[pls(r32f)]
+    pub depth: f32,
+    #[pls(rgba8)]
+    pub normals_roughness: Vec4,
+    #[pls(rgba8)]
+    pub base_colour: Vec3,
+    #[pls(rgba8)]
+    pub specular_colour: Vec3,
+}
+
+/// Listing 2.2: metallic workflow in 128 bits (126 used), the chapter's recommended layout.
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 128)]
+pub struct MobileMetallic {
+    #[pls(rgb10a2)]
+    pub light_accumulation: Vec3,
+    #[pls(r32f)]
+    pub depth: f32,
+    #[pls(rgba8)]
+    pub normals_roughness: Vec4,
+    #[pls(rgba8)]
+    pub albedo_metallic: Vec4,
+}
+
+/// Listing 2.7: a future metallic workflow in 256 bits, world position instead of depth and
+/// everything in linear space at half precision.
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 256)]
+pub struct FutureMetallic {
+    #[pls(r32f)]
+    pub position_x: f32,
+    #[pls(r32f)]
+    pub position_y: f32,
+    #[pls(r32f)]
+    pub position_z: f32,
+    #[pls(rg16f)]
+    pub light_accumulation_rg: Vec2,
+    #[pls(rg16f)]
+    pub light_accumulation_b_normal_x: Vec2,
+    #[pls(rg16f)]
+    pub normal_yz: Vec2,
+    #[pls(rg16f)]
+    pub roughness_metallic: Vec2,
+    #[pls(r11f_g11f_b10f)]
+    pub albedo_or_reflectance: Vec3,
+}
+
+/// Listing 2.8: a future specular workflow in 256 bits.
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 256)]
+pub struct FutureSpecular {
+    #[pls(r32f)]
+    pub position_x: f32,
+    #[pls(r32f)]
+    pub position_y: f32,
+    #[pls(r32f)]
+    pub position_z: f32,
+    #[pls(rg16f)]
+    pub light_accumulation_rg: Vec2,
+    #[pls(rg16f)]
+    pub light_accumulation_b_roughness: Vec2,
+    #[pls(r11f_g11f_b10f)]
+    pub normal: Vec3,
+    #[pls(r11f_g11f_b10f)]
+    pub albedo: Vec3,
+    #[pls(r11f_g11f_b10f)]
+    pub reflectance: Vec3,
+}
+
+/// Arm's pixel local storage block: HDR light, albedo in pseudo-gamma (square root), the
+/// normal mapped to 0..1 and metallic/roughness, in 128 bits (102 used).
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 128)]
+pub struct ArmTileBlock {
+    #[pls(r11f_g11f_b10f)]
+    pub light: Vec3,
+    #[pls(rgba8)]
+    pub albedo: Vec3,
+    #[pls(rgb10_a2)]
+    pub normal: Vec3,
+    #[pls(rgba8)]
+    pub metallic_roughness: Vec2,
+}
+
+/// The name, report and WGSL of every seed layout, for tools that iterate over them.
+pub fn all() -> Vec<(crate::packing::Layout, &'static str)> {
+    fn entry<L: GBufferLayout>() -> (crate::packing::Layout, &'static str) {
+        (L::layout(), L::WGSL)
+    }
+    vec![
+        entry::<SpecularWorkflow>(),
+        entry::<MobileMetallic>(),
+        entry::<FutureMetallic>(),
+        entry::<FutureSpecular>(),
+        entry::<ArmTileBlock>(),
+    ]
+}
