@@ -45,7 +45,7 @@ pub use packing_macros::GBufferLayout;
 pub mod packing {
     pub use codegen::convert::Scalar;
     pub use codegen::report::Report;
-    pub use codegen::{Field, FieldType, Format, Layout, ScalarKind};
+    pub use codegen::{Channel, ChannelEncoding, Field, FieldType, Format, Layout, ScalarKind};
 }
 
 /// A pixel local storage G-buffer layout. Derive it with `#[derive(GBufferLayout)]`.

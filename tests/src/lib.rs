@@ -1,1 +1,39 @@
+//! Shared pieces of the cross-crate tests: a layout with every format, test values with the
+//! hard cases, WGSL harnesses around generated code, and a GPU runner.
 
+pub mod gpu;
+pub mod harness;
+pub mod values;
+
+use shaderlib::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
+use shaderlib::GBufferLayout;
+
+/// One field of each of the twelve formats, every channel used.
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 384)]
+pub struct AllFormats {
+    #[pls(r11f_g11f_b10f)]
+    pub small_floats: Vec3,
+    #[pls(r32f)]
+    pub single: f32,
+    #[pls(rg16f)]
+    pub halves: Vec2,
+    #[pls(rgb10_a2)]
+    pub unorm_10_10_10_2: Vec4,
+    #[pls(rgba8)]
+    pub unorm_8: Vec4,
+    #[pls(rg16)]
+    pub unorm_16: Vec2,
+    #[pls(rgba8i)]
+    pub sint_8: IVec4,
+    #[pls(rg16i)]
+    pub sint_16: IVec2,
+    #[pls(rgb10_a2ui)]
+    pub uint_10_10_10_2: UVec4,
+    #[pls(rgba8ui)]
+    pub uint_8: UVec4,
+    #[pls(rg16ui)]
+    pub uint_16: UVec2,
+    #[pls(r32ui)]
+    pub uint_32: u32,
+}

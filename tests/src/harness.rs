@@ -1,0 +1,156 @@
+//! WGSL harnesses around a layout's generated code, and the CPU expectations to compare their
+//! results with. Both work from the layout model, so they serve derived layouts and random
+//! ones alike.
+
+use std::fmt::Write as _;
+
+use shaderlib::packing::{Layout, ScalarKind};
+
+/// Scalars per texel: the components of all fields.
+pub fn scalars_per_texel(layout: &Layout) -> usize {
+    layout.fields.iter().map(|field| field.ty.components).sum()
+}
+
+/// What the Rust mirror packs for one texel given as scalar bits (field by field, component
+/// by component): the conversions the derive's `pack` calls.
+pub fn expected_words(layout: &Layout, scalars: &[u32]) -> Vec<u32> {
+    let mut scalars = scalars.iter().copied();
+    layout
+        .fields
+        .iter()
+        .map(|field| {
+            let mut channels = [0u32; 4];
+            for channel in channels.iter_mut().take(field.ty.components) {
+                *channel = scalars.next().expect("one scalar per component");
+            }
+            match field.ty.scalar {
+                ScalarKind::Float => field.format.encode(channels.map(f32::from_bits)),
+                ScalarKind::Uint => field.format.encode(channels),
+                ScalarKind::Sint => field.format.encode(channels.map(|bits| bits as i32)),
+            }
+        })
+        .collect()
+}
+
+/// What the Rust mirror unpacks from one texel's words, as scalar bits.
+pub fn expected_scalars(layout: &Layout, words: &[u32]) -> Vec<u32> {
+    let mut scalars = Vec::with_capacity(scalars_per_texel(layout));
+    for (field, &word) in layout.fields.iter().zip(words) {
+        let channels: [u32; 4] = match field.ty.scalar {
+            ScalarKind::Float => field.format.decode::<f32>(word).map(f32::to_bits),
+            ScalarKind::Uint => field.format.decode::<u32>(word),
+            ScalarKind::Sint => field.format.decode::<i32>(word).map(|value| value as u32),
+        };
+        scalars.extend_from_slice(&channels[..field.ty.components]);
+    }
+    scalars
+}
+
+/// The WGSL expression that builds field `field` from scalars `inputs[base + first..]`.
+fn field_from_scalars(ty: &shaderlib::packing::FieldType, first: usize) -> String {
+    let components: Vec<String> = (0..ty.components)
+        .map(|component| {
+            let load = format!("harness_inputs[base + {}u]", first + component);
+            match ty.scalar {
+                ScalarKind::Uint => load,
+                kind => format!("bitcast<{}>({load})", kind.wgsl()),
+            }
+        })
+        .collect();
+    format!("{}({})", ty.wgsl(), components.join(", "))
+}
+
+/// A compute shader that reads texels as scalar bits, packs them with the generated
+/// `pack_<snake>`, writes the words, unpacks them again with `unpack_<snake>` and writes the
+/// scalars' bits. Bindings: 0 inputs, 1 packed words, 2 unpacked scalars, 3 texel count.
+pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
+    let prefix = layout.snake_name();
+    let scalars = scalars_per_texel(layout);
+    let words = layout.words();
+    let mut out = String::from(wgsl);
+    out.push_str("\n\n// ---- test harness ----\n");
+    out.push_str("@group(0) @binding(0) var<storage, read> harness_inputs: array<u32>;\n");
+    out.push_str("@group(0) @binding(1) var<storage, read_write> harness_packed: array<u32>;\n");
+    out.push_str("@group(0) @binding(2) var<storage, read_write> harness_unpacked: array<u32>;\n");
+    out.push_str("@group(0) @binding(3) var<uniform> harness_count: vec4<u32>;\n\n");
+    out.push_str("@compute @workgroup_size(64)\n");
+    out.push_str("fn harness_main(@builtin(global_invocation_id) id: vec3<u32>) {\n");
+    out.push_str("    let index = id.x;\n");
+    out.push_str("    if index >= harness_count.x {\n        return;\n    }\n");
+    let _ = writeln!(out, "    let base = index * {scalars}u;");
+    let _ = writeln!(out, "    var texel: {};", layout.name);
+    let mut first = 0;
+    for field in &layout.fields {
+        let _ = writeln!(
+            out,
+            "    texel.{} = {};",
+            field.name,
+            field_from_scalars(&field.ty, first)
+        );
+        first += field.ty.components;
+    }
+    let _ = writeln!(out, "    let words = pack_{prefix}(texel);");
+    for word in 0..words {
+        let _ = writeln!(
+            out,
+            "    harness_packed[index * {words}u + {word}u] = words[{word}];"
+        );
+    }
+    let _ = writeln!(out, "    let back = unpack_{prefix}(words);");
+    let mut slot = 0;
+    for field in &layout.fields {
+        for component in 0..field.ty.components {
+            let access = if field.ty.components == 1 {
+                String::new()
+            } else {
+                format!(".{}", &"xyzw"[component..=component])
+            };
+            let _ = writeln!(
+                out,
+                "    harness_unpacked[base + {slot}u] = bitcast<u32>(back.{}{access});",
+                field.name
+            );
+            slot += 1;
+        }
+    }
+    out.push_str("}\n");
+    out
+}
+
+/// A fragment shader that uses every generated function (pack, unpack, each `load_`, the
+/// target helpers) on values made from the fragment position: what the backend translation
+/// tests compile. GLSL ES 3.00 (WebGL2) has fragment shaders but no compute ones.
+pub fn fragment_harness(layout: &Layout, wgsl: &str) -> String {
+    let prefix = layout.snake_name();
+    let name = &layout.name;
+    let mut out = String::from(wgsl);
+    out.push_str("\n\n// ---- test harness ----\n@fragment\n");
+    let _ = writeln!(
+        out,
+        "fn harness_fragment(@builtin(position) position: vec4<f32>) -> {name}Targets {{"
+    );
+    let _ = writeln!(out, "    var texel: {name};");
+    for field in &layout.fields {
+        let scalar = match field.ty.scalar {
+            ScalarKind::Float => "position.x".to_string(),
+            kind => format!("{}(position.y)", kind.wgsl()),
+        };
+        let _ = writeln!(
+            out,
+            "    texel.{} = {}({scalar});",
+            field.name,
+            field.ty.wgsl()
+        );
+    }
+    let _ = writeln!(out, "    let words = pack_{prefix}(texel);");
+    let _ = writeln!(out, "    var back = unpack_{prefix}(words);");
+    for field in &layout.fields {
+        let _ = writeln!(out, "    back.{0} = load_{prefix}_{0}(words);", field.name);
+    }
+    let _ = writeln!(
+        out,
+        "    let again = unpack_{prefix}_targets(pack_{prefix}_targets(back));"
+    );
+    let _ = writeln!(out, "    return pack_{prefix}_targets(again);\n}}");
+    out
+}
