@@ -229,7 +229,7 @@ impl Layout {
         let terms: Vec<String> = self
             .fields
             .iter()
-            .map(|field| format!("{} ({}) 32", field.name, field.format))
+            .map(|field| format!("{} 32", field.name))
             .collect();
         let spill = self.bits() - self.budget;
         let _ = write!(

@@ -1,7 +1,7 @@
 //! Stage 1 of the derive: the struct and its attributes to a [`Layout`], with the span of each
 //! part so that the check's diagnostics can point at it.
 
-use codegen::{Field, FieldType, Format, Layout, Subject, DEFAULT_BUDGET};
+use codegen::{Field, FieldType, Format, Layout, ScalarKind, Subject, DEFAULT_BUDGET};
 use proc_macro2::Span;
 use syn::spanned::Spanned;
 use syn::{Data, DeriveInput, Fields};
@@ -28,8 +28,9 @@ impl Spans {
     }
 }
 
-/// What parsing produced: the layout of every field that parsed, their spans, and the errors
-/// found on the way (a field with an error is left out of the layout).
+/// What parsing produced: the layout, the spans, and the errors found on the way. A field
+/// whose format or type is in error stands in the layout as an `r32f` `f32`, so that the
+/// budget check still counts its word.
 pub struct Parsed {
     pub layout: Layout,
     pub spans: Spans,
@@ -87,12 +88,19 @@ pub fn parse(input: &DeriveInput) -> syn::Result<Parsed> {
         let name = ident.to_string().trim_start_matches("r#").to_string();
         let format = parse_pls_attribute(field, &name, &mut errors);
         let ty = parse_field_type(&field.ty, &mut errors);
-        if let (Some((format, format_span)), Some(ty)) = (format, ty) {
-            layout.fields.push(Field { name, format, ty });
-            spans
-                .fields
-                .push([ident.span(), format_span, field.ty.span()]);
-        }
+        let (format, format_span, ty) = match (format, ty) {
+            (Some((format, format_span)), Some(ty)) => (format, format_span, ty),
+            // The error is reported; a stand-in keeps the field's word in the budget check.
+            _ => (
+                Format::R32f,
+                ident.span(),
+                FieldType::new(ScalarKind::Float, 1),
+            ),
+        };
+        layout.fields.push(Field { name, format, ty });
+        spans
+            .fields
+            .push([ident.span(), format_span, field.ty.span()]);
     }
     Ok(Parsed {
         layout,
@@ -116,8 +124,8 @@ fn parse_gbuffer_attributes(
         if seen_attribute {
             combine(
                 errors,
-                syn::Error::new(
-                    attribute.span(),
+                syn::Error::new_spanned(
+                    attribute,
                     "`#[gbuffer]` is given twice: merge its options into one attribute",
                 ),
             );
@@ -128,17 +136,21 @@ fn parse_gbuffer_attributes(
             if !meta.path.is_ident("budget") {
                 return Err(meta.error("unknown `gbuffer` option: expected `budget = <bits>`"));
             }
-            let literal: syn::LitInt = meta.value()?.parse()?;
-            let value = literal.base10_parse::<u32>().map_err(|_| {
-                syn::Error::new(
-                    literal.span(),
-                    "budget must be a whole number of bits that fits a u32",
+            let expression: syn::Expr = meta.value()?.parse()?;
+            let value = budget_value(&expression).ok_or_else(|| {
+                syn::Error::new_spanned(
+                    &expression,
+                    "budget must be a positive multiple of 32 bits, written as a number, \
+                     e.g. `budget = 128`",
                 )
             })?;
             if budget.is_some() {
-                return Err(syn::Error::new(literal.span(), "`budget` is given twice"));
+                return Err(syn::Error::new_spanned(
+                    &expression,
+                    "`budget` is given twice",
+                ));
             }
-            budget = Some((value, literal.span()));
+            budget = Some((value, expression.span()));
             Ok(())
         });
         if let Err(error) = result {
@@ -148,6 +160,17 @@ fn parse_gbuffer_attributes(
     match budget {
         Some((value, span)) => (value, Some(span)),
         None => (DEFAULT_BUDGET, None),
+    }
+}
+
+/// A budget written as an integer literal that fits a u32.
+fn budget_value(expression: &syn::Expr) -> Option<u32> {
+    match expression {
+        syn::Expr::Lit(syn::ExprLit {
+            lit: syn::Lit::Int(literal),
+            ..
+        }) => literal.base10_parse().ok(),
+        _ => None,
     }
 }
 
@@ -175,8 +198,8 @@ fn parse_pls_attribute(
     for repeated in &attributes[1..] {
         combine(
             errors,
-            syn::Error::new(
-                repeated.span(),
+            syn::Error::new_spanned(
+                repeated,
                 format!("field `{name}` has more than one `#[pls]` attribute"),
             ),
         );
@@ -186,8 +209,8 @@ fn parse_pls_attribute(
         Err(_) => {
             combine(
                 errors,
-                syn::Error::new(
-                    first.span(),
+                syn::Error::new_spanned(
+                    first,
                     format!("expected `#[pls(<format>)]` with one of: {}", format_list()),
                 ),
             );

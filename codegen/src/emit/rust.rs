@@ -61,22 +61,23 @@ pub fn emit_impl(layout: &Layout, wgsl: &str) -> TokenStream {
         quote!(#packing::Format::#format.encode::<#scalar>([#(#values),*]))
     });
 
+    // A parameter is a pattern: a user's unit struct or const of the same name would capture
+    // it. The reserved-looking name keeps clear of user items, as serde's `__deserializer`.
+    let words_parameter = Ident::new("__gbuffer_words", Span::call_site());
     let decoded_fields = layout.fields.iter().enumerate().map(|(word, field)| {
         let field_name = Ident::new(&field.name, Span::call_site());
         let format = format_ident!("{}", field.format.variant_name());
         let scalar = scalar_path(field.ty.scalar);
         let ty = type_path(field.ty);
         let word = Literal::usize_unsuffixed(word);
-        let channels = (0..field.ty.components).map(Literal::usize_unsuffixed);
+        let channels = quote!(#packing::Format::#format.decode::<#scalar>(#words_parameter[#word]));
         let value = if field.ty.components == 1 {
-            quote!(channels[0])
+            quote!(#channels[0])
         } else {
-            quote!(#ty::new(#(channels[#channels]),*))
+            let components = Literal::usize_unsuffixed(field.ty.components);
+            quote!(#ty::from_slice(&#channels[..#components]))
         };
-        quote!(#field_name: {
-            let channels = #packing::Format::#format.decode::<#scalar>(words[#word]);
-            #value
-        })
+        quote!(#field_name: #value)
     });
 
     let described_fields = layout.fields.iter().map(|field| {
@@ -104,7 +105,7 @@ pub fn emit_impl(layout: &Layout, wgsl: &str) -> TokenStream {
                 [#(#encoded_words),*]
             }
 
-            fn unpack(words: &[::core::primitive::u32; #words]) -> Self {
+            fn unpack(#words_parameter: &[::core::primitive::u32; #words]) -> Self {
                 Self { #(#decoded_fields),* }
             }
 

@@ -1,0 +1,18 @@
+//! The generated WGSL is part of the product: these snapshots make every change to it a
+//! reviewed diff. Update with `INSTA_UPDATE=always cargo test -p tests --test wgsl_snapshots`
+//! (or `cargo insta review`).
+
+use shaderlib::{seed_layouts, GBufferLayout};
+use tests::AllFormats;
+
+#[test]
+fn seed_layout_wgsl() {
+    for (layout, wgsl) in seed_layouts::all() {
+        insta::assert_snapshot!(layout.snake_name(), wgsl);
+    }
+}
+
+#[test]
+fn all_formats_wgsl() {
+    insta::assert_snapshot!("all_formats", AllFormats::WGSL);
+}

@@ -1,0 +1,31 @@
+use shaderlib::glam::Vec4;
+use shaderlib::GBufferLayout;
+
+#[derive(GBufferLayout)]
+#[gbuffer(budget = 128, conversions = "native")]
+struct UnknownOption {
+    #[pls(r32f)]
+    depth: f32,
+}
+
+#[derive(GBufferLayout)]
+#[gbuffer(budget = 128)]
+#[gbuffer(budget = 256)]
+struct TwoGbufferAttributes {
+    #[pls(r32f)]
+    depth: f32,
+}
+
+#[derive(GBufferLayout)]
+struct PlsProblems {
+    missing: f32,
+    #[pls(rgba8)]
+    #[pls(rgba8)]
+    repeated: Vec4,
+    #[pls("rgba8")]
+    quoted: Vec4,
+    #[pls]
+    empty: Vec4,
+}
+
+fn main() {}
