@@ -185,11 +185,17 @@ impl Format {
         Format::ALL.into_iter().find(|format| format.name() == name)
     }
 
-    /// The format whose name is closest to `name` (by edit distance), for "did you mean".
+    /// The format whose name is closest to `name` (by edit distance; on a tie, one that
+    /// `name` begins), for "did you mean".
     pub fn nearest(name: &str) -> Format {
         Format::ALL
             .into_iter()
-            .min_by_key(|format| edit_distance(name, format.name()))
+            .min_by_key(|format| {
+                (
+                    edit_distance(name, format.name()),
+                    !format.name().starts_with(name),
+                )
+            })
             .unwrap_or(Format::Rgba8)
     }
 
@@ -324,6 +330,6 @@ mod tests {
         assert_eq!(Format::nearest("rgba16f"), Format::Rg16f);
         assert_eq!(Format::nearest("rgb10_a2u"), Format::Rgb10A2ui);
         assert_eq!(Format::nearest("r32"), Format::R32f);
-        assert_eq!(Format::nearest("rgba8_unorm"), Format::Rgba8);
+        assert_eq!(Format::nearest("rgb8"), Format::Rgba8);
     }
 }

@@ -345,15 +345,11 @@ fn encode_channel(prefix: &str, channel: Channel, value: &str) -> String {
 
 /// The expression that decodes one channel of `word`.
 fn decode_channel(prefix: &str, channel: Channel) -> String {
-    let field = if channel.offset == 0 {
-        "word".to_string()
-    } else {
-        format!("(word >> {}u)", channel.offset)
-    };
-    let code = if channel.offset + channel.bits == 32 {
-        field
-    } else {
-        format!("({field} & {:#x}u)", channel.mask())
+    let code = match (channel.offset, channel.offset + channel.bits) {
+        (0, 32) => "word".to_string(),
+        (offset, 32) => format!("word >> {offset}u"),
+        (0, _) => format!("word & {:#x}u", channel.mask()),
+        (offset, _) => format!("(word >> {offset}u) & {:#x}u", channel.mask()),
     };
     match channel.encoding {
         // The reciprocal is correctly rounded; the product stays within 1 ulp of the exact
@@ -373,9 +369,9 @@ fn decode_channel(prefix: &str, channel: Channel) -> String {
             let raised = if up == 0 {
                 "word".to_string()
             } else {
-                format!("(word << {up}u)")
+                format!("word << {up}u")
             };
-            format!("(bitcast<i32>({raised}) >> {}u)", 32 - channel.bits)
+            format!("bitcast<i32>({raised}) >> {}u", 32 - channel.bits)
         }
     }
 }
