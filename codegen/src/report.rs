@@ -21,34 +21,35 @@ pub struct WebGpuTarget {
     pub byte_cost: u32,
     /// The "render target component alignment": the running total is rounded up to it first.
     pub alignment: u32,
-    /// Whether core WebGPU has it as a render target; `rg16unorm` needs a native feature
-    /// (`TEXTURE_FORMAT_16BIT_NORM` in wgpu).
-    pub core: bool,
+    /// The wgpu feature a render target of this format needs, if core WebGPU cannot render
+    /// to it: `RG11B10UFLOAT_RENDERABLE` (WebGPU's "rg11b10ufloat-renderable") and
+    /// `TEXTURE_FORMAT_16BIT_NORM` (a native-only feature).
+    pub feature: Option<&'static str>,
 }
 
 /// The WebGPU render-target format closest to a pixel local storage format. rgba8unorm,
 /// rgb10a2unorm and rg11b10ufloat cost 8 bytes although they hold 4: the spec charges them
 /// for the wider formats implementations may use to blend them.
 pub fn webgpu_target(format: Format) -> WebGpuTarget {
-    let (name, byte_cost, alignment, core) = match format {
-        Format::R11fG11fB10f => ("rg11b10ufloat", 8, 4, true),
-        Format::R32f => ("r32float", 4, 4, true),
-        Format::Rg16f => ("rg16float", 4, 2, true),
-        Format::Rgb10A2 => ("rgb10a2unorm", 8, 4, true),
-        Format::Rgba8 => ("rgba8unorm", 8, 1, true),
-        Format::Rg16 => ("rg16unorm", 4, 2, false),
-        Format::Rgba8i => ("rgba8sint", 4, 1, true),
-        Format::Rg16i => ("rg16sint", 4, 2, true),
-        Format::Rgb10A2ui => ("rgb10a2uint", 8, 4, true),
-        Format::Rgba8ui => ("rgba8uint", 4, 1, true),
-        Format::Rg16ui => ("rg16uint", 4, 2, true),
-        Format::R32ui => ("r32uint", 4, 4, true),
+    let (name, byte_cost, alignment, feature) = match format {
+        Format::R11fG11fB10f => ("rg11b10ufloat", 8, 4, Some("RG11B10UFLOAT_RENDERABLE")),
+        Format::R32f => ("r32float", 4, 4, None),
+        Format::Rg16f => ("rg16float", 4, 2, None),
+        Format::Rgb10A2 => ("rgb10a2unorm", 8, 4, None),
+        Format::Rgba8 => ("rgba8unorm", 8, 1, None),
+        Format::Rg16 => ("rg16unorm", 4, 2, Some("TEXTURE_FORMAT_16BIT_NORM")),
+        Format::Rgba8i => ("rgba8sint", 4, 1, None),
+        Format::Rg16i => ("rg16sint", 4, 2, None),
+        Format::Rgb10A2ui => ("rgb10a2uint", 8, 4, None),
+        Format::Rgba8ui => ("rgba8uint", 4, 1, None),
+        Format::Rg16ui => ("rg16uint", 4, 2, None),
+        Format::R32ui => ("r32uint", 4, 4, None),
     };
     WebGpuTarget {
         name,
         byte_cost,
         alignment,
-        core,
+        feature,
     }
 }
 
@@ -173,10 +174,9 @@ impl fmt::Display for Report {
         writeln!(out, "  as separate WebGPU render targets (one per field):")?;
         for field in &layout.fields {
             let target = webgpu_target(field.format);
-            let note = if target.core {
-                ""
-            } else {
-                "  (not core WebGPU: needs a native feature)"
+            let note = match target.feature {
+                Some(feature) => format!("  (renderable only with the {feature} feature)"),
+                None => String::new(),
             };
             writeln!(
                 out,

@@ -14,6 +14,17 @@ impl Gpu {
     /// default), with its full limits. Panics, naming the backends and adapters it saw, when
     /// none can be opened.
     pub fn new() -> Gpu {
+        Gpu::open(None, wgpu::Features::empty())
+    }
+
+    /// As [`Gpu::new`], but with the adapter's limits lowered to the given ones (so WebGPU's
+    /// default limits can be enforced on a more capable adapter) and with those of `features`
+    /// the adapter has.
+    pub fn with_limits_and_features(limits: wgpu::Limits, features: wgpu::Features) -> Gpu {
+        Gpu::open(Some(limits), features)
+    }
+
+    fn open(limits: Option<wgpu::Limits>, features: wgpu::Features) -> Gpu {
         let descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         let backends = descriptor.backends;
         let instance = wgpu::Instance::new(descriptor);
@@ -41,7 +52,11 @@ impl Gpu {
         let info = adapter.get_info();
         let descriptor = wgpu::DeviceDescriptor {
             label: Some("tests"),
-            required_limits: adapter.limits(),
+            required_features: features & adapter.features(),
+            required_limits: match limits {
+                Some(limits) => limits.or_worse_values_from(&adapter.limits()),
+                None => adapter.limits(),
+            },
             ..Default::default()
         };
         let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
