@@ -36,7 +36,9 @@
 // The derive's expansion names `::shaderlib`; this lets the seed layouts below use it too.
 extern crate self as shaderlib;
 
+pub mod modules;
 pub mod seed_layouts;
+pub mod shading;
 
 pub use glam;
 pub use packing_macros::GBufferLayout;

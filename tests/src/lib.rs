@@ -3,6 +3,7 @@
 
 pub mod gpu;
 pub mod harness;
+pub mod shading_cases;
 pub mod values;
 
 use shaderlib::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
