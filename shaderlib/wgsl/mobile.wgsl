@@ -30,7 +30,9 @@ fn fully_rough_diffuse_colour(diffuse_colour: vec3<f32>, specular_colour: vec3<f
 // D_Approx: GGX replaced by Blinn, then Phong around the reflection vector, then a spherical
 // Gaussian: (1 / alpha^2) exp2(c (r.l - 1)), c = 0.72134752 / alpha^2 + 0.39674113. It is
 // pi * D; 1 / pi belongs to the light's colour. Domain roughness > 0: 1 / alpha^2 overflows
-// half precision below roughness 0.0625 (f16 max 65504) and f32 at roughness 0.
+// half precision below roughness 0.0625 (f16 max 65504) and f32 at roughness 0; at low
+// roughness c (r.l - 1) is a large number times a small one, so r.l's rounding shows (f32:
+// about 1% at roughness 0.045).
 fn d_approx(roughness: f32, r_dot_l: f32) -> f32 {
     let alpha = roughness * roughness;
     let alpha_squared = alpha * alpha;

@@ -1080,6 +1080,70 @@ pub fn compute_harness(case: &Case) -> String {
     wgsl
 }
 
+/// How far the f32 mirror strays from the f64 reference over the case's grid.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MirrorError {
+    /// The largest |mirror - reference|.
+    pub max_absolute: f64,
+    /// The largest |mirror - reference| over the result's largest component (at least 1e-6).
+    pub max_relative: f64,
+    /// Root mean square of |mirror - reference|.
+    pub rms_absolute: f64,
+}
+
+/// The mirror's error against the reference over `points`, or None for a case without a
+/// reference (integer-exact functions) or an integer result.
+pub fn mirror_error(case: &Case, points: &[Vec<u32>]) -> Option<MirrorError> {
+    let reference = case.reference?;
+    if case.output == Output::Unsigned {
+        return None;
+    }
+    let mut error = MirrorError::default();
+    let mut squares = 0.0;
+    let mut count = 0usize;
+    for point in points {
+        // Integer arguments stay integers; float arguments widen exactly.
+        let widened: Vec<f64> = widen(case, point);
+        let expected = reference(&widened);
+        let got = (case.mirror)(point);
+        // Relative to the result's largest component: a vector's small components are not
+        // held to a tighter standard than its large ones.
+        let magnitude = expected
+            .iter()
+            .fold(1e-6f64, |largest, value| largest.max(value.abs()));
+        for (&want, &have) in expected.iter().zip(&got) {
+            let have = f64::from(f32::from_bits(have));
+            if !want.is_finite() || !have.is_finite() {
+                continue;
+            }
+            let absolute = (have - want).abs();
+            error.max_absolute = error.max_absolute.max(absolute);
+            error.max_relative = error.max_relative.max(absolute / magnitude);
+            squares += absolute * absolute;
+            count += 1;
+        }
+    }
+    error.rms_absolute = (squares / count.max(1) as f64).sqrt();
+    Some(error)
+}
+
+/// A point's arguments as f64: floats widened, unsigned integers converted.
+pub fn widen(case: &Case, point: &[u32]) -> Vec<f64> {
+    let mut widened = Vec::with_capacity(point.len());
+    let mut offset = 0;
+    for argument in case.arguments {
+        for component in 0..argument.components() {
+            let bits = point[offset + component];
+            widened.push(match argument {
+                Argument::Unsigned { .. } => f64::from(bits),
+                _ => f64::from(f32::from_bits(bits)),
+            });
+        }
+        offset += argument.components();
+    }
+    widened
+}
+
 /// Components per result.
 pub fn output_components(case: &Case) -> usize {
     match case.output {

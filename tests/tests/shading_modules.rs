@@ -1,0 +1,59 @@
+//! naga validates every module of the WGSL shading library alone and all of them composed,
+//! and the harness of every function translates to every backend.
+
+use shaderlib::modules::{compose, MODULES};
+use tests::shading_cases::{cases, compute_harness};
+use validator::{validate_everywhere, validate_wgsl};
+
+#[test]
+fn every_module_is_valid_alone_with_its_dependencies() {
+    for module in MODULES {
+        let wgsl = compose(&[module.name]).unwrap();
+        if let Err(problem) = validate_wgsl(&wgsl) {
+            panic!("module `{}`: {problem}", module.name);
+        }
+    }
+}
+
+#[test]
+fn all_modules_compose_into_one_valid_module() {
+    let names: Vec<&str> = MODULES.iter().map(|module| module.name).collect();
+    let wgsl = compose(&names).unwrap();
+    validate_wgsl(&wgsl).unwrap_or_else(|problem| panic!("{problem}"));
+}
+
+#[test]
+fn the_library_composes_with_a_generated_layout() {
+    use shaderlib::GBufferLayout;
+    let mut wgsl = compose(&["shading", "normals", "colour", "hdr"]).unwrap();
+    wgsl.push_str(shaderlib::seed_layouts::MobileMetallic::WGSL);
+    validate_wgsl(&wgsl).unwrap_or_else(|problem| panic!("{problem}"));
+}
+
+#[test]
+fn every_function_translates_to_every_backend() {
+    for case in cases() {
+        if let Err(problem) = validate_everywhere(&compute_harness(&case)) {
+            panic!("{}: {problem}", case.call);
+        }
+    }
+}
+
+#[test]
+fn every_wgsl_function_has_a_test_case() {
+    let tested: Vec<&str> = cases().iter().map(|case| case.name()).collect();
+    // Helpers exercised through the functions that call them.
+    let helpers = ["rgb9e5_mantissa", "sign_not_zero", "radical_inverse"];
+    for module in MODULES {
+        for line in module.source.lines() {
+            if let Some(rest) = line.strip_prefix("fn ") {
+                let name = rest.split('(').next().unwrap();
+                assert!(
+                    tested.contains(&name) || helpers.contains(&name),
+                    "`{name}` of module `{}` has no test case",
+                    module.name
+                );
+            }
+        }
+    }
+}
