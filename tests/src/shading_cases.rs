@@ -155,6 +155,9 @@ pub enum Output {
     Unsigned,
 }
 
+/// An f64 reference over the widened arguments.
+pub type Reference = fn(&[f64]) -> Vec<f64>;
+
 /// One function under test.
 pub struct Case {
     /// The WGSL module it lives in (composed with its dependencies).
@@ -167,7 +170,7 @@ pub struct Case {
     pub mirror: fn(&[u32]) -> Vec<u32>,
     /// The f64 reference, over the same arguments widened to f64 (None for integer-exact
     /// functions, which are their own reference).
-    pub reference: Option<fn(&[f64]) -> Vec<f64>>,
+    pub reference: Option<Reference>,
     /// The adapter may differ from the mirror by this many ulp...
     pub ulps: u32,
     /// ... or by this much absolutely (for results near zero, where ulps are tiny).

@@ -104,7 +104,7 @@ fn wgpu_rejection(gpu: &Gpu, formats: &[Format]) -> Option<String> {
         .map(|&format| Some(wgpu_format(format).into()))
         .collect();
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+    let _pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: None,
         layout: None,
         vertex: wgpu::VertexState {
