@@ -8,12 +8,16 @@
 //! - [`layout`]: fields, types, the bit budget and its checks;
 //! - [`convert`]: the bit-exact conversions (the CPU side of the generated WGSL);
 //! - [`emit`]: WGSL and Rust mirror emitters;
-//! - [`report`]: the bit report and the WebGPU render-target cost.
+//! - [`report`]: the bit report and the WebGPU render-target cost;
+//! - with the `tools` feature (on by default): `layout_file` (layouts in TOML), the GLSL and
+//!   Rust-source emitters, `Builder` for build scripts, and the `codegen` command.
 
 pub mod convert;
 pub mod emit;
 pub mod format;
 pub mod layout;
+#[cfg(feature = "tools")]
+pub mod layout_file;
 pub mod naming;
 pub mod report;
 

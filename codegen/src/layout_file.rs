@@ -1,0 +1,268 @@
+//! Layout files: the layout model in TOML, for engines and asset pipelines that do not declare
+//! their G-buffer in Rust.
+//!
+//! ```toml
+//! name = "MobileMetallic"   # the struct's name, UpperCamelCase
+//! budget = 128              # bits; optional, 128 by default
+//!
+//! [[fields]]
+//! name = "light_accumulation"
+//! format = "rgb10_a2"
+//! components = 3            # or: type = "Vec3"
+//!
+//! [[fields]]
+//! name = "depth"
+//! format = "r32f"
+//! type = "f32"
+//! ```
+//!
+//! Every problem, from TOML syntax to the budget, is a [`FileDiagnostic`] naming the file,
+//! line and column; the model's checks are [`Layout::check`], the same as the derive's.
+
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::format::Format;
+use crate::layout::{Field, FieldType, Layout, Subject, DEFAULT_BUDGET};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LayoutEntry {
+    name: Spanned<String>,
+    budget: Option<Spanned<u32>>,
+    fields: Spanned<Vec<Spanned<FieldEntry>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FieldEntry {
+    name: Spanned<String>,
+    format: Spanned<String>,
+    #[serde(rename = "type")]
+    ty: Option<Spanned<String>>,
+    components: Option<Spanned<i64>>,
+}
+
+/// A problem in a layout file, at a position in it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FileDiagnostic {
+    pub path: PathBuf,
+    /// 1-based.
+    pub line: usize,
+    /// 1-based, in characters.
+    pub column: usize,
+    pub message: String,
+    /// The text of the line, for display.
+    pub source_line: String,
+    /// How many characters the caret underlines (at least 1).
+    pub width: usize,
+}
+
+impl FileDiagnostic {
+    fn at(path: &Path, source: &str, span: Range<usize>, message: impl Into<String>) -> Self {
+        let start = span.start.min(source.len());
+        let line_start = source[..start].rfind('\n').map_or(0, |index| index + 1);
+        let line_end = source[start..].find('\n').map_or(source.len(), |index| start + index);
+        let source_line = source[line_start..line_end].trim_end_matches('\r').to_string();
+        let end = span.end.clamp(start, line_end);
+        FileDiagnostic {
+            path: path.to_path_buf(),
+            line: source[..start].matches('\n').count() + 1,
+            column: source[line_start..start].chars().count() + 1,
+            message: message.into(),
+            source_line,
+            width: source[start..end].chars().count().max(1),
+        }
+    }
+}
+
+impl fmt::Display for FileDiagnostic {
+    /// `file:line:col: error: message`, then the line and a caret under the span.
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(out, "{}:{}:{}: error: {}", self.path.display(), self.line, self.column, self.message)?;
+        let gutter = self.line.to_string().len();
+        writeln!(out, "{:gutter$} |", "")?;
+        writeln!(out, "{} | {}", self.line, self.source_line)?;
+        write!(out, "{:gutter$} | {}{}", "", " ".repeat(self.column - 1), "^".repeat(self.width))
+    }
+}
+
+/// Why a layout file could not be read.
+#[derive(Debug)]
+pub enum LayoutFileError {
+    /// The file could not be read at all.
+    Io { path: PathBuf, error: std::io::Error },
+    /// The file was read; these are its problems, in file order.
+    Invalid(Vec<FileDiagnostic>),
+}
+
+impl fmt::Display for LayoutFileError {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LayoutFileError::Io { path, error } => write!(out, "{}: cannot read the layout file: {error}", path.display()),
+            LayoutFileError::Invalid(diagnostics) => {
+                let texts: Vec<String> = diagnostics.iter().map(ToString::to_string).collect();
+                write!(out, "{}", texts.join("\n\n"))
+            }
+        }
+    }
+}
+
+impl std::error::Error for LayoutFileError {}
+
+/// Reads and checks a layout file.
+pub fn read_layout_file(path: &Path) -> Result<Layout, LayoutFileError> {
+    let source = std::fs::read_to_string(path).map_err(|error| LayoutFileError::Io { path: path.to_path_buf(), error })?;
+    parse_layout(&source, path).map_err(LayoutFileError::Invalid)
+}
+
+/// Parses and checks layout-file text; `path` names it in diagnostics.
+pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnostic>> {
+    let entry: LayoutEntry = toml::from_str(source).map_err(|error| {
+        let span = error.span().unwrap_or(0..0);
+        vec![FileDiagnostic::at(path, source, span, error.message().trim_end().replace('\n', " "))]
+    })?;
+
+    let mut diagnostics = Vec::new();
+    let mut layout = Layout {
+        name: entry.name.get_ref().clone(),
+        budget: entry.budget.as_ref().map_or(DEFAULT_BUDGET, |budget| *budget.get_ref()),
+        fields: Vec::new(),
+    };
+    // Per field of the layout: the spans of its name, format and type.
+    let mut field_spans: Vec<[Range<usize>; 3]> = Vec::new();
+    for field in entry.fields.get_ref() {
+        let field_span = field.span();
+        let field = field.get_ref();
+        let format = match Format::from_name(field.format.get_ref()) {
+            Some(format) => Some(format),
+            None => {
+                let name = field.format.get_ref();
+                let message = format!(
+                    "unknown pixel local storage format `{name}`; did you mean `{}`? The formats are: {}",
+                    Format::nearest(name),
+                    Format::ALL.map(Format::name).join(", ")
+                );
+                diagnostics.push(FileDiagnostic::at(path, source, field.format.span(), message));
+                None
+            }
+        };
+        let (ty, ty_span) = match (format, &field.ty, &field.components) {
+            (_, Some(_), Some(components)) => {
+                let message = "give the field either `type` or `components`, not both";
+                diagnostics.push(FileDiagnostic::at(path, source, components.span(), message));
+                (None, field_span.clone())
+            }
+            (_, None, None) => {
+                let message = format!("field `{}` needs `type` (e.g. \"Vec3\") or `components` (1 to 4)", field.name.get_ref());
+                diagnostics.push(FileDiagnostic::at(path, source, field.name.span(), message));
+                (None, field_span.clone())
+            }
+            (_, Some(ty), None) => match FieldType::from_rust_name(ty.get_ref()) {
+                Some(parsed) => (Some(parsed), ty.span()),
+                None => {
+                    let message = format!(
+                        "unknown field type `{}`: use f32, Vec2, Vec3, Vec4, u32, UVec2, UVec3, UVec4, i32, IVec2, IVec3 or IVec4",
+                        ty.get_ref()
+                    );
+                    diagnostics.push(FileDiagnostic::at(path, source, ty.span(), message));
+                    (None, ty.span())
+                }
+            },
+            (format, None, Some(components)) => {
+                let count = *components.get_ref();
+                match format {
+                    Some(format) if (1..=format.channels().len() as i64).contains(&count) => {
+                        (Some(FieldType::new(format.scalar_kind(), count as usize)), components.span())
+                    }
+                    Some(format) => {
+                        let channels = format.channels().len();
+                        let message = format!("`{format}` has {channels} channel{}: components must be 1 to {channels}, not {count}", if channels == 1 { "" } else { "s" });
+                        diagnostics.push(FileDiagnostic::at(path, source, components.span(), message));
+                        (None, components.span())
+                    }
+                    None => (None, components.span()),
+                }
+            }
+        };
+        // A field in error still takes its word, so the budget check counts it.
+        let (format, ty) = match (format, ty) {
+            (Some(format), Some(ty)) => (format, ty),
+            _ => (Format::R32f, FieldType::new(crate::ScalarKind::Float, 1)),
+        };
+        layout.fields.push(Field { name: field.name.get_ref().clone(), format, ty });
+        field_spans.push([field.name.span(), field.format.span(), ty_span]);
+    }
+
+    for diagnostic in layout.check() {
+        let span = match diagnostic.subject {
+            Subject::Name => entry.name.span(),
+            Subject::Budget => entry.budget.as_ref().map_or(entry.name.span(), Spanned::span),
+            Subject::FieldName(index) => field_spans[index][0].clone(),
+            Subject::FieldFormat(index) => field_spans[index][1].clone(),
+            Subject::FieldType(index) => field_spans[index][2].clone(),
+        };
+        diagnostics.push(FileDiagnostic::at(path, source, span, diagnostic.message));
+    }
+    if entry.fields.get_ref().is_empty() {
+        // Point at the empty array rather than at the name.
+        diagnostics.retain(|diagnostic| !diagnostic.message.contains("has no fields"));
+        diagnostics.push(FileDiagnostic::at(path, source, entry.fields.span(), format!("layout `{}` has no fields: a G-buffer needs at least one word", layout.name)));
+    }
+    diagnostics.sort_by_key(|diagnostic| (diagnostic.line, diagnostic.column));
+    if diagnostics.is_empty() { Ok(layout) } else { Err(diagnostics) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MOBILE_METALLIC: &str = r#"
+name = "MobileMetallic"
+budget = 128
+
+[[fields]]
+name = "light_accumulation"
+format = "rgb10a2"
+components = 3
+
+[[fields]]
+name = "depth"
+format = "r32f"
+type = "f32"
+
+[[fields]]
+name = "normals_roughness"
+format = "rgba8"
+type = "Vec4"
+
+[[fields]]
+name = "albedo_metallic"
+format = "rgba8"
+components = 4
+"#;
+
+    #[test]
+    fn reads_a_layout() {
+        let layout = parse_layout(MOBILE_METALLIC, Path::new("mobile.toml")).unwrap();
+        assert_eq!((layout.bits(), layout.used_bits()), (128, 126));
+        assert_eq!(layout.fields[0].ty, FieldType::from_rust_name("Vec3").unwrap());
+    }
+
+    #[test]
+    fn errors_point_at_the_value() {
+        let source = MOBILE_METALLIC.replace("\"rgba8\"\ntype", "\"rgba9\"\ntype");
+        let errors = parse_layout(&source, Path::new("mobile.toml")).unwrap_err();
+        assert_eq!(errors.len(), 1);
+        assert_eq!((errors[0].line, errors[0].column), (17, 10));
+        assert_eq!(
+            errors[0].to_string(),
+            "mobile.toml:17:10: error: unknown pixel local storage format `rgba9`; did you mean `rgba8`? \
+             The formats are: r11f_g11f_b10f, r32f, rg16f, rgb10_a2, rgba8, rg16, rgba8i, rg16i, rgb10_a2ui, rgba8ui, rg16ui, r32ui\n   |\n17 | format = \"rgba9\"\n   |          ^^^^^^^"
+        );
+    }
+}
