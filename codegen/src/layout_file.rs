@@ -66,8 +66,12 @@ impl FileDiagnostic {
     fn at(path: &Path, source: &str, span: Range<usize>, message: impl Into<String>) -> Self {
         let start = span.start.min(source.len());
         let line_start = source[..start].rfind('\n').map_or(0, |index| index + 1);
-        let line_end = source[start..].find('\n').map_or(source.len(), |index| start + index);
-        let source_line = source[line_start..line_end].trim_end_matches('\r').to_string();
+        let line_end = source[start..]
+            .find('\n')
+            .map_or(source.len(), |index| start + index);
+        let source_line = source[line_start..line_end]
+            .trim_end_matches('\r')
+            .to_string();
         let end = span.end.clamp(start, line_end);
         FileDiagnostic {
             path: path.to_path_buf(),
@@ -83,11 +87,24 @@ impl FileDiagnostic {
 impl fmt::Display for FileDiagnostic {
     /// `file:line:col: error: message`, then the line and a caret under the span.
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(out, "{}:{}:{}: error: {}", self.path.display(), self.line, self.column, self.message)?;
+        writeln!(
+            out,
+            "{}:{}:{}: error: {}",
+            self.path.display(),
+            self.line,
+            self.column,
+            self.message
+        )?;
         let gutter = self.line.to_string().len();
         writeln!(out, "{:gutter$} |", "")?;
         writeln!(out, "{} | {}", self.line, self.source_line)?;
-        write!(out, "{:gutter$} | {}{}", "", " ".repeat(self.column - 1), "^".repeat(self.width))
+        write!(
+            out,
+            "{:gutter$} | {}{}",
+            "",
+            " ".repeat(self.column - 1),
+            "^".repeat(self.width)
+        )
     }
 }
 
@@ -95,7 +112,10 @@ impl fmt::Display for FileDiagnostic {
 #[derive(Debug)]
 pub enum LayoutFileError {
     /// The file could not be read at all.
-    Io { path: PathBuf, error: std::io::Error },
+    Io {
+        path: PathBuf,
+        error: std::io::Error,
+    },
     /// The file was read; these are its problems, in file order.
     Invalid(Vec<FileDiagnostic>),
 }
@@ -103,7 +123,11 @@ pub enum LayoutFileError {
 impl fmt::Display for LayoutFileError {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            LayoutFileError::Io { path, error } => write!(out, "{}: cannot read the layout file: {error}", path.display()),
+            LayoutFileError::Io { path, error } => write!(
+                out,
+                "{}: cannot read the layout file: {error}",
+                path.display()
+            ),
             LayoutFileError::Invalid(diagnostics) => {
                 let texts: Vec<String> = diagnostics.iter().map(ToString::to_string).collect();
                 write!(out, "{}", texts.join("\n\n"))
@@ -116,7 +140,10 @@ impl std::error::Error for LayoutFileError {}
 
 /// Reads and checks a layout file.
 pub fn read_layout_file(path: &Path) -> Result<Layout, LayoutFileError> {
-    let source = std::fs::read_to_string(path).map_err(|error| LayoutFileError::Io { path: path.to_path_buf(), error })?;
+    let source = std::fs::read_to_string(path).map_err(|error| LayoutFileError::Io {
+        path: path.to_path_buf(),
+        error,
+    })?;
     parse_layout(&source, path).map_err(LayoutFileError::Invalid)
 }
 
@@ -124,13 +151,21 @@ pub fn read_layout_file(path: &Path) -> Result<Layout, LayoutFileError> {
 pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnostic>> {
     let entry: LayoutEntry = toml::from_str(source).map_err(|error| {
         let span = error.span().unwrap_or(0..0);
-        vec![FileDiagnostic::at(path, source, span, error.message().trim_end().replace('\n', " "))]
+        vec![FileDiagnostic::at(
+            path,
+            source,
+            span,
+            error.message().trim_end().replace('\n', " "),
+        )]
     })?;
 
     let mut diagnostics = Vec::new();
     let mut layout = Layout {
         name: entry.name.get_ref().clone(),
-        budget: entry.budget.as_ref().map_or(DEFAULT_BUDGET, |budget| *budget.get_ref()),
+        budget: entry
+            .budget
+            .as_ref()
+            .map_or(DEFAULT_BUDGET, |budget| *budget.get_ref()),
         fields: Vec::new(),
     };
     // Per field of the layout: the spans of its name, format and type.
@@ -147,7 +182,12 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnos
                     Format::nearest(name),
                     Format::ALL.map(Format::name).join(", ")
                 );
-                diagnostics.push(FileDiagnostic::at(path, source, field.format.span(), message));
+                diagnostics.push(FileDiagnostic::at(
+                    path,
+                    source,
+                    field.format.span(),
+                    message,
+                ));
                 None
             }
         };
@@ -158,7 +198,10 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnos
                 (None, field_span.clone())
             }
             (_, None, None) => {
-                let message = format!("field `{}` needs `type` (e.g. \"Vec3\") or `components` (1 to 4)", field.name.get_ref());
+                let message = format!(
+                    "field `{}` needs `type` (e.g. \"Vec3\") or `components` (1 to 4)",
+                    field.name.get_ref()
+                );
                 diagnostics.push(FileDiagnostic::at(path, source, field.name.span(), message));
                 (None, field_span.clone())
             }
@@ -176,13 +219,19 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnos
             (format, None, Some(components)) => {
                 let count = *components.get_ref();
                 match format {
-                    Some(format) if (1..=format.channels().len() as i64).contains(&count) => {
-                        (Some(FieldType::new(format.scalar_kind(), count as usize)), components.span())
-                    }
+                    Some(format) if (1..=format.channels().len() as i64).contains(&count) => (
+                        Some(FieldType::new(format.scalar_kind(), count as usize)),
+                        components.span(),
+                    ),
                     Some(format) => {
                         let channels = format.channels().len();
                         let message = format!("`{format}` has {channels} channel{}: components must be 1 to {channels}, not {count}", if channels == 1 { "" } else { "s" });
-                        diagnostics.push(FileDiagnostic::at(path, source, components.span(), message));
+                        diagnostics.push(FileDiagnostic::at(
+                            path,
+                            source,
+                            components.span(),
+                            message,
+                        ));
                         (None, components.span())
                     }
                     None => (None, components.span()),
@@ -194,14 +243,21 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnos
             (Some(format), Some(ty)) => (format, ty),
             _ => (Format::R32f, FieldType::new(crate::ScalarKind::Float, 1)),
         };
-        layout.fields.push(Field { name: field.name.get_ref().clone(), format, ty });
+        layout.fields.push(Field {
+            name: field.name.get_ref().clone(),
+            format,
+            ty,
+        });
         field_spans.push([field.name.span(), field.format.span(), ty_span]);
     }
 
     for diagnostic in layout.check() {
         let span = match diagnostic.subject {
             Subject::Name => entry.name.span(),
-            Subject::Budget => entry.budget.as_ref().map_or(entry.name.span(), Spanned::span),
+            Subject::Budget => entry
+                .budget
+                .as_ref()
+                .map_or(entry.name.span(), Spanned::span),
             Subject::FieldName(index) => field_spans[index][0].clone(),
             Subject::FieldFormat(index) => field_spans[index][1].clone(),
             Subject::FieldType(index) => field_spans[index][2].clone(),
@@ -211,10 +267,22 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnos
     if entry.fields.get_ref().is_empty() {
         // Point at the empty array rather than at the name.
         diagnostics.retain(|diagnostic| !diagnostic.message.contains("has no fields"));
-        diagnostics.push(FileDiagnostic::at(path, source, entry.fields.span(), format!("layout `{}` has no fields: a G-buffer needs at least one word", layout.name)));
+        diagnostics.push(FileDiagnostic::at(
+            path,
+            source,
+            entry.fields.span(),
+            format!(
+                "layout `{}` has no fields: a G-buffer needs at least one word",
+                layout.name
+            ),
+        ));
     }
     diagnostics.sort_by_key(|diagnostic| (diagnostic.line, diagnostic.column));
-    if diagnostics.is_empty() { Ok(layout) } else { Err(diagnostics) }
+    if diagnostics.is_empty() {
+        Ok(layout)
+    } else {
+        Err(diagnostics)
+    }
 }
 
 #[cfg(test)]
@@ -250,7 +318,10 @@ components = 4
     fn reads_a_layout() {
         let layout = parse_layout(MOBILE_METALLIC, Path::new("mobile.toml")).unwrap();
         assert_eq!((layout.bits(), layout.used_bits()), (128, 126));
-        assert_eq!(layout.fields[0].ty, FieldType::from_rust_name("Vec3").unwrap());
+        assert_eq!(
+            layout.fields[0].ty,
+            FieldType::from_rust_name("Vec3").unwrap()
+        );
     }
 
     #[test]

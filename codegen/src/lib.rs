@@ -12,6 +12,8 @@
 //! - with the `tools` feature (on by default): `layout_file` (layouts in TOML), the GLSL and
 //!   Rust-source emitters, `Builder` for build scripts, and the `codegen` command.
 
+#[cfg(feature = "tools")]
+mod builder;
 pub mod convert;
 pub mod emit;
 pub mod format;
@@ -19,7 +21,12 @@ pub mod layout;
 #[cfg(feature = "tools")]
 pub mod layout_file;
 pub mod naming;
+#[cfg(feature = "tools")]
+pub mod output;
 pub mod report;
+
+#[cfg(feature = "tools")]
+pub use builder::{BuildError, Builder};
 
 pub use format::{Channel, ChannelEncoding, Format, ScalarKind};
 pub use layout::{Diagnostic, Field, FieldType, Layout, Subject, DEFAULT_BUDGET};

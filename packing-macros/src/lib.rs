@@ -35,7 +35,10 @@ fn expand(input: &syn::DeriveInput) -> syn::Result<proc_macro2::TokenStream> {
         return Err(errors);
     }
     let wgsl = codegen::emit::wgsl::emit(&parsed.layout);
-    Ok(codegen::emit::rust::emit_impl(&parsed.layout, &wgsl))
+    Ok(codegen::emit::rust::emit_impl(
+        &parsed.layout,
+        quote::quote!(#wgsl),
+    ))
 }
 
 /// Adds `error` to the collected errors.

@@ -1,4 +1,7 @@
-//! Emitters: each turns a checked [`crate::Layout`] into source text or tokens.
+//! Emitters: each turns a checked [`crate::Layout`] into source text or tokens: WGSL (the
+//! source of truth), the Rust mirror, and (with the `tools` feature) GLSL ES includes.
 
+#[cfg(feature = "tools")]
+pub mod glsl;
 pub mod rust;
 pub mod wgsl;

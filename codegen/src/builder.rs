@@ -1,0 +1,121 @@
+//! The build-script API: reads layout files, writes their includes into `OUT_DIR` and tells
+//! cargo to rerun when a layout changes.
+//!
+//! ```no_run
+//! // build.rs
+//! fn main() {
+//!     if let Err(error) = codegen::Builder::new().layout("layouts/mobile_metallic.toml").build() {
+//!         eprintln!("{error}");
+//!         std::process::exit(1);
+//!     }
+//! }
+//! // src/lib.rs: include!(concat!(env!("OUT_DIR"), "/mobile_metallic.rs"));
+//! ```
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use crate::layout_file::{read_layout_file, LayoutFileError};
+use crate::output::{generate, write_if_changed, Output};
+
+/// Generates the includes of layout files from a build script.
+#[derive(Clone, Debug)]
+pub struct Builder {
+    layouts: Vec<PathBuf>,
+    out_dir: Option<PathBuf>,
+    outputs: Vec<Output>,
+}
+
+impl Default for Builder {
+    fn default() -> Self {
+        Builder::new()
+    }
+}
+
+/// Why a build step failed.
+#[derive(Debug)]
+pub enum BuildError {
+    /// A layout file was unreadable or invalid.
+    Layout(LayoutFileError),
+    /// No output folder: neither `out_dir` nor the `OUT_DIR` variable cargo sets.
+    NoOutDir,
+    /// Writing an output failed.
+    Write {
+        path: PathBuf,
+        error: std::io::Error,
+    },
+    /// naga failed to translate the WGSL (a bug in this crate).
+    Translation(crate::emit::glsl::TranslationError),
+}
+
+impl fmt::Display for BuildError {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BuildError::Layout(error) => write!(out, "{error}"),
+            BuildError::NoOutDir => write!(
+                out,
+                "no output folder: call `out_dir` or run from a build script (cargo sets OUT_DIR)"
+            ),
+            BuildError::Write { path, error } => {
+                write!(out, "{}: cannot write: {error}", path.display())
+            }
+            BuildError::Translation(error) => write!(out, "{error}"),
+        }
+    }
+}
+
+impl std::error::Error for BuildError {}
+
+impl Builder {
+    /// A builder for every output, into `OUT_DIR`.
+    pub fn new() -> Self {
+        Builder {
+            layouts: Vec::new(),
+            out_dir: None,
+            outputs: Output::ALL.to_vec(),
+        }
+    }
+
+    /// Adds a layout file.
+    pub fn layout(mut self, path: impl AsRef<Path>) -> Self {
+        self.layouts.push(path.as_ref().to_path_buf());
+        self
+    }
+
+    /// Writes into `folder` instead of `OUT_DIR`.
+    pub fn out_dir(mut self, folder: impl AsRef<Path>) -> Self {
+        self.out_dir = Some(folder.as_ref().to_path_buf());
+        self
+    }
+
+    /// Chooses the outputs (all by default).
+    pub fn outputs(mut self, outputs: &[Output]) -> Self {
+        self.outputs = outputs.to_vec();
+        self
+    }
+
+    /// Generates every layout's outputs; prints `cargo:rerun-if-changed` for each layout file.
+    /// Returns the paths of the files, written or already up to date.
+    pub fn build(self) -> Result<Vec<PathBuf>, BuildError> {
+        let folder = match self.out_dir {
+            Some(folder) => folder,
+            None => std::env::var_os("OUT_DIR")
+                .map(PathBuf::from)
+                .ok_or(BuildError::NoOutDir)?,
+        };
+        let mut paths = Vec::new();
+        for layout_path in &self.layouts {
+            println!("cargo:rerun-if-changed={}", layout_path.display());
+            let layout = read_layout_file(layout_path).map_err(BuildError::Layout)?;
+            for file in generate(&layout, &self.outputs).map_err(BuildError::Translation)? {
+                let path = folder.join(&file.name);
+                write_if_changed(&path, &file.contents).map_err(|error| BuildError::Write {
+                    path: path.clone(),
+                    error,
+                })?;
+                paths.push(path);
+            }
+        }
+        Ok(paths)
+    }
+}

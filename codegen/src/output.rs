@@ -1,0 +1,163 @@
+//! What the `codegen` tool and the build-script API write for a layout, and how: every file
+//! is written atomically (a temporary file renamed over it), and a file whose contents are
+//! unchanged is left alone, so build timestamps stay put.
+
+use std::io;
+use std::path::{Path, PathBuf};
+
+use crate::emit::glsl::{self, PlsBlock, TranslationError};
+use crate::emit::{rust, wgsl};
+use crate::layout::Layout;
+use crate::report::Report;
+
+/// One kind of output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Output {
+    /// `<snake>.wgsl`: the same text the derive produces.
+    Wgsl,
+    /// `<snake>.pls_inout.glsl`, `.pls_in.glsl`, `.pls_out.glsl`: EXT_shader_pixel_local_storage blocks.
+    GlslPixelLocalStorage,
+    /// `<snake>.fetch.glsl`: EXT_shader_framebuffer_fetch attachments and functions.
+    GlslFramebufferFetch,
+    /// `<snake>.vulkan.glsl`: Vulkan GLSL subpass inputs and functions.
+    GlslVulkan,
+    /// `<snake>.rs` (and the `.wgsl` it includes): the Rust mirror without the derive.
+    Rust,
+    /// `<snake>.report.txt`: the bit report.
+    Report,
+}
+
+impl Output {
+    pub const ALL: [Output; 6] = [
+        Output::Wgsl,
+        Output::GlslPixelLocalStorage,
+        Output::GlslFramebufferFetch,
+        Output::GlslVulkan,
+        Output::Rust,
+        Output::Report,
+    ];
+}
+
+/// A file to write: its name in the output folder and its contents.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct GeneratedFile {
+    pub name: String,
+    pub contents: String,
+}
+
+/// The files of the chosen outputs for a checked layout.
+pub fn generate(
+    layout: &Layout,
+    outputs: &[Output],
+) -> Result<Vec<GeneratedFile>, TranslationError> {
+    let snake = layout.snake_name();
+    let mut files = Vec::new();
+    let mut add = |name: String, contents: String| {
+        if !files.iter().any(|file: &GeneratedFile| file.name == name) {
+            files.push(GeneratedFile { name, contents });
+        }
+    };
+    for output in Output::ALL
+        .into_iter()
+        .filter(|output| outputs.contains(output))
+    {
+        match output {
+            Output::Wgsl => add(format!("{snake}.wgsl"), wgsl::emit(layout) + "\n"),
+            Output::GlslPixelLocalStorage => {
+                for block in PlsBlock::ALL {
+                    add(
+                        format!("{snake}.pls_{}.glsl", block.suffix()),
+                        glsl::pixel_local_storage(layout, block),
+                    );
+                }
+            }
+            Output::GlslFramebufferFetch => add(
+                format!("{snake}.fetch.glsl"),
+                glsl::framebuffer_fetch(layout)?,
+            ),
+            Output::GlslVulkan => add(
+                format!("{snake}.vulkan.glsl"),
+                glsl::vulkan_subpass_input(layout, 0)?,
+            ),
+            Output::Rust => {
+                add(format!("{snake}.wgsl"), wgsl::emit(layout) + "\n");
+                add(
+                    format!("{snake}.rs"),
+                    rust::emit_source(layout, &format!("{snake}.wgsl")),
+                );
+            }
+            Output::Report => add(
+                format!("{snake}.report.txt"),
+                Report::new(layout).to_string(),
+            ),
+        }
+    }
+    Ok(files)
+}
+
+/// Whether [`write_if_changed`] wrote the file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WriteOutcome {
+    Written,
+    Unchanged,
+}
+
+/// Writes `contents` to `path` unless it already holds exactly that, through a temporary file
+/// in the same folder renamed over the target, so a reader never sees half a file.
+pub fn write_if_changed(path: &Path, contents: &str) -> io::Result<WriteOutcome> {
+    if std::fs::read(path).is_ok_and(|existing| existing == contents.as_bytes()) {
+        return Ok(WriteOutcome::Unchanged);
+    }
+    let folder = path
+        .parent()
+        .filter(|parent| !parent.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(folder)?;
+    let file_name = path
+        .file_name()
+        .and_then(|name| name.to_str())
+        .unwrap_or("output");
+    let temporary: PathBuf = folder.join(format!(".{file_name}.{}.tmp", std::process::id()));
+    std::fs::write(&temporary, contents)?;
+    std::fs::rename(&temporary, path).inspect_err(|_| {
+        let _ = std::fs::remove_file(&temporary);
+    })?;
+    Ok(WriteOutcome::Written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unchanged_files_keep_their_timestamp() {
+        let folder =
+            std::env::temp_dir().join(format!("codegen-write-test-{}", std::process::id()));
+        let path = folder.join("a.txt");
+        assert_eq!(
+            write_if_changed(&path, "one").unwrap(),
+            WriteOutcome::Written
+        );
+        let modified = std::fs::metadata(&path).unwrap().modified().unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        assert_eq!(
+            write_if_changed(&path, "one").unwrap(),
+            WriteOutcome::Unchanged
+        );
+        assert_eq!(
+            std::fs::metadata(&path).unwrap().modified().unwrap(),
+            modified
+        );
+        assert_eq!(
+            write_if_changed(&path, "two").unwrap(),
+            WriteOutcome::Written
+        );
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "two");
+        assert_eq!(
+            std::fs::read_dir(&folder).unwrap().count(),
+            1,
+            "no temporary file is left behind"
+        );
+        std::fs::remove_dir_all(folder).unwrap();
+    }
+}
