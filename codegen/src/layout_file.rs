@@ -155,7 +155,13 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnos
             path,
             source,
             span,
-            error.message().trim_end().replace('\n', " "),
+            // serde speaks of fields; in a TOML file they are keys.
+            error
+                .message()
+                .trim_end()
+                .replace('\n', " ")
+                .replace("missing field", "missing key")
+                .replace("unknown field", "unknown key"),
         )]
     })?;
 
