@@ -1,7 +1,7 @@
 //! The build-script API: reads layout files, writes their includes into `OUT_DIR` and tells
 //! cargo to rerun when a layout changes.
 //!
-//! ```no_run
+//! ```text
 //! // build.rs
 //! fn main() {
 //!     if let Err(error) = codegen::Builder::new().layout("layouts/mobile_metallic.toml").build() {
@@ -9,8 +9,11 @@
 //!         std::process::exit(1);
 //!     }
 //! }
-//! // src/lib.rs: include!(concat!(env!("OUT_DIR"), "/mobile_metallic.rs"));
+//! // src/lib.rs
+//! include!(concat!(env!("OUT_DIR"), "/mobile_metallic.rs"));
 //! ```
+//!
+//! `examples/build-script` is a crate that does this.
 
 use std::fmt;
 use std::path::{Path, PathBuf};

@@ -52,6 +52,14 @@ impl Module {
         MODULES.into_iter().find(|module| module.name == name)
     }
 
+    /// The source under a one-line banner naming the module.
+    pub fn with_banner(&self) -> String {
+        format!(
+            "// ---- shaderlib module `{}` ----\n{}",
+            self.name, self.source
+        )
+    }
+
     /// The names on the header's `// requires:` line.
     pub fn requires(&self) -> Vec<&'static str> {
         self.source
@@ -108,25 +116,30 @@ impl std::error::Error for ComposeError {}
 /// The WGSL of the named modules and everything they require, dependencies first, each module
 /// once, each under a banner naming it.
 pub fn compose(names: &[&str]) -> Result<String, ComposeError> {
+    let modules = dependency_order(names)?;
+    Ok(modules
+        .iter()
+        .map(Module::with_banner)
+        .collect::<Vec<_>>()
+        .join("\n"))
+}
+
+/// The named modules and everything they require, dependencies first, each once.
+pub fn dependency_order(names: &[&str]) -> Result<Vec<Module>, ComposeError> {
     let mut ordered: Vec<Module> = Vec::new();
     let mut visiting: Vec<&'static str> = Vec::new();
     for name in names {
-        let module = Module::named(name).ok_or_else(|| ComposeError::UnknownModule {
+        let unknown = || ComposeError::UnknownModule {
             name: name.to_string(),
             required_by: None,
-        })?;
-        visit(module, &mut ordered, &mut visiting)?;
+        };
+        visit(
+            Module::named(name).ok_or_else(unknown)?,
+            &mut ordered,
+            &mut visiting,
+        )?;
     }
-    Ok(ordered
-        .iter()
-        .map(|module| {
-            format!(
-                "// ---- shaderlib module `{}` ----\n{}",
-                module.name, module.source
-            )
-        })
-        .collect::<Vec<_>>()
-        .join("\n"))
+    Ok(ordered)
 }
 
 /// Depth-first: a module's requirements, then the module.

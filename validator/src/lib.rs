@@ -4,7 +4,10 @@
 //! The stages mirror naga's own: parse (front), validate, translate (back). Each problem is a
 //! [`Problem`] that names the stage and, where the source has one, the line and column.
 
+pub mod include;
+
 use std::fmt;
+use std::path::Path;
 
 use naga::back::{glsl, hlsl, msl, spv};
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
@@ -18,6 +21,8 @@ pub struct Validated {
 /// Where a problem was found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
+    /// Resolving `#include` lines.
+    Include,
     Parse,
     Validate,
     Translate(Backend),
@@ -52,13 +57,16 @@ pub struct Problem {
     pub stage: Stage,
     /// 1-based line and column in the WGSL source, where known.
     pub location: Option<(u32, u32)>,
-    /// naga's message; for parse and validation errors, its full report with the source line.
+    /// One line: what is wrong.
     pub message: String,
+    /// naga's full report (labels, notes), where it has one.
+    pub detail: String,
 }
 
 impl fmt::Display for Problem {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
         let stage = match self.stage {
+            Stage::Include => "include error".to_string(),
             Stage::Parse => "parse error".to_string(),
             Stage::Validate => "validation error".to_string(),
             Stage::Translate(backend) => format!("{} translation error", backend.name()),
@@ -79,7 +87,8 @@ pub fn validate_wgsl(source: &str) -> Result<Validated, Problem> {
         location: error
             .location(source)
             .map(|at| (at.line_number, at.line_position)),
-        message: error.emit_to_string(source),
+        message: error.message().to_string(),
+        detail: error.emit_to_string(source),
     })?;
     let info = Validator::new(ValidationFlags::all(), Capabilities::default())
         .validate(&module)
@@ -88,7 +97,8 @@ pub fn validate_wgsl(source: &str) -> Result<Validated, Problem> {
             location: error
                 .location(source)
                 .map(|at| (at.line_number, at.line_position)),
-            message: error.emit_to_string(source),
+            message: error_chain(error.as_inner()),
+            detail: error.emit_to_string(source),
         })?;
     Ok(Validated { module, info })
 }
@@ -101,6 +111,7 @@ pub fn translate(validated: &Validated, backend: Backend) -> Result<String, Prob
         stage: Stage::Translate(backend),
         location: None,
         message,
+        detail: String::new(),
     };
     let Validated { module, info } = validated;
     match backend {
@@ -157,6 +168,109 @@ pub fn translate(validated: &Validated, backend: Backend) -> Result<String, Prob
             Ok(all)
         }
     }
+}
+
+/// An error and its causes, as one line: "outer: inner: innermost".
+fn error_chain(error: &dyn std::error::Error) -> String {
+    let mut message = error.to_string();
+    let mut cause = error.source();
+    while let Some(inner) = cause {
+        message.push_str(": ");
+        message.push_str(&inner.to_string());
+        cause = inner.source();
+    }
+    message
+}
+
+/// A problem in a shader file, placed in the file (or module) it comes from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FileProblem {
+    /// The file, `<shaderlib/NAME>` or `<generated from PATH>`.
+    pub origin: String,
+    /// 1-based line and column in the origin, where known.
+    pub location: Option<(usize, usize)>,
+    pub stage: Stage,
+    pub message: String,
+    /// The source line, for display.
+    pub source_line: Option<String>,
+}
+
+impl fmt::Display for FileProblem {
+    /// `file:line:col: error: message`, the source line and a caret.
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let stage = match self.stage {
+            Stage::Translate(backend) => format!(" ({} translation)", backend.name()),
+            _ => String::new(),
+        };
+        match self.location {
+            Some((line, column)) => write!(
+                out,
+                "{}:{line}:{column}: error{stage}: {}",
+                self.origin, self.message
+            )?,
+            None => write!(out, "{}: error{stage}: {}", self.origin, self.message)?,
+        }
+        if let (Some(text), Some((line, column))) = (&self.source_line, self.location) {
+            let gutter = line.to_string().len();
+            let caret = " ".repeat(column.saturating_sub(1));
+            write!(
+                out,
+                "\n{:gutter$} |\n{line} | {text}\n{:gutter$} | {caret}^",
+                "", ""
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// Checks a WGSL file: resolves its includes, validates it with naga, and (with `portability`)
+/// translates it to every backend. Returns every problem found; empty when the file is valid.
+pub fn check_file(path: &Path, portability: bool) -> Vec<FileProblem> {
+    let resolved = match include::resolve_file(path) {
+        Ok(resolved) => resolved,
+        Err(error) => {
+            return vec![FileProblem {
+                origin: error.file.display().to_string(),
+                location: (error.line > 0).then_some((error.line, 1)),
+                stage: Stage::Include,
+                message: error.message,
+                source_line: None,
+            }]
+        }
+    };
+    // Places a problem of the combined source in the file it came from.
+    let place = |problem: Problem| {
+        let combined = problem
+            .location
+            .map(|(line, column)| (line as usize, column as usize));
+        let origin = combined.and_then(|(line, _)| resolved.origin_of(line));
+        FileProblem {
+            origin: origin.map_or_else(
+                || path.display().to_string(),
+                |(origin, _)| origin.to_string(),
+            ),
+            location: origin
+                .zip(combined)
+                .map(|((_, line), (_, column))| (line, column)),
+            stage: problem.stage,
+            message: problem.message,
+            source_line: combined
+                .and_then(|(line, _)| resolved.source.lines().nth(line - 1))
+                .map(str::to_string),
+        }
+    };
+    let validated = match validate_wgsl(&resolved.source) {
+        Ok(validated) => validated,
+        Err(problem) => return vec![place(problem)],
+    };
+    if !portability {
+        return Vec::new();
+    }
+    Backend::ALL
+        .into_iter()
+        .filter_map(|backend| translate(&validated, backend).err())
+        .map(place)
+        .collect()
 }
 
 /// Validates `source` and translates it to every backend; the first problem, if any.

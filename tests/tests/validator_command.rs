@@ -1,0 +1,186 @@
+//! The `validator` command: user shaders with their includes resolved, problems placed in
+//! their file with a caret, JSON output, and exit statuses 0, 1 and 2.
+
+use assert_cmd::Command;
+use std::path::{Path, PathBuf};
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
+}
+
+/// The `validator` binary, built first (it belongs to another package).
+fn validator() -> Command {
+    static BUILD: std::sync::Once = std::sync::Once::new();
+    BUILD.call_once(|| {
+        let mut build = std::process::Command::new(env!("CARGO"));
+        build.current_dir(workspace()).args([
+            "build",
+            "--quiet",
+            "-p",
+            "validator",
+            "--bin",
+            "validator",
+        ]);
+        if !cfg!(debug_assertions) {
+            build.arg("--release");
+        }
+        assert!(
+            build.status().expect("running cargo").success(),
+            "building the validator command failed"
+        );
+    });
+    let mut command = Command::cargo_bin("validator").expect("the validator binary was just built");
+    command.current_dir(workspace());
+    command
+}
+
+fn write(folder: &Path, name: &str, text: &str) -> PathBuf {
+    let path = folder.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_shader_using_the_library_and_a_layout_file_is_valid_everywhere() {
+    let output = validator()
+        .arg("validator/examples/shaders/lighting.wgsl")
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert_eq!(
+        String::from_utf8_lossy(&output.stdout),
+        "validator/examples/shaders/lighting.wgsl: valid\n"
+    );
+}
+
+#[test]
+fn an_invalid_shader_is_reported_at_its_line_with_a_caret() {
+    let output = validator()
+        .arg("validator/examples/shaders/broken.wgsl")
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.starts_with("validator/examples/shaders/broken.wgsl:6:13: error: "),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("Requires 2 arguments, but 1 are provided"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("6 |     let d = d_ggx(0.5);\n  |             ^"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn json_output_lists_every_file() {
+    let output = validator()
+        .args([
+            "--json",
+            "validator/examples/shaders/lighting.wgsl",
+            "validator/examples/shaders/broken.wgsl",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let files = report["files"].as_array().unwrap();
+    assert_eq!(files.len(), 2);
+    assert_eq!(files[0]["valid"], true);
+    assert_eq!(files[1]["valid"], false);
+    assert_eq!(files[1]["problems"][0]["line"], 6);
+    assert_eq!(files[1]["problems"][0]["stage"], "validate");
+}
+
+#[test]
+fn include_problems_are_placed_at_the_include_line() {
+    let folder = tempfile::tempdir().unwrap();
+    let shader = write(
+        folder.path(),
+        "a.wgsl",
+        "fn f() {}\n#include <shaderlib/brdf>\n",
+    );
+    let output = validator().arg(&shader).output().unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.starts_with(&format!(
+            "{}:2:1: error: unknown WGSL module `brdf`",
+            shader.display()
+        )),
+        "{stderr}"
+    );
+
+    // A bad layout file reports its own position, through the include.
+    write(
+        folder.path(),
+        "bad.toml",
+        "name = \"Bad\"\n\n[[fields]]\nname = \"x\"\nformat = \"rgba9\"\ncomponents = 4\n",
+    );
+    let shader = write(folder.path(), "b.wgsl", "#include \"bad.toml\"\n");
+    let stderr =
+        String::from_utf8_lossy(&validator().arg(&shader).output().unwrap().stderr).to_string();
+    assert!(
+        stderr.contains("bad.toml:5:10: error: unknown pixel local storage format `rgba9`"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn problems_in_an_included_wgsl_file_name_that_file() {
+    let folder = tempfile::tempdir().unwrap();
+    write(
+        folder.path(),
+        "common.wgsl",
+        "fn helper() -> f32 {\n    return 1u;\n}\n",
+    );
+    let shader = write(
+        folder.path(),
+        "main.wgsl",
+        "#include \"common.wgsl\"\nfn main_helper() -> f32 { return helper(); }\n",
+    );
+    let output = validator().arg(&shader).output().unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    // naga places a return-type mismatch at the function it is in.
+    assert!(
+        stderr.starts_with(&format!(
+            "{}:1:1: error: Function [0] 'helper' is invalid",
+            folder.path().join("common.wgsl").display()
+        )),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    assert_eq!(validator().output().unwrap().status.code(), Some(2));
+    assert_eq!(
+        validator()
+            .arg("no/such/shader.wgsl")
+            .output()
+            .unwrap()
+            .status
+            .code(),
+        Some(2)
+    );
+    assert_eq!(
+        validator()
+            .args(["--hlsl", "a.wgsl"])
+            .output()
+            .unwrap()
+            .status
+            .code(),
+        Some(2)
+    );
+}

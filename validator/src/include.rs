@@ -1,0 +1,236 @@
+//! Include resolution for user shaders: a line `#include <shaderlib/NAME>` pulls in a module of
+//! the shading library (with its dependencies), `#include "PATH.toml"` the generated WGSL of a
+//! layout file, and `#include "PATH.wgsl"` another WGSL file (itself resolved). Paths are
+//! relative to the including file. Each module and file is included once.
+//!
+//! The result keeps a map from its lines back to where they came from, so a problem in the
+//! combined source is reported at its file and line.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use codegen::layout_file::read_layout_file;
+
+/// Where a run of lines of the resolved source came from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Segment {
+    /// A file path, `<shaderlib/NAME>` or `<generated from PATH>`.
+    pub origin: String,
+    /// The first line of the run in the resolved source (1-based).
+    pub first_line: usize,
+    /// The number of lines in the run.
+    pub lines: usize,
+    /// The line in the origin that the run's first line is (1-based).
+    pub origin_line: usize,
+}
+
+/// A resolved shader: one WGSL source and its line map.
+#[derive(Clone, Debug, Default)]
+pub struct Resolved {
+    pub source: String,
+    pub segments: Vec<Segment>,
+}
+
+impl Resolved {
+    /// The origin and origin line of a line of the resolved source.
+    pub fn origin_of(&self, line: usize) -> Option<(&str, usize)> {
+        self.segments
+            .iter()
+            .find(|segment| {
+                (segment.first_line..segment.first_line + segment.lines).contains(&line)
+            })
+            .map(|segment| {
+                (
+                    segment.origin.as_str(),
+                    segment.origin_line + line - segment.first_line,
+                )
+            })
+    }
+
+    fn push(&mut self, origin: &str, origin_line: usize, text: &str) {
+        let lines = text.lines().count();
+        if lines == 0 {
+            return;
+        }
+        let first_line = self.source.lines().count() + 1;
+        for line in text.lines() {
+            self.source.push_str(line);
+            self.source.push('\n');
+        }
+        self.segments.push(Segment {
+            origin: origin.to_string(),
+            first_line,
+            lines,
+            origin_line,
+        });
+    }
+}
+
+/// An include that could not be resolved, at the line of its directive.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct IncludeError {
+    pub file: PathBuf,
+    pub line: usize,
+    pub message: String,
+}
+
+impl fmt::Display for IncludeError {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            out,
+            "{}:{}:1: error: {}",
+            self.file.display(),
+            self.line,
+            self.message
+        )
+    }
+}
+
+impl std::error::Error for IncludeError {}
+
+/// Reads `path` and resolves its includes.
+pub fn resolve_file(path: &Path) -> Result<Resolved, IncludeError> {
+    let mut resolver = Resolver::default();
+    let source = std::fs::read_to_string(path).map_err(|error| IncludeError {
+        file: path.to_path_buf(),
+        line: 0,
+        message: format!("cannot read the file: {error}"),
+    })?;
+    resolver.included_files.push(canonical(path));
+    resolver.resolve(path, &source)?;
+    Ok(resolver.resolved)
+}
+
+/// Resolves the includes of `source`, read from `path`.
+pub fn resolve_source(path: &Path, source: &str) -> Result<Resolved, IncludeError> {
+    let mut resolver = Resolver::default();
+    resolver.included_files.push(canonical(path));
+    resolver.resolve(path, source)?;
+    Ok(resolver.resolved)
+}
+
+fn canonical(path: &Path) -> PathBuf {
+    path.canonicalize().unwrap_or_else(|_| path.to_path_buf())
+}
+
+#[derive(Default)]
+struct Resolver {
+    resolved: Resolved,
+    included_modules: Vec<&'static str>,
+    included_files: Vec<PathBuf>,
+}
+
+impl Resolver {
+    fn resolve(&mut self, path: &Path, source: &str) -> Result<(), IncludeError> {
+        let origin = path.display().to_string();
+        let mut pending = String::new();
+        let mut pending_start = 1;
+        for (index, line) in source.lines().enumerate() {
+            let line_number = index + 1;
+            let Some(target) = line.trim().strip_prefix("#include") else {
+                if pending.is_empty() {
+                    pending_start = line_number;
+                }
+                pending.push_str(line);
+                pending.push('\n');
+                continue;
+            };
+            self.resolved
+                .push(&origin, pending_start, &std::mem::take(&mut pending));
+            let error = |message: String| IncludeError {
+                file: path.to_path_buf(),
+                line: line_number,
+                message,
+            };
+            let target = target.trim();
+            if let Some(module) = target
+                .strip_prefix("<shaderlib/")
+                .and_then(|rest| rest.strip_suffix('>'))
+            {
+                let modules = shaderlib::modules::dependency_order(&[module])
+                    .map_err(|problem| error(problem.to_string()))?;
+                for module in modules {
+                    if !self.included_modules.contains(&module.name) {
+                        self.included_modules.push(module.name);
+                        self.resolved.push(
+                            &format!("<shaderlib/{}>", module.name),
+                            0,
+                            &module.with_banner(),
+                        );
+                    }
+                }
+            } else if let Some(relative) = target
+                .strip_prefix('"')
+                .and_then(|rest| rest.strip_suffix('"'))
+            {
+                let included = path.parent().unwrap_or(Path::new(".")).join(relative);
+                let key = canonical(&included);
+                if self.included_files.contains(&key) {
+                    continue;
+                }
+                self.included_files.push(key);
+                match included.extension().and_then(|extension| extension.to_str()) {
+                    Some("toml") => {
+                        let layout = read_layout_file(&included).map_err(|problem| error(format!("in included layout: {problem}")))?;
+                        let wgsl = codegen::emit::wgsl::emit(&layout);
+                        self.resolved.push(&format!("<generated from {}>", included.display()), 1, &wgsl);
+                    }
+                    Some("wgsl") => {
+                        let text = std::fs::read_to_string(&included)
+                            .map_err(|problem| error(format!("cannot read included file `{}`: {problem}", included.display())))?;
+                        self.resolve(&included, &text)?;
+                    }
+                    _ => return Err(error(format!("cannot include `{relative}`: only .wgsl and .toml (layout) files can be included"))),
+                }
+            } else {
+                return Err(error(format!(
+                    "malformed include `{target}`: write `#include <shaderlib/MODULE>` or `#include \"relative/path.wgsl\"` (or .toml)"
+                )));
+            }
+        }
+        self.resolved.push(&origin, pending_start, &pending);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shaderlib_modules_are_included_once_with_their_dependencies() {
+        let source = "#include <shaderlib/shading>\n#include <shaderlib/microfacet>\nfn f() -> f32 { return d_ggx(1.0, 0.5); }\n";
+        let resolved = resolve_source(Path::new("user.wgsl"), source).unwrap();
+        assert_eq!(
+            resolved
+                .source
+                .matches("shaderlib module `microfacet`")
+                .count(),
+            1
+        );
+        let last_line = resolved.source.lines().count();
+        assert_eq!(resolved.origin_of(last_line), Some(("user.wgsl", 3)));
+        crate::validate_wgsl(&resolved.source).unwrap();
+    }
+
+    #[test]
+    fn bad_includes_name_their_line() {
+        let error = resolve_source(
+            Path::new("user.wgsl"),
+            "fn f() {}\n#include <shaderlib/brdf>\n",
+        )
+        .unwrap_err();
+        assert_eq!(error.line, 2);
+        assert!(
+            error.message.starts_with("unknown WGSL module `brdf`"),
+            "{}",
+            error.message
+        );
+        let error = resolve_source(Path::new("user.wgsl"), "#include shading\n").unwrap_err();
+        assert!(
+            error.message.starts_with("malformed include"),
+            "{}",
+            error.message
+        );
+    }
+}

@@ -1,0 +1,93 @@
+//! `validator`: validates WGSL files, with their includes resolved, through naga, and checks
+//! that each translates to SPIR-V, MSL, HLSL and GLSL ES.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use validator::{check_file, FileProblem, Stage};
+
+/// Validates WGSL shaders with naga and checks that they translate to SPIR-V, MSL, HLSL and
+/// GLSL ES. Lines `#include <shaderlib/MODULE>` pull in a module of the shading library with
+/// its dependencies; `#include "layout.toml"` the generated WGSL of a layout file;
+/// `#include "other.wgsl"` another shader. Paths are relative to the including file.
+///
+/// Problems print as `file:line:col: error: message` with the source line and a caret.
+///
+/// Exit status: 0 when every shader is valid, 1 when any is invalid, 2 on a usage error
+/// (bad arguments, an unreadable file).
+#[derive(Parser, Debug)]
+#[command(name = "validator", version, about, long_about)]
+struct Arguments {
+    /// WGSL files to check.
+    #[arg(required = true, value_name = "SHADER.wgsl")]
+    files: Vec<PathBuf>,
+    /// Print the results as JSON on standard output.
+    #[arg(long)]
+    json: bool,
+    /// Only validate; skip the translation to every backend.
+    #[arg(long)]
+    no_portability: bool,
+}
+
+fn stage_name(stage: Stage) -> String {
+    match stage {
+        Stage::Include => "include".into(),
+        Stage::Parse => "parse".into(),
+        Stage::Validate => "validate".into(),
+        Stage::Translate(backend) => format!("translate {}", backend.name()),
+    }
+}
+
+fn problem_json(problem: &FileProblem) -> serde_json::Value {
+    serde_json::json!({
+        "origin": problem.origin,
+        "line": problem.location.map(|(line, _)| line),
+        "column": problem.location.map(|(_, column)| column),
+        "stage": stage_name(problem.stage),
+        "message": problem.message,
+    })
+}
+
+fn main() -> ExitCode {
+    let arguments = Arguments::parse();
+    let mut any_invalid = false;
+    let mut unreadable = false;
+    let mut results = Vec::new();
+    for file in &arguments.files {
+        if let Err(error) = std::fs::metadata(file) {
+            eprintln!("validator: {}: cannot read: {error}", file.display());
+            unreadable = true;
+            continue;
+        }
+        let problems = check_file(file, !arguments.no_portability);
+        any_invalid |= !problems.is_empty();
+        if arguments.json {
+            results.push(serde_json::json!({
+                "file": file.display().to_string(),
+                "valid": problems.is_empty(),
+                "problems": problems.iter().map(problem_json).collect::<Vec<_>>(),
+            }));
+        } else if problems.is_empty() {
+            println!("{}: valid", file.display());
+        } else {
+            for problem in &problems {
+                eprintln!("{problem}\n");
+            }
+        }
+    }
+    if arguments.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&serde_json::json!({ "files": results }))
+                .unwrap_or_default()
+        );
+    }
+    if unreadable {
+        ExitCode::from(2)
+    } else if any_invalid {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
