@@ -38,3 +38,36 @@ pub struct AllFormats {
     #[pls(r32ui)]
     pub uint_32: u32,
 }
+
+/// The workspace's root folder.
+pub fn workspace() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("tests/ is in the workspace")
+        .to_path_buf()
+}
+
+/// Builds `package`'s binary `binary` in this test's profile and returns its path: another
+/// package's binary, which `cargo test -p tests` does not build (and an old one would test old
+/// code).
+pub fn built_binary(package: &str, binary: &str) -> std::path::PathBuf {
+    let mut build = std::process::Command::new(env!("CARGO"));
+    build
+        .current_dir(workspace())
+        .args(["build", "--quiet", "-p", package, "--bin", binary]);
+    if !cfg!(debug_assertions) {
+        build.arg("--release");
+    }
+    assert!(
+        build.status().expect("running cargo").success(),
+        "building `{binary}` failed"
+    );
+    let profile = if cfg!(debug_assertions) {
+        "debug"
+    } else {
+        "release"
+    };
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map_or_else(|| workspace().join("target"), std::path::PathBuf::from);
+    target.join(profile).join(binary)
+}

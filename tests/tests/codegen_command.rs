@@ -2,33 +2,13 @@
 //! and exit status 1, usage errors exit status 2.
 
 use assert_cmd::Command;
-use std::path::{Path, PathBuf};
+use tests::{built_binary, workspace};
 
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .unwrap()
-        .to_path_buf()
-}
-
-/// The `codegen` binary, built first: it belongs to another package, which `cargo test -p
-/// tests` does not build (and an old binary would test old code).
 fn codegen() -> Command {
-    static BUILD: std::sync::Once = std::sync::Once::new();
-    BUILD.call_once(|| {
-        let mut build = std::process::Command::new(env!("CARGO"));
-        build
-            .current_dir(workspace())
-            .args(["build", "--quiet", "-p", "codegen", "--bin", "codegen"]);
-        if !cfg!(debug_assertions) {
-            build.arg("--release");
-        }
-        assert!(
-            build.status().expect("running cargo").success(),
-            "building the codegen command failed"
-        );
-    });
-    Command::cargo_bin("codegen").expect("the codegen binary was just built")
+    static BINARY: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+    let mut command = Command::new(BINARY.get_or_init(|| built_binary("codegen", "codegen")));
+    command.current_dir(workspace());
+    command
 }
 
 #[test]

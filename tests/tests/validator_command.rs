@@ -3,36 +3,11 @@
 
 use assert_cmd::Command;
 use std::path::{Path, PathBuf};
+use tests::{built_binary, workspace};
 
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .unwrap()
-        .to_path_buf()
-}
-
-/// The `validator` binary, built first (it belongs to another package).
 fn validator() -> Command {
-    static BUILD: std::sync::Once = std::sync::Once::new();
-    BUILD.call_once(|| {
-        let mut build = std::process::Command::new(env!("CARGO"));
-        build.current_dir(workspace()).args([
-            "build",
-            "--quiet",
-            "-p",
-            "validator",
-            "--bin",
-            "validator",
-        ]);
-        if !cfg!(debug_assertions) {
-            build.arg("--release");
-        }
-        assert!(
-            build.status().expect("running cargo").success(),
-            "building the validator command failed"
-        );
-    });
-    let mut command = Command::cargo_bin("validator").expect("the validator binary was just built");
+    static BINARY: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+    let mut command = Command::new(BINARY.get_or_init(|| built_binary("validator", "validator")));
     command.current_dir(workspace());
     command
 }
