@@ -1,0 +1,326 @@
+//! `tradeoff`: the speed/accuracy trade of every approximation and encoding, side by side.
+//!
+//! Run with `cargo run --release --bin tradeoff`. Prints a table and writes
+//! `target/tradeoff/report.md`, `report.json` and PNG plots. Each row's error is measured
+//! against the f64 references over the stated domain; its cost is counted in naga IR
+//! expressions and SPIR-V instructions; its time is measured on the adapter at hand (a
+//! dependent chain of evaluations, median of 7 runs, less the harness's own time) and for its
+//! f32 mirror on the CPU.
+
+mod cost;
+mod plot;
+mod rows;
+mod timing;
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use plot::Plot;
+use rows::Row;
+use shaderlib::shading::env_brdf_lut::EnvBrdfLut;
+use tests::gpu::Gpu;
+
+/// A row's measurements besides its error.
+struct Measured {
+    naga_expressions: usize,
+    spirv_instructions: usize,
+    gpu_ns_per_eval: Option<f64>,
+    cpu_ns_per_eval: f64,
+}
+
+fn output_folder() -> PathBuf {
+    let target = std::env::var_os("CARGO_TARGET_DIR").map_or_else(
+        || Path::new(env!("CARGO_MANIFEST_DIR")).join("../target"),
+        PathBuf::from,
+    );
+    target.join("tradeoff")
+}
+
+/// The SPIR-V of a row's timing harness, without the library functions the row does not
+/// reach (naga writes every function of a module), and its naga module.
+fn compile(row_wgsl: &str) -> Result<(naga::Module, Vec<u32>), String> {
+    let harness = timing::harness(row_wgsl);
+    let validated = validator::validate_wgsl(&harness)
+        .map_err(|problem| format!("{problem}\n{}", problem.detail))?;
+    let mut compacted = validated.module.clone();
+    naga::compact::compact(&mut compacted, naga::compact::KeepUnused::No);
+    let flags = naga::valid::ValidationFlags::all();
+    let info = naga::valid::Validator::new(flags, naga::valid::Capabilities::default())
+        .validate(&compacted)
+        .map_err(|error| error.emit_to_string(&harness))?;
+    let words = naga::back::spv::write_vec(&compacted, &info, &Default::default(), None)
+        .map_err(|error| error.to_string())?;
+    Ok((validated.module, words))
+}
+
+fn main() {
+    let folder = output_folder();
+    if let Err(error) = std::fs::create_dir_all(&folder) {
+        eprintln!("tradeoff: cannot create {}: {error}", folder.display());
+        std::process::exit(1);
+    }
+    eprintln!("measuring errors against the f64 references...");
+    let rows = rows::rows();
+    let gpu = Gpu::new();
+    let adapter = gpu.describe();
+    eprintln!("timing on {adapter}");
+
+    let (_, baseline_spirv) = compile(timing::BASELINE_ROW).expect("the baseline harness compiles");
+    let baseline_instructions = cost::spirv_instructions(&baseline_spirv);
+    let baseline_gpu =
+        timing::gpu_ns_per_eval(&gpu, &timing::harness(timing::BASELINE_ROW), &[], 1).ok();
+    let luts: Vec<(usize, Vec<[f32; 2]>)> = [16, 32]
+        .into_iter()
+        .map(|size| (size, EnvBrdfLut::bake(size, 1024).texels))
+        .collect();
+
+    let mut measured = Vec::new();
+    for (index, row) in rows.iter().enumerate() {
+        eprintln!(
+            "[{}/{}] {}: {}",
+            index + 1,
+            rows.len(),
+            row.family,
+            row.name
+        );
+        let (module, spirv) =
+            compile(&row.wgsl).unwrap_or_else(|error| panic!("{}: {error}", row.name));
+        let (lut_size, lut) = match row.lut_size {
+            Some(size) => luts
+                .iter()
+                .find(|(lut_size, _)| *lut_size == size)
+                .map(|(size, texels)| (*size, texels.as_slice()))
+                .unwrap_or((1, &[])),
+            None => (1, &[][..]),
+        };
+        let gpu_time = timing::gpu_ns_per_eval(&gpu, &timing::harness(&row.wgsl), lut, lut_size)
+            .map_err(|error| eprintln!("  GPU timing failed: {error}"))
+            .ok()
+            .map(|time| (time - baseline_gpu.unwrap_or(0.0)).max(0.0));
+        measured.push(Measured {
+            naga_expressions: cost::naga_expressions(&module),
+            spirv_instructions: cost::spirv_instructions(&spirv)
+                .saturating_sub(baseline_instructions),
+            gpu_ns_per_eval: gpu_time,
+            cpu_ns_per_eval: timing::cpu_ns_per_eval(&row.cpu),
+        });
+    }
+
+    print_table(&rows, &measured, &adapter);
+    let plots =
+        write_plots(&folder, &rows).unwrap_or_else(|error| panic!("writing plots: {error}"));
+    let json = json_report(&rows, &measured, &adapter);
+    let markdown = markdown_report(&rows, &measured, &adapter, &plots);
+    for (name, contents) in [
+        (
+            "report.json",
+            serde_json::to_string_pretty(&json).unwrap_or_default(),
+        ),
+        ("report.md", markdown),
+    ] {
+        let path = folder.join(name);
+        if let Err(error) = std::fs::write(&path, contents) {
+            eprintln!("tradeoff: cannot write {}: {error}", path.display());
+            std::process::exit(1);
+        }
+    }
+    eprintln!("wrote {}", folder.display());
+}
+
+fn format_time(time: Option<f64>) -> String {
+    time.map_or_else(|| "n/a".to_string(), |time| format!("{time:.2}"))
+}
+
+fn print_table(rows: &[Row], measured: &[Measured], adapter: &str) {
+    println!("adapter: {adapter}");
+    println!(
+        "{:<17} {:<34} {:>4} {:>11} {:>11} {:<24} {:>5} {:>5} {:>8} {:>8}",
+        "family",
+        "row",
+        "bits",
+        "max error",
+        "rms error",
+        "unit",
+        "naga",
+        "spirv",
+        "gpu ns",
+        "cpu ns"
+    );
+    for (row, measured) in rows.iter().zip(measured) {
+        println!(
+            "{:<17} {:<34} {:>4} {:>11.3e} {:>11.3e} {:<24} {:>5} {:>5} {:>8} {:>8.2}",
+            row.family,
+            row.name,
+            row.bits
+                .map_or_else(|| "-".to_string(), |bits| bits.to_string()),
+            row.errors.max,
+            row.errors.rms,
+            row.unit,
+            measured.naga_expressions,
+            measured.spirv_instructions,
+            format_time(measured.gpu_ns_per_eval),
+            measured.cpu_ns_per_eval
+        );
+    }
+}
+
+/// The report's JSON: `{"adapter", "rows": [...]}` with the schema of the issue.
+fn json_report(rows: &[Row], measured: &[Measured], adapter: &str) -> serde_json::Value {
+    let rows: Vec<serde_json::Value> = rows
+        .iter()
+        .zip(measured)
+        .map(|(row, measured)| {
+            let mut entry = serde_json::json!({
+                "family": row.family,
+                "name": row.name,
+                "domain": row.domain,
+                "unit": row.unit,
+                "max_error": row.errors.max,
+                "rms_error": row.errors.rms,
+                "naga_expressions": measured.naga_expressions,
+                "spirv_instructions": measured.spirv_instructions,
+                "gpu_ns_per_eval": measured.gpu_ns_per_eval,
+                "cpu_ns_per_eval": measured.cpu_ns_per_eval,
+            });
+            if let Some(bits) = row.bits {
+                entry["bits"] = serde_json::json!(bits);
+            }
+            entry
+        })
+        .collect();
+    serde_json::json!({ "adapter": adapter, "rows": rows })
+}
+
+/// A written plot: its file name and what the report says about it.
+struct WrittenPlot {
+    file: String,
+    caption: String,
+}
+
+fn file_stem(name: &str) -> String {
+    name.chars()
+        .map(|character| {
+            if character.is_ascii_alphanumeric() {
+                character.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect::<String>()
+        .split('_')
+        .filter(|part| !part.is_empty())
+        .collect::<Vec<_>>()
+        .join("_")
+}
+
+fn write_plots(folder: &Path, rows: &[Row]) -> std::io::Result<Vec<WrittenPlot>> {
+    let mut written = Vec::new();
+    // The transfer curves share one chart.
+    let mut labels = ("", "");
+    let transfer: Vec<(&Row, &[(f64, f64)])> = rows
+        .iter()
+        .filter_map(|row| match &row.plot {
+            Some(Plot::Curve {
+                points,
+                x_label,
+                y_label,
+            }) => {
+                labels = (x_label, y_label);
+                Some((row, points.as_slice()))
+            }
+            _ => None,
+        })
+        .collect();
+    if !transfer.is_empty() {
+        let file = "transfer_curves.png".to_string();
+        let series: Vec<&[(f64, f64)]> = transfer.iter().map(|(_, points)| *points).collect();
+        let (x_max, y_max) = plot::curves(&folder.join(&file), &series)?;
+        let legend: Vec<String> = transfer
+            .iter()
+            .zip(plot::CURVE_COLOURS)
+            .map(|((row, _), colour)| format!("{} ({colour})", row.name))
+            .collect();
+        written.push(WrittenPlot {
+            file,
+            caption: format!(
+                "{} (0 to {y_max:.2}) against {} (0 to {x_max}): {}.",
+                labels.1,
+                labels.0,
+                legend.join(", ")
+            ),
+        });
+    }
+    for row in rows {
+        if let Some(Plot::Heatmap {
+            width,
+            height,
+            values,
+            x_label,
+            y_label,
+        }) = &row.plot
+        {
+            let file = format!("{}_{}.png", file_stem(row.family), file_stem(&row.name));
+            let scale = if *width >= 256 { 2 } else { 6 };
+            let maximum = plot::heatmap(&folder.join(&file), *width, *height, values, scale)?;
+            written.push(WrittenPlot {
+                file,
+                caption: format!(
+                    "{}, {}: error over {x_label} (left to right) and {y_label} (bottom to top), from dark blue (0) to yellow ({maximum:.3e} {}).",
+                    row.family, row.name, row.unit
+                ),
+            });
+        }
+    }
+    Ok(written)
+}
+
+fn markdown_report(
+    rows: &[Row],
+    measured: &[Measured],
+    adapter: &str,
+    plots: &[WrittenPlot],
+) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "# Speed and accuracy of every approximation and encoding\n"
+    );
+    let _ = writeln!(out, "Generated by `cargo run --release --bin tradeoff` on **{adapter}**. Errors are measured against the f64 references");
+    let _ = writeln!(out, "of `shaderlib::shading::reference` over each row's domain; costs are naga IR expressions reachable from the row's");
+    let _ = writeln!(out, "WGSL and the SPIR-V instructions it adds to a compute shader; GPU time is per evaluation in a dependent chain of 2^20");
+    let _ = writeln!(out, "evaluations (median of {} runs, less the harness's own time); CPU time is the f32 mirror's.\n", timing::GPU_RUNS);
+    let mut family = "";
+    for (row, measured) in rows.iter().zip(measured) {
+        if row.family != family {
+            family = row.family;
+            let _ = writeln!(
+                out,
+                "\n## {family}\n\nDomain: {}. Unit: {}.\n",
+                row.domain, row.unit
+            );
+            let _ = writeln!(out, "| row | bits | max error | RMS error | naga expressions | SPIR-V instructions | GPU ns/eval | CPU ns/eval |");
+            let _ = writeln!(
+                out,
+                "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+            );
+        }
+        let _ = writeln!(
+            out,
+            "| {} | {} | {:.3e} | {:.3e} | {} | {} | {} | {:.2} |",
+            row.name,
+            row.bits
+                .map_or_else(|| "-".to_string(), |bits| bits.to_string()),
+            row.errors.max,
+            row.errors.rms,
+            measured.naga_expressions,
+            measured.spirv_instructions,
+            format_time(measured.gpu_ns_per_eval),
+            measured.cpu_ns_per_eval
+        );
+    }
+    let _ = writeln!(out, "\n## Plots\n");
+    for plot in plots {
+        let _ = writeln!(out, "![{}]({})\n\n{}\n", plot.file, plot.file, plot.caption);
+    }
+    out
+}

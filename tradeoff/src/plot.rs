@@ -1,0 +1,141 @@
+//! PNG images of errors: heatmaps over a 2D domain and error-per-code curves. No text is drawn:
+//! the report names the axes, the ranges and the colour scale beside each image.
+
+use std::path::Path;
+
+/// An image of a row's error.
+pub enum Plot {
+    /// A width x height grid of errors, row 0 at the bottom of the domain's y axis.
+    Heatmap {
+        width: usize,
+        height: usize,
+        values: Vec<f64>,
+        x_label: &'static str,
+        y_label: &'static str,
+    },
+    /// Errors at points (x, y).
+    Curve {
+        x_label: &'static str,
+        y_label: &'static str,
+        points: Vec<(f64, f64)>,
+    },
+}
+
+/// A perceptually ordered colour map (dark blue, purple, orange, yellow) at t in [0, 1].
+fn colour_map(t: f64) -> [u8; 3] {
+    const STOPS: [[f64; 3]; 5] = [
+        [13.0, 8.0, 135.0],
+        [126.0, 3.0, 168.0],
+        [204.0, 71.0, 120.0],
+        [248.0, 149.0, 64.0],
+        [240.0, 249.0, 33.0],
+    ];
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        1.0
+    } * (STOPS.len() - 1) as f64;
+    let index = (t.floor() as usize).min(STOPS.len() - 2);
+    let fraction = t - index as f64;
+    let mix = |channel: usize| {
+        (STOPS[index][channel] * (1.0 - fraction) + STOPS[index + 1][channel] * fraction).round()
+            as u8
+    };
+    [mix(0), mix(1), mix(2)]
+}
+
+fn write_png(path: &Path, width: usize, height: usize, rgb: &[u8]) -> std::io::Result<()> {
+    let file = std::io::BufWriter::new(std::fs::File::create(path)?);
+    let mut encoder = png::Encoder::new(file, width as u32, height as u32);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
+    writer.write_image_data(rgb).map_err(std::io::Error::other)
+}
+
+/// A heatmap scaled to its maximum, each cell `scale` pixels wide, y up.
+pub fn heatmap(
+    path: &Path,
+    width: usize,
+    height: usize,
+    values: &[f64],
+    scale: usize,
+) -> std::io::Result<f64> {
+    let maximum = values
+        .iter()
+        .copied()
+        .filter(|value| value.is_finite())
+        .fold(0.0, f64::max);
+    let (image_width, image_height) = (width * scale, height * scale);
+    let mut rgb = vec![0u8; image_width * image_height * 3];
+    for y in 0..image_height {
+        for x in 0..image_width {
+            let cell = (height - 1 - y / scale) * width + x / scale;
+            let colour = colour_map(if maximum > 0.0 {
+                values[cell] / maximum
+            } else {
+                0.0
+            });
+            rgb[(y * image_width + x) * 3..][..3].copy_from_slice(&colour);
+        }
+    }
+    write_png(path, image_width, image_height, &rgb)?;
+    Ok(maximum)
+}
+
+/// Curves of (x, y) points on one chart, y from 0 to the largest value, each series in its own
+/// colour (in the order of `COLOURS`), with the axes drawn in grey.
+pub fn curves(path: &Path, series: &[&[(f64, f64)]]) -> std::io::Result<(f64, f64)> {
+    const COLOURS: [[u8; 3]; 6] = [
+        [0, 0, 0],
+        [220, 50, 47],
+        [38, 139, 210],
+        [133, 153, 0],
+        [211, 54, 130],
+        [181, 137, 0],
+    ];
+    let (width, height, margin) = (768usize, 384usize, 16usize);
+    let x_max = series
+        .iter()
+        .flat_map(|points| points.iter().map(|point| point.0))
+        .fold(0.0, f64::max);
+    let y_max = series
+        .iter()
+        .flat_map(|points| points.iter().map(|point| point.1))
+        .fold(0.0, f64::max);
+    let mut rgb = vec![255u8; width * height * 3];
+    let mut set = |x: usize, y: usize, colour: [u8; 3]| {
+        if x < width && y < height {
+            rgb[(y * width + x) * 3..][..3].copy_from_slice(&colour);
+        }
+    };
+    for x in margin..width - margin {
+        set(x, height - margin, [160, 160, 160]);
+    }
+    for y in margin..height - margin {
+        set(margin, y, [160, 160, 160]);
+    }
+    let to_pixel = |(x, y): (f64, f64)| {
+        let column = margin as f64 + x / x_max.max(f64::MIN_POSITIVE) * (width - 2 * margin) as f64;
+        let row = (height - margin) as f64
+            - y / y_max.max(f64::MIN_POSITIVE) * (height - 2 * margin) as f64;
+        (column, row)
+    };
+    for (points, colour) in series.iter().zip(COLOURS.iter().cycle()) {
+        for pair in points.windows(2) {
+            let (from, to) = (to_pixel(pair[0]), to_pixel(pair[1]));
+            let steps = ((to.0 - from.0).abs().max((to.1 - from.1).abs()).ceil() as usize).max(1);
+            for step in 0..=steps {
+                let t = step as f64 / steps as f64;
+                let (x, y) = (from.0 + (to.0 - from.0) * t, from.1 + (to.1 - from.1) * t);
+                set(x.round() as usize, y.round() as usize, *colour);
+                set(x.round() as usize, y.round() as usize + 1, *colour);
+            }
+        }
+    }
+    write_png(path, width, height, &rgb)?;
+    Ok((x_max, y_max))
+}
+
+/// The colour names of `curves`' series, for the report.
+pub const CURVE_COLOURS: [&str; 6] = ["black", "red", "blue", "green", "magenta", "ochre"];

@@ -1,0 +1,1015 @@
+//! The rows of the trade-off report: each approximation or encoding, its error against the
+//! f64 reference over a stated domain, the WGSL that costs and times it, and its CPU mirror.
+
+use shaderlib::glam::{DVec3, Vec2, Vec3, Vec4};
+use shaderlib::packing::{Field, FieldType, Format, Layout, ScalarKind};
+use shaderlib::shading::env_brdf_lut::EnvBrdfLut;
+use shaderlib::shading::{mirror as m, reference as r};
+use shaderlib::GBufferLayout;
+
+use crate::plot::Plot;
+
+/// The largest and root-mean-square error over a domain.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Errors {
+    pub max: f64,
+    pub rms: f64,
+}
+
+#[derive(Default)]
+struct Accumulator {
+    max: f64,
+    sum_of_squares: f64,
+    count: usize,
+}
+
+impl Accumulator {
+    fn add(&mut self, error: f64) {
+        self.max = self.max.max(error);
+        self.sum_of_squares += error * error;
+        self.count += 1;
+    }
+
+    fn finish(&self) -> Errors {
+        Errors {
+            max: self.max,
+            rms: (self.sum_of_squares / self.count.max(1) as f64).sqrt(),
+        }
+    }
+}
+
+/// A CPU evaluation of the row's f32 mirror, for timing: four floats in the unit cube in, four
+/// out, the row mapping them into its domain as its WGSL does.
+pub type CpuEval = Box<dyn Fn(Vec4) -> Vec4>;
+
+/// One row of the report.
+pub struct Row {
+    pub family: &'static str,
+    pub name: String,
+    /// Bits of storage, where the row is a storage format.
+    pub bits: Option<u32>,
+    pub domain: String,
+    pub unit: &'static str,
+    pub errors: Errors,
+    /// WGSL defining `fn row_eval(x: vec4<f32>) -> vec4<f32>` over x in [0, 1)^4, with what
+    /// it needs. It may sample `lut_texture` with `lut_sampler` (bound by the harness).
+    pub wgsl: String,
+    /// The environment BRDF LUT size the row samples, if any.
+    pub lut_size: Option<usize>,
+    pub cpu: CpuEval,
+    /// An image of the error, where the report has one for the family.
+    pub plot: Option<Plot>,
+}
+
+/// Helpers every row's WGSL may use.
+const PRELUDE: &str = "
+// Storage in an n-bit unorm channel: what a render target or packing does to a value.
+fn quantize3(value: vec3<f32>, max_code: f32) -> vec3<f32> {
+    return round(clamp(value, vec3<f32>(0.0), vec3<f32>(1.0)) * max_code) / max_code;
+}
+fn quantize2(value: vec2<f32>, max_code: f32) -> vec2<f32> {
+    return round(clamp(value, vec2<f32>(0.0), vec2<f32>(1.0)) * max_code) / max_code;
+}
+fn quantize4(value: vec4<f32>, max_code: f32) -> vec4<f32> {
+    return round(clamp(value, vec4<f32>(0.0), vec4<f32>(1.0)) * max_code) / max_code;
+}
+";
+
+fn wgsl(modules: &[&str], body: &str) -> String {
+    let library = shaderlib::modules::compose(modules).expect("the library's modules exist");
+    format!("{library}\n{PRELUDE}\n{body}")
+}
+
+/// CPU storage in an n-bit unorm channel, with the exact conversions.
+fn quantize(value: f32, bits: u32) -> f32 {
+    codegen::convert::f32_from_unorm(codegen::convert::unorm_from_f32(value, bits), bits)
+}
+
+fn quantize3(value: Vec3, bits: u32) -> Vec3 {
+    value
+        .to_array()
+        .map(|channel| quantize(channel, bits))
+        .into()
+}
+
+/// The angle between two directions, robust near 0 (atan2 of the cross and dot products).
+fn angle_degrees(a: DVec3, b: DVec3) -> f64 {
+    a.cross(b).length().atan2(a.dot(b)).to_degrees()
+}
+
+/// Point `index` of the Halton sequence in `base`, in [0, 1).
+fn halton(mut index: u32, base: u32) -> f64 {
+    let (mut value, mut weight) = (0.0, 1.0);
+    while index > 0 {
+        weight /= f64::from(base);
+        value += weight * f64::from(index % base);
+        index /= base;
+    }
+    value
+}
+
+// ---- transfer curves through 8-bit storage ----
+
+type Curve = fn(Vec3) -> Vec3;
+
+fn transfer_rows() -> Vec<Row> {
+    const SAMPLES: usize = 1 << 16;
+    let curves: [(&str, Curve, Curve, &str, &str); 4] = [
+        ("linear (no curve)", |c| c, |c| c, "", ""),
+        (
+            "sRGB exact",
+            m::colour::linear_to_srgb,
+            m::colour::srgb_to_linear,
+            "linear_to_srgb",
+            "srgb_to_linear",
+        ),
+        (
+            "gamma 2.2",
+            m::colour::linear_to_gamma_2_2,
+            m::colour::gamma_2_2_to_linear,
+            "linear_to_gamma_2_2",
+            "gamma_2_2_to_linear",
+        ),
+        (
+            "pseudo-gamma 2.0",
+            m::colour::linear_to_pseudo_gamma,
+            m::colour::pseudo_gamma_to_linear,
+            "linear_to_pseudo_gamma",
+            "pseudo_gamma_to_linear",
+        ),
+    ];
+    curves
+        .into_iter()
+        .map(|(name, encode, decode, encode_wgsl, decode_wgsl)| {
+            let mut errors = Accumulator::default();
+            let mut per_code = vec![0.0f64; 256];
+            for index in 0..=SAMPLES {
+                let linear = index as f32 / SAMPLES as f32;
+                let stored = quantize3(encode(Vec3::splat(linear)), 8);
+                let decoded = decode(stored);
+                // Display steps: both through the exact sRGB curve, in 8-bit code values.
+                let error = (r::colour::linear_to_srgb(decoded.as_dvec3()).x - r::colour::linear_to_srgb(DVec3::splat(f64::from(linear))).x).abs() * 255.0;
+                errors.add(error);
+                let code = (stored.x * 255.0).round() as usize;
+                per_code[code] = per_code[code].max(error);
+            }
+            let body = format!(
+                "fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    let stored = quantize3({encode_wgsl}(x.xyz), 255.0);\n    return vec4<f32>({decode_wgsl}(stored), x.w);\n}}\n"
+            );
+            Row {
+                family: "transfer curve",
+                name: name.to_string(),
+                bits: Some(8),
+                domain: "linear [0, 1], 65537 values, stored in 8 bits".into(),
+                unit: "8-bit sRGB steps",
+                errors: errors.finish(),
+                wgsl: wgsl(&["colour"], &body),
+                lut_size: None,
+                cpu: Box::new(move |x| decode(quantize3(encode(x.truncate()), 8)).extend(x.w)),
+                plot: Some(Plot::Curve { x_label: "stored 8-bit code", y_label: "max error (8-bit sRGB steps)", points: per_code.into_iter().enumerate().map(|(code, error)| (code as f64, error)).collect() }),
+            }
+        })
+        .collect()
+}
+
+// ---- normal storage ----
+
+/// How a normal is stored: the naive xyz mapping or octahedral, at a bit width per channel.
+#[derive(Clone, Copy)]
+enum NormalEncoding {
+    Xyz { bits: u32 },
+    Octahedral { bits: u32 },
+}
+
+impl NormalEncoding {
+    fn round_trip(self, normal: Vec3) -> Vec3 {
+        match self {
+            NormalEncoding::Xyz { bits } => {
+                m::normals::unorm_to_normal(quantize3(m::normals::normal_to_unorm(normal), bits))
+            }
+            NormalEncoding::Octahedral { bits } => {
+                let encoded = m::normals::octahedral_encode(normal) * 0.5 + Vec2::splat(0.5);
+                let stored = Vec2::new(quantize(encoded.x, bits), quantize(encoded.y, bits));
+                m::normals::octahedral_decode(stored * 2.0 - Vec2::ONE)
+            }
+        }
+    }
+}
+
+/// The direction of equirectangular pixel (column, row) of a width x height map.
+fn equirectangular_direction(column: usize, row: usize, width: usize, height: usize) -> DVec3 {
+    let longitude =
+        (column as f64 + 0.5) / width as f64 * std::f64::consts::TAU - std::f64::consts::PI;
+    let latitude =
+        std::f64::consts::FRAC_PI_2 - (row as f64 + 0.5) / height as f64 * std::f64::consts::PI;
+    DVec3::new(
+        latitude.cos() * longitude.cos(),
+        latitude.cos() * longitude.sin(),
+        latitude.sin(),
+    )
+}
+
+fn normal_rows() -> Vec<Row> {
+    let encodings = [
+        ("xyz in rgba8", 24, NormalEncoding::Xyz { bits: 8 }),
+        ("xyz in rgb10_a2", 30, NormalEncoding::Xyz { bits: 10 }),
+        ("octahedral 2x8", 16, NormalEncoding::Octahedral { bits: 8 }),
+        (
+            "octahedral 2x10",
+            20,
+            NormalEncoding::Octahedral { bits: 10 },
+        ),
+        (
+            "octahedral 2x12",
+            24,
+            NormalEncoding::Octahedral { bits: 12 },
+        ),
+        (
+            "octahedral 2x16",
+            32,
+            NormalEncoding::Octahedral { bits: 16 },
+        ),
+    ];
+    let directions = ::tests::shading_cases::fibonacci_sphere(1 << 16);
+    encodings
+        .into_iter()
+        .map(|(name, bits, encoding)| {
+            let mut errors = Accumulator::default();
+            for direction in &directions {
+                let exact = direction.as_dvec3().normalize();
+                errors.add(angle_degrees(exact, encoding.round_trip(exact.as_vec3()).as_dvec3()));
+            }
+            let (width, height) = (256, 128);
+            let map: Vec<f64> = (0..width * height)
+                .map(|pixel| {
+                    let exact = equirectangular_direction(pixel % width, pixel / width, width, height);
+                    angle_degrees(exact, encoding.round_trip(exact.as_vec3()).as_dvec3())
+                })
+                .collect();
+            let store = match encoding {
+                NormalEncoding::Xyz { bits } => format!("unorm_to_normal(quantize3(normal_to_unorm(normal), {}.0))", (1u32 << bits) - 1),
+                NormalEncoding::Octahedral { bits } => format!(
+                    "octahedral_decode(quantize2(octahedral_encode(normal) * 0.5 + vec2<f32>(0.5), {}.0) * 2.0 - vec2<f32>(1.0))",
+                    (1u32 << bits) - 1
+                ),
+            };
+            let body = format!(
+                "fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    let normal = normalize(x.xyz * 2.0 - vec3<f32>(0.999));\n    return vec4<f32>({store} * 0.5 + vec3<f32>(0.5), x.w);\n}}\n"
+            );
+            Row {
+                family: "normal storage",
+                name: name.to_string(),
+                bits: Some(bits),
+                domain: "unit sphere, 65536 Fibonacci directions".into(),
+                unit: "degrees",
+                errors: errors.finish(),
+                wgsl: wgsl(&["normals"], &body),
+                lut_size: None,
+                cpu: Box::new(move |x| {
+                    let normal = (x.truncate() * 2.0 - Vec3::splat(0.999)).normalize();
+                    (encoding.round_trip(normal) * 0.5 + Vec3::splat(0.5)).extend(x.w)
+                }),
+                plot: Some(Plot::Heatmap { width, height, values: map, x_label: "longitude", y_label: "latitude" }),
+            }
+        })
+        .collect()
+}
+
+// ---- HDR storage ----
+
+/// A one-word-per-field layout used to time a format's generated packing code.
+fn single_format_layout(name: &str, fields: &[(&str, Format, usize)]) -> Layout {
+    Layout {
+        name: name.to_string(),
+        budget: 32 * fields.len() as u32,
+        fields: fields
+            .iter()
+            .map(|&(field, format, components)| Field {
+                name: field.to_string(),
+                format,
+                ty: FieldType::new(ScalarKind::Float, components),
+            })
+            .collect(),
+    }
+}
+
+type HdrRoundTrip = Box<dyn Fn(Vec3) -> Vec3>;
+
+fn hdr_rows() -> Vec<Row> {
+    const RANGE: f32 = 6.0;
+    let r11f = single_format_layout("HdrR11f", &[("colour", Format::R11fG11fB10f, 3)]);
+    let rg16f = single_format_layout(
+        "HdrRg16f",
+        &[("red_green", Format::Rg16f, 2), ("blue", Format::Rg16f, 1)],
+    );
+    let encodings: Vec<(&str, u32, HdrRoundTrip, String, Vec<&str>)> = vec![
+        (
+            "scaled rgb10_a2 (range 6)",
+            30,
+            Box::new(|c| {
+                m::hdr::scale_unit_to_hdr(quantize3(m::hdr::scale_hdr_to_unit(c, RANGE), 10), RANGE)
+            }),
+            "scale_unit_to_hdr(quantize3(scale_hdr_to_unit(colour, 6.0), 1023.0), 6.0)".into(),
+            vec!["hdr"],
+        ),
+        (
+            "r11f_g11f_b10f",
+            32,
+            Box::new(|c| {
+                let word = Format::R11fG11fB10f.encode(c.extend(0.0).to_array());
+                Vec3::from_slice(&Format::R11fG11fB10f.decode::<f32>(word)[..3])
+            }),
+            format!("{}\nROW", codegen::emit::wgsl::emit(&r11f)),
+            vec![],
+        ),
+        (
+            "rg16f x 2 (r, g | b)",
+            48,
+            Box::new(|c| {
+                let red_green =
+                    Format::Rg16f.decode::<f32>(Format::Rg16f.encode([c.x, c.y, 0.0, 0.0]));
+                let blue = Format::Rg16f.decode::<f32>(Format::Rg16f.encode([c.z, 0.0, 0.0, 0.0]));
+                Vec3::new(red_green[0], red_green[1], blue[0])
+            }),
+            format!("{}\nROW", codegen::emit::wgsl::emit(&rg16f)),
+            vec![],
+        ),
+        (
+            "RGBM in rgba8 (range 6)",
+            32,
+            Box::new(|c| {
+                let encoded = m::hdr::rgbm_encode(c, RANGE);
+                m::hdr::rgbm_decode(
+                    Vec4::from_array(encoded.to_array().map(|channel| quantize(channel, 8))),
+                    RANGE,
+                )
+            }),
+            "rgbm_decode(quantize4(rgbm_encode(colour, 6.0), 255.0), 6.0)".into(),
+            vec!["hdr"],
+        ),
+        (
+            "RGBM squared in rgba8 (range 6)",
+            32,
+            Box::new(|c| {
+                let encoded = m::hdr::rgbm_squared_encode(c, RANGE);
+                m::hdr::rgbm_squared_decode(
+                    Vec4::from_array(encoded.to_array().map(|channel| quantize(channel, 8))),
+                    RANGE,
+                )
+            }),
+            "rgbm_squared_decode(quantize4(rgbm_squared_encode(colour, 6.0), 255.0), 6.0)".into(),
+            vec!["hdr"],
+        ),
+        (
+            "rgb9e5",
+            32,
+            Box::new(|c| m::rgb9e5::rgb9e5_decode(m::rgb9e5::rgb9e5_encode(c))),
+            "rgb9e5_decode(rgb9e5_encode(colour))".into(),
+            vec!["hdr"],
+        ),
+    ];
+    // Channels log-uniform over [2^-6, 6]: every format here holds that range.
+    let low = (2f64).powi(-6).ln();
+    let high = 6f64.ln();
+    let colours: Vec<Vec3> = (1..=1u32 << 16)
+        .map(|index| {
+            let channel = |base| (low + halton(index, base) * (high - low)).exp() as f32;
+            Vec3::new(channel(2), channel(3), channel(5))
+        })
+        .collect();
+    encodings
+        .into_iter()
+        .map(|(name, bits, round_trip, expression, modules)| {
+            let mut errors = Accumulator::default();
+            for &colour in &colours {
+                let decoded = round_trip(colour);
+                let relative = (decoded.as_dvec3() - colour.as_dvec3()).abs() / colour.as_dvec3();
+                errors.add(relative.max_element());
+            }
+            // The packed formats' WGSL is the generated layout code: pack, then unpack.
+            let evaluate = if expression.ends_with("ROW") {
+                let generated = expression.trim_end_matches("ROW");
+                let call = if name.starts_with("r11f") {
+                    "unpack_hdr_r11f(pack_hdr_r11f(HdrR11f(colour))).colour".to_string()
+                } else {
+                    "rg16f_round_trip(colour)".to_string()
+                };
+                let helper = if name.starts_with("rg16f") {
+                    "fn rg16f_round_trip(colour: vec3<f32>) -> vec3<f32> {\n    let texel = unpack_hdr_rg16f(pack_hdr_rg16f(HdrRg16f(colour.rg, colour.b)));\n    return vec3<f32>(texel.red_green, texel.blue);\n}\n"
+                } else {
+                    ""
+                };
+                (format!("{generated}\n{helper}"), call)
+            } else {
+                (String::new(), expression)
+            };
+            let body = format!(
+                "{}\nfn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    let colour = exp2(x.xyz * 8.5 - vec3<f32>(6.0));\n    return vec4<f32>(log2({}) * 0.1, x.w);\n}}\n",
+                evaluate.0, evaluate.1
+            );
+            Row {
+                family: "HDR storage",
+                name: name.to_string(),
+                bits: Some(bits),
+                domain: "channels log-uniform in [2^-6, 6], 65536 colours".into(),
+                unit: "relative",
+                errors: errors.finish(),
+                wgsl: wgsl(&modules, &body),
+                lut_size: None,
+                cpu: Box::new(move |x| {
+                    let colour = (x.truncate() * 8.5 - Vec3::splat(6.0)).exp2();
+                    (round_trip(colour).map(f32::log2) * 0.1).extend(x.w)
+                }),
+                plot: None,
+            }
+        })
+        .collect()
+}
+
+// ---- environment BRDF ----
+
+const ENV_GRID: usize = 64;
+const ENV_SAMPLES: u32 = 1024;
+
+/// The reference split-sum (scale, bias) at the centre of cell (row: roughness, column: n.v).
+fn env_reference() -> Vec<[f64; 2]> {
+    (0..ENV_GRID * ENV_GRID)
+        .map(|cell| {
+            let (roughness, n_dot_v) = env_cell(cell);
+            r::environment::integrate_env_brdf(roughness, n_dot_v, ENV_SAMPLES).to_array()
+        })
+        .collect()
+}
+
+fn env_cell(cell: usize) -> (f64, f64) {
+    let centre = |index: usize| (index as f64 + 0.5) / ENV_GRID as f64;
+    (centre(cell / ENV_GRID), centre(cell % ENV_GRID))
+}
+
+type EnvApproximation = Box<dyn Fn(f32, f32, f32) -> f32>;
+
+/// An environment BRDF row: its name, the f0 values it covers, whether it holds for roughness 1
+/// only, its CPU form, the WGSL of its reflectance and the LUT size it samples.
+type EnvForm = (
+    &'static str,
+    &'static [f32],
+    bool,
+    EnvApproximation,
+    &'static str,
+    Option<usize>,
+);
+
+/// A lobe evaluated at (n.h, r.l, roughness).
+type Lobe = fn(f32, f32, f32) -> f64;
+
+/// A visibility form at (n.v, n.l, roughness).
+type Visibility = fn(f32, f32, f32) -> f32;
+
+fn env_brdf_rows() -> Vec<Row> {
+    let reference = env_reference();
+    let lut_16 = EnvBrdfLut::bake(16, ENV_SAMPLES);
+    let lut_32 = EnvBrdfLut::bake(32, ENV_SAMPLES);
+    let lut_row = |lut: EnvBrdfLut| -> EnvApproximation {
+        Box::new(move |f0, roughness, n_dot_v| {
+            let scale_bias = lut.sample(roughness, n_dot_v);
+            f0 * scale_bias.x + scale_bias.y
+        })
+    };
+    // (name, f0 values, roughness fixed to 1?, approximation, WGSL of the reflectance, LUT size)
+    let approximations: Vec<EnvForm> = vec![
+        (
+            "LUT 16x16, bilinear",
+            &[0.04, 1.0],
+            false,
+            lut_row(lut_16),
+            "lut_reflectance(f0, roughness, n_dot_v)",
+            Some(16),
+        ),
+        (
+            "LUT 32x32, bilinear",
+            &[0.04, 1.0],
+            false,
+            lut_row(lut_32),
+            "lut_reflectance(f0, roughness, n_dot_v)",
+            Some(32),
+        ),
+        (
+            "env_brdf_approx",
+            &[0.04, 1.0],
+            false,
+            Box::new(|f0, roughness, n_dot_v| {
+                m::mobile::env_brdf_approx(Vec3::splat(f0), roughness, n_dot_v).x
+            }),
+            "env_brdf_approx(vec3<f32>(f0), roughness, n_dot_v).x",
+            None,
+        ),
+        (
+            "env_brdf_approx_nonmetal",
+            &[0.04],
+            false,
+            Box::new(|_, roughness, n_dot_v| {
+                m::mobile::env_brdf_approx_nonmetal(roughness, n_dot_v)
+            }),
+            "env_brdf_approx_nonmetal(roughness, n_dot_v)",
+            None,
+        ),
+        (
+            "fully rough (0.45 f0)",
+            &[0.04, 1.0],
+            true,
+            Box::new(|f0, _, _| 0.45 * f0),
+            "0.45 * f0",
+            None,
+        ),
+    ];
+    approximations
+        .into_iter()
+        .map(|(name, f0s, fully_rough, approximate, reflectance, lut_size)| {
+            let mut errors = Accumulator::default();
+            let mut map = vec![0.0; ENV_GRID * ENV_GRID];
+            for (cell, [scale, bias]) in reference.iter().enumerate() {
+                let (roughness, n_dot_v) = env_cell(cell);
+                if fully_rough && cell / ENV_GRID != ENV_GRID - 1 {
+                    continue; // the shortcut is for roughness 1: the top row of the grid
+                }
+                for &f0 in f0s {
+                    let exact = f64::from(f0) * scale + bias;
+                    let error = (f64::from(approximate(f0, roughness as f32, n_dot_v as f32)) - exact).abs();
+                    errors.add(error);
+                    map[cell] = f64::max(map[cell], error);
+                }
+            }
+            let lut_function = "fn lut_reflectance(f0: f32, roughness: f32, n_dot_v: f32) -> f32 {\n    let scale_bias = textureSampleLevel(lut_texture, lut_sampler, vec2<f32>(n_dot_v, roughness), 0.0).xy;\n    return f0 * scale_bias.x + scale_bias.y;\n}\n";
+            let body = format!(
+                "{}fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    let f0 = x.z;\n    let roughness = x.x;\n    let n_dot_v = max(x.y, 0.01);\n    return vec4<f32>({reflectance}, x.yzw);\n}}\n",
+                if lut_size.is_some() { lut_function } else { "" }
+            );
+            let domain = if fully_rough {
+                "roughness 1, n.v in (0, 1] (64 cells), f0 in {0.04, 1}".to_string()
+            } else if f0s.len() == 1 {
+                "roughness x n.v in (0, 1]^2 (64x64 cell centres), f0 0.04".to_string()
+            } else {
+                "roughness x n.v in (0, 1]^2 (64x64 cell centres), f0 in {0.04, 1}".to_string()
+            };
+            let plot = (name == "env_brdf_approx").then_some(Plot::Heatmap { width: ENV_GRID, height: ENV_GRID, values: map, x_label: "n.v", y_label: "roughness" });
+            Row {
+                family: "environment BRDF",
+                name: name.to_string(),
+                bits: None,
+                domain,
+                unit: "absolute",
+                errors: errors.finish(),
+                wgsl: wgsl(&["mobile"], &body),
+                lut_size,
+                cpu: Box::new(move |x| Vec4::new(approximate(x.z, x.x, x.y.max(0.01)), x.y, x.z, x.w)),
+                plot,
+            }
+        })
+        .collect()
+}
+
+// ---- specular lobe ----
+
+fn specular_lobe_rows() -> Vec<Row> {
+    const GRID: usize = 64;
+    const ANGLES: usize = 256;
+    let lobes: [(&str, Lobe, &str); 2] = [
+        (
+            "GGX (f32)",
+            |n_dot_h, _, roughness| f64::from(m::microfacet::d_ggx(n_dot_h, roughness)),
+            "d_ggx(n_dot_h, roughness)",
+        ),
+        (
+            "d_approx (spherical Gaussian)",
+            |_, r_dot_l, roughness| {
+                f64::from(m::mobile::d_approx(roughness, r_dot_l)) / std::f64::consts::PI
+            },
+            "d_approx(roughness, r_dot_l) * INV_PI",
+        ),
+    ];
+    lobes
+        .into_iter()
+        .map(|(name, lobe, expression)| {
+            let mut errors = Accumulator::default();
+            let mut map = vec![0.0f64; GRID * GRID];
+            for (cell, worst) in map.iter_mut().enumerate() {
+                let roughness = 0.1 + 0.9 * (cell / GRID) as f64 / (GRID - 1) as f64;
+                let n_dot_v = 0.05 + 0.95 * (cell % GRID) as f64 / (GRID - 1) as f64;
+                let view = DVec3::new((1.0 - n_dot_v * n_dot_v).sqrt(), 0.0, n_dot_v);
+                let reflected = DVec3::new(-view.x, 0.0, view.z);
+                // The lobe over light directions in the plane of incidence, against the GGX
+                // peak at this view.
+                let samples: Vec<(f64, f64)> = (0..ANGLES)
+                    .map(|index| {
+                        let angle = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * (index as f64 + 0.5) / ANGLES as f64;
+                        let light = DVec3::new(angle.sin(), 0.0, angle.cos());
+                        let half = (view + light).normalize();
+                        let exact = r::microfacet::d_ggx(half.z, roughness);
+                        (exact, lobe(half.z as f32, reflected.dot(light) as f32, roughness as f32))
+                    })
+                    .collect();
+                let peak = samples.iter().map(|(exact, _)| *exact).fold(0.0, f64::max);
+                for (exact, approximate) in samples {
+                    let error = (approximate - exact).abs() / peak;
+                    errors.add(error);
+                    *worst = f64::max(*worst, error);
+                }
+            }
+            let body = format!(
+                "fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    let roughness = 0.1 + 0.9 * x.x;\n    let n_dot_h = x.y;\n    let r_dot_l = x.z;\n    return vec4<f32>({expression}, x.yzw);\n}}\n"
+            );
+            let plot = name.starts_with("d_approx").then_some(Plot::Heatmap { width: GRID, height: GRID, values: map, x_label: "n.v", y_label: "roughness" });
+            Row {
+                family: "specular lobe",
+                name: name.to_string(),
+                bits: None,
+                domain: "roughness [0.1, 1] x n.v [0.05, 1] (64x64), light over the plane of incidence".into(),
+                unit: "relative to the GGX peak",
+                errors: errors.finish(),
+                wgsl: wgsl(&["constants", "microfacet", "mobile"], &body),
+                lut_size: None,
+                cpu: Box::new(move |x| Vec4::new(lobe(x.y, x.z, 0.1 + 0.9 * x.x) as f32, x.y, x.z, x.w)),
+                plot,
+            }
+        })
+        .collect()
+}
+
+// ---- visibility ----
+
+fn visibility_rows() -> Vec<Row> {
+    const GRID: usize = 32;
+    let forms: [(&str, Visibility, &str); 2] = [
+        (
+            "height-correlated Smith (f32)",
+            m::microfacet::v_smith_ggx_correlated,
+            "v_smith_ggx_correlated",
+        ),
+        (
+            "separable Schlick-GGX",
+            m::microfacet::v_schlick_ggx,
+            "v_schlick_ggx",
+        ),
+    ];
+    forms
+        .into_iter()
+        .map(|(name, form, function)| {
+            let mut errors = Accumulator::default();
+            let axis = |index: usize, low: f64| low + (1.0 - low) * index as f64 / (GRID - 1) as f64;
+            for point in 0..GRID * GRID * GRID {
+                let (n_dot_v, n_dot_l, roughness) = (axis(point % GRID, 0.01), axis(point / GRID % GRID, 0.01), axis(point / (GRID * GRID), 0.045));
+                let exact = r::microfacet::v_smith_ggx_correlated(n_dot_v, n_dot_l, roughness);
+                let value = f64::from(form(n_dot_v as f32, n_dot_l as f32, roughness as f32));
+                errors.add((value - exact).abs() / exact);
+            }
+            let body = format!(
+                "fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    return vec4<f32>({function}(max(x.x, 0.01), max(x.y, 0.01), max(x.z, 0.045)) * 0.01, x.yzw);\n}}\n"
+            );
+            Row {
+                family: "visibility",
+                name: name.to_string(),
+                bits: None,
+                domain: "n.v, n.l [0.01, 1] x roughness [0.045, 1] (32^3)".into(),
+                unit: "relative",
+                errors: errors.finish(),
+                wgsl: wgsl(&["microfacet"], &body),
+                lut_size: None,
+                cpu: Box::new(move |x| Vec4::new(form(x.x.max(0.01), x.y.max(0.01), x.z.max(0.045)) * 0.01, x.y, x.z, x.w)),
+                plot: None,
+            }
+        })
+        .collect()
+}
+
+// ---- whole layouts ----
+
+/// A surface to store in a G-buffer and shade.
+#[derive(Clone, Copy)]
+struct Surface {
+    normal: Vec3,
+    roughness: f32,
+    metallic: f32,
+    base_colour: Vec3,
+    /// HDR light already accumulated (light maps, emissive), below 6.
+    light: Vec3,
+}
+
+/// The light the texel shows: the stored light plus a white sun, tone mapped and encoded as
+/// sRGB, in 8-bit steps: what the error of a layout looks like on screen.
+fn displayed(surface: &Surface) -> DVec3 {
+    let view = DVec3::new(0.0, 0.6, 0.8);
+    let sun = DVec3::new(0.3, -0.4, 0.866).normalize();
+    let base = surface.base_colour.as_dvec3();
+    let metallic = f64::from(surface.metallic);
+    let colours = r::material::metallic_workflow(base, metallic, 0.04);
+    let shaded = r::shading::shade_directional(
+        surface.normal.as_dvec3().normalize(),
+        view,
+        sun,
+        DVec3::splat(3.0),
+        colours.diffuse,
+        colours.f0,
+        f64::from(surface.roughness),
+    );
+    r::colour::linear_to_srgb(r::tonemap::tonemap_reinhard(
+        shaded + surface.light.as_dvec3(),
+    )) * 255.0
+}
+
+/// A layout's round trip of a surface: its conventions for what goes where, pack, unpack.
+type LayoutRoundTrip = fn(&Surface) -> Surface;
+
+fn mobile_metallic(surface: &Surface) -> Surface {
+    use shaderlib::seed_layouts::MobileMetallic;
+    let texel = MobileMetallic {
+        light_accumulation: m::hdr::scale_hdr_to_unit(surface.light, 6.0),
+        depth: 0.5,
+        normals_roughness: m::normals::normal_to_unorm(surface.normal).extend(surface.roughness),
+        albedo_metallic: m::colour::linear_to_pseudo_gamma(surface.base_colour)
+            .extend(surface.metallic),
+    };
+    let back = MobileMetallic::unpack(&texel.pack());
+    Surface {
+        normal: m::normals::unorm_to_normal(back.normals_roughness.truncate()),
+        roughness: back.normals_roughness.w,
+        metallic: back.albedo_metallic.w,
+        base_colour: m::colour::pseudo_gamma_to_linear(back.albedo_metallic.truncate()),
+        light: m::hdr::scale_unit_to_hdr(back.light_accumulation, 6.0),
+    }
+}
+
+fn arm_tile_block(surface: &Surface) -> Surface {
+    use shaderlib::seed_layouts::ArmTileBlock;
+    let texel = ArmTileBlock {
+        light: surface.light,
+        albedo: m::colour::linear_to_pseudo_gamma(surface.base_colour),
+        normal: m::normals::normal_to_unorm(surface.normal),
+        metallic_roughness: Vec2::new(surface.metallic, surface.roughness),
+    };
+    let back = ArmTileBlock::unpack(&texel.pack());
+    Surface {
+        normal: m::normals::unorm_to_normal(back.normal),
+        roughness: back.metallic_roughness.y,
+        metallic: back.metallic_roughness.x,
+        base_colour: m::colour::pseudo_gamma_to_linear(back.albedo),
+        light: back.light,
+    }
+}
+
+fn future_metallic(surface: &Surface) -> Surface {
+    use shaderlib::seed_layouts::FutureMetallic;
+    let texel = FutureMetallic {
+        position_x: 1.0,
+        position_y: 2.0,
+        position_z: 3.0,
+        light_accumulation_rg: Vec2::new(surface.light.x, surface.light.y),
+        light_accumulation_b_normal_x: Vec2::new(surface.light.z, surface.normal.x),
+        normal_yz: Vec2::new(surface.normal.y, surface.normal.z),
+        roughness_metallic: Vec2::new(surface.roughness, surface.metallic),
+        albedo_or_reflectance: surface.base_colour,
+    };
+    let back = FutureMetallic::unpack(&texel.pack());
+    Surface {
+        normal: Vec3::new(
+            back.light_accumulation_b_normal_x.y,
+            back.normal_yz.x,
+            back.normal_yz.y,
+        )
+        .normalize(),
+        roughness: back.roughness_metallic.x,
+        metallic: back.roughness_metallic.y,
+        base_colour: back.albedo_or_reflectance,
+        light: Vec3::new(
+            back.light_accumulation_rg.x,
+            back.light_accumulation_rg.y,
+            back.light_accumulation_b_normal_x.x,
+        ),
+    }
+}
+
+fn future_specular(surface: &Surface) -> Surface {
+    use shaderlib::seed_layouts::FutureSpecular;
+    // The specular workflow stores albedo and reflectance; a metal's base colour is its f0.
+    let colours = m::material::metallic_workflow(surface.base_colour, surface.metallic, 0.04);
+    let texel = FutureSpecular {
+        position_x: 1.0,
+        position_y: 2.0,
+        position_z: 3.0,
+        light_accumulation_rg: Vec2::new(surface.light.x, surface.light.y),
+        light_accumulation_b_roughness: Vec2::new(surface.light.z, surface.roughness),
+        normal: m::normals::normal_to_unorm(surface.normal), // r11f_g11f_b10f is unsigned
+        albedo: colours.diffuse,
+        reflectance: colours.f0,
+    };
+    let back = FutureSpecular::unpack(&texel.pack());
+    // Back to the metallic parameters `displayed` shades with: exact for metallic 0 or 1.
+    let metallic = if back.albedo.max_element() == 0.0 && back.reflectance.max_element() > 0.04 {
+        1.0
+    } else {
+        0.0
+    };
+    Surface {
+        normal: m::normals::unorm_to_normal(back.normal),
+        roughness: back.light_accumulation_b_roughness.y,
+        metallic,
+        base_colour: if metallic == 1.0 {
+            back.reflectance
+        } else {
+            back.albedo
+        },
+        light: Vec3::new(
+            back.light_accumulation_rg.x,
+            back.light_accumulation_rg.y,
+            back.light_accumulation_b_roughness.x,
+        ),
+    }
+}
+
+fn surfaces() -> Vec<Surface> {
+    (1..=1u32 << 14)
+        .map(|index| {
+            let direction = |a: f64, b: f64| {
+                let z = a; // upper hemisphere facing the viewer
+                let angle = std::f64::consts::TAU * b;
+                let radius = (1.0 - z * z).sqrt();
+                DVec3::new(radius * angle.cos(), radius * angle.sin(), z).as_vec3()
+            };
+            let metallic = if index % 3 == 0 { 1.0 } else { 0.0 };
+            Surface {
+                normal: direction(halton(index, 2), halton(index, 3)),
+                roughness: halton(index, 5) as f32,
+                metallic,
+                base_colour: Vec3::new(
+                    halton(index, 7) as f32,
+                    halton(index, 11) as f32,
+                    halton(index, 13) as f32,
+                ),
+                light: Vec3::new(
+                    halton(index, 17) as f32,
+                    halton(index, 19) as f32,
+                    halton(index, 23) as f32,
+                ) * 5.9,
+            }
+        })
+        .collect()
+}
+
+fn layout_rows() -> Vec<Row> {
+    use shaderlib::seed_layouts::{ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic};
+    // Per layout: its round trip on the CPU and the WGSL that decodes an unpacked `texel` into
+    // `normal`, `roughness`, `diffuse`, `f0` and `light`, by the same conventions.
+    let metallic_decode = "let colours = metallic_workflow(base_colour, metallic, DIELECTRIC_F0);\n    let diffuse = colours.diffuse;\n    let f0 = colours.f0;";
+    let layouts: [(&str, Layout, &str, LayoutRoundTrip, u32, String); 4] = [
+        (
+            "Listing 2.2 (MobileMetallic)",
+            MobileMetallic::layout(),
+            MobileMetallic::WGSL,
+            mobile_metallic,
+            MobileMetallic::BITS,
+            format!("let normal = unorm_to_normal(texel.normals_roughness.xyz);\n    let roughness = texel.normals_roughness.w;\n    let metallic = texel.albedo_metallic.a;\n    let base_colour = pseudo_gamma_to_linear(texel.albedo_metallic.rgb);\n    let light = scale_unit_to_hdr(texel.light_accumulation, 6.0);\n    {metallic_decode}"),
+        ),
+        (
+            "Arm tile block (ArmTileBlock)",
+            ArmTileBlock::layout(),
+            ArmTileBlock::WGSL,
+            arm_tile_block,
+            ArmTileBlock::BITS,
+            format!("let normal = unorm_to_normal(texel.normal);\n    let roughness = texel.metallic_roughness.y;\n    let metallic = texel.metallic_roughness.x;\n    let base_colour = pseudo_gamma_to_linear(texel.albedo);\n    let light = texel.light;\n    {metallic_decode}"),
+        ),
+        (
+            "Listing 2.7 (FutureMetallic)",
+            FutureMetallic::layout(),
+            FutureMetallic::WGSL,
+            future_metallic,
+            FutureMetallic::BITS,
+            format!("let normal = normalize(vec3<f32>(texel.light_accumulation_b_normal_x.y, texel.normal_yz));\n    let roughness = texel.roughness_metallic.x;\n    let metallic = texel.roughness_metallic.y;\n    let base_colour = texel.albedo_or_reflectance;\n    let light = vec3<f32>(texel.light_accumulation_rg, texel.light_accumulation_b_normal_x.x);\n    {metallic_decode}"),
+        ),
+        (
+            "Listing 2.8 (FutureSpecular)",
+            FutureSpecular::layout(),
+            FutureSpecular::WGSL,
+            future_specular,
+            FutureSpecular::BITS,
+            "let normal = unorm_to_normal(texel.normal);\n    let roughness = texel.light_accumulation_b_roughness.y;\n    let diffuse = texel.albedo;\n    let f0 = texel.reflectance;\n    let light = vec3<f32>(texel.light_accumulation_rg, texel.light_accumulation_b_roughness.x);".to_string(),
+        ),
+    ];
+    let surfaces = surfaces();
+    layouts
+        .into_iter()
+        .map(|(name, layout, layout_wgsl, round_trip, bits, decode)| {
+            let mut errors = Accumulator::default();
+            for surface in &surfaces {
+                let difference = displayed(&round_trip(surface)) - displayed(surface);
+                errors.add(difference.abs().max_element());
+            }
+            let prefix = layout.snake_name();
+            let words = layout.words();
+            // The words come from the input's bits: the cost measured is unpack, decode, shade.
+            let lanes: Vec<String> = (0..words).map(|word| format!("bitcast<u32>(x[{}]) ^ {word}u", word % 4)).collect();
+            let body = format!(
+                "{layout_wgsl}\n\
+                 fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n\
+                 \x20   let texel = unpack_{prefix}(array<u32, {words}>({lanes}));\n\
+                 \x20   {decode}\n\
+                 \x20   let shaded = shade_directional(normal, vec3<f32>(0.0, 0.6, 0.8), vec3<f32>(0.3, -0.4, 0.866), vec3<f32>(3.0), diffuse, f0, roughness);\n\
+                 \x20   return vec4<f32>(linear_to_srgb(tonemap_reinhard(shaded + light)), x.w);\n\
+                 }}\n",
+                lanes = lanes.join(", "),
+            );
+            Row {
+                family: "whole layout",
+                name: name.to_string(),
+                bits: Some(bits),
+                domain: "16384 surfaces (normals facing the viewer, roughness, metallic 0/1, base colour, stored light < 6), sun and stored light, Reinhard, sRGB".into(),
+                unit: "8-bit sRGB steps",
+                errors: errors.finish(),
+                wgsl: wgsl(&["shading", "material", "colour", "tonemap", "normals", "hdr"], &body),
+                lut_size: None,
+                cpu: Box::new(move |x| {
+                    let surface = Surface {
+                        normal: (x.truncate() * 2.0 - Vec3::splat(0.999)).normalize(),
+                        roughness: x.w,
+                        metallic: x.z,
+                        base_colour: Vec3::splat(x.y),
+                        light: Vec3::splat(x.x),
+                    };
+                    let back = round_trip(&surface);
+                    let colours = m::material::metallic_workflow(back.base_colour, back.metallic, 0.04);
+                    let shaded = m::shading::shade_directional(back.normal, Vec3::new(0.0, 0.6, 0.8), Vec3::new(0.3, -0.4, 0.866), Vec3::splat(3.0), colours.diffuse, colours.f0, back.roughness);
+                    m::colour::linear_to_srgb(m::tonemap::tonemap_reinhard(shaded + back.light)).extend(x.w)
+                }),
+                plot: None,
+            }
+        })
+        .collect()
+}
+
+/// Every row, family by family.
+pub fn rows() -> Vec<Row> {
+    let mut rows = Vec::new();
+    rows.extend(transfer_rows());
+    rows.extend(normal_rows());
+    rows.extend(hdr_rows());
+    rows.extend(env_brdf_rows());
+    rows.extend(specular_lobe_rows());
+    rows.extend(visibility_rows());
+    rows.extend(layout_rows());
+    rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn errors_of(rows: &[Row], name: &str) -> Errors {
+        rows.iter()
+            .find(|row| row.name == name)
+            .unwrap_or_else(|| panic!("no row {name}"))
+            .errors
+    }
+
+    #[test]
+    fn storage_errors_fall_with_bits_and_match_their_quantization() {
+        let transfer = transfer_rows();
+        // Exact sRGB through 8 bits is off by the rounding alone: half a step.
+        assert!((errors_of(&transfer, "sRGB exact").max - 0.5).abs() < 1e-3);
+        assert!(
+            errors_of(&transfer, "linear (no curve)").max > 5.0,
+            "8-bit linear storage bands in the darks"
+        );
+        let normals = normal_rows();
+        let octahedral: Vec<f64> = [8, 10, 12, 16]
+            .map(|bits| errors_of(&normals, &format!("octahedral 2x{bits}")).max)
+            .to_vec();
+        assert!(
+            octahedral.windows(2).all(|pair| pair[1] < pair[0] / 3.0),
+            "{octahedral:?}"
+        );
+        assert!(
+            errors_of(&normals, "octahedral 2x12").max < errors_of(&normals, "xyz in rgba8").max,
+            "same 24 bits, better spent"
+        );
+        let hdr = hdr_rows();
+        // Half floats keep 11 significant bits: 2^-11 relative.
+        assert!(errors_of(&hdr, "rg16f x 2 (r, g | b)").max <= 2f64.powi(-11) * 1.0001);
+        assert!(errors_of(&hdr, "r11f_g11f_b10f").max <= 2f64.powi(-6) * 1.0001);
+    }
+
+    #[test]
+    fn finer_luts_are_closer_and_every_row_has_valid_wgsl() {
+        let environment = env_brdf_rows();
+        assert!(
+            errors_of(&environment, "LUT 32x32, bilinear").rms
+                < errors_of(&environment, "LUT 16x16, bilinear").rms
+        );
+        for row in environment
+            .iter()
+            .chain(&specular_lobe_rows())
+            .chain(&visibility_rows())
+        {
+            let harness = crate::timing::harness(&row.wgsl);
+            validator::validate_wgsl(&harness)
+                .unwrap_or_else(|problem| panic!("{}: {problem}", row.name));
+        }
+    }
+}

@@ -1,0 +1,218 @@
+//! Time per evaluation: on the adapter, a compute shader that feeds each result into the next
+//! evaluation (so nothing is optimised away), timed around a synchronised submit; on the CPU,
+//! the f32 mirror over the same kind of inputs. Both are medians of several runs.
+
+use std::time::Instant;
+
+use shaderlib::glam::Vec4;
+use tests::gpu::Gpu;
+
+/// Invocations per dispatch and evaluations per invocation: 2^20 evaluations a run.
+const INVOCATIONS: u32 = 1 << 14;
+const CHAIN: u32 = 64;
+pub const GPU_RUNS: usize = 7;
+const CPU_RUNS: usize = 5;
+
+/// The compute shader around a row's `row_eval`.
+pub fn harness(row_wgsl: &str) -> String {
+    format!(
+        "{row_wgsl}\n\
+         @group(0) @binding(0) var<storage, read> bench_inputs: array<vec4<f32>>;\n\
+         @group(0) @binding(1) var<storage, read_write> bench_outputs: array<vec4<f32>>;\n\
+         @group(0) @binding(2) var lut_texture: texture_2d<f32>;\n\
+         @group(0) @binding(3) var lut_sampler: sampler;\n\n\
+         @compute @workgroup_size(64)\n\
+         fn bench(@builtin(global_invocation_id) id: vec3<u32>) {{\n\
+         \x20   var x = bench_inputs[id.x];\n\
+         \x20   for (var step = 0u; step < {CHAIN}u; step++) {{\n\
+         \x20       x = fract(row_eval(x) * 0.25 + x * 0.75 + vec4<f32>(0.1));\n\
+         \x20   }}\n\
+         \x20   bench_outputs[id.x] = x;\n\
+         }}\n"
+    )
+}
+
+/// A row whose evaluation is free: its time is the harness's own, subtracted from each row's.
+pub const BASELINE_ROW: &str = "fn row_eval(x: vec4<f32>) -> vec4<f32> {\n    return x;\n}\n";
+
+/// Times `harness` on the adapter: nanoseconds per evaluation (median of the runs), with the
+/// environment BRDF LUT texture bound (a `lut_size` square of (scale, bias), or 1x1).
+pub fn gpu_ns_per_eval(
+    gpu: &Gpu,
+    harness: &str,
+    lut: &[[f32; 2]],
+    lut_size: usize,
+) -> Result<f64, String> {
+    let device = &gpu.device;
+    let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("bench"),
+        source: wgpu::ShaderSource::Wgsl(harness.into()),
+    });
+    let storage = |read_only| wgpu::BindingType::Buffer {
+        ty: wgpu::BufferBindingType::Storage { read_only },
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    };
+    let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty,
+        count: None,
+    };
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: None,
+        entries: &[
+            entry(0, storage(true)),
+            entry(1, storage(false)),
+            entry(
+                2,
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+            ),
+            entry(
+                3,
+                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+            ),
+        ],
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: None,
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("bench"),
+        layout: Some(&pipeline_layout),
+        module: &module,
+        entry_point: Some("bench"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    use wgpu::util::DeviceExt;
+    let inputs: Vec<[f32; 4]> = (0..INVOCATIONS)
+        .map(|index| {
+            let t = index as f32 / INVOCATIONS as f32;
+            [
+                t,
+                (t * 7.31).fract(),
+                (t * 3.17).fract(),
+                (t * 5.53).fract(),
+            ]
+        })
+        .collect();
+    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: None,
+        contents: bytemuck::cast_slice(&inputs),
+        usage: wgpu::BufferUsages::STORAGE,
+    });
+    let output = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size: 16 * u64::from(INVOCATIONS),
+        usage: wgpu::BufferUsages::STORAGE,
+        mapped_at_creation: false,
+    });
+    // The LUT as rgba16float (filterable everywhere): scale in r, bias in g.
+    let size = lut_size.max(1) as u32;
+    let texels: Vec<u16> = (0..(size * size) as usize)
+        .flat_map(|index| {
+            let [scale, bias] = lut.get(index).copied().unwrap_or([0.0, 0.0]);
+            [scale, bias, 0.0, 1.0].map(|value| codegen::convert::half_from_f32(value) as u16)
+        })
+        .collect();
+    let texture = device.create_texture_with_data(
+        &gpu.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("lut"),
+            size: wgpu::Extent3d {
+                width: size,
+                height: size,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba16Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(&texels),
+    );
+    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    });
+    let view = texture.create_view(&Default::default());
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: input.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: output.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::Sampler(&sampler),
+            },
+        ],
+    });
+    if let Some(error) = pollster::block_on(scope.pop()) {
+        return Err(error.to_string());
+    }
+    let mut times = Vec::new();
+    // One warm-up run, then the timed ones.
+    for run in 0..=GPU_RUNS {
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &bind_group, &[]);
+            pass.dispatch_workgroups(INVOCATIONS / 64, 1, 1);
+        }
+        let start = Instant::now();
+        gpu.queue.submit([encoder.finish()]);
+        device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|error| error.to_string())?;
+        if run > 0 {
+            times.push(start.elapsed().as_secs_f64());
+        }
+    }
+    Ok(median(&mut times) * 1e9 / f64::from(INVOCATIONS * CHAIN))
+}
+
+/// Nanoseconds per evaluation of a row's CPU mirror, chained as on the GPU (median of runs).
+pub fn cpu_ns_per_eval(evaluate: &dyn Fn(Vec4) -> Vec4) -> f64 {
+    const EVALUATIONS: u32 = 1 << 16;
+    let mut times = Vec::new();
+    for _ in 0..CPU_RUNS {
+        let mut x = Vec4::new(0.3, 0.6, 0.2, 0.7);
+        let start = Instant::now();
+        for _ in 0..EVALUATIONS {
+            let y = evaluate(std::hint::black_box(x));
+            x = (y * 0.25 + x * 0.75 + Vec4::splat(0.1)).fract();
+        }
+        std::hint::black_box(x);
+        times.push(start.elapsed().as_secs_f64());
+    }
+    median(&mut times) * 1e9 / f64::from(EVALUATIONS)
+}
+
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
