@@ -1,10 +1,18 @@
 // shading: the light one G-buffer texel reflects, in an accurate form and in the mobile form of
-// Karis 2014. Directions are unit vectors pointing away from the surface.
+// Karis 2014. Directions are unit vectors pointing away from the surface. Diffuse is scaled by
+// what the specular lobe leaves (1 - its directional albedo), so that under a uniform white
+// light no form reflects more than it receives (the white furnace test).
 // requires: constants, microfacet, mobile
 
-// Directional light, accurate: (Lambert + GGX D * height-correlated V * Schlick F) * n.l.
+// The specular lobe's directional albedo from the split-sum (scale, bias): f0 * scale + bias.
+fn specular_albedo(f0: vec3<f32>, env_brdf: vec2<f32>) -> vec3<f32> {
+    return f0 * env_brdf.x + env_brdf.y;
+}
+
+// Directional light, accurate: (Lambert (1 - specular albedo) + GGX D * height-correlated V *
+// Schlick F) * n.l, with env_brdf the split-sum (scale, bias) at (n.v, roughness) from the LUT.
 // Roughness is clamped to MIN_ROUGHNESS and n.v to MIN_N_DOT_V so every input stays finite.
-fn shade_directional(normal: vec3<f32>, view: vec3<f32>, light_direction: vec3<f32>, light_colour: vec3<f32>, diffuse_colour: vec3<f32>, f0: vec3<f32>, roughness: f32) -> vec3<f32> {
+fn shade_directional(normal: vec3<f32>, view: vec3<f32>, light_direction: vec3<f32>, light_colour: vec3<f32>, diffuse_colour: vec3<f32>, f0: vec3<f32>, roughness: f32, env_brdf: vec2<f32>) -> vec3<f32> {
     let half_vector = normalize(view + light_direction);
     let n_dot_v = max(dot(normal, view), MIN_N_DOT_V);
     let n_dot_l = clamp(dot(normal, light_direction), 0.0, 1.0);
@@ -12,11 +20,13 @@ fn shade_directional(normal: vec3<f32>, view: vec3<f32>, light_direction: vec3<f
     let v_dot_h = clamp(dot(view, half_vector), 0.0, 1.0);
     let clamped_roughness = max(roughness, MIN_ROUGHNESS);
     let specular = d_ggx(n_dot_h, clamped_roughness) * v_smith_ggx_correlated(n_dot_v, n_dot_l, clamped_roughness) * f_schlick(f0, v_dot_h);
-    return (lambert_diffuse(diffuse_colour) + specular) * light_colour * n_dot_l;
+    let diffuse = lambert_diffuse(diffuse_colour) * (vec3<f32>(1.0) - specular_albedo(f0, env_brdf));
+    return (diffuse + specular) * light_colour * n_dot_l;
 }
 
 // Directional light, mobile form (Karis 2014): the lobe is D_Approx around the reflection
-// vector, scaled by EnvBRDFApprox as for image-based light: (diffuse + specular D_Approx) / pi.
+// vector, scaled by EnvBRDFApprox as for image-based light: (diffuse (1 - specular) + specular
+// D_Approx) / pi.
 fn shade_directional_mobile(normal: vec3<f32>, view: vec3<f32>, light_direction: vec3<f32>, light_colour: vec3<f32>, diffuse_colour: vec3<f32>, f0: vec3<f32>, roughness: f32) -> vec3<f32> {
     let n_dot_v = max(dot(normal, view), MIN_N_DOT_V);
     let n_dot_l = clamp(dot(normal, light_direction), 0.0, 1.0);
@@ -25,17 +35,21 @@ fn shade_directional_mobile(normal: vec3<f32>, view: vec3<f32>, light_direction:
     let clamped_roughness = max(roughness, MIN_ROUGHNESS);
     let specular_colour = env_brdf_approx(f0, clamped_roughness, n_dot_v);
     let lobe = d_approx(clamped_roughness, r_dot_l);
-    return (diffuse_colour + specular_colour * lobe) * (INV_PI * n_dot_l) * light_colour;
+    let diffuse = diffuse_colour * (vec3<f32>(1.0) - specular_colour);
+    return (diffuse + specular_colour * lobe) * (INV_PI * n_dot_l) * light_colour;
 }
 
-// Image-based light, accurate: diffuse * irradiance + radiance * (f0 * scale + bias), with
-// (scale, bias) from the split-sum LUT at (n.v, roughness) and radiance from the prefiltered
-// mip at ibl_mip_level. `irradiance` is what a light map stores: Lambert's 1 / pi folded in.
+// Image-based light, accurate: diffuse (1 - specular albedo) irradiance + radiance (f0 scale +
+// bias), with (scale, bias) from the split-sum LUT at (n.v, roughness) and radiance from the
+// prefiltered mip at ibl_mip_level. `irradiance` is what a light map stores: Lambert's 1 / pi
+// folded in.
 fn shade_ibl(diffuse_colour: vec3<f32>, f0: vec3<f32>, irradiance: vec3<f32>, radiance: vec3<f32>, env_brdf: vec2<f32>) -> vec3<f32> {
-    return diffuse_colour * irradiance + radiance * (f0 * env_brdf.x + env_brdf.y);
+    let specular = specular_albedo(f0, env_brdf);
+    return diffuse_colour * (vec3<f32>(1.0) - specular) * irradiance + radiance * specular;
 }
 
 // Image-based light, mobile form (Karis 2014): EnvBRDFApprox instead of the LUT.
 fn shade_ibl_mobile(diffuse_colour: vec3<f32>, f0: vec3<f32>, roughness: f32, n_dot_v: f32, irradiance: vec3<f32>, radiance: vec3<f32>) -> vec3<f32> {
-    return diffuse_colour * irradiance + radiance * env_brdf_approx(f0, roughness, clamp(n_dot_v, 0.0, 1.0));
+    let specular = env_brdf_approx(f0, roughness, clamp(n_dot_v, 0.0, 1.0));
+    return diffuse_colour * (vec3<f32>(1.0) - specular) * irradiance + radiance * specular;
 }

@@ -237,6 +237,11 @@ const COSINE: Argument = Scalar {
 const HDR_COLOUR: Argument = Colour { scale: 6.0 };
 const LIGHT_COLOUR: Argument = Colour { scale: 3.0 };
 const COLOUR: Argument = Colour { scale: 1.0 };
+/// A split-sum (scale, bias) pair: both in [0, 1] (their sum too, in the real LUT).
+const ENV_BRDF: Argument = Pair {
+    low: 0.0,
+    high: 0.5,
+};
 
 /// Every function of the library.
 pub fn cases() -> Vec<Case> {
@@ -869,7 +874,21 @@ pub fn cases() -> Vec<Case> {
         // shading
         Case {
             module: "shading",
-            call: "shade_directional(a0, a1, a2, a3, a4, a5, a6)",
+            call: "specular_albedo(a0, a1)",
+            arguments: &[COLOUR, ENV_BRDF],
+            output: Output::Floats(3),
+            mirror: |a| out(&m::shading::specular_albedo(v3(a, 0), v2(a, 3)).to_array()),
+            reference: Some(|a| {
+                r::shading::specular_albedo(d3(a, 0), d2(a, 3))
+                    .to_array()
+                    .to_vec()
+            }),
+            ulps: 2,
+            absolute: 1e-7,
+        },
+        Case {
+            module: "shading",
+            call: "shade_directional(a0, a1, a2, a3, a4, a5, a6, a7)",
             arguments: &[
                 Direction,
                 Direction,
@@ -878,6 +897,7 @@ pub fn cases() -> Vec<Case> {
                 COLOUR,
                 COLOUR,
                 ROUGHNESS,
+                ENV_BRDF,
             ],
             output: Output::Floats(3),
             mirror: |a| {
@@ -889,6 +909,7 @@ pub fn cases() -> Vec<Case> {
                     v3(a, 12),
                     v3(a, 15),
                     f(a, 18),
+                    v2(a, 19),
                 )
                 .to_array())
             },
@@ -901,6 +922,7 @@ pub fn cases() -> Vec<Case> {
                     d3(a, 12),
                     d3(a, 15),
                     a[18],
+                    d2(a, 19),
                 )
                 .to_array()
                 .to_vec()

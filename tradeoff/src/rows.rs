@@ -702,14 +702,22 @@ fn displayed(surface: &Surface) -> DVec3 {
     let base = surface.base_colour.as_dvec3();
     let metallic = f64::from(surface.metallic);
     let colours = r::material::metallic_workflow(base, metallic, 0.04);
+    // The split-sum albedo the diffuse term is scaled by, as a renderer's LUT gives it.
+    let normal = surface.normal.as_dvec3().normalize();
+    let env_brdf = r::environment::integrate_env_brdf(
+        f64::from(surface.roughness).max(0.045),
+        normal.dot(view).max(1e-4),
+        64,
+    );
     let shaded = r::shading::shade_directional(
-        surface.normal.as_dvec3().normalize(),
+        normal,
         view,
         sun,
         DVec3::splat(3.0),
         colours.diffuse,
         colours.f0,
         f64::from(surface.roughness),
+        env_brdf,
     );
     r::colour::linear_to_srgb(r::tonemap::tonemap_reinhard(
         shaded + surface.light.as_dvec3(),
@@ -911,7 +919,7 @@ fn layout_rows() -> Vec<Row> {
                  fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n\
                  \x20   let texel = unpack_{prefix}(array<u32, {words}>({lanes}));\n\
                  \x20   {decode}\n\
-                 \x20   let shaded = shade_directional(normal, vec3<f32>(0.0, 0.6, 0.8), vec3<f32>(0.3, -0.4, 0.866), vec3<f32>(3.0), diffuse, f0, roughness);\n\
+                 \x20   let shaded = shade_directional(normal, vec3<f32>(0.0, 0.6, 0.8), vec3<f32>(0.3, -0.4, 0.866), vec3<f32>(3.0), diffuse, f0, roughness, vec2<f32>(0.6, 0.1));\n\
                  \x20   return vec4<f32>(linear_to_srgb(tonemap_reinhard(shaded + light)), x.w);\n\
                  }}\n",
                 lanes = lanes.join(", "),
@@ -935,7 +943,7 @@ fn layout_rows() -> Vec<Row> {
                     };
                     let back = round_trip(&surface);
                     let colours = m::material::metallic_workflow(back.base_colour, back.metallic, 0.04);
-                    let shaded = m::shading::shade_directional(back.normal, Vec3::new(0.0, 0.6, 0.8), Vec3::new(0.3, -0.4, 0.866), Vec3::splat(3.0), colours.diffuse, colours.f0, back.roughness);
+                    let shaded = m::shading::shade_directional(back.normal, Vec3::new(0.0, 0.6, 0.8), Vec3::new(0.3, -0.4, 0.866), Vec3::splat(3.0), colours.diffuse, colours.f0, back.roughness, Vec2::new(0.6, 0.1));
                     m::colour::linear_to_srgb(m::tonemap::tonemap_reinhard(shaded + back.light)).extend(x.w)
                 }),
                 plot: None,

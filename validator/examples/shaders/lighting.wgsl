@@ -2,6 +2,7 @@
 // it with the generated code and shades it with the library.
 #include <shaderlib/shading>
 #include <shaderlib/colour>
+#include <shaderlib/environment>
 #include "../../../codegen/layouts/mobile_metallic.toml"
 
 @group(0) @binding(0) var gbuffer: texture_2d<u32>;
@@ -14,6 +15,8 @@ fn lighting(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let metallic = texel.albedo_metallic.a;
     let diffuse_colour = base_colour * (1.0 - metallic);
     let f0 = mix(vec3<f32>(DIELECTRIC_F0), base_colour, metallic);
-    let colour = shade_directional(normal, vec3<f32>(0.0, 0.0, 1.0), normalize(vec3<f32>(0.3, 0.5, 0.8)), vec3<f32>(3.0), diffuse_colour, f0, texel.normals_roughness.w);
+    // The split-sum (scale, bias); a renderer reads it from its LUT.
+    let env_brdf = integrate_env_brdf(texel.normals_roughness.w, 1.0, 16u);
+    let colour = shade_directional(normal, vec3<f32>(0.0, 0.0, 1.0), normalize(vec3<f32>(0.3, 0.5, 0.8)), vec3<f32>(3.0), diffuse_colour, f0, texel.normals_roughness.w, env_brdf);
     return vec4<f32>(colour + texel.light_accumulation, 1.0);
 }

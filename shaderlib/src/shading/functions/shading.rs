@@ -1,8 +1,13 @@
 // Mirrors shading.wgsl.
 
-/// Directional light, accurate: (Lambert + GGX D * correlated V * Schlick F) * n.l.
+/// The specular lobe's directional albedo from the split-sum (scale, bias).
+pub fn specular_albedo(f0: Vec3, env_brdf: Vec2) -> Vec3 {
+    f0 * env_brdf.x + Vec3::splat(env_brdf.y)
+}
+
+/// Directional light, accurate: (Lambert (1 - specular albedo) + GGX D V F) * n.l.
 #[allow(clippy::too_many_arguments)]
-pub fn shade_directional(normal: Vec3, view: Vec3, light_direction: Vec3, light_colour: Vec3, diffuse_colour: Vec3, f0: Vec3, roughness: Float) -> Vec3 {
+pub fn shade_directional(normal: Vec3, view: Vec3, light_direction: Vec3, light_colour: Vec3, diffuse_colour: Vec3, f0: Vec3, roughness: Float, env_brdf: Vec2) -> Vec3 {
     let half_vector = (view + light_direction).normalize();
     let n_dot_v = normal.dot(view).max(MIN_N_DOT_V);
     let n_dot_l = normal.dot(light_direction).clamp(0.0, 1.0);
@@ -10,7 +15,8 @@ pub fn shade_directional(normal: Vec3, view: Vec3, light_direction: Vec3, light_
     let v_dot_h = view.dot(half_vector).clamp(0.0, 1.0);
     let clamped_roughness = roughness.max(MIN_ROUGHNESS);
     let specular = d_ggx(n_dot_h, clamped_roughness) * v_smith_ggx_correlated(n_dot_v, n_dot_l, clamped_roughness) * f_schlick(f0, v_dot_h);
-    (lambert_diffuse(diffuse_colour) + specular) * light_colour * n_dot_l
+    let diffuse = lambert_diffuse(diffuse_colour) * (Vec3::ONE - specular_albedo(f0, env_brdf));
+    (diffuse + specular) * light_colour * n_dot_l
 }
 
 /// Directional light, mobile form (Karis 2014).
@@ -23,15 +29,18 @@ pub fn shade_directional_mobile(normal: Vec3, view: Vec3, light_direction: Vec3,
     let clamped_roughness = roughness.max(MIN_ROUGHNESS);
     let specular_colour = env_brdf_approx(f0, clamped_roughness, n_dot_v);
     let lobe = d_approx(clamped_roughness, r_dot_l);
-    (diffuse_colour + specular_colour * lobe) * (INV_PI * n_dot_l) * light_colour
+    let diffuse = diffuse_colour * (Vec3::ONE - specular_colour);
+    (diffuse + specular_colour * lobe) * (INV_PI * n_dot_l) * light_colour
 }
 
 /// Image-based light, accurate (split-sum LUT).
 pub fn shade_ibl(diffuse_colour: Vec3, f0: Vec3, irradiance: Vec3, radiance: Vec3, env_brdf: Vec2) -> Vec3 {
-    diffuse_colour * irradiance + radiance * (f0 * env_brdf.x + Vec3::splat(env_brdf.y))
+    let specular = specular_albedo(f0, env_brdf);
+    diffuse_colour * (Vec3::ONE - specular) * irradiance + radiance * specular
 }
 
 /// Image-based light, mobile form (EnvBRDFApprox).
 pub fn shade_ibl_mobile(diffuse_colour: Vec3, f0: Vec3, roughness: Float, n_dot_v: Float, irradiance: Vec3, radiance: Vec3) -> Vec3 {
-    diffuse_colour * irradiance + radiance * env_brdf_approx(f0, roughness, n_dot_v.clamp(0.0, 1.0))
+    let specular = env_brdf_approx(f0, roughness, n_dot_v.clamp(0.0, 1.0));
+    diffuse_colour * (Vec3::ONE - specular) * irradiance + radiance * specular
 }
