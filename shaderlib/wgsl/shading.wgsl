@@ -9,6 +9,13 @@ fn specular_albedo(f0: vec3<f32>, env_brdf: vec2<f32>) -> vec3<f32> {
     return f0 * env_brdf.x + env_brdf.y;
 }
 
+// What the specular lobe leaves for diffuse: 1 - its albedo, clamped to [0, 1] because the
+// mobile fit (EnvBRDFApprox) exceeds 1 for bright f0, where a negative diffuse would cancel
+// the specular term.
+fn diffuse_share(specular: vec3<f32>) -> vec3<f32> {
+    return clamp(vec3<f32>(1.0) - specular, vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
 // Directional light, accurate: (Lambert (1 - specular albedo) + GGX D * height-correlated V *
 // Schlick F) * n.l, with env_brdf the split-sum (scale, bias) at (n.v, roughness) from the LUT.
 // Roughness is clamped to MIN_ROUGHNESS and n.v to MIN_N_DOT_V so every input stays finite.
@@ -20,7 +27,7 @@ fn shade_directional(normal: vec3<f32>, view: vec3<f32>, light_direction: vec3<f
     let v_dot_h = clamp(dot(view, half_vector), 0.0, 1.0);
     let clamped_roughness = max(roughness, MIN_ROUGHNESS);
     let specular = d_ggx(n_dot_h, clamped_roughness) * v_smith_ggx_correlated(n_dot_v, n_dot_l, clamped_roughness) * f_schlick(f0, v_dot_h);
-    let diffuse = lambert_diffuse(diffuse_colour) * (vec3<f32>(1.0) - specular_albedo(f0, env_brdf));
+    let diffuse = lambert_diffuse(diffuse_colour) * diffuse_share(specular_albedo(f0, env_brdf));
     return (diffuse + specular) * light_colour * n_dot_l;
 }
 
@@ -35,7 +42,7 @@ fn shade_directional_mobile(normal: vec3<f32>, view: vec3<f32>, light_direction:
     let clamped_roughness = max(roughness, MIN_ROUGHNESS);
     let specular_colour = env_brdf_approx(f0, clamped_roughness, n_dot_v);
     let lobe = d_approx(clamped_roughness, r_dot_l);
-    let diffuse = diffuse_colour * (vec3<f32>(1.0) - specular_colour);
+    let diffuse = diffuse_colour * diffuse_share(specular_colour);
     return (diffuse + specular_colour * lobe) * (INV_PI * n_dot_l) * light_colour;
 }
 
@@ -45,11 +52,11 @@ fn shade_directional_mobile(normal: vec3<f32>, view: vec3<f32>, light_direction:
 // folded in.
 fn shade_ibl(diffuse_colour: vec3<f32>, f0: vec3<f32>, irradiance: vec3<f32>, radiance: vec3<f32>, env_brdf: vec2<f32>) -> vec3<f32> {
     let specular = specular_albedo(f0, env_brdf);
-    return diffuse_colour * (vec3<f32>(1.0) - specular) * irradiance + radiance * specular;
+    return diffuse_colour * diffuse_share(specular) * irradiance + radiance * specular;
 }
 
 // Image-based light, mobile form (Karis 2014): EnvBRDFApprox instead of the LUT.
 fn shade_ibl_mobile(diffuse_colour: vec3<f32>, f0: vec3<f32>, roughness: f32, n_dot_v: f32, irradiance: vec3<f32>, radiance: vec3<f32>) -> vec3<f32> {
     let specular = env_brdf_approx(f0, roughness, clamp(n_dot_v, 0.0, 1.0));
-    return diffuse_colour * (vec3<f32>(1.0) - specular) * irradiance + radiance * specular;
+    return diffuse_colour * diffuse_share(specular) * irradiance + radiance * specular;
 }

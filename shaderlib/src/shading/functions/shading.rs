@@ -5,6 +5,11 @@ pub fn specular_albedo(f0: Vec3, env_brdf: Vec2) -> Vec3 {
     f0 * env_brdf.x + Vec3::splat(env_brdf.y)
 }
 
+/// What the specular lobe leaves for diffuse: 1 - its albedo, clamped to [0, 1].
+pub fn diffuse_share(specular: Vec3) -> Vec3 {
+    (Vec3::ONE - specular).clamp(Vec3::ZERO, Vec3::ONE)
+}
+
 /// Directional light, accurate: (Lambert (1 - specular albedo) + GGX D V F) * n.l.
 #[allow(clippy::too_many_arguments)]
 pub fn shade_directional(normal: Vec3, view: Vec3, light_direction: Vec3, light_colour: Vec3, diffuse_colour: Vec3, f0: Vec3, roughness: Float, env_brdf: Vec2) -> Vec3 {
@@ -15,7 +20,7 @@ pub fn shade_directional(normal: Vec3, view: Vec3, light_direction: Vec3, light_
     let v_dot_h = view.dot(half_vector).clamp(0.0, 1.0);
     let clamped_roughness = roughness.max(MIN_ROUGHNESS);
     let specular = d_ggx(n_dot_h, clamped_roughness) * v_smith_ggx_correlated(n_dot_v, n_dot_l, clamped_roughness) * f_schlick(f0, v_dot_h);
-    let diffuse = lambert_diffuse(diffuse_colour) * (Vec3::ONE - specular_albedo(f0, env_brdf));
+    let diffuse = lambert_diffuse(diffuse_colour) * diffuse_share(specular_albedo(f0, env_brdf));
     (diffuse + specular) * light_colour * n_dot_l
 }
 
@@ -29,18 +34,18 @@ pub fn shade_directional_mobile(normal: Vec3, view: Vec3, light_direction: Vec3,
     let clamped_roughness = roughness.max(MIN_ROUGHNESS);
     let specular_colour = env_brdf_approx(f0, clamped_roughness, n_dot_v);
     let lobe = d_approx(clamped_roughness, r_dot_l);
-    let diffuse = diffuse_colour * (Vec3::ONE - specular_colour);
+    let diffuse = diffuse_colour * diffuse_share(specular_colour);
     (diffuse + specular_colour * lobe) * (INV_PI * n_dot_l) * light_colour
 }
 
 /// Image-based light, accurate (split-sum LUT).
 pub fn shade_ibl(diffuse_colour: Vec3, f0: Vec3, irradiance: Vec3, radiance: Vec3, env_brdf: Vec2) -> Vec3 {
     let specular = specular_albedo(f0, env_brdf);
-    diffuse_colour * (Vec3::ONE - specular) * irradiance + radiance * specular
+    diffuse_colour * diffuse_share(specular) * irradiance + radiance * specular
 }
 
 /// Image-based light, mobile form (EnvBRDFApprox).
 pub fn shade_ibl_mobile(diffuse_colour: Vec3, f0: Vec3, roughness: Float, n_dot_v: Float, irradiance: Vec3, radiance: Vec3) -> Vec3 {
     let specular = env_brdf_approx(f0, roughness, n_dot_v.clamp(0.0, 1.0));
-    diffuse_colour * (Vec3::ONE - specular) * irradiance + radiance * specular
+    diffuse_colour * diffuse_share(specular) * irradiance + radiance * specular
 }
