@@ -33,7 +33,7 @@ macro_rules! modules {
 }
 
 /// Every module, dependencies before the modules that need them.
-pub const MODULES: [Module; 10] = modules![
+pub const MODULES: [Module; 11] = modules![
     "constants",
     "colour",
     "hdr",
@@ -44,6 +44,7 @@ pub const MODULES: [Module; 10] = modules![
     "normals",
     "tonemap",
     "shading",
+    "mobile_half",
 ];
 
 impl Module {
@@ -52,18 +53,34 @@ impl Module {
         MODULES.into_iter().find(|module| module.name == name)
     }
 
-    /// The source under a one-line banner naming the module.
+    /// The source under a one-line banner naming the module, without its `enable`
+    /// directives (which [`compose`] gathers at the top).
     pub fn with_banner(&self) -> String {
+        let body: Vec<&str> = self
+            .source
+            .lines()
+            .filter(|line| !line.starts_with("enable "))
+            .collect();
         format!(
-            "// ---- shaderlib module `{}` ----\n{}",
-            self.name, self.source
+            "// ---- shaderlib module `{}` ----\n{}\n",
+            self.name,
+            body.join("\n")
         )
+    }
+
+    /// The `enable` directives the module needs, e.g. `enable f16;`.
+    pub fn directives(&self) -> Vec<&'static str> {
+        self.source
+            .lines()
+            .filter(|line| line.starts_with("enable "))
+            .collect()
     }
 
     /// The names on the header's `// requires:` line.
     pub fn requires(&self) -> Vec<&'static str> {
         self.source
             .lines()
+            .filter(|line| !line.starts_with("enable "))
             .take_while(|line| line.starts_with("//"))
             .find_map(|line| line.strip_prefix("// requires:"))
             .map(|names| {
@@ -117,11 +134,26 @@ impl std::error::Error for ComposeError {}
 /// once, each under a banner naming it.
 pub fn compose(names: &[&str]) -> Result<String, ComposeError> {
     let modules = dependency_order(names)?;
-    Ok(modules
+    // WGSL wants its `enable` directives before every declaration: they move to the top.
+    let mut directives: Vec<&str> = Vec::new();
+    for module in &modules {
+        for line in module
+            .source
+            .lines()
+            .filter(|line| line.starts_with("enable "))
+        {
+            if !directives.contains(&line) {
+                directives.push(line);
+            }
+        }
+    }
+    let bodies: Vec<String> = modules.iter().map(Module::with_banner).collect();
+    let mut source = directives
         .iter()
-        .map(Module::with_banner)
-        .collect::<Vec<_>>()
-        .join("\n"))
+        .map(|line| format!("{line}\n"))
+        .collect::<String>();
+    source.push_str(&bodies.join("\n"));
+    Ok(source)
 }
 
 /// The named modules and everything they require, dependencies first, each once.

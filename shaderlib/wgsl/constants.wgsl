@@ -15,3 +15,6 @@ const MIN_ROUGHNESS: f32 = 0.045;
 // The smallest n.v the lighting functions are fed: at n.v = 0 (a silhouette) the visibility
 // terms divide by zero.
 const MIN_N_DOT_V: f32 = 1e-4;
+
+// The shortest view + light sum the half vector is normalized from (see half_vector_of).
+const MIN_HALF_VECTOR_LENGTH: f32 = 1e-6;

@@ -16,11 +16,19 @@ fn diffuse_share(specular: vec3<f32>) -> vec3<f32> {
     return clamp(vec3<f32>(1.0) - specular, vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
+// The unit vector halfway between view and light. When the light comes from exactly behind the
+// view their sum is 0 and normalize would give NaN: the length is floored at
+// MIN_HALF_VECTOR_LENGTH so the half vector comes out 0 (no specular) instead.
+fn half_vector_of(view: vec3<f32>, light_direction: vec3<f32>) -> vec3<f32> {
+    let sum = view + light_direction;
+    return sum / max(length(sum), MIN_HALF_VECTOR_LENGTH);
+}
+
 // Directional light, accurate: (Lambert (1 - specular albedo) + GGX D * height-correlated V *
 // Schlick F) * n.l, with env_brdf the split-sum (scale, bias) at (n.v, roughness) from the LUT.
 // Roughness is clamped to MIN_ROUGHNESS and n.v to MIN_N_DOT_V so every input stays finite.
 fn shade_directional(normal: vec3<f32>, view: vec3<f32>, light_direction: vec3<f32>, light_colour: vec3<f32>, diffuse_colour: vec3<f32>, f0: vec3<f32>, roughness: f32, env_brdf: vec2<f32>) -> vec3<f32> {
-    let half_vector = normalize(view + light_direction);
+    let half_vector = half_vector_of(view, light_direction);
     let n_dot_v = max(dot(normal, view), MIN_N_DOT_V);
     let n_dot_l = clamp(dot(normal, light_direction), 0.0, 1.0);
     let n_dot_h = clamp(dot(normal, half_vector), 0.0, 1.0);
@@ -33,14 +41,14 @@ fn shade_directional(normal: vec3<f32>, view: vec3<f32>, light_direction: vec3<f
 
 // Directional light, mobile form (Karis 2014): the lobe is D_Approx around the reflection
 // vector, scaled by EnvBRDFApprox as for image-based light: (diffuse (1 - specular) + specular
-// D_Approx) / pi.
+// D_Approx) / pi. EnvBRDFApprox is clamped at 0, as in shade_ibl_mobile.
 fn shade_directional_mobile(normal: vec3<f32>, view: vec3<f32>, light_direction: vec3<f32>, light_colour: vec3<f32>, diffuse_colour: vec3<f32>, f0: vec3<f32>, roughness: f32) -> vec3<f32> {
     let n_dot_v = max(dot(normal, view), MIN_N_DOT_V);
     let n_dot_l = clamp(dot(normal, light_direction), 0.0, 1.0);
     let reflected = 2.0 * dot(normal, view) * normal - view;
     let r_dot_l = clamp(dot(reflected, light_direction), 0.0, 1.0);
     let clamped_roughness = max(roughness, MIN_ROUGHNESS);
-    let specular_colour = env_brdf_approx(f0, clamped_roughness, n_dot_v);
+    let specular_colour = max(env_brdf_approx(f0, clamped_roughness, n_dot_v), vec3<f32>(0.0));
     let lobe = d_approx(clamped_roughness, r_dot_l);
     let diffuse = diffuse_colour * diffuse_share(specular_colour);
     return (diffuse + specular_colour * lobe) * (INV_PI * n_dot_l) * light_colour;
@@ -55,8 +63,9 @@ fn shade_ibl(diffuse_colour: vec3<f32>, f0: vec3<f32>, irradiance: vec3<f32>, ra
     return diffuse_colour * diffuse_share(specular) * irradiance + radiance * specular;
 }
 
-// Image-based light, mobile form (Karis 2014): EnvBRDFApprox instead of the LUT.
+// Image-based light, mobile form (Karis 2014): EnvBRDFApprox instead of the LUT. The fit dips
+// below 0 (to -0.0024 for f0 = 0 at full roughness: "0.4524 f0 - 0.0024"): clamped to 0.
 fn shade_ibl_mobile(diffuse_colour: vec3<f32>, f0: vec3<f32>, roughness: f32, n_dot_v: f32, irradiance: vec3<f32>, radiance: vec3<f32>) -> vec3<f32> {
-    let specular = env_brdf_approx(f0, roughness, clamp(n_dot_v, 0.0, 1.0));
+    let specular = max(env_brdf_approx(f0, roughness, clamp(n_dot_v, 0.0, 1.0)), vec3<f32>(0.0));
     return diffuse_colour * diffuse_share(specular) * irradiance + radiance * specular;
 }

@@ -874,6 +874,20 @@ pub fn cases() -> Vec<Case> {
         // shading
         Case {
             module: "shading",
+            call: "half_vector_of(a0, a1)",
+            arguments: &[Direction, Direction],
+            output: Output::Floats(3),
+            mirror: |a| out(&m::shading::half_vector_of(v3(a, 0), v3(a, 3)).to_array()),
+            reference: Some(|a| {
+                r::shading::half_vector_of(d3(a, 0), d3(a, 3))
+                    .to_array()
+                    .to_vec()
+            }),
+            ulps: 8,
+            absolute: 1e-6,
+        },
+        Case {
+            module: "shading",
             call: "diffuse_share(a0)",
             arguments: &[Colour { scale: 1.5 }],
             output: Output::Floats(3),

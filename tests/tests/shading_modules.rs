@@ -42,8 +42,17 @@ fn every_function_translates_to_every_backend() {
 #[test]
 fn every_wgsl_function_has_a_test_case() {
     let tested: Vec<&str> = cases().iter().map(|case| case.name()).collect();
-    // Helpers exercised through the functions that call them.
-    let helpers = ["rgb9e5_mantissa", "sign_not_zero", "radical_inverse"];
+    // Helpers exercised through the functions that call them, and the f16 forms, which
+    // tests/stability.rs runs on the adapter against `shading::half_precision`.
+    let helpers = [
+        "rgb9e5_mantissa",
+        "sign_not_zero",
+        "radical_inverse",
+        "env_brdf_approx_half",
+        "env_brdf_approx_nonmetal_half",
+        "d_approx_half",
+        "shade_directional_mobile_half",
+    ];
     for module in MODULES {
         for line in module.source.lines() {
             if let Some(rest) = line.strip_prefix("fn ") {

@@ -98,7 +98,7 @@ pub fn resolve_file(path: &Path) -> Result<Resolved, IncludeError> {
     })?;
     resolver.included_files.push(canonical(path));
     resolver.resolve(path, &source)?;
-    Ok(resolver.resolved)
+    Ok(resolver.finish())
 }
 
 /// Resolves the includes of `source`, read from `path`.
@@ -106,7 +106,7 @@ pub fn resolve_source(path: &Path, source: &str) -> Result<Resolved, IncludeErro
     let mut resolver = Resolver::default();
     resolver.included_files.push(canonical(path));
     resolver.resolve(path, source)?;
-    Ok(resolver.resolved)
+    Ok(resolver.finish())
 }
 
 fn canonical(path: &Path) -> PathBuf {
@@ -118,9 +118,37 @@ struct Resolver {
     resolved: Resolved,
     included_modules: Vec<&'static str>,
     included_files: Vec<PathBuf>,
+    /// `enable` directives of included modules: WGSL wants them before every declaration.
+    directives: Vec<&'static str>,
 }
 
 impl Resolver {
+    /// The resolved source with the gathered directives on its first lines.
+    fn finish(mut self) -> Resolved {
+        if self.directives.is_empty() {
+            return self.resolved;
+        }
+        let header: String = self
+            .directives
+            .iter()
+            .map(|line| format!("{line}\n"))
+            .collect();
+        for segment in &mut self.resolved.segments {
+            segment.first_line += self.directives.len();
+        }
+        self.resolved.segments.insert(
+            0,
+            Segment {
+                origin: "<shaderlib directives>".into(),
+                first_line: 1,
+                lines: self.directives.len(),
+                origin_line: 1,
+            },
+        );
+        self.resolved.source.insert_str(0, &header);
+        self.resolved
+    }
+
     fn resolve(&mut self, path: &Path, source: &str) -> Result<(), IncludeError> {
         let origin = path.display().to_string();
         let mut pending = String::new();
@@ -152,6 +180,11 @@ impl Resolver {
                 for module in modules {
                     if !self.included_modules.contains(&module.name) {
                         self.included_modules.push(module.name);
+                        for directive in module.directives() {
+                            if !self.directives.contains(&directive) {
+                                self.directives.push(directive);
+                            }
+                        }
                         self.resolved.push(
                             &format!("<shaderlib/{}>", module.name),
                             0,

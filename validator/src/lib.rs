@@ -90,16 +90,19 @@ pub fn validate_wgsl(source: &str) -> Result<Validated, Problem> {
         message: error.message().to_string(),
         detail: error.emit_to_string(source),
     })?;
-    let info = Validator::new(ValidationFlags::all(), Capabilities::default())
-        .validate(&module)
-        .map_err(|error| Problem {
-            stage: Stage::Validate,
-            location: error
-                .location(source)
-                .map(|at| (at.line_number, at.line_position)),
-            message: error_chain(error.as_inner()),
-            detail: error.emit_to_string(source),
-        })?;
+    let info = Validator::new(
+        ValidationFlags::all(),
+        Capabilities::default() | Capabilities::SHADER_FLOAT16,
+    )
+    .validate(&module)
+    .map_err(|error| Problem {
+        stage: Stage::Validate,
+        location: error
+            .location(source)
+            .map(|at| (at.line_number, at.line_position)),
+        message: error_chain(error.as_inner()),
+        detail: error.emit_to_string(source),
+    })?;
     Ok(Validated { module, info })
 }
 

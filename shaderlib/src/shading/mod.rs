@@ -5,7 +5,9 @@
 //! - [`reference`]: the same functions in f64, the ground truth the f32 forms (and the
 //!   approximations among them) are measured against.
 //!
-//! Both are compiled from one source per module (`functions/<module>.rs`, included with the
+//! - [`half_precision`]: the mobile forms of `mobile_half.wgsl`, rounded to f16 at every step.
+//!
+//! The first two are compiled from one source per module (`functions/<module>.rs`, included with the
 //! float type set to f32 or f64), so the formulas cannot drift apart. Module and function names
 //! are the WGSL's.
 
@@ -33,3 +35,4 @@ pub mod reference {
 }
 
 pub mod env_brdf_lut;
+pub mod half_precision;

@@ -8,3 +8,5 @@ pub const DIELECTRIC_F0: Float = 0.04;
 pub const MIN_ROUGHNESS: Float = 0.045;
 /// The smallest n.v the lighting functions are fed.
 pub const MIN_N_DOT_V: Float = 1e-4;
+/// The shortest view + light sum the half vector is normalized from.
+pub const MIN_HALF_VECTOR_LENGTH: Float = 1e-6;
