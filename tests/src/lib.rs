@@ -1,6 +1,7 @@
 //! Shared pieces of the cross-crate tests: a layout with every format, test values with the
 //! hard cases, WGSL harnesses around generated code, and a GPU runner.
 
+pub mod furnace;
 pub mod gpu;
 pub mod harness;
 pub mod shading_cases;

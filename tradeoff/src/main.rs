@@ -107,10 +107,17 @@ fn main() {
     }
 
     print_table(&rows, &measured, &adapter);
+    let furnace = white_furnace();
+    print_furnace(&furnace);
     let plots =
         write_plots(&folder, &rows).unwrap_or_else(|error| panic!("writing plots: {error}"));
-    let json = json_report(&rows, &measured, &adapter);
-    let markdown = markdown_report(&rows, &measured, &adapter, &plots);
+    let mut json = json_report(&rows, &measured, &adapter);
+    json["white_furnace"] = serde_json::json!(furnace
+        .iter()
+        .map(|energy| serde_json::json!({"roughness": energy.roughness, "metal_head_on": energy.metal_head_on, "metal_grazing": energy.metal_grazing, "white_dielectric_max": energy.dielectric_max}))
+        .collect::<Vec<_>>());
+    let mut markdown = markdown_report(&rows, &measured, &adapter, &plots);
+    markdown.push_str(&furnace_markdown(&furnace));
     for (name, contents) in [
         (
             "report.json",
@@ -321,6 +328,63 @@ fn markdown_report(
     let _ = writeln!(out, "\n## Plots\n");
     for plot in plots {
         let _ = writeln!(out, "![{}]({})\n\n{}\n", plot.file, plot.file, plot.caption);
+    }
+    out
+}
+
+/// The energy `shade_directional` reflects under a uniform white environment at one roughness.
+struct FurnaceEnergy {
+    roughness: f64,
+    /// A white metal (f0 = 1) seen head on: what single scattering keeps.
+    metal_head_on: f64,
+    /// The same at n.v = 0.25.
+    metal_grazing: f64,
+    /// A white dielectric (albedo 1, f0 0.04), the largest over n.v in {0.1, 0.5, 1}.
+    dielectric_max: f64,
+}
+
+fn white_furnace() -> Vec<FurnaceEnergy> {
+    eprintln!("white furnace...");
+    [0.045, 0.25, 0.5, 0.75, 1.0]
+        .into_iter()
+        .map(|roughness| FurnaceEnergy {
+            roughness,
+            metal_head_on: tests::furnace::accurate(roughness, 0.0, 1.0, 1.0),
+            metal_grazing: tests::furnace::accurate(roughness, 0.0, 1.0, 0.25),
+            dielectric_max: [0.1, 0.5, 1.0]
+                .into_iter()
+                .map(|n_dot_v| tests::furnace::accurate(roughness, 1.0, 0.04, n_dot_v))
+                .fold(0.0, f64::max),
+        })
+        .collect()
+}
+
+fn print_furnace(furnace: &[FurnaceEnergy]) {
+    println!("\nwhite furnace (energy reflected of 1 received):");
+    println!(
+        "{:>9} {:>14} {:>14} {:>16}",
+        "roughness", "metal n.v=1", "metal n.v=0.25", "white dielectric"
+    );
+    for energy in furnace {
+        println!(
+            "{:>9} {:>14.4} {:>14.4} {:>16.4}",
+            energy.roughness, energy.metal_head_on, energy.metal_grazing, energy.dielectric_max
+        );
+    }
+}
+
+fn furnace_markdown(furnace: &[FurnaceEnergy]) -> String {
+    let mut out = String::from("\n## White furnace\n\nThe energy `shade_directional` reflects under a uniform white environment (1 received). A white dielectric (albedo 1, f0 0.04; largest over n.v 0.1, 0.5, 1) stays at 1: its diffuse takes what the specular lobe leaves. A white metal (f0 1) shows what single-scattering GGX loses to the light that would bounce between microfacets.\n\n| roughness | metal, n.v = 1 | metal, n.v = 0.25 | white dielectric | single scattering loses (n.v = 1) |\n| ---: | ---: | ---: | ---: | ---: |\n");
+    for energy in furnace {
+        let _ = writeln!(
+            out,
+            "| {} | {:.4} | {:.4} | {:.4} | {:.1}% |",
+            energy.roughness,
+            energy.metal_head_on,
+            energy.metal_grazing,
+            energy.dielectric_max,
+            100.0 * (1.0 - energy.metal_head_on)
+        );
     }
     out
 }
