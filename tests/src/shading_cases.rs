@@ -6,6 +6,8 @@ use shaderlib::glam::{DVec2, DVec3, DVec4, Vec2, Vec3, Vec4};
 use shaderlib::shading::mirror as m;
 use shaderlib::shading::reference as r;
 
+use crate::values::halton;
+
 /// How one argument is sampled.
 #[derive(Clone, Copy, Debug)]
 pub enum Argument {
@@ -73,7 +75,7 @@ impl Argument {
             // The named colours first, then a low-discrepancy spread over the cube.
             Argument::Colour { scale } => COLOURS
                 .into_iter()
-                .chain((1..).map(|index| [halton(index, 2), halton(index, 3), halton(index, 5)]))
+                .chain((1..).map(|index| [2, 3, 5].map(|base| halton(index, base) as f32)))
                 .take(count.max(2))
                 .map(|colour| colour.map(|c| (c * scale).to_bits()).to_vec())
                 .collect(),
@@ -97,17 +99,6 @@ impl Argument {
                 .collect(),
         }
     }
-}
-
-/// Point `index` of the Halton sequence in `base`.
-fn halton(mut index: u32, base: u32) -> f32 {
-    let (mut value, mut weight) = (0.0, 1.0);
-    while index > 0 {
-        weight /= f64::from(base);
-        value += weight * f64::from(index % base);
-        index /= base;
-    }
-    value as f32
 }
 
 fn lerp(low: f32, high: f32, t: f64) -> f32 {

@@ -147,3 +147,14 @@ impl Values {
         }
     }
 }
+
+/// Point `index` of the Halton sequence in `base`: a low-discrepancy spread over [0, 1).
+pub fn halton(mut index: u32, base: u32) -> f64 {
+    let (mut value, mut weight) = (0.0, 1.0);
+    while index > 0 {
+        weight /= f64::from(base);
+        value += weight * f64::from(index % base);
+        index /= base;
+    }
+    value
+}

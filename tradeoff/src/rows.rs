@@ -7,6 +7,8 @@ use shaderlib::shading::env_brdf_lut::EnvBrdfLut;
 use shaderlib::shading::{mirror as m, reference as r};
 use shaderlib::GBufferLayout;
 
+use ::tests::values::halton;
+
 use crate::plot::Plot;
 
 /// The largest and root-mean-square error over a domain.
@@ -95,17 +97,6 @@ fn quantize3(value: Vec3, bits: u32) -> Vec3 {
 /// The angle between two directions, robust near 0 (atan2 of the cross and dot products).
 fn angle_degrees(a: DVec3, b: DVec3) -> f64 {
     a.cross(b).length().atan2(a.dot(b)).to_degrees()
-}
-
-/// Point `index` of the Halton sequence in `base`, in [0, 1).
-fn halton(mut index: u32, base: u32) -> f64 {
-    let (mut value, mut weight) = (0.0, 1.0);
-    while index > 0 {
-        weight /= f64::from(base);
-        value += weight * f64::from(index % base);
-        index /= base;
-    }
-    value
 }
 
 // ---- transfer curves through 8-bit storage ----
