@@ -34,7 +34,7 @@ fn expand(input: &syn::DeriveInput) -> syn::Result<proc_macro2::TokenStream> {
     if let Some(errors) = errors {
         return Err(errors);
     }
-    let wgsl = codegen::emit::wgsl::emit(&parsed.layout);
+    let wgsl = codegen::emit::wgsl::emit_with(&parsed.layout, parsed.conversions);
     Ok(codegen::emit::rust::emit_impl(
         &parsed.layout,
         quote::quote!(#wgsl),

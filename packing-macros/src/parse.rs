@@ -1,6 +1,7 @@
 //! Stage 1 of the derive: the struct and its attributes to a [`Layout`], with the span of each
 //! part so that the check's diagnostics can point at it.
 
+use codegen::emit::wgsl::Conversions;
 use codegen::{Field, FieldType, Format, Layout, ScalarKind, Subject, DEFAULT_BUDGET};
 use proc_macro2::Span;
 use syn::spanned::Spanned;
@@ -33,6 +34,7 @@ impl Spans {
 /// budget check still counts its word.
 pub struct Parsed {
     pub layout: Layout,
+    pub conversions: Conversions,
     pub spans: Spans,
     pub errors: Option<syn::Error>,
 }
@@ -71,15 +73,15 @@ pub fn parse(input: &DeriveInput) -> syn::Result<Parsed> {
         );
     }
 
-    let (budget, budget_span) = parse_gbuffer_attributes(input, &mut errors);
+    let options = parse_gbuffer_attributes(input, &mut errors);
     let mut layout = Layout {
         name: input.ident.to_string(),
-        budget,
+        budget: options.budget,
         fields: Vec::new(),
     };
     let mut spans = Spans {
         name: input.ident.span(),
-        budget: budget_span,
+        budget: options.budget_span,
         fields: Vec::new(),
     };
 
@@ -104,24 +106,34 @@ pub fn parse(input: &DeriveInput) -> syn::Result<Parsed> {
     }
     Ok(Parsed {
         layout,
+        conversions: options.conversions,
         spans,
         errors,
     })
 }
 
-/// `#[gbuffer(budget = 128)]`: the budget and the span of its value.
-fn parse_gbuffer_attributes(
-    input: &DeriveInput,
-    errors: &mut Option<syn::Error>,
-) -> (u32, Option<Span>) {
-    let mut budget = None;
-    let mut seen_attribute = false;
+/// The options of `#[gbuffer(...)]`.
+pub struct Options {
+    pub budget: u32,
+    /// The span of the budget's value, where one is given.
+    pub budget_span: Option<Span>,
+    pub conversions: Conversions,
+}
+
+/// `#[gbuffer(budget = 128, conversions = "exact")]`, both optional.
+fn parse_gbuffer_attributes(input: &DeriveInput, errors: &mut Option<syn::Error>) -> Options {
+    let mut options = Options {
+        budget: DEFAULT_BUDGET,
+        budget_span: None,
+        conversions: Conversions::Exact,
+    };
+    let mut seen = (false, false, false); // the attribute, budget, conversions
     for attribute in input
         .attrs
         .iter()
         .filter(|attribute| attribute.path().is_ident("gbuffer"))
     {
-        if seen_attribute {
+        if seen.0 {
             combine(
                 errors,
                 syn::Error::new_spanned(
@@ -131,36 +143,41 @@ fn parse_gbuffer_attributes(
             );
             continue;
         }
-        seen_attribute = true;
+        seen.0 = true;
         let result = attribute.parse_nested_meta(|meta| {
-            if !meta.path.is_ident("budget") {
-                return Err(meta.error("unknown `gbuffer` option: expected `budget = <bits>`"));
+            if meta.path.is_ident("budget") {
+                let expression: syn::Expr = meta.value()?.parse()?;
+                let value = budget_value(&expression).ok_or_else(|| {
+                    syn::Error::new_spanned(&expression, "budget must be a positive multiple of 32 bits, written as a number, e.g. `budget = 128`")
+                })?;
+                if std::mem::replace(&mut seen.1, true) {
+                    return Err(syn::Error::new_spanned(&expression, "`budget` is given twice"));
+                }
+                options.budget = value;
+                options.budget_span = Some(expression.span());
+                Ok(())
+            } else if meta.path.is_ident("conversions") {
+                let literal: syn::LitStr = meta.value()?.parse()?;
+                options.conversions = match literal.value().as_str() {
+                    "exact" => Conversions::Exact,
+                    "native" => Conversions::Native,
+                    other => {
+                        return Err(syn::Error::new_spanned(&literal, format!("unknown conversions `{other}`: expected \"exact\" (the default: bit-identical everywhere) or \"native\" (WGSL's pack builtins)")))
+                    }
+                };
+                if std::mem::replace(&mut seen.2, true) {
+                    return Err(syn::Error::new_spanned(&literal, "`conversions` is given twice"));
+                }
+                Ok(())
+            } else {
+                Err(meta.error("unknown `gbuffer` option: expected `budget = <bits>` or `conversions = \"exact\" | \"native\"`"))
             }
-            let expression: syn::Expr = meta.value()?.parse()?;
-            let value = budget_value(&expression).ok_or_else(|| {
-                syn::Error::new_spanned(
-                    &expression,
-                    "budget must be a positive multiple of 32 bits, written as a number, \
-                     e.g. `budget = 128`",
-                )
-            })?;
-            if budget.is_some() {
-                return Err(syn::Error::new_spanned(
-                    &expression,
-                    "`budget` is given twice",
-                ));
-            }
-            budget = Some((value, expression.span()));
-            Ok(())
         });
         if let Err(error) = result {
             combine(errors, error);
         }
     }
-    match budget {
-        Some((value, span)) => (value, Some(span)),
-        None => (DEFAULT_BUDGET, None),
-    }
+    options
 }
 
 /// A budget written as an integer literal that fits a u32.

@@ -72,3 +72,18 @@ pub fn built_binary(package: &str, binary: &str) -> std::path::PathBuf {
         .map_or_else(|| workspace().join("target"), std::path::PathBuf::from);
     target.join(profile).join(binary)
 }
+
+/// The formats WGSL has pack builtins for, with `conversions = "native"` (and rgb10_a2, which
+/// has none and stays exact).
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 128, conversions = "native")]
+pub struct NativeFormats {
+    #[pls(rgba8)]
+    pub unorm_8: Vec4,
+    #[pls(rg16)]
+    pub unorm_16: Vec2,
+    #[pls(rg16f)]
+    pub halves: Vec2,
+    #[pls(rgb10_a2)]
+    pub unorm_10_10_10_2: Vec4,
+}

@@ -158,3 +158,85 @@ fn describe(input: &[u32], slots: &[(String, ScalarKind, ChannelEncoding)]) -> V
         })
         .collect()
 }
+
+/// `conversions = "native"`: the adapter's pack builtins against the exact Rust mirror, over
+/// values in the builtins' defined domain (finite, and within f16's range for rg16f). The
+/// deviation found is printed; the contract is at most one code per channel.
+#[test]
+fn native_conversions_deviate_from_the_exact_mirror_by_at_most_one_code() {
+    use tests::NativeFormats;
+    let gpu = Gpu::new();
+    let layout = NativeFormats::layout();
+    let harness = compute_harness(&layout, NativeFormats::WGSL);
+    let scalars = scalars_per_texel(&layout);
+    let words = layout.words();
+    let count = 1 << 18;
+    let mut values = Values::new(77);
+    let inputs: Vec<u32> = (0..count * scalars)
+        .map(|_| {
+            let value = values.float();
+            if value.is_finite() && value.abs() <= 65504.0 {
+                value
+            } else {
+                0.5
+            }
+            .to_bits()
+        })
+        .collect();
+    let outputs = gpu.run_compute(
+        &harness,
+        "harness_main",
+        &inputs,
+        &[count * words, count * scalars],
+        count as u32,
+    );
+    let slots = slots(&layout);
+    let (mut differing, mut worst_code) = (0usize, 0u32);
+    for texel in 0..count {
+        let input = &inputs[texel * scalars..][..scalars];
+        let expected = expected_words(&layout, input);
+        for (word, field) in layout.fields.iter().enumerate() {
+            let got = outputs[0][texel * words + word];
+            for channel in field.format.channels() {
+                let decode = |bits: u32| (bits >> channel.offset) & channel.mask();
+                let (want, have) = (decode(expected[word]), decode(got));
+                // Codes of one sign are ordered like their values (the sign bit is the top bit).
+                let distance = want.abs_diff(have);
+                if distance != 0 {
+                    differing += 1;
+                    worst_code = worst_code.max(distance);
+                }
+                assert!(
+                    distance <= 1,
+                    "{}.{}: input {:?}: exact code {want:#x}, native {have:#x}",
+                    field.name,
+                    channel.name,
+                    describe(input, &slots)
+                );
+            }
+        }
+    }
+    eprintln!(
+        "native conversions on {}: {differing} of {} channel codes differ from the exact mirror, by at most {worst_code}",
+        gpu.describe(),
+        count * slots.len()
+    );
+}
+
+#[test]
+fn native_conversions_translate_everywhere_but_webgl2() {
+    use shaderlib::GBufferLayout;
+    use tests::NativeFormats;
+    let shader = tests::harness::fragment_harness(&NativeFormats::layout(), NativeFormats::WGSL);
+    let validated = validator::validate_wgsl(&shader).unwrap_or_else(|problem| panic!("{problem}"));
+    for backend in [
+        validator::Backend::SpirV,
+        validator::Backend::Msl,
+        validator::Backend::Hlsl,
+    ] {
+        validator::translate(&validated, backend).unwrap_or_else(|problem| panic!("{problem}"));
+    }
+    // GLSL ES 3.00 lacks packUnorm4x8 (ES 3.10 has it): the portability the exact path keeps.
+    let problem = validator::translate(&validated, validator::Backend::GlslEs).unwrap_err();
+    assert!(problem.message.contains("packUnorm4x8"), "{problem}");
+}

@@ -3,7 +3,7 @@
 //! (or `cargo insta review`).
 
 use shaderlib::{seed_layouts, GBufferLayout};
-use tests::AllFormats;
+use tests::{AllFormats, NativeFormats};
 
 #[test]
 fn seed_layout_wgsl() {
@@ -15,4 +15,9 @@ fn seed_layout_wgsl() {
 #[test]
 fn all_formats_wgsl() {
     insta::assert_snapshot!("all_formats", AllFormats::WGSL);
+}
+
+#[test]
+fn native_conversions_wgsl() {
+    insta::assert_snapshot!("native_formats", NativeFormats::WGSL);
 }

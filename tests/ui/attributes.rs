@@ -2,8 +2,15 @@ use shaderlib::glam::Vec4;
 use shaderlib::GBufferLayout;
 
 #[derive(GBufferLayout)]
-#[gbuffer(budget = 128, conversions = "native")]
+#[gbuffer(budget = 128, precision = 8)]
 struct UnknownOption {
+    #[pls(r32f)]
+    depth: f32,
+}
+
+#[derive(GBufferLayout)]
+#[gbuffer(conversions = "fast")]
+struct UnknownConversions {
     #[pls(r32f)]
     depth: f32,
 }

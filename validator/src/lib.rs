@@ -90,19 +90,22 @@ pub fn validate_wgsl(source: &str) -> Result<Validated, Problem> {
         message: error.message().to_string(),
         detail: error.emit_to_string(source),
     })?;
-    let info = Validator::new(
-        ValidationFlags::all(),
-        Capabilities::default() | Capabilities::SHADER_FLOAT16,
-    )
-    .validate(&module)
-    .map_err(|error| Problem {
-        stage: Stage::Validate,
-        location: error
-            .location(source)
-            .map(|at| (at.line_number, at.line_position)),
-        message: error_chain(error.as_inner()),
-        detail: error.emit_to_string(source),
-    })?;
+    // f16 arithmetic (`enable f16`) and the f16 pack builtins are optional in WebGPU (wgpu's
+    // SHADER_F16 feature and SHADER_F16_IN_F32 downlevel flag): accepted here, and named by
+    // the shaders that need them.
+    let capabilities = Capabilities::default()
+        | Capabilities::SHADER_FLOAT16
+        | Capabilities::SHADER_FLOAT16_IN_FLOAT32;
+    let info = Validator::new(ValidationFlags::all(), capabilities)
+        .validate(&module)
+        .map_err(|error| Problem {
+            stage: Stage::Validate,
+            location: error
+                .location(source)
+                .map(|at| (at.line_number, at.line_position)),
+            message: error_chain(error.as_inner()),
+            detail: error.emit_to_string(source),
+        })?;
     Ok(Validated { module, info })
 }
 
