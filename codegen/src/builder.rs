@@ -109,8 +109,10 @@ impl Builder {
         let mut paths = Vec::new();
         for layout_path in &self.layouts {
             println!("cargo:rerun-if-changed={}", layout_path.display());
-            let layout = read_layout_file(layout_path).map_err(BuildError::Layout)?;
-            for file in generate(&layout, &self.outputs).map_err(BuildError::Translation)? {
+            let file = read_layout_file(layout_path).map_err(BuildError::Layout)?;
+            for file in generate(&file.layout, file.conversions, &self.outputs)
+                .map_err(BuildError::Translation)?
+            {
                 let path = folder.join(&file.name);
                 write_if_changed(&path, &file.contents).map_err(|error| BuildError::Write {
                     path: path.clone(),

@@ -4,6 +4,7 @@
 //! ```toml
 //! name = "MobileMetallic"   # the struct's name, UpperCamelCase
 //! budget = 128              # bits; optional, 128 by default
+//! conversions = "exact"     # optional; "native" uses WGSL's pack builtins where it can
 //!
 //! [[fields]]
 //! name = "light_accumulation"
@@ -26,6 +27,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::emit::wgsl::Conversions;
 use crate::format::Format;
 use crate::layout::{Field, FieldType, Layout, Subject, DEFAULT_BUDGET};
 
@@ -34,6 +36,7 @@ use crate::layout::{Field, FieldType, Layout, Subject, DEFAULT_BUDGET};
 struct LayoutEntry {
     name: Spanned<String>,
     budget: Option<Spanned<u32>>,
+    conversions: Option<Spanned<String>>,
     fields: Spanned<Vec<Spanned<FieldEntry>>>,
 }
 
@@ -45,6 +48,14 @@ struct FieldEntry {
     #[serde(rename = "type")]
     ty: Option<Spanned<String>>,
     components: Option<Spanned<i64>>,
+}
+
+/// A layout file's contents: the layout, and how its WGSL converts values.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LayoutFile {
+    pub layout: Layout,
+    /// `conversions = "exact"` (the default) or `"native"`, as in `#[gbuffer(...)]`.
+    pub conversions: Conversions,
 }
 
 /// A problem in a layout file, at a position in it.
@@ -139,7 +150,7 @@ impl fmt::Display for LayoutFileError {
 impl std::error::Error for LayoutFileError {}
 
 /// Reads and checks a layout file.
-pub fn read_layout_file(path: &Path) -> Result<Layout, LayoutFileError> {
+pub fn read_layout_file(path: &Path) -> Result<LayoutFile, LayoutFileError> {
     let source = std::fs::read_to_string(path).map_err(|error| LayoutFileError::Io {
         path: path.to_path_buf(),
         error,
@@ -148,7 +159,7 @@ pub fn read_layout_file(path: &Path) -> Result<Layout, LayoutFileError> {
 }
 
 /// Parses and checks layout-file text; `path` names it in diagnostics.
-pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnostic>> {
+pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDiagnostic>> {
     let entry: LayoutEntry = toml::from_str(source).map_err(|error| {
         let span = error.span().unwrap_or(0..0);
         vec![FileDiagnostic::at(
@@ -166,6 +177,19 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnos
     })?;
 
     let mut diagnostics = Vec::new();
+    let conversions = match entry
+        .conversions
+        .as_ref()
+        .map(|value| (value.get_ref().as_str(), value.span()))
+    {
+        None | Some(("exact", _)) => Conversions::Exact,
+        Some(("native", _)) => Conversions::Native,
+        Some((other, span)) => {
+            let message = format!("unknown conversions `{other}`: expected \"exact\" (the default: bit-identical everywhere) or \"native\" (WGSL's pack builtins)");
+            diagnostics.push(FileDiagnostic::at(path, source, span, message));
+            Conversions::Exact
+        }
+    };
     let mut layout = Layout {
         name: entry.name.get_ref().clone(),
         budget: entry
@@ -285,7 +309,10 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<Layout, Vec<FileDiagnos
     }
     diagnostics.sort_by_key(|diagnostic| (diagnostic.line, diagnostic.column));
     if diagnostics.is_empty() {
-        Ok(layout)
+        Ok(LayoutFile {
+            layout,
+            conversions,
+        })
     } else {
         Err(diagnostics)
     }
@@ -322,12 +349,24 @@ components = 4
 
     #[test]
     fn reads_a_layout() {
-        let layout = parse_layout(MOBILE_METALLIC, Path::new("mobile.toml")).unwrap();
+        let layout = parse_layout(MOBILE_METALLIC, Path::new("mobile.toml"))
+            .unwrap()
+            .layout;
         assert_eq!((layout.bits(), layout.used_bits()), (128, 126));
         assert_eq!(
             layout.fields[0].ty,
             FieldType::from_rust_name("Vec3").unwrap()
         );
+    }
+
+    #[test]
+    fn native_conversions_reach_the_wgsl() {
+        let source =
+            MOBILE_METALLIC.replace("budget = 128", "budget = 128\nconversions = \"native\"");
+        let file = parse_layout(&source, Path::new("mobile.toml")).unwrap();
+        assert_eq!(file.conversions, Conversions::Native);
+        assert!(crate::emit::wgsl::emit_with(&file.layout, file.conversions)
+            .contains("pack4x8unorm(c)"));
     }
 
     #[test]

@@ -94,8 +94,9 @@ fn main() -> ExitCode {
     if let Some(status) = status {
         return ExitCode::from(status);
     }
-    for layout in &layouts {
-        let files = match generate(layout, &outputs) {
+    for file in &layouts {
+        let layout = &file.layout;
+        let files = match generate(layout, file.conversions, &outputs) {
             Ok(files) => files,
             Err(error) => {
                 eprintln!("codegen: {}: {error}", layout.name);

@@ -6,6 +6,7 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 use crate::emit::glsl::{self, PlsBlock, TranslationError};
+use crate::emit::wgsl::Conversions;
 use crate::emit::{rust, wgsl};
 use crate::layout::Layout;
 use crate::report::Report;
@@ -45,9 +46,11 @@ pub struct GeneratedFile {
     pub contents: String,
 }
 
-/// The files of the chosen outputs for a checked layout.
+/// The files of the chosen outputs for a checked layout. The GLSL functions are translated
+/// from the exact WGSL whatever `conversions` says (GLSL ES lacks some of the builtins).
 pub fn generate(
     layout: &Layout,
+    conversions: Conversions,
     outputs: &[Output],
 ) -> Result<Vec<GeneratedFile>, TranslationError> {
     let snake = layout.snake_name();
@@ -62,7 +65,10 @@ pub fn generate(
         .filter(|output| outputs.contains(output))
     {
         match output {
-            Output::Wgsl => add(format!("{snake}.wgsl"), wgsl::emit(layout) + "\n"),
+            Output::Wgsl => add(
+                format!("{snake}.wgsl"),
+                wgsl::emit_with(layout, conversions) + "\n",
+            ),
             Output::GlslPixelLocalStorage => {
                 for block in PlsBlock::ALL {
                     add(
@@ -80,7 +86,10 @@ pub fn generate(
                 glsl::vulkan_subpass_input(layout, 0)?,
             ),
             Output::Rust => {
-                add(format!("{snake}.wgsl"), wgsl::emit(layout) + "\n");
+                add(
+                    format!("{snake}.wgsl"),
+                    wgsl::emit_with(layout, conversions) + "\n",
+                );
                 add(
                     format!("{snake}.rs"),
                     rust::emit_source(layout, &format!("{snake}.wgsl")),

@@ -87,9 +87,9 @@ fn output_switches_choose_what_is_written() {
 }
 
 /// Each bad layout file and the start of the error it must give, after `file:line:col: error: `.
-const BAD_LAYOUTS: [(&str, &str, &str); 21] = [
+const BAD_LAYOUTS: [(&str, &str, &str); 22] = [
     ("unclosed_string", "1:15", "invalid basic string"),
-    ("unknown_key", "2:1", "unknown key `budjet`, expected one of `name`, `budget`, `fields`"),
+    ("unknown_key", "2:1", "unknown key `budjet`, expected one of `name`, `budget`, `conversions`, `fields`"),
     ("unknown_field_key", "5:1", "unknown key `formt`"),
     ("missing_name", "1:1", "missing key `name`"),
     ("missing_format", "3:1", "missing key `format`"),
@@ -109,6 +109,7 @@ const BAD_LAYOUTS: [(&str, &str, &str); 21] = [
     ("invalid_layout_name", "1:8", "layout name `2d` must be an ASCII identifier"),
     ("unknown_type", "6:8", "unknown field type `Vec5`"),
     ("name_not_a_string", "1:8", "invalid type: integer `5`, expected a string"),
+    ("unknown_conversions", "2:15", "unknown conversions `fast`: expected \"exact\""),
 ];
 
 #[test]

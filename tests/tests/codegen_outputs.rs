@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use codegen::emit::glsl::PlsBlock;
+use codegen::emit::wgsl::Conversions;
 use codegen::layout_file::read_layout_file;
 use codegen::output::{generate, Output};
 use shaderlib::packing::{Format, Layout};
@@ -27,7 +28,9 @@ fn layout_files() -> Vec<(PathBuf, Layout)> {
         .map(|path| {
             (
                 path.clone(),
-                read_layout_file(&path).unwrap_or_else(|error| panic!("{error}")),
+                read_layout_file(&path)
+                    .unwrap_or_else(|error| panic!("{error}"))
+                    .layout,
             )
         })
         .collect()
@@ -43,7 +46,7 @@ fn layout_files_describe_the_derived_seed_layouts_and_give_the_same_wgsl() {
             .find(|(seed, _)| seed.name == layout.name)
             .unwrap_or_else(|| panic!("{} is no seed", path.display()));
         assert_eq!(&layout, seed);
-        let files = generate(&layout, &[Output::Wgsl]).unwrap();
+        let files = generate(&layout, Conversions::Exact, &[Output::Wgsl]).unwrap();
         assert_eq!(
             files[0].contents,
             format!("{wgsl}\n"),
@@ -55,7 +58,7 @@ fn layout_files_describe_the_derived_seed_layouts_and_give_the_same_wgsl() {
 #[test]
 fn every_output_matches_its_snapshot() {
     for (_, layout) in layout_files() {
-        for file in generate(&layout, &Output::ALL).unwrap() {
+        for file in generate(&layout, Conversions::Exact, &Output::ALL).unwrap() {
             insta::assert_snapshot!(file.name.clone(), file.contents);
         }
     }
@@ -112,7 +115,7 @@ fn spirv_val(words: &[u8]) -> Result<(), String> {
 }
 
 fn output(layout: &Layout, which: Output, suffix: &str) -> String {
-    generate(layout, &[which])
+    generate(layout, Conversions::Exact, &[which])
         .unwrap()
         .into_iter()
         .find(|file| file.name.ends_with(suffix))

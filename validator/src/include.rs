@@ -204,8 +204,8 @@ impl Resolver {
                 self.included_files.push(key);
                 match included.extension().and_then(|extension| extension.to_str()) {
                     Some("toml") => {
-                        let layout = read_layout_file(&included).map_err(|problem| error(format!("in included layout: {problem}")))?;
-                        let wgsl = codegen::emit::wgsl::emit(&layout);
+                        let file = read_layout_file(&included).map_err(|problem| error(format!("in included layout: {problem}")))?;
+                        let wgsl = codegen::emit::wgsl::emit_with(&file.layout, file.conversions);
                         self.resolved.push(&format!("<generated from {}>", included.display()), 1, &wgsl);
                     }
                     Some("wgsl") => {
