@@ -1,0 +1,189 @@
+//! The G-buffers the renderer can use: any seed layout, packed into `Rgba32Uint` targets by
+//! the generated WGSL, or the classic unpacked set of native targets a user writes without
+//! this library. Each packed layout brings the WGSL that stores a surface in its fields and
+//! reads the shading inputs back, by the conventions of its source.
+
+use shaderlib::packing::Layout;
+use shaderlib::seed_layouts::{
+    ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
+};
+use shaderlib::GBufferLayout;
+
+/// Light accumulation stored in unorm channels (rgb10_a2) is scaled by 1 / this.
+pub const LIGHT_SCALE: f32 = 4.0;
+
+/// Where the G-buffer pass writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GBuffer {
+    /// A seed layout, packed into `Rgba32Uint` targets.
+    Packed(SeedLayout),
+    /// Separate native targets: Rgba16Float light, Rgba8Unorm normal and roughness,
+    /// Rgba8UnormSrgb base colour and metallic.
+    Classic,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SeedLayout {
+    MobileMetallic,
+    SpecularWorkflow,
+    FutureMetallic,
+    FutureSpecular,
+    ArmTileBlock,
+}
+
+impl SeedLayout {
+    pub const ALL: [SeedLayout; 5] = [
+        SeedLayout::MobileMetallic,
+        SeedLayout::SpecularWorkflow,
+        SeedLayout::FutureMetallic,
+        SeedLayout::FutureSpecular,
+        SeedLayout::ArmTileBlock,
+    ];
+
+    /// The command-line name, e.g. `mobile-metallic`.
+    pub fn flag(self) -> &'static str {
+        match self {
+            SeedLayout::MobileMetallic => "mobile-metallic",
+            SeedLayout::SpecularWorkflow => "specular-workflow",
+            SeedLayout::FutureMetallic => "future-metallic",
+            SeedLayout::FutureSpecular => "future-specular",
+            SeedLayout::ArmTileBlock => "arm-tile-block",
+        }
+    }
+
+    pub fn layout(self) -> Layout {
+        match self {
+            SeedLayout::MobileMetallic => MobileMetallic::layout(),
+            SeedLayout::SpecularWorkflow => SpecularWorkflow::layout(),
+            SeedLayout::FutureMetallic => FutureMetallic::layout(),
+            SeedLayout::FutureSpecular => FutureSpecular::layout(),
+            SeedLayout::ArmTileBlock => ArmTileBlock::layout(),
+        }
+    }
+
+    pub fn wgsl(self) -> &'static str {
+        match self {
+            SeedLayout::MobileMetallic => MobileMetallic::WGSL,
+            SeedLayout::SpecularWorkflow => SpecularWorkflow::WGSL,
+            SeedLayout::FutureMetallic => FutureMetallic::WGSL,
+            SeedLayout::FutureSpecular => FutureSpecular::WGSL,
+            SeedLayout::ArmTileBlock => ArmTileBlock::WGSL,
+        }
+    }
+
+    /// `fn encode_texel(surface: Surface) -> <Name>`: where each surface value goes. Colours in
+    /// 8-bit channels are stored in pseudo-gamma (square root), as the seeds do; the 256-bit
+    /// layouts store them linear in floats; normals in unsigned formats are mapped to [0, 1].
+    pub fn encode_wgsl(self) -> &'static str {
+        match self {
+            SeedLayout::MobileMetallic => "fn encode_texel(s: Surface) -> MobileMetallic {
+    return MobileMetallic(scale_hdr_to_unit(s.light, LIGHT_SCALE), s.distance, vec4<f32>(normal_to_unorm(s.normal), s.roughness), vec4<f32>(linear_to_pseudo_gamma(s.base_colour), s.metallic));
+}",
+            SeedLayout::SpecularWorkflow => "fn encode_texel(s: Surface) -> SpecularWorkflow {
+    let colours = metallic_workflow(s.base_colour, s.metallic, DIELECTRIC_F0);
+    return SpecularWorkflow(scale_hdr_to_unit(s.light, LIGHT_SCALE), s.distance, vec4<f32>(normal_to_unorm(s.normal), s.roughness), linear_to_pseudo_gamma(colours.diffuse), linear_to_pseudo_gamma(colours.f0));
+}",
+            SeedLayout::FutureMetallic => "fn encode_texel(s: Surface) -> FutureMetallic {
+    return FutureMetallic(s.position.x, s.position.y, s.position.z, s.light.rg, vec2<f32>(s.light.b, s.normal.x), s.normal.yz, vec2<f32>(s.roughness, s.metallic), s.base_colour);
+}",
+            SeedLayout::FutureSpecular => "fn encode_texel(s: Surface) -> FutureSpecular {
+    let colours = metallic_workflow(s.base_colour, s.metallic, DIELECTRIC_F0);
+    return FutureSpecular(s.position.x, s.position.y, s.position.z, s.light.rg, vec2<f32>(s.light.b, s.roughness), normal_to_unorm(s.normal), colours.diffuse, colours.f0);
+}",
+            SeedLayout::ArmTileBlock => "fn encode_texel(s: Surface) -> ArmTileBlock {
+    return ArmTileBlock(s.light, linear_to_pseudo_gamma(s.base_colour), normal_to_unorm(s.normal), vec2<f32>(s.metallic, s.roughness));
+}",
+        }
+    }
+
+    /// `fn decode_texel(t: <Name>) -> Shading`: the inverse of `encode_texel`.
+    pub fn decode_wgsl(self) -> &'static str {
+        match self {
+            SeedLayout::MobileMetallic => "fn decode_texel(t: MobileMetallic) -> Shading {
+    let colours = metallic_workflow(pseudo_gamma_to_linear(t.albedo_metallic.rgb), t.albedo_metallic.a, DIELECTRIC_F0);
+    return Shading(unorm_to_normal(t.normals_roughness.xyz), t.normals_roughness.w, colours.diffuse, colours.f0, scale_unit_to_hdr(t.light_accumulation, LIGHT_SCALE));
+}",
+            SeedLayout::SpecularWorkflow => "fn decode_texel(t: SpecularWorkflow) -> Shading {
+    return Shading(unorm_to_normal(t.normals_roughness.xyz), t.normals_roughness.w, pseudo_gamma_to_linear(t.base_colour), pseudo_gamma_to_linear(t.specular_colour), scale_unit_to_hdr(t.light_accumulation, LIGHT_SCALE));
+}",
+            SeedLayout::FutureMetallic => "fn decode_texel(t: FutureMetallic) -> Shading {
+    let colours = metallic_workflow(t.albedo_or_reflectance, t.roughness_metallic.y, DIELECTRIC_F0);
+    let normal = normalize(vec3<f32>(t.light_accumulation_b_normal_x.y, t.normal_yz));
+    return Shading(normal, t.roughness_metallic.x, colours.diffuse, colours.f0, vec3<f32>(t.light_accumulation_rg, t.light_accumulation_b_normal_x.x));
+}",
+            SeedLayout::FutureSpecular => "fn decode_texel(t: FutureSpecular) -> Shading {
+    return Shading(unorm_to_normal(t.normal), t.light_accumulation_b_roughness.y, t.albedo, t.reflectance, vec3<f32>(t.light_accumulation_rg, t.light_accumulation_b_roughness.x));
+}",
+            SeedLayout::ArmTileBlock => "fn decode_texel(t: ArmTileBlock) -> Shading {
+    let colours = metallic_workflow(pseudo_gamma_to_linear(t.albedo), t.metallic_roughness.x, DIELECTRIC_F0);
+    return Shading(unorm_to_normal(t.normal), t.metallic_roughness.y, colours.diffuse, colours.f0, t.light);
+}",
+        }
+    }
+}
+
+impl GBuffer {
+    /// The command-line name: a seed layout's, or `classic`.
+    pub fn flag(self) -> &'static str {
+        match self {
+            GBuffer::Packed(layout) => layout.flag(),
+            GBuffer::Classic => "classic",
+        }
+    }
+
+    pub fn from_flag(flag: &str) -> Option<GBuffer> {
+        if flag == "classic" {
+            return Some(GBuffer::Classic);
+        }
+        SeedLayout::ALL
+            .into_iter()
+            .find(|layout| layout.flag() == flag)
+            .map(GBuffer::Packed)
+    }
+
+    /// The render targets of the G-buffer pass.
+    pub fn target_formats(self) -> Vec<wgpu::TextureFormat> {
+        match self {
+            GBuffer::Packed(layout) => {
+                vec![wgpu::TextureFormat::Rgba32Uint; layout.layout().targets()]
+            }
+            GBuffer::Classic => vec![
+                wgpu::TextureFormat::Rgba16Float,
+                wgpu::TextureFormat::Rgba8Unorm,
+                wgpu::TextureFormat::Rgba8UnormSrgb,
+            ],
+        }
+    }
+
+    /// Bytes per pixel the G-buffer occupies in memory.
+    pub fn bytes_per_pixel(self) -> u32 {
+        self.target_formats()
+            .iter()
+            .map(|format| format.block_copy_size(None).unwrap_or(0))
+            .sum()
+    }
+}
+
+/// The shared WGSL structs of the G-buffer and lighting passes.
+pub const SURFACE_WGSL: &str = "
+// What the G-buffer pass stores of a surface point.
+struct Surface {
+    normal: vec3<f32>,
+    roughness: f32,
+    base_colour: vec3<f32>,
+    metallic: f32,
+    // The static diffuse light it receives, times its diffuse colour (light accumulation).
+    light: vec3<f32>,
+    distance: f32,
+    position: vec3<f32>,
+}
+
+// What the lighting pass reads back.
+struct Shading {
+    normal: vec3<f32>,
+    roughness: f32,
+    diffuse: vec3<f32>,
+    f0: vec3<f32>,
+    light: vec3<f32>,
+}
+";

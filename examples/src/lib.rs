@@ -1,0 +1,8 @@
+//! The reference deferred renderer: a packed G-buffer pass, full PBS lighting and tone mapping
+//! on wgpu, beside a CPU reference renderer of the same analytic scene.
+
+pub mod gbuffer;
+pub mod image;
+pub mod reference;
+pub mod renderer;
+pub mod scene;

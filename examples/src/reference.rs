@@ -1,0 +1,134 @@
+//! The CPU reference renderer: the same scene, shading and tone mapping in f64, without
+//! packing, without texture filtering, with every integral evaluated at the pixel.
+
+use shaderlib::glam::DVec3;
+use shaderlib::shading::reference as r;
+
+use crate::renderer::{Frame, EXPOSURE, PREFILTER_SAMPLES};
+use crate::scene::{self, sky, trace};
+
+/// The GGX lobe of `roughness` around `normal` (n = v = r) integrated over the sky with the
+/// renderer's estimator, at the exact roughness and direction (the GPU reads it from mips).
+pub fn prefiltered_sky(normal: DVec3, roughness: f64) -> DVec3 {
+    if roughness == 0.0 {
+        return sky(normal);
+    }
+    let up = if normal.z.abs() < 0.999 {
+        DVec3::Z
+    } else {
+        DVec3::X
+    };
+    let tangent = up.cross(normal).normalize();
+    let bitangent = normal.cross(tangent);
+    let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
+    for index in 0..PREFILTER_SAMPLES {
+        let local = r::environment::importance_sample_ggx(
+            r::environment::hammersley(index, PREFILTER_SAMPLES),
+            roughness,
+        );
+        let half_vector = tangent * local.x + bitangent * local.y + normal * local.z;
+        let light = 2.0 * normal.dot(half_vector) * half_vector - normal;
+        let n_dot_l = normal.dot(light);
+        if n_dot_l > 0.0 {
+            sum += sky(light) * n_dot_l;
+            weight += n_dot_l;
+        }
+    }
+    sum / weight
+}
+
+/// The linear radiance of one pixel.
+pub fn radiance(x: u32, y: u32, width: u32, height: u32) -> DVec3 {
+    let (origin, direction) = scene::camera_ray(
+        f64::from(x),
+        f64::from(y),
+        f64::from(width),
+        f64::from(height),
+    );
+    let Some(surface) = trace(origin, direction) else {
+        return sky(direction);
+    };
+    let colours = r::material::metallic_workflow(
+        surface.base_colour,
+        surface.metallic,
+        r::constants::DIELECTRIC_F0,
+    );
+    let light = surface.irradiance * colours.diffuse;
+    let view = -direction;
+    let normal = surface.normal;
+    let n_dot_v = normal.dot(view).clamp(r::constants::MIN_N_DOT_V, 1.0);
+    let reflected = 2.0 * normal.dot(view) * normal - view;
+    let env_brdf =
+        r::environment::integrate_env_brdf(surface.roughness, n_dot_v, PREFILTER_SAMPLES);
+    let sun_direction = DVec3::from_array(scene::SUN_DIRECTION).normalize();
+    let sun = r::shading::shade_directional(
+        normal,
+        view,
+        sun_direction,
+        DVec3::from_array(scene::SUN_COLOUR),
+        colours.diffuse,
+        colours.f0,
+        surface.roughness,
+        env_brdf,
+    );
+    let ibl = r::shading::shade_ibl(
+        light,
+        colours.f0,
+        DVec3::ONE,
+        prefiltered_sky(reflected, surface.roughness),
+        env_brdf,
+    );
+    sun + ibl
+}
+
+/// Renders the frame on the CPU (rows shared between threads), calling `progress` with the
+/// fraction done.
+pub fn render(width: u32, height: u32, progress: &(dyn Fn(f64) + Sync)) -> Frame {
+    let threads = std::thread::available_parallelism().map_or(2, |count| count.get()) as u32;
+    let done = std::sync::atomic::AtomicU32::new(0);
+    let mut rows: Vec<(u32, Vec<[u8; 4]>)> = std::thread::scope(|scope| {
+        let workers: Vec<_> = (0..threads)
+            .map(|thread| {
+                let done = &done;
+                scope.spawn(move || {
+                    (thread..height)
+                        .step_by(threads as usize)
+                        .map(|y| {
+                            let row = (0..width)
+                                .map(|x| display(radiance(x, y, width, height)))
+                                .collect();
+                            let finished =
+                                done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                            if finished % (height / 10).max(1) == 0 {
+                                progress(f64::from(finished) / f64::from(height));
+                            }
+                            (y, row)
+                        })
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        workers
+            .into_iter()
+            .flat_map(|worker| worker.join().expect("a reference thread panicked"))
+            .collect()
+    });
+    rows.sort_by_key(|(y, _)| *y);
+    Frame {
+        width,
+        height,
+        pixels: rows.into_iter().flat_map(|(_, row)| row).collect(),
+    }
+}
+
+/// Exposure, the ACES fit, sRGB, 8 bits: as the tone-mapping pass.
+pub fn display(radiance: DVec3) -> [u8; 4] {
+    let encoded = r::colour::linear_to_srgb(r::tonemap::tonemap_aces_fitted(radiance * EXPOSURE));
+    let channel = |value: f64| (value.clamp(0.0, 1.0) * 255.0).round() as u8;
+    [
+        channel(encoded.x),
+        channel(encoded.y),
+        channel(encoded.z),
+        255,
+    ]
+}
