@@ -1,0 +1,88 @@
+//! The reference renderer on the adapter at hand (in CI, Mesa's lavapipe or llvmpipe): a small
+//! frame renders, is not blank, matches the CPU reference, and its PNG is written.
+
+use examples::gbuffer::{GBuffer, SeedLayout};
+use examples::image::{compare, is_blank, write_png};
+use examples::reference;
+use examples::renderer::{IblForm, Options, Renderer, SunForm};
+
+const WIDTH: u32 = 160;
+const HEIGHT: u32 = 90;
+
+fn renderer() -> Renderer {
+    Renderer::new(&|message| eprintln!("{message}")).unwrap_or_else(|error| panic!("{error}"))
+}
+
+fn accurate(gbuffer: GBuffer) -> Options {
+    Options {
+        gbuffer,
+        sun: SunForm::Ggx,
+        ibl: IblForm::Lut,
+        width: WIDTH,
+        height: HEIGHT,
+    }
+}
+
+#[test]
+fn every_gbuffer_renders_a_frame_that_matches_the_cpu_reference() {
+    let renderer = renderer();
+    let reference = reference::render(WIDTH, HEIGHT, &|_| {});
+    assert!(!is_blank(&reference));
+    let gbuffers = SeedLayout::ALL
+        .into_iter()
+        .map(GBuffer::Packed)
+        .chain([GBuffer::Classic]);
+    for gbuffer in gbuffers {
+        let frame = renderer
+            .render(&accurate(gbuffer))
+            .unwrap_or_else(|error| panic!("{error}"));
+        assert!(!is_blank(&frame), "{}: the frame is blank", gbuffer.flag());
+        let comparison = compare(&frame, &reference);
+        eprintln!(
+            "{}: PSNR {:.2} dB, largest error {}",
+            gbuffer.flag(),
+            comparison.psnr,
+            comparison.max_error
+        );
+        assert!(
+            comparison.psnr >= 35.0,
+            "{}: PSNR {:.2} dB against the CPU reference",
+            gbuffer.flag(),
+            comparison.psnr
+        );
+    }
+}
+
+#[test]
+fn the_mobile_forms_render_close_to_the_accurate_reference() {
+    let renderer = renderer();
+    let options = Options {
+        sun: SunForm::Approx,
+        ibl: IblForm::Approx,
+        ..accurate(GBuffer::Packed(SeedLayout::MobileMetallic))
+    };
+    let frame = renderer
+        .render(&options)
+        .unwrap_or_else(|error| panic!("{error}"));
+    let comparison = compare(&frame, &reference::render(WIDTH, HEIGHT, &|_| {}));
+    eprintln!("mobile forms: PSNR {:.2} dB", comparison.psnr);
+    // The approximations cost accuracy (D_Approx's lobe, EnvBRDFApprox at grazing angles).
+    assert!(
+        comparison.psnr >= 28.0 && comparison.psnr < 60.0,
+        "PSNR {:.2} dB",
+        comparison.psnr
+    );
+}
+
+#[test]
+fn the_png_is_written() {
+    let frame = renderer()
+        .render(&accurate(GBuffer::Packed(SeedLayout::ArmTileBlock)))
+        .unwrap_or_else(|error| panic!("{error}"));
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("frame.png");
+    write_png(&path, &frame).unwrap();
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()));
+    let reader = decoder.read_info().unwrap();
+    assert_eq!((reader.info().width, reader.info().height), (WIDTH, HEIGHT));
+}
