@@ -1,10 +1,13 @@
 //! The renderer's cost per G-buffer configuration: bytes per pixel, external bandwidth per
 //! frame in the bandwidth units of Arm's tile-memory article (1 BU = width x height x 4 bytes
-//! read or written), and the measured GPU frame time (wall clock around a synchronised submit,
-//! median of 20 frames) at 1280x720 and 1920x1080, packed against classic, on the adapter at
-//! hand. Run with `cargo bench -p examples --bench deferred`.
+//! read or written), and the measured GPU frame time (timestamp queries where the adapter has
+//! them, else wall clock around a synchronised submit; median of 20 frames) at 1280x720 and
+//! 1920x1080, packed against classic, on the adapter at hand; then the PSNR and largest error
+//! of every configuration (G-buffer, sun and IBL forms) against the CPU reference. Run with `cargo bench -p examples --bench deferred`.
 
 use examples::gbuffer::{GBuffer, SeedLayout};
+use examples::image::compare;
+use examples::reference;
 use examples::renderer::{IblForm, Options, Renderer, SunForm};
 
 const FRAMES: usize = 20;
@@ -26,8 +29,13 @@ fn main() {
             std::process::exit(1);
         }
     };
+    let clock = if renderer.has_timestamps() {
+        "timestamp queries"
+    } else {
+        "wall clock around a synchronised submit"
+    };
     println!(
-        "adapter: {} ({:?})",
+        "adapter: {} ({:?}); frame times from {clock}, median of {FRAMES}",
         renderer.adapter.name, renderer.adapter.backend
     );
     println!(
@@ -76,5 +84,48 @@ fn main() {
             times[0],
             times[1]
         );
+    }
+
+    // Every configuration against the CPU reference, at a size the reference renders quickly.
+    let (width, height) = (320, 180);
+    let reference = reference::render(width, height, &|_| {});
+    println!("\nagainst the CPU reference at {width}x{height}:");
+    println!(
+        "{:<18} {:<7} {:<7} {:>9} {:>13}",
+        "G-buffer", "sun", "IBL", "PSNR dB", "largest error"
+    );
+    for gbuffer in SeedLayout::ALL
+        .into_iter()
+        .map(GBuffer::Packed)
+        .chain([GBuffer::Classic])
+    {
+        for (sun, ibl) in [
+            (SunForm::Ggx, IblForm::Lut),
+            (SunForm::Ggx, IblForm::Approx),
+            (SunForm::Approx, IblForm::Lut),
+            (SunForm::Approx, IblForm::Approx),
+        ] {
+            let options = Options {
+                gbuffer,
+                sun,
+                ibl,
+                width,
+                height,
+            };
+            match renderer.render(&options) {
+                Ok(frame) => {
+                    let comparison = compare(&frame, &reference);
+                    println!(
+                        "{:<18} {:<7} {:<7} {:>9.2} {:>13}",
+                        gbuffer.flag(),
+                        format!("{sun:?}"),
+                        format!("{ibl:?}"),
+                        comparison.psnr,
+                        comparison.max_error
+                    );
+                }
+                Err(error) => eprintln!("{}: {error}", gbuffer.flag()),
+            }
+        }
     }
 }

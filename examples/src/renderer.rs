@@ -72,6 +72,60 @@ pub struct Renderer {
     lut: wgpu::TextureView,
     light_map: wgpu::TextureView,
     sampler: wgpu::Sampler,
+    timestamps: Option<Timestamps>,
+}
+
+/// Two timestamp queries around a frame and the buffers that read them back.
+struct Timestamps {
+    query_set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    read_back: wgpu::Buffer,
+}
+
+impl Timestamps {
+    fn new(device: &wgpu::Device) -> Self {
+        let buffer = |usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("timestamps"),
+                size: 16,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        Timestamps {
+            query_set: device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("frame"),
+                ty: wgpu::QueryType::Timestamp,
+                count: 2,
+            }),
+            resolve: buffer(wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC),
+            read_back: buffer(wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ),
+        }
+    }
+
+    /// The seconds between the two timestamps of the last frame.
+    fn read(&self, renderer: &Renderer) -> Result<f64, String> {
+        let mut encoder = renderer.device.create_command_encoder(&Default::default());
+        encoder.resolve_query_set(&self.query_set, 0..2, &self.resolve, 0);
+        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.read_back, 0, 16);
+        renderer.queue.submit([encoder.finish()]);
+        let slice = self.read_back.slice(..);
+        slice.map_async(wgpu::MapMode::Read, |_| {});
+        renderer
+            .device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|error| error.to_string())?;
+        let ticks: [u64; 2] = {
+            let view = slice
+                .get_mapped_range()
+                .map_err(|error| error.to_string())?;
+            bytemuck::pod_read_unaligned(&view[..16])
+        };
+        self.read_back.unmap();
+        Ok(ticks[1].saturating_sub(ticks[0]) as f64
+            * f64::from(renderer.queue.get_timestamp_period())
+            * 1e-9)
+    }
 }
 
 /// WGSL of the full-screen triangle every pass draws.
@@ -107,8 +161,10 @@ impl Renderer {
         let adapter = pollster::block_on(instance.request_adapter(&options))
             .map_err(|error| format!("no GPU adapter ({error}); on a machine without a GPU install Mesa's software drivers (apt-get install -y mesa-vulkan-drivers libegl1)"))?;
         let info = adapter.get_info();
+        let timestamp_feature = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
         let descriptor = wgpu::DeviceDescriptor {
             label: Some("deferred"),
+            required_features: timestamp_feature,
             required_limits: adapter.limits(),
             ..Default::default()
         };
@@ -175,6 +231,7 @@ impl Renderer {
             scene::ENVIRONMENT_MIPS + 1
         ));
         let environment = prefilter_environment(&device, &queue)?;
+        let timestamps = (!timestamp_feature.is_empty()).then(|| Timestamps::new(&device));
         Ok(Renderer {
             device,
             queue,
@@ -183,13 +240,14 @@ impl Renderer {
             lut,
             light_map,
             sampler,
+            timestamps,
         })
     }
 
     /// Renders a frame and reads it back.
     pub fn render(&self, options: &Options) -> Result<Frame, String> {
         let passes = self.passes(options)?;
-        self.queue.submit([passes.encode(self)]);
+        self.queue.submit([passes.encode(self, None)]);
         let pixels = self.read_back(&passes.output, options.width, options.height)?;
         Ok(Frame {
             width: options.width,
@@ -198,18 +256,33 @@ impl Renderer {
         })
     }
 
-    /// Times `frames` frames (each submitted and waited for); seconds per frame.
+    /// Whether frame times come from timestamp queries (else wall clock around the submit).
+    pub fn has_timestamps(&self) -> bool {
+        self.timestamps.is_some()
+    }
+
+    /// Times `frames` frames, each submitted and waited for: seconds per frame, from timestamp
+    /// queries where the adapter has them, else from the wall clock around the submit.
     pub fn time_frames(&self, options: &Options, frames: usize) -> Result<Vec<f64>, String> {
         let passes = self.passes(options)?;
         let mut times = Vec::with_capacity(frames);
         for _ in 0..=frames {
-            let commands = passes.encode(self);
+            let commands = passes.encode(
+                self,
+                self.timestamps
+                    .as_ref()
+                    .map(|timestamps| &timestamps.query_set),
+            );
             let start = Instant::now();
             self.queue.submit([commands]);
             self.device
                 .poll(wgpu::PollType::wait_indefinitely())
                 .map_err(|error| error.to_string())?;
-            times.push(start.elapsed().as_secs_f64());
+            let wall_clock = start.elapsed().as_secs_f64();
+            times.push(match &self.timestamps {
+                Some(timestamps) => timestamps.read(self)?,
+                None => wall_clock,
+            });
         }
         times.remove(0); // the first frame warms caches and compiles lazily
         Ok(times)
@@ -795,7 +868,13 @@ impl Passes {
     }
 
     /// The frame's commands.
-    fn encode(&self, renderer: &Renderer) -> wgpu::CommandBuffer {
+    /// The frame's commands; with a query set, a timestamp at the start of the G-buffer pass
+    /// (query 0) and at the end of the tone-mapping pass (query 1).
+    fn encode(
+        &self,
+        renderer: &Renderer,
+        timestamps: Option<&wgpu::QuerySet>,
+    ) -> wgpu::CommandBuffer {
         let mut encoder = renderer.device.create_command_encoder(&Default::default());
         fn attachment(
             view: &wgpu::TextureView,
@@ -814,12 +893,13 @@ impl Passes {
         let draw = |encoder: &mut wgpu::CommandEncoder,
                     attachments: Vec<Option<wgpu::RenderPassColorAttachment>>,
                     pipeline: &wgpu::RenderPipeline,
-                    bindings: &wgpu::BindGroup| {
+                    bindings: &wgpu::BindGroup,
+                    timestamp_writes: Option<wgpu::RenderPassTimestampWrites>| {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: None,
                 color_attachments: &attachments,
                 depth_stencil_attachment: None,
-                timestamp_writes: None,
+                timestamp_writes,
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
@@ -832,23 +912,33 @@ impl Passes {
             .iter()
             .map(|view| Some(attachment(view, wgpu::Color::TRANSPARENT)))
             .collect();
+        let at = |beginning: Option<u32>, end: Option<u32>| {
+            timestamps.map(|query_set| wgpu::RenderPassTimestampWrites {
+                query_set,
+                beginning_of_pass_write_index: beginning,
+                end_of_pass_write_index: end,
+            })
+        };
         draw(
             &mut encoder,
             gbuffer_attachments,
             &self.gbuffer,
             &self.gbuffer_bindings,
+            at(Some(0), None),
         );
         draw(
             &mut encoder,
             vec![Some(attachment(&self.hdr_view, wgpu::Color::BLACK))],
             &self.lighting,
             &self.lighting_bindings,
+            None,
         );
         draw(
             &mut encoder,
             vec![Some(attachment(&self.output_view, wgpu::Color::BLACK))],
             &self.tonemap,
             &self.tonemap_bindings,
+            at(None, Some(1)),
         );
         encoder.finish()
     }
