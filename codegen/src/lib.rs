@@ -9,7 +9,8 @@
 //! - [`convert`]: the bit-exact conversions (the CPU side of the generated WGSL);
 //! - [`emit`]: WGSL and Rust mirror emitters;
 //! - [`report`]: the bit report and the WebGPU render-target cost;
-//! - with the `tools` feature (on by default): `layout_file` (layouts in TOML), the GLSL and
+//! - with the `tools` feature (on by default): `layout_file` (layouts in TOML), `output` (the
+//!   files the tool writes, atomically and only when changed), the GLSL and
 //!   Rust-source emitters, `Builder` for build scripts, and the `codegen` command.
 
 #[cfg(feature = "tools")]
