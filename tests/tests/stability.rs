@@ -376,14 +376,26 @@ fn packing_gives_finite_output_in_the_formats_range_for_finite_input() {
                     }
                 }
             }
+            // Integers are always finite: their range is what matters, each channel clamped.
             ScalarKind::Uint => {
                 for value in uint_edges() {
-                    let _ = format.decode::<u32>(format.encode([value; 4]));
+                    let decoded = format.decode::<u32>(format.encode([value; 4]));
+                    for (decoded, channel) in decoded.iter().zip(format.channels()) {
+                        assert_eq!(*decoded, value.min(channel.mask()), "{format}: {value}");
+                    }
                 }
             }
             ScalarKind::Sint => {
                 for value in sint_edges() {
-                    let _ = format.decode::<i32>(format.encode([value; 4]));
+                    let decoded = format.decode::<i32>(format.encode([value; 4]));
+                    for (decoded, channel) in decoded.iter().zip(format.channels()) {
+                        let highest = (channel.mask() >> 1) as i32;
+                        assert_eq!(
+                            *decoded,
+                            value.clamp(-highest - 1, highest),
+                            "{format}: {value}"
+                        );
+                    }
                 }
             }
         }
