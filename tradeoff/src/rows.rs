@@ -284,80 +284,103 @@ fn single_format_layout(name: &str, fields: &[(&str, Format, usize)]) -> Layout 
     }
 }
 
-type HdrRoundTrip = Box<dyn Fn(Vec3) -> Vec3>;
+/// An HDR storage row: its CPU round trip, and the WGSL that does the same to `colour` (an
+/// expression, and the functions it calls beyond the library's).
+struct HdrEncoding {
+    name: &'static str,
+    bits: u32,
+    round_trip: Box<dyn Fn(Vec3) -> Vec3>,
+    helpers: String,
+    expression: &'static str,
+    modules: &'static [&'static str],
+}
 
 fn hdr_rows() -> Vec<Row> {
     const RANGE: f32 = 6.0;
+    // The packed float formats run through the generated layout code: pack, then unpack.
     let r11f = single_format_layout("HdrR11f", &[("colour", Format::R11fG11fB10f, 3)]);
     let rg16f = single_format_layout(
         "HdrRg16f",
         &[("red_green", Format::Rg16f, 2), ("blue", Format::Rg16f, 1)],
     );
-    let encodings: Vec<(&str, u32, HdrRoundTrip, String, Vec<&str>)> = vec![
-        (
-            "scaled rgb10_a2 (range 6)",
-            30,
-            Box::new(|c| {
+    let rg16f_helpers = format!(
+        "{}\nfn rg16f_round_trip(colour: vec3<f32>) -> vec3<f32> {{\n    let texel = unpack_hdr_rg16f(pack_hdr_rg16f(HdrRg16f(colour.rg, colour.b)));\n    return vec3<f32>(texel.red_green, texel.blue);\n}}\n",
+        codegen::emit::wgsl::emit(&rg16f)
+    );
+    let rgbm_round_trip = |encode: fn(Vec3, f32) -> Vec4,
+                           decode: fn(Vec4, f32) -> Vec3|
+     -> Box<dyn Fn(Vec3) -> Vec3> {
+        Box::new(move |c| {
+            decode(
+                Vec4::from_array(
+                    encode(c, RANGE)
+                        .to_array()
+                        .map(|channel| quantize(channel, 8)),
+                ),
+                RANGE,
+            )
+        })
+    };
+    let encodings = vec![
+        HdrEncoding {
+            name: "scaled rgb10_a2 (range 6)",
+            bits: 30,
+            round_trip: Box::new(|c| {
                 m::hdr::scale_unit_to_hdr(quantize3(m::hdr::scale_hdr_to_unit(c, RANGE), 10), RANGE)
             }),
-            "scale_unit_to_hdr(quantize3(scale_hdr_to_unit(colour, 6.0), 1023.0), 6.0)".into(),
-            vec!["hdr"],
-        ),
-        (
-            "r11f_g11f_b10f",
-            32,
-            Box::new(|c| {
+            helpers: String::new(),
+            expression: "scale_unit_to_hdr(quantize3(scale_hdr_to_unit(colour, 6.0), 1023.0), 6.0)",
+            modules: &["hdr"],
+        },
+        HdrEncoding {
+            name: "r11f_g11f_b10f",
+            bits: 32,
+            round_trip: Box::new(|c| {
                 let word = Format::R11fG11fB10f.encode(c.extend(0.0).to_array());
                 Vec3::from_slice(&Format::R11fG11fB10f.decode::<f32>(word)[..3])
             }),
-            format!("{}\nROW", codegen::emit::wgsl::emit(&r11f)),
-            vec![],
-        ),
-        (
-            "rg16f x 2 (r, g | b)",
-            48,
-            Box::new(|c| {
+            helpers: codegen::emit::wgsl::emit(&r11f),
+            expression: "unpack_hdr_r11f(pack_hdr_r11f(HdrR11f(colour))).colour",
+            modules: &[],
+        },
+        HdrEncoding {
+            name: "rg16f x 2 (r, g | b)",
+            bits: 48,
+            round_trip: Box::new(|c| {
                 let red_green =
                     Format::Rg16f.decode::<f32>(Format::Rg16f.encode([c.x, c.y, 0.0, 0.0]));
                 let blue = Format::Rg16f.decode::<f32>(Format::Rg16f.encode([c.z, 0.0, 0.0, 0.0]));
                 Vec3::new(red_green[0], red_green[1], blue[0])
             }),
-            format!("{}\nROW", codegen::emit::wgsl::emit(&rg16f)),
-            vec![],
-        ),
-        (
-            "RGBM in rgba8 (range 6)",
-            32,
-            Box::new(|c| {
-                let encoded = m::hdr::rgbm_encode(c, RANGE);
-                m::hdr::rgbm_decode(
-                    Vec4::from_array(encoded.to_array().map(|channel| quantize(channel, 8))),
-                    RANGE,
-                )
-            }),
-            "rgbm_decode(quantize4(rgbm_encode(colour, 6.0), 255.0), 6.0)".into(),
-            vec!["hdr"],
-        ),
-        (
-            "RGBM squared in rgba8 (range 6)",
-            32,
-            Box::new(|c| {
-                let encoded = m::hdr::rgbm_squared_encode(c, RANGE);
-                m::hdr::rgbm_squared_decode(
-                    Vec4::from_array(encoded.to_array().map(|channel| quantize(channel, 8))),
-                    RANGE,
-                )
-            }),
-            "rgbm_squared_decode(quantize4(rgbm_squared_encode(colour, 6.0), 255.0), 6.0)".into(),
-            vec!["hdr"],
-        ),
-        (
-            "rgb9e5",
-            32,
-            Box::new(|c| m::rgb9e5::rgb9e5_decode(m::rgb9e5::rgb9e5_encode(c))),
-            "rgb9e5_decode(rgb9e5_encode(colour))".into(),
-            vec!["hdr"],
-        ),
+            helpers: rg16f_helpers,
+            expression: "rg16f_round_trip(colour)",
+            modules: &[],
+        },
+        HdrEncoding {
+            name: "RGBM in rgba8 (range 6)",
+            bits: 32,
+            round_trip: rgbm_round_trip(m::hdr::rgbm_encode, m::hdr::rgbm_decode),
+            helpers: String::new(),
+            expression: "rgbm_decode(quantize4(rgbm_encode(colour, 6.0), 255.0), 6.0)",
+            modules: &["hdr"],
+        },
+        HdrEncoding {
+            name: "RGBM squared in rgba8 (range 6)",
+            bits: 32,
+            round_trip: rgbm_round_trip(m::hdr::rgbm_squared_encode, m::hdr::rgbm_squared_decode),
+            helpers: String::new(),
+            expression:
+                "rgbm_squared_decode(quantize4(rgbm_squared_encode(colour, 6.0), 255.0), 6.0)",
+            modules: &["hdr"],
+        },
+        HdrEncoding {
+            name: "rgb9e5",
+            bits: 32,
+            round_trip: Box::new(|c| m::rgb9e5::rgb9e5_decode(m::rgb9e5::rgb9e5_encode(c))),
+            helpers: String::new(),
+            expression: "rgb9e5_decode(rgb9e5_encode(colour))",
+            modules: &["hdr"],
+        },
     ];
     // Channels log-uniform over [2^-6, 6]: every format here holds that range.
     let low = (2f64).powi(-6).ln();
@@ -370,33 +393,15 @@ fn hdr_rows() -> Vec<Row> {
         .collect();
     encodings
         .into_iter()
-        .map(|(name, bits, round_trip, expression, modules)| {
+        .map(|HdrEncoding { name, bits, round_trip, helpers, expression, modules }| {
             let mut errors = Accumulator::default();
             for &colour in &colours {
                 let decoded = round_trip(colour);
                 let relative = (decoded.as_dvec3() - colour.as_dvec3()).abs() / colour.as_dvec3();
                 errors.add(relative.max_element());
             }
-            // The packed formats' WGSL is the generated layout code: pack, then unpack.
-            let evaluate = if expression.ends_with("ROW") {
-                let generated = expression.trim_end_matches("ROW");
-                let call = if name.starts_with("r11f") {
-                    "unpack_hdr_r11f(pack_hdr_r11f(HdrR11f(colour))).colour".to_string()
-                } else {
-                    "rg16f_round_trip(colour)".to_string()
-                };
-                let helper = if name.starts_with("rg16f") {
-                    "fn rg16f_round_trip(colour: vec3<f32>) -> vec3<f32> {\n    let texel = unpack_hdr_rg16f(pack_hdr_rg16f(HdrRg16f(colour.rg, colour.b)));\n    return vec3<f32>(texel.red_green, texel.blue);\n}\n"
-                } else {
-                    ""
-                };
-                (format!("{generated}\n{helper}"), call)
-            } else {
-                (String::new(), expression)
-            };
             let body = format!(
-                "{}\nfn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    let colour = exp2(x.xyz * 8.5 - vec3<f32>(6.0));\n    return vec4<f32>(log2({}) * 0.1, x.w);\n}}\n",
-                evaluate.0, evaluate.1
+                "{helpers}\nfn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    let colour = exp2(x.xyz * 8.5 - vec3<f32>(6.0));\n    return vec4<f32>(log2({expression}) * 0.1, x.w);\n}}\n"
             );
             Row {
                 family: "HDR storage",
@@ -405,7 +410,7 @@ fn hdr_rows() -> Vec<Row> {
                 domain: "channels log-uniform in [2^-6, 6], 65536 colours".into(),
                 unit: "relative",
                 errors: errors.finish(),
-                wgsl: wgsl(&modules, &body),
+                wgsl: wgsl(modules, &body),
                 lut_size: None,
                 cpu: Box::new(move |x| {
                     let colour = (x.truncate() * 8.5 - Vec3::splat(6.0)).exp2();
