@@ -199,24 +199,6 @@ impl Format {
             .unwrap_or(Format::Rgba8)
     }
 
-    /// The Rust variant name, e.g. `Rgb10A2`, for generated code.
-    pub fn variant_name(self) -> &'static str {
-        match self {
-            Format::R11fG11fB10f => "R11fG11fB10f",
-            Format::R32f => "R32f",
-            Format::Rg16f => "Rg16f",
-            Format::Rgb10A2 => "Rgb10A2",
-            Format::Rgba8 => "Rgba8",
-            Format::Rg16 => "Rg16",
-            Format::Rgba8i => "Rgba8i",
-            Format::Rg16i => "Rg16i",
-            Format::Rgb10A2ui => "Rgb10A2ui",
-            Format::Rgba8ui => "Rgba8ui",
-            Format::Rg16ui => "Rg16ui",
-            Format::R32ui => "R32ui",
-        }
-    }
-
     /// The channels, from the least significant bit up.
     pub fn channels(self) -> &'static [Channel] {
         match self {

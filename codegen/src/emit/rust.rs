@@ -22,6 +22,11 @@ fn type_path(ty: FieldType) -> TokenStream {
     }
 }
 
+/// An enum value's variant, as `Format::Rgb10A2` names it: its `Debug` text.
+fn variant(value: impl std::fmt::Debug) -> Ident {
+    format_ident!("{}", format!("{value:?}"))
+}
+
 fn scalar_path(scalar: ScalarKind) -> TokenStream {
     type_path(FieldType::new(scalar, 1))
 }
@@ -46,7 +51,7 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream) -> TokenStream {
 
     let encoded_words = layout.fields.iter().map(|field| {
         let field_name = Ident::new(&field.name, Span::call_site());
-        let format = format_ident!("{}", field.format.variant_name());
+        let format = variant(field.format);
         let zero = scalar_zero(field.ty.scalar);
         let values: Vec<TokenStream> = (0..4)
             .map(|index| match (field.ty.components, index) {
@@ -66,7 +71,7 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream) -> TokenStream {
     let words_parameter = Ident::new("__gbuffer_words", Span::call_site());
     let decoded_fields = layout.fields.iter().enumerate().map(|(word, field)| {
         let field_name = Ident::new(&field.name, Span::call_site());
-        let format = format_ident!("{}", field.format.variant_name());
+        let format = variant(field.format);
         let scalar = scalar_path(field.ty.scalar);
         let ty = type_path(field.ty);
         let word = Literal::usize_unsuffixed(word);
@@ -82,8 +87,8 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream) -> TokenStream {
 
     let described_fields = layout.fields.iter().map(|field| {
         let field_name = &field.name;
-        let format = format_ident!("{}", field.format.variant_name());
-        let scalar = format_ident!("{}", format!("{:?}", field.ty.scalar));
+        let format = variant(field.format);
+        let scalar = variant(field.ty.scalar);
         let components = Literal::usize_unsuffixed(field.ty.components);
         quote!((#field_name, #packing::Format::#format, #packing::FieldType {
             scalar: #packing::ScalarKind::#scalar,
