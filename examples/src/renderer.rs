@@ -592,7 +592,7 @@ fn trace(origin: vec3<f32>, direction: vec3<f32>) -> Surface {{
         surface.position = point;
     }} else if ground < 40.0 {{
         let point = origin + direction * ground;
-        let metallic = ground_material(point.x, point.z).w;
+        let metallic = ground_metallic(point.x, point.z);
         surface.normal = ground_normal(point.x, point.z);
         surface.roughness = 0.75 * (1.0 - metallic) + 0.28 * metallic;
         surface.base_colour = ground_base_colour(point.x, point.z, metallic);

@@ -270,10 +270,9 @@ fn sky_irradiance(normal: vec3<f32>) -> vec3<f32> {{
     return SKY_A + SKY_B * (2.0 / 3.0 * normal.y);
 }}
 
-fn ground_material(x: f32, z: f32) -> vec4<f32> {{
+fn ground_metallic(x: f32, z: f32) -> f32 {{
     let boundary = 0.6 * sin(z * 1.3) + 0.8;
-    let metallic = smoothstep(-0.25, 0.25, x - boundary);
-    return vec4<f32>(x, z, 0.0, metallic);
+    return smoothstep(-0.25, 0.25, x - boundary);
 }}
 
 fn ground_base_colour(x: f32, z: f32, metallic: f32) -> vec3<f32> {{
