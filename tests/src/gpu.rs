@@ -184,9 +184,3 @@ impl Gpu {
         words
     }
 }
-
-impl Default for Gpu {
-    fn default() -> Self {
-        Gpu::new()
-    }
-}
