@@ -13,6 +13,8 @@ impl Gpu {
     /// Opens the adapter wgpu prefers among the backends `WGPU_BACKEND` allows (all by
     /// default), with its full limits. Panics, naming the backends and adapters it saw, when
     /// none can be opened.
+    // Not `Default`: opening an adapter can fail, and a default value should not panic.
+    #[allow(clippy::new_without_default)]
     pub fn new() -> Gpu {
         Gpu::open(None, wgpu::Features::empty())
     }
