@@ -74,7 +74,8 @@ pub struct FileDiagnostic {
 }
 
 impl FileDiagnostic {
-    fn at(path: &Path, source: &str, span: Range<usize>, message: impl Into<String>) -> Self {
+    /// A diagnostic at a byte span of `source`, the text of the file at `path`.
+    pub fn at(path: &Path, source: &str, span: Range<usize>, message: impl Into<String>) -> Self {
         let start = span.start.min(source.len());
         let line_start = source[..start].rfind('\n').map_or(0, |index| index + 1);
         let line_end = source[start..]
@@ -92,6 +93,24 @@ impl FileDiagnostic {
             source_line,
             width: source[start..end].chars().count().max(1),
         }
+    }
+}
+
+impl FileDiagnostic {
+    /// A TOML syntax or shape error, at its span.
+    pub fn from_toml(path: &Path, source: &str, error: &toml::de::Error) -> Self {
+        FileDiagnostic::at(
+            path,
+            source,
+            error.span().unwrap_or(0..0),
+            // serde speaks of fields; in a TOML file they are keys.
+            error
+                .message()
+                .trim_end()
+                .replace('\n', " ")
+                .replace("missing field", "missing key")
+                .replace("unknown field", "unknown key"),
+        )
     }
 }
 
@@ -160,21 +179,8 @@ pub fn read_layout_file(path: &Path) -> Result<LayoutFile, LayoutFileError> {
 
 /// Parses and checks layout-file text; `path` names it in diagnostics.
 pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDiagnostic>> {
-    let entry: LayoutEntry = toml::from_str(source).map_err(|error| {
-        let span = error.span().unwrap_or(0..0);
-        vec![FileDiagnostic::at(
-            path,
-            source,
-            span,
-            // serde speaks of fields; in a TOML file they are keys.
-            error
-                .message()
-                .trim_end()
-                .replace('\n', " ")
-                .replace("missing field", "missing key")
-                .replace("unknown field", "unknown key"),
-        )]
-    })?;
+    let entry: LayoutEntry = toml::from_str(source)
+        .map_err(|error| vec![FileDiagnostic::from_toml(path, source, &error)])?;
 
     let mut diagnostics = Vec::new();
     let conversions = match entry

@@ -69,3 +69,13 @@ fn shade_ibl_mobile(diffuse_colour: vec3<f32>, f0: vec3<f32>, roughness: f32, n_
     let specular = max(env_brdf_approx(f0, roughness, clamp(n_dot_v, 0.0, 1.0)), vec3<f32>(0.0));
     return diffuse_colour * diffuse_share(specular) * irradiance + radiance * specular;
 }
+
+// Point light falloff (Karis 2013, UE4): the inverse square law windowed to reach 0 at `radius`
+// without a visible edge, saturate(1 - (d / radius)^4)^2 / (d^2 + 1); the + 1 (a light of unit
+// size) keeps it finite at d = 0. Domain distance >= 0, radius > 0.
+fn point_light_falloff(distance: f32, radius: f32) -> f32 {
+    let ratio = distance / radius;
+    let ratio_squared = ratio * ratio;
+    let window = clamp(1.0 - ratio_squared * ratio_squared, 0.0, 1.0);
+    return window * window / (distance * distance + 1.0);
+}

@@ -1038,6 +1038,25 @@ pub fn cases() -> Vec<Case> {
             ulps: 32,
             absolute: 1e-5,
         },
+        Case {
+            module: "shading",
+            call: "point_light_falloff(a0, a1)",
+            arguments: &[
+                Scalar {
+                    low: 0.0,
+                    high: 12.0,
+                },
+                Scalar {
+                    low: 0.5,
+                    high: 10.0,
+                },
+            ],
+            output: Output::Floats(1),
+            mirror: |a| out(&[m::shading::point_light_falloff(f(a, 0), f(a, 1))]),
+            reference: Some(|a| vec![r::shading::point_light_falloff(a[0], a[1])]),
+            ulps: 16,
+            absolute: 1e-6,
+        },
     ]
 }
 

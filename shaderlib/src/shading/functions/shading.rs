@@ -55,3 +55,11 @@ pub fn shade_ibl_mobile(diffuse_colour: Vec3, f0: Vec3, roughness: Float, n_dot_
     let specular = env_brdf_approx(f0, roughness, n_dot_v.clamp(0.0, 1.0)).max(Vec3::ZERO);
     diffuse_colour * diffuse_share(specular) * irradiance + radiance * specular
 }
+
+/// Point light falloff (Karis 2013): the inverse square law windowed to 0 at `radius`.
+pub fn point_light_falloff(distance: Float, radius: Float) -> Float {
+    let ratio = distance / radius;
+    let ratio_squared = ratio * ratio;
+    let window = (1.0 - ratio_squared * ratio_squared).clamp(0.0, 1.0);
+    window * window / (distance * distance + 1.0)
+}

@@ -1,0 +1,98 @@
+//! `solve`: scene descriptions to layouts.
+//!
+//! Prints each scene's solved layout with the encoding and predicted error of every stored
+//! quantity. With `--out`, writes what a hand-written layout gets from `codegen` (WGSL, GLSL
+//! ES includes, Rust mirror, bit report) plus `<name>.scene.wgsl` (the values struct, encode
+//! and decode, with the shaderlib modules they call) and `<name>.lighting.wgsl` (the
+//! specialised lighting function).
+//!
+//! Exit status: 0 on success, 1 when a scene cannot be solved or an output cannot be written,
+//! 2 on a usage error (bad arguments, an unreadable file).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use codegen::emit::wgsl::Conversions;
+use codegen::output::{generate, write_if_changed, Output};
+use scenes::file::{read_and_solve, SceneFileError};
+use scenes::lighting::{lighting_wgsl, Forms, IblForm, SunForm};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "solve",
+    version,
+    about = "Scene descriptions (TOML) to the smallest G-buffer layout that meets their precision, and a lighting shader with only the terms they use."
+)]
+struct Arguments {
+    /// Scene description files.
+    #[arg(required = true, value_name = "SCENE.toml")]
+    scenes: Vec<PathBuf>,
+    /// Folder to write the generated files into (created if missing).
+    #[arg(long, short, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Generate the mobile forms of the lighting (D_Approx, EnvBRDFApprox) instead of GGX and
+    /// the split-sum LUT.
+    #[arg(long)]
+    mobile: bool,
+}
+
+fn main() -> ExitCode {
+    let arguments = Arguments::parse();
+    let forms = if arguments.mobile {
+        Forms {
+            sun: SunForm::Approx,
+            ibl: IblForm::Approx,
+        }
+    } else {
+        Forms::ACCURATE
+    };
+    let mut status = ExitCode::SUCCESS;
+    for path in &arguments.scenes {
+        let solution = match read_and_solve(path) {
+            Ok(solution) => solution,
+            Err(error @ SceneFileError::Io { .. }) => {
+                eprintln!("error: {error}");
+                return ExitCode::from(2);
+            }
+            Err(error) => {
+                eprintln!("{error}");
+                status = ExitCode::FAILURE;
+                continue;
+            }
+        };
+        println!("{solution}");
+        let Some(folder) = &arguments.out else {
+            continue;
+        };
+        let snake = solution.layout.snake_name();
+        let mut files = match generate(&solution.layout, Conversions::Exact, &Output::ALL) {
+            Ok(files) => files,
+            Err(error) => {
+                eprintln!("error: {}: {error}", path.display());
+                status = ExitCode::FAILURE;
+                continue;
+            }
+        };
+        files.push(codegen::output::GeneratedFile {
+            name: format!("{snake}.scene.wgsl"),
+            contents: scenes::texel::standalone_wgsl(&solution),
+        });
+        files.push(codegen::output::GeneratedFile {
+            name: format!("{snake}.lighting.wgsl"),
+            contents: lighting_wgsl(&solution, forms),
+        });
+        if let Err(error) = std::fs::create_dir_all(folder) {
+            eprintln!("error: cannot create {}: {error}", folder.display());
+            return ExitCode::FAILURE;
+        }
+        for file in files {
+            let target = folder.join(&file.name);
+            if let Err(error) = write_if_changed(&target, &file.contents) {
+                eprintln!("error: cannot write {}: {error}", target.display());
+                status = ExitCode::FAILURE;
+            }
+        }
+    }
+    status
+}

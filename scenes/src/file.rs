@@ -1,0 +1,264 @@
+//! Scene descriptions in TOML.
+//!
+//! ```toml
+//! name = "MobileScene"      # the solved layout's name, UpperCamelCase
+//! model = "metallic"        # or "specular"; optional, "metallic" by default
+//! budget = 128              # bits; optional, 128 by default
+//!
+//! [features]                # a feature not named here is off
+//! metals = true
+//! normal_maps = true
+//! image_based_lighting = true
+//! light_maps = true
+//! sun = true
+//!
+//! [precision]               # optional; each key defaults as `Precision::default()`
+//! normal_degrees = 0.5
+//! colour_steps = 256
+//! material_steps = 256
+//! hdr_max = 8.0
+//! hdr_min = 0.015625
+//! hdr_relative = 0.02
+//! ```
+//!
+//! Every problem, from TOML syntax to a requirement the solver cannot meet, is a
+//! [`FileDiagnostic`] at the file, line and column of the key or value it is about.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use codegen::layout_file::FileDiagnostic;
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::description::{
+    Feature, Features, MaterialModel, Precision, SceneDescription, Setting, DEFAULT_BUDGET,
+};
+use crate::solver::{solve, Solution, SolveError};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneEntry {
+    name: Spanned<String>,
+    model: Option<Spanned<String>>,
+    budget: Option<Spanned<u32>>,
+    features: Option<Spanned<BTreeMap<Spanned<String>, Spanned<bool>>>>,
+    precision: Option<Spanned<PrecisionEntry>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PrecisionEntry {
+    normal_degrees: Option<Spanned<f64>>,
+    colour_steps: Option<Spanned<u32>>,
+    material_steps: Option<Spanned<u32>>,
+    hdr_max: Option<Spanned<f64>>,
+    hdr_min: Option<Spanned<f64>>,
+    hdr_relative: Option<Spanned<f64>>,
+}
+
+/// Why a scene file could not be used.
+#[derive(Debug)]
+pub enum SceneFileError {
+    Io {
+        path: PathBuf,
+        error: std::io::Error,
+    },
+    /// Its problems, in file order.
+    Invalid(Vec<FileDiagnostic>),
+}
+
+impl fmt::Display for SceneFileError {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SceneFileError::Io { path, error } => write!(
+                out,
+                "{}: cannot read the scene file: {error}",
+                path.display()
+            ),
+            SceneFileError::Invalid(diagnostics) => {
+                let texts: Vec<String> = diagnostics.iter().map(ToString::to_string).collect();
+                write!(out, "{}", texts.join("\n\n"))
+            }
+        }
+    }
+}
+
+impl std::error::Error for SceneFileError {}
+
+/// A parsed scene file: the description and where each setting was written.
+struct Parsed {
+    scene: SceneDescription,
+    spans: BTreeMap<&'static str, Range<usize>>,
+}
+
+impl Parsed {
+    /// Where a diagnostic about `setting` points: its value, else the name.
+    fn span_of(&self, setting: Setting) -> Range<usize> {
+        self.spans
+            .get(setting.key())
+            .or_else(|| self.spans.get("name"))
+            .cloned()
+            .unwrap_or(0..0)
+    }
+}
+
+/// Reads a scene file and solves it.
+pub fn read_and_solve(path: &Path) -> Result<Solution, SceneFileError> {
+    let source = std::fs::read_to_string(path).map_err(|error| SceneFileError::Io {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    parse_and_solve(&source, path).map_err(SceneFileError::Invalid)
+}
+
+/// Reads a scene file's description without solving it.
+pub fn read_scene_file(path: &Path) -> Result<SceneDescription, SceneFileError> {
+    let source = std::fs::read_to_string(path).map_err(|error| SceneFileError::Io {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    parse_scene(&source, path).map_err(SceneFileError::Invalid)
+}
+
+/// Parses and checks scene-file text; `path` names it in diagnostics.
+pub fn parse_scene(source: &str, path: &Path) -> Result<SceneDescription, Vec<FileDiagnostic>> {
+    parse(source, path).map(|parsed| parsed.scene)
+}
+
+/// Parses and solves scene-file text: a requirement the solver cannot meet points at its key.
+pub fn parse_and_solve(source: &str, path: &Path) -> Result<Solution, Vec<FileDiagnostic>> {
+    let parsed = parse(source, path)?;
+    solve(&parsed.scene).map_err(|error| {
+        let span = match &error {
+            SolveError::Unmet { setting, .. } => parsed.span_of(*setting),
+            SolveError::NothingStored => parsed
+                .spans
+                .get("features")
+                .or_else(|| parsed.spans.get("name"))
+                .cloned()
+                .unwrap_or(0..0),
+            SolveError::Description(_) => parsed.span_of(Setting::Name),
+        };
+        vec![FileDiagnostic::at(path, source, span, error.to_string())]
+    })
+}
+
+fn parse(source: &str, path: &Path) -> Result<Parsed, Vec<FileDiagnostic>> {
+    let entry: SceneEntry = toml::from_str(source)
+        .map_err(|error| vec![FileDiagnostic::from_toml(path, source, &error)])?;
+    let mut diagnostics = Vec::new();
+    let mut spans = BTreeMap::new();
+    spans.insert("name", entry.name.span());
+
+    let model = match &entry.model {
+        None => MaterialModel::Metallic,
+        Some(model) => MaterialModel::from_name(model.get_ref()).unwrap_or_else(|| {
+            diagnostics.push(FileDiagnostic::at(
+                path,
+                source,
+                model.span(),
+                format!(
+                    "unknown material model `{}`: expected \"metallic\" or \"specular\"",
+                    model.get_ref()
+                ),
+            ));
+            MaterialModel::Metallic
+        }),
+    };
+
+    let mut features = Features::NONE;
+    if let Some(table) = &entry.features {
+        spans.insert("features", table.span());
+        for (key, enabled) in table.get_ref() {
+            match Feature::from_name(key.get_ref()) {
+                Some(feature) if *enabled.get_ref() => features = features.with(feature),
+                Some(_) => {}
+                None => {
+                    let names: Vec<&str> = Feature::ALL.iter().map(|f| f.name()).collect();
+                    diagnostics.push(FileDiagnostic::at(
+                        path,
+                        source,
+                        key.span(),
+                        format!(
+                            "unknown feature `{}`; the features are: {}",
+                            key.get_ref(),
+                            names.join(", ")
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+
+    let mut precision = Precision::default();
+    if let Some(entry) = &entry.precision {
+        let entry = entry.get_ref();
+        let mut float = |setting: Setting, value: &Option<Spanned<f64>>, target: &mut f64| {
+            if let Some(value) = value {
+                spans.insert(setting.key(), value.span());
+                *target = *value.get_ref();
+            }
+        };
+        float(
+            Setting::NormalDegrees,
+            &entry.normal_degrees,
+            &mut precision.normal_degrees,
+        );
+        float(Setting::HdrMax, &entry.hdr_max, &mut precision.hdr_max);
+        float(Setting::HdrMin, &entry.hdr_min, &mut precision.hdr_min);
+        float(
+            Setting::HdrRelative,
+            &entry.hdr_relative,
+            &mut precision.hdr_relative,
+        );
+        for (setting, value, target) in [
+            (
+                Setting::ColourSteps,
+                &entry.colour_steps,
+                &mut precision.colour_steps,
+            ),
+            (
+                Setting::MaterialSteps,
+                &entry.material_steps,
+                &mut precision.material_steps,
+            ),
+        ] {
+            if let Some(value) = value {
+                spans.insert(setting.key(), value.span());
+                *target = *value.get_ref();
+            }
+        }
+    }
+    let budget = entry.budget.as_ref().map_or(DEFAULT_BUDGET, |budget| {
+        spans.insert("budget", budget.span());
+        *budget.get_ref()
+    });
+
+    let parsed = Parsed {
+        scene: SceneDescription {
+            name: entry.name.get_ref().clone(),
+            model,
+            features,
+            precision,
+            budget,
+        },
+        spans,
+    };
+    for error in parsed.scene.check() {
+        diagnostics.push(FileDiagnostic::at(
+            path,
+            source,
+            parsed.span_of(error.setting),
+            error.message,
+        ));
+    }
+    diagnostics.sort_by_key(|diagnostic| (diagnostic.line, diagnostic.column));
+    if diagnostics.is_empty() {
+        Ok(parsed)
+    } else {
+        Err(diagnostics)
+    }
+}
