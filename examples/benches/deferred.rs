@@ -16,7 +16,7 @@ const FRAMES: usize = 20;
 /// and read back (g BU each), the HDR light written and read (2 BU each, Rgba16Float), the
 /// 8-bit output written (1 BU). Fused on tile (pixel local storage, framebuffer fetch or
 /// subpasses) only the output leaves the chip: 1 BU.
-fn bandwidth_units(gbuffer: GBuffer) -> f64 {
+fn bandwidth_units(gbuffer: &GBuffer) -> f64 {
     let gbuffer_units = f64::from(gbuffer.bytes_per_pixel()) / 4.0;
     2.0 * gbuffer_units + 2.0 * 2.0 + 1.0
 }
@@ -56,7 +56,7 @@ fn main() {
         let mut times = Vec::new();
         for (width, height) in [(1280, 720), (1920, 1080)] {
             let options = Options {
-                gbuffer,
+                gbuffer: gbuffer.clone(),
                 sun: SunForm::Ggx,
                 ibl: IblForm::Lut,
                 width,
@@ -68,7 +68,7 @@ fn main() {
                     times.push(format!("{:.2}", frames[frames.len() / 2] * 1e3));
                 }
                 Err(error) => {
-                    eprintln!("{}: {error}", gbuffer.flag());
+                    eprintln!("{}: {error}", gbuffer.name());
                     times.push("n/a".into());
                 }
             }
@@ -76,10 +76,10 @@ fn main() {
         let bytes = gbuffer.bytes_per_pixel();
         println!(
             "{:<18} {:>9} {:>11} {:>12.1} {:>10.1} {:>14} {:>14}",
-            gbuffer.flag(),
+            gbuffer.name(),
             bytes,
             if bytes <= 16 { "yes" } else { "no" },
-            bandwidth_units(gbuffer),
+            bandwidth_units(&gbuffer),
             1.0,
             times[0],
             times[1]
@@ -88,7 +88,7 @@ fn main() {
 
     // Every configuration against the CPU reference, at a size the reference renders quickly.
     let (width, height) = (320, 180);
-    let reference = reference::render(width, height, &|_| {});
+    let reference = reference::render(width, height, scenes::Features::reference_scene(), &|_| {});
     println!("\nagainst the CPU reference at {width}x{height}:");
     println!(
         "{:<18} {:<7} {:<7} {:>9} {:>13}",
@@ -106,7 +106,7 @@ fn main() {
             (SunForm::Approx, IblForm::Approx),
         ] {
             let options = Options {
-                gbuffer,
+                gbuffer: gbuffer.clone(),
                 sun,
                 ibl,
                 width,
@@ -117,14 +117,14 @@ fn main() {
                     let comparison = compare(&frame, &reference);
                     println!(
                         "{:<18} {:<7} {:<7} {:>9.2} {:>13}",
-                        gbuffer.flag(),
+                        gbuffer.name(),
                         format!("{sun:?}"),
                         format!("{ibl:?}"),
                         comparison.psnr,
                         comparison.max_error
                     );
                 }
-                Err(error) => eprintln!("{}: {error}", gbuffer.flag()),
+                Err(error) => eprintln!("{}: {error}", gbuffer.name()),
             }
         }
     }

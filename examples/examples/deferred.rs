@@ -2,6 +2,7 @@
 //! and lighting forms to a PNG, and optionally compares it with the CPU reference.
 //!
 //! `cargo run --release --example deferred -- --layout mobile-metallic --size 1280x720 --out frame.png`
+//! `cargo run --release --example deferred -- --scene examples/scenes/dielectric-only.toml --reference`
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -21,8 +22,12 @@ struct Arguments {
     /// The G-buffer: a seed layout (mobile-metallic, specular-workflow, future-metallic,
     /// future-specular, arm-tile-block), packed into Rgba32Uint targets, or `classic`
     /// (separate Rgba16Float and Rgba8 targets, as without this library).
-    #[arg(long, default_value = "mobile-metallic")]
+    #[arg(long, default_value = "mobile-metallic", conflicts_with = "scene")]
     layout: String,
+    /// A scene description (TOML, see `scenes::file`): renders the scene it describes through
+    /// the layout solved for it and a lighting pass with only its terms.
+    #[arg(long, value_name = "SCENE.toml")]
+    scene: Option<PathBuf>,
     /// Frame size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x720")]
     size: String,
@@ -42,7 +47,15 @@ struct Arguments {
 }
 
 fn parse(arguments: &Arguments) -> Result<Options, String> {
-    let gbuffer = GBuffer::from_flag(&arguments.layout).ok_or_else(|| {
+    let gbuffer = match &arguments.scene {
+        Some(path) => {
+            let solution = scenes::file::read_and_solve(path).map_err(|error| error.to_string())?;
+            eprintln!("{solution}");
+            Some(GBuffer::Solved(std::sync::Arc::new(solution)))
+        }
+        None => GBuffer::from_flag(&arguments.layout),
+    };
+    let gbuffer = gbuffer.ok_or_else(|| {
         let names: Vec<&str> = SeedLayout::ALL
             .iter()
             .map(|layout| layout.flag())
@@ -100,7 +113,7 @@ fn main() -> ExitCode {
             "rendering {}x{} with {} ({} bytes per pixel)...",
             options.width,
             options.height,
-            options.gbuffer.flag(),
+            options.gbuffer.name(),
             options.gbuffer.bytes_per_pixel()
         );
         let frame = renderer.render(&options)?;
@@ -109,7 +122,7 @@ fn main() -> ExitCode {
         eprintln!("wrote {}", arguments.out.display());
         if arguments.reference {
             eprintln!("rendering the CPU reference...");
-            let reference = reference::render(options.width, options.height, &|done| {
+            let reference = reference::render(options.width, options.height, options.gbuffer.features(), &|done| {
                 eprintln!("  reference {:.0}%", done * 100.0)
             });
             let comparison = compare(&frame, &reference);

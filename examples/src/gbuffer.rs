@@ -1,8 +1,12 @@
 //! The G-buffers the renderer can use: any seed layout, packed into `Rgba32Uint` targets by
-//! the generated WGSL, or the classic unpacked set of native targets a user writes without
-//! this library. Each packed layout brings the WGSL that stores a surface in its fields and
-//! reads the shading inputs back, by the conventions of its source.
+//! the generated WGSL; a layout solved for a scene description, packed the same way; or the
+//! classic unpacked set of native targets a user writes without this library. Each seed
+//! layout brings the WGSL that stores a surface in its fields and reads the shading inputs
+//! back, by the conventions of its source; a solved layout brings its own (`scenes::texel`).
 
+use std::sync::Arc;
+
+use scenes::{Features, Solution};
 use shaderlib::packing::Layout;
 use shaderlib::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
@@ -13,13 +17,16 @@ use shaderlib::GBufferLayout;
 pub const LIGHT_SCALE: f32 = 4.0;
 
 /// Where the G-buffer pass writes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum GBuffer {
     /// A seed layout, packed into `Rgba32Uint` targets.
     Packed(SeedLayout),
     /// Separate native targets: Rgba16Float light, Rgba8Unorm normal and roughness,
     /// Rgba8UnormSrgb base colour and metallic.
     Classic,
+    /// The layout solved for a scene description, packed into `Rgba32Uint` targets: the
+    /// scene shows the description's features and the lighting pass has only their terms.
+    Solved(Arc<Solution>),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -123,14 +130,17 @@ impl SeedLayout {
 }
 
 impl GBuffer {
-    /// The command-line name: a seed layout's, or `classic`.
-    pub fn flag(self) -> &'static str {
+    /// The name in messages: a seed layout's command-line name, `classic`, or a solved
+    /// layout's name.
+    pub fn name(&self) -> String {
         match self {
-            GBuffer::Packed(layout) => layout.flag(),
-            GBuffer::Classic => "classic",
+            GBuffer::Packed(layout) => layout.flag().to_string(),
+            GBuffer::Classic => "classic".to_string(),
+            GBuffer::Solved(solution) => solution.layout.name.clone(),
         }
     }
 
+    /// A seed layout or `classic`, by command-line name.
     pub fn from_flag(flag: &str) -> Option<GBuffer> {
         if flag == "classic" {
             return Some(GBuffer::Classic);
@@ -141,13 +151,28 @@ impl GBuffer {
             .map(GBuffer::Packed)
     }
 
-    /// The render targets of the G-buffer pass.
-    pub fn target_formats(self) -> Vec<wgpu::TextureFormat> {
+    /// The packed layout, if the G-buffer is packed.
+    pub fn layout(&self) -> Option<Layout> {
         match self {
-            GBuffer::Packed(layout) => {
-                vec![wgpu::TextureFormat::Rgba32Uint; layout.layout().targets()]
-            }
-            GBuffer::Classic => vec![
+            GBuffer::Packed(layout) => Some(layout.layout()),
+            GBuffer::Classic => None,
+            GBuffer::Solved(solution) => Some(solution.layout.clone()),
+        }
+    }
+
+    /// What the scene shows: a solved layout's features, else the reference scene's.
+    pub fn features(&self) -> Features {
+        match self {
+            GBuffer::Solved(solution) => solution.scene.features,
+            _ => Features::reference_scene(),
+        }
+    }
+
+    /// The render targets of the G-buffer pass.
+    pub fn target_formats(&self) -> Vec<wgpu::TextureFormat> {
+        match self.layout() {
+            Some(layout) => vec![wgpu::TextureFormat::Rgba32Uint; layout.targets()],
+            None => vec![
                 wgpu::TextureFormat::Rgba16Float,
                 wgpu::TextureFormat::Rgba8Unorm,
                 wgpu::TextureFormat::Rgba8UnormSrgb,
@@ -156,7 +181,7 @@ impl GBuffer {
     }
 
     /// Bytes per pixel the G-buffer occupies in memory.
-    pub fn bytes_per_pixel(self) -> u32 {
+    pub fn bytes_per_pixel(&self) -> u32 {
         self.target_formats()
             .iter()
             .map(|format| format.block_copy_size(None).unwrap_or(0))

@@ -1,6 +1,8 @@
 //! The CPU reference renderer: the same scene, shading and tone mapping in f64, without
-//! packing, without texture filtering, with every integral evaluated at the pixel.
+//! packing, without texture filtering, with every integral evaluated at the pixel: the full
+//! model a specialised lighting pass is measured against.
 
+use scenes::{Feature, Features};
 use shaderlib::glam::DVec3;
 use shaderlib::shading::reference as r;
 
@@ -37,15 +39,16 @@ pub fn prefiltered_sky(normal: DVec3, roughness: f64) -> DVec3 {
     sum / weight
 }
 
-/// The linear radiance of one pixel.
-pub fn radiance(x: u32, y: u32, width: u32, height: u32) -> DVec3 {
+/// The linear radiance of one pixel of the scene with these features, by the full model: the
+/// accurate forms, the environment's specular at every roughness, exact integrals.
+pub fn radiance(x: u32, y: u32, width: u32, height: u32, features: Features) -> DVec3 {
     let (origin, direction) = scene::camera_ray(
         f64::from(x),
         f64::from(y),
         f64::from(width),
         f64::from(height),
     );
-    let Some(surface) = trace(origin, direction) else {
+    let Some(surface) = trace(origin, direction, features) else {
         return sky(direction);
     };
     let colours = r::material::metallic_workflow(
@@ -53,37 +56,66 @@ pub fn radiance(x: u32, y: u32, width: u32, height: u32) -> DVec3 {
         surface.metallic,
         r::constants::DIELECTRIC_F0,
     );
-    let light = surface.irradiance * colours.diffuse;
+    // The light accumulation: static diffuse light and emission.
+    let light = surface.irradiance * colours.diffuse + surface.emission;
     let view = -direction;
     let normal = surface.normal;
     let n_dot_v = normal.dot(view).clamp(r::constants::MIN_N_DOT_V, 1.0);
     let reflected = 2.0 * normal.dot(view) * normal - view;
     let env_brdf =
         r::environment::integrate_env_brdf(surface.roughness, n_dot_v, PREFILTER_SAMPLES);
-    let sun_direction = DVec3::from_array(scene::SUN_DIRECTION).normalize();
-    let sun = r::shading::shade_directional(
-        normal,
-        view,
-        sun_direction,
-        DVec3::from_array(scene::SUN_COLOUR),
-        colours.diffuse,
-        colours.f0,
-        surface.roughness,
-        env_brdf,
-    );
-    let ibl = r::shading::shade_ibl(
-        light,
-        colours.f0,
-        DVec3::ONE,
-        prefiltered_sky(reflected, surface.roughness),
-        env_brdf,
-    );
-    sun + ibl
+    let shade = |direction: DVec3, colour: DVec3| {
+        r::shading::shade_directional(
+            normal,
+            view,
+            direction,
+            colour,
+            colours.diffuse,
+            colours.f0,
+            surface.roughness,
+            env_brdf,
+        )
+    };
+    let mut radiance = if features.contains(Feature::ImageBasedLighting) {
+        r::shading::shade_ibl(
+            light,
+            colours.f0,
+            DVec3::ONE,
+            prefiltered_sky(reflected, surface.roughness),
+            env_brdf,
+        )
+    } else {
+        light
+    };
+    if features.contains(Feature::Sun) {
+        radiance += shade(
+            DVec3::from_array(scene::SUN_DIRECTION).normalize(),
+            DVec3::from_array(scene::SUN_COLOUR),
+        );
+    }
+    if features.contains(Feature::PointLights) {
+        let position = origin + direction * surface.distance;
+        for (light_position, colour) in scene::POINT_LIGHTS {
+            let to_light = DVec3::from_array(light_position) - position;
+            let distance = to_light.length();
+            let falloff = r::shading::point_light_falloff(distance, scene::POINT_LIGHT_RADIUS);
+            radiance += shade(
+                to_light / distance.max(1e-4),
+                DVec3::from_array(colour) * falloff,
+            );
+        }
+    }
+    radiance
 }
 
 /// Renders the frame on the CPU (rows shared between threads), calling `progress` with the
 /// fraction done.
-pub fn render(width: u32, height: u32, progress: &(dyn Fn(f64) + Sync)) -> Frame {
+pub fn render(
+    width: u32,
+    height: u32,
+    features: Features,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Frame {
     let threads = std::thread::available_parallelism().map_or(2, |count| count.get()) as u32;
     let done = std::sync::atomic::AtomicU32::new(0);
     let mut rows: Vec<(u32, Vec<[u8; 4]>)> = std::thread::scope(|scope| {
@@ -95,7 +127,7 @@ pub fn render(width: u32, height: u32, progress: &(dyn Fn(f64) + Sync)) -> Frame
                         .step_by(threads as usize)
                         .map(|y| {
                             let row = (0..width)
-                                .map(|x| display(radiance(x, y, width, height)))
+                                .map(|x| display(radiance(x, y, width, height, features)))
                                 .collect();
                             let finished =
                                 done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;

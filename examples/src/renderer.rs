@@ -15,29 +15,18 @@ use shaderlib::shading::env_brdf_lut::EnvBrdfLut;
 use shaderlib::shading::mirror as m;
 use wgpu::util::DeviceExt;
 
+use scenes::lighting::{self, Forms};
+use scenes::quantity::Quantity;
+use scenes::Solution;
+
 use crate::gbuffer::{GBuffer, SURFACE_WGSL};
 use crate::scene::{self, LIGHT_MAP_EXTENT, LIGHT_MAP_RANGE};
 
-/// How the sun is shaded.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SunForm {
-    /// GGX, height-correlated Smith, Schlick (`shade_directional`).
-    Ggx,
-    /// D_Approx around the reflection vector with EnvBRDFApprox (`shade_directional_mobile`).
-    Approx,
-}
+pub use scenes::lighting::{IblForm, SunForm};
 
-/// How image-based light is shaded.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum IblForm {
-    /// The split-sum LUT (`shade_ibl`).
-    Lut,
-    /// EnvBRDFApprox (`shade_ibl_mobile`).
-    Approx,
-}
-
-/// One configuration of the renderer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// One configuration of the renderer. A solved G-buffer brings its scene description: the
+/// scene shows its features, and the lighting pass is generated for them.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Options {
     pub gbuffer: GBuffer,
     pub sun: SunForm,
@@ -294,7 +283,7 @@ impl Renderer {
         match pollster::block_on(scope.pop()) {
             Some(error) => Err(format!(
                 "wgpu rejected the passes for {}: {error}",
-                options.gbuffer.flag()
+                options.gbuffer.name()
             )),
             None => Ok(passes),
         }
@@ -447,7 +436,7 @@ fn prefiltered_sky(normal: vec3<f32>, roughness: f32, samples: u32) -> vec3<f32>
 }}
 ",
         library(&["environment", "hdr", "normals"]),
-        scene::scene_wgsl()
+        scene::scene_wgsl(scenes::Features::reference_scene())
     );
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -525,7 +514,8 @@ struct Passes {
 }
 
 /// The G-buffer pass's WGSL for a configuration.
-fn gbuffer_wgsl(gbuffer: GBuffer) -> String {
+fn gbuffer_wgsl(gbuffer: &GBuffer) -> String {
+    let mut modules = vec!["normals", "colour", "hdr", "material", "mobile"];
     let (layout_wgsl, encode, output_type, output) = match gbuffer {
         GBuffer::Packed(layout) => {
             let model = layout.layout();
@@ -534,6 +524,18 @@ fn gbuffer_wgsl(gbuffer: GBuffer) -> String {
             let sentinel: Vec<String> = (0..model.targets()).map(|_| "vec4<u32>(0xffffffffu)".to_string()).collect();
             (
                 format!("{}\n{}", layout.wgsl(), layout.encode_wgsl()),
+                format!("if surface.distance < 0.0 {{\n        return {name}Targets({});\n    }}\n    return pack_{snake}_targets(encode_texel(surface));", sentinel.join(", ")),
+                format!("{name}Targets"),
+                String::new(),
+            )
+        }
+        GBuffer::Solved(solution) => {
+            modules.extend(solution.modules());
+            let name = &solution.layout.name;
+            let snake = solution.layout.snake_name();
+            let sentinel: Vec<String> = (0..solution.layout.targets()).map(|_| "vec4<u32>(0xffffffffu)".to_string()).collect();
+            (
+                format!("{}\n{}", scenes::texel::texel_wgsl(solution), solved_encode_wgsl(solution)),
                 format!("if surface.distance < 0.0 {{\n        return {name}Targets({});\n    }}\n    return pack_{snake}_targets(encode_texel(surface));", sentinel.join(", ")),
                 format!("{name}Targets"),
                 String::new(),
@@ -579,6 +581,7 @@ fn trace(origin: vec3<f32>, direction: vec3<f32>) -> Surface {{
     }}
     var surface: Surface;
     surface.distance = -1.0;
+    var emission = vec3<f32>(0.0);
     if best < 1e29 && best < ground {{
         let point = origin + direction * best;
         var materials = ROW_MATERIALS;
@@ -586,27 +589,43 @@ fn trace(origin: vec3<f32>, direction: vec3<f32>) -> Surface {{
         surface.normal = normalize(point - sphere_centre(best_column, best_row));
         surface.roughness = f32(best_column) / f32(SCENE_COLUMNS - 1u);
         surface.base_colour = material.rgb;
-        surface.metallic = material.a;
-        surface.light = sky_irradiance(surface.normal);
+        surface.metallic = select(0.0, material.a, SCENE_METALS);
+        surface.light = select(vec3<f32>(0.0), sky_irradiance(surface.normal), SCENE_IMAGE_BASED_LIGHTING);
+        if SCENE_EMISSIVE && best_row == EMISSIVE_ROW && best_column == EMISSIVE_COLUMN {{
+            emission = EMISSION;
+        }}
         surface.distance = best;
         surface.position = point;
     }} else if ground < 40.0 {{
         let point = origin + direction * ground;
-        let metallic = ground_metallic(point.x, point.z);
-        surface.normal = ground_normal(point.x, point.z);
-        surface.roughness = 0.75 * (1.0 - metallic) + 0.28 * metallic;
-        surface.base_colour = ground_base_colour(point.x, point.z, metallic);
-        surface.metallic = metallic;
-        surface.light = sky_irradiance(vec3<f32>(0.0, 1.0, 0.0));
-        if abs(point.x) < LIGHT_MAP_EXTENT && abs(point.z) < LIGHT_MAP_EXTENT {{
+        let mask = ground_metallic(point.x, point.z);
+        surface.normal = vec3<f32>(0.0, 1.0, 0.0);
+        if SCENE_NORMAL_MAPS {{
+            surface.normal = ground_normal(point.x, point.z);
+        }}
+        surface.roughness = 0.75 * (1.0 - mask) + 0.28 * mask;
+        surface.base_colour = ground_base_colour(point.x, point.z, mask);
+        surface.metallic = select(0.0, mask, SCENE_METALS);
+        surface.light = select(vec3<f32>(0.0), sky_irradiance(vec3<f32>(0.0, 1.0, 0.0)), SCENE_IMAGE_BASED_LIGHTING);
+        if SCENE_LIGHT_MAPS && abs(point.x) < LIGHT_MAP_EXTENT && abs(point.z) < LIGHT_MAP_EXTENT {{
             let uv = vec2<f32>(point.x, point.z) / (2.0 * LIGHT_MAP_EXTENT) + vec2<f32>(0.5);
             surface.light = rgbm_squared_decode(textureSampleLevel(light_map, linear_sampler, uv, 0.0), LIGHT_MAP_RANGE);
         }}
         surface.distance = ground;
         surface.position = point;
     }}
-    // The light accumulation holds the static diffuse light: irradiance times diffuse colour.
-    surface.light = surface.light * surface.base_colour * (1.0 - surface.metallic);
+    if SCENE_FULLY_ROUGH {{
+        surface.roughness = 1.0;
+    }}
+    // The light accumulation holds the static diffuse light (irradiance times diffuse colour)
+    // and the emitted light. On fully rough scenes with image-based light the environment's
+    // specular is folded in as 0.45 f0 (seed 001): the lighting pass skips the environment.
+    let colours = metallic_workflow(surface.base_colour, surface.metallic, DIELECTRIC_F0);
+    var ambient_colour = colours.diffuse;
+    if SCENE_FULLY_ROUGH && SCENE_IMAGE_BASED_LIGHTING {{
+        ambient_colour = fully_rough_diffuse_colour(colours.diffuse, colours.f0);
+    }}
+    surface.light = surface.light * ambient_colour + emission;
     return surface;
 }}
 
@@ -616,15 +635,17 @@ fn gbuffer_main(@builtin(position) position: vec4<f32>) -> {output_type} {{
     {encode}
 }}
 ",
-        library(&["normals", "colour", "hdr", "material"]),
-        scene::scene_wgsl(),
+        library(&modules),
+        scene::scene_wgsl(gbuffer.features()),
         light_scale = crate::gbuffer::LIGHT_SCALE,
     )
 }
 
-/// The lighting pass's WGSL for a configuration.
-fn lighting_wgsl(options: &Options) -> String {
-    let (bindings, read) = match options.gbuffer {
+/// The lighting pass's WGSL for a configuration, and the bindings of group 0 it uses.
+fn lighting_wgsl(options: &Options) -> (String, Vec<u32>) {
+    let targets = options.gbuffer.target_formats().len() as u32;
+    let (bindings, read) = match &options.gbuffer {
+        GBuffer::Solved(solution) => return solved_lighting_wgsl(solution, options),
         GBuffer::Packed(layout) => {
             let model = layout.layout();
             let (name, snake) = (model.name.clone(), model.snake_name());
@@ -648,7 +669,7 @@ fn lighting_wgsl(options: &Options) -> String {
         IblForm::Lut => "shade_ibl(shading.light, shading.f0, vec3<f32>(1.0), radiance, env_brdf)",
         IblForm::Approx => "shade_ibl_mobile(shading.light, shading.f0, shading.roughness, n_dot_v, vec3<f32>(1.0), radiance)",
     };
-    format!(
+    let source = format!(
         "{}\n{}\n{FULL_SCREEN_WGSL}\n{SURFACE_WGSL}\n{bindings}
 const LIGHT_SCALE: f32 = {light_scale:?};
 @group(0) @binding(0) var<uniform> viewport: vec4<f32>;
@@ -672,9 +693,118 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
 }}
 ",
         library(&["shading", "environment", "normals", "colour", "hdr", "material"]),
-        scene::scene_wgsl(),
+        scene::scene_wgsl(options.gbuffer.features()),
         light_scale = crate::gbuffer::LIGHT_SCALE,
+    );
+    (source, [0, 1, 2, 3].into_iter().chain(10..10 + targets).collect())
+}
+
+/// The G-buffer pass's `encode_texel` for a solved layout: the surface's values for the
+/// quantities the layout stores.
+fn solved_encode_wgsl(solution: &Solution) -> String {
+    let mut members = String::new();
+    for placement in &solution.placements {
+        let value = match placement.quantity {
+            Quantity::Light => "surface.light",
+            Quantity::Depth => "surface.distance",
+            Quantity::Normal => "surface.normal",
+            Quantity::Roughness => "surface.roughness",
+            Quantity::BaseColour => "surface.base_colour",
+            Quantity::Metallic => "surface.metallic",
+            // The scene's dielectrics all reflect 0.04: UE4's default specular.
+            Quantity::Specular => "0.5",
+            Quantity::Albedo => "colours.diffuse",
+            Quantity::SpecularColour => "colours.f0",
+        };
+        members.push_str(&format!("    values.{} = {value};\n", placement.quantity.name()));
+    }
+    format!(
+        "fn encode_texel(surface: Surface) -> {name} {{
+    let colours = metallic_workflow(surface.base_colour, surface.metallic, DIELECTRIC_F0);
+    var values: {values};
+{members}    return encode_{snake}(values);
+}}",
+        name = solution.layout.name,
+        values = solution.values_type(),
+        snake = solution.layout.snake_name(),
     )
+}
+
+/// The lighting pass of a solved layout: decode, then the lighting function generated for the
+/// scene (`scenes::lighting`), with only the host inputs its terms read.
+fn solved_lighting_wgsl(solution: &Solution, options: &Options) -> (String, Vec<u32>) {
+    let forms = Forms {
+        sun: options.sun,
+        ibl: options.ibl,
+    };
+    let inputs = lighting::host_inputs(solution, forms);
+    let mut bindings = vec![0];
+    let mut host = String::new();
+    if inputs.environment {
+        bindings.push(1);
+        host.push_str("@group(0) @binding(1) var environment: texture_2d<f32>;
+fn environment_radiance(direction: vec3<f32>, roughness: f32) -> vec3<f32> {
+    let mip = ibl_mip_level(roughness, ENVIRONMENT_MIPS);
+    return rgbm_decode(textureSampleLevel(environment, linear_sampler, equirectangular(direction), mip), ENVIRONMENT_RANGE);
+}
+");
+    }
+    if inputs.env_brdf_lut {
+        bindings.push(2);
+        host.push_str("@group(0) @binding(2) var lut: texture_2d<f32>;
+fn env_brdf_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
+    return textureSampleLevel(lut, linear_sampler, vec2<f32>(n_dot_v, roughness), 0.0).xy;
+}
+");
+    }
+    if inputs.environment || inputs.env_brdf_lut {
+        bindings.push(3);
+        host.push_str("@group(0) @binding(3) var linear_sampler: sampler;\n");
+    }
+    let layout = &solution.layout;
+    let (name, snake) = (&layout.name, layout.snake_name());
+    let targets = layout.targets();
+    bindings.extend((0..targets as u32).map(|target| 10 + target));
+    let target_bindings: String = (0..targets)
+        .map(|target| format!("@group(0) @binding({}) var gbuffer{target}: texture_2d<u32>;\n", 10 + target))
+        .collect();
+    let loads: Vec<String> = (0..targets)
+        .map(|target| format!("textureLoad(gbuffer{target}, pixel, 0)"))
+        .collect();
+    let position = if solution.placement(Quantity::Depth).is_some() {
+        "SCENE_EYE + direction * values.depth"
+    } else {
+        "vec3<f32>(0.0)" // without point lights nothing reads it
+    };
+    let mut modules = vec!["shading", "environment", "normals", "colour", "hdr", "material", "mobile"];
+    modules.extend(solution.modules());
+    let source = format!(
+        "{}\n{}\n{FULL_SCREEN_WGSL}\n{}\n{target_bindings}{host}
+@group(0) @binding(0) var<uniform> viewport: vec4<f32>;
+
+{}
+@fragment
+fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
+    let pixel = vec2<i32>(position.xy);
+    let direction = camera_ray(position.xy, viewport.xy);
+    let targets = {name}Targets({loads});
+    // The G-buffer pass marks sky pixels with all ones in the first target.
+    if all(targets.target0 == vec4<u32>(0xffffffffu)) {{
+        return vec4<f32>(sky(direction), 1.0);
+    }}
+    let values = decode_{snake}(unpack_{snake}_targets(targets));
+    let surface_position = {position};
+    return vec4<f32>({shade}(values, -direction, surface_position), 1.0);
+}}
+",
+        library(&modules),
+        scene::scene_wgsl(solution.scene.features),
+        scenes::texel::texel_wgsl(solution),
+        lighting::lighting_wgsl(solution, forms),
+        loads = loads.join(", "),
+        shade = lighting::lighting_function_name(solution),
+    );
+    (source, bindings)
 }
 
 fn tonemap_wgsl() -> String {
@@ -778,13 +908,14 @@ impl Passes {
             };
         let gbuffer = pipeline(
             "gbuffer",
-            gbuffer_wgsl(options.gbuffer),
+            gbuffer_wgsl(&options.gbuffer),
             "gbuffer_main",
             &options.gbuffer.target_formats(),
         );
+        let (lighting_source, lighting_bindings_used) = lighting_wgsl(options);
         let lighting = pipeline(
             "lighting",
-            lighting_wgsl(options),
+            lighting_source,
             "lighting_main",
             &[HDR_FORMAT],
         );
@@ -838,6 +969,8 @@ impl Passes {
                 resource: wgpu::BindingResource::TextureView(target_view),
             });
         }
+        // A solved layout's lighting pass declares only the bindings its terms read.
+        entries.retain(|entry| lighting_bindings_used.contains(&entry.binding));
         let lighting_bindings = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &lighting.get_bind_group_layout(0),

@@ -8,6 +8,7 @@
 //! The scene is written twice, in WGSL (`SCENE_WGSL`, for the G-buffer pass) and in Rust f64
 //! (for the reference), side by side: the same numbers, the same formulas.
 
+use scenes::{Feature, Features};
 use shaderlib::glam::{DVec2, DVec3, DVec4};
 use shaderlib::shading::reference as r;
 
@@ -31,6 +32,18 @@ pub const FIELD_OF_VIEW: f64 = 42.0;
 /// Towards the sun, and its colour.
 pub const SUN_DIRECTION: [f64; 3] = [0.4, 0.8, -0.45];
 pub const SUN_COLOUR: [f64; 3] = [3.0, 2.85, 2.6];
+
+/// The sphere that glows when the scene has emissive surfaces (row, column), and its emission.
+pub const EMISSIVE_SPHERE: (usize, usize) = (2, 0);
+pub const EMISSION: [f64; 3] = [4.0, 1.6, 0.5];
+
+/// Point lights (when the scene has them): positions and colours, and the radius where their
+/// windowed falloff reaches 0.
+pub const POINT_LIGHTS: [([f64; 3], [f64; 3]); 2] = [
+    ([-1.2, 0.35, -0.9], [6.0, 3.0, 1.2]),
+    ([1.4, 0.5, -0.8], [1.5, 3.0, 6.0]),
+];
+pub const POINT_LIGHT_RADIUS: f64 = 5.0;
 
 /// The sky: radiance A + B.d + C max(d.s, 0)^8 (a gradient and a broad glow towards the sun).
 pub const SKY_A: [f64; 3] = [0.55, 0.62, 0.75];
@@ -92,8 +105,11 @@ pub struct Surface {
     pub base_colour: DVec3,
     pub metallic: f64,
     /// The static diffuse irradiance (divided by pi) reaching it: the light map on the ground,
-    /// the sky's cosine-weighted average on the spheres.
+    /// the sky's cosine-weighted average on the spheres (without image-based light, only
+    /// the light map).
     pub irradiance: DVec3,
+    /// The light it emits.
+    pub emission: DVec3,
     pub distance: f64,
 }
 
@@ -154,8 +170,20 @@ pub fn ground_normal(x: f64, z: f64) -> DVec3 {
     r::normals::tangent_to_world(tangent_normal, DVec3::Y, DVec4::new(1.0, 0.0, 0.0, 1.0))
 }
 
-/// The first surface a ray meets, if any.
-pub fn trace(origin: DVec3, direction: DVec3) -> Option<Surface> {
+/// The first surface a ray meets, if any, as a scene of these features shows it: without
+/// metals every metallic is 0, fully rough scenes have roughness 1, normal maps, light maps,
+/// image-based light and the emissive sphere come and go with their features.
+pub fn trace(origin: DVec3, direction: DVec3, features: Features) -> Option<Surface> {
+    let has = |feature| features.contains(feature);
+    let metals = if has(Feature::Metals) { 1.0 } else { 0.0 };
+    let sky_light = |normal: DVec3| {
+        if has(Feature::ImageBasedLighting) {
+            sky_irradiance(normal)
+        } else {
+            DVec3::ZERO
+        }
+    };
+    let roughness_of = |roughness: f64| if has(Feature::FullyRough) { 1.0 } else { roughness };
     let mut nearest: Option<(f64, usize, usize)> = None;
     for row in 0..ROWS {
         for column in 0..COLUMNS {
@@ -183,30 +211,38 @@ pub fn trace(origin: DVec3, direction: DVec3) -> Option<Surface> {
             let point = origin + direction * distance;
             let normal = (point - sphere_centre(column, row)).normalize();
             let (base_colour, metallic) = ROW_MATERIALS[row];
+            let glows = has(Feature::Emissive) && (row, column) == EMISSIVE_SPHERE;
             Some(Surface {
                 normal,
-                roughness: sphere_roughness(column),
+                roughness: roughness_of(sphere_roughness(column)),
                 base_colour: v3(base_colour),
-                metallic,
-                irradiance: sky_irradiance(normal),
+                metallic: metallic * metals,
+                irradiance: sky_light(normal),
+                emission: if glows { v3(EMISSION) } else { DVec3::ZERO },
                 distance,
             })
         }
         (_, Some(distance)) if distance < 40.0 => {
             let point = origin + direction * distance;
-            let (base_colour, roughness, metallic) = ground_material(point.x, point.z);
+            let (base_colour, roughness, mask) = ground_material(point.x, point.z);
             let inside = point.x.abs() < LIGHT_MAP_EXTENT && point.z.abs() < LIGHT_MAP_EXTENT;
-            let irradiance = if inside {
+            let irradiance = if inside && has(Feature::LightMaps) {
                 light_map(point.x, point.z)
             } else {
-                sky_irradiance(DVec3::Y)
+                sky_light(DVec3::Y)
+            };
+            let normal = if has(Feature::NormalMaps) {
+                ground_normal(point.x, point.z)
+            } else {
+                DVec3::Y
             };
             Some(Surface {
-                normal: ground_normal(point.x, point.z),
-                roughness,
+                normal,
+                roughness: roughness_of(roughness),
                 base_colour,
-                metallic,
+                metallic: mask * metals,
                 irradiance,
+                emission: DVec3::ZERO,
                 distance,
             })
         }
@@ -214,8 +250,9 @@ pub fn trace(origin: DVec3, direction: DVec3) -> Option<Surface> {
     }
 }
 
-/// The scene in WGSL for the G-buffer pass: the same constants and functions as above.
-pub fn scene_wgsl() -> String {
+/// The scene in WGSL for the G-buffer pass: the same constants and functions as above, and the
+/// features as constants.
+pub fn scene_wgsl(features: Features) -> String {
     let components = |value: [f64; 3]| {
         format!(
             "{:?}, {:?}, {:?}",
@@ -247,6 +284,20 @@ const LIGHT_MAP_RANGE: f32 = {light_map_range:?};
 const ENVIRONMENT_RANGE: f32 = {environment_range:?};
 const ENVIRONMENT_MIPS: f32 = {mips:?};
 const ROW_MATERIALS: array<vec4<f32>, {ROWS}> = array<vec4<f32>, {ROWS}>({materials});
+const EMISSIVE_ROW: u32 = {emissive_row}u;
+const EMISSIVE_COLUMN: u32 = {emissive_column}u;
+const EMISSION: vec3<f32> = {emission};
+const POINT_LIGHT_COUNT: u32 = {point_light_count}u;
+const POINT_LIGHT_POSITIONS: array<vec3<f32>, {point_light_count}> = array<vec3<f32>, {point_light_count}>({point_light_positions});
+const POINT_LIGHT_COLOURS: array<vec3<f32>, {point_light_count}> = array<vec3<f32>, {point_light_count}>({point_light_colours});
+const POINT_LIGHT_RADIUS: f32 = {point_light_radius:?};
+// The scene's features.
+const SCENE_METALS: bool = {metals};
+const SCENE_NORMAL_MAPS: bool = {normal_maps};
+const SCENE_EMISSIVE: bool = {emissive};
+const SCENE_IMAGE_BASED_LIGHTING: bool = {image_based_lighting};
+const SCENE_LIGHT_MAPS: bool = {light_maps};
+const SCENE_FULLY_ROUGH: bool = {fully_rough};
 
 fn sphere_centre(column: u32, row: u32) -> vec3<f32> {{
     return vec3<f32>(-2.0 + 0.8 * f32(column), 0.42 + 0.75 * f32(row), 0.0);
@@ -300,5 +351,18 @@ fn ground_normal(x: f32, z: f32) -> vec3<f32> {{
         environment_range = ENVIRONMENT_RANGE as f32,
         mips = ENVIRONMENT_MIPS as f32,
         materials = materials.join(", "),
+        emissive_row = EMISSIVE_SPHERE.0,
+        emissive_column = EMISSIVE_SPHERE.1,
+        emission = vec3(EMISSION),
+        point_light_count = POINT_LIGHTS.len(),
+        point_light_positions = POINT_LIGHTS.map(|(position, _)| vec3(position)).join(", "),
+        point_light_colours = POINT_LIGHTS.map(|(_, colour)| vec3(colour)).join(", "),
+        point_light_radius = POINT_LIGHT_RADIUS as f32,
+        metals = features.contains(Feature::Metals),
+        normal_maps = features.contains(Feature::NormalMaps),
+        emissive = features.contains(Feature::Emissive),
+        image_based_lighting = features.contains(Feature::ImageBasedLighting),
+        light_maps = features.contains(Feature::LightMaps),
+        fully_rough = features.contains(Feature::FullyRough),
     )
 }

@@ -26,7 +26,7 @@ fn accurate(gbuffer: GBuffer) -> Options {
 #[test]
 fn every_gbuffer_renders_a_frame_that_matches_the_cpu_reference() {
     let renderer = renderer();
-    let reference = reference::render(WIDTH, HEIGHT, &|_| {});
+    let reference = reference::render(WIDTH, HEIGHT, scenes::Features::reference_scene(), &|_| {});
     assert!(!is_blank(&reference));
     let gbuffers = SeedLayout::ALL
         .into_iter()
@@ -34,20 +34,20 @@ fn every_gbuffer_renders_a_frame_that_matches_the_cpu_reference() {
         .chain([GBuffer::Classic]);
     for gbuffer in gbuffers {
         let frame = renderer
-            .render(&accurate(gbuffer))
+            .render(&accurate(gbuffer.clone()))
             .unwrap_or_else(|error| panic!("{error}"));
-        assert!(!is_blank(&frame), "{}: the frame is blank", gbuffer.flag());
+        assert!(!is_blank(&frame), "{}: the frame is blank", gbuffer.name());
         let comparison = compare(&frame, &reference);
         eprintln!(
             "{}: PSNR {:.2} dB, largest error {}",
-            gbuffer.flag(),
+            gbuffer.name(),
             comparison.psnr,
             comparison.max_error
         );
         assert!(
             comparison.psnr >= 35.0,
             "{}: PSNR {:.2} dB against the CPU reference",
-            gbuffer.flag(),
+            gbuffer.name(),
             comparison.psnr
         );
     }
@@ -64,7 +64,7 @@ fn the_mobile_forms_render_close_to_the_accurate_reference() {
     let frame = renderer
         .render(&options)
         .unwrap_or_else(|error| panic!("{error}"));
-    let comparison = compare(&frame, &reference::render(WIDTH, HEIGHT, &|_| {}));
+    let comparison = compare(&frame, &reference::render(WIDTH, HEIGHT, scenes::Features::reference_scene(), &|_| {}));
     eprintln!("mobile forms: PSNR {:.2} dB", comparison.psnr);
     // The approximations cost accuracy (D_Approx's lobe, EnvBRDFApprox at grazing angles).
     assert!(

@@ -63,6 +63,25 @@ pub fn lighting_function_name(solution: &Solution) -> String {
     format!("shade_{}", solution.layout.snake_name())
 }
 
+/// What the lighting function reads from the host beyond constants.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct HostInputs {
+    /// `environment_radiance`: the environment's specular reflection is shaded.
+    pub environment: bool,
+    /// `env_brdf_lut`: an accurate form needs the split-sum LUT.
+    pub env_brdf_lut: bool,
+}
+
+pub fn host_inputs(solution: &Solution, forms: Forms) -> HostInputs {
+    let features = solution.scene.features;
+    let environment = features.environment_specular();
+    HostInputs {
+        environment,
+        env_brdf_lut: (features.direct_light() && forms.sun == SunForm::Ggx)
+            || (environment && forms.ibl == IblForm::Lut),
+    }
+}
+
 /// The lighting terms a scene uses, in words, for comments and reports.
 pub fn terms(solution: &Solution) -> Vec<&'static str> {
     let features = solution.scene.features;

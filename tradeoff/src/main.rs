@@ -7,7 +7,6 @@
 //! dependent chain of evaluations, median of 7 runs, less the harness's own time) and for its
 //! f32 mirror on the CPU.
 
-mod cost;
 mod plot;
 mod rows;
 mod timing;
@@ -39,18 +38,7 @@ fn output_folder() -> PathBuf {
 /// The SPIR-V of a row's timing harness, without the library functions the row does not
 /// reach (naga writes every function of a module), and its naga module.
 fn compile(row_wgsl: &str) -> Result<(naga::Module, Vec<u32>), String> {
-    let harness = timing::harness(row_wgsl);
-    let validated = validator::validate_wgsl(&harness)
-        .map_err(|problem| format!("{problem}\n{}", problem.detail))?;
-    let mut compacted = validated.module.clone();
-    naga::compact::compact(&mut compacted, naga::compact::KeepUnused::No);
-    let flags = naga::valid::ValidationFlags::all();
-    let info = naga::valid::Validator::new(flags, naga::valid::Capabilities::default())
-        .validate(&compacted)
-        .map_err(|error| error.emit_to_string(&harness))?;
-    let words = naga::back::spv::write_vec(&compacted, &info, &Default::default(), None)
-        .map_err(|error| error.to_string())?;
-    Ok((validated.module, words))
+    validator::cost::compile_compacted(&timing::harness(row_wgsl))
 }
 
 fn main() {
@@ -66,7 +54,7 @@ fn main() {
     eprintln!("timing on {adapter}");
 
     let (_, baseline_spirv) = compile(timing::BASELINE_ROW).expect("the baseline harness compiles");
-    let baseline_instructions = cost::spirv_instructions(&baseline_spirv);
+    let baseline_instructions = validator::cost::spirv_instructions(&baseline_spirv);
     let baseline_gpu =
         timing::gpu_ns_per_eval(&gpu, &timing::harness(timing::BASELINE_ROW), &[], 1).ok();
     let luts: Vec<(usize, Vec<[f32; 2]>)> = [16, 32]
@@ -98,8 +86,8 @@ fn main() {
             .ok()
             .map(|time| (time - baseline_gpu.unwrap_or(0.0)).max(0.0));
         measured.push(Measured {
-            naga_expressions: cost::naga_expressions(&module),
-            spirv_instructions: cost::spirv_instructions(&spirv)
+            naga_expressions: validator::cost::naga_expressions(&module, "row_eval"),
+            spirv_instructions: validator::cost::spirv_instructions(&spirv)
                 .saturating_sub(baseline_instructions),
             gpu_ns_per_eval: gpu_time,
             cpu_ns_per_eval: timing::cpu_ns_per_eval(&row.cpu),

@@ -4,6 +4,7 @@
 //! The stages mirror naga's own: parse (front), validate, translate (back). Each problem is a
 //! [`Problem`] that names the stage and, where the source has one, the line and column.
 
+pub mod cost;
 pub mod include;
 
 use std::fmt;
