@@ -122,9 +122,12 @@ fn main() -> ExitCode {
         eprintln!("wrote {}", arguments.out.display());
         if arguments.reference {
             eprintln!("rendering the CPU reference...");
-            let reference = reference::render(options.width, options.height, options.gbuffer.features(), &|done| {
-                eprintln!("  reference {:.0}%", done * 100.0)
-            });
+            let reference = reference::render(
+                options.width,
+                options.height,
+                options.gbuffer.features(),
+                &|done| eprintln!("  reference {:.0}%", done * 100.0),
+            );
             let comparison = compare(&frame, &reference);
             println!(
                 "PSNR {:.2} dB, largest error {} steps (against the CPU reference)",

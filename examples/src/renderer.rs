@@ -696,7 +696,10 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
         scene::scene_wgsl(options.gbuffer.features()),
         light_scale = crate::gbuffer::LIGHT_SCALE,
     );
-    (source, [0, 1, 2, 3].into_iter().chain(10..10 + targets).collect())
+    (
+        source,
+        [0, 1, 2, 3].into_iter().chain(10..10 + targets).collect(),
+    )
 }
 
 /// The G-buffer pass's `encode_texel` for a solved layout: the surface's values for the
@@ -716,7 +719,10 @@ fn solved_encode_wgsl(solution: &Solution) -> String {
             Quantity::Albedo => "colours.diffuse",
             Quantity::SpecularColour => "colours.f0",
         };
-        members.push_str(&format!("    values.{} = {value};\n", placement.quantity.name()));
+        members.push_str(&format!(
+            "    values.{} = {value};\n",
+            placement.quantity.name()
+        ));
     }
     format!(
         "fn encode_texel(surface: Surface) -> {name} {{
@@ -751,11 +757,13 @@ fn environment_radiance(direction: vec3<f32>, roughness: f32) -> vec3<f32> {
     }
     if inputs.env_brdf_lut {
         bindings.push(2);
-        host.push_str("@group(0) @binding(2) var lut: texture_2d<f32>;
+        host.push_str(
+            "@group(0) @binding(2) var lut: texture_2d<f32>;
 fn env_brdf_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
     return textureSampleLevel(lut, linear_sampler, vec2<f32>(n_dot_v, roughness), 0.0).xy;
 }
-");
+",
+        );
     }
     if inputs.environment || inputs.env_brdf_lut {
         bindings.push(3);
@@ -766,7 +774,12 @@ fn env_brdf_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
     let targets = layout.targets();
     bindings.extend((0..targets as u32).map(|target| 10 + target));
     let target_bindings: String = (0..targets)
-        .map(|target| format!("@group(0) @binding({}) var gbuffer{target}: texture_2d<u32>;\n", 10 + target))
+        .map(|target| {
+            format!(
+                "@group(0) @binding({}) var gbuffer{target}: texture_2d<u32>;\n",
+                10 + target
+            )
+        })
         .collect();
     let loads: Vec<String> = (0..targets)
         .map(|target| format!("textureLoad(gbuffer{target}, pixel, 0)"))
@@ -776,7 +789,15 @@ fn env_brdf_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
     } else {
         "vec3<f32>(0.0)" // without point lights nothing reads it
     };
-    let mut modules = vec!["shading", "environment", "normals", "colour", "hdr", "material", "mobile"];
+    let mut modules = vec![
+        "shading",
+        "environment",
+        "normals",
+        "colour",
+        "hdr",
+        "material",
+        "mobile",
+    ];
     modules.extend(solution.modules());
     let source = format!(
         "{}\n{}\n{FULL_SCREEN_WGSL}\n{}\n{target_bindings}{host}
@@ -913,12 +934,7 @@ impl Passes {
             &options.gbuffer.target_formats(),
         );
         let (lighting_source, lighting_bindings_used) = lighting_wgsl(options);
-        let lighting = pipeline(
-            "lighting",
-            lighting_source,
-            "lighting_main",
-            &[HDR_FORMAT],
-        );
+        let lighting = pipeline("lighting", lighting_source, "lighting_main", &[HDR_FORMAT]);
         let tonemap = pipeline(
             "tonemap",
             tonemap_wgsl(),

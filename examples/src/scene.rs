@@ -183,7 +183,13 @@ pub fn trace(origin: DVec3, direction: DVec3, features: Features) -> Option<Surf
             DVec3::ZERO
         }
     };
-    let roughness_of = |roughness: f64| if has(Feature::FullyRough) { 1.0 } else { roughness };
+    let roughness_of = |roughness: f64| {
+        if has(Feature::FullyRough) {
+            1.0
+        } else {
+            roughness
+        }
+    };
     let mut nearest: Option<(f64, usize, usize)> = None;
     for row in 0..ROWS {
         for column in 0..COLUMNS {

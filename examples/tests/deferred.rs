@@ -64,7 +64,10 @@ fn the_mobile_forms_render_close_to_the_accurate_reference() {
     let frame = renderer
         .render(&options)
         .unwrap_or_else(|error| panic!("{error}"));
-    let comparison = compare(&frame, &reference::render(WIDTH, HEIGHT, scenes::Features::reference_scene(), &|_| {}));
+    let comparison = compare(
+        &frame,
+        &reference::render(WIDTH, HEIGHT, scenes::Features::reference_scene(), &|_| {}),
+    );
     eprintln!("mobile forms: PSNR {:.2} dB", comparison.psnr);
     // The approximations cost accuracy (D_Approx's lobe, EnvBRDFApprox at grazing angles).
     assert!(

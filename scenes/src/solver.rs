@@ -542,20 +542,6 @@ fn setting_of(quantity: Quantity) -> Setting {
 fn unreachable_requirement(quantity: Quantity, scene: &SceneDescription) -> SolveError {
     let precision = &scene.precision;
     let catalogue = Encoding::catalogue(quantity, precision);
-    if quantity.kind() == Kind::Hdr
-        && catalogue
-            .iter()
-            .all(|encoding| encoding.hdr_max() < precision.hdr_max)
-    {
-        return SolveError::Unmet {
-            setting: Setting::HdrMax,
-            message: format!(
-                "hdr_max = {} is beyond every light encoding (the largest, binary16, stores up \
-                 to 65504)",
-                precision.hdr_max
-            ),
-        };
-    }
     let best = catalogue
         .into_iter()
         .filter(|encoding| quantity.kind() != Kind::Hdr || encoding.hdr_max() >= precision.hdr_max)

@@ -65,13 +65,18 @@ fn callees(body: &Block, found: &mut Vec<Handle<naga::Function>>) {
 /// 0 when there is no such root.
 pub fn naga_expressions(module: &Module, root: &str) -> usize {
     let named = |function: &naga::Function| function.name.as_deref() == Some(root);
-    let (mut total, mut pending) = match module.entry_points.iter().find(|entry| entry.name == root) {
+    let (mut total, mut pending) = match module.entry_points.iter().find(|entry| entry.name == root)
+    {
         Some(entry) => {
             let mut pending = Vec::new();
             callees(&entry.function.body, &mut pending);
             (entry.function.expressions.len(), pending)
         }
-        None => match module.functions.iter().find(|(_, function)| named(function)) {
+        None => match module
+            .functions
+            .iter()
+            .find(|(_, function)| named(function))
+        {
             Some((handle, _)) => (0, vec![handle]),
             None => return 0,
         },
