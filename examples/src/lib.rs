@@ -3,6 +3,7 @@
 
 pub mod gbuffer;
 pub mod image;
+pub mod presets;
 pub mod reference;
 pub mod renderer;
 pub mod scene;

@@ -641,8 +641,9 @@ fn gbuffer_main(@builtin(position) position: vec4<f32>) -> {output_type} {{
     )
 }
 
-/// The lighting pass's WGSL for a configuration, and the bindings of group 0 it uses.
-fn lighting_wgsl(options: &Options) -> (String, Vec<u32>) {
+/// The lighting pass's WGSL for a configuration (entry point `lighting_main`), and the
+/// bindings of group 0 it uses.
+pub fn lighting_wgsl(options: &Options) -> (String, Vec<u32>) {
     let targets = options.gbuffer.target_formats().len() as u32;
     let (bindings, read) = match &options.gbuffer {
         GBuffer::Solved(solution) => return solved_lighting_wgsl(solution, options),
