@@ -12,7 +12,7 @@ use std::process::ExitCode;
 use clap::Parser;
 use examples::presets::{lighting_cost, measure_preset, unspecialised_options, PRESETS};
 use examples::renderer::Renderer;
-use scenes::lighting::{terms, Forms, IblForm, SunForm};
+use scenes::lighting::{terms, Forms};
 
 #[derive(Parser, Debug)]
 #[command(name = "scene_presets", about)]
@@ -40,10 +40,7 @@ fn main() -> ExitCode {
         return ExitCode::from(2);
     };
     let forms = if arguments.mobile {
-        Forms {
-            sun: SunForm::Approx,
-            ibl: IblForm::Approx,
-        }
+        Forms::MOBILE
     } else {
         Forms::ACCURATE
     };

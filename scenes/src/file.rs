@@ -114,15 +114,6 @@ pub fn read_and_solve(path: &Path) -> Result<Solution, SceneFileError> {
     parse_and_solve(&source, path).map_err(SceneFileError::Invalid)
 }
 
-/// Reads a scene file's description without solving it.
-pub fn read_scene_file(path: &Path) -> Result<SceneDescription, SceneFileError> {
-    let source = std::fs::read_to_string(path).map_err(|error| SceneFileError::Io {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    parse_scene(&source, path).map_err(SceneFileError::Invalid)
-}
-
 /// Parses and checks scene-file text; `path` names it in diagnostics.
 pub fn parse_scene(source: &str, path: &Path) -> Result<SceneDescription, Vec<FileDiagnostic>> {
     parse(source, path).map(|parsed| parsed.scene)

@@ -51,6 +51,12 @@ impl Forms {
         sun: SunForm::Ggx,
         ibl: IblForm::Lut,
     };
+
+    /// The mobile forms of Karis 2014: D_Approx and EnvBRDFApprox.
+    pub const MOBILE: Forms = Forms {
+        sun: SunForm::Approx,
+        ibl: IblForm::Approx,
+    };
 }
 
 /// The shaderlib modules the lighting function calls.

@@ -198,13 +198,6 @@ pub fn stored_quantities(scene: &SceneDescription) -> Vec<Stored> {
         .collect()
 }
 
-/// Whether a scene stores a quantity.
-pub fn stores(scene: &SceneDescription, quantity: Quantity) -> bool {
-    stored_quantities(scene)
-        .iter()
-        .any(|stored| stored.quantity == quantity)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -16,7 +16,7 @@ use clap::Parser;
 use codegen::emit::wgsl::Conversions;
 use codegen::output::{generate, write_if_changed, Output};
 use scenes::file::{read_and_solve, SceneFileError};
-use scenes::lighting::{lighting_wgsl, Forms, IblForm, SunForm};
+use scenes::lighting::{lighting_wgsl, Forms};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -40,10 +40,7 @@ struct Arguments {
 fn main() -> ExitCode {
     let arguments = Arguments::parse();
     let forms = if arguments.mobile {
-        Forms {
-            sun: SunForm::Approx,
-            ibl: IblForm::Approx,
-        }
+        Forms::MOBILE
     } else {
         Forms::ACCURATE
     };
