@@ -166,7 +166,8 @@ pub fn lighting_wgsl(solution: &Solution, forms: Forms) -> String {
                 } else {
                     "vec3<f32>(0.0)"
                 };
-                line(format!("let colours = specular_workflow({albedo}, {f0});"));
+                // The albedo is stored as the diffuse colour, as Listing 2.8 stores it.
+                line(format!("let colours = MaterialColours({albedo}, {f0});"));
             }
         }
         line("let normal = values.normal;".into());
