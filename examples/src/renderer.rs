@@ -18,6 +18,7 @@ use wgpu::util::DeviceExt;
 use scenes::lighting::{self, Forms};
 use scenes::quantity::Quantity;
 use scenes::Solution;
+use shaderlib::packing::Layout;
 
 use crate::gbuffer::{GBuffer, SURFACE_WGSL};
 use crate::scene::{self, LIGHT_MAP_EXTENT, LIGHT_MAP_RANGE};
@@ -513,31 +514,61 @@ struct Passes {
     tonemap_bindings: wgpu::BindGroup,
 }
 
+/// The G-buffer pass's last statements for a packed layout (sky pixels get all ones, a
+/// surface its packed words) and the type it returns: `<Name>Targets`.
+fn write_packed_targets(layout: &Layout) -> (String, String) {
+    let (name, snake) = (&layout.name, layout.snake_name());
+    let sentinel = vec!["vec4<u32>(0xffffffffu)"; layout.targets()].join(", ");
+    (
+        format!("if surface.distance < 0.0 {{\n        return {name}Targets({sentinel});\n    }}\n    return pack_{snake}_targets(encode_texel(surface));"),
+        format!("{name}Targets"),
+    )
+}
+
+/// The lighting pass's bindings of a packed layout's targets (10, 11, ...) and the expression
+/// that loads them at `pixel` as a `<Name>Targets`.
+fn read_packed_targets(layout: &Layout) -> (String, String) {
+    let bindings = (0..layout.targets())
+        .map(|target| {
+            format!(
+                "@group(0) @binding({}) var gbuffer{target}: texture_2d<u32>;\n",
+                10 + target
+            )
+        })
+        .collect();
+    let loads: Vec<String> = (0..layout.targets())
+        .map(|target| format!("textureLoad(gbuffer{target}, pixel, 0)"))
+        .collect();
+    (
+        bindings,
+        format!("{}Targets({})", layout.name, loads.join(", ")),
+    )
+}
+
 /// The G-buffer pass's WGSL for a configuration.
 fn gbuffer_wgsl(gbuffer: &GBuffer) -> String {
     let mut modules = vec!["normals", "colour", "hdr", "material", "mobile"];
     let (layout_wgsl, encode, output_type, output) = match gbuffer {
         GBuffer::Packed(layout) => {
-            let model = layout.layout();
-            let name = model.name.clone();
-            let snake = model.snake_name();
-            let sentinel: Vec<String> = (0..model.targets()).map(|_| "vec4<u32>(0xffffffffu)".to_string()).collect();
+            let (encode, output_type) = write_packed_targets(&layout.layout());
             (
                 format!("{}\n{}", layout.wgsl(), layout.encode_wgsl()),
-                format!("if surface.distance < 0.0 {{\n        return {name}Targets({});\n    }}\n    return pack_{snake}_targets(encode_texel(surface));", sentinel.join(", ")),
-                format!("{name}Targets"),
+                encode,
+                output_type,
                 String::new(),
             )
         }
         GBuffer::Solved(solution) => {
             modules.extend(solution.modules());
-            let name = &solution.layout.name;
-            let snake = solution.layout.snake_name();
-            let sentinel: Vec<String> = (0..solution.layout.targets()).map(|_| "vec4<u32>(0xffffffffu)".to_string()).collect();
+            let (encode, output_type) = write_packed_targets(&solution.layout);
             (
-                format!("{}\n{}", scenes::texel::texel_wgsl(solution), solved_encode_wgsl(solution)),
-                format!("if surface.distance < 0.0 {{\n        return {name}Targets({});\n    }}\n    return pack_{snake}_targets(encode_texel(surface));", sentinel.join(", ")),
-                format!("{name}Targets"),
+                format!(
+                    "{}\n{}",
+                    scenes::texel::texel_wgsl(solution),
+                    solved_encode_wgsl(solution)
+                ),
+                encode,
+                output_type,
                 String::new(),
             )
         }
@@ -649,12 +680,11 @@ pub fn lighting_wgsl(options: &Options) -> (String, Vec<u32>) {
         GBuffer::Solved(solution) => return solved_lighting_wgsl(solution, options),
         GBuffer::Packed(layout) => {
             let model = layout.layout();
-            let (name, snake) = (model.name.clone(), model.snake_name());
-            let bindings: String = (0..model.targets()).map(|target| format!("@group(0) @binding({}) var gbuffer{target}: texture_2d<u32>;\n", 10 + target)).collect();
-            let loads: Vec<String> = (0..model.targets()).map(|target| format!("textureLoad(gbuffer{target}, pixel, 0)")).collect();
+            let (bindings, targets) = read_packed_targets(&model);
+            let snake = model.snake_name();
             (
                 format!("{}\n{}\n{bindings}", layout.wgsl(), layout.decode_wgsl()),
-                format!("let targets = {name}Targets({});\n    if targets.target0.x == 0xffffffffu {{\n        return vec4<f32>(sky(direction), 1.0);\n    }}\n    let shading = decode_texel(unpack_{snake}_targets(targets));", loads.join(", ")),
+                format!("let targets = {targets};\n    if targets.target0.x == 0xffffffffu {{\n        return vec4<f32>(sky(direction), 1.0);\n    }}\n    let shading = decode_texel(unpack_{snake}_targets(targets));"),
             )
         }
         GBuffer::Classic => (
@@ -771,20 +801,9 @@ fn env_brdf_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
         host.push_str("@group(0) @binding(3) var linear_sampler: sampler;\n");
     }
     let layout = &solution.layout;
-    let (name, snake) = (&layout.name, layout.snake_name());
-    let targets = layout.targets();
-    bindings.extend((0..targets as u32).map(|target| 10 + target));
-    let target_bindings: String = (0..targets)
-        .map(|target| {
-            format!(
-                "@group(0) @binding({}) var gbuffer{target}: texture_2d<u32>;\n",
-                10 + target
-            )
-        })
-        .collect();
-    let loads: Vec<String> = (0..targets)
-        .map(|target| format!("textureLoad(gbuffer{target}, pixel, 0)"))
-        .collect();
+    let snake = layout.snake_name();
+    bindings.extend((0..layout.targets() as u32).map(|target| 10 + target));
+    let (target_bindings, targets) = read_packed_targets(layout);
     let position = if solution.placement(Quantity::Depth).is_some() {
         "SCENE_EYE + direction * values.depth"
     } else {
@@ -809,7 +828,7 @@ fn env_brdf_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
 fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
     let pixel = vec2<i32>(position.xy);
     let direction = camera_ray(position.xy, viewport.xy);
-    let targets = {name}Targets({loads});
+    let targets = {targets};
     // The G-buffer pass marks sky pixels with all ones in the first target.
     if all(targets.target0 == vec4<u32>(0xffffffffu)) {{
         return vec4<f32>(sky(direction), 1.0);
@@ -823,7 +842,6 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
         scene::scene_wgsl(solution.scene.features),
         scenes::texel::texel_wgsl(solution),
         lighting::lighting_wgsl(solution, forms),
-        loads = loads.join(", "),
         shade = lighting::lighting_function_name(solution),
     );
     (source, bindings)
