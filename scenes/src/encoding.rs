@@ -219,6 +219,17 @@ impl Encoding {
         }
     }
 
+    /// Scalar components of what `encode_wgsl` makes of `quantity`, for the pieces that sit in
+    /// channels or bit fields.
+    pub fn stored_components(self, quantity: Quantity) -> usize {
+        match self {
+            Encoding::Rgbm { .. } => 4,
+            Encoding::Octahedral { .. } => 2,
+            Encoding::Unorm { .. } | Encoding::Float32 => 1,
+            _ => quantity.components(),
+        }
+    }
+
     /// WGSL that turns what was stored (`stored`, as `encode_wgsl` made it) back into the
     /// quantity.
     pub fn decode_wgsl(self, stored: &str) -> String {

@@ -7,7 +7,6 @@
 
 use std::fmt::Write as _;
 
-use crate::encoding::Encoding;
 use crate::solver::{describe_error, Placement, Slot, Solution};
 
 impl Solution {
@@ -123,16 +122,6 @@ pub fn standalone_wgsl(solution: &Solution) -> String {
     format!("{modules}\n{}", texel_wgsl(solution))
 }
 
-/// Components of a quantity's stored form (`vecN` or scalar named after the quantity).
-fn stored_components(placement: &Placement) -> usize {
-    match placement.encoding {
-        Encoding::Rgbm { .. } => 4,
-        Encoding::Octahedral { .. } => 2,
-        Encoding::Unorm { .. } | Encoding::Float32 => 1,
-        _ => placement.quantity.components(),
-    }
-}
-
 fn component(name: &str, count: usize, index: usize) -> String {
     if count == 1 {
         name.to_string()
@@ -149,7 +138,7 @@ fn field_from_pieces(solution: &Solution, field: usize) -> String {
     let mut bit_fields = Vec::new();
     for placement in &solution.placements {
         let name = placement.quantity.name();
-        let count = stored_components(placement);
+        let count = placement.encoding.stored_components(placement.quantity);
         let split = placement.locations.len() > 1;
         for (part, location) in placement.locations.iter().enumerate() {
             if location.field != field {
