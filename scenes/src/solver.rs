@@ -651,7 +651,7 @@ fn setting_value(scene: &SceneDescription, setting: Setting) -> String {
     }
 }
 
-/// An error in words: "0.39 degrees", "1/510 (256 steps)", "2.0% of the brightest channel".
+/// An error in words: "0.389 degrees", "1.96e-3 (256 steps)", "2.000% of the brightest channel".
 pub fn describe_error(quantity: Quantity, error: f64) -> String {
     match quantity.kind() {
         Kind::Direction => format!("{error:.3} degrees"),
