@@ -165,7 +165,7 @@ impl Layout {
         let mut report =
             |subject, message: String| diagnostics.push(Diagnostic { subject, message });
 
-        if let Err(reason) = naming::check_identifier(&self.name) {
+        if let Err(reason) = naming::check_layout_name(&self.name) {
             report(
                 Subject::Name,
                 format!("layout name `{}` {reason}", self.name),

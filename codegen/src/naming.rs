@@ -48,6 +48,64 @@ pub fn check_identifier(name: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// Checks a layout's name: an identifier as [`check_identifier`] wants, which also names the
+/// generated WGSL struct, so it must not shadow a WGSL predeclared type or builtin function
+/// (the generated code calls them), and whose snake_case form prefixes GLSL globals, so it
+/// must not start with `gl_`, which GLSL reserves. The error completes "name `x` ...".
+pub fn check_layout_name(name: &str) -> Result<(), String> {
+    check_identifier(name)?;
+    if WGSL_PREDECLARED.binary_search(&name).is_ok() {
+        return Err(format!(
+            "is a WGSL predeclared type or builtin function (`{name}`), which the generated \
+             struct would shadow: rename it"
+        ));
+    }
+    let snake = snake_case(name);
+    if snake == "gl" || snake.starts_with("gl_") {
+        return Err(format!(
+            "gives GLSL names starting with `gl_` (`{snake}_target0`), which GLSL reserves: \
+             rename it"
+        ));
+    }
+    Ok(())
+}
+
+/// WGSL's predeclared types, type generators and builtin functions (WGSL spec, sections 6 and
+/// 17), sorted.
+pub const WGSL_PREDECLARED: &[&str] = &[
+    "abs", "acos", "acosh", "all", "any", "array", "arrayLength", "asin", "asinh", "atan",
+    "atan2", "atanh", "atomic", "atomicAdd", "atomicAnd", "atomicCompareExchangeWeak",
+    "atomicExchange", "atomicLoad", "atomicMax", "atomicMin", "atomicOr", "atomicStore",
+    "atomicSub", "atomicXor", "bitcast", "bool", "ceil", "clamp", "cos", "cosh",
+    "countLeadingZeros", "countOneBits", "countTrailingZeros", "cross", "degrees",
+    "determinant", "distance", "dot", "dot4I8Packed", "dot4U8Packed", "dpdx", "dpdxCoarse",
+    "dpdxFine", "dpdy", "dpdyCoarse", "dpdyFine", "exp", "exp2", "extractBits", "f16", "f32",
+    "faceForward", "firstLeadingBit", "firstTrailingBit", "floor", "fma", "fract", "frexp",
+    "fwidth", "fwidthCoarse", "fwidthFine", "i32", "insertBits", "inverseSqrt", "ldexp",
+    "length", "log", "log2", "mat2x2", "mat2x2f", "mat2x2h", "mat2x3", "mat2x3f", "mat2x3h",
+    "mat2x4", "mat2x4f", "mat2x4h", "mat3x2", "mat3x2f", "mat3x2h", "mat3x3", "mat3x3f",
+    "mat3x3h", "mat3x4", "mat3x4f", "mat3x4h", "mat4x2", "mat4x2f", "mat4x2h", "mat4x3",
+    "mat4x3f", "mat4x3h", "mat4x4", "mat4x4f", "mat4x4h", "max", "min", "mix", "modf",
+    "normalize", "pack2x16float", "pack2x16snorm", "pack2x16unorm", "pack4x8snorm",
+    "pack4x8unorm", "pack4xI8", "pack4xI8Clamp", "pack4xU8", "pack4xU8Clamp", "pow", "ptr",
+    "quantizeToF16", "radians", "reflect", "refract", "reverseBits", "round", "sampler",
+    "sampler_comparison", "saturate", "select", "sign", "sin", "sinh", "smoothstep", "sqrt",
+    "step", "storageBarrier", "tan", "tanh", "textureBarrier", "textureDimensions",
+    "textureGather", "textureGatherCompare", "textureLoad", "textureNumLayers",
+    "textureNumLevels", "textureNumSamples", "textureSample", "textureSampleBaseClampToEdge",
+    "textureSampleBias", "textureSampleCompare", "textureSampleCompareLevel",
+    "textureSampleGrad", "textureSampleLevel", "textureStore", "texture_1d", "texture_2d",
+    "texture_2d_array", "texture_3d", "texture_cube", "texture_cube_array",
+    "texture_depth_2d", "texture_depth_2d_array", "texture_depth_cube",
+    "texture_depth_cube_array", "texture_depth_multisampled_2d", "texture_external",
+    "texture_multisampled_2d", "texture_storage_1d", "texture_storage_2d",
+    "texture_storage_2d_array", "texture_storage_3d", "transpose", "trunc", "u32",
+    "unpack2x16float", "unpack2x16snorm", "unpack2x16unorm", "unpack4x8snorm",
+    "unpack4x8unorm", "unpack4xI8", "unpack4xU8", "vec2", "vec2f", "vec2h", "vec2i", "vec2u",
+    "vec3", "vec3f", "vec3h", "vec3i", "vec3u", "vec4", "vec4f", "vec4h", "vec4i", "vec4u",
+    "workgroupBarrier", "workgroupUniformLoad",
+];
+
 /// WGSL's keywords and reserved words (WGSL spec, sections 15.1 and 15.2), sorted.
 pub const WGSL_RESERVED: &[&str] = &[
     "NULL",
@@ -243,8 +301,18 @@ mod tests {
     }
 
     #[test]
-    fn reserved_list_is_sorted_for_binary_search() {
+    fn reserved_lists_are_sorted_for_binary_search() {
         assert!(WGSL_RESERVED.windows(2).all(|pair| pair[0] < pair[1]));
+        assert!(WGSL_PREDECLARED.windows(2).all(|pair| pair[0] < pair[1]));
+    }
+
+    #[test]
+    fn layout_names() {
+        assert!(check_layout_name("MobileMetallic").is_ok());
+        assert!(check_layout_name("main").is_ok(), "GLSL renames it");
+        assert!(check_layout_name("vec4").unwrap_err().contains("`vec4`"));
+        assert!(check_layout_name("GlState").unwrap_err().contains("`gl_state_target0`"));
+        assert!(check_layout_name("Glow").is_ok());
     }
 
     #[test]

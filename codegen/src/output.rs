@@ -5,7 +5,7 @@
 use std::io;
 use std::path::{Path, PathBuf};
 
-use crate::emit::glsl::{self, PlsBlock, TranslationError};
+use crate::emit::glsl::{self, Include, TranslationError};
 use crate::emit::wgsl::Conversions;
 use crate::emit::{rust, wgsl};
 use crate::layout::Layout;
@@ -18,9 +18,11 @@ pub enum Output {
     Wgsl,
     /// `<snake>.pls_inout.glsl`, `.pls_in.glsl`, `.pls_out.glsl`: EXT_shader_pixel_local_storage blocks.
     GlslPixelLocalStorage,
-    /// `<snake>.fetch.glsl`: EXT_shader_framebuffer_fetch attachments and functions.
+    /// `<snake>.fetch.glsl` (packed words) and `<snake>.fetch_native.glsl` (one attachment per
+    /// field): EXT_shader_framebuffer_fetch attachments and functions.
     GlslFramebufferFetch,
-    /// `<snake>.vulkan.glsl`: Vulkan GLSL subpass inputs and functions.
+    /// `<snake>.vulkan.glsl` and `<snake>.vulkan_native.glsl`: Vulkan GLSL subpass inputs and
+    /// functions.
     GlslVulkan,
     /// `<snake>.rs` (and the `.wgsl` it includes): the Rust mirror without the derive.
     Rust,
@@ -37,6 +39,15 @@ impl Output {
         Output::Rust,
         Output::Report,
     ];
+
+    /// Whether this output writes the GLSL include `include`.
+    pub fn includes(self, include: Include) -> bool {
+        match include {
+            Include::PixelLocalStorage(_) => self == Output::GlslPixelLocalStorage,
+            Include::FetchPacked | Include::FetchNative => self == Output::GlslFramebufferFetch,
+            Include::SubpassPacked | Include::SubpassNative => self == Output::GlslVulkan,
+        }
+    }
 }
 
 /// A file to write: its name in the output folder and its contents.
@@ -69,22 +80,14 @@ pub fn generate(
                 format!("{snake}.wgsl"),
                 wgsl::emit_with(layout, conversions) + "\n",
             ),
-            Output::GlslPixelLocalStorage => {
-                for block in PlsBlock::ALL {
+            Output::GlslPixelLocalStorage | Output::GlslFramebufferFetch | Output::GlslVulkan => {
+                for include in Include::ALL.into_iter().filter(|include| output.includes(*include)) {
                     add(
-                        format!("{snake}.pls_{}.glsl", block.suffix()),
-                        glsl::pixel_local_storage(layout, block),
+                        format!("{snake}.{}.glsl", include.file_suffix()),
+                        glsl::include(layout, include, 0)?.0,
                     );
                 }
             }
-            Output::GlslFramebufferFetch => add(
-                format!("{snake}.fetch.glsl"),
-                glsl::framebuffer_fetch(layout)?,
-            ),
-            Output::GlslVulkan => add(
-                format!("{snake}.vulkan.glsl"),
-                glsl::vulkan_subpass_input(layout, 0)?,
-            ),
             Output::Rust => {
                 add(
                     format!("{snake}.wgsl"),

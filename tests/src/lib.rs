@@ -2,9 +2,13 @@
 //! hard cases, WGSL harnesses around generated code, and a GPU runner.
 
 pub mod furnace;
+pub mod gles;
 pub mod gpu;
 pub mod harness;
+pub mod layouts;
 pub mod shading_cases;
+pub mod texels;
+pub mod user_shaders;
 pub mod values;
 
 use shaderlib::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};

@@ -3,11 +3,12 @@
 //! unpacked values identical too, except unorm channels, which may differ from the exact
 //! quotient by 2 ulp (the WGSL multiplies by a correctly rounded reciprocal).
 
-use shaderlib::packing::{ChannelEncoding, Layout, ScalarKind};
+use shaderlib::packing::Layout;
 use shaderlib::{seed_layouts, GBufferLayout};
 use tests::gpu::Gpu;
-use tests::harness::{compute_harness, expected_scalars, expected_words, scalars_per_texel};
-use tests::values::{float_edges, sint_edges, uint_edges, Values};
+use tests::harness::{compute_harness, expected_words, scalars_per_texel};
+use tests::texels::{compare, describe, inputs, slots};
+use tests::values::Values;
 use tests::AllFormats;
 
 /// Texels per dispatch, to stay under the default storage binding size.
@@ -42,60 +43,14 @@ fn generated_wgsl_matches_the_rust_mirror_bit_for_bit_on_the_adapter() {
     );
 }
 
-/// The scalar kind and channel encoding of each scalar slot of a texel.
-fn slots(layout: &Layout) -> Vec<(String, ScalarKind, ChannelEncoding)> {
-    layout
-        .fields
-        .iter()
-        .flat_map(|field| {
-            field.format.channels()[..field.ty.components]
-                .iter()
-                .map(move |channel| {
-                    (
-                        format!("{}.{}", field.name, channel.name),
-                        field.ty.scalar,
-                        channel.encoding,
-                    )
-                })
-        })
-        .collect()
-}
-
-/// Inputs for `count` texels starting at texel `first`: the first texels walk through the
-/// edge sets (slot s of texel t takes edge t + s), the rest are random.
-fn inputs(layout: &Layout, first: usize, count: usize, values: &mut Values) -> Vec<u32> {
-    let slots = slots(layout);
-    let (floats, uints, sints) = (float_edges(), uint_edges(), sint_edges());
-    let edge_texels = floats.len().max(uints.len()).max(sints.len());
-    let mut inputs = Vec::with_capacity(count * slots.len());
-    for texel in first..first + count {
-        for (slot, &(_, kind, _)) in slots.iter().enumerate() {
-            let bits = if texel < edge_texels {
-                let pick = texel + slot;
-                match kind {
-                    ScalarKind::Float => floats[pick % floats.len()].to_bits(),
-                    ScalarKind::Uint => uints[pick % uints.len()],
-                    ScalarKind::Sint => sints[pick % sints.len()] as u32,
-                }
-            } else {
-                values.bits(kind)
-            };
-            inputs.push(bits);
-        }
-    }
-    inputs
-}
-
 /// Runs `texels` texels of `layout` through the adapter; returns a line per mismatch (the
 /// first few of each kind).
 fn check_layout(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64) -> Vec<String> {
     let harness = compute_harness(layout, wgsl);
     let scalars = scalars_per_texel(layout);
     let words = layout.words();
-    let slots = slots(layout);
     let mut values = Values::new(seed);
     let mut failures = Vec::new();
-    let mut compared = 0usize;
     for first in (0..texels).step_by(BATCH) {
         let count = BATCH.min(texels - first);
         let inputs = inputs(layout, first, count, &mut values);
@@ -106,57 +61,21 @@ fn check_layout(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64
             &[count * words, count * scalars],
             count as u32,
         );
-        for texel in 0..count {
-            let input = &inputs[texel * scalars..][..scalars];
-            let expected = expected_words(layout, input);
-            let packed = &outputs[0][texel * words..][..words];
-            for (word, (want, got)) in expected.iter().zip(packed).enumerate() {
-                if want != got && failures.len() < 20 {
-                    let field = &layout.fields[word];
-                    failures.push(format!(
-                        "{}: pack word {word} ({}, {}): expected {want:#010x}, adapter wrote {got:#010x}; inputs {:?}",
-                        layout.name, field.name, field.format, describe(input, &slots)
-                    ));
-                }
-            }
-            let expected_back = expected_scalars(layout, &expected);
-            let unpacked = &outputs[1][texel * scalars..][..scalars];
-            for (slot, (want, got)) in expected_back.iter().zip(unpacked).enumerate() {
-                let (name, _, encoding) = &slots[slot];
-                let tolerance = if *encoding == ChannelEncoding::Unorm {
-                    2
-                } else {
-                    0
-                };
-                if want.abs_diff(*got) > tolerance && failures.len() < 20 {
-                    failures.push(format!(
-                        "{}: unpack {name}: expected {want:#010x} ({}), adapter gave {got:#010x} ({})",
-                        layout.name,
-                        f32::from_bits(*want),
-                        f32::from_bits(*got)
-                    ));
-                }
-            }
-            compared += 1;
-        }
+        compare(
+            "wgpu",
+            layout,
+            &inputs,
+            Some(&outputs[0]),
+            Some(&outputs[1]),
+            &mut failures,
+            20,
+        );
     }
     eprintln!(
-        "{}: compared {compared} texels ({} scalars, {} words each)",
+        "{}: compared {texels} texels ({} scalars, {} words each)",
         layout.name, scalars, words
     );
     failures
-}
-
-fn describe(input: &[u32], slots: &[(String, ScalarKind, ChannelEncoding)]) -> Vec<String> {
-    input
-        .iter()
-        .zip(slots)
-        .map(|(&bits, (name, kind, _))| match kind {
-            ScalarKind::Float => format!("{name}={:e}", f32::from_bits(bits)),
-            ScalarKind::Uint => format!("{name}={bits}"),
-            ScalarKind::Sint => format!("{name}={}", bits as i32),
-        })
-        .collect()
 }
 
 /// `conversions = "native"`: the adapter's pack builtins against the exact Rust mirror, over

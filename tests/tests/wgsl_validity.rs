@@ -3,7 +3,7 @@
 //! every generated function.
 
 use proptest::prelude::*;
-use shaderlib::packing::{Field, FieldType, Format, Layout};
+use shaderlib::packing::Layout;
 use shaderlib::{seed_layouts, GBufferLayout};
 use tests::harness::fragment_harness;
 use tests::AllFormats;
@@ -73,35 +73,11 @@ fn webgl2_output_is_glsl_es_300() {
     assert!(glsl.starts_with("#version 300 es"), "{glsl}");
 }
 
-/// A random valid layout: 1 to 16 fields of random formats and fitting types.
-fn random_layout() -> impl Strategy<Value = Layout> {
-    let field = (0..Format::ALL.len(), 1usize..=4).prop_map(|(format_index, components)| {
-        let format = Format::ALL[format_index];
-        let components = components.min(format.channels().len());
-        (format, FieldType::new(format.scalar_kind(), components))
-    });
-    (prop::collection::vec(field, 1..=16), 0u32..3, 0u32..1000).prop_map(
-        |(fields, extra_words, tag)| Layout {
-            name: format!("RandomLayout{tag}"),
-            budget: 32 * (fields.len() as u32 + extra_words),
-            fields: fields
-                .into_iter()
-                .enumerate()
-                .map(|(index, (format, ty))| Field {
-                    name: format!("field_{index}"),
-                    format,
-                    ty,
-                })
-                .collect(),
-        },
-    )
-}
-
 proptest! {
     #![proptest_config(ProptestConfig { cases: 256, failure_persistence: None, ..ProptestConfig::default() })]
 
     #[test]
-    fn random_layouts_validate_and_translate_everywhere(layout in random_layout()) {
+    fn random_layouts_validate_and_translate_everywhere(layout in tests::layouts::random_layout_with(16)) {
         prop_assert!(layout.check().is_empty(), "{:?}", layout.check());
         let wgsl = codegen::emit::wgsl::emit(&layout);
         let shader = fragment_harness(&layout, &wgsl);

@@ -1,0 +1,245 @@
+//! The layout's WGSL translated to GLSL ES by naga, made fit to paste into a user's shader.
+//!
+//! naga writes a whole shader: a `#version`, default precision statements and an entry point.
+//! An include must carry none of them, so the translation keeps the declarations only, and
+//! gives every declaration of a float or integer type an explicit `highp`: the include then
+//! compiles under any default precision the user's preamble sets (or none), and never changes
+//! those defaults. `highp` matters for the integers too: GLSL ES lets a fragment shader's
+//! default `int` be `mediump`, as narrow as 16 bits, and the packing needs all 32.
+//!
+//! naga renames identifiers that GLSL reserves (`sampler` becomes `sampler_`, `main` becomes
+//! `main_`, names ending in a digit get a `_`, `__` is collapsed). The names it chose are read
+//! back from the translation ([`GlslNames`]), so the hand-written parts of an include (blocks,
+//! attachments, accessors) use the same names as the translated struct.
+
+use super::TranslationError;
+use crate::layout::Layout;
+
+/// The GLSL ES version the functions are translated for: the lowest a user can write, so the
+/// text compiles under `#version 300 es`, `310 es` and `320 es` alike.
+const TRANSLATION_VERSION: u16 = 300;
+
+/// The name of the empty entry point that naga's GLSL backend needs to write a shader.
+const ENTRY_POINT: &str = "gbuffer_translation_entry";
+
+/// The layout's types and functions in GLSL ES, and the names naga gave the layout's struct
+/// and fields.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Translation {
+    /// Declarations only: no `#version`, `#extension` or precision statement.
+    pub text: String,
+    pub names: GlslNames,
+}
+
+/// What the layout's identifiers are called in GLSL.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct GlslNames {
+    /// The texel struct (the layout's name, renamed if GLSL reserves it).
+    pub layout: String,
+    /// Its members, one per field, in field order.
+    pub fields: Vec<String>,
+    /// The `<Name>Targets` struct.
+    pub targets: String,
+    /// Its `vec4<u32>` members, one per `Rgba32Uint` target.
+    pub target_members: Vec<String>,
+}
+
+/// Translates the layout's exact WGSL to GLSL ES declarations with explicit precision.
+pub fn translate(layout: &Layout) -> Result<Translation, TranslationError> {
+    let glsl = naga_glsl(layout)?;
+    let body = declarations(&glsl);
+    let names = read_names(&body, layout)?;
+    Ok(Translation {
+        text: with_explicit_precision(&body),
+        names,
+    })
+}
+
+/// naga's whole GLSL ES shader for the layout's WGSL plus an empty fragment entry point.
+fn naga_glsl(layout: &Layout) -> Result<String, TranslationError> {
+    use naga::back::glsl;
+
+    let mut wgsl = crate::emit::wgsl::emit(layout);
+    wgsl.push_str(&format!(
+        "\n@fragment\nfn {ENTRY_POINT}() -> @location(0) vec4<f32> {{\n    return vec4<f32>(0.0);\n}}\n"
+    ));
+    let module = naga::front::wgsl::parse_str(&wgsl)
+        .map_err(|error| TranslationError(error.emit_to_string(&wgsl)))?;
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .map_err(|error| TranslationError(error.emit_to_string(&wgsl)))?;
+    let options = glsl::Options {
+        version: glsl::Version::new_gles(TRANSLATION_VERSION),
+        ..glsl::Options::default()
+    };
+    let pipeline = glsl::PipelineOptions {
+        shader_stage: naga::ShaderStage::Fragment,
+        entry_point: ENTRY_POINT.to_string(),
+        multiview: None,
+    };
+    let mut text = String::new();
+    glsl::Writer::new(
+        &mut text,
+        &module,
+        &info,
+        &options,
+        &pipeline,
+        naga::proc::BoundsCheckPolicies::default(),
+    )
+    .and_then(|mut writer| writer.write())
+    .map_err(|error| TranslationError(error.to_string()))?;
+    Ok(text)
+}
+
+/// The declarations from the first struct up to the entry point, without the entry point's
+/// output variable, and with runs of blank lines folded into one.
+fn declarations(glsl: &str) -> String {
+    let mut body = String::new();
+    for line in glsl
+        .lines()
+        .skip_while(|line| !line.starts_with("struct "))
+        .take_while(|line| !line.starts_with("void main()"))
+        .filter(|line| !line.starts_with("layout("))
+    {
+        if !(line.is_empty() && body.ends_with("\n\n")) {
+            body.push_str(line);
+            body.push('\n');
+        }
+    }
+    body.trim_end().to_string() + "\n"
+}
+
+/// Reads the names of the first two structs and their members, which the WGSL emitter
+/// declares first: the texel struct and the targets struct.
+fn read_names(glsl: &str, layout: &Layout) -> Result<GlslNames, TranslationError> {
+    let mut structs = Vec::new();
+    let mut lines = glsl.lines();
+    while let Some(line) = lines.next() {
+        let Some(name) = line
+            .strip_prefix("struct ")
+            .and_then(|rest| rest.strip_suffix(" {"))
+        else {
+            continue;
+        };
+        let members: Vec<String> = lines
+            .by_ref()
+            .take_while(|line| !line.starts_with("};"))
+            .filter_map(|member| {
+                let declaration = member.trim().strip_suffix(';')?;
+                let name = declaration.rsplit(' ').next()?;
+                // Array members are written `type name[N]`.
+                Some(name.split('[').next().unwrap_or(name).to_string())
+            })
+            .collect();
+        structs.push((name.to_string(), members));
+        if structs.len() == 2 {
+            break;
+        }
+    }
+    match <[_; 2]>::try_from(structs) {
+        Ok([(layout_name, fields), (targets, target_members)])
+            if fields.len() == layout.fields.len()
+                && target_members.len() == layout.targets() =>
+        {
+            Ok(GlslNames {
+                layout: layout_name,
+                fields,
+                targets,
+                target_members,
+            })
+        }
+        _ => Err(TranslationError(format!(
+            "naga's GLSL for `{}` does not start with the texel and targets structs",
+            layout.name
+        ))),
+    }
+}
+
+/// GLSL's float and integer types: the ones a precision qualifier applies to.
+const PRECISION_TYPES: &[&str] = &[
+    "float", "vec2", "vec3", "vec4", "int", "ivec2", "ivec3", "ivec4", "uint", "uvec2", "uvec3",
+    "uvec4", "mat2", "mat3", "mat4",
+];
+
+const PRECISION_QUALIFIERS: &[&str] = &["highp", "mediump", "lowp"];
+
+/// Prefixes `highp` to every type that starts a declaration (a type followed by a name, or by
+/// `[N]` and a name): struct members, constants, parameters, return types and locals. A type
+/// followed by `(` is a constructor or conversion and stays as it is.
+pub fn with_explicit_precision(glsl: &str) -> String {
+    let bytes = glsl.as_bytes();
+    let mut out = String::with_capacity(glsl.len() + glsl.len() / 4);
+    let mut previous_word = "";
+    let mut index = 0;
+    while index < bytes.len() {
+        if !is_identifier_start(bytes[index]) {
+            out.push(bytes[index] as char);
+            index += 1;
+            continue;
+        }
+        let start = index;
+        while index < bytes.len() && is_identifier_part(bytes[index]) {
+            index += 1;
+        }
+        let word = &glsl[start..index];
+        if PRECISION_TYPES.contains(&word)
+            && !PRECISION_QUALIFIERS.contains(&previous_word)
+            && starts_declaration(&bytes[index..])
+        {
+            out.push_str("highp ");
+        }
+        out.push_str(word);
+        previous_word = word;
+    }
+    out
+}
+
+/// Whether the text after a type names a declaration: optional `[digits]`, spaces, then an
+/// identifier.
+fn starts_declaration(rest: &[u8]) -> bool {
+    let mut index = 0;
+    if rest.first() == Some(&b'[') {
+        while index < rest.len() && rest[index] != b']' {
+            index += 1;
+        }
+        index += 1;
+    }
+    let spaces = rest[index.min(rest.len())..]
+        .iter()
+        .take_while(|byte| **byte == b' ')
+        .count();
+    spaces > 0 && rest.get(index + spaces).is_some_and(|byte| is_identifier_start(*byte))
+}
+
+fn is_identifier_start(byte: u8) -> bool {
+    byte.is_ascii_alphabetic() || byte == b'_'
+}
+
+fn is_identifier_part(byte: u8) -> bool {
+    byte.is_ascii_alphanumeric() || byte == b'_'
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn declarations_get_highp_and_constructors_do_not() {
+        let glsl = "struct S {\n    vec3 a;\n    uint b[4];\n};\nconst uint N = 4u;\n\
+                    uint[4] f(vec4 c, uint w[4]) {\n    uint x = uint(c.x);\n    return uint[4](x, 0u, 0u, 0u);\n}\n";
+        assert_eq!(
+            with_explicit_precision(glsl),
+            "struct S {\n    highp vec3 a;\n    highp uint b[4];\n};\nconst highp uint N = 4u;\n\
+             highp uint[4] f(highp vec4 c, highp uint w[4]) {\n    highp uint x = uint(c.x);\n    return uint[4](x, 0u, 0u, 0u);\n}\n"
+        );
+    }
+
+    #[test]
+    fn qualified_types_are_left_alone() {
+        let glsl = "highp vec4 a; mediump float b;";
+        assert_eq!(with_explicit_precision(glsl), glsl);
+    }
+}

@@ -1,0 +1,131 @@
+//! Texels for the packing tests on real drivers: inputs that walk the edge sets before random
+//! values, and the comparison of what a driver produced with the Rust mirror. The wgpu,
+//! GLES and Vulkan tests share them, so every path is held to the same contract.
+
+use shaderlib::packing::{ChannelEncoding, Layout, ScalarKind};
+
+use crate::harness::{expected_scalars, expected_words, scalars_per_texel};
+use crate::values::{float_edges, sint_edges, uint_edges, Values};
+
+/// One scalar slot of a texel: `field.channel`, its scalar kind and its channel's encoding.
+pub struct Slot {
+    pub name: String,
+    pub kind: ScalarKind,
+    pub encoding: ChannelEncoding,
+}
+
+/// The slots of a texel, field by field, component by component.
+pub fn slots(layout: &Layout) -> Vec<Slot> {
+    layout
+        .fields
+        .iter()
+        .flat_map(|field| {
+            field.format.channels()[..field.ty.components]
+                .iter()
+                .map(move |channel| Slot {
+                    name: format!("{}.{}", field.name, channel.name),
+                    kind: field.ty.scalar,
+                    encoding: channel.encoding,
+                })
+        })
+        .collect()
+}
+
+/// Inputs (scalar bits) for `count` texels starting at texel `first`: the first texels walk
+/// through the edge sets (slot s of texel t takes edge t + s), the rest are random.
+pub fn inputs(layout: &Layout, first: usize, count: usize, values: &mut Values) -> Vec<u32> {
+    let slots = slots(layout);
+    let (floats, uints, sints) = (float_edges(), uint_edges(), sint_edges());
+    let edge_texels = floats.len().max(uints.len()).max(sints.len());
+    let mut inputs = Vec::with_capacity(count * slots.len());
+    for texel in first..first + count {
+        for (index, slot) in slots.iter().enumerate() {
+            let bits = if texel < edge_texels {
+                let pick = texel + index;
+                match slot.kind {
+                    ScalarKind::Float => floats[pick % floats.len()].to_bits(),
+                    ScalarKind::Uint => uints[pick % uints.len()],
+                    ScalarKind::Sint => sints[pick % sints.len()] as u32,
+                }
+            } else {
+                values.bits(slot.kind)
+            };
+            inputs.push(bits);
+        }
+    }
+    inputs
+}
+
+/// The inputs of one texel, named and printed by kind.
+pub fn describe(input: &[u32], slots: &[Slot]) -> Vec<String> {
+    input
+        .iter()
+        .zip(slots)
+        .map(|(&bits, slot)| match slot.kind {
+            ScalarKind::Float => format!("{}={:e}", slot.name, f32::from_bits(bits)),
+            ScalarKind::Uint => format!("{}={bits}", slot.name),
+            ScalarKind::Sint => format!("{}={}", slot.name, bits as i32),
+        })
+        .collect()
+}
+
+/// How far a decoded scalar may be from the mirror's: unorm channels 2 ulp (shaders multiply
+/// by a correctly rounded reciprocal where the mirror divides), everything else not at all.
+pub fn decode_tolerance(encoding: ChannelEncoding) -> u32 {
+    if encoding == ChannelEncoding::Unorm {
+        2
+    } else {
+        0
+    }
+}
+
+/// Compares what a driver produced for `inputs` with the Rust mirror: `words` (packed words
+/// per texel, when the path exposes them) and `decoded` (scalar bits per texel, when it
+/// decodes). Pushes a line per mismatch onto `failures`, at most `limit` in all.
+pub fn compare(
+    what: &str,
+    layout: &Layout,
+    inputs: &[u32],
+    words: Option<&[u32]>,
+    decoded: Option<&[u32]>,
+    failures: &mut Vec<String>,
+    limit: usize,
+) {
+    let slots = slots(layout);
+    let scalars = scalars_per_texel(layout);
+    let word_count = layout.words();
+    for (texel, input) in inputs.chunks_exact(scalars).enumerate() {
+        let expected = expected_words(layout, input);
+        if let Some(words) = words {
+            let got = &words[texel * word_count..][..word_count];
+            for (word, (want, have)) in expected.iter().zip(got).enumerate() {
+                if want != have && failures.len() < limit {
+                    let field = &layout.fields[word];
+                    failures.push(format!(
+                        "{what}: {}: word {word} ({}, {}): mirror {want:#010x}, driver {have:#010x}; inputs {:?}",
+                        layout.name,
+                        field.name,
+                        field.format,
+                        describe(input, &slots)
+                    ));
+                }
+            }
+        }
+        if let Some(decoded) = decoded {
+            let want = expected_scalars(layout, &expected);
+            let got = &decoded[texel * scalars..][..scalars];
+            for (slot, (want, have)) in slots.iter().zip(want.iter().zip(got)) {
+                if want.abs_diff(*have) > decode_tolerance(slot.encoding) && failures.len() < limit
+                {
+                    failures.push(format!(
+                        "{what}: {}: decoded {}: mirror {want:#010x} ({:e}), driver {have:#010x} ({:e})",
+                        layout.name,
+                        slot.name,
+                        f32::from_bits(*want),
+                        f32::from_bits(*have)
+                    ));
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,100 @@
+//! Small user shaders around the generated GLSL includes, written as a user would: a preamble
+//! of their own (a `#version`, the `#extension` lines the include's header asks for, perhaps
+//! default precision statements and other extensions), the include pasted unedited, then the
+//! user's code. The GLES and Vulkan tests draw with them.
+
+use std::fmt::Write as _;
+
+use codegen::emit::glsl::{GlslNames, Include};
+use shaderlib::packing::{Layout, ScalarKind};
+
+/// The preambles a user may write before an include: every `#version` it supports, each
+/// without default precision, with `mediump` defaults, and with `highp` float plus an extra
+/// extension line of the user's own.
+pub fn preambles(include: Include) -> Vec<String> {
+    let mut preambles = Vec::new();
+    for version in include.versions() {
+        let mut required = String::new();
+        for extension in include.shader_extensions() {
+            let _ = writeln!(required, "#extension {extension} : require");
+        }
+        let version_line = format!("#version {version}\n");
+        let extra = if include.is_vulkan() {
+            "#extension GL_EXT_samplerless_texture_functions : enable\n"
+        } else {
+            "#extension GL_OES_sample_variables : enable\n"
+        };
+        preambles.push(format!("{version_line}{required}"));
+        preambles.push(format!(
+            "{version_line}{required}precision mediump float;\nprecision mediump int;\n"
+        ));
+        preambles.push(format!(
+            "{version_line}{extra}{required}precision highp float;\n"
+        ));
+    }
+    preambles
+}
+
+/// Whether a preamble's GLSL has shader storage buffers (GLSL ES 3.10 and up, or desktop).
+pub fn has_storage_buffers(preamble: &str) -> bool {
+    !preamble.starts_with("#version 300 es")
+}
+
+/// The GLSL expression that builds the layout's texel from scalar bits; `scalar(i)` is the
+/// expression of scalar `i` (a `highp uint`).
+pub fn texel_from_scalars(
+    layout: &Layout,
+    names: &GlslNames,
+    scalar: impl Fn(usize) -> String,
+) -> String {
+    let mut next = 0;
+    let fields: Vec<String> = layout
+        .fields
+        .iter()
+        .map(|field| {
+            let components: Vec<String> = (0..field.ty.components)
+                .map(|_| {
+                    let bits = scalar(next);
+                    next += 1;
+                    match field.ty.scalar {
+                        ScalarKind::Float => format!("uintBitsToFloat({bits})"),
+                        ScalarKind::Uint => bits,
+                        ScalarKind::Sint => format!("int({bits})"),
+                    }
+                })
+                .collect();
+            match field.ty.components {
+                1 => components[0].clone(),
+                n => {
+                    let prefix = match field.ty.scalar {
+                        ScalarKind::Float => "",
+                        ScalarKind::Uint => "u",
+                        ScalarKind::Sint => "i",
+                    };
+                    format!("{prefix}vec{n}({})", components.join(", "))
+                }
+            }
+        })
+        .collect();
+    format!("{}({})", names.layout, fields.join(", "))
+}
+
+/// The GLSL expressions of a texel variable's scalars as `uint` bits, in slot order.
+pub fn scalars_of_texel(layout: &Layout, names: &GlslNames, texel: &str) -> Vec<String> {
+    let mut scalars = Vec::new();
+    for (field, name) in layout.fields.iter().zip(&names.fields) {
+        for component in 0..field.ty.components {
+            let value = if field.ty.components == 1 {
+                format!("{texel}.{name}")
+            } else {
+                format!("{texel}.{name}.{}", &"xyzw"[component..component + 1])
+            };
+            scalars.push(match field.ty.scalar {
+                ScalarKind::Float => format!("floatBitsToUint({value})"),
+                ScalarKind::Uint => value,
+                ScalarKind::Sint => format!("uint({value})"),
+            });
+        }
+    }
+    scalars
+}

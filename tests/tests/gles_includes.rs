@@ -1,0 +1,414 @@
+//! The framebuffer-fetch includes on a real GLES 3.2 driver (Mesa's llvmpipe through EGL
+//! surfaceless), exactly as generated: each include is pasted unedited into small user
+//! shaders under every preamble its header allows, and
+//!
+//! - pass 1 builds texels from input scalars (edge cases first: NaN, infinities, denormals,
+//!   signed zeros, values beside rounding boundaries, integer extremes; then random values)
+//!   and stores them with `store_<layout>()`;
+//! - pass 2, in the same framebuffer, loads them through framebuffer fetch with
+//!   `load_<layout>()`, stores them again and (where the GLSL has storage buffers) writes
+//!   each decoded field's bits to a buffer.
+//!
+//! The words read back equal the Rust mirror's bit for bit, pass 2 changes no bit, and the
+//! decoded fields equal the mirror's unpack. For the seed layouts, a layout of every format,
+//! and layouts generated at random (with names GLSL reserves), for the packed include and the
+//! native one (one attachment per field, converted by the driver).
+
+use codegen::emit::glsl::{self, AttachmentFormat, Include, Interface};
+use proptest::prelude::*;
+use shaderlib::packing::{ChannelEncoding, Format, Layout, ScalarKind};
+use tests::gles::{skip_without_driver, Framebuffer, Gles};
+use tests::harness::{expected_words, scalars_per_texel};
+use tests::harness::expected_scalars;
+use tests::texels::{compare, decode_tolerance, inputs, slots};
+use tests::user_shaders::{has_storage_buffers, preambles, scalars_of_texel, texel_from_scalars};
+use tests::values::Values;
+
+const WIDTH: i32 = 48;
+const HEIGHT: i32 = 48;
+
+fn gles() -> Option<Gles> {
+    match Gles::new() {
+        Ok(gles) if gles.has_extension("GL_EXT_shader_framebuffer_fetch") => Some(gles),
+        Ok(gles) => {
+            skip_without_driver(
+                "framebuffer fetch",
+                &format!("{} lacks GL_EXT_shader_framebuffer_fetch", gles.describe()),
+            );
+            None
+        }
+        Err(error) => {
+            skip_without_driver("GLES 3.2 through EGL", &error);
+            None
+        }
+    }
+}
+
+/// The two passes of the user's shader for `include` under `preamble`.
+fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> (String, String) {
+    let (text, _) = glsl::include(layout, include, 0).unwrap();
+    let names = glsl::translate(layout).unwrap().names;
+    let prefix = layout.snake_name();
+    let scalars = scalars_per_texel(layout);
+    let texel = texel_from_scalars(layout, &names, |index| format!("harness_scalar({index})"));
+    let store = format!(
+        "{preamble}{text}\n// The user's code.\nuniform highp usampler2D harness_inputs;\n\n\
+         highp uint harness_scalar(highp int index) {{\n    highp ivec2 pixel = ivec2(gl_FragCoord.xy);\n    \
+         return texelFetch(harness_inputs, ivec2(pixel.x * {scalars} + index, pixel.y), 0).x;\n}}\n\n\
+         void main() {{\n    store_{prefix}({texel});\n}}\n"
+    );
+    let mut reload = format!("{preamble}{text}\n// The user's code.\n");
+    let decode = has_storage_buffers(preamble);
+    if decode {
+        reload.push_str(
+            "layout(std430, binding = 0) buffer HarnessDecoded {\n    highp uint harness_decoded[];\n};\n\n",
+        );
+    }
+    reload.push_str(&format!(
+        "void main() {{\n    {} texel = load_{prefix}();\n    store_{prefix}(texel);\n",
+        names.layout
+    ));
+    if decode {
+        reload.push_str(&format!(
+            "    highp int base = (int(gl_FragCoord.y) * {WIDTH} + int(gl_FragCoord.x)) * {scalars};\n"
+        ));
+        for (index, scalar) in scalars_of_texel(layout, &names, "texel").iter().enumerate() {
+            reload.push_str(&format!("    harness_decoded[base + {index}] = {scalar};\n"));
+        }
+    }
+    reload.push_str("}\n");
+    (store, reload)
+}
+
+/// How to read an attachment back so that its bits come out as the layout's word: the pixel
+/// format and type, the bytes per pixel, and the word from one pixel's bytes.
+fn read_format(attachment: AttachmentFormat, format: Option<Format>) -> (u32, u32, usize) {
+    let Some(format) = format else {
+        return (glow::RGBA_INTEGER, glow::UNSIGNED_INT, 16); // RGBA32UI: four words
+    };
+    match format {
+        Format::Rgb10A2 => (glow::RGBA, glow::UNSIGNED_INT_2_10_10_10_REV, 4),
+        Format::Rgba8 => (glow::RGBA, glow::UNSIGNED_BYTE, 4),
+        Format::Rg16 => (glow::RGBA, glow::UNSIGNED_SHORT, 8),
+        Format::R32f => (glow::RGBA, glow::FLOAT, 16),
+        Format::Rg16f => (glow::RGBA, glow::FLOAT, 16),
+        Format::R11fG11fB10f => (glow::RGB, glow::UNSIGNED_INT_10F_11F_11F_REV, 4),
+        Format::Rgb10A2ui => (glow::RGBA_INTEGER, glow::UNSIGNED_INT_2_10_10_10_REV, 4),
+        Format::Rgba8i | Format::Rg16i => (glow::RGBA_INTEGER, glow::INT, 16),
+        Format::Rgba8ui | Format::Rg16ui | Format::R32ui => {
+            debug_assert_eq!(attachment.glsl_type.as_bytes()[0], b'u');
+            (glow::RGBA_INTEGER, glow::UNSIGNED_INT, 16)
+        }
+    }
+}
+
+/// The layout's word from one pixel of a native attachment read as [`read_format`] says.
+fn word_from_pixel(format: Format, pixel: &[u8]) -> u32 {
+    let u32_at = |index: usize| u32::from_le_bytes(pixel[index * 4..][..4].try_into().unwrap());
+    let u16_at = |index: usize| u32::from(u16::from_le_bytes(pixel[index * 2..][..2].try_into().unwrap()));
+    match format {
+        Format::Rgb10A2 | Format::Rgba8 | Format::R11fG11fB10f | Format::Rgb10A2ui => u32_at(0),
+        Format::Rg16 => u16_at(0) | (u16_at(1) << 16),
+        Format::Rg16f => half_bits(f32::from_bits(u32_at(0))) | (half_bits(f32::from_bits(u32_at(1))) << 16),
+        Format::R32f => u32_at(0),
+        // Integer channels come one per u32: keep each channel's bits at its offset.
+        _ => format
+            .channels()
+            .iter()
+            .enumerate()
+            .fold(0, |word, (index, channel)| {
+                word | ((u32_at(index) & channel.mask()) << channel.offset)
+            }),
+    }
+}
+
+/// The binary16 bits of a float that a half converted to exactly (GLES reads RG16F back only
+/// as floats); NaN keeps its sign and the top of its payload, as the half had them.
+fn half_bits(value: f32) -> u32 {
+    let bits = value.to_bits();
+    let sign = (bits >> 16) & 0x8000;
+    let exponent = (bits >> 23) & 0xff;
+    let mantissa = bits & 0x7f_ffff;
+    match exponent {
+        0xff => sign | 0x7c00 | (mantissa >> 13),
+        113.. => sign | ((exponent - 112) << 10) | (mantissa >> 13),
+        0 => sign,
+        _ => sign | ((mantissa | 0x80_0000) >> (126 - exponent)),
+    }
+}
+
+/// The words of every texel, read back from the attachments.
+fn read_words(gles: &Gles, framebuffer: &Framebuffer, layout: &Layout, interface: &Interface) -> Vec<u32> {
+    let texels = (framebuffer.width * framebuffer.height) as usize;
+    let word_count = layout.words();
+    let mut words = vec![0u32; texels * word_count];
+    for (index, attachment) in interface.attachments.iter().enumerate() {
+        let native = (!interface.include.is_packed()).then(|| layout.fields[index].format);
+        let (format, ty, bytes_per_pixel) = read_format(attachment.format, native);
+        let mut bytes = vec![0u8; texels * bytes_per_pixel];
+        gles.read_attachment(framebuffer, index as u32, format, ty, &mut bytes)
+            .unwrap();
+        for (texel, pixel) in bytes.chunks_exact(bytes_per_pixel).enumerate() {
+            match native {
+                Some(format) => words[texel * word_count + index] = word_from_pixel(format, pixel),
+                None => {
+                    for component in 0..4 {
+                        let word = index * 4 + component;
+                        if word < word_count {
+                            words[texel * word_count + word] = u32::from_le_bytes(
+                                pixel[component * 4..][..4].try_into().unwrap(),
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+    words
+}
+
+/// Runs both passes of `include` for `layout` under `preamble`; pushes mismatches onto
+/// `failures`. Returns false (with the reason printed) when the driver has too few draw
+/// buffers for the layout.
+fn check(
+    gles: &Gles,
+    layout: &Layout,
+    include: Include,
+    preamble: &str,
+    seed: u64,
+    failures: &mut Vec<String>,
+) -> bool {
+    let (_, interface) = glsl::include(layout, include, 0).unwrap();
+    let draw_buffers = gles.limit(glow::MAX_DRAW_BUFFERS) as usize;
+    if interface.attachments.len() > draw_buffers {
+        eprintln!(
+            "{}: {include:?} needs {} attachments; the driver draws to {draw_buffers}",
+            layout.name,
+            interface.attachments.len()
+        );
+        return false;
+    }
+    let what = format!("{include:?} under {:?}", preamble.replace('\n', " "));
+    let (store, reload) = user_shaders(layout, include, preamble);
+    let store = gles.program(&store).unwrap_or_else(|log| panic!("{what}: {log}"));
+    let reload = gles.program(&reload).unwrap_or_else(|log| panic!("{what}: {log}"));
+
+    let scalars = scalars_per_texel(layout);
+    let texels = (WIDTH * HEIGHT) as usize;
+    let inputs = inputs(layout, 0, texels, &mut Values::new(seed));
+    let formats: Vec<u32> = interface
+        .attachments
+        .iter()
+        .map(|attachment| attachment.format.gl_internal_format)
+        .collect();
+    gles.uint_texture(&inputs, WIDTH * scalars as i32, HEIGHT)
+        .unwrap();
+    // Pass 1 alone, read back. A second framebuffer runs both passes back to back, as a
+    // renderer does: llvmpipe's framebuffer fetch misreads some formats after a readback
+    // between the draws, which no renderer does.
+    let first = gles.framebuffer(&formats, WIDTH, HEIGHT).unwrap();
+    gles.draw_fullscreen(store).unwrap();
+    let stored = read_words(gles, &first, layout, &interface);
+    let both = gles.framebuffer(&formats, WIDTH, HEIGHT).unwrap();
+    let decode = has_storage_buffers(preamble);
+    let buffer = decode.then(|| gles.storage_buffer(texels * scalars).unwrap());
+    gles.draw_fullscreen(store).unwrap();
+    gles.draw_fullscreen(reload).unwrap();
+    let reloaded = read_words(gles, &both, layout, &interface);
+    let decoded = buffer.map(|buffer| gles.read_storage_buffer(buffer, texels * scalars).unwrap());
+    gles.delete(first);
+    gles.delete(both);
+
+    if include.is_packed() {
+        // The include's own conversions: the mirror's words, bit for bit.
+        compare(&what, layout, &inputs, Some(&stored), decoded.as_deref(), failures, 12);
+    } else {
+        // The driver converts: its words are its own rounding (GLES lets either neighbour of
+        // the exact value stand, and leaves NaN, infinities and out-of-range values to it),
+        // so they are held to one code of the mirror on finite inputs in range, and what the
+        // shader decodes must equal the mirror's decoding of the words the driver stored.
+        check_native_words(&what, layout, &inputs, &stored, failures);
+        if let Some(decoded) = &decoded {
+            compare_decoded(&what, layout, &stored, decoded, failures);
+        }
+    }
+    let (mut changed, mut changed_by_driver_bug) = (0, 0);
+    for (index, (before, after)) in stored.iter().zip(&reloaded).enumerate() {
+        if before != after {
+            let format = layout.fields[index % layout.words()].format;
+            if !include.is_packed() && llvmpipe_miswrites_after_fetch(gles, format) {
+                changed_by_driver_bug += 1;
+            } else {
+                changed += 1;
+            }
+        }
+    }
+    if changed > 0 {
+        failures.push(format!(
+            "{what}: {}: store(load()) changed {changed} of {} words",
+            layout.name,
+            stored.len()
+        ));
+    }
+    if changed_by_driver_bug > 0 {
+        eprintln!(
+            "{what}: {}: llvmpipe rewrote {changed_by_driver_bug} words of its 8- and 10-bit \
+             attachments wrongly after a fetch (a driver bug; the fetched values were right)",
+            layout.name
+        );
+    }
+    true
+}
+
+/// Mesa 22.3's llvmpipe reads native 8- and 10-bit attachments correctly through framebuffer
+/// fetch, but a draw that writes such an attachment after fetching it stores wrong texels
+/// (often those of other pixels) unless every pixel holds the same value. The packed include
+/// (RGBA32UI) and the 16- and 32-bit formats are unaffected.
+fn llvmpipe_miswrites_after_fetch(gles: &Gles, format: Format) -> bool {
+    gles.describe().contains("llvmpipe")
+        && matches!(
+            format,
+            Format::Rgba8 | Format::Rgb10A2 | Format::Rgba8i | Format::Rgba8ui | Format::Rgb10A2ui
+        )
+}
+
+/// Whether the driver's word for a channel may be compared with the mirror's: a finite input
+/// within the range the channel represents (where GL defines the conversion).
+fn defined_input(value: f32, encoding: ChannelEncoding) -> bool {
+    match encoding {
+        ChannelEncoding::Unorm => (0.0..=1.0).contains(&value),
+        ChannelEncoding::Half => value.is_finite() && value.abs() <= 65504.0,
+        ChannelEncoding::UnsignedFloat { mantissa_bits } => {
+            let largest = f32::from_bits(
+                ((15 + 127) << 23) | (((1 << mantissa_bits) - 1) << (23 - mantissa_bits)),
+            );
+            value.is_finite() && (0.0..=largest).contains(&value)
+        }
+        _ => true,
+    }
+}
+
+/// The driver's words against the mirror's: within one code per channel where the input is
+/// defined (see [`defined_input`]).
+fn check_native_words(
+    what: &str,
+    layout: &Layout,
+    inputs: &[u32],
+    stored: &[u32],
+    failures: &mut Vec<String>,
+) {
+    let scalars = scalars_per_texel(layout);
+    let words = layout.words();
+    for (texel, input) in inputs.chunks_exact(scalars).enumerate() {
+        let expected = expected_words(layout, input);
+        let mut slot = 0;
+        for (word, field) in layout.fields.iter().enumerate() {
+            let got = stored[texel * words + word];
+            for (index, channel) in field.format.channels().iter().enumerate() {
+                let used = index < field.ty.components;
+                let value = if used { inputs[texel * scalars + slot] } else { 0 };
+                if used {
+                    slot += 1;
+                }
+                let defined = !used
+                    || field.ty.scalar != ScalarKind::Float
+                    || defined_input(f32::from_bits(value), channel.encoding);
+                let code = |bits: u32| (bits >> channel.offset) & channel.mask();
+                let distance = code(expected[word]).abs_diff(code(got));
+                let allowed = if field.ty.scalar == ScalarKind::Float { 1 } else { 0 };
+                if defined && distance > allowed && failures.len() < 24 {
+                    failures.push(format!(
+                        "{what}: {}: {}.{}: driver code {:#x}, mirror {:#x}, for input {:e}",
+                        layout.name,
+                        field.name,
+                        channel.name,
+                        code(got),
+                        code(expected[word]),
+                        f32::from_bits(value)
+                    ));
+                }
+            }
+        }
+    }
+}
+
+/// What the shader decoded against the mirror's decoding of the words the driver stored.
+fn compare_decoded(
+    what: &str,
+    layout: &Layout,
+    stored: &[u32],
+    decoded: &[u32],
+    failures: &mut Vec<String>,
+) {
+    let slots = slots(layout);
+    let scalars = slots.len();
+    for (texel, words) in stored.chunks_exact(layout.words()).enumerate() {
+        let want = expected_scalars(layout, words);
+        let got = &decoded[texel * scalars..][..scalars];
+        for (slot, (want, have)) in slots.iter().zip(want.iter().zip(got)) {
+            if want.abs_diff(*have) > decode_tolerance(slot.encoding) && failures.len() < 24 {
+                failures.push(format!(
+                    "{what}: {}: decoded {}: mirror {want:#010x}, driver {have:#010x}",
+                    layout.name, slot.name
+                ));
+            }
+        }
+    }
+}
+
+/// The seed layouts and a layout of every format (split in two for the native include, whose
+/// twelve attachments are more than GLES guarantees).
+fn fixed_layouts() -> Vec<Layout> {
+    use shaderlib::GBufferLayout;
+    let mut layouts: Vec<Layout> = shaderlib::seed_layouts::all()
+        .into_iter()
+        .map(|(layout, _)| layout)
+        .collect();
+    let every = tests::AllFormats::layout();
+    layouts.push(every.clone());
+    for (index, half) in every.fields.chunks(6).enumerate() {
+        layouts.push(Layout {
+            name: format!("EveryFormat{}", ["Low", "High"][index]),
+            budget: 192,
+            fields: half.to_vec(),
+        });
+    }
+    layouts
+}
+
+#[test]
+fn fetch_includes_round_trip_bit_exactly_on_gles_under_every_preamble() {
+    let Some(gles) = gles() else { return };
+    eprintln!("GLES: {}", gles.describe());
+    let mut failures = Vec::new();
+    for (index, layout) in fixed_layouts().iter().enumerate() {
+        for include in [Include::FetchPacked, Include::FetchNative] {
+            for preamble in preambles(include) {
+                check(&gles, layout, include, &preamble, index as u64, &mut failures);
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Layouts the repo has never seen, named with words GLSL reserves.
+    #[test]
+    fn random_layouts_round_trip_bit_exactly_on_gles(
+        layout in tests::layouts::random_layout(),
+        preamble_index in 0usize..9,
+    ) {
+        let Some(gles) = gles() else { return Ok(()) };
+        let mut failures = Vec::new();
+        for include in [Include::FetchPacked, Include::FetchNative] {
+            let preambles = preambles(include);
+            let preamble = &preambles[preamble_index % preambles.len()];
+            check(&gles, &layout, include, preamble, 7, &mut failures);
+        }
+        prop_assert!(failures.is_empty(), "{}", failures.join("\n"));
+    }
+}
+
+
