@@ -9,12 +9,14 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use codegen::emit::glsl::PlsBlock;
+use codegen::emit::glsl::{self, Include, Interface, PlsBlock};
+use proptest::prelude::*;
 use codegen::emit::wgsl::Conversions;
 use codegen::layout_file::read_layout_file;
 use codegen::output::{generate, Output};
 use shaderlib::packing::{Format, Layout};
 use tests::harness::fragment_harness;
+use tests::user_shaders::{preambles, scalars_of_texel};
 
 fn layout_files() -> Vec<(PathBuf, Layout)> {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../codegen/layouts");
@@ -114,61 +116,75 @@ fn spirv_val(words: &[u8]) -> Result<(), String> {
     }
 }
 
-fn output(layout: &Layout, which: Output, suffix: &str) -> String {
-    generate(layout, Conversions::Exact, &[which])
-        .unwrap()
+/// Every include of a layout, with its interface.
+fn includes(layout: &Layout) -> Vec<(Include, String, Interface)> {
+    Include::ALL
         .into_iter()
-        .find(|file| file.name.ends_with(suffix))
-        .unwrap()
-        .contents
+        .map(|include| {
+            let (text, interface) = glsl::include(layout, include, 0).unwrap();
+            (include, text, interface)
+        })
+        .collect()
 }
 
-/// A fragment shader body that loads, changes and stores a texel.
-fn exercise(layout: &Layout, store: bool) -> String {
-    let prefix = layout.snake_name();
-    let first = &layout.fields[0].name;
-    let rounds = if store {
-        format!("    store_{prefix}(texel);\n")
-    } else {
-        String::new()
-    };
-    format!("void main() {{\n    {name} texel = load_{prefix}();\n    texel.{first} = texel.{first};\n{rounds}}}\n", name = layout.name)
+/// The lines of an include that are not comments.
+fn code_lines(text: &str) -> impl Iterator<Item = &str> {
+    text.lines().filter(|line| !line.trim_start().starts_with("//"))
 }
 
-#[test]
-fn framebuffer_fetch_include_follows_the_extension_and_compiles() {
-    for (_, layout) in layout_files() {
-        let include = output(&layout, Output::GlslFramebufferFetch, ".fetch.glsl");
-        // The extension's form: the extension required, each attachment an `inout` colour
-        // output at its location.
-        assert!(include.contains("#extension GL_EXT_shader_framebuffer_fetch : require"));
-        for target in 0..layout.targets() {
-            let declaration = format!(
-                "layout(location = {target}) inout highp uvec4 {}_target{target}_;",
-                layout.snake_name()
+/// An include carries no `#version`, `#extension` or default precision (it is pasted after
+/// the user's preamble), and its header lists the extensions that preamble must require.
+fn check_include_shape(layout: &Layout) {
+    for (include, text, interface) in includes(layout) {
+        for line in code_lines(&text) {
+            assert!(
+                !line.starts_with('#') && !line.starts_with("precision "),
+                "{} {include:?}: `{line}` belongs to the user's preamble",
+                layout.name
             );
-            assert!(include.contains(&declaration), "{declaration}");
         }
-        // The rest compiles once `inout` is spelled `out` (what the extension adds to GLSL).
-        let body = include
-            .replace("#extension GL_EXT_shader_framebuffer_fetch : require", "")
-            .replace(") inout highp uvec4", ") out highp uvec4");
-        let shader = format!(
-            "#version 310 es\nprecision highp float;\nprecision highp int;\n{body}\n{}",
-            exercise(&layout, true)
-        );
-        glslang(&shader, "frag", false).unwrap_or_else(|error| panic!("{}: {error}", layout.name));
+        for extension in &interface.shader_extensions {
+            let line = format!("//     #extension {extension} : require");
+            assert!(text.contains(&line), "{} {include:?}: the header lacks `{line}`", layout.name);
+        }
     }
 }
 
 #[test]
-fn vulkan_include_compiles_to_valid_spirv() {
+fn includes_leave_the_preamble_to_the_user_and_list_what_it_needs() {
     for (_, layout) in layout_files() {
-        let include = output(&layout, Output::GlslVulkan, ".vulkan.glsl");
-        let shader = format!("#version 450\n{include}\n{}", exercise(&layout, false));
-        let spirv = glslang(&shader, "frag", true)
-            .unwrap_or_else(|error| panic!("{}: {error}", layout.name));
-        spirv_val(&spirv).unwrap_or_else(|error| panic!("{}: {error}", layout.name));
+        check_include_shape(&layout);
+    }
+}
+
+/// Compiles the Vulkan includes unedited under every preamble they allow, inside a user
+/// shader that loads the texel, and checks the SPIR-V.
+fn check_vulkan_includes(layout: &Layout) -> Result<(), String> {
+    let names = glsl::translate(layout).unwrap().names;
+    for include in [Include::SubpassPacked, Include::SubpassNative] {
+        let (text, _) = glsl::include(layout, include, 0).unwrap();
+        for preamble in preambles(include) {
+            let user = format!(
+                "layout(location = 0) out highp uvec4 user_output;
+\
+                 void main() {{\n    {} texel = load_{}();\n    user_output = uvec4({});\n}}\n",
+                names.layout,
+                layout.snake_name(),
+                scalars_of_texel(layout, &names, "texel")[0]
+            );
+            let shader = format!("{preamble}{text}\n{user}");
+            let spirv = glslang(&shader, "frag", true)
+                .map_err(|error| format!("{} {include:?} under {preamble:?}: {error}", layout.name))?;
+            spirv_val(&spirv).map_err(|error| format!("{} {include:?}: {error}", layout.name))?;
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn vulkan_includes_compile_unedited_to_valid_spirv() {
+    for (_, layout) in layout_files() {
+        check_vulkan_includes(&layout).unwrap_or_else(|error| panic!("{error}"));
     }
 }
 
@@ -195,8 +211,8 @@ fn check_pls_block(
     block: PlsBlock,
     budget_bits: u32,
 ) -> Result<Vec<(String, String, String)>, String> {
-    if !text.contains("#extension GL_EXT_shader_pixel_local_storage : require") {
-        return Err("the extension is not required".into());
+    if !text.contains("//     #extension GL_EXT_shader_pixel_local_storage : require") {
+        return Err("the header does not ask for the extension".into());
     }
     let mut lines = text
         .lines()
@@ -238,47 +254,64 @@ fn check_pls_block(
         }
         members.push((precision.to_string(), ty.to_string(), name.to_string()));
     }
-    // Every format is 32 bits: the block's size is 4 bytes a member.
-    if 32 * members.len() as u32 > budget_bits {
-        return Err(format!(
-            "{} members exceed the {budget_bits}-bit budget",
-            members.len()
-        ));
+    // Every format is 32 bits: the block's size is 4 bytes a member. The extension guarantees
+    // 16 bytes (GL_MAX_SHADER_PIXEL_LOCAL_STORAGE_SIZE_EXT is at least 16): a 128-bit budget
+    // must fit in them.
+    let bytes = 4 * members.len() as u32;
+    if 8 * bytes > budget_bits {
+        return Err(format!("{bytes} bytes exceed the {budget_bits}-bit budget"));
+    }
+    if budget_bits == 128 && bytes > 16 {
+        return Err(format!("{bytes} bytes exceed the 16 bytes the extension guarantees"));
     }
     Ok(members)
+}
+
+/// Checks every pixel local storage block of a layout against the extension's rules, and
+/// compiles a shader that uses its members as plain globals (no driver here has the
+/// extension, and glslang does not know it).
+fn check_pls_blocks(layout: &Layout) -> Result<(), String> {
+    let names = glsl::translate(layout).unwrap().names;
+    for block in PlsBlock::ALL {
+        let (text, _) = glsl::include(layout, Include::PixelLocalStorage(block), 0).unwrap();
+        let members = check_pls_block(&text, block, layout.budget)
+            .map_err(|error| format!("{} {block:?}: {error}\n{text}", layout.name))?;
+        assert_eq!(members.len(), layout.fields.len());
+        for (((_, ty, name), field), glsl_name) in members.iter().zip(&layout.fields).zip(&names.fields) {
+            assert_eq!(name, glsl_name, "a member is named as the field is in the functions");
+            assert_eq!(Some(ty.as_str()), extension_type(field.format.name()));
+        }
+        let globals: String = members
+            .iter()
+            .map(|(precision, ty, name)| format!("{precision} {ty} {name};\n"))
+            .collect();
+        let uses: String = members
+            .iter()
+            .map(|(_, _, name)| format!("    {name} = {name};\n"))
+            .collect();
+        let shader = format!("#version 310 es\n{globals}void main() {{\n{uses}}}\n");
+        glslang(&shader, "frag", false).map_err(|error| format!("{}: {error}", layout.name))?;
+    }
+    Ok(())
 }
 
 #[test]
 fn pixel_local_storage_blocks_follow_the_extension_and_their_shaders_compile() {
     for (_, layout) in layout_files() {
-        for block in PlsBlock::ALL {
-            let text = output(
-                &layout,
-                Output::GlslPixelLocalStorage,
-                &format!(".pls_{}.glsl", block.suffix()),
-            );
-            let members = check_pls_block(&text, block, layout.budget)
-                .unwrap_or_else(|error| panic!("{} {block:?}: {error}\n{text}", layout.name));
-            assert_eq!(members.len(), layout.fields.len());
-            for ((_, ty, name), field) in members.iter().zip(&layout.fields) {
-                assert_eq!(name, &field.name);
-                assert_eq!(Some(ty.as_str()), extension_type(field.format.name()));
-            }
-            // The shader around the block compiles with the members as plain globals.
-            let globals: String = members
-                .iter()
-                .map(|(precision, ty, name)| format!("{precision} {ty} {name};\n"))
-                .collect();
-            let uses: String = members
-                .iter()
-                .map(|(_, _, name)| format!("    {name} = {name};\n"))
-                .collect();
-            let shader = format!(
-                "#version 310 es\nprecision highp float;\n{globals}void main() {{\n{uses}}}\n"
-            );
-            glslang(&shader, "frag", false)
-                .unwrap_or_else(|error| panic!("{}: {error}", layout.name));
-        }
+        check_pls_blocks(&layout).unwrap_or_else(|error| panic!("{error}"));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Layouts the repo has never seen, with names GLSL reserves: the includes keep their
+    /// shape, the PLS blocks follow the extension, the Vulkan includes compile.
+    #[test]
+    fn random_layouts_give_includes_that_follow_the_rules(layout in tests::layouts::random_layout()) {
+        check_include_shape(&layout);
+        check_pls_blocks(&layout).map_err(TestCaseError::fail)?;
+        check_vulkan_includes(&layout).map_err(TestCaseError::fail)?;
     }
 }
 
