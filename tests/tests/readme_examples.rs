@@ -1,0 +1,82 @@
+//! The GLSL user shaders README.md shows compile as written there, with the generated include
+//! in place of their `#include` line: the fetch example on Mesa's GLES 3.2, the Vulkan one with
+//! glslangValidator.
+
+use std::process::Command;
+
+use codegen::emit::glsl::{self, Include};
+use shaderlib::seed_layouts;
+use tests::gles::{skip_without_driver, Gles};
+
+/// The README's ```glsl blocks, without the indentation of the list items they sit in.
+fn readme_glsl_blocks() -> Vec<String> {
+    let readme = std::fs::read_to_string(tests::workspace().join("README.md")).unwrap();
+    let mut blocks = Vec::new();
+    let mut current: Option<(usize, String)> = None;
+    for line in readme.lines() {
+        let trimmed = line.trim_start();
+        match &mut current {
+            None if trimmed == "```glsl" => current = Some((line.len() - trimmed.len(), String::new())),
+            Some((_, block)) if trimmed == "```" => {
+                blocks.push(std::mem::take(block));
+                current = None;
+            }
+            Some((indent, block)) => {
+                block.push_str(line.get(*indent..).unwrap_or(""));
+                block.push('\n');
+            }
+            None => {}
+        }
+    }
+    blocks
+}
+
+/// The block that includes `file`, with the generated text of `include` in its place.
+fn with_include(include: Include, file: &str) -> String {
+    let layout = seed_layouts::all()
+        .into_iter()
+        .map(|(layout, _)| layout)
+        .find(|layout| layout.name == "MobileMetallic")
+        .unwrap();
+    let (text, _) = glsl::include(&layout, include, 0).unwrap();
+    let line = format!("#include \"{file}\"");
+    let block = readme_glsl_blocks()
+        .into_iter()
+        .find(|block| block.contains(&line))
+        .unwrap_or_else(|| panic!("README.md has no glsl block with `{line}`"));
+    block.replace(&line, &text)
+}
+
+#[test]
+fn readme_fetch_example_compiles_on_gles() {
+    let shader = with_include(Include::FetchPacked, "mobile_metallic.fetch.glsl");
+    let gles = match Gles::new() {
+        Ok(gles) => gles,
+        Err(error) => {
+            skip_without_driver("GLES 3.2 through EGL", &error);
+            return;
+        }
+    };
+    gles.program(&shader).unwrap_or_else(|log| panic!("{log}"));
+}
+
+#[test]
+fn readme_vulkan_example_compiles_to_spirv() {
+    let shader = with_include(Include::SubpassPacked, "mobile_metallic.vulkan.glsl");
+    let folder = tempfile::tempdir().unwrap();
+    let path = folder.path().join("example.frag");
+    std::fs::write(&path, &shader).unwrap();
+    let output = Command::new("glslangValidator")
+        .arg("-V")
+        .arg(&path)
+        .arg("-o")
+        .arg(folder.path().join("example.spv"))
+        .output()
+        .expect("glslangValidator (Debian's glslang-tools)");
+    assert!(
+        output.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&output.stdout),
+        shader
+    );
+}
