@@ -81,7 +81,10 @@ pub fn generate(
                 wgsl::emit_with(layout, conversions) + "\n",
             ),
             Output::GlslPixelLocalStorage | Output::GlslFramebufferFetch | Output::GlslVulkan => {
-                for include in Include::ALL.into_iter().filter(|include| output.includes(*include)) {
+                for include in Include::ALL
+                    .into_iter()
+                    .filter(|include| output.includes(*include))
+                {
                     add(
                         format!("{snake}.{}.glsl", include.file_suffix()),
                         glsl::include(layout, include, 0)?.0,

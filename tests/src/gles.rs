@@ -264,7 +264,12 @@ impl Gles {
     }
 
     /// An `R32UI` texture of `width` x `height` holding `values` row by row, bound to unit 0.
-    pub fn uint_texture(&self, values: &[u32], width: i32, height: i32) -> Result<glow::Texture, String> {
+    pub fn uint_texture(
+        &self,
+        values: &[u32],
+        width: i32,
+        height: i32,
+    ) -> Result<glow::Texture, String> {
         assert_eq!(values.len(), (width * height) as usize);
         // SAFETY: GL objects of the current context; the slice outlives the upload.
         unsafe {
@@ -313,7 +318,11 @@ impl Gles {
     }
 
     /// Reads a storage buffer back after the draws that wrote it.
-    pub fn read_storage_buffer(&self, buffer: glow::Buffer, words: usize) -> Result<Vec<u32>, String> {
+    pub fn read_storage_buffer(
+        &self,
+        buffer: glow::Buffer,
+        words: usize,
+    ) -> Result<Vec<u32>, String> {
         // SAFETY: the mapping is read within its bounds and unmapped before returning.
         unsafe {
             let gl = &self.gl;

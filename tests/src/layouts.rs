@@ -7,18 +7,71 @@ use shaderlib::packing::{Field, FieldType, Format, Layout};
 
 /// Field names that are valid in WGSL but that GLSL reserves or that naga renames.
 pub const AWKWARD_FIELD_NAMES: &[&str] = &[
-    "sampler", "output", "input", "texture", "main", "in", "out", "inout", "flat", "smooth",
-    "centroid", "sample", "buffer", "uniform", "varying", "attribute", "float", "int", "uint",
-    "bool", "vec4", "mat2", "length", "normalize", "dot", "mix", "step", "subpassLoad",
-    "sampler2D", "image2D", "half", "fixed", "long", "short", "double", "unsigned", "hvec2",
-    "fvec3", "gl_thing", "a__b", "a_b", "target0", "x2", "albedo_", "albedo", "superp",
-    "invariant", "lowp_value", "packed", "texel",
+    "sampler",
+    "output",
+    "input",
+    "texture",
+    "main",
+    "in",
+    "out",
+    "inout",
+    "flat",
+    "smooth",
+    "centroid",
+    "sample",
+    "buffer",
+    "uniform",
+    "varying",
+    "attribute",
+    "float",
+    "int",
+    "uint",
+    "bool",
+    "vec4",
+    "mat2",
+    "length",
+    "normalize",
+    "dot",
+    "mix",
+    "step",
+    "subpassLoad",
+    "sampler2D",
+    "image2D",
+    "half",
+    "fixed",
+    "long",
+    "short",
+    "double",
+    "unsigned",
+    "hvec2",
+    "fvec3",
+    "gl_thing",
+    "a__b",
+    "a_b",
+    "target0",
+    "x2",
+    "albedo_",
+    "albedo",
+    "superp",
+    "invariant",
+    "lowp_value",
+    "packed",
+    "texel",
 ];
 
 /// Layout names that are valid in WGSL but that GLSL reserves.
 pub const AWKWARD_LAYOUT_NAMES: &[&str] = &[
-    "main", "texture", "Main", "sampler2D", "output", "input", "float", "int", "buffer",
-    "Layout2", "uniform",
+    "main",
+    "texture",
+    "Main",
+    "sampler2D",
+    "output",
+    "input",
+    "float",
+    "int",
+    "buffer",
+    "Layout2",
+    "uniform",
 ];
 
 /// A random valid layout of `1..=max_fields` fields, with awkward names about half the time.
@@ -31,7 +84,11 @@ pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
         .prop_map(|(format_index, components, name)| {
             let format = Format::ALL[format_index];
             let components = components.min(format.channels().len());
-            (format, FieldType::new(format.scalar_kind(), components), name)
+            (
+                format,
+                FieldType::new(format.scalar_kind(), components),
+                name,
+            )
         });
     (
         prop::collection::vec(field, 1..=max_fields),

@@ -10,10 +10,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use codegen::emit::glsl::{self, Include, Interface, PlsBlock};
-use proptest::prelude::*;
 use codegen::emit::wgsl::Conversions;
 use codegen::layout_file::read_layout_file;
 use codegen::output::{generate, Output};
+use proptest::prelude::*;
 use shaderlib::packing::{Format, Layout};
 use tests::harness::fragment_harness;
 use tests::user_shaders::{preambles, scalars_of_texel};
@@ -129,7 +129,8 @@ fn includes(layout: &Layout) -> Vec<(Include, String, Interface)> {
 
 /// The lines of an include that are not comments.
 fn code_lines(text: &str) -> impl Iterator<Item = &str> {
-    text.lines().filter(|line| !line.trim_start().starts_with("//"))
+    text.lines()
+        .filter(|line| !line.trim_start().starts_with("//"))
 }
 
 /// An include carries no `#version`, `#extension` or default precision (it is pasted after
@@ -145,7 +146,11 @@ fn check_include_shape(layout: &Layout) {
         }
         for extension in &interface.shader_extensions {
             let line = format!("//     #extension {extension} : require");
-            assert!(text.contains(&line), "{} {include:?}: the header lacks `{line}`", layout.name);
+            assert!(
+                text.contains(&line),
+                "{} {include:?}: the header lacks `{line}`",
+                layout.name
+            );
         }
     }
 }
@@ -173,8 +178,9 @@ fn check_vulkan_includes(layout: &Layout) -> Result<(), String> {
                 scalars_of_texel(layout, &names, "texel")[0]
             );
             let shader = format!("{preamble}{text}\n{user}");
-            let spirv = glslang(&shader, "frag", true)
-                .map_err(|error| format!("{} {include:?} under {preamble:?}: {error}", layout.name))?;
+            let spirv = glslang(&shader, "frag", true).map_err(|error| {
+                format!("{} {include:?} under {preamble:?}: {error}", layout.name)
+            })?;
             spirv_val(&spirv).map_err(|error| format!("{} {include:?}: {error}", layout.name))?;
         }
     }
@@ -262,7 +268,9 @@ fn check_pls_block(
         return Err(format!("{bytes} bytes exceed the {budget_bits}-bit budget"));
     }
     if budget_bits == 128 && bytes > 16 {
-        return Err(format!("{bytes} bytes exceed the 16 bytes the extension guarantees"));
+        return Err(format!(
+            "{bytes} bytes exceed the 16 bytes the extension guarantees"
+        ));
     }
     Ok(members)
 }
@@ -277,8 +285,13 @@ fn check_pls_blocks(layout: &Layout) -> Result<(), String> {
         let members = check_pls_block(&text, block, layout.budget)
             .map_err(|error| format!("{} {block:?}: {error}\n{text}", layout.name))?;
         assert_eq!(members.len(), layout.fields.len());
-        for (((_, ty, name), field), glsl_name) in members.iter().zip(&layout.fields).zip(&names.fields) {
-            assert_eq!(name, glsl_name, "a member is named as the field is in the functions");
+        for (((_, ty, name), field), glsl_name) in
+            members.iter().zip(&layout.fields).zip(&names.fields)
+        {
+            assert_eq!(
+                name, glsl_name,
+                "a member is named as the field is in the functions"
+            );
             assert_eq!(Some(ty.as_str()), extension_type(field.format.name()));
         }
         let globals: String = members

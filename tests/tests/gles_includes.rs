@@ -18,8 +18,8 @@ use codegen::emit::glsl::{self, AttachmentFormat, Include, Interface};
 use proptest::prelude::*;
 use shaderlib::packing::{ChannelEncoding, Format, Layout, ScalarKind};
 use tests::gles::{skip_without_driver, Framebuffer, Gles};
-use tests::harness::{expected_words, scalars_per_texel};
 use tests::harness::expected_scalars;
+use tests::harness::{expected_words, scalars_per_texel};
 use tests::texels::{compare, decode_tolerance, inputs, slots};
 use tests::user_shaders::{has_storage_buffers, preambles, scalars_of_texel, texel_from_scalars};
 use tests::values::Values;
@@ -73,7 +73,9 @@ fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> (String, S
             "    highp int base = (int(gl_FragCoord.y) * {WIDTH} + int(gl_FragCoord.x)) * {scalars};\n"
         ));
         for (index, scalar) in scalars_of_texel(layout, &names, "texel").iter().enumerate() {
-            reload.push_str(&format!("    harness_decoded[base + {index}] = {scalar};\n"));
+            reload.push_str(&format!(
+                "    harness_decoded[base + {index}] = {scalar};\n"
+            ));
         }
     }
     reload.push_str("}\n");
@@ -105,11 +107,17 @@ fn read_format(attachment: AttachmentFormat, format: Option<Format>) -> (u32, u3
 /// The layout's word from one pixel of a native attachment read as [`read_format`] says.
 fn word_from_pixel(format: Format, pixel: &[u8]) -> u32 {
     let u32_at = |index: usize| u32::from_le_bytes(pixel[index * 4..][..4].try_into().unwrap());
-    let u16_at = |index: usize| u32::from(u16::from_le_bytes(pixel[index * 2..][..2].try_into().unwrap()));
+    let u16_at = |index: usize| {
+        u32::from(u16::from_le_bytes(
+            pixel[index * 2..][..2].try_into().unwrap(),
+        ))
+    };
     match format {
         Format::Rgb10A2 | Format::Rgba8 | Format::R11fG11fB10f | Format::Rgb10A2ui => u32_at(0),
         Format::Rg16 => u16_at(0) | (u16_at(1) << 16),
-        Format::Rg16f => half_bits(f32::from_bits(u32_at(0))) | (half_bits(f32::from_bits(u32_at(1))) << 16),
+        Format::Rg16f => {
+            half_bits(f32::from_bits(u32_at(0))) | (half_bits(f32::from_bits(u32_at(1))) << 16)
+        }
         Format::R32f => u32_at(0),
         // Integer channels come one per u32: keep each channel's bits at its offset.
         _ => format
@@ -138,7 +146,12 @@ fn half_bits(value: f32) -> u32 {
 }
 
 /// The words of every texel, read back from the attachments.
-fn read_words(gles: &Gles, framebuffer: &Framebuffer, layout: &Layout, interface: &Interface) -> Vec<u32> {
+fn read_words(
+    gles: &Gles,
+    framebuffer: &Framebuffer,
+    layout: &Layout,
+    interface: &Interface,
+) -> Vec<u32> {
     let texels = (framebuffer.width * framebuffer.height) as usize;
     let word_count = layout.words();
     let mut words = vec![0u32; texels * word_count];
@@ -155,9 +168,8 @@ fn read_words(gles: &Gles, framebuffer: &Framebuffer, layout: &Layout, interface
                     for component in 0..4 {
                         let word = index * 4 + component;
                         if word < word_count {
-                            words[texel * word_count + word] = u32::from_le_bytes(
-                                pixel[component * 4..][..4].try_into().unwrap(),
-                            );
+                            words[texel * word_count + word] =
+                                u32::from_le_bytes(pixel[component * 4..][..4].try_into().unwrap());
                         }
                     }
                 }
@@ -190,8 +202,12 @@ fn check(
     }
     let what = format!("{include:?} under {:?}", preamble.replace('\n', " "));
     let (store, reload) = user_shaders(layout, include, preamble);
-    let store = gles.program(&store).unwrap_or_else(|log| panic!("{what}: {log}"));
-    let reload = gles.program(&reload).unwrap_or_else(|log| panic!("{what}: {log}"));
+    let store = gles
+        .program(&store)
+        .unwrap_or_else(|log| panic!("{what}: {log}"));
+    let reload = gles
+        .program(&reload)
+        .unwrap_or_else(|log| panic!("{what}: {log}"));
 
     let scalars = scalars_per_texel(layout);
     let texels = (WIDTH * HEIGHT) as usize;
@@ -221,7 +237,15 @@ fn check(
 
     if include.is_packed() {
         // The include's own conversions: the mirror's words, bit for bit.
-        compare(&what, layout, &inputs, Some(&stored), decoded.as_deref(), failures, 12);
+        compare(
+            &what,
+            layout,
+            &inputs,
+            Some(&stored),
+            decoded.as_deref(),
+            failures,
+            12,
+        );
     } else {
         // The driver converts: its words are its own rounding (GLES lets either neighbour of
         // the exact value stand, and leaves NaN, infinities and out-of-range values to it),
@@ -306,7 +330,11 @@ fn check_native_words(
             let got = stored[texel * words + word];
             for (index, channel) in field.format.channels().iter().enumerate() {
                 let used = index < field.ty.components;
-                let value = if used { inputs[texel * scalars + slot] } else { 0 };
+                let value = if used {
+                    inputs[texel * scalars + slot]
+                } else {
+                    0
+                };
                 if used {
                     slot += 1;
                 }
@@ -315,7 +343,11 @@ fn check_native_words(
                     || defined_input(f32::from_bits(value), channel.encoding);
                 let code = |bits: u32| (bits >> channel.offset) & channel.mask();
                 let distance = code(expected[word]).abs_diff(code(got));
-                let allowed = if field.ty.scalar == ScalarKind::Float { 1 } else { 0 };
+                let allowed = if field.ty.scalar == ScalarKind::Float {
+                    1
+                } else {
+                    0
+                };
                 if defined && distance > allowed && failures.len() < 24 {
                     failures.push(format!(
                         "{what}: {}: {}.{}: driver code {:#x}, mirror {:#x}, for input {:e}",
@@ -384,7 +416,14 @@ fn fetch_includes_round_trip_bit_exactly_on_gles_under_every_preamble() {
     for (index, layout) in fixed_layouts().iter().enumerate() {
         for include in [Include::FetchPacked, Include::FetchNative] {
             for preamble in preambles(include) {
-                check(&gles, layout, include, &preamble, index as u64, &mut failures);
+                check(
+                    &gles,
+                    layout,
+                    include,
+                    &preamble,
+                    index as u64,
+                    &mut failures,
+                );
             }
         }
     }
@@ -410,5 +449,3 @@ proptest! {
         prop_assert!(failures.is_empty(), "{}", failures.join("\n"));
     }
 }
-
-

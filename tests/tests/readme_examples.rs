@@ -16,7 +16,9 @@ fn readme_glsl_blocks() -> Vec<String> {
     for line in readme.lines() {
         let trimmed = line.trim_start();
         match &mut current {
-            None if trimmed == "```glsl" => current = Some((line.len() - trimmed.len(), String::new())),
+            None if trimmed == "```glsl" => {
+                current = Some((line.len() - trimmed.len(), String::new()))
+            }
             Some((_, block)) if trimmed == "```" => {
                 blocks.push(std::mem::take(block));
                 current = None;

@@ -137,10 +137,22 @@ impl AttachmentFormat {
             }
         }
         match format {
-            Format::R11fG11fB10f => of(0x8C3A, "GL_R11F_G11F_B10F", 122, "VK_FORMAT_B10G11R11_UFLOAT_PACK32", "vec4"),
+            Format::R11fG11fB10f => of(
+                0x8C3A,
+                "GL_R11F_G11F_B10F",
+                122,
+                "VK_FORMAT_B10G11R11_UFLOAT_PACK32",
+                "vec4",
+            ),
             Format::R32f => of(0x822E, "GL_R32F", 100, "VK_FORMAT_R32_SFLOAT", "vec4"),
             Format::Rg16f => of(0x822F, "GL_RG16F", 83, "VK_FORMAT_R16G16_SFLOAT", "vec4"),
-            Format::Rgb10A2 => of(0x8059, "GL_RGB10_A2", 64, "VK_FORMAT_A2B10G10R10_UNORM_PACK32", "vec4"),
+            Format::Rgb10A2 => of(
+                0x8059,
+                "GL_RGB10_A2",
+                64,
+                "VK_FORMAT_A2B10G10R10_UNORM_PACK32",
+                "vec4",
+            ),
             Format::Rgba8 => of(0x8058, "GL_RGBA8", 37, "VK_FORMAT_R8G8B8A8_UNORM", "vec4"),
             Format::Rg16 => AttachmentFormat {
                 gl_host_extension: Some("GL_EXT_texture_norm16"),
@@ -148,7 +160,13 @@ impl AttachmentFormat {
             },
             Format::Rgba8i => of(0x8D8E, "GL_RGBA8I", 42, "VK_FORMAT_R8G8B8A8_SINT", "ivec4"),
             Format::Rg16i => of(0x8239, "GL_RG16I", 82, "VK_FORMAT_R16G16_SINT", "ivec4"),
-            Format::Rgb10A2ui => of(0x906F, "GL_RGB10_A2UI", 68, "VK_FORMAT_A2B10G10R10_UINT_PACK32", "uvec4"),
+            Format::Rgb10A2ui => of(
+                0x906F,
+                "GL_RGB10_A2UI",
+                68,
+                "VK_FORMAT_A2B10G10R10_UINT_PACK32",
+                "uvec4",
+            ),
             Format::Rgba8ui => of(0x8D7C, "GL_RGBA8UI", 41, "VK_FORMAT_R8G8B8A8_UINT", "uvec4"),
             Format::Rg16ui => of(0x823A, "GL_RG16UI", 81, "VK_FORMAT_R16G16_UINT", "uvec4"),
             Format::R32ui => of(0x8236, "GL_R32UI", 98, "VK_FORMAT_R32_UINT", "uvec4"),

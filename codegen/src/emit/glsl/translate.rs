@@ -141,8 +141,7 @@ fn read_names(glsl: &str, layout: &Layout) -> Result<GlslNames, TranslationError
     }
     match <[_; 2]>::try_from(structs) {
         Ok([(layout_name, fields), (targets, target_members)])
-            if fields.len() == layout.fields.len()
-                && target_members.len() == layout.targets() =>
+            if fields.len() == layout.fields.len() && target_members.len() == layout.targets() =>
         {
             Ok(GlslNames {
                 layout: layout_name,
@@ -211,7 +210,10 @@ fn starts_declaration(rest: &[u8]) -> bool {
         .iter()
         .take_while(|byte| **byte == b' ')
         .count();
-    spaces > 0 && rest.get(index + spaces).is_some_and(|byte| is_identifier_start(*byte))
+    spaces > 0
+        && rest
+            .get(index + spaces)
+            .is_some_and(|byte| is_identifier_start(*byte))
 }
 
 fn is_identifier_start(byte: u8) -> bool {
