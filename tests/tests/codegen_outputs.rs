@@ -144,7 +144,7 @@ fn check_include_shape(layout: &Layout) {
                 layout.name
             );
         }
-        for extension in &interface.shader_extensions {
+        for extension in interface.include.shader_extensions() {
             let line = format!("//     #extension {extension} : require");
             assert!(
                 text.contains(&line),

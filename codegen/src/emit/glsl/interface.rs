@@ -184,18 +184,13 @@ impl AttachmentFormat {
     }
 }
 
-/// What an include asks of the host and the shader around it.
+/// What an include asks of the host and the shader around it: its attachments here, its
+/// `#extension`s and `#version`s from [`Include::shader_extensions`] and [`Include::versions`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Interface {
     pub include: Include,
     /// The attachments, in location order. Empty for pixel local storage, which has none.
     pub attachments: Vec<Attachment>,
-    /// The `#extension` names the shader preamble must require.
-    pub shader_extensions: Vec<&'static str>,
-    /// The extensions the GLES host needs for the attachments' formats.
-    pub host_extensions: Vec<&'static str>,
-    /// The `#version`s the include compiles under.
-    pub versions: Vec<&'static str>,
 }
 
 impl Interface {
@@ -224,22 +219,25 @@ impl Interface {
                 })
                 .collect(),
         };
-        let mut host_extensions: Vec<&'static str> = attachments
-            .iter()
-            .filter_map(|attachment| attachment.format.gl_host_extension)
-            .collect();
-        host_extensions.sort_unstable();
-        host_extensions.dedup();
         Interface {
             include,
             attachments,
-            shader_extensions: include.shader_extensions().to_vec(),
-            host_extensions: if include.is_vulkan() {
-                Vec::new()
-            } else {
-                host_extensions
-            },
-            versions: include.versions().to_vec(),
         }
+    }
+
+    /// The extensions a GLES host needs to render to the attachments' formats (none for the
+    /// Vulkan includes), each once.
+    pub fn host_extensions(&self) -> Vec<&'static str> {
+        if self.include.is_vulkan() {
+            return Vec::new();
+        }
+        let mut extensions: Vec<&'static str> = self
+            .attachments
+            .iter()
+            .filter_map(|attachment| attachment.format.gl_host_extension)
+            .collect();
+        extensions.sort_unstable();
+        extensions.dedup();
+        extensions
     }
 }

@@ -133,17 +133,9 @@ fn write_header(out: &mut String, title: &str, interface: &Interface) {
         out,
         "// Paste or #include it after the preamble of {kind}, which must have:"
     );
-    let _ = writeln!(
-        out,
-        "//     #version {}",
-        interface
-            .versions
-            .iter()
-            .map(|version| version.to_string())
-            .collect::<Vec<_>>()
-            .join(" | ")
-    );
-    for extension in &interface.shader_extensions {
+    let include = interface.include;
+    let _ = writeln!(out, "//     #version {}", include.versions().join(" | "));
+    for extension in include.shader_extensions() {
         let _ = writeln!(out, "//     #extension {extension} : require");
     }
     let _ = writeln!(
@@ -168,11 +160,12 @@ fn write_header(out: &mut String, title: &str, interface: &Interface) {
             );
         }
     }
-    if !interface.host_extensions.is_empty() {
+    let host_extensions = interface.host_extensions();
+    if !host_extensions.is_empty() {
         let _ = writeln!(
             out,
             "// The host needs {} to render to them.",
-            interface.host_extensions.join(" and ")
+            host_extensions.join(" and ")
         );
     }
     out.push('\n');
