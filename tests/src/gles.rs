@@ -183,14 +183,13 @@ pub fn numbered(source: &str) -> String {
         .collect()
 }
 
-/// Whether a GPU test may skip when its driver is missing: never under CI, where `.ci/run`
-/// installs the drivers and a skip would hide a broken set-up. Prints why it skips.
-pub fn skip_without_driver(what: &str, error: &str) -> bool {
+/// Prints why a GPU test skips for want of a driver, or panics under CI, where `.ci/run`
+/// installs the drivers and a skip would hide a broken set-up.
+pub fn skip_without_driver(what: &str, error: &str) {
     if std::env::var_os("CI").is_some_and(|value| value == "true") {
         panic!("{what}: {error} (under CI=true a missing driver is a failure)");
     }
     eprintln!("skipped: {what}: {error}");
-    true
 }
 
 /// A framebuffer of colour attachments, one texture each, in the given internal formats.

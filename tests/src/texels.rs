@@ -92,39 +92,57 @@ pub fn compare(
     limit: usize,
 ) {
     let slots = slots(layout);
-    let scalars = scalars_per_texel(layout);
     let word_count = layout.words();
-    for (texel, input) in inputs.chunks_exact(scalars).enumerate() {
-        let expected = expected_words(layout, input);
-        if let Some(words) = words {
-            let got = &words[texel * word_count..][..word_count];
-            for (word, (want, have)) in expected.iter().zip(got).enumerate() {
-                if want != have && failures.len() < limit {
-                    let field = &layout.fields[word];
-                    failures.push(format!(
-                        "{what}: {}: word {word} ({}, {}): mirror {want:#010x}, driver {have:#010x}; inputs {:?}",
-                        layout.name,
-                        field.name,
-                        field.format,
-                        describe(input, &slots)
-                    ));
-                }
+    let expected: Vec<u32> = inputs
+        .chunks_exact(slots.len())
+        .flat_map(|input| expected_words(layout, input))
+        .collect();
+    if let Some(words) = words {
+        for (index, (want, have)) in expected.iter().zip(words).enumerate() {
+            if want != have && failures.len() < limit {
+                let (texel, word) = (index / word_count, index % word_count);
+                let field = &layout.fields[word];
+                let input = &inputs[texel * slots.len()..][..slots.len()];
+                failures.push(format!(
+                    "{what}: {}: word {word} ({}, {}): mirror {want:#010x}, driver {have:#010x}; inputs {:?}",
+                    layout.name,
+                    field.name,
+                    field.format,
+                    describe(input, &slots)
+                ));
             }
         }
-        if let Some(decoded) = decoded {
-            let want = expected_scalars(layout, &expected);
-            let got = &decoded[texel * scalars..][..scalars];
-            for (slot, (want, have)) in slots.iter().zip(want.iter().zip(got)) {
-                if want.abs_diff(*have) > decode_tolerance(slot.encoding) && failures.len() < limit
-                {
-                    failures.push(format!(
-                        "{what}: {}: decoded {}: mirror {want:#010x} ({:e}), driver {have:#010x} ({:e})",
-                        layout.name,
-                        slot.name,
-                        f32::from_bits(*want),
-                        f32::from_bits(*have)
-                    ));
-                }
+    }
+    if let Some(decoded) = decoded {
+        compare_decoded(what, layout, &expected, decoded, failures, limit);
+    }
+}
+
+/// Compares what a shader decoded (scalar bits per texel) with the mirror's decoding of
+/// `words` (packed words per texel). Pushes a line per mismatch onto `failures`, at most
+/// `limit` in all.
+pub fn compare_decoded(
+    what: &str,
+    layout: &Layout,
+    words: &[u32],
+    decoded: &[u32],
+    failures: &mut Vec<String>,
+    limit: usize,
+) {
+    let slots = slots(layout);
+    let scalars = scalars_per_texel(layout);
+    for (texel, texel_words) in words.chunks_exact(layout.words()).enumerate() {
+        let want = expected_scalars(layout, texel_words);
+        let got = &decoded[texel * scalars..][..scalars];
+        for (slot, (want, have)) in slots.iter().zip(want.iter().zip(got)) {
+            if want.abs_diff(*have) > decode_tolerance(slot.encoding) && failures.len() < limit {
+                failures.push(format!(
+                    "{what}: {}: decoded {}: mirror {want:#010x} ({:e}), driver {have:#010x} ({:e})",
+                    layout.name,
+                    slot.name,
+                    f32::from_bits(*want),
+                    f32::from_bits(*have)
+                ));
             }
         }
     }

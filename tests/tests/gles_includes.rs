@@ -14,13 +14,12 @@
 //! and layouts generated at random (with names GLSL reserves), for the packed include and the
 //! native one (one attachment per field, converted by the driver).
 
-use codegen::emit::glsl::{self, AttachmentFormat, Include, Interface};
+use codegen::emit::glsl::{self, Include, Interface};
 use proptest::prelude::*;
 use shaderlib::packing::{ChannelEncoding, Format, Layout, ScalarKind};
 use tests::gles::{skip_without_driver, Framebuffer, Gles};
-use tests::harness::expected_scalars;
 use tests::harness::{expected_words, scalars_per_texel};
-use tests::texels::{compare, decode_tolerance, inputs, slots};
+use tests::texels::{compare, compare_decoded, inputs};
 use tests::user_shaders::{has_storage_buffers, preambles, scalars_of_texel, texel_from_scalars};
 use tests::values::Values;
 
@@ -84,7 +83,7 @@ fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> (String, S
 
 /// How to read an attachment back so that its bits come out as the layout's word: the pixel
 /// format and type, the bytes per pixel, and the word from one pixel's bytes.
-fn read_format(attachment: AttachmentFormat, format: Option<Format>) -> (u32, u32, usize) {
+fn read_format(format: Option<Format>) -> (u32, u32, usize) {
     let Some(format) = format else {
         return (glow::RGBA_INTEGER, glow::UNSIGNED_INT, 16); // RGBA32UI: four words
     };
@@ -98,7 +97,6 @@ fn read_format(attachment: AttachmentFormat, format: Option<Format>) -> (u32, u3
         Format::Rgb10A2ui => (glow::RGBA_INTEGER, glow::UNSIGNED_INT_2_10_10_10_REV, 4),
         Format::Rgba8i | Format::Rg16i => (glow::RGBA_INTEGER, glow::INT, 16),
         Format::Rgba8ui | Format::Rg16ui | Format::R32ui => {
-            debug_assert_eq!(attachment.glsl_type.as_bytes()[0], b'u');
             (glow::RGBA_INTEGER, glow::UNSIGNED_INT, 16)
         }
     }
@@ -155,9 +153,9 @@ fn read_words(
     let texels = (framebuffer.width * framebuffer.height) as usize;
     let word_count = layout.words();
     let mut words = vec![0u32; texels * word_count];
-    for (index, attachment) in interface.attachments.iter().enumerate() {
+    for index in 0..interface.attachments.len() {
         let native = (!interface.include.is_packed()).then(|| layout.fields[index].format);
-        let (format, ty, bytes_per_pixel) = read_format(attachment.format, native);
+        let (format, ty, bytes_per_pixel) = read_format(native);
         let mut bytes = vec![0u8; texels * bytes_per_pixel];
         gles.read_attachment(framebuffer, index as u32, format, ty, &mut bytes)
             .unwrap();
@@ -180,8 +178,7 @@ fn read_words(
 }
 
 /// Runs both passes of `include` for `layout` under `preamble`; pushes mismatches onto
-/// `failures`. Returns false (with the reason printed) when the driver has too few draw
-/// buffers for the layout.
+/// `failures`. Prints why and returns when the driver has too few draw buffers for the layout.
 fn check(
     gles: &Gles,
     layout: &Layout,
@@ -189,7 +186,7 @@ fn check(
     preamble: &str,
     seed: u64,
     failures: &mut Vec<String>,
-) -> bool {
+) {
     let (_, interface) = glsl::include(layout, include, 0).unwrap();
     let draw_buffers = gles.limit(glow::MAX_DRAW_BUFFERS) as usize;
     if interface.attachments.len() > draw_buffers {
@@ -198,7 +195,7 @@ fn check(
             layout.name,
             interface.attachments.len()
         );
-        return false;
+        return;
     }
     let what = format!("{include:?} under {:?}", preamble.replace('\n', " "));
     let (store, reload) = user_shaders(layout, include, preamble);
@@ -253,14 +250,15 @@ fn check(
         // shader decodes must equal the mirror's decoding of the words the driver stored.
         check_native_words(&what, layout, &inputs, &stored, failures);
         if let Some(decoded) = &decoded {
-            compare_decoded(&what, layout, &stored, decoded, failures);
+            compare_decoded(&what, layout, &stored, decoded, failures, 24);
         }
     }
+    let on_llvmpipe = gles.describe().contains("llvmpipe");
     let (mut changed, mut changed_by_driver_bug) = (0, 0);
     for (index, (before, after)) in stored.iter().zip(&reloaded).enumerate() {
         if before != after {
             let format = layout.fields[index % layout.words()].format;
-            if !include.is_packed() && llvmpipe_miswrites_after_fetch(gles, format) {
+            if !include.is_packed() && on_llvmpipe && llvmpipe_miswrites_after_fetch(format) {
                 changed_by_driver_bug += 1;
             } else {
                 changed += 1;
@@ -281,19 +279,17 @@ fn check(
             layout.name
         );
     }
-    true
 }
 
 /// Mesa 22.3's llvmpipe reads native 8- and 10-bit attachments correctly through framebuffer
 /// fetch, but a draw that writes such an attachment after fetching it stores wrong texels
 /// (often those of other pixels) unless every pixel holds the same value. The packed include
 /// (RGBA32UI) and the 16- and 32-bit formats are unaffected.
-fn llvmpipe_miswrites_after_fetch(gles: &Gles, format: Format) -> bool {
-    gles.describe().contains("llvmpipe")
-        && matches!(
-            format,
-            Format::Rgba8 | Format::Rgb10A2 | Format::Rgba8i | Format::Rgba8ui | Format::Rgb10A2ui
-        )
+fn llvmpipe_miswrites_after_fetch(format: Format) -> bool {
+    matches!(
+        format,
+        Format::Rgba8 | Format::Rgb10A2 | Format::Rgba8i | Format::Rgba8ui | Format::Rgb10A2ui
+    )
 }
 
 /// Whether the driver's word for a channel may be compared with the mirror's: a finite input
@@ -325,64 +321,32 @@ fn check_native_words(
     let words = layout.words();
     for (texel, input) in inputs.chunks_exact(scalars).enumerate() {
         let expected = expected_words(layout, input);
-        let mut slot = 0;
+        let mut values = input.iter();
         for (word, field) in layout.fields.iter().enumerate() {
             let got = stored[texel * words + word];
+            let float = field.ty.scalar == ScalarKind::Float;
             for (index, channel) in field.format.channels().iter().enumerate() {
-                let used = index < field.ty.components;
-                let value = if used {
-                    inputs[texel * scalars + slot]
+                // Channels past the field's components are padding: zero on both sides.
+                let value = if index < field.ty.components {
+                    values.next().map(|&bits| f32::from_bits(bits))
                 } else {
-                    0
+                    None
                 };
-                if used {
-                    slot += 1;
-                }
-                let defined = !used
-                    || field.ty.scalar != ScalarKind::Float
-                    || defined_input(f32::from_bits(value), channel.encoding);
+                let defined =
+                    !float || value.is_none_or(|value| defined_input(value, channel.encoding));
                 let code = |bits: u32| (bits >> channel.offset) & channel.mask();
                 let distance = code(expected[word]).abs_diff(code(got));
-                let allowed = if field.ty.scalar == ScalarKind::Float {
-                    1
-                } else {
-                    0
-                };
-                if defined && distance > allowed && failures.len() < 24 {
+                if defined && distance > u32::from(float) && failures.len() < 24 {
                     failures.push(format!(
-                        "{what}: {}: {}.{}: driver code {:#x}, mirror {:#x}, for input {:e}",
+                        "{what}: {}: {}.{}: driver code {:#x}, mirror {:#x}, for input {:?}",
                         layout.name,
                         field.name,
                         channel.name,
                         code(got),
                         code(expected[word]),
-                        f32::from_bits(value)
+                        value
                     ));
                 }
-            }
-        }
-    }
-}
-
-/// What the shader decoded against the mirror's decoding of the words the driver stored.
-fn compare_decoded(
-    what: &str,
-    layout: &Layout,
-    stored: &[u32],
-    decoded: &[u32],
-    failures: &mut Vec<String>,
-) {
-    let slots = slots(layout);
-    let scalars = slots.len();
-    for (texel, words) in stored.chunks_exact(layout.words()).enumerate() {
-        let want = expected_scalars(layout, words);
-        let got = &decoded[texel * scalars..][..scalars];
-        for (slot, (want, have)) in slots.iter().zip(want.iter().zip(got)) {
-            if want.abs_diff(*have) > decode_tolerance(slot.encoding) && failures.len() < 24 {
-                failures.push(format!(
-                    "{what}: {}: decoded {}: mirror {want:#010x}, driver {have:#010x}",
-                    layout.name, slot.name
-                ));
             }
         }
     }
