@@ -4,6 +4,7 @@
 
 use proptest::prelude::*;
 use shaderlib::packing::{Field, FieldType, Format, Layout};
+use shaderlib::GBufferLayout;
 
 /// Field names that are valid in WGSL but that GLSL reserves or that naga renames.
 pub const AWKWARD_FIELD_NAMES: &[&str] = &[
@@ -121,4 +122,23 @@ pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
 /// A random valid layout of 1 to 8 fields (up to 256 bits).
 pub fn random_layout() -> impl Strategy<Value = Layout> {
     random_layout_with(8)
+}
+
+/// The seed layouts and a layout of every format, also split in two for the native includes,
+/// whose twelve attachments are more than GLES and Vulkan guarantee.
+pub fn seeds_and_every_format() -> Vec<Layout> {
+    let mut layouts: Vec<Layout> = shaderlib::seed_layouts::all()
+        .into_iter()
+        .map(|(layout, _)| layout)
+        .collect();
+    let every = crate::AllFormats::layout();
+    layouts.push(every.clone());
+    for (index, half) in every.fields.chunks(6).enumerate() {
+        layouts.push(Layout {
+            name: format!("EveryFormat{}", ["Low", "High"][index]),
+            budget: 192,
+            fields: half.to_vec(),
+        });
+    }
+    layouts
 }

@@ -8,8 +8,10 @@ pub mod harness;
 pub mod layouts;
 pub mod shading_cases;
 pub mod texels;
+pub mod tools;
 pub mod user_shaders;
 pub mod values;
+pub mod vulkan;
 
 use shaderlib::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
 use shaderlib::GBufferLayout;

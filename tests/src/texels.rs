@@ -2,7 +2,7 @@
 //! values, and the comparison of what a driver produced with the Rust mirror. The wgpu,
 //! GLES and Vulkan tests share them, so every path is held to the same contract.
 
-use shaderlib::packing::{ChannelEncoding, Layout, ScalarKind};
+use shaderlib::packing::{ChannelEncoding, Format, Layout, ScalarKind};
 
 use crate::harness::{expected_scalars, expected_words, scalars_per_texel};
 use crate::values::{float_edges, sint_edges, uint_edges, Values};
@@ -146,4 +146,115 @@ pub fn compare_decoded(
             }
         }
     }
+}
+
+/// Whether the driver's word for a channel may be compared with the mirror's: a finite input
+/// within the range the channel represents (where GL defines the conversion).
+fn defined_input(value: f32, encoding: ChannelEncoding) -> bool {
+    match encoding {
+        ChannelEncoding::Unorm => (0.0..=1.0).contains(&value),
+        ChannelEncoding::Half => value.is_finite() && value.abs() <= 65504.0,
+        ChannelEncoding::UnsignedFloat { mantissa_bits } => {
+            let largest = f32::from_bits(
+                ((15 + 127) << 23) | (((1 << mantissa_bits) - 1) << (23 - mantissa_bits)),
+            );
+            value.is_finite() && (0.0..=largest).contains(&value)
+        }
+        _ => true,
+    }
+}
+
+/// The words a driver converted itself (native attachments) against the mirror's: within one
+/// code per channel where the input is defined (see [`defined_input`]); GL lets a driver round
+/// to either neighbour of the exact value and leaves the rest to it.
+pub fn check_native_words(
+    what: &str,
+    layout: &Layout,
+    inputs: &[u32],
+    stored: &[u32],
+    failures: &mut Vec<String>,
+) {
+    let scalars = scalars_per_texel(layout);
+    let words = layout.words();
+    for (texel, input) in inputs.chunks_exact(scalars).enumerate() {
+        let expected = expected_words(layout, input);
+        let mut values = input.iter();
+        for (word, field) in layout.fields.iter().enumerate() {
+            let got = stored[texel * words + word];
+            let float = field.ty.scalar == ScalarKind::Float;
+            for (index, channel) in field.format.channels().iter().enumerate() {
+                // Channels past the field's components are padding: zero on both sides.
+                let value = if index < field.ty.components {
+                    values.next().map(|&bits| f32::from_bits(bits))
+                } else {
+                    None
+                };
+                let defined =
+                    !float || value.is_none_or(|value| defined_input(value, channel.encoding));
+                let code = |bits: u32| (bits >> channel.offset) & channel.mask();
+                let distance = code(expected[word]).abs_diff(code(got));
+                if defined && distance > u32::from(float) && failures.len() < 24 {
+                    failures.push(format!(
+                        "{what}: {}: {}.{}: driver code {:#x}, mirror {:#x}, for input {:?}",
+                        layout.name,
+                        field.name,
+                        channel.name,
+                        code(got),
+                        code(expected[word]),
+                        value
+                    ));
+                }
+            }
+        }
+    }
+}
+
+/// The word a native attachment holds, from the four components a shader read from it as bits
+/// (floats through `floatBitsToUint`, integers as they are); components past the format's
+/// channels are ignored. Every value a format stores is exact in f32, so this inverts the read.
+pub fn word_from_components(format: Format, components: &[u32]) -> u32 {
+    format
+        .channels()
+        .iter()
+        .zip(components)
+        .fold(0, |word, (channel, &bits)| {
+            let value = f32::from_bits(bits);
+            let code = match channel.encoding {
+                ChannelEncoding::Unorm => (value * channel.mask() as f32).round() as u32,
+                ChannelEncoding::Half => small_float_bits(value, 10, true),
+                ChannelEncoding::UnsignedFloat { mantissa_bits } => {
+                    small_float_bits(value, mantissa_bits, false)
+                }
+                ChannelEncoding::Float32 | ChannelEncoding::Uint | ChannelEncoding::Sint => bits,
+            };
+            word | ((code & channel.mask()) << channel.offset)
+        })
+}
+
+/// The bits of a float with a 5-bit exponent and `mantissa_bits` of mantissa (binary16 when
+/// `signed`, the unsigned floats of `r11f_g11f_b10f` otherwise) that `value` was converted
+/// from exactly. A NaN keeps the top of its payload (at least one bit of it).
+pub fn small_float_bits(value: f32, mantissa_bits: u32, signed: bool) -> u32 {
+    let bits = value.to_bits();
+    let sign = if signed {
+        (bits >> 31) << (5 + mantissa_bits)
+    } else {
+        0
+    };
+    let exponent = (bits >> 23) & 0xff;
+    let mantissa = bits & 0x7f_ffff;
+    let dropped = 23 - mantissa_bits;
+    let magnitude = match exponent {
+        0xff => {
+            let payload = mantissa >> dropped;
+            (0x1f << mantissa_bits) | payload | u32::from(mantissa != 0 && payload == 0)
+        }
+        113.. => ((exponent - 112) << mantissa_bits) | (mantissa >> dropped),
+        0 => 0,
+        // A subnormal of the small format: its code counts units of 2^(-14 - mantissa_bits).
+        _ => (mantissa | 0x80_0000)
+            .checked_shr(136 - mantissa_bits - exponent)
+            .unwrap_or(0),
+    };
+    sign | magnitude
 }

@@ -7,7 +7,6 @@
 //! here, and the rest of each shader is compiled with glslang.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use codegen::emit::glsl::{self, Include, Interface, PlsBlock};
 use codegen::emit::wgsl::Conversions;
@@ -16,6 +15,7 @@ use codegen::output::{generate, Output};
 use proptest::prelude::*;
 use shaderlib::packing::{Format, Layout};
 use tests::harness::fragment_harness;
+use tests::tools::{glslang, spirv_val};
 use tests::user_shaders::{preambles, scalars_of_texel};
 
 fn layout_files() -> Vec<(PathBuf, Layout)> {
@@ -63,56 +63,6 @@ fn every_output_matches_its_snapshot() {
         for file in generate(&layout, Conversions::Exact, &Output::ALL).unwrap() {
             insta::assert_snapshot!(file.name.clone(), file.contents);
         }
-    }
-}
-
-/// Runs an external tool; a missing tool fails the test with how to install it.
-fn run(tool: &str, arguments: &[&str], package: &str) -> (bool, String) {
-    let output = Command::new(tool)
-        .args(arguments)
-        .output()
-        .unwrap_or_else(|error| panic!("cannot run `{tool}` ({error}): install Debian's `{package}` (apt-get install -y {package})"));
-    let text = format!(
-        "{}{}",
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    (output.status.success(), text)
-}
-
-fn glslang(source: &str, stage: &str, vulkan: bool) -> Result<Vec<u8>, String> {
-    let folder = tempfile::tempdir().unwrap();
-    let path = folder.path().join(format!("shader.{stage}"));
-    let spirv = folder.path().join("shader.spv");
-    std::fs::write(&path, source).unwrap();
-    let mut arguments = vec![path.to_str().unwrap()];
-    if vulkan {
-        arguments.extend(["-V", "-o", spirv.to_str().unwrap()]);
-    }
-    let (ok, text) = run("glslangValidator", &arguments, "glslang-tools");
-    if !ok {
-        return Err(format!("{text}\n{source}"));
-    }
-    Ok(if vulkan {
-        std::fs::read(spirv).unwrap()
-    } else {
-        Vec::new()
-    })
-}
-
-fn spirv_val(words: &[u8]) -> Result<(), String> {
-    let folder = tempfile::tempdir().unwrap();
-    let path = folder.path().join("module.spv");
-    std::fs::write(&path, words).unwrap();
-    let (ok, text) = run(
-        "spirv-val",
-        &["--target-env", "vulkan1.1", path.to_str().unwrap()],
-        "spirv-tools",
-    );
-    if ok {
-        Ok(())
-    } else {
-        Err(text)
     }
 }
 

@@ -16,10 +16,10 @@
 
 use codegen::emit::glsl::{self, Include, Interface};
 use proptest::prelude::*;
-use shaderlib::packing::{ChannelEncoding, Format, Layout, ScalarKind};
+use shaderlib::packing::{Format, Layout};
 use tests::gles::{skip_without_driver, Framebuffer, Gles};
-use tests::harness::{expected_words, scalars_per_texel};
-use tests::texels::{compare, compare_decoded, inputs};
+use tests::harness::scalars_per_texel;
+use tests::texels::{check_native_words, compare, compare_decoded, inputs, small_float_bits};
 use tests::user_shaders::{has_storage_buffers, preambles, scalars_of_texel, texel_from_scalars};
 use tests::values::Values;
 
@@ -114,7 +114,9 @@ fn word_from_pixel(format: Format, pixel: &[u8]) -> u32 {
         Format::Rgb10A2 | Format::Rgba8 | Format::R11fG11fB10f | Format::Rgb10A2ui => u32_at(0),
         Format::Rg16 => u16_at(0) | (u16_at(1) << 16),
         Format::Rg16f => {
-            half_bits(f32::from_bits(u32_at(0))) | (half_bits(f32::from_bits(u32_at(1))) << 16)
+            // GLES reads RG16F back only as floats, which the halves converted to exactly.
+            let half = |bits| small_float_bits(f32::from_bits(bits), 10, true);
+            half(u32_at(0)) | (half(u32_at(1)) << 16)
         }
         Format::R32f => u32_at(0),
         // Integer channels come one per u32: keep each channel's bits at its offset.
@@ -125,21 +127,6 @@ fn word_from_pixel(format: Format, pixel: &[u8]) -> u32 {
             .fold(0, |word, (index, channel)| {
                 word | ((u32_at(index) & channel.mask()) << channel.offset)
             }),
-    }
-}
-
-/// The binary16 bits of a float that a half converted to exactly (GLES reads RG16F back only
-/// as floats); NaN keeps its sign and the top of its payload, as the half had them.
-fn half_bits(value: f32) -> u32 {
-    let bits = value.to_bits();
-    let sign = (bits >> 16) & 0x8000;
-    let exponent = (bits >> 23) & 0xff;
-    let mantissa = bits & 0x7f_ffff;
-    match exponent {
-        0xff => sign | 0x7c00 | (mantissa >> 13),
-        113.. => sign | ((exponent - 112) << 10) | (mantissa >> 13),
-        0 => sign,
-        _ => sign | ((mantissa | 0x80_0000) >> (126 - exponent)),
     }
 }
 
@@ -292,92 +279,12 @@ fn llvmpipe_miswrites_after_fetch(format: Format) -> bool {
     )
 }
 
-/// Whether the driver's word for a channel may be compared with the mirror's: a finite input
-/// within the range the channel represents (where GL defines the conversion).
-fn defined_input(value: f32, encoding: ChannelEncoding) -> bool {
-    match encoding {
-        ChannelEncoding::Unorm => (0.0..=1.0).contains(&value),
-        ChannelEncoding::Half => value.is_finite() && value.abs() <= 65504.0,
-        ChannelEncoding::UnsignedFloat { mantissa_bits } => {
-            let largest = f32::from_bits(
-                ((15 + 127) << 23) | (((1 << mantissa_bits) - 1) << (23 - mantissa_bits)),
-            );
-            value.is_finite() && (0.0..=largest).contains(&value)
-        }
-        _ => true,
-    }
-}
-
-/// The driver's words against the mirror's: within one code per channel where the input is
-/// defined (see [`defined_input`]).
-fn check_native_words(
-    what: &str,
-    layout: &Layout,
-    inputs: &[u32],
-    stored: &[u32],
-    failures: &mut Vec<String>,
-) {
-    let scalars = scalars_per_texel(layout);
-    let words = layout.words();
-    for (texel, input) in inputs.chunks_exact(scalars).enumerate() {
-        let expected = expected_words(layout, input);
-        let mut values = input.iter();
-        for (word, field) in layout.fields.iter().enumerate() {
-            let got = stored[texel * words + word];
-            let float = field.ty.scalar == ScalarKind::Float;
-            for (index, channel) in field.format.channels().iter().enumerate() {
-                // Channels past the field's components are padding: zero on both sides.
-                let value = if index < field.ty.components {
-                    values.next().map(|&bits| f32::from_bits(bits))
-                } else {
-                    None
-                };
-                let defined =
-                    !float || value.is_none_or(|value| defined_input(value, channel.encoding));
-                let code = |bits: u32| (bits >> channel.offset) & channel.mask();
-                let distance = code(expected[word]).abs_diff(code(got));
-                if defined && distance > u32::from(float) && failures.len() < 24 {
-                    failures.push(format!(
-                        "{what}: {}: {}.{}: driver code {:#x}, mirror {:#x}, for input {:?}",
-                        layout.name,
-                        field.name,
-                        channel.name,
-                        code(got),
-                        code(expected[word]),
-                        value
-                    ));
-                }
-            }
-        }
-    }
-}
-
-/// The seed layouts and a layout of every format (split in two for the native include, whose
-/// twelve attachments are more than GLES guarantees).
-fn fixed_layouts() -> Vec<Layout> {
-    use shaderlib::GBufferLayout;
-    let mut layouts: Vec<Layout> = shaderlib::seed_layouts::all()
-        .into_iter()
-        .map(|(layout, _)| layout)
-        .collect();
-    let every = tests::AllFormats::layout();
-    layouts.push(every.clone());
-    for (index, half) in every.fields.chunks(6).enumerate() {
-        layouts.push(Layout {
-            name: format!("EveryFormat{}", ["Low", "High"][index]),
-            budget: 192,
-            fields: half.to_vec(),
-        });
-    }
-    layouts
-}
-
 #[test]
 fn fetch_includes_round_trip_bit_exactly_on_gles_under_every_preamble() {
     let Some(gles) = gles() else { return };
     eprintln!("GLES: {}", gles.describe());
     let mut failures = Vec::new();
-    for (index, layout) in fixed_layouts().iter().enumerate() {
+    for (index, layout) in tests::layouts::seeds_and_every_format().iter().enumerate() {
         for include in [Include::FetchPacked, Include::FetchNative] {
             for preamble in preambles(include) {
                 check(

@@ -1,0 +1,796 @@
+//! A Vulkan device on a real driver, without a window: `ash` with the loader opened at run time
+//! (Mesa's lavapipe here). Tests build render passes of several subpasses over transient
+//! attachments, draw fullscreen triangles in each, and read what the shaders wrote to storage
+//! buffers; the attachments themselves never leave the render pass, as on a tiler.
+//!
+//! Every object a test creates is recorded and destroyed by [`Vulkan::release`] (or when the
+//! device is dropped), so a test creates what it needs without bookkeeping of its own.
+
+use std::cell::RefCell;
+use std::ffi::CStr;
+
+use ash::vk;
+
+/// Where a transient attachment's memory came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AttachmentMemory {
+    /// A `LAZILY_ALLOCATED` memory type: on a tiler, memory that is never backed at all when
+    /// the attachment lives only in tile memory.
+    LazilyAllocated,
+    /// The device offers no lazily allocated type for the image: ordinary device memory.
+    DeviceLocal,
+}
+
+/// An object to destroy when the test is done with it.
+enum Object {
+    Memory(vk::DeviceMemory),
+    Image(vk::Image),
+    ImageView(vk::ImageView),
+    Buffer(vk::Buffer),
+    ShaderModule(vk::ShaderModule),
+    RenderPass(vk::RenderPass),
+    Framebuffer(vk::Framebuffer),
+    DescriptorSetLayout(vk::DescriptorSetLayout),
+    DescriptorPool(vk::DescriptorPool),
+    PipelineLayout(vk::PipelineLayout),
+    Pipeline(vk::Pipeline),
+}
+
+/// A logical device with one graphics queue.
+pub struct Vulkan {
+    pub device: ash::Device,
+    pub limits: vk::PhysicalDeviceLimits,
+    instance: ash::Instance,
+    physical_device: vk::PhysicalDevice,
+    queue: vk::Queue,
+    command_pool: vk::CommandPool,
+    memory_types: Vec<vk::MemoryType>,
+    name: String,
+    created: RefCell<Vec<Object>>,
+    // Dropped last: it holds the loader the other handles' functions come from.
+    _entry: ash::Entry,
+}
+
+/// A host-visible, coherent storage buffer of `u32` words.
+pub struct StorageBuffer {
+    pub buffer: vk::Buffer,
+    memory: vk::DeviceMemory,
+    words: usize,
+}
+
+/// One subpass of a render pass: the attachments it reads as input attachments and those it
+/// writes as colour attachments, as indices into the render pass's attachments.
+pub struct Subpass {
+    pub inputs: Vec<u32>,
+    pub colours: Vec<u32>,
+}
+
+impl Vulkan {
+    /// Opens the first device with a graphics queue and fragment-shader stores. The error says
+    /// what was missing (the loader, a device, a feature).
+    pub fn new() -> Result<Vulkan, String> {
+        // SAFETY: loading libvulkan runs its initialisers; it is the system's loader.
+        let entry = unsafe { ash::Entry::load() }.map_err(|error| {
+            format!("cannot load the Vulkan loader ({error}): install Debian's libvulkan1 and mesa-vulkan-drivers")
+        })?;
+        let application = vk::ApplicationInfo::default().api_version(vk::API_VERSION_1_1);
+        // SAFETY: a valid create info without layers or extensions.
+        let instance = unsafe {
+            entry.create_instance(
+                &vk::InstanceCreateInfo::default().application_info(&application),
+                None,
+            )
+        }
+        .map_err(|error| format!("vkCreateInstance: {error}"))?;
+        match Self::open_device(&instance) {
+            Ok((physical_device, device, queue_family, name)) => {
+                // SAFETY: the physical device and device are alive; the create infos are valid.
+                unsafe {
+                    let properties = instance.get_physical_device_properties(physical_device);
+                    let memory = instance.get_physical_device_memory_properties(physical_device);
+                    let command_pool = device
+                        .create_command_pool(
+                            &vk::CommandPoolCreateInfo::default().queue_family_index(queue_family),
+                            None,
+                        )
+                        .map_err(|error| format!("vkCreateCommandPool: {error}"))?;
+                    Ok(Vulkan {
+                        queue: device.get_device_queue(queue_family, 0),
+                        device,
+                        limits: properties.limits,
+                        instance,
+                        physical_device,
+                        command_pool,
+                        memory_types: memory.memory_types_as_slice().to_vec(),
+                        name,
+                        created: RefCell::new(Vec::new()),
+                        _entry: entry,
+                    })
+                }
+            }
+            Err(error) => {
+                // SAFETY: nothing was created from the instance.
+                unsafe { instance.destroy_instance(None) };
+                Err(error)
+            }
+        }
+    }
+
+    /// The first device with a graphics queue that can store from fragment shaders: the
+    /// physical device, the logical device, its queue family and a description.
+    fn open_device(
+        instance: &ash::Instance,
+    ) -> Result<(vk::PhysicalDevice, ash::Device, u32, String), String> {
+        // SAFETY: the instance is alive.
+        let physical_devices = unsafe { instance.enumerate_physical_devices() }
+            .map_err(|error| format!("vkEnumeratePhysicalDevices: {error}"))?;
+        if physical_devices.is_empty() {
+            return Err(
+                "no Vulkan device: install Debian's mesa-vulkan-drivers (lavapipe)".to_string(),
+            );
+        }
+        let mut seen = Vec::new();
+        for physical_device in physical_devices {
+            // SAFETY: the physical device comes from the instance.
+            let (properties, features, families) = unsafe {
+                (
+                    instance.get_physical_device_properties(physical_device),
+                    instance.get_physical_device_features(physical_device),
+                    instance.get_physical_device_queue_family_properties(physical_device),
+                )
+            };
+            let name = properties
+                .device_name_as_c_str()
+                .map_or_else(|_| "?".into(), CStr::to_string_lossy)
+                .into_owned();
+            let graphics = families
+                .iter()
+                .position(|family| family.queue_flags.contains(vk::QueueFlags::GRAPHICS));
+            let (Some(family), vk::TRUE) = (graphics, features.fragment_stores_and_atomics) else {
+                seen.push(name);
+                continue;
+            };
+            let description = format!(
+                "{name} (Vulkan {}.{}.{}, driver {:#x})",
+                vk::api_version_major(properties.api_version),
+                vk::api_version_minor(properties.api_version),
+                vk::api_version_patch(properties.api_version),
+                properties.driver_version
+            );
+            let priorities = [1.0];
+            let queues = [vk::DeviceQueueCreateInfo::default()
+                .queue_family_index(family as u32)
+                .queue_priorities(&priorities)];
+            let enabled = vk::PhysicalDeviceFeatures::default().fragment_stores_and_atomics(true);
+            // SAFETY: the queue family exists and the feature is supported.
+            let device = unsafe {
+                instance.create_device(
+                    physical_device,
+                    &vk::DeviceCreateInfo::default()
+                        .queue_create_infos(&queues)
+                        .enabled_features(&enabled),
+                    None,
+                )
+            }
+            .map_err(|error| format!("vkCreateDevice on {name}: {error}"))?;
+            return Ok((physical_device, device, family as u32, description));
+        }
+        Err(format!(
+            "no Vulkan device has a graphics queue and fragmentStoresAndAtomics (seen: {})",
+            seen.join(", ")
+        ))
+    }
+
+    /// The device's name, API version and driver version.
+    pub fn describe(&self) -> &str {
+        &self.name
+    }
+
+    fn record(&self, object: Object) {
+        self.created.borrow_mut().push(object);
+    }
+
+    /// Whether the device can use `format` as a colour attachment (and so as an input
+    /// attachment) in optimal tiling.
+    pub fn renders_to(&self, format: vk::Format) -> bool {
+        // SAFETY: the physical device is alive.
+        let properties = unsafe {
+            self.instance
+                .get_physical_device_format_properties(self.physical_device, format)
+        };
+        properties
+            .optimal_tiling_features
+            .contains(vk::FormatFeatureFlags::COLOR_ATTACHMENT)
+    }
+
+    /// A memory type allowed by `type_bits` that has all of `flags`.
+    fn memory_type(&self, type_bits: u32, flags: vk::MemoryPropertyFlags) -> Option<u32> {
+        (0..self.memory_types.len() as u32).find(|&index| {
+            type_bits & (1 << index) != 0
+                && self.memory_types[index as usize]
+                    .property_flags
+                    .contains(flags)
+        })
+    }
+
+    fn allocate(
+        &self,
+        requirements: vk::MemoryRequirements,
+        type_index: u32,
+    ) -> Result<vk::DeviceMemory, String> {
+        let info = vk::MemoryAllocateInfo::default()
+            .allocation_size(requirements.size)
+            .memory_type_index(type_index);
+        // SAFETY: the type index comes from the requirements' type bits.
+        let memory = unsafe { self.device.allocate_memory(&info, None) }
+            .map_err(|error| format!("vkAllocateMemory: {error}"))?;
+        self.record(Object::Memory(memory));
+        Ok(memory)
+    }
+
+    /// A `width` x `height` colour attachment in `format` that is also read as an input
+    /// attachment and never leaves the render pass: `TRANSIENT_ATTACHMENT`, in lazily allocated
+    /// memory where the device offers it (which one it got is returned with the view).
+    pub fn transient_attachment(
+        &self,
+        format: vk::Format,
+        width: u32,
+        height: u32,
+    ) -> Result<(vk::ImageView, AttachmentMemory), String> {
+        let info = vk::ImageCreateInfo::default()
+            .image_type(vk::ImageType::TYPE_2D)
+            .format(format)
+            .extent(vk::Extent3D {
+                width,
+                height,
+                depth: 1,
+            })
+            .mip_levels(1)
+            .array_layers(1)
+            .samples(vk::SampleCountFlags::TYPE_1)
+            .tiling(vk::ImageTiling::OPTIMAL)
+            .usage(
+                vk::ImageUsageFlags::COLOR_ATTACHMENT
+                    | vk::ImageUsageFlags::INPUT_ATTACHMENT
+                    | vk::ImageUsageFlags::TRANSIENT_ATTACHMENT,
+            )
+            .sharing_mode(vk::SharingMode::EXCLUSIVE)
+            .initial_layout(vk::ImageLayout::UNDEFINED);
+        // SAFETY: a valid 2D colour image; the memory is bound once, at offset 0.
+        unsafe {
+            let image = self
+                .device
+                .create_image(&info, None)
+                .map_err(|error| format!("vkCreateImage({format:?}): {error}"))?;
+            self.record(Object::Image(image));
+            let requirements = self.device.get_image_memory_requirements(image);
+            let lazily = self.memory_type(
+                requirements.memory_type_bits,
+                vk::MemoryPropertyFlags::LAZILY_ALLOCATED,
+            );
+            let (type_index, kind) = match lazily {
+                Some(index) => (index, AttachmentMemory::LazilyAllocated),
+                None => (
+                    self.memory_type(
+                        requirements.memory_type_bits,
+                        vk::MemoryPropertyFlags::DEVICE_LOCAL,
+                    )
+                    .ok_or("no device-local memory type for an attachment")?,
+                    AttachmentMemory::DeviceLocal,
+                ),
+            };
+            let memory = self.allocate(requirements, type_index)?;
+            self.device
+                .bind_image_memory(image, memory, 0)
+                .map_err(|error| format!("vkBindImageMemory: {error}"))?;
+            let view = self
+                .device
+                .create_image_view(
+                    &vk::ImageViewCreateInfo::default()
+                        .image(image)
+                        .view_type(vk::ImageViewType::TYPE_2D)
+                        .format(format)
+                        .subresource_range(vk::ImageSubresourceRange {
+                            aspect_mask: vk::ImageAspectFlags::COLOR,
+                            base_mip_level: 0,
+                            level_count: 1,
+                            base_array_layer: 0,
+                            layer_count: 1,
+                        }),
+                    None,
+                )
+                .map_err(|error| format!("vkCreateImageView: {error}"))?;
+            self.record(Object::ImageView(view));
+            Ok((view, kind))
+        }
+    }
+
+    /// A storage buffer of `words` words that the host reads and writes directly.
+    pub fn storage_buffer(&self, words: usize) -> Result<StorageBuffer, String> {
+        let info = vk::BufferCreateInfo::default()
+            .size((words.max(1) * 4) as u64)
+            .usage(vk::BufferUsageFlags::STORAGE_BUFFER)
+            .sharing_mode(vk::SharingMode::EXCLUSIVE);
+        // SAFETY: a valid buffer; the memory is bound once, at offset 0.
+        unsafe {
+            let buffer = self
+                .device
+                .create_buffer(&info, None)
+                .map_err(|error| format!("vkCreateBuffer: {error}"))?;
+            self.record(Object::Buffer(buffer));
+            let requirements = self.device.get_buffer_memory_requirements(buffer);
+            let type_index = self
+                .memory_type(
+                    requirements.memory_type_bits,
+                    vk::MemoryPropertyFlags::HOST_VISIBLE | vk::MemoryPropertyFlags::HOST_COHERENT,
+                )
+                .ok_or("no host-visible, coherent memory type for a storage buffer")?;
+            let memory = self.allocate(requirements, type_index)?;
+            self.device
+                .bind_buffer_memory(buffer, memory, 0)
+                .map_err(|error| format!("vkBindBufferMemory: {error}"))?;
+            Ok(StorageBuffer {
+                buffer,
+                memory,
+                words,
+            })
+        }
+    }
+
+    /// Maps a storage buffer and hands its words to `access`.
+    fn with_mapped<T>(
+        &self,
+        buffer: &StorageBuffer,
+        access: impl FnOnce(&mut [u32]) -> T,
+    ) -> Result<T, String> {
+        // SAFETY: the memory is host visible and coherent, at least `words` words long, not
+        // mapped elsewhere, and the device is idle between submissions.
+        unsafe {
+            let pointer = self
+                .device
+                .map_memory(
+                    buffer.memory,
+                    0,
+                    vk::WHOLE_SIZE,
+                    vk::MemoryMapFlags::empty(),
+                )
+                .map_err(|error| format!("vkMapMemory: {error}"))?;
+            let words = std::slice::from_raw_parts_mut(pointer.cast::<u32>(), buffer.words);
+            let result = access(words);
+            self.device.unmap_memory(buffer.memory);
+            Ok(result)
+        }
+    }
+
+    /// Writes `words` at the start of a storage buffer.
+    pub fn write_buffer(&self, buffer: &StorageBuffer, words: &[u32]) -> Result<(), String> {
+        self.with_mapped(buffer, |mapped| {
+            mapped[..words.len()].copy_from_slice(words)
+        })
+    }
+
+    /// The words of a storage buffer.
+    pub fn read_buffer(&self, buffer: &StorageBuffer) -> Result<Vec<u32>, String> {
+        self.with_mapped(buffer, |mapped| mapped.to_vec())
+    }
+
+    /// A shader module from SPIR-V bytes.
+    pub fn shader_module(&self, spirv: &[u8]) -> Result<vk::ShaderModule, String> {
+        let code = ash::util::read_spv(&mut std::io::Cursor::new(spirv))
+            .map_err(|error| format!("not SPIR-V: {error}"))?;
+        // SAFETY: the code is whole SPIR-V words.
+        let module = unsafe {
+            self.device
+                .create_shader_module(&vk::ShaderModuleCreateInfo::default().code(&code), None)
+        }
+        .map_err(|error| format!("vkCreateShaderModule: {error}"))?;
+        self.record(Object::ShaderModule(module));
+        Ok(module)
+    }
+
+    /// A render pass over `formats` whose subpasses run in order, each reading its inputs
+    /// after the previous ones wrote them (by region, as a tiler keeps them). No attachment is
+    /// loaded or stored: they live and die inside the pass.
+    pub fn render_pass(
+        &self,
+        formats: &[vk::Format],
+        subpasses: &[Subpass],
+    ) -> Result<vk::RenderPass, String> {
+        let attachments: Vec<vk::AttachmentDescription> = formats
+            .iter()
+            .map(|&format| {
+                vk::AttachmentDescription::default()
+                    .format(format)
+                    .samples(vk::SampleCountFlags::TYPE_1)
+                    .load_op(vk::AttachmentLoadOp::DONT_CARE)
+                    .store_op(vk::AttachmentStoreOp::DONT_CARE)
+                    .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
+                    .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
+                    .initial_layout(vk::ImageLayout::UNDEFINED)
+                    .final_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)
+            })
+            .collect();
+        let references = |indices: &[u32], layout| -> Vec<vk::AttachmentReference> {
+            indices
+                .iter()
+                .map(|&attachment| vk::AttachmentReference { attachment, layout })
+                .collect()
+        };
+        let inputs: Vec<_> = subpasses
+            .iter()
+            .map(|subpass| references(&subpass.inputs, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL))
+            .collect();
+        let colours: Vec<_> = subpasses
+            .iter()
+            .map(|subpass| references(&subpass.colours, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL))
+            .collect();
+        let descriptions: Vec<vk::SubpassDescription> = inputs
+            .iter()
+            .zip(&colours)
+            .map(|(inputs, colours)| {
+                vk::SubpassDescription::default()
+                    .pipeline_bind_point(vk::PipelineBindPoint::GRAPHICS)
+                    .input_attachments(inputs)
+                    .color_attachments(colours)
+            })
+            .collect();
+        let dependencies: Vec<vk::SubpassDependency> = (1..subpasses.len() as u32)
+            .map(|next| {
+                vk::SubpassDependency::default()
+                    .src_subpass(next - 1)
+                    .dst_subpass(next)
+                    .src_stage_mask(vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT)
+                    .dst_stage_mask(vk::PipelineStageFlags::FRAGMENT_SHADER)
+                    .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
+                    .dst_access_mask(vk::AccessFlags::INPUT_ATTACHMENT_READ)
+                    .dependency_flags(vk::DependencyFlags::BY_REGION)
+            })
+            .collect();
+        // SAFETY: every reference names an attachment of `formats`.
+        let render_pass = unsafe {
+            self.device.create_render_pass(
+                &vk::RenderPassCreateInfo::default()
+                    .attachments(&attachments)
+                    .subpasses(&descriptions)
+                    .dependencies(&dependencies),
+                None,
+            )
+        }
+        .map_err(|error| format!("vkCreateRenderPass: {error}"))?;
+        self.record(Object::RenderPass(render_pass));
+        Ok(render_pass)
+    }
+
+    /// A framebuffer of `views` for `render_pass`.
+    pub fn framebuffer(
+        &self,
+        render_pass: vk::RenderPass,
+        views: &[vk::ImageView],
+        width: u32,
+        height: u32,
+    ) -> Result<vk::Framebuffer, String> {
+        // SAFETY: the views match the render pass's attachments.
+        let framebuffer = unsafe {
+            self.device.create_framebuffer(
+                &vk::FramebufferCreateInfo::default()
+                    .render_pass(render_pass)
+                    .attachments(views)
+                    .width(width)
+                    .height(height)
+                    .layers(1),
+                None,
+            )
+        }
+        .map_err(|error| format!("vkCreateFramebuffer: {error}"))?;
+        self.record(Object::Framebuffer(framebuffer));
+        Ok(framebuffer)
+    }
+
+    /// A descriptor set layout of one descriptor per type, at bindings 0, 1, ..., for the
+    /// fragment stage.
+    pub fn descriptor_set_layout(
+        &self,
+        types: &[vk::DescriptorType],
+    ) -> Result<vk::DescriptorSetLayout, String> {
+        let bindings: Vec<vk::DescriptorSetLayoutBinding> = types
+            .iter()
+            .enumerate()
+            .map(|(binding, &descriptor_type)| {
+                vk::DescriptorSetLayoutBinding::default()
+                    .binding(binding as u32)
+                    .descriptor_type(descriptor_type)
+                    .descriptor_count(1)
+                    .stage_flags(vk::ShaderStageFlags::FRAGMENT)
+            })
+            .collect();
+        // SAFETY: valid bindings.
+        let layout = unsafe {
+            self.device.create_descriptor_set_layout(
+                &vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings),
+                None,
+            )
+        }
+        .map_err(|error| format!("vkCreateDescriptorSetLayout: {error}"))?;
+        self.record(Object::DescriptorSetLayout(layout));
+        Ok(layout)
+    }
+
+    /// A descriptor set of `layout` (made with `types`) whose binding i is `resources[i]`:
+    /// an input attachment's view or a storage buffer.
+    pub fn descriptor_set(
+        &self,
+        layout: vk::DescriptorSetLayout,
+        resources: &[Resource],
+    ) -> Result<vk::DescriptorSet, String> {
+        let sizes: Vec<vk::DescriptorPoolSize> = resources
+            .iter()
+            .map(|resource| vk::DescriptorPoolSize {
+                ty: resource.descriptor_type(),
+                descriptor_count: 1,
+            })
+            .collect();
+        // SAFETY: the pool holds exactly the set's descriptors; the writes match the layout.
+        unsafe {
+            let pool = self
+                .device
+                .create_descriptor_pool(
+                    &vk::DescriptorPoolCreateInfo::default()
+                        .max_sets(1)
+                        .pool_sizes(&sizes),
+                    None,
+                )
+                .map_err(|error| format!("vkCreateDescriptorPool: {error}"))?;
+            self.record(Object::DescriptorPool(pool));
+            let layouts = [layout];
+            let set = self
+                .device
+                .allocate_descriptor_sets(
+                    &vk::DescriptorSetAllocateInfo::default()
+                        .descriptor_pool(pool)
+                        .set_layouts(&layouts),
+                )
+                .map_err(|error| format!("vkAllocateDescriptorSets: {error}"))?[0];
+            let images: Vec<[vk::DescriptorImageInfo; 1]> = resources
+                .iter()
+                .map(|resource| match resource {
+                    Resource::InputAttachment(view) => [vk::DescriptorImageInfo {
+                        sampler: vk::Sampler::null(),
+                        image_view: *view,
+                        image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+                    }],
+                    Resource::StorageBuffer(_) => [vk::DescriptorImageInfo::default()],
+                })
+                .collect();
+            let buffers: Vec<[vk::DescriptorBufferInfo; 1]> = resources
+                .iter()
+                .map(|resource| match resource {
+                    Resource::StorageBuffer(buffer) => [vk::DescriptorBufferInfo {
+                        buffer: *buffer,
+                        offset: 0,
+                        range: vk::WHOLE_SIZE,
+                    }],
+                    Resource::InputAttachment(_) => [vk::DescriptorBufferInfo::default()],
+                })
+                .collect();
+            let writes: Vec<vk::WriteDescriptorSet> = resources
+                .iter()
+                .enumerate()
+                .map(|(binding, resource)| {
+                    let write = vk::WriteDescriptorSet::default()
+                        .dst_set(set)
+                        .dst_binding(binding as u32)
+                        .descriptor_type(resource.descriptor_type());
+                    match resource {
+                        Resource::InputAttachment(_) => write.image_info(&images[binding]),
+                        Resource::StorageBuffer(_) => write.buffer_info(&buffers[binding]),
+                    }
+                })
+                .collect();
+            self.device.update_descriptor_sets(&writes, &[]);
+            Ok(set)
+        }
+    }
+
+    /// A pipeline layout of `set_layouts` (set i is `set_layouts[i]`).
+    pub fn pipeline_layout(
+        &self,
+        set_layouts: &[vk::DescriptorSetLayout],
+    ) -> Result<vk::PipelineLayout, String> {
+        // SAFETY: valid set layouts.
+        let layout = unsafe {
+            self.device.create_pipeline_layout(
+                &vk::PipelineLayoutCreateInfo::default().set_layouts(set_layouts),
+                None,
+            )
+        }
+        .map_err(|error| format!("vkCreatePipelineLayout: {error}"))?;
+        self.record(Object::PipelineLayout(layout));
+        Ok(layout)
+    }
+
+    /// A pipeline for `subpass` of `render_pass` that draws a fullscreen triangle (`vertex`
+    /// makes it from the vertex index) and runs `fragment` on a `width` x `height` viewport,
+    /// writing `colour_attachments` attachments without blending.
+    #[allow(clippy::too_many_arguments)]
+    pub fn fullscreen_pipeline(
+        &self,
+        render_pass: vk::RenderPass,
+        subpass: u32,
+        layout: vk::PipelineLayout,
+        vertex: vk::ShaderModule,
+        fragment: vk::ShaderModule,
+        colour_attachments: usize,
+        (width, height): (u32, u32),
+    ) -> Result<vk::Pipeline, String> {
+        let stages = [
+            vk::PipelineShaderStageCreateInfo::default()
+                .stage(vk::ShaderStageFlags::VERTEX)
+                .module(vertex)
+                .name(c"main"),
+            vk::PipelineShaderStageCreateInfo::default()
+                .stage(vk::ShaderStageFlags::FRAGMENT)
+                .module(fragment)
+                .name(c"main"),
+        ];
+        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default();
+        let input_assembly = vk::PipelineInputAssemblyStateCreateInfo::default()
+            .topology(vk::PrimitiveTopology::TRIANGLE_LIST);
+        let viewports = [vk::Viewport {
+            x: 0.0,
+            y: 0.0,
+            width: width as f32,
+            height: height as f32,
+            min_depth: 0.0,
+            max_depth: 1.0,
+        }];
+        let scissors = [vk::Rect2D {
+            offset: vk::Offset2D { x: 0, y: 0 },
+            extent: vk::Extent2D { width, height },
+        }];
+        let viewport = vk::PipelineViewportStateCreateInfo::default()
+            .viewports(&viewports)
+            .scissors(&scissors);
+        let rasterization = vk::PipelineRasterizationStateCreateInfo::default()
+            .polygon_mode(vk::PolygonMode::FILL)
+            .cull_mode(vk::CullModeFlags::NONE)
+            .front_face(vk::FrontFace::COUNTER_CLOCKWISE)
+            .line_width(1.0);
+        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
+            .rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let blend_attachments = vec![
+            vk::PipelineColorBlendAttachmentState::default()
+                .color_write_mask(vk::ColorComponentFlags::RGBA);
+            colour_attachments
+        ];
+        let blend =
+            vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
+        let info = vk::GraphicsPipelineCreateInfo::default()
+            .stages(&stages)
+            .vertex_input_state(&vertex_input)
+            .input_assembly_state(&input_assembly)
+            .viewport_state(&viewport)
+            .rasterization_state(&rasterization)
+            .multisample_state(&multisample)
+            .color_blend_state(&blend)
+            .layout(layout)
+            .render_pass(render_pass)
+            .subpass(subpass);
+        // SAFETY: the stages, layout and render pass are alive and agree with each other.
+        let pipeline = unsafe {
+            self.device
+                .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
+        }
+        .map_err(|(_, error)| format!("vkCreateGraphicsPipelines: {error}"))?[0];
+        self.record(Object::Pipeline(pipeline));
+        Ok(pipeline)
+    }
+
+    /// Records commands with `record`, submits them, and waits until the device is idle, with
+    /// everything fragment shaders stored made visible to the host.
+    pub fn submit_and_wait(
+        &self,
+        record: impl FnOnce(&ash::Device, vk::CommandBuffer),
+    ) -> Result<(), String> {
+        // SAFETY: one primary command buffer, recorded, submitted and waited for here.
+        unsafe {
+            let command_buffer = self
+                .device
+                .allocate_command_buffers(
+                    &vk::CommandBufferAllocateInfo::default()
+                        .command_pool(self.command_pool)
+                        .level(vk::CommandBufferLevel::PRIMARY)
+                        .command_buffer_count(1),
+                )
+                .map_err(|error| format!("vkAllocateCommandBuffers: {error}"))?[0];
+            self.device
+                .begin_command_buffer(
+                    command_buffer,
+                    &vk::CommandBufferBeginInfo::default()
+                        .flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT),
+                )
+                .map_err(|error| format!("vkBeginCommandBuffer: {error}"))?;
+            record(&self.device, command_buffer);
+            let to_host = vk::MemoryBarrier::default()
+                .src_access_mask(vk::AccessFlags::SHADER_WRITE)
+                .dst_access_mask(vk::AccessFlags::HOST_READ);
+            self.device.cmd_pipeline_barrier(
+                command_buffer,
+                vk::PipelineStageFlags::FRAGMENT_SHADER,
+                vk::PipelineStageFlags::HOST,
+                vk::DependencyFlags::empty(),
+                &[to_host],
+                &[],
+                &[],
+            );
+            self.device
+                .end_command_buffer(command_buffer)
+                .map_err(|error| format!("vkEndCommandBuffer: {error}"))?;
+            let command_buffers = [command_buffer];
+            let submitted = self.device.queue_submit(
+                self.queue,
+                &[vk::SubmitInfo::default().command_buffers(&command_buffers)],
+                vk::Fence::null(),
+            );
+            let waited = self.device.queue_wait_idle(self.queue);
+            self.device
+                .free_command_buffers(self.command_pool, &command_buffers);
+            submitted.map_err(|error| format!("vkQueueSubmit: {error}"))?;
+            waited.map_err(|error| format!("vkQueueWaitIdle: {error}"))
+        }
+    }
+
+    /// Destroys every object created so far, newest first.
+    pub fn release(&self) {
+        // SAFETY: after the wait no submitted work uses the objects; each is destroyed once.
+        unsafe {
+            let _ = self.device.device_wait_idle();
+            for object in self.created.borrow_mut().drain(..).rev() {
+                let device = &self.device;
+                match object {
+                    Object::Memory(memory) => device.free_memory(memory, None),
+                    Object::Image(image) => device.destroy_image(image, None),
+                    Object::ImageView(view) => device.destroy_image_view(view, None),
+                    Object::Buffer(buffer) => device.destroy_buffer(buffer, None),
+                    Object::ShaderModule(module) => device.destroy_shader_module(module, None),
+                    Object::RenderPass(pass) => device.destroy_render_pass(pass, None),
+                    Object::Framebuffer(framebuffer) => {
+                        device.destroy_framebuffer(framebuffer, None)
+                    }
+                    Object::DescriptorSetLayout(layout) => {
+                        device.destroy_descriptor_set_layout(layout, None)
+                    }
+                    Object::DescriptorPool(pool) => device.destroy_descriptor_pool(pool, None),
+                    Object::PipelineLayout(layout) => device.destroy_pipeline_layout(layout, None),
+                    Object::Pipeline(pipeline) => device.destroy_pipeline(pipeline, None),
+                }
+            }
+        }
+    }
+}
+
+impl Drop for Vulkan {
+    fn drop(&mut self) {
+        self.release();
+        // SAFETY: the device is idle and everything created from it is destroyed.
+        unsafe {
+            self.device.destroy_command_pool(self.command_pool, None);
+            self.device.destroy_device(None);
+            self.instance.destroy_instance(None);
+        }
+    }
+}
+
+/// What a descriptor set binding holds.
+pub enum Resource {
+    InputAttachment(vk::ImageView),
+    StorageBuffer(vk::Buffer),
+}
+
+impl Resource {
+    fn descriptor_type(&self) -> vk::DescriptorType {
+        match self {
+            Resource::InputAttachment(_) => vk::DescriptorType::INPUT_ATTACHMENT,
+            Resource::StorageBuffer(_) => vk::DescriptorType::STORAGE_BUFFER,
+        }
+    }
+}

@@ -1,0 +1,522 @@
+//! The Vulkan subpass-input includes on a real driver (Mesa's lavapipe through `ash`), exactly as
+//! generated: each include is pasted unedited into small user shaders under every preamble its
+//! header allows, compiled with glslangValidator, and run in one render pass of three
+//! subpasses over transient attachments, as a tiler keeps a G-buffer:
+//!
+//! - subpass 0 builds texels from input scalars (edge cases first, then random values) and
+//!   writes them to G-buffer A with the include's pack functions;
+//! - subpass 1 reads A as input attachments with `load_<layout>()`, writes A's words and each
+//!   decoded field to a storage buffer, and writes the texel again to G-buffer B;
+//! - subpass 2 reads B and writes its words.
+//!
+//! The attachments are never stored: the storage buffer is all that leaves the pass. A's words
+//! equal the Rust mirror's bit for bit, B's equal A's (store(load()) changes no bit), and the
+//! decoded fields equal the mirror's unpack. For the seed layouts, a layout of every format and
+//! layouts generated at random (with names GLSL reserves), for the packed include and the
+//! native one (one attachment per field in its own format, converted by the driver).
+
+use std::collections::BTreeSet;
+
+use ash::vk;
+use codegen::emit::glsl::{self, GlslNames, Include, Interface};
+use proptest::prelude::*;
+use shaderlib::packing::{Layout, ScalarKind};
+use tests::gles::skip_without_driver;
+use tests::harness::scalars_per_texel;
+use tests::texels::{check_native_words, compare, compare_decoded, inputs, word_from_components};
+use tests::tools::glslang;
+use tests::user_shaders::{preambles, scalars_of_texel, texel_from_scalars};
+use tests::values::Values;
+use tests::vulkan::{AttachmentMemory, Resource, Subpass, Vulkan};
+
+const WIDTH: u32 = 48;
+const HEIGHT: u32 = 48;
+
+/// A fullscreen triangle from the vertex index.
+const VERTEX_SHADER: &str = "#version 450
+void main() {
+    vec2 corner = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
+    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+";
+
+fn vulkan() -> Option<Vulkan> {
+    match Vulkan::new() {
+        Ok(vulkan) => Some(vulkan),
+        Err(error) => {
+            skip_without_driver("Vulkan", &error);
+            None
+        }
+    }
+}
+
+/// Where each texel's results sit in the output buffer: what subpass 1 read from G-buffer A
+/// (four components per attachment, as bits), the decoded scalars, what subpass 2 read from B.
+struct OutputLayout {
+    components: usize,
+    scalars: usize,
+}
+
+impl OutputLayout {
+    fn of(layout: &Layout, interface: &Interface) -> OutputLayout {
+        OutputLayout {
+            components: 4 * interface.attachments.len(),
+            scalars: scalars_per_texel(layout),
+        }
+    }
+
+    fn stride(&self) -> usize {
+        2 * self.components + self.scalars
+    }
+
+    /// A's words, the decoded scalars and B's words of every texel, each run end to end.
+    fn split(
+        &self,
+        layout: &Layout,
+        interface: &Interface,
+        outputs: &[u32],
+    ) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
+        let (mut first, mut decoded, mut second) = (Vec::new(), Vec::new(), Vec::new());
+        for texel in outputs.chunks_exact(self.stride()) {
+            let (read_first, rest) = texel.split_at(self.components);
+            let (scalars, read_second) = rest.split_at(self.scalars);
+            first.extend(words(layout, interface, read_first));
+            decoded.extend_from_slice(scalars);
+            second.extend(words(layout, interface, read_second));
+        }
+        (first, decoded, second)
+    }
+}
+
+/// A texel's words from the components read from its attachments: the packed words as they
+/// are, or each native attachment's word from its channels.
+fn words(layout: &Layout, interface: &Interface, components: &[u32]) -> Vec<u32> {
+    if interface.include.is_packed() {
+        components[..layout.words()].to_vec()
+    } else {
+        layout
+            .fields
+            .iter()
+            .zip(components.chunks_exact(4))
+            .map(|(field, components)| word_from_components(field.format, components))
+            .collect()
+    }
+}
+
+/// The three fragment shaders of the user's render pass for `include` under `preamble`.
+struct UserShaders {
+    store: String,
+    reload: String,
+    verify: String,
+}
+
+fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> UserShaders {
+    let (text, interface) = glsl::include(layout, include, 0).unwrap();
+    let names = glsl::translate(layout).unwrap().names;
+    let output = OutputLayout::of(layout, &interface);
+    let stride = output.stride();
+    let common = format!(
+        "{preamble}{text}\n// The user's code.\n\
+         layout(std430, set = 1, binding = 0) readonly buffer HarnessInputs {{\n    highp uint harness_inputs[];\n}};\n\
+         layout(std430, set = 1, binding = 1) buffer HarnessOutputs {{\n    highp uint harness_outputs[];\n}};\n\n\
+         highp int harness_texel() {{\n    highp ivec2 pixel = ivec2(gl_FragCoord.xy);\n    return pixel.y * {WIDTH} + pixel.x;\n}}\n"
+    );
+    let writer = gbuffer_writer(layout, &names, &interface);
+    let reads = attachment_reader(&interface);
+    let prefix = layout.snake_name();
+    let scalars = output.scalars;
+    let texel = texel_from_scalars(layout, &names, |index| {
+        format!("harness_inputs[base + {index}]")
+    });
+    let store = format!(
+        "{common}{writer}\nvoid main() {{\n    highp int base = harness_texel() * {scalars};\n    harness_store({texel});\n}}\n"
+    );
+    let mut reload = format!(
+        "{common}{writer}{reads}\nvoid main() {{\n    {} texel = load_{prefix}();\n    \
+         highp int base = harness_texel() * {stride};\n    harness_write_attachments(base);\n",
+        names.layout
+    );
+    for (index, scalar) in scalars_of_texel(layout, &names, "texel").iter().enumerate() {
+        reload.push_str(&format!(
+            "    harness_outputs[base + {}] = {scalar};\n",
+            output.components + index
+        ));
+    }
+    reload.push_str("    harness_store(texel);\n}\n");
+    let verify = format!(
+        "{common}{reads}\nvoid main() {{\n    harness_write_attachments(harness_texel() * {stride} + {});\n}}\n",
+        output.components + output.scalars
+    );
+    UserShaders {
+        store,
+        reload,
+        verify,
+    }
+}
+
+/// The user's colour outputs over the G-buffer attachments and `harness_store(texel)`, which
+/// writes a texel to them: the packed words through the include's pack functions, or each
+/// field into its own attachment.
+fn gbuffer_writer(layout: &Layout, names: &GlslNames, interface: &Interface) -> String {
+    let prefix = layout.snake_name();
+    let mut out = String::new();
+    for attachment in &interface.attachments {
+        out.push_str(&format!(
+            "layout(location = {}) out highp {} harness_gbuffer{};\n",
+            attachment.index, attachment.format.glsl_type, attachment.index
+        ));
+    }
+    out.push_str(&format!(
+        "\nvoid harness_store({} texel) {{\n",
+        names.layout
+    ));
+    if interface.include.is_packed() {
+        out.push_str(&format!(
+            "    {} targets = pack_{prefix}_targets(texel);\n",
+            names.targets
+        ));
+        for (attachment, member) in interface.attachments.iter().zip(&names.target_members) {
+            out.push_str(&format!(
+                "    harness_gbuffer{} = targets.{member};\n",
+                attachment.index
+            ));
+        }
+    } else {
+        for ((field, name), attachment) in layout
+            .fields
+            .iter()
+            .zip(&names.fields)
+            .zip(&interface.attachments)
+        {
+            let zero = match field.ty.scalar {
+                ScalarKind::Float => ", 0.0",
+                ScalarKind::Uint => ", 0u",
+                ScalarKind::Sint => ", 0",
+            };
+            out.push_str(&format!(
+                "    harness_gbuffer{} = {}(texel.{name}{});\n",
+                attachment.index,
+                attachment.format.glsl_type,
+                zero.repeat(4 - field.ty.components)
+            ));
+        }
+    }
+    out.push_str("}\n");
+    out
+}
+
+/// `harness_write_attachments(base)`: the four components of every input attachment, as
+/// bits, into the output buffer: what the previous subpass left there, before any conversion
+/// of the include's.
+fn attachment_reader(interface: &Interface) -> String {
+    let mut out = String::from("\nvoid harness_write_attachments(highp int base) {\n");
+    for attachment in &interface.attachments {
+        let index = attachment.index;
+        let bits = match attachment.format.glsl_type {
+            "vec4" => "floatBitsToUint",
+            "ivec4" => "uvec4",
+            _ => "",
+        };
+        out.push_str(&format!(
+            "    highp uvec4 attachment{index} = {bits}(subpassLoad({}));\n",
+            attachment.name
+        ));
+        for component in 0..4 {
+            out.push_str(&format!(
+                "    harness_outputs[base + {}] = attachment{index}.{};\n",
+                index as usize * 4 + component,
+                &"xyzw"[component..component + 1]
+            ));
+        }
+    }
+    out.push_str("}\n");
+    out
+}
+
+/// Compiles a shader to a module, or says which shader failed and why.
+fn module(vulkan: &Vulkan, source: &str, stage: &str, what: &str) -> vk::ShaderModule {
+    let spirv = glslang(source, stage, true).unwrap_or_else(|log| panic!("{what}: {log}"));
+    vulkan
+        .shader_module(&spirv)
+        .unwrap_or_else(|error| panic!("{what}: {error}"))
+}
+
+/// Runs the render pass of `include` for `layout` under `preamble`; pushes mismatches onto
+/// `failures` and returns the memory the attachments got. Prints why and returns `None` when
+/// the device cannot hold the layout's attachments.
+fn check(
+    vulkan: &Vulkan,
+    layout: &Layout,
+    include: Include,
+    preamble: &str,
+    seed: u64,
+    failures: &mut Vec<String>,
+) -> Option<AttachmentMemory> {
+    let (_, interface) = glsl::include(layout, include, 0).unwrap();
+    let count = interface.attachments.len();
+    let limits = &vulkan.limits;
+    let most = limits
+        .max_color_attachments
+        .min(limits.max_per_stage_descriptor_input_attachments) as usize;
+    let formats: Vec<vk::Format> = interface
+        .attachments
+        .iter()
+        .map(|attachment| vk::Format::from_raw(attachment.format.vulkan_format))
+        .collect();
+    if count > most {
+        eprintln!(
+            "{}: {include:?} needs {count} attachments; the device has {most}",
+            layout.name
+        );
+        return None;
+    }
+    if let Some(format) = formats.iter().find(|&&format| !vulkan.renders_to(format)) {
+        failures.push(format!(
+            "{}: {include:?}: the device cannot render to {format:?}",
+            layout.name
+        ));
+        return None;
+    }
+    let what = format!(
+        "{} {include:?} under {:?}",
+        layout.name,
+        preamble.replace('\n', " ")
+    );
+    let shaders = user_shaders(layout, include, preamble);
+    let vertex = module(vulkan, VERTEX_SHADER, "vert", "the vertex shader");
+    let store = module(vulkan, &shaders.store, "frag", &what);
+    let reload = module(vulkan, &shaders.reload, "frag", &what);
+    let verify = module(vulkan, &shaders.verify, "frag", &what);
+
+    let run = || -> Result<(Vec<u32>, Vec<u32>, AttachmentMemory), String> {
+        // G-buffer A is attachments 0..count, B is count..2 count.
+        let mut views = Vec::new();
+        let mut memory = AttachmentMemory::LazilyAllocated;
+        for &format in formats.iter().chain(&formats) {
+            let (view, kind) = vulkan.transient_attachment(format, WIDTH, HEIGHT)?;
+            if kind == AttachmentMemory::DeviceLocal {
+                memory = kind;
+            }
+            views.push(view);
+        }
+        let all_formats: Vec<vk::Format> = formats.iter().chain(&formats).copied().collect();
+        let a: Vec<u32> = (0..count as u32).collect();
+        let b: Vec<u32> = (count as u32..2 * count as u32).collect();
+        let render_pass = vulkan.render_pass(
+            &all_formats,
+            &[
+                Subpass {
+                    inputs: vec![],
+                    colours: a.clone(),
+                },
+                Subpass {
+                    inputs: a,
+                    colours: b.clone(),
+                },
+                Subpass {
+                    inputs: b,
+                    colours: vec![],
+                },
+            ],
+        )?;
+        let framebuffer = vulkan.framebuffer(render_pass, &views, WIDTH, HEIGHT)?;
+
+        let output = OutputLayout::of(layout, &interface);
+        let texels = (WIDTH * HEIGHT) as usize;
+        let inputs = inputs(layout, 0, texels, &mut Values::new(seed));
+        let input_buffer = vulkan.storage_buffer(inputs.len())?;
+        vulkan.write_buffer(&input_buffer, &inputs)?;
+        // Every output word starts as a value no path writes, so a texel the shaders skip
+        // cannot pass for a zero word.
+        let output_buffer = vulkan.storage_buffer(texels * output.stride())?;
+        vulkan.write_buffer(&output_buffer, &vec![0xdead_beef; texels * output.stride()])?;
+
+        let gbuffer_set_layout =
+            vulkan.descriptor_set_layout(&vec![vk::DescriptorType::INPUT_ATTACHMENT; count])?;
+        let buffers_set_layout =
+            vulkan.descriptor_set_layout(&[vk::DescriptorType::STORAGE_BUFFER; 2])?;
+        let pipeline_layout = vulkan.pipeline_layout(&[gbuffer_set_layout, buffers_set_layout])?;
+        let input_attachments = |views: &[vk::ImageView]| -> Vec<Resource> {
+            views
+                .iter()
+                .map(|&view| Resource::InputAttachment(view))
+                .collect()
+        };
+        let a_set =
+            vulkan.descriptor_set(gbuffer_set_layout, &input_attachments(&views[..count]))?;
+        let b_set =
+            vulkan.descriptor_set(gbuffer_set_layout, &input_attachments(&views[count..]))?;
+        let buffers_set = vulkan.descriptor_set(
+            buffers_set_layout,
+            &[
+                Resource::StorageBuffer(input_buffer.buffer),
+                Resource::StorageBuffer(output_buffer.buffer),
+            ],
+        )?;
+        let size = (WIDTH, HEIGHT);
+        let pipelines = [
+            vulkan.fullscreen_pipeline(
+                render_pass,
+                0,
+                pipeline_layout,
+                vertex,
+                store,
+                count,
+                size,
+            )?,
+            vulkan.fullscreen_pipeline(
+                render_pass,
+                1,
+                pipeline_layout,
+                vertex,
+                reload,
+                count,
+                size,
+            )?,
+            vulkan.fullscreen_pipeline(render_pass, 2, pipeline_layout, vertex, verify, 0, size)?,
+        ];
+        vulkan.submit_and_wait(|device, commands| {
+            let graphics = vk::PipelineBindPoint::GRAPHICS;
+            // SAFETY: every handle is alive until `release`; the sets match the layout.
+            unsafe {
+                device.cmd_begin_render_pass(
+                    commands,
+                    &vk::RenderPassBeginInfo::default()
+                        .render_pass(render_pass)
+                        .framebuffer(framebuffer)
+                        .render_area(vk::Rect2D {
+                            offset: vk::Offset2D { x: 0, y: 0 },
+                            extent: vk::Extent2D {
+                                width: WIDTH,
+                                height: HEIGHT,
+                            },
+                        }),
+                    vk::SubpassContents::INLINE,
+                );
+                device.cmd_bind_descriptor_sets(
+                    commands,
+                    graphics,
+                    pipeline_layout,
+                    1,
+                    &[buffers_set],
+                    &[],
+                );
+                for (subpass, pipeline) in pipelines.iter().enumerate() {
+                    if subpass > 0 {
+                        device.cmd_next_subpass(commands, vk::SubpassContents::INLINE);
+                        let gbuffer = [a_set, b_set][subpass - 1];
+                        device.cmd_bind_descriptor_sets(
+                            commands,
+                            graphics,
+                            pipeline_layout,
+                            0,
+                            &[gbuffer],
+                            &[],
+                        );
+                    }
+                    device.cmd_bind_pipeline(commands, graphics, *pipeline);
+                    device.cmd_draw(commands, 3, 1, 0, 0);
+                }
+                device.cmd_end_render_pass(commands);
+            }
+        })?;
+        Ok((inputs, vulkan.read_buffer(&output_buffer)?, memory))
+    };
+    let result = run();
+    vulkan.release();
+    let (inputs, outputs, memory) = result.unwrap_or_else(|error| panic!("{what}: {error}"));
+
+    let (stored, decoded, reloaded) =
+        OutputLayout::of(layout, &interface).split(layout, &interface, &outputs);
+    if include.is_packed() {
+        compare(
+            &what,
+            layout,
+            &inputs,
+            Some(&stored),
+            Some(&decoded),
+            failures,
+            12,
+        );
+    } else {
+        // The driver converts, as on GLES: its words within one code of the mirror on defined
+        // inputs, and the shader's decoding equal to the mirror's decoding of those words.
+        check_native_words(&what, layout, &inputs, &stored, failures);
+        compare_decoded(&what, layout, &stored, &decoded, failures, 24);
+    }
+    let changed = stored
+        .iter()
+        .zip(&reloaded)
+        .filter(|(before, after)| before != after)
+        .count();
+    if changed > 0 {
+        failures.push(format!(
+            "{what}: store(load()) changed {changed} of {} words",
+            stored.len()
+        ));
+    }
+    Some(memory)
+}
+
+/// Prints which memory the transient attachments got, as the test's output says.
+fn report_memory(vulkan: &Vulkan, memory: &BTreeSet<String>) {
+    eprintln!(
+        "Vulkan: {}; transient attachments in {}",
+        vulkan.describe(),
+        memory.iter().cloned().collect::<Vec<_>>().join(" and ")
+    );
+}
+
+fn memory_name(memory: AttachmentMemory) -> String {
+    match memory {
+        AttachmentMemory::LazilyAllocated => "LAZILY_ALLOCATED memory".into(),
+        AttachmentMemory::DeviceLocal => {
+            "DEVICE_LOCAL memory (the device offers no LAZILY_ALLOCATED type for them)".into()
+        }
+    }
+}
+
+#[test]
+fn subpass_includes_round_trip_bit_exactly_on_vulkan_under_every_preamble() {
+    let Some(vulkan) = vulkan() else { return };
+    let mut failures = Vec::new();
+    let mut memory = BTreeSet::new();
+    for (index, layout) in tests::layouts::seeds_and_every_format().iter().enumerate() {
+        for include in [Include::SubpassPacked, Include::SubpassNative] {
+            for preamble in preambles(include) {
+                let got = check(
+                    &vulkan,
+                    layout,
+                    include,
+                    &preamble,
+                    index as u64,
+                    &mut failures,
+                );
+                memory.extend(got.map(memory_name));
+            }
+        }
+    }
+    report_memory(&vulkan, &memory);
+    assert!(!memory.is_empty(), "no layout ran");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Layouts the repo has never seen, named with words GLSL reserves.
+    #[test]
+    fn random_layouts_round_trip_bit_exactly_on_vulkan(
+        layout in tests::layouts::random_layout(),
+        preamble_index in 0usize..9,
+    ) {
+        let Some(vulkan) = vulkan() else { return Ok(()) };
+        let mut failures = Vec::new();
+        for include in [Include::SubpassPacked, Include::SubpassNative] {
+            let preambles = preambles(include);
+            let preamble = &preambles[preamble_index % preambles.len()];
+            check(&vulkan, &layout, include, preamble, 11, &mut failures);
+        }
+        prop_assert!(failures.is_empty(), "{}", failures.join("\n"));
+    }
+}
