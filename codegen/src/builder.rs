@@ -4,7 +4,7 @@
 //! ```text
 //! // build.rs
 //! fn main() {
-//!     if let Err(error) = codegen::Builder::new().layout("layouts/mobile_metallic.toml").build() {
+//!     if let Err(error) = gbuffer_codegen::Builder::new().layout("layouts/mobile_metallic.toml").build() {
 //!         eprintln!("{error}");
 //!         std::process::exit(1);
 //!     }

@@ -5,10 +5,10 @@
 //! 1920x1080, packed against classic, on the adapter at hand; then the PSNR and largest error
 //! of every configuration (G-buffer, sun and IBL forms) against the CPU reference. Run with `cargo bench -p examples --bench deferred`.
 
-use examples::gbuffer::{GBuffer, SeedLayout};
-use examples::image::compare;
-use examples::reference;
-use examples::renderer::{IblForm, Options, Renderer, SunForm};
+use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::image::compare;
+use gbuffer_render::reference;
+use gbuffer_render::renderer::{IblForm, Options, Renderer, SunForm};
 
 const FRAMES: usize = 20;
 
@@ -88,7 +88,12 @@ fn main() {
 
     // Every configuration against the CPU reference, at a size the reference renders quickly.
     let (width, height) = (320, 180);
-    let reference = reference::render(width, height, scenes::Features::reference_scene(), &|_| {});
+    let reference = reference::render(
+        width,
+        height,
+        gbuffer_scenes::Features::reference_scene(),
+        &|_| {},
+    );
     println!("\nagainst the CPU reference at {width}x{height}:");
     println!(
         "{:<18} {:<7} {:<7} {:>9} {:>13}",

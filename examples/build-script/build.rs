@@ -3,7 +3,7 @@
 //! when the layout file changes.
 
 fn main() {
-    if let Err(error) = codegen::Builder::new()
+    if let Err(error) = gbuffer_codegen::Builder::new()
         .layout("layouts/mobile_metallic.toml")
         .build()
     {

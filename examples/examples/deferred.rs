@@ -8,10 +8,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use examples::gbuffer::{GBuffer, SeedLayout};
-use examples::image::{compare, difference, write_png};
-use examples::reference;
-use examples::renderer::{IblForm, Options, Renderer, SunForm};
+use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::image::{compare, difference, write_png};
+use gbuffer_render::reference;
+use gbuffer_render::renderer::{IblForm, Options, Renderer, SunForm};
 
 /// Renders the reference scene (spheres across roughness and metallic on a gold-and-stone
 /// ground, a sun, image-based light and a light map) through a packed G-buffer layout and
@@ -24,7 +24,7 @@ struct Arguments {
     /// (separate Rgba16Float and Rgba8 targets, as without this library).
     #[arg(long, default_value = "mobile-metallic", conflicts_with = "scene")]
     layout: String,
-    /// A scene description (TOML, see `scenes::file`): renders the scene it describes through
+    /// A scene description (TOML, see `gbuffer_scenes::file`): renders the scene it describes through
     /// the layout solved for it and a lighting pass with only its terms.
     #[arg(long, value_name = "SCENE.toml")]
     scene: Option<PathBuf>,
@@ -49,7 +49,8 @@ struct Arguments {
 fn parse(arguments: &Arguments) -> Result<Options, String> {
     let gbuffer = match &arguments.scene {
         Some(path) => {
-            let solution = scenes::file::read_and_solve(path).map_err(|error| error.to_string())?;
+            let solution =
+                gbuffer_scenes::file::read_and_solve(path).map_err(|error| error.to_string())?;
             eprintln!("{solution}");
             Some(GBuffer::Solved(std::sync::Arc::new(solution)))
         }

@@ -10,9 +10,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use examples::presets::{lighting_cost, measure_preset, unspecialised_options, PRESETS};
-use examples::renderer::Renderer;
-use scenes::lighting::{terms, Forms};
+use gbuffer_render::presets::{lighting_cost, measure_preset, unspecialised_options, PRESETS};
+use gbuffer_render::renderer::Renderer;
+use gbuffer_scenes::lighting::{terms, Forms};
 
 #[derive(Parser, Debug)]
 #[command(name = "scene_presets", about)]

@@ -4,8 +4,8 @@
 //! Run with `cargo run --release --example seed_layouts`; add `-- --wgsl` to print the
 //! generated WGSL as well.
 
-use shaderlib::packing::Report;
-use shaderlib::seed_layouts;
+use gbuffer::packing::Report;
+use gbuffer::seed_layouts;
 
 fn main() {
     let print_wgsl = std::env::args()

@@ -1,7 +1,7 @@
 //! The reference deferred renderer: a packed G-buffer pass, full PBS lighting and tone mapping
 //! on wgpu, beside a CPU reference renderer of the same analytic scene.
 
-pub mod gbuffer;
+pub mod gbuffers;
 pub mod image;
 pub mod presets;
 pub mod reference;

@@ -5,11 +5,11 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use scenes::lighting::Forms;
-use scenes::Solution;
-use validator::cost::Cost;
+use gbuffer_scenes::lighting::Forms;
+use gbuffer_scenes::Solution;
+use gbuffer_validator::cost::Cost;
 
-use crate::gbuffer::{GBuffer, SeedLayout};
+use crate::gbuffers::{GBuffer, SeedLayout};
 use crate::image::compare;
 use crate::reference;
 use crate::renderer::{lighting_wgsl, Options, Renderer};
@@ -44,7 +44,7 @@ pub struct PresetRow {
 
 /// The static cost of a configuration's lighting pass.
 pub fn lighting_cost(options: &Options) -> Result<Cost, String> {
-    validator::cost::measure(&lighting_wgsl(options).0, "lighting_main")
+    gbuffer_validator::cost::measure(&lighting_wgsl(options).0, "lighting_main")
 }
 
 /// The lighting pass of the seed layout Listing 2.2 with every term of the reference scene:
@@ -68,7 +68,8 @@ pub fn measure_preset(
     height: u32,
 ) -> Result<PresetRow, String> {
     let solution = Arc::new(
-        scenes::file::read_and_solve(&preset_path(preset)).map_err(|error| error.to_string())?,
+        gbuffer_scenes::file::read_and_solve(&preset_path(preset))
+            .map_err(|error| error.to_string())?,
     );
     let options = Options {
         gbuffer: GBuffer::Solved(solution.clone()),

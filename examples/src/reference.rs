@@ -2,9 +2,9 @@
 //! packing, without texture filtering, with every integral evaluated at the pixel: the full
 //! model a specialised lighting pass is measured against.
 
-use scenes::{Feature, Features};
-use shaderlib::glam::DVec3;
-use shaderlib::shading::reference as r;
+use gbuffer::glam::DVec3;
+use gbuffer::shading::reference as r;
+use gbuffer_scenes::{Feature, Features};
 
 use crate::renderer::{Frame, EXPOSURE, PREFILTER_SAMPLES};
 use crate::scene::{self, sky, trace};

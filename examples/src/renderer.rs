@@ -5,25 +5,25 @@
 //!    RGBM, as the seed stores its PMREM (mip = roughness x mips, Listing 2.6);
 //! 1. the G-buffer pass writes the chosen layout (packed `Rgba32Uint` targets, or the classic
 //!    native targets), its light accumulation holding the static diffuse light;
-//! 2. the lighting pass unpacks with the generated WGSL and shades with shaderlib: the sun with
+//! 2. the lighting pass unpacks with the generated WGSL and shades with the shading library: the sun with
 //!    GGX or `d_approx`, image-based light with the LUT or `env_brdf_approx`;
 //! 3. the tone-mapping pass writes sRGB.
 
 use std::time::Instant;
 
-use shaderlib::shading::env_brdf_lut::EnvBrdfLut;
-use shaderlib::shading::mirror as m;
+use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
+use gbuffer::shading::mirror as m;
 use wgpu::util::DeviceExt;
 
-use scenes::lighting::{self, Forms};
-use scenes::quantity::Quantity;
-use scenes::Solution;
-use shaderlib::packing::Layout;
+use gbuffer::packing::Layout;
+use gbuffer_scenes::lighting::{self, Forms};
+use gbuffer_scenes::quantity::Quantity;
+use gbuffer_scenes::Solution;
 
-use crate::gbuffer::{GBuffer, SURFACE_WGSL};
+use crate::gbuffers::{GBuffer, SURFACE_WGSL};
 use crate::scene::{self, LIGHT_MAP_EXTENT, LIGHT_MAP_RANGE};
 
-pub use scenes::lighting::{IblForm, SunForm};
+pub use gbuffer_scenes::lighting::{IblForm, SunForm};
 
 /// One configuration of the renderer. A solved G-buffer brings its scene description: the
 /// scene shows its features, and the lighting pass is generated for them.
@@ -133,7 +133,7 @@ fn equirectangular(direction: vec3<f32>) -> vec2<f32> {
 ";
 
 fn library(modules: &[&str]) -> String {
-    shaderlib::modules::compose(modules).expect("the library's modules exist")
+    gbuffer::modules::compose(modules).expect("the library's modules exist")
 }
 
 impl Renderer {
@@ -168,7 +168,8 @@ impl Renderer {
             .texels
             .iter()
             .flat_map(|[scale, bias]| {
-                [*scale, *bias, 0.0, 1.0].map(|value| codegen::convert::half_from_f32(value) as u16)
+                [*scale, *bias, 0.0, 1.0]
+                    .map(|value| gbuffer_codegen::convert::half_from_f32(value) as u16)
             })
             .collect();
         let lut = texture_with_data(
@@ -196,7 +197,7 @@ impl Renderer {
                     m::hdr::rgbm_squared_encode(irradiance.as_vec3(), LIGHT_MAP_RANGE as f32);
                 encoded
                     .to_array()
-                    .map(|channel| codegen::convert::unorm_from_f32(channel, 8) as u8)
+                    .map(|channel| gbuffer_codegen::convert::unorm_from_f32(channel, 8) as u8)
             })
             .collect();
         let light_map = texture_with_data(
@@ -437,7 +438,7 @@ fn prefiltered_sky(normal: vec3<f32>, roughness: f32, samples: u32) -> vec3<f32>
 }}
 ",
         library(&["environment", "hdr", "normals"]),
-        scene::scene_wgsl(scenes::Features::reference_scene())
+        scene::scene_wgsl(gbuffer_scenes::Features::reference_scene())
     );
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -564,7 +565,7 @@ fn gbuffer_wgsl(gbuffer: &GBuffer) -> String {
             (
                 format!(
                     "{}\n{}",
-                    scenes::texel::texel_wgsl(solution),
+                    gbuffer_scenes::texel::texel_wgsl(solution),
                     solved_encode_wgsl(solution)
                 ),
                 encode,
@@ -668,7 +669,7 @@ fn gbuffer_main(@builtin(position) position: vec4<f32>) -> {output_type} {{
 ",
         library(&modules),
         scene::scene_wgsl(gbuffer.features()),
-        light_scale = crate::gbuffer::LIGHT_SCALE,
+        light_scale = crate::gbuffers::LIGHT_SCALE,
     )
 }
 
@@ -725,7 +726,7 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
 ",
         library(&["shading", "environment", "normals", "colour", "hdr", "material"]),
         scene::scene_wgsl(options.gbuffer.features()),
-        light_scale = crate::gbuffer::LIGHT_SCALE,
+        light_scale = crate::gbuffers::LIGHT_SCALE,
     );
     (
         source,
@@ -768,7 +769,7 @@ fn solved_encode_wgsl(solution: &Solution) -> String {
 }
 
 /// The lighting pass of a solved layout: decode, then the lighting function generated for the
-/// scene (`scenes::lighting`), with only the host inputs its terms read.
+/// scene (`gbuffer_scenes::lighting`), with only the host inputs its terms read.
 fn solved_lighting_wgsl(solution: &Solution, options: &Options) -> (String, Vec<u32>) {
     let forms = Forms {
         sun: options.sun,
@@ -840,7 +841,7 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
 ",
         library(&modules),
         scene::scene_wgsl(solution.scene.features),
-        scenes::texel::texel_wgsl(solution),
+        gbuffer_scenes::texel::texel_wgsl(solution),
         lighting::lighting_wgsl(solution, forms),
         shade = lighting::lighting_function_name(solution),
     );

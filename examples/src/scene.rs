@@ -8,9 +8,9 @@
 //! The scene is written twice, in WGSL (`SCENE_WGSL`, for the G-buffer pass) and in Rust f64
 //! (for the reference), side by side: the same numbers, the same formulas.
 
-use scenes::{Feature, Features};
-use shaderlib::glam::{DVec2, DVec3, DVec4};
-use shaderlib::shading::reference as r;
+use gbuffer::glam::{DVec2, DVec3, DVec4};
+use gbuffer::shading::reference as r;
+use gbuffer_scenes::{Feature, Features};
 
 /// Sphere grid: columns of roughness, rows of material.
 pub const COLUMNS: usize = 6;

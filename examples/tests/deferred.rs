@@ -1,10 +1,10 @@
 //! The reference renderer on the adapter at hand (in CI, Mesa's lavapipe or llvmpipe): a small
 //! frame renders, is not blank, matches the CPU reference, and its PNG is written.
 
-use examples::gbuffer::{GBuffer, SeedLayout};
-use examples::image::{compare, is_blank, write_png};
-use examples::reference;
-use examples::renderer::{IblForm, Options, Renderer, SunForm};
+use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::image::{compare, is_blank, write_png};
+use gbuffer_render::reference;
+use gbuffer_render::renderer::{IblForm, Options, Renderer, SunForm};
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 90;
@@ -26,7 +26,12 @@ fn accurate(gbuffer: GBuffer) -> Options {
 #[test]
 fn every_gbuffer_renders_a_frame_that_matches_the_cpu_reference() {
     let renderer = renderer();
-    let reference = reference::render(WIDTH, HEIGHT, scenes::Features::reference_scene(), &|_| {});
+    let reference = reference::render(
+        WIDTH,
+        HEIGHT,
+        gbuffer_scenes::Features::reference_scene(),
+        &|_| {},
+    );
     assert!(!is_blank(&reference));
     let gbuffers = SeedLayout::ALL
         .into_iter()
@@ -66,7 +71,12 @@ fn the_mobile_forms_render_close_to_the_accurate_reference() {
         .unwrap_or_else(|error| panic!("{error}"));
     let comparison = compare(
         &frame,
-        &reference::render(WIDTH, HEIGHT, scenes::Features::reference_scene(), &|_| {}),
+        &reference::render(
+            WIDTH,
+            HEIGHT,
+            gbuffer_scenes::Features::reference_scene(),
+            &|_| {},
+        ),
     );
     eprintln!("mobile forms: PSNR {:.2} dB", comparison.psnr);
     // The approximations cost accuracy (D_Approx's lobe, EnvBRDFApprox at grazing angles).

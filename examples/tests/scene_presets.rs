@@ -1,9 +1,9 @@
 //! The scene presets on the adapter at hand: each renders through its solved layout and
 //! specialised lighting pass, close to the full model, and the specialisations cost less.
 
-use examples::presets::{measure_preset, PRESETS};
-use examples::renderer::Renderer;
-use scenes::lighting::Forms;
+use gbuffer_render::presets::{measure_preset, PRESETS};
+use gbuffer_render::renderer::Renderer;
+use gbuffer_scenes::lighting::Forms;
 
 #[test]
 fn every_preset_renders_close_to_the_full_model_and_fits_its_budget() {

@@ -1,11 +1,11 @@
-//! `#[derive(GBufferLayout)]`, used through its re-export `shaderlib::GBufferLayout`.
+//! `#[derive(GBufferLayout)]`, used through its re-export `gbuffer::GBufferLayout`.
 //!
 //! A derive in three stages, as serde_derive and thiserror do it:
 //! 1. [`parse`]: read the struct and its `#[gbuffer]` / `#[pls]` attributes into a
-//!    [`codegen::Layout`], remembering the span of everything a message may point at;
-//! 2. check: [`codegen::Layout::check`] judges the layout (budget, types, names), the same
+//!    [`gbuffer_codegen::Layout`], remembering the span of everything a message may point at;
+//! 2. check: [`gbuffer_codegen::Layout::check`] judges the layout (budget, types, names), the same
 //!    check the `codegen` tool runs on layout files;
-//! 3. expand: [`codegen::emit`] writes the WGSL and the Rust mirror.
+//! 3. expand: [`gbuffer_codegen::emit`] writes the WGSL and the Rust mirror.
 //!
 //! Every problem becomes a `syn::Error` at its span, and all of them are reported together.
 //! The derive never panics.
@@ -14,8 +14,8 @@ mod parse;
 
 use proc_macro::TokenStream;
 
-/// Derives `shaderlib::GBufferLayout`: the bit budget check, the WGSL pack/unpack code and a
-/// bit-exact Rust mirror of it. See the `shaderlib` crate for the attributes.
+/// Derives `gbuffer::GBufferLayout`: the bit budget check, the WGSL pack/unpack code and a
+/// bit-exact Rust mirror of it. See the `gbuffer` crate for the attributes.
 #[proc_macro_derive(GBufferLayout, attributes(gbuffer, pls))]
 pub fn derive_gbuffer_layout(input: TokenStream) -> TokenStream {
     let input = syn::parse_macro_input!(input as syn::DeriveInput);
@@ -34,10 +34,11 @@ fn expand(input: &syn::DeriveInput) -> syn::Result<proc_macro2::TokenStream> {
     if let Some(errors) = errors {
         return Err(errors);
     }
-    let wgsl = codegen::emit::wgsl::emit_with(&parsed.layout, parsed.conversions);
-    Ok(codegen::emit::rust::emit_impl(
+    let wgsl = gbuffer_codegen::emit::wgsl::emit_with(&parsed.layout, parsed.conversions);
+    Ok(gbuffer_codegen::emit::rust::emit_impl(
         &parsed.layout,
         quote::quote!(#wgsl),
+        &parsed.crate_path,
     ))
 }
 

@@ -1,9 +1,10 @@
 //! Stage 1 of the derive: the struct and its attributes to a [`Layout`], with the span of each
 //! part so that the check's diagnostics can point at it.
 
-use codegen::emit::wgsl::Conversions;
-use codegen::{Field, FieldType, Format, Layout, ScalarKind, Subject, DEFAULT_BUDGET};
-use proc_macro2::Span;
+use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_codegen::{Field, FieldType, Format, Layout, ScalarKind, Subject, DEFAULT_BUDGET};
+use proc_macro2::{Span, TokenStream};
+use quote::ToTokens;
 use syn::spanned::Spanned;
 use syn::{Data, DeriveInput, Fields};
 
@@ -35,6 +36,8 @@ impl Spans {
 pub struct Parsed {
     pub layout: Layout,
     pub conversions: Conversions,
+    /// The path of the `gbuffer` crate, as `#[gbuffer(crate = "...")]` gives it.
+    pub crate_path: TokenStream,
     pub spans: Spans,
     pub errors: Option<syn::Error>,
 }
@@ -107,6 +110,7 @@ pub fn parse(input: &DeriveInput) -> syn::Result<Parsed> {
     Ok(Parsed {
         layout,
         conversions: options.conversions,
+        crate_path: options.crate_path,
         spans,
         errors,
     })
@@ -118,16 +122,20 @@ pub struct Options {
     /// The span of the budget's value, where one is given.
     pub budget_span: Option<Span>,
     pub conversions: Conversions,
+    /// The path of the `gbuffer` crate in the generated code: `::gbuffer` unless
+    /// `crate = "..."` names another (a renamed dependency, a re-export).
+    pub crate_path: TokenStream,
 }
 
-/// `#[gbuffer(budget = 128, conversions = "exact")]`, both optional.
+/// `#[gbuffer(budget = 128, conversions = "exact", crate = "::gbuffer")]`, each optional.
 fn parse_gbuffer_attributes(input: &DeriveInput, errors: &mut Option<syn::Error>) -> Options {
     let mut options = Options {
         budget: DEFAULT_BUDGET,
         budget_span: None,
         conversions: Conversions::Exact,
+        crate_path: gbuffer_codegen::emit::rust::default_crate_path(),
     };
-    let mut seen = (false, false, false); // the attribute, budget, conversions
+    let mut seen = (false, false, false, false); // the attribute, budget, conversions, crate
     for attribute in input
         .attrs
         .iter()
@@ -169,8 +177,18 @@ fn parse_gbuffer_attributes(input: &DeriveInput, errors: &mut Option<syn::Error>
                     return Err(syn::Error::new_spanned(&literal, "`conversions` is given twice"));
                 }
                 Ok(())
+            } else if meta.path.is_ident("crate") {
+                let literal: syn::LitStr = meta.value()?.parse()?;
+                let path: syn::Path = literal.parse().map_err(|_| {
+                    syn::Error::new_spanned(&literal, format!("`crate` must be a path, e.g. `crate = \"::gbuffer\"`; `{}` is not one", literal.value()))
+                })?;
+                if std::mem::replace(&mut seen.3, true) {
+                    return Err(syn::Error::new_spanned(&literal, "`crate` is given twice"));
+                }
+                options.crate_path = path.to_token_stream();
+                Ok(())
             } else {
-                Err(meta.error("unknown `gbuffer` option: expected `budget = <bits>` or `conversions = \"exact\" | \"native\"`"))
+                Err(meta.error("unknown `gbuffer` option: expected `budget = <bits>`, `conversions = \"exact\" | \"native\"` or `crate = \"<path>\"`"))
             }
         });
         if let Err(error) = result {
@@ -273,7 +291,7 @@ fn parse_field_type(ty: &syn::Type, errors: &mut Option<syn::Error>) -> Option<F
                 ty.span(),
                 "unsupported G-buffer field type: use `f32`, `Vec2`, `Vec3` or `Vec4` for float and \
                  unorm formats, `u32` or `UVec2`..`UVec4` for the `ui` formats, `i32` or \
-                 `IVec2`..`IVec4` for the `i` formats (glam types, re-exported as `shaderlib::glam`)",
+                 `IVec2`..`IVec4` for the `i` formats (glam types, re-exported as `gbuffer::glam`)",
             ),
         );
     }

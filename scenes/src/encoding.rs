@@ -8,11 +8,11 @@
 
 use std::fmt;
 
-use codegen::convert;
-use codegen::Format;
-use shaderlib::glam::{Vec2, Vec3};
-use shaderlib::shading::mirror as m;
-use shaderlib::shading::mirror::rgb9e5;
+use gbuffer::glam::{Vec2, Vec3};
+use gbuffer::shading::mirror as m;
+use gbuffer::shading::mirror::rgb9e5;
+use gbuffer_codegen::convert;
+use gbuffer_codegen::Format;
 
 use crate::description::Precision;
 use crate::quantity::{Kind, Quantity};
@@ -187,7 +187,7 @@ impl Encoding {
         }
     }
 
-    /// The shaderlib modules its WGSL calls.
+    /// The shading library modules its WGSL calls.
     pub fn modules(self) -> &'static [&'static str] {
         match self {
             Encoding::SharedExponent | Encoding::Rgbm { .. } | Encoding::ScaledUnorm { .. } => {

@@ -29,7 +29,7 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use codegen::layout_file::FileDiagnostic;
+use gbuffer_codegen::layout_file::FileDiagnostic;
 use serde::Deserialize;
 use toml::Spanned;
 

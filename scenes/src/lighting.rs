@@ -59,7 +59,7 @@ impl Forms {
     };
 }
 
-/// The shaderlib modules the lighting function calls.
+/// The shading library modules the lighting function calls.
 pub fn lighting_modules() -> Vec<&'static str> {
     vec!["shading", "material"]
 }

@@ -14,7 +14,7 @@
 use std::collections::HashMap;
 use std::fmt;
 
-use codegen::{Field, FieldType, Format, Layout};
+use gbuffer_codegen::{Field, FieldType, Format, Layout};
 
 use crate::description::{DescriptionError, Feature, SceneDescription, Setting};
 use crate::encoding::{Encoding, Part};

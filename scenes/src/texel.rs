@@ -2,7 +2,7 @@
 //! member per stored quantity, `encode_<name>` (values to the layout's struct, which the
 //! layout's own `pack_<name>` turns into words) and `decode_<name>` (the inverse).
 //!
-//! It calls shaderlib's encodings (octahedral, pseudo-gamma, RGBM, rgb9e5, ...); compose
+//! It calls the shading library's encodings (octahedral, pseudo-gamma, RGBM, rgb9e5, ...); compose
 //! [`Solution::modules`] before it, or take [`standalone_wgsl`].
 
 use std::fmt::Write as _;
@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 use crate::solver::{describe_error, Placement, Slot, Solution};
 
 impl Solution {
-    /// The shaderlib modules the encode and decode functions call.
+    /// The shading library modules the encode and decode functions call.
     pub fn modules(&self) -> Vec<&'static str> {
         let mut modules: Vec<&'static str> = self
             .placements
@@ -35,7 +35,7 @@ pub fn texel_wgsl(solution: &Solution) -> String {
     let name = &layout.name;
     let snake = layout.snake_name();
     let values = solution.values_type();
-    let mut out = codegen::emit::wgsl::emit(layout);
+    let mut out = gbuffer_codegen::emit::wgsl::emit(layout);
 
     let _ = writeln!(
         out,
@@ -117,7 +117,7 @@ fn {snake}_bits_to_unorm(word: u32, offset: u32, bits: u32) -> f32 {{
 
 /// The solution's modules composed, then [`texel_wgsl`]: a WGSL module that validates alone.
 pub fn standalone_wgsl(solution: &Solution) -> String {
-    let modules = shaderlib::modules::compose(&solution.modules())
+    let modules = gbuffer::modules::compose(&solution.modules())
         .expect("the encodings name modules that exist");
     format!("{modules}\n{}", texel_wgsl(solution))
 }

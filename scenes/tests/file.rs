@@ -1,11 +1,9 @@
-//! Scene files: every preset reads and solves; every problem points at its line and column;
-//! the `solve` command writes a hand-written layout's outputs plus the scene's WGSL.
+//! Scene files: every preset reads and solves; every problem points at its line and column.
 
 use std::path::Path;
 
-use assert_cmd::Command;
-use scenes::file::{parse_and_solve, parse_scene};
-use scenes::{Feature, MaterialModel};
+use gbuffer_scenes::file::{parse_and_solve, parse_scene};
+use gbuffer_scenes::{Feature, MaterialModel};
 
 const SCENE: &str = r#"name = "Props"
 model = "specular"
@@ -48,7 +46,7 @@ fn every_preset_solves_within_its_budget() {
     assert_eq!(files.len(), 4);
     for path in files {
         let solution =
-            scenes::file::read_and_solve(&path).unwrap_or_else(|error| panic!("{error}"));
+            gbuffer_scenes::file::read_and_solve(&path).unwrap_or_else(|error| panic!("{error}"));
         assert!(solution.layout.bits() <= solution.scene.budget);
     }
 }
@@ -85,61 +83,4 @@ fn problems_point_at_their_key() {
 
     let syntax = parse_scene("name = \"Props\"\nbudget = [", Path::new("props.toml")).unwrap_err();
     assert_eq!(syntax[0].line, 2);
-}
-
-#[test]
-fn the_solve_command_writes_every_output() {
-    let folder = tempfile::tempdir().unwrap();
-    let preset =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scenes/mobile-metallic.toml");
-    let output = Command::cargo_bin("solve")
-        .unwrap()
-        .arg(&preset)
-        .arg("--out")
-        .arg(folder.path())
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        stdout.contains("MobileMetallicScene: 96 of 128 bits"),
-        "{stdout}"
-    );
-    for name in [
-        "mobile_metallic_scene.wgsl",
-        "mobile_metallic_scene.rs",
-        "mobile_metallic_scene.report.txt",
-        "mobile_metallic_scene.vulkan.glsl",
-        "mobile_metallic_scene.scene.wgsl",
-        "mobile_metallic_scene.lighting.wgsl",
-    ] {
-        assert!(folder.path().join(name).exists(), "{name} was not written");
-    }
-    let scene_wgsl =
-        std::fs::read_to_string(folder.path().join("mobile_metallic_scene.scene.wgsl")).unwrap();
-    validator::validate_wgsl(&scene_wgsl).unwrap();
-
-    let broken = folder.path().join("broken.toml");
-    std::fs::write(
-        &broken,
-        SCENE.replace("normal_degrees = 4.0", "normal_degrees = -1"),
-    )
-    .unwrap();
-    let output = Command::cargo_bin("solve")
-        .unwrap()
-        .arg(&broken)
-        .output()
-        .unwrap();
-    assert_eq!(output.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&output.stderr).contains("broken.toml:11:18: error"));
-    let missing = Command::cargo_bin("solve")
-        .unwrap()
-        .arg(folder.path().join("none.toml"))
-        .output()
-        .unwrap();
-    assert_eq!(missing.status.code(), Some(2));
 }

@@ -1,12 +1,12 @@
 //! The specialised lighting shader: valid for every combination of features, and an unused
 //! feature costs no instruction (counted with naga after compaction).
 
-use scenes::lighting::{
+use gbuffer_scenes::lighting::{
     lighting_function_name, lighting_modules, lighting_wgsl, Forms, IblForm, SunForm,
 };
-use scenes::texel::texel_wgsl;
-use scenes::{solve, Feature, Features, MaterialModel, SceneDescription, Solution};
-use validator::cost::{compile_compacted, spirv_instructions};
+use gbuffer_scenes::texel::texel_wgsl;
+use gbuffer_scenes::{solve, Feature, Features, MaterialModel, SceneDescription, Solution};
+use gbuffer_validator::cost::{compile_compacted, spirv_instructions};
 
 const FORMS: [Forms; 4] = [
     Forms {
@@ -61,7 +61,7 @@ fn lighting_main(@builtin(position) pixel: vec4<f32>, @location(0) view: vec3<f3
     return vec4<f32>({shade}(values, normalize(view), view), 1.0);
 }}
 ",
-        shaderlib::modules::compose(&modules).unwrap(),
+        gbuffer::modules::compose(&modules).unwrap(),
         texel_wgsl(solution),
         lighting_wgsl(solution, forms),
         words = solution.layout.words(),
@@ -99,7 +99,7 @@ fn every_feature_combination_lights_with_valid_wgsl() {
             };
             for &form in forms {
                 let source = shader(&solution, form);
-                if let Err(problem) = validator::validate_wgsl(&source) {
+                if let Err(problem) = gbuffer_validator::validate_wgsl(&source) {
                     panic!(
                         "{features:?} {model:?} {form:?}: {problem}\n{}",
                         problem.detail
@@ -116,7 +116,7 @@ fn every_feature_combination_lights_with_valid_wgsl() {
 fn compiled(solution: &Solution, forms: Forms) -> (usize, naga::Module) {
     let source = shader(solution, forms);
     let (_, words) = compile_compacted(&source).unwrap();
-    let mut module = validator::validate_wgsl(&source).unwrap().module;
+    let mut module = gbuffer_validator::validate_wgsl(&source).unwrap().module;
     naga::compact::compact(&mut module, naga::compact::KeepUnused::No);
     (spirv_instructions(&words), module)
 }

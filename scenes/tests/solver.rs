@@ -2,15 +2,15 @@
 //! requirement named when none does), deterministic, predicted errors that bound the measured
 //! ones, and WGSL that naga accepts.
 
-use rand::rngs::SmallRng;
-use rand::{Rng, SeedableRng};
-use scenes::encoding::Encoding;
-use scenes::quantity::{Kind, Quantity};
-use scenes::texel::standalone_wgsl;
-use scenes::{
+use gbuffer::glam::Vec3;
+use gbuffer_scenes::encoding::Encoding;
+use gbuffer_scenes::quantity::{Kind, Quantity};
+use gbuffer_scenes::texel::standalone_wgsl;
+use gbuffer_scenes::{
     solve, Feature, Features, MaterialModel, Precision, SceneDescription, Setting, SolveError,
 };
-use shaderlib::glam::Vec3;
+use rand::rngs::SmallRng;
+use rand::{Rng, SeedableRng};
 
 fn random_scene(random: &mut SmallRng, index: usize) -> SceneDescription {
     let features: Features = Feature::ALL
@@ -143,7 +143,7 @@ fn a_requirement_met_by_some_layout_is_always_met() {
     for index in 0..200 {
         let mut scene = random_scene(&mut random, index);
         scene.budget = 256;
-        let stored = scenes::quantity::stored_quantities(&scene);
+        let stored = gbuffer_scenes::quantity::stored_quantities(&scene);
         if stored.is_empty() {
             continue;
         }
@@ -291,7 +291,7 @@ fn every_solved_layout_generates_valid_wgsl() {
             continue;
         };
         let source = standalone_wgsl(&solution);
-        if let Err(problem) = validator::validate_wgsl(&source) {
+        if let Err(problem) = gbuffer_validator::validate_wgsl(&source) {
             panic!("{solution}\n{problem}\n{}\n{source}", problem.detail);
         }
         checked += 1;

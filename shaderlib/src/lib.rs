@@ -2,7 +2,7 @@
 //! with it.
 //!
 //! ```
-//! use shaderlib::{GBufferLayout, glam::{Vec3, Vec4}};
+//! use gbuffer::{GBufferLayout, glam::{Vec3, Vec4}};
 //!
 //! #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
 //! #[gbuffer(budget = 128)] // bits of tile memory; default 128; a positive multiple of 32
@@ -37,21 +37,23 @@
 //!
 //! A layout over its budget does not compile, and the error lists every field's bits.
 
-// The derive's expansion names `::shaderlib`; this lets the seed layouts below use it too.
-extern crate self as shaderlib;
+// The derive's expansion names `::gbuffer`; this lets the seed layouts below use it too.
+extern crate self as gbuffer;
 
 pub mod modules;
 pub mod seed_layouts;
 pub mod shading;
 
+pub use gbuffer_macros::GBufferLayout;
 pub use glam;
-pub use packing_macros::GBufferLayout;
 
 /// The layout model and the bit-exact conversions that derived code calls.
 pub mod packing {
-    pub use codegen::convert::Scalar;
-    pub use codegen::report::Report;
-    pub use codegen::{Channel, ChannelEncoding, Field, FieldType, Format, Layout, ScalarKind};
+    pub use gbuffer_codegen::convert::Scalar;
+    pub use gbuffer_codegen::report::Report;
+    pub use gbuffer_codegen::{
+        Channel, ChannelEncoding, Field, FieldType, Format, Layout, ScalarKind,
+    };
 }
 
 /// A pixel local storage G-buffer layout. Derive it with `#[derive(GBufferLayout)]`.

@@ -62,7 +62,7 @@ impl Module {
             .filter(|line| !line.starts_with("enable "))
             .collect();
         format!(
-            "// ---- shaderlib module `{}` ----\n{}\n",
+            "// ---- gbuffer shading module `{}` ----\n{}\n",
             self.name,
             body.join("\n")
         )

@@ -1,13 +1,12 @@
-//! The `codegen` command: good layouts give every output, bad ones a `file:line:col` error
+//! `gbuffer codegen`: good layouts give every output, bad ones a `file:line:col` error
 //! and exit status 1, usage errors exit status 2.
 
 use assert_cmd::Command;
-use tests::{built_binary, workspace};
+use gbuffer_testkit::{gbuffer_binary, workspace};
 
 fn codegen() -> Command {
-    static BINARY: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
-    let mut command = Command::new(BINARY.get_or_init(|| built_binary("codegen", "codegen")));
-    command.current_dir(workspace());
+    let mut command = Command::new(gbuffer_binary());
+    command.current_dir(workspace()).arg("codegen");
     command
 }
 

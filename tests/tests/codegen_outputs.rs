@@ -8,15 +8,15 @@
 
 use std::path::{Path, PathBuf};
 
-use codegen::emit::glsl::{self, Include, Interface, PlsBlock};
-use codegen::emit::wgsl::Conversions;
-use codegen::layout_file::read_layout_file;
-use codegen::output::{generate, Output};
+use gbuffer::packing::{Format, Layout};
+use gbuffer_codegen::emit::glsl::{self, Include, Interface, PlsBlock};
+use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_codegen::layout_file::read_layout_file;
+use gbuffer_codegen::output::{generate, Output};
+use gbuffer_testkit::harness::fragment_harness;
+use gbuffer_testkit::tools::{glslang, spirv_val};
+use gbuffer_testkit::user_shaders::{preambles, scalars_of_texel};
 use proptest::prelude::*;
-use shaderlib::packing::{Format, Layout};
-use tests::harness::fragment_harness;
-use tests::tools::{glslang, spirv_val};
-use tests::user_shaders::{preambles, scalars_of_texel};
 
 fn layout_files() -> Vec<(PathBuf, Layout)> {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../codegen/layouts");
@@ -40,7 +40,7 @@ fn layout_files() -> Vec<(PathBuf, Layout)> {
 
 #[test]
 fn layout_files_describe_the_derived_seed_layouts_and_give_the_same_wgsl() {
-    let derived = shaderlib::seed_layouts::all();
+    let derived = gbuffer::seed_layouts::all();
     assert_eq!(layout_files().len(), derived.len());
     for (path, layout) in layout_files() {
         let (seed, wgsl) = derived
@@ -271,7 +271,7 @@ proptest! {
     /// Layouts the repo has never seen, with names GLSL reserves: the includes keep their
     /// shape, the PLS blocks follow the extension, the Vulkan includes compile.
     #[test]
-    fn random_layouts_give_includes_that_follow_the_rules(layout in tests::layouts::random_layout()) {
+    fn random_layouts_give_includes_that_follow_the_rules(layout in gbuffer_testkit::layouts::random_layout()) {
         check_include_shape(&layout);
         check_pls_blocks(&layout).map_err(TestCaseError::fail)?;
         check_vulkan_includes(&layout).map_err(TestCaseError::fail)?;
@@ -282,7 +282,7 @@ proptest! {
 fn every_format_has_the_extension_type() {
     for format in Format::ALL {
         assert_eq!(
-            Some(codegen::emit::glsl::pls_member_type(format)),
+            Some(gbuffer_codegen::emit::glsl::pls_member_type(format)),
             extension_type(format.name()),
             "{format}"
         );
@@ -292,8 +292,9 @@ fn every_format_has_the_extension_type() {
 #[test]
 fn naga_spirv_of_every_layout_passes_spirv_val() {
     for (_, layout) in layout_files() {
-        let wgsl = codegen::emit::wgsl::emit(&layout);
-        let validated = validator::validate_wgsl(&fragment_harness(&layout, &wgsl)).unwrap();
+        let wgsl = gbuffer_codegen::emit::wgsl::emit(&layout);
+        let validated =
+            gbuffer_validator::validate_wgsl(&fragment_harness(&layout, &wgsl)).unwrap();
         let words = naga::back::spv::write_vec(
             &validated.module,
             &validated.info,

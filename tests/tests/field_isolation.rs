@@ -1,12 +1,12 @@
 //! A NaN or infinity in one field (or channel) never changes another field's or channel's
 //! bits, and the derived `pack`/`unpack` are the model's conversions exactly.
 
-use shaderlib::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
-use shaderlib::packing::{Layout, ScalarKind};
-use shaderlib::{seed_layouts, GBufferLayout};
-use tests::harness::{expected_scalars, expected_words, scalars_per_texel};
-use tests::values::Values;
-use tests::AllFormats;
+use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
+use gbuffer::packing::{Layout, ScalarKind};
+use gbuffer::{seed_layouts, GBufferLayout};
+use gbuffer_testkit::harness::{expected_scalars, expected_words, scalars_per_texel};
+use gbuffer_testkit::values::Values;
+use gbuffer_testkit::AllFormats;
 
 const POISONS: [f32; 4] = [f32::NAN, -f32::NAN, f32::INFINITY, f32::NEG_INFINITY];
 

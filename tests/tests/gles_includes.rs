@@ -14,14 +14,18 @@
 //! and layouts generated at random (with names GLSL reserves), for the packed include and the
 //! native one (one attachment per field, converted by the driver).
 
-use codegen::emit::glsl::{self, Include, Interface};
+use gbuffer::packing::{Format, Layout};
+use gbuffer_codegen::emit::glsl::{self, Include, Interface};
+use gbuffer_testkit::gles::{skip_without_driver, Framebuffer, Gles};
+use gbuffer_testkit::harness::scalars_per_texel;
+use gbuffer_testkit::texels::{
+    check_native_words, compare, compare_decoded, inputs, small_float_bits,
+};
+use gbuffer_testkit::user_shaders::{
+    has_storage_buffers, preambles, scalars_of_texel, texel_from_scalars,
+};
+use gbuffer_testkit::values::Values;
 use proptest::prelude::*;
-use shaderlib::packing::{Format, Layout};
-use tests::gles::{skip_without_driver, Framebuffer, Gles};
-use tests::harness::scalars_per_texel;
-use tests::texels::{check_native_words, compare, compare_decoded, inputs, small_float_bits};
-use tests::user_shaders::{has_storage_buffers, preambles, scalars_of_texel, texel_from_scalars};
-use tests::values::Values;
 
 const WIDTH: i32 = 48;
 const HEIGHT: i32 = 48;
@@ -284,7 +288,10 @@ fn fetch_includes_round_trip_bit_exactly_on_gles_under_every_preamble() {
     let Some(gles) = gles() else { return };
     eprintln!("GLES: {}", gles.describe());
     let mut failures = Vec::new();
-    for (index, layout) in tests::layouts::seeds_and_every_format().iter().enumerate() {
+    for (index, layout) in gbuffer_testkit::layouts::seeds_and_every_format()
+        .iter()
+        .enumerate()
+    {
         for include in [Include::FetchPacked, Include::FetchNative] {
             for preamble in preambles(include) {
                 check(
@@ -307,7 +314,7 @@ proptest! {
     /// Layouts the repo has never seen, named with words GLSL reserves.
     #[test]
     fn random_layouts_round_trip_bit_exactly_on_gles(
-        layout in tests::layouts::random_layout(),
+        layout in gbuffer_testkit::layouts::random_layout(),
         preamble_index in 0usize..9,
     ) {
         let Some(gles) = gles() else { return Ok(()) };

@@ -3,13 +3,13 @@
 //! unpacked values identical too, except unorm channels, which may differ from the exact
 //! quotient by 2 ulp (the WGSL multiplies by a correctly rounded reciprocal).
 
-use shaderlib::packing::Layout;
-use shaderlib::{seed_layouts, GBufferLayout};
-use tests::gpu::Gpu;
-use tests::harness::{compute_harness, expected_words, scalars_per_texel};
-use tests::texels::{compare, describe, inputs, slots};
-use tests::values::Values;
-use tests::AllFormats;
+use gbuffer::packing::Layout;
+use gbuffer::{seed_layouts, GBufferLayout};
+use gbuffer_testkit::gpu::Gpu;
+use gbuffer_testkit::harness::{compute_harness, expected_words, scalars_per_texel};
+use gbuffer_testkit::texels::{compare, describe, inputs, slots};
+use gbuffer_testkit::values::Values;
+use gbuffer_testkit::AllFormats;
 
 /// Texels per dispatch, to stay under the default storage binding size.
 const BATCH: usize = 1 << 18;
@@ -83,7 +83,7 @@ fn check_layout(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64
 /// deviation found is printed; the contract is at most one code per channel.
 #[test]
 fn native_conversions_deviate_from_the_exact_mirror_by_at_most_one_code() {
-    use tests::NativeFormats;
+    use gbuffer_testkit::NativeFormats;
     let gpu = Gpu::new();
     let layout = NativeFormats::layout();
     let harness = compute_harness(&layout, NativeFormats::WGSL);
@@ -144,18 +144,22 @@ fn native_conversions_deviate_from_the_exact_mirror_by_at_most_one_code() {
 
 #[test]
 fn native_conversions_translate_everywhere_but_webgl2() {
-    use shaderlib::GBufferLayout;
-    use tests::NativeFormats;
-    let shader = tests::harness::fragment_harness(&NativeFormats::layout(), NativeFormats::WGSL);
-    let validated = validator::validate_wgsl(&shader).unwrap_or_else(|problem| panic!("{problem}"));
+    use gbuffer::GBufferLayout;
+    use gbuffer_testkit::NativeFormats;
+    let shader =
+        gbuffer_testkit::harness::fragment_harness(&NativeFormats::layout(), NativeFormats::WGSL);
+    let validated =
+        gbuffer_validator::validate_wgsl(&shader).unwrap_or_else(|problem| panic!("{problem}"));
     for backend in [
-        validator::Backend::SpirV,
-        validator::Backend::Msl,
-        validator::Backend::Hlsl,
+        gbuffer_validator::Backend::SpirV,
+        gbuffer_validator::Backend::Msl,
+        gbuffer_validator::Backend::Hlsl,
     ] {
-        validator::translate(&validated, backend).unwrap_or_else(|problem| panic!("{problem}"));
+        gbuffer_validator::translate(&validated, backend)
+            .unwrap_or_else(|problem| panic!("{problem}"));
     }
     // GLSL ES 3.00 lacks packUnorm4x8 (ES 3.10 has it): the portability the exact path keeps.
-    let problem = validator::translate(&validated, validator::Backend::GlslEs).unwrap_err();
+    let problem =
+        gbuffer_validator::translate(&validated, gbuffer_validator::Backend::GlslEs).unwrap_err();
     assert!(problem.message.contains("packUnorm4x8"), "{problem}");
 }

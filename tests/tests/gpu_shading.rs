@@ -1,8 +1,10 @@
 //! On a real adapter, every WGSL function of the shading library matches its Rust f32 mirror
 //! over a dense grid of inputs, within the case's stated tolerance (ulp, or absolute near 0).
 
-use tests::gpu::Gpu;
-use tests::shading_cases::{cases, compute_harness, grid, output_components, ulp_distance, Output};
+use gbuffer_testkit::gpu::Gpu;
+use gbuffer_testkit::shading_cases::{
+    cases, compute_harness, grid, output_components, ulp_distance, Output,
+};
 
 const POINTS_PER_FUNCTION: usize = 8192;
 

@@ -5,7 +5,7 @@
 #![allow(dead_code, non_camel_case_types)]
 
 mod layouts {
-    use ::shaderlib::glam::{Vec3, Vec4};
+    use ::gbuffer::glam::{Vec3, Vec4};
 
     // Items named like what the expansion refers to; none of them may be picked up.
     pub struct Format;
@@ -25,12 +25,12 @@ mod layouts {
     pub struct words;
     pub mod core {}
     pub mod std {}
-    pub mod shaderlib {}
+    pub mod gbuffer {}
     pub mod glam {}
     pub mod packing {}
 
     #[derive(
-        ::shaderlib::GBufferLayout,
+        ::gbuffer::GBufferLayout,
         ::core::clone::Clone,
         ::core::marker::Copy,
         ::core::fmt::Debug,
@@ -45,21 +45,51 @@ mod layouts {
         #[pls(rgba8)]
         pub normals_roughness: Vec4,
         #[pls(rgba8ui)]
-        pub material: ::shaderlib::glam::UVec4,
+        pub material: ::gbuffer::glam::UVec4,
     }
 }
 
 #[test]
 fn derive_compiles_and_works_without_the_prelude() {
-    use ::shaderlib::GBufferLayout;
+    use ::gbuffer::GBufferLayout;
     let texel = layouts::Hygienic {
-        light_accumulation: ::shaderlib::glam::Vec3::new(0.0, 0.5, 1.0),
+        light_accumulation: ::gbuffer::glam::Vec3::new(0.0, 0.5, 1.0),
         depth: 0.25,
-        normals_roughness: ::shaderlib::glam::Vec4::ONE,
-        material: ::shaderlib::glam::UVec4::new(1, 2, 3, 400),
+        normals_roughness: ::gbuffer::glam::Vec4::ONE,
+        material: ::gbuffer::glam::UVec4::new(1, 2, 3, 400),
     };
     let words = texel.pack();
     ::std::assert_eq!(words[3], 0xff03_0201);
     ::std::assert_eq!(layouts::Hygienic::unpack(&words).depth, 0.25);
     ::std::assert_eq!(<layouts::Hygienic as GBufferLayout>::USED_BITS, 126);
+}
+
+/// The crate as a user's engine re-exports it, under another name.
+mod engine {
+    pub use ::gbuffer as rendering;
+}
+
+mod renamed {
+    use ::gbuffer::glam::Vec4;
+
+    // No `gbuffer` at the crate root here would do: the derive must use the path it is given.
+    #[derive(crate::engine::rendering::GBufferLayout)]
+    #[gbuffer(budget = 64, crate = "crate::engine::rendering")]
+    pub struct ThroughReexport {
+        #[pls(rgba8)]
+        pub albedo: Vec4,
+        #[pls(r32f)]
+        pub depth: f32,
+    }
+}
+
+#[test]
+fn derive_uses_the_crate_path_it_is_given() {
+    use crate::engine::rendering::GBufferLayout;
+    let texel = renamed::ThroughReexport {
+        albedo: ::gbuffer::glam::Vec4::ONE,
+        depth: 0.5,
+    };
+    ::std::assert_eq!(texel.pack(), [0xffff_ffff, 0x3f00_0000]);
+    ::std::assert_eq!(renamed::ThroughReexport::layout().name, "ThroughReexport");
 }

@@ -7,7 +7,7 @@
 //! step, a discontinuity where f32 and f64 may pick neighbouring steps: their encodings are
 //! compared after decoding.
 
-use tests::shading_cases::{cases, grid, mirror_error};
+use gbuffer_testkit::shading_cases::{cases, grid, mirror_error};
 
 #[test]
 fn f32_mirrors_stay_close_to_the_f64_references() {
@@ -39,8 +39,8 @@ fn f32_mirrors_stay_close_to_the_f64_references() {
 
 #[test]
 fn rgbm_encodings_decode_alike_in_f32_and_f64() {
-    use shaderlib::glam::DVec3;
-    use shaderlib::shading::{mirror as m, reference as r};
+    use gbuffer::glam::DVec3;
+    use gbuffer::shading::{mirror as m, reference as r};
     for step in 0..=6000 {
         let colour = DVec3::new(f64::from(step) / 1000.0, f64::from(step) / 3000.0, 0.02);
         let reference = r::hdr::rgbm_decode(r::hdr::rgbm_encode(colour, 6.0), 6.0);

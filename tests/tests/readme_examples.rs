@@ -2,13 +2,13 @@
 //! in place of their `#include` line: the fetch example on Mesa's GLES 3.2, the Vulkan ones with
 //! glslangValidator.
 
-use codegen::emit::glsl::{self, Include};
-use shaderlib::seed_layouts;
-use tests::gles::{skip_without_driver, Gles};
+use gbuffer::seed_layouts;
+use gbuffer_codegen::emit::glsl::{self, Include};
+use gbuffer_testkit::gles::{skip_without_driver, Gles};
 
 /// The README's ```glsl blocks, without the indentation of the list items they sit in.
 fn readme_glsl_blocks() -> Vec<String> {
-    let readme = std::fs::read_to_string(tests::workspace().join("README.md")).unwrap();
+    let readme = std::fs::read_to_string(gbuffer_testkit::workspace().join("README.md")).unwrap();
     let mut blocks = Vec::new();
     let mut current: Option<(usize, String)> = None;
     for line in readme.lines() {
@@ -76,6 +76,7 @@ fn readme_vulkan_examples_compile_to_spirv() {
         "the G-buffer subpass and the lighting subpass"
     );
     for shader in shaders {
-        tests::tools::glslang(&shader, "frag", true).unwrap_or_else(|log| panic!("{log}"));
+        gbuffer_testkit::tools::glslang(&shader, "frag", true)
+            .unwrap_or_else(|log| panic!("{log}"));
     }
 }

@@ -1,13 +1,13 @@
 //! The seed layouts have the sizes their sources state, and the report's WebGPU cost of the
 //! same fields as separate render targets is what wgpu itself enforces.
 
-use codegen::report::webgpu_target;
-use shaderlib::packing::{Format, Report};
-use shaderlib::seed_layouts::{
+use gbuffer::packing::{Format, Report};
+use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
-use shaderlib::GBufferLayout;
-use tests::gpu::Gpu;
+use gbuffer::GBufferLayout;
+use gbuffer_codegen::report::webgpu_target;
+use gbuffer_testkit::gpu::Gpu;
 
 #[test]
 fn seed_layouts_have_the_published_bit_counts() {
@@ -136,7 +136,7 @@ fn report_cost_matches_wgpu_validation() {
     };
     let gpu = Gpu::with_limits_and_features(limits, wgpu::Features::RG11B10UFLOAT_RENDERABLE);
     let features = gpu.device.features();
-    for (layout, _) in shaderlib::seed_layouts::all() {
+    for (layout, _) in gbuffer::seed_layouts::all() {
         let formats: Vec<Format> = layout.fields.iter().map(|field| field.format).collect();
         let report = Report::new(&layout);
         // The formats' features, by the name the report prints.

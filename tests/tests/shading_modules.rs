@@ -1,9 +1,9 @@
 //! naga validates every module of the WGSL shading library alone and all of them composed,
 //! and the harness of every function translates to every backend.
 
-use shaderlib::modules::{compose, MODULES};
-use tests::shading_cases::{cases, compute_harness};
-use validator::{validate_everywhere, validate_wgsl};
+use gbuffer::modules::{compose, MODULES};
+use gbuffer_testkit::shading_cases::{cases, compute_harness};
+use gbuffer_validator::{validate_everywhere, validate_wgsl};
 
 #[test]
 fn every_module_is_valid_alone_with_its_dependencies() {
@@ -24,9 +24,9 @@ fn all_modules_compose_into_one_valid_module() {
 
 #[test]
 fn the_library_composes_with_a_generated_layout() {
-    use shaderlib::GBufferLayout;
+    use gbuffer::GBufferLayout;
     let mut wgsl = compose(&["shading", "normals", "colour", "hdr"]).unwrap();
-    wgsl.push_str(shaderlib::seed_layouts::MobileMetallic::WGSL);
+    wgsl.push_str(gbuffer::seed_layouts::MobileMetallic::WGSL);
     validate_wgsl(&wgsl).unwrap_or_else(|problem| panic!("{problem}"));
 }
 

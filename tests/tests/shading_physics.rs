@@ -1,10 +1,10 @@
 //! Physical properties of the shading library, on the f64 references (and the f32 mirrors
 //! where the property is about their numbers).
 
-use shaderlib::glam::{DVec2, DVec3, Vec3};
-use shaderlib::shading::env_brdf_lut::EnvBrdfLut;
-use shaderlib::shading::mirror as m;
-use shaderlib::shading::reference as r;
+use gbuffer::glam::{DVec2, DVec3, Vec3};
+use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
+use gbuffer::shading::mirror as m;
+use gbuffer::shading::reference as r;
 use std::f64::consts::PI;
 
 #[test]
@@ -94,9 +94,7 @@ fn baked_lut_reproduces_the_integral_at_texel_centres_and_between() {
     );
     // Between texels the bilinear lookup stays within the neighbours' range.
     let between = lut.sample(0.5, 0.5);
-    assert!(
-        between.cmpge(shaderlib::glam::Vec2::ZERO).all() && between.x + between.y <= 1.0 + 1e-6
-    );
+    assert!(between.cmpge(gbuffer::glam::Vec2::ZERO).all() && between.x + between.y <= 1.0 + 1e-6);
 }
 
 #[test]
@@ -135,7 +133,7 @@ fn env_brdf_approx_at_full_roughness_and_normal_view_is_0_4524_f0_minus_0_0024()
 fn octahedral_quantized_error(bits: u32) -> f64 {
     let max_code = f64::from((1u32 << bits) - 1);
     let quantize = |value: f64| ((value * 0.5 + 0.5) * max_code).round() / max_code * 2.0 - 1.0;
-    tests::shading_cases::fibonacci_sphere(200_000)
+    gbuffer_testkit::shading_cases::fibonacci_sphere(200_000)
         .into_iter()
         .map(|direction| {
             let direction = direction.as_dvec3().normalize();
@@ -150,7 +148,7 @@ fn octahedral_quantized_error(bits: u32) -> f64 {
 #[test]
 fn octahedral_round_trip_is_within_its_quantization_bound() {
     // Unquantized, the round trip is exact to rounding.
-    for direction in tests::shading_cases::fibonacci_sphere(10_000) {
+    for direction in gbuffer_testkit::shading_cases::fibonacci_sphere(10_000) {
         let direction = direction.as_dvec3().normalize();
         let back = r::normals::octahedral_decode(r::normals::octahedral_encode(direction));
         assert!((back - direction).length() < 1e-12, "{direction} -> {back}");

@@ -9,13 +9,15 @@
 //! below 0; in f16 MIN_ROUGHNESS_HALF, MIN_N_DOT_V_HALF, MAX_RADIANCE_HALF), must stay finite
 //! for any finite input, and each clamp is shown to be needed.
 
-use shaderlib::glam::{DVec3, Vec3};
-use shaderlib::packing::{Format, ScalarKind};
-use shaderlib::shading::half_precision::{self as h, Half, Half3};
-use shaderlib::shading::mirror as m;
-use tests::gpu::Gpu;
-use tests::shading_cases::{cases, compute_harness, output_components, Argument, Case, Output};
-use tests::values::{float_edges, sint_edges, uint_edges};
+use gbuffer::glam::{DVec3, Vec3};
+use gbuffer::packing::{Format, ScalarKind};
+use gbuffer::shading::half_precision::{self as h, Half, Half3};
+use gbuffer::shading::mirror as m;
+use gbuffer_testkit::gpu::Gpu;
+use gbuffer_testkit::shading_cases::{
+    cases, compute_harness, output_components, Argument, Case, Output,
+};
+use gbuffer_testkit::values::{float_edges, sint_edges, uint_edges};
 
 /// Edge values of an argument's domain, each as its components' bits.
 fn edges(argument: Argument) -> Vec<Vec<u32>> {
@@ -263,7 +265,7 @@ fn composites_stay_finite_for_any_finite_input_and_their_clamps_are_needed() {
                 Vec3::ONE,
                 Vec3::splat(0.04),
                 roughness,
-                shaderlib::glam::Vec2::new(0.9, 0.05),
+                gbuffer::glam::Vec2::new(0.9, 0.05),
             );
             let mobile = m::shading::shade_directional_mobile(
                 Vec3::Z,
@@ -356,11 +358,9 @@ fn packing_gives_finite_output_in_the_formats_range_for_finite_input() {
                     let decoded = format.decode::<f32>(format.encode([value; 4]));
                     for (decoded, channel) in decoded.iter().zip(format.channels()) {
                         let largest = match channel.encoding {
-                            shaderlib::packing::ChannelEncoding::Float32 => f32::MAX,
-                            shaderlib::packing::ChannelEncoding::Half => 65504.0,
-                            shaderlib::packing::ChannelEncoding::UnsignedFloat {
-                                mantissa_bits,
-                            } => {
+                            gbuffer::packing::ChannelEncoding::Float32 => f32::MAX,
+                            gbuffer::packing::ChannelEncoding::Half => 65504.0,
+                            gbuffer::packing::ChannelEncoding::UnsignedFloat { mantissa_bits } => {
                                 if mantissa_bits == 6 {
                                     65024.0
                                 } else {
@@ -470,7 +470,7 @@ fn half_precision_forms_run_on_an_f16_adapter_and_agree_with_their_mirror() {
         return;
     }
     let extremes = half_extremes();
-    let library = shaderlib::modules::compose(&["mobile_half"]).unwrap();
+    let library = gbuffer::modules::compose(&["mobile_half"]).unwrap();
     let shader = format!(
         "{library}\n\
          @group(0) @binding(0) var<storage, read> inputs: array<f32>;\n\

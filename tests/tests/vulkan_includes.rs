@@ -18,16 +18,18 @@
 use std::collections::BTreeSet;
 
 use ash::vk;
-use codegen::emit::glsl::{self, GlslNames, Include, Interface};
+use gbuffer::packing::{Layout, ScalarKind};
+use gbuffer_codegen::emit::glsl::{self, GlslNames, Include, Interface};
+use gbuffer_testkit::gles::skip_without_driver;
+use gbuffer_testkit::harness::scalars_per_texel;
+use gbuffer_testkit::texels::{
+    check_native_words, compare, compare_decoded, inputs, word_from_components,
+};
+use gbuffer_testkit::tools::glslang;
+use gbuffer_testkit::user_shaders::{preambles, scalars_of_texel, texel_from_scalars};
+use gbuffer_testkit::values::Values;
+use gbuffer_testkit::vulkan::{AttachmentMemory, Resource, Subpass, Vulkan};
 use proptest::prelude::*;
-use shaderlib::packing::{Layout, ScalarKind};
-use tests::gles::skip_without_driver;
-use tests::harness::scalars_per_texel;
-use tests::texels::{check_native_words, compare, compare_decoded, inputs, word_from_components};
-use tests::tools::glslang;
-use tests::user_shaders::{preambles, scalars_of_texel, texel_from_scalars};
-use tests::values::Values;
-use tests::vulkan::{AttachmentMemory, Resource, Subpass, Vulkan};
 
 const WIDTH: u32 = 48;
 const HEIGHT: u32 = 48;
@@ -481,7 +483,10 @@ fn subpass_includes_round_trip_bit_exactly_on_vulkan_under_every_preamble() {
     let Some(vulkan) = vulkan() else { return };
     let mut failures = Vec::new();
     let mut memory = BTreeSet::new();
-    for (index, layout) in tests::layouts::seeds_and_every_format().iter().enumerate() {
+    for (index, layout) in gbuffer_testkit::layouts::seeds_and_every_format()
+        .iter()
+        .enumerate()
+    {
         for include in [Include::SubpassPacked, Include::SubpassNative] {
             for preamble in preambles(include) {
                 let got = check(
@@ -507,7 +512,7 @@ proptest! {
     /// Layouts the repo has never seen, named with words GLSL reserves.
     #[test]
     fn random_layouts_round_trip_bit_exactly_on_vulkan(
-        layout in tests::layouts::random_layout(),
+        layout in gbuffer_testkit::layouts::random_layout(),
         preamble_index in 0usize..9,
     ) {
         let Some(vulkan) = vulkan() else { return Ok(()) };

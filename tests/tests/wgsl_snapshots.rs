@@ -2,8 +2,8 @@
 //! reviewed diff. Update with `INSTA_UPDATE=always cargo test -p tests --test wgsl_snapshots`
 //! (or `cargo insta review`).
 
-use shaderlib::{seed_layouts, GBufferLayout};
-use tests::{AllFormats, NativeFormats};
+use gbuffer::{seed_layouts, GBufferLayout};
+use gbuffer_testkit::{AllFormats, NativeFormats};
 
 #[test]
 fn seed_layout_wgsl() {

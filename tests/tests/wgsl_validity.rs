@@ -2,12 +2,12 @@
 //! SPIR-V, MSL, HLSL and GLSL ES 3.00 (WebGL2), exercised by a fragment shader that calls
 //! every generated function.
 
+use gbuffer::packing::Layout;
+use gbuffer::{seed_layouts, GBufferLayout};
+use gbuffer_testkit::harness::fragment_harness;
+use gbuffer_testkit::AllFormats;
+use gbuffer_validator::{translate, validate_everywhere, validate_wgsl, Backend};
 use proptest::prelude::*;
-use shaderlib::packing::Layout;
-use shaderlib::{seed_layouts, GBufferLayout};
-use tests::harness::fragment_harness;
-use tests::AllFormats;
-use validator::{translate, validate_everywhere, validate_wgsl, Backend};
 
 fn fixtures() -> Vec<(Layout, &'static str)> {
     let mut fixtures = seed_layouts::all();
@@ -77,9 +77,9 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 256, failure_persistence: None, ..ProptestConfig::default() })]
 
     #[test]
-    fn random_layouts_validate_and_translate_everywhere(layout in tests::layouts::random_layout_with(16)) {
+    fn random_layouts_validate_and_translate_everywhere(layout in gbuffer_testkit::layouts::random_layout_with(16)) {
         prop_assert!(layout.check().is_empty(), "{:?}", layout.check());
-        let wgsl = codegen::emit::wgsl::emit(&layout);
+        let wgsl = gbuffer_codegen::emit::wgsl::emit(&layout);
         let shader = fragment_harness(&layout, &wgsl);
         if let Err(problem) = validate_everywhere(&shader) {
             return Err(TestCaseError::fail(format!("{problem}\n{shader}")));

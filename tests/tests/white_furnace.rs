@@ -3,9 +3,9 @@
 //! angle and material; and how much single-scattering GGX loses at high roughness.
 //! `cargo test -p tests --test white_furnace -- --nocapture` prints the energies.
 
-use shaderlib::shading::reference as r;
+use gbuffer::shading::reference as r;
+use gbuffer_testkit::furnace::{accurate, furnace};
 use std::f64::consts::PI;
-use tests::furnace::{accurate, furnace};
 
 #[test]
 fn the_integrator_reproduces_known_integrals() {

@@ -1,5 +1,5 @@
-use shaderlib::glam::Vec4;
-use shaderlib::GBufferLayout;
+use gbuffer::glam::Vec4;
+use gbuffer::GBufferLayout;
 
 #[derive(GBufferLayout)]
 #[gbuffer(budget = 128, precision = 8)]
@@ -11,6 +11,13 @@ struct UnknownOption {
 #[derive(GBufferLayout)]
 #[gbuffer(conversions = "fast")]
 struct UnknownConversions {
+    #[pls(r32f)]
+    depth: f32,
+}
+
+#[derive(GBufferLayout)]
+#[gbuffer(crate = "not a path")]
+struct CrateNotAPath {
     #[pls(r32f)]
     depth: f32,
 }

@@ -1,6 +1,6 @@
 // Every problem of a layout is reported in one compilation.
-use shaderlib::glam::{Vec3, Vec4};
-use shaderlib::GBufferLayout;
+use gbuffer::glam::{Vec3, Vec4};
+use gbuffer::GBufferLayout;
 
 #[derive(GBufferLayout)]
 #[gbuffer(budget = 96)]

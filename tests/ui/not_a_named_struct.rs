@@ -1,4 +1,4 @@
-use shaderlib::GBufferLayout;
+use gbuffer::GBufferLayout;
 
 #[derive(GBufferLayout)]
 struct Empty {}

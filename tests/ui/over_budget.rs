@@ -1,6 +1,6 @@
 // Listing 2.1 (specular workflow) is 160 bits: it does not fit a 128-bit tile.
-use shaderlib::glam::{Vec3, Vec4};
-use shaderlib::GBufferLayout;
+use gbuffer::glam::{Vec3, Vec4};
+use gbuffer::GBufferLayout;
 
 #[derive(GBufferLayout)]
 #[gbuffer(budget = 128)]

@@ -1,5 +1,5 @@
-use shaderlib::glam::{UVec2, Vec3, Vec4};
-use shaderlib::GBufferLayout;
+use gbuffer::glam::{UVec2, Vec3, Vec4};
+use gbuffer::GBufferLayout;
 
 #[derive(GBufferLayout)]
 struct Mismatched {

@@ -1,5 +1,5 @@
-use shaderlib::glam::{Vec2, Vec4};
-use shaderlib::GBufferLayout;
+use gbuffer::glam::{Vec2, Vec4};
+use gbuffer::GBufferLayout;
 
 #[derive(GBufferLayout)]
 struct Typos {

@@ -1,13 +1,13 @@
 //! The rows of the trade-off report: each approximation or encoding, its error against the
 //! f64 reference over a stated domain, the WGSL that costs and times it, and its CPU mirror.
 
-use shaderlib::glam::{DVec3, Vec2, Vec3, Vec4};
-use shaderlib::packing::{Field, FieldType, Format, Layout, ScalarKind};
-use shaderlib::shading::env_brdf_lut::EnvBrdfLut;
-use shaderlib::shading::{mirror as m, reference as r};
-use shaderlib::GBufferLayout;
+use gbuffer::glam::{DVec3, Vec2, Vec3, Vec4};
+use gbuffer::packing::{Field, FieldType, Format, Layout, ScalarKind};
+use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
+use gbuffer::shading::{mirror as m, reference as r};
+use gbuffer::GBufferLayout;
 
-use ::tests::values::halton;
+use ::gbuffer_testkit::values::halton;
 
 use crate::plot::Plot;
 
@@ -78,13 +78,16 @@ fn quantize4(value: vec4<f32>, max_code: f32) -> vec4<f32> {
 ";
 
 fn wgsl(modules: &[&str], body: &str) -> String {
-    let library = shaderlib::modules::compose(modules).expect("the library's modules exist");
+    let library = gbuffer::modules::compose(modules).expect("the library's modules exist");
     format!("{library}\n{PRELUDE}\n{body}")
 }
 
 /// CPU storage in an n-bit unorm channel, with the exact conversions.
 fn quantize(value: f32, bits: u32) -> f32 {
-    codegen::convert::f32_from_unorm(codegen::convert::unorm_from_f32(value, bits), bits)
+    gbuffer_codegen::convert::f32_from_unorm(
+        gbuffer_codegen::convert::unorm_from_f32(value, bits),
+        bits,
+    )
 }
 
 fn quantize3(value: Vec3, bits: u32) -> Vec3 {
@@ -221,7 +224,7 @@ fn normal_rows() -> Vec<Row> {
             NormalEncoding::Octahedral { bits: 16 },
         ),
     ];
-    let directions = ::tests::shading_cases::fibonacci_sphere(1 << 16);
+    let directions = ::gbuffer_testkit::shading_cases::fibonacci_sphere(1 << 16);
     encodings
         .into_iter()
         .map(|(name, bits, encoding)| {
@@ -305,7 +308,7 @@ fn hdr_rows() -> Vec<Row> {
     );
     let rg16f_helpers = format!(
         "{}\nfn rg16f_round_trip(colour: vec3<f32>) -> vec3<f32> {{\n    let texel = unpack_hdr_rg16f(pack_hdr_rg16f(HdrRg16f(colour.rg, colour.b)));\n    return vec3<f32>(texel.red_green, texel.blue);\n}}\n",
-        codegen::emit::wgsl::emit(&rg16f)
+        gbuffer_codegen::emit::wgsl::emit(&rg16f)
     );
     let rgbm_round_trip = |encode: fn(Vec3, f32) -> Vec4,
                            decode: fn(Vec4, f32) -> Vec3|
@@ -339,7 +342,7 @@ fn hdr_rows() -> Vec<Row> {
                 let word = Format::R11fG11fB10f.encode(c.extend(0.0).to_array());
                 Vec3::from_slice(&Format::R11fG11fB10f.decode::<f32>(word)[..3])
             }),
-            helpers: codegen::emit::wgsl::emit(&r11f),
+            helpers: gbuffer_codegen::emit::wgsl::emit(&r11f),
             expression: "unpack_hdr_r11f(pack_hdr_r11f(HdrR11f(colour))).colour",
             modules: &[],
         },
@@ -724,7 +727,7 @@ fn displayed(surface: &Surface) -> DVec3 {
 type LayoutRoundTrip = fn(&Surface) -> Surface;
 
 fn mobile_metallic(surface: &Surface) -> Surface {
-    use shaderlib::seed_layouts::MobileMetallic;
+    use gbuffer::seed_layouts::MobileMetallic;
     let texel = MobileMetallic {
         light_accumulation: m::hdr::scale_hdr_to_unit(surface.light, 6.0),
         depth: 0.5,
@@ -743,7 +746,7 @@ fn mobile_metallic(surface: &Surface) -> Surface {
 }
 
 fn arm_tile_block(surface: &Surface) -> Surface {
-    use shaderlib::seed_layouts::ArmTileBlock;
+    use gbuffer::seed_layouts::ArmTileBlock;
     let texel = ArmTileBlock {
         light: surface.light,
         albedo: m::colour::linear_to_pseudo_gamma(surface.base_colour),
@@ -761,7 +764,7 @@ fn arm_tile_block(surface: &Surface) -> Surface {
 }
 
 fn future_metallic(surface: &Surface) -> Surface {
-    use shaderlib::seed_layouts::FutureMetallic;
+    use gbuffer::seed_layouts::FutureMetallic;
     let texel = FutureMetallic {
         position_x: 1.0,
         position_y: 2.0,
@@ -792,7 +795,7 @@ fn future_metallic(surface: &Surface) -> Surface {
 }
 
 fn future_specular(surface: &Surface) -> Surface {
-    use shaderlib::seed_layouts::FutureSpecular;
+    use gbuffer::seed_layouts::FutureSpecular;
     // The specular workflow stores albedo and reflectance; a metal's base colour is its f0.
     let colours = m::material::metallic_workflow(surface.base_colour, surface.metallic, 0.04);
     let texel = FutureSpecular {
@@ -859,7 +862,7 @@ fn surfaces() -> Vec<Surface> {
 }
 
 fn layout_rows() -> Vec<Row> {
-    use shaderlib::seed_layouts::{ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic};
+    use gbuffer::seed_layouts::{ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic};
     // Per layout: its round trip on the CPU and the WGSL that decodes an unpacked `texel` into
     // `normal`, `roughness`, `diffuse`, `f0` and `light`, by the same conventions.
     let metallic_decode = "let colours = metallic_workflow(base_colour, metallic, DIELECTRIC_F0);\n    let diffuse = colours.diffuse;\n    let f0 = colours.f0;";
@@ -1012,7 +1015,7 @@ mod tests {
             .chain(&visibility_rows())
         {
             let harness = crate::timing::harness(&row.wgsl);
-            validator::validate_wgsl(&harness)
+            gbuffer_validator::validate_wgsl(&harness)
                 .unwrap_or_else(|problem| panic!("{}: {problem}", row.name));
         }
     }

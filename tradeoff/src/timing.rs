@@ -4,8 +4,8 @@
 
 use std::time::Instant;
 
-use shaderlib::glam::Vec4;
-use tests::gpu::Gpu;
+use gbuffer::glam::Vec4;
+use gbuffer_testkit::gpu::Gpu;
 
 /// Invocations per dispatch and evaluations per invocation: 2^20 evaluations a run.
 const INVOCATIONS: u32 = 1 << 14;
@@ -120,7 +120,8 @@ pub fn gpu_ns_per_eval(
     let texels: Vec<u16> = (0..(size * size) as usize)
         .flat_map(|index| {
             let [scale, bias] = lut.get(index).copied().unwrap_or([0.0, 0.0]);
-            [scale, bias, 0.0, 1.0].map(|value| codegen::convert::half_from_f32(value) as u16)
+            [scale, bias, 0.0, 1.0]
+                .map(|value| gbuffer_codegen::convert::half_from_f32(value) as u16)
         })
         .collect();
     let texture = device.create_texture_with_data(

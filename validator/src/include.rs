@@ -1,4 +1,4 @@
-//! Include resolution for user shaders: a line `#include <shaderlib/NAME>` pulls in a module of
+//! Include resolution for user shaders: a line `#include <gbuffer/NAME>` pulls in a module of
 //! the shading library (with its dependencies), `#include "PATH.toml"` the generated WGSL of a
 //! layout file, and `#include "PATH.wgsl"` another WGSL file (itself resolved). Paths are
 //! relative to the including file. Each module and file is included once.
@@ -9,12 +9,12 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use codegen::layout_file::read_layout_file;
+use gbuffer_codegen::layout_file::read_layout_file;
 
 /// Where a run of lines of the resolved source came from.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Segment {
-    /// A file path, `<shaderlib/NAME>` or `<generated from PATH>`.
+    /// A file path, `<gbuffer/NAME>` or `<generated from PATH>`.
     pub origin: String,
     /// The first line of the run in the resolved source (1-based).
     pub first_line: usize,
@@ -139,7 +139,7 @@ impl Resolver {
         self.resolved.segments.insert(
             0,
             Segment {
-                origin: "<shaderlib directives>".into(),
+                origin: "<gbuffer directives>".into(),
                 first_line: 1,
                 lines: self.directives.len(),
                 origin_line: 1,
@@ -172,10 +172,10 @@ impl Resolver {
             };
             let target = target.trim();
             if let Some(module) = target
-                .strip_prefix("<shaderlib/")
+                .strip_prefix("<gbuffer/")
                 .and_then(|rest| rest.strip_suffix('>'))
             {
-                let modules = shaderlib::modules::dependency_order(&[module])
+                let modules = gbuffer::modules::dependency_order(&[module])
                     .map_err(|problem| error(problem.to_string()))?;
                 for module in modules {
                     if !self.included_modules.contains(&module.name) {
@@ -186,7 +186,7 @@ impl Resolver {
                             }
                         }
                         self.resolved.push(
-                            &format!("<shaderlib/{}>", module.name),
+                            &format!("<gbuffer/{}>", module.name),
                             0,
                             &module.with_banner(),
                         );
@@ -205,7 +205,7 @@ impl Resolver {
                 match included.extension().and_then(|extension| extension.to_str()) {
                     Some("toml") => {
                         let file = read_layout_file(&included).map_err(|problem| error(format!("in included layout: {problem}")))?;
-                        let wgsl = codegen::emit::wgsl::emit_with(&file.layout, file.conversions);
+                        let wgsl = gbuffer_codegen::emit::wgsl::emit_with(&file.layout, file.conversions);
                         self.resolved.push(&format!("<generated from {}>", included.display()), 1, &wgsl);
                     }
                     Some("wgsl") => {
@@ -217,7 +217,7 @@ impl Resolver {
                 }
             } else {
                 return Err(error(format!(
-                    "malformed include `{target}`: write `#include <shaderlib/MODULE>` or `#include \"relative/path.wgsl\"` (or .toml)"
+                    "malformed include `{target}`: write `#include <gbuffer/MODULE>` or `#include \"relative/path.wgsl\"` (or .toml)"
                 )));
             }
         }
@@ -232,12 +232,12 @@ mod tests {
 
     #[test]
     fn shaderlib_modules_are_included_once_with_their_dependencies() {
-        let source = "#include <shaderlib/shading>\n#include <shaderlib/microfacet>\nfn f() -> f32 { return d_ggx(1.0, 0.5); }\n";
+        let source = "#include <gbuffer/shading>\n#include <gbuffer/microfacet>\nfn f() -> f32 { return d_ggx(1.0, 0.5); }\n";
         let resolved = resolve_source(Path::new("user.wgsl"), source).unwrap();
         assert_eq!(
             resolved
                 .source
-                .matches("shaderlib module `microfacet`")
+                .matches("gbuffer shading module `microfacet`")
                 .count(),
             1
         );
@@ -250,7 +250,7 @@ mod tests {
     fn bad_includes_name_their_line() {
         let error = resolve_source(
             Path::new("user.wgsl"),
-            "fn f() {}\n#include <shaderlib/brdf>\n",
+            "fn f() {}\n#include <gbuffer/brdf>\n",
         )
         .unwrap_err();
         assert_eq!(error.line, 2);

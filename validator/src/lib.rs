@@ -192,7 +192,7 @@ fn error_chain(error: &dyn std::error::Error) -> String {
 /// A problem in a shader file, placed in the file (or module) it comes from.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FileProblem {
-    /// The file, `<shaderlib/NAME>` or `<generated from PATH>`.
+    /// The file, `<gbuffer/NAME>` or `<generated from PATH>`.
     pub origin: String,
     /// 1-based line and column in the origin, where known.
     pub location: Option<(usize, usize)>,

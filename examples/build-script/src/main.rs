@@ -2,8 +2,8 @@
 //! `mobile_metallic.rs` (the struct and its `GBufferLayout` impl) and the shader includes.
 //! Run with `cargo run -p build-script-example`.
 
-use shaderlib::glam::{Vec3, Vec4};
-use shaderlib::GBufferLayout;
+use gbuffer::glam::{Vec3, Vec4};
+use gbuffer::GBufferLayout;
 
 include!(concat!(env!("OUT_DIR"), "/mobile_metallic.rs"));
 
@@ -41,7 +41,7 @@ mod tests {
             normals_roughness: Vec4::new(0.2, 0.4, 0.6, 0.8),
             albedo_metallic: Vec4::new(0.9, 0.1, 0.5, 1.0),
         };
-        let derived = shaderlib::seed_layouts::MobileMetallic {
+        let derived = gbuffer::seed_layouts::MobileMetallic {
             light_accumulation: texel.light_accumulation,
             depth: texel.depth,
             normals_roughness: texel.normals_roughness,
@@ -50,7 +50,7 @@ mod tests {
         assert_eq!(texel.pack(), derived.pack());
         assert_eq!(
             MobileMetallic::WGSL,
-            shaderlib::seed_layouts::MobileMetallic::WGSL.to_string() + "\n"
+            gbuffer::seed_layouts::MobileMetallic::WGSL.to_string() + "\n"
         );
     }
 }

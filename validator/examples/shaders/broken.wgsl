@@ -1,5 +1,5 @@
 // A shader with a mistake: d_ggx takes two arguments.
-#include <shaderlib/microfacet>
+#include <gbuffer/microfacet>
 
 @fragment
 fn broken() -> @location(0) vec4<f32> {

@@ -1,8 +1,8 @@
 // A lighting pass over the Listing 2.2 G-buffer: reads the packed Rgba32Uint target, unpacks
 // it with the generated code and shades it with the library.
-#include <shaderlib/shading>
-#include <shaderlib/colour>
-#include <shaderlib/environment>
+#include <gbuffer/shading>
+#include <gbuffer/colour>
+#include <gbuffer/environment>
 #include "../../../codegen/layouts/mobile_metallic.toml"
 
 @group(0) @binding(0) var gbuffer: texture_2d<u32>;

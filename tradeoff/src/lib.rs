@@ -1,7 +1,7 @@
-//! `tradeoff`: the speed/accuracy trade of every approximation and encoding, side by side.
+//! The speed/accuracy trade of every approximation and encoding, side by side.
 //!
-//! Run with `cargo run --release --bin tradeoff`. Prints a table and writes
-//! `target/tradeoff/report.md`, `report.json` and PNG plots. Each row's error is measured
+//! Run with `cargo run --release -p gbuffer-cli -- report`. Prints a table and writes
+//! `target/tradeoff/report.md`, `report.json` and PNG plots (or into `--out DIR`). Each row's error is measured
 //! against the f64 references over the stated domain; its cost is counted in naga IR
 //! expressions and SPIR-V instructions; its time is measured on the adapter at hand (a
 //! dependent chain of evaluations, median of 7 runs, less the harness's own time) and for its
@@ -12,12 +12,12 @@ mod rows;
 mod timing;
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
+use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
+use gbuffer_testkit::gpu::Gpu;
 use plot::Plot;
 use rows::Row;
-use shaderlib::shading::env_brdf_lut::EnvBrdfLut;
-use tests::gpu::Gpu;
 
 /// A row's measurements besides its error.
 struct Measured {
@@ -27,26 +27,18 @@ struct Measured {
     cpu_ns_per_eval: f64,
 }
 
-fn output_folder() -> PathBuf {
-    let target = std::env::var_os("CARGO_TARGET_DIR").map_or_else(
-        || Path::new(env!("CARGO_MANIFEST_DIR")).join("../target"),
-        PathBuf::from,
-    );
-    target.join("tradeoff")
-}
-
 /// The SPIR-V of a row's timing harness, without the library functions the row does not
 /// reach (naga writes every function of a module), and its naga module.
 fn compile(row_wgsl: &str) -> Result<(naga::Module, Vec<u32>), String> {
-    validator::cost::compile_compacted(&timing::harness(row_wgsl))
+    gbuffer_validator::cost::compile_compacted(&timing::harness(row_wgsl))
 }
 
-fn main() {
-    let folder = output_folder();
-    if let Err(error) = std::fs::create_dir_all(&folder) {
-        eprintln!("tradeoff: cannot create {}: {error}", folder.display());
-        std::process::exit(1);
-    }
+/// Measures every row on the adapter at hand, prints the table and writes `report.md`,
+/// `report.json` and the PNG plots into `folder` (created if missing). The error names the
+/// file that could not be written.
+pub fn run(folder: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(folder)
+        .map_err(|error| format!("cannot create {}: {error}", folder.display()))?;
     eprintln!("measuring errors against the f64 references...");
     let rows = rows::rows();
     let gpu = Gpu::new();
@@ -54,7 +46,7 @@ fn main() {
     eprintln!("timing on {adapter}");
 
     let (_, baseline_spirv) = compile(timing::BASELINE_ROW).expect("the baseline harness compiles");
-    let baseline_instructions = validator::cost::spirv_instructions(&baseline_spirv);
+    let baseline_instructions = gbuffer_validator::cost::spirv_instructions(&baseline_spirv);
     let baseline_gpu =
         timing::gpu_ns_per_eval(&gpu, &timing::harness(timing::BASELINE_ROW), &[], 1).ok();
     let luts: Vec<(usize, Vec<[f32; 2]>)> = [16, 32]
@@ -86,8 +78,8 @@ fn main() {
             .ok()
             .map(|time| (time - baseline_gpu.unwrap_or(0.0)).max(0.0));
         measured.push(Measured {
-            naga_expressions: validator::cost::naga_expressions(&module, "row_eval"),
-            spirv_instructions: validator::cost::spirv_instructions(&spirv)
+            naga_expressions: gbuffer_validator::cost::naga_expressions(&module, "row_eval"),
+            spirv_instructions: gbuffer_validator::cost::spirv_instructions(&spirv)
                 .saturating_sub(baseline_instructions),
             gpu_ns_per_eval: gpu_time,
             cpu_ns_per_eval: timing::cpu_ns_per_eval(&row.cpu),
@@ -97,8 +89,7 @@ fn main() {
     print_table(&rows, &measured, &adapter);
     let furnace = white_furnace();
     print_furnace(&furnace);
-    let plots =
-        write_plots(&folder, &rows).unwrap_or_else(|error| panic!("writing plots: {error}"));
+    let plots = write_plots(folder, &rows).map_err(|error| format!("writing plots: {error}"))?;
     let mut json = json_report(&rows, &measured, &adapter);
     json["white_furnace"] = serde_json::json!(furnace
         .iter()
@@ -114,12 +105,11 @@ fn main() {
         ("report.md", markdown),
     ] {
         let path = folder.join(name);
-        if let Err(error) = std::fs::write(&path, contents) {
-            eprintln!("tradeoff: cannot write {}: {error}", path.display());
-            std::process::exit(1);
-        }
+        std::fs::write(&path, contents)
+            .map_err(|error| format!("cannot write {}: {error}", path.display()))?;
     }
     eprintln!("wrote {}", folder.display());
+    Ok(())
 }
 
 fn format_time(time: Option<f64>) -> String {
@@ -281,7 +271,7 @@ fn markdown_report(
         "# Speed and accuracy of every approximation and encoding\n"
     );
     let _ = writeln!(out, "Generated by `cargo run --release --bin tradeoff` on **{adapter}**. Errors are measured against the f64 references");
-    let _ = writeln!(out, "of `shaderlib::shading::reference` over each row's domain; costs are naga IR expressions reachable from the row's");
+    let _ = writeln!(out, "of `gbuffer::shading::reference` over each row's domain; costs are naga IR expressions reachable from the row's");
     let _ = writeln!(out, "WGSL and the SPIR-V instructions it adds to a compute shader; GPU time is per evaluation in a dependent chain of 2^20");
     let _ = writeln!(out, "evaluations (median of {} runs, less the harness's own time); CPU time is the f32 mirror's.\n", timing::GPU_RUNS);
     let mut family = "";
@@ -337,11 +327,11 @@ fn white_furnace() -> Vec<FurnaceEnergy> {
         .into_iter()
         .map(|roughness| FurnaceEnergy {
             roughness,
-            metal_head_on: tests::furnace::accurate(roughness, 0.0, 1.0, 1.0),
-            metal_grazing: tests::furnace::accurate(roughness, 0.0, 1.0, 0.25),
+            metal_head_on: gbuffer_testkit::furnace::accurate(roughness, 0.0, 1.0, 1.0),
+            metal_grazing: gbuffer_testkit::furnace::accurate(roughness, 0.0, 1.0, 0.25),
             dielectric_max: [0.1, 0.5, 1.0]
                 .into_iter()
-                .map(|n_dot_v| tests::furnace::accurate(roughness, 1.0, 0.04, n_dot_v))
+                .map(|n_dot_v| gbuffer_testkit::furnace::accurate(roughness, 1.0, 0.04, n_dot_v))
                 .fold(0.0, f64::max),
         })
         .collect()

@@ -2,9 +2,9 @@
 //! domain its arguments are sampled over, its f32 mirror, its f64 reference, and how close
 //! the adapter must come to the mirror.
 
-use shaderlib::glam::{DVec2, DVec3, DVec4, Vec2, Vec3, Vec4};
-use shaderlib::shading::mirror as m;
-use shaderlib::shading::reference as r;
+use gbuffer::glam::{DVec2, DVec3, DVec4, Vec2, Vec3, Vec4};
+use gbuffer::shading::mirror as m;
+use gbuffer::shading::reference as r;
 
 use crate::values::halton;
 
@@ -1104,7 +1104,7 @@ pub fn grid(case: &Case, target: usize) -> Vec<Vec<u32>> {
 /// A compute shader that evaluates the case at every point of `inputs` (the flattened
 /// arguments' bits) into `outputs`; bindings as [`crate::gpu::Gpu::run_compute`] expects.
 pub fn compute_harness(case: &Case) -> String {
-    let mut wgsl = shaderlib::modules::compose(&[case.module]).expect("the case's module exists");
+    let mut wgsl = gbuffer::modules::compose(&[case.module]).expect("the case's module exists");
     let stride: usize = case
         .arguments
         .iter()

@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use shaderlib::packing::{Layout, ScalarKind};
+use gbuffer::packing::{Layout, ScalarKind};
 
 /// Scalars per texel: the components of all fields.
 pub fn scalars_per_texel(layout: &Layout) -> usize {
@@ -47,7 +47,7 @@ pub fn expected_scalars(layout: &Layout, words: &[u32]) -> Vec<u32> {
 }
 
 /// The WGSL expression that builds field `field` from scalars `inputs[base + first..]`.
-fn field_from_scalars(ty: &shaderlib::packing::FieldType, first: usize) -> String {
+fn field_from_scalars(ty: &gbuffer::packing::FieldType, first: usize) -> String {
     let components: Vec<String> = (0..ty.components)
         .map(|component| {
             let load = format!("harness_inputs[base + {}u]", first + component);

@@ -2,7 +2,7 @@
 //! values, and the comparison of what a driver produced with the Rust mirror. The wgpu,
 //! GLES and Vulkan tests share them, so every path is held to the same contract.
 
-use shaderlib::packing::{ChannelEncoding, Format, Layout, ScalarKind};
+use gbuffer::packing::{ChannelEncoding, Format, Layout, ScalarKind};
 
 use crate::harness::{expected_scalars, expected_words, scalars_per_texel};
 use crate::values::{float_edges, sint_edges, uint_edges, Values};

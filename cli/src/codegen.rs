@@ -1,11 +1,10 @@
-//! `codegen`: layout files to shader includes, Rust mirrors and reports.
+//! `gbuffer codegen`: layout files to shader includes, Rust mirrors and reports.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::Parser;
-use codegen::layout_file::{read_layout_file, LayoutFileError};
-use codegen::output::{generate, write_if_changed, Output, WriteOutcome};
+use gbuffer_codegen::layout_file::{read_layout_file, LayoutFileError};
+use gbuffer_codegen::output::{generate, write_if_changed, Output, WriteOutcome};
 
 /// Turns G-buffer layout files (TOML) into shader includes: WGSL, GLSL ES pixel local storage
 /// blocks, framebuffer-fetch and Vulkan subpass-input includes, Rust mirrors and bit reports.
@@ -15,9 +14,8 @@ use codegen::output::{generate, write_if_changed, Output, WriteOutcome};
 ///
 /// Exit status: 0 on success, 1 when a layout is invalid (or an output cannot be written),
 /// 2 on a usage error (bad arguments, an unreadable layout file).
-#[derive(Parser, Debug)]
-#[command(name = "codegen", version, about, long_about)]
-struct Arguments {
+#[derive(clap::Args, Debug)]
+pub struct Arguments {
     /// Layout files to generate from.
     #[arg(required = true, value_name = "LAYOUT.toml")]
     layouts: Vec<PathBuf>,
@@ -71,8 +69,7 @@ impl Arguments {
 const INVALID_LAYOUT: u8 = 1;
 const USAGE: u8 = 2;
 
-fn main() -> ExitCode {
-    let arguments = Arguments::parse();
+pub fn run(arguments: Arguments) -> ExitCode {
     let outputs = arguments.outputs();
     // Read and check every layout first, so that all problems are reported together and
     // nothing is written from a set of layouts that has an invalid one.
@@ -82,7 +79,7 @@ fn main() -> ExitCode {
         match read_layout_file(path) {
             Ok(layout) => layouts.push(layout),
             Err(error @ LayoutFileError::Io { .. }) => {
-                eprintln!("codegen: {error}");
+                eprintln!("gbuffer codegen: {error}");
                 status = Some(USAGE);
             }
             Err(error) => {
@@ -99,7 +96,7 @@ fn main() -> ExitCode {
         let files = match generate(layout, file.conversions, &outputs) {
             Ok(files) => files,
             Err(error) => {
-                eprintln!("codegen: {}: {error}", layout.name);
+                eprintln!("gbuffer codegen: {}: {error}", layout.name);
                 return ExitCode::from(INVALID_LAYOUT);
             }
         };
@@ -116,7 +113,7 @@ fn main() -> ExitCode {
                 }
                 Ok(_) => {}
                 Err(error) => {
-                    eprintln!("codegen: {}: cannot write: {error}", path.display());
+                    eprintln!("gbuffer codegen: {}: cannot write: {error}", path.display());
                     return ExitCode::from(INVALID_LAYOUT);
                 }
             }

@@ -1,9 +1,9 @@
-//! `solve`: scene descriptions to layouts.
+//! `gbuffer solve`: scene descriptions to layouts.
 //!
 //! Prints each scene's solved layout with the encoding and predicted error of every stored
 //! quantity. With `--out`, writes what a hand-written layout gets from `codegen` (WGSL, GLSL
 //! ES includes, Rust mirror, bit report) plus `<name>.scene.wgsl` (the values struct, encode
-//! and decode, with the shaderlib modules they call) and `<name>.lighting.wgsl` (the
+//! and decode, with the shading library modules they call) and `<name>.lighting.wgsl` (the
 //! specialised lighting function).
 //!
 //! Exit status: 0 on success, 1 when a scene cannot be solved or an output cannot be written,
@@ -12,19 +12,22 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::Parser;
-use codegen::emit::wgsl::Conversions;
-use codegen::output::{generate, write_if_changed, Output};
-use scenes::file::{read_and_solve, SceneFileError};
-use scenes::lighting::{lighting_wgsl, Forms};
+use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_codegen::output::{generate, write_if_changed, Output};
+use gbuffer_scenes::file::{read_and_solve, SceneFileError};
+use gbuffer_scenes::lighting::{lighting_wgsl, Forms};
 
-#[derive(Parser, Debug)]
-#[command(
-    name = "solve",
-    version,
-    about = "Scene descriptions (TOML) to the smallest G-buffer layout that meets their precision, and a lighting shader with only the terms they use."
-)]
-struct Arguments {
+/// Solves scene descriptions (TOML): the smallest G-buffer layout that meets their precision,
+/// and a lighting shader with only the terms they use.
+///
+/// Prints each scene's layout with the encoding and predicted error of every stored quantity.
+/// With `--out`, writes what `gbuffer codegen` writes for a layout file, plus
+/// `<name>.scene.wgsl` and `<name>.lighting.wgsl`.
+///
+/// Exit status: 0 on success, 1 when a scene cannot be solved or an output cannot be written,
+/// 2 on a usage error (bad arguments, an unreadable file).
+#[derive(clap::Args, Debug)]
+pub struct Arguments {
     /// Scene description files.
     #[arg(required = true, value_name = "SCENE.toml")]
     scenes: Vec<PathBuf>,
@@ -37,8 +40,7 @@ struct Arguments {
     mobile: bool,
 }
 
-fn main() -> ExitCode {
-    let arguments = Arguments::parse();
+pub fn run(arguments: Arguments) -> ExitCode {
     let forms = if arguments.mobile {
         Forms::MOBILE
     } else {
@@ -49,7 +51,7 @@ fn main() -> ExitCode {
         let solution = match read_and_solve(path) {
             Ok(solution) => solution,
             Err(error @ SceneFileError::Io { .. }) => {
-                eprintln!("error: {error}");
+                eprintln!("gbuffer solve: {error}");
                 return ExitCode::from(2);
             }
             Err(error) => {
@@ -66,27 +68,27 @@ fn main() -> ExitCode {
         let mut files = match generate(&solution.layout, Conversions::Exact, &Output::ALL) {
             Ok(files) => files,
             Err(error) => {
-                eprintln!("error: {}: {error}", path.display());
+                eprintln!("gbuffer solve: {}: {error}", path.display());
                 status = ExitCode::FAILURE;
                 continue;
             }
         };
-        files.push(codegen::output::GeneratedFile {
+        files.push(gbuffer_codegen::output::GeneratedFile {
             name: format!("{snake}.scene.wgsl"),
-            contents: scenes::texel::standalone_wgsl(&solution),
+            contents: gbuffer_scenes::texel::standalone_wgsl(&solution),
         });
-        files.push(codegen::output::GeneratedFile {
+        files.push(gbuffer_codegen::output::GeneratedFile {
             name: format!("{snake}.lighting.wgsl"),
             contents: lighting_wgsl(&solution, forms),
         });
         if let Err(error) = std::fs::create_dir_all(folder) {
-            eprintln!("error: cannot create {}: {error}", folder.display());
+            eprintln!("gbuffer solve: cannot create {}: {error}", folder.display());
             return ExitCode::FAILURE;
         }
         for file in files {
             let target = folder.join(&file.name);
             if let Err(error) = write_if_changed(&target, &file.contents) {
-                eprintln!("error: cannot write {}: {error}", target.display());
+                eprintln!("gbuffer solve: cannot write {}: {error}", target.display());
                 status = ExitCode::FAILURE;
             }
         }

@@ -1,9 +1,9 @@
 //! Test values: edge sets with the hard cases of every conversion, and a seeded generator that
 //! mixes them with random bits and values in the formats' ranges.
 
+use gbuffer::packing::ScalarKind;
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
-use shaderlib::packing::ScalarKind;
 
 /// Floats every conversion must get right: zeros, one, values next to unorm rounding
 /// midpoints, f32 and f16 denormals, each float format's largest finite value and what lies

@@ -1,14 +1,13 @@
-//! The `validator` command: user shaders with their includes resolved, problems placed in
+//! `gbuffer validate`: user shaders with their includes resolved, problems placed in
 //! their file with a caret, JSON output, and exit statuses 0, 1 and 2.
 
 use assert_cmd::Command;
+use gbuffer_testkit::{gbuffer_binary, workspace};
 use std::path::{Path, PathBuf};
-use tests::{built_binary, workspace};
 
-fn validator() -> Command {
-    static BINARY: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
-    let mut command = Command::new(BINARY.get_or_init(|| built_binary("validator", "validator")));
-    command.current_dir(workspace());
+fn validate() -> Command {
+    let mut command = Command::new(gbuffer_binary());
+    command.current_dir(workspace()).arg("validate");
     command
 }
 
@@ -20,7 +19,7 @@ fn write(folder: &Path, name: &str, text: &str) -> PathBuf {
 
 #[test]
 fn a_shader_using_the_library_and_a_layout_file_is_valid_everywhere() {
-    let output = validator()
+    let output = validate()
         .arg("validator/examples/shaders/lighting.wgsl")
         .output()
         .unwrap();
@@ -37,7 +36,7 @@ fn a_shader_using_the_library_and_a_layout_file_is_valid_everywhere() {
 
 #[test]
 fn an_invalid_shader_is_reported_at_its_line_with_a_caret() {
-    let output = validator()
+    let output = validate()
         .arg("validator/examples/shaders/broken.wgsl")
         .output()
         .unwrap();
@@ -59,7 +58,7 @@ fn an_invalid_shader_is_reported_at_its_line_with_a_caret() {
 
 #[test]
 fn json_output_lists_every_file() {
-    let output = validator()
+    let output = validate()
         .args([
             "--json",
             "validator/examples/shaders/lighting.wgsl",
@@ -83,9 +82,9 @@ fn include_problems_are_placed_at_the_include_line() {
     let shader = write(
         folder.path(),
         "a.wgsl",
-        "fn f() {}\n#include <shaderlib/brdf>\n",
+        "fn f() {}\n#include <gbuffer/brdf>\n",
     );
-    let output = validator().arg(&shader).output().unwrap();
+    let output = validate().arg(&shader).output().unwrap();
     assert_eq!(output.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(
@@ -104,7 +103,7 @@ fn include_problems_are_placed_at_the_include_line() {
     );
     let shader = write(folder.path(), "b.wgsl", "#include \"bad.toml\"\n");
     let stderr =
-        String::from_utf8_lossy(&validator().arg(&shader).output().unwrap().stderr).to_string();
+        String::from_utf8_lossy(&validate().arg(&shader).output().unwrap().stderr).to_string();
     assert!(
         stderr.contains("bad.toml:5:10: error: unknown pixel local storage format `rgba9`"),
         "{stderr}"
@@ -124,7 +123,7 @@ fn problems_in_an_included_wgsl_file_name_that_file() {
         "main.wgsl",
         "#include \"common.wgsl\"\nfn main_helper() -> f32 { return helper(); }\n",
     );
-    let output = validator().arg(&shader).output().unwrap();
+    let output = validate().arg(&shader).output().unwrap();
     assert_eq!(output.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&output.stderr);
     // naga places a return-type mismatch at the function it is in.
@@ -139,9 +138,9 @@ fn problems_in_an_included_wgsl_file_name_that_file() {
 
 #[test]
 fn usage_errors_exit_2() {
-    assert_eq!(validator().output().unwrap().status.code(), Some(2));
+    assert_eq!(validate().output().unwrap().status.code(), Some(2));
     assert_eq!(
-        validator()
+        validate()
             .arg("no/such/shader.wgsl")
             .output()
             .unwrap()
@@ -150,7 +149,7 @@ fn usage_errors_exit_2() {
         Some(2)
     );
     assert_eq!(
-        validator()
+        validate()
             .args(["--hlsl", "a.wgsl"])
             .output()
             .unwrap()

@@ -1,14 +1,13 @@
-//! `validator`: validates WGSL files, with their includes resolved, through naga, and checks
+//! `gbuffer validate`: validates WGSL files, with their includes resolved, through naga, and checks
 //! that each translates to SPIR-V, MSL, HLSL and GLSL ES.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::Parser;
-use validator::{check_file, FileProblem, Stage};
+use gbuffer_validator::{check_file, FileProblem, Stage};
 
 /// Validates WGSL shaders with naga and checks that they translate to SPIR-V, MSL, HLSL and
-/// GLSL ES. Lines `#include <shaderlib/MODULE>` pull in a module of the shading library with
+/// GLSL ES. Lines `#include <gbuffer/MODULE>` pull in a module of the shading library with
 /// its dependencies; `#include "layout.toml"` the generated WGSL of a layout file;
 /// `#include "other.wgsl"` another shader. Paths are relative to the including file.
 ///
@@ -16,9 +15,8 @@ use validator::{check_file, FileProblem, Stage};
 ///
 /// Exit status: 0 when every shader is valid, 1 when any is invalid, 2 on a usage error
 /// (bad arguments, an unreadable file).
-#[derive(Parser, Debug)]
-#[command(name = "validator", version, about, long_about)]
-struct Arguments {
+#[derive(clap::Args, Debug)]
+pub struct Arguments {
     /// WGSL files to check.
     #[arg(required = true, value_name = "SHADER.wgsl")]
     files: Vec<PathBuf>,
@@ -49,14 +47,13 @@ fn problem_json(problem: &FileProblem) -> serde_json::Value {
     })
 }
 
-fn main() -> ExitCode {
-    let arguments = Arguments::parse();
+pub fn run(arguments: Arguments) -> ExitCode {
     let mut any_invalid = false;
     let mut unreadable = false;
     let mut results = Vec::new();
     for file in &arguments.files {
         if let Err(error) = std::fs::metadata(file) {
-            eprintln!("validator: {}: cannot read: {error}", file.display());
+            eprintln!("gbuffer validate: {}: cannot read: {error}", file.display());
             unreadable = true;
             continue;
         }

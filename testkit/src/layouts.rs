@@ -2,9 +2,9 @@
 //! words that GLSL or naga treat specially (keywords, reserved words, built-in functions,
 //! `main`, names ending in a digit or `_`, `gl_` prefixes, double underscores).
 
+use gbuffer::packing::{Field, FieldType, Format, Layout};
+use gbuffer::GBufferLayout;
 use proptest::prelude::*;
-use shaderlib::packing::{Field, FieldType, Format, Layout};
-use shaderlib::GBufferLayout;
 
 /// Field names that are valid in WGSL but that GLSL reserves or that naga renames.
 pub const AWKWARD_FIELD_NAMES: &[&str] = &[
@@ -127,7 +127,7 @@ pub fn random_layout() -> impl Strategy<Value = Layout> {
 /// The seed layouts and a layout of every format, also split in two for the native includes,
 /// whose twelve attachments are more than GLES and Vulkan guarantee.
 pub fn seeds_and_every_format() -> Vec<Layout> {
-    let mut layouts: Vec<Layout> = shaderlib::seed_layouts::all()
+    let mut layouts: Vec<Layout> = gbuffer::seed_layouts::all()
         .into_iter()
         .map(|(layout, _)| layout)
         .collect();

@@ -2,16 +2,16 @@
 //! the generated WGSL; a layout solved for a scene description, packed the same way; or the
 //! classic unpacked set of native targets a user writes without this library. Each seed
 //! layout brings the WGSL that stores a surface in its fields and reads the shading inputs
-//! back, by the conventions of its source; a solved layout brings its own (`scenes::texel`).
+//! back, by the conventions of its source; a solved layout brings its own (`gbuffer_scenes::texel`).
 
 use std::sync::Arc;
 
-use scenes::{Features, Solution};
-use shaderlib::packing::Layout;
-use shaderlib::seed_layouts::{
+use gbuffer::packing::Layout;
+use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
-use shaderlib::GBufferLayout;
+use gbuffer::GBufferLayout;
+use gbuffer_scenes::{Features, Solution};
 
 /// Light accumulation stored in unorm channels (rgb10_a2) is scaled by 1 / this.
 pub const LIGHT_SCALE: f32 = 4.0;

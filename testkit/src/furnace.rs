@@ -1,7 +1,7 @@
 //! The white furnace: how much light a BRDF reflects under a uniform white environment.
 
-use shaderlib::glam::DVec3;
-use shaderlib::shading::reference as r;
+use gbuffer::glam::DVec3;
+use gbuffer::shading::reference as r;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// The light reflected towards `view` (at n.v) under a uniform white environment: the

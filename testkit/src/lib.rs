@@ -13,8 +13,8 @@ pub mod user_shaders;
 pub mod values;
 pub mod vulkan;
 
-use shaderlib::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
-use shaderlib::GBufferLayout;
+use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
+use gbuffer::GBufferLayout;
 
 /// One field of each of the twelve formats, every channel used.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
@@ -54,29 +54,34 @@ pub fn workspace() -> std::path::PathBuf {
         .to_path_buf()
 }
 
-/// Builds `package`'s binary `binary` in this test's profile and returns its path: another
-/// package's binary, which `cargo test -p tests` does not build (and an old one would test old
-/// code).
-pub fn built_binary(package: &str, binary: &str) -> std::path::PathBuf {
-    let mut build = std::process::Command::new(env!("CARGO"));
-    build
-        .current_dir(workspace())
-        .args(["build", "--quiet", "-p", package, "--bin", binary]);
-    if !cfg!(debug_assertions) {
-        build.arg("--release");
-    }
-    assert!(
-        build.status().expect("running cargo").success(),
-        "building `{binary}` failed"
-    );
-    let profile = if cfg!(debug_assertions) {
-        "debug"
-    } else {
-        "release"
-    };
-    let target = std::env::var_os("CARGO_TARGET_DIR")
-        .map_or_else(|| workspace().join("target"), std::path::PathBuf::from);
-    target.join(profile).join(binary)
+/// The `gbuffer` command, built once per test binary in the test's profile: `cargo test` does
+/// not build another package's binary, and an old one would test old code.
+pub fn gbuffer_binary() -> &'static std::path::Path {
+    static BINARY: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+    BINARY.get_or_init(|| {
+        let mut build = std::process::Command::new(env!("CARGO"));
+        build.current_dir(workspace()).args([
+            "build",
+            "--quiet",
+            "-p",
+            "gbuffer-cli",
+            "--bin",
+            "gbuffer",
+        ]);
+        let profile = if cfg!(debug_assertions) {
+            "debug"
+        } else {
+            build.arg("--release");
+            "release"
+        };
+        assert!(
+            build.status().expect("running cargo").success(),
+            "building `gbuffer` failed"
+        );
+        let target = std::env::var_os("CARGO_TARGET_DIR")
+            .map_or_else(|| workspace().join("target"), std::path::PathBuf::from);
+        target.join(profile).join("gbuffer")
+    })
 }
 
 /// The formats WGSL has pack builtins for, with `conversions = "native"` (and rgb10_a2, which

@@ -5,8 +5,8 @@
 
 use std::fmt::Write as _;
 
-use codegen::emit::glsl::{GlslNames, Include};
-use shaderlib::packing::{Layout, ScalarKind};
+use gbuffer::packing::{Layout, ScalarKind};
+use gbuffer_codegen::emit::glsl::{GlslNames, Include};
 
 /// The preambles a user may write before an include: every `#version` it supports, each
 /// without default precision, with `mediump` defaults, and with `highp` float plus an extra

@@ -1,0 +1,64 @@
+//! `gbuffer solve`: a scene file gives what `gbuffer codegen` gives a layout file plus the
+//! scene's WGSL; a bad scene is an error at its `file:line:col` with exit status 1, a missing
+//! file exit status 2.
+
+use assert_cmd::Command;
+use gbuffer_testkit::{gbuffer_binary, workspace};
+
+fn solve() -> Command {
+    let mut command = Command::new(gbuffer_binary());
+    command.current_dir(workspace()).arg("solve");
+    command
+}
+
+#[test]
+fn writes_every_output_and_places_errors() {
+    let folder = tempfile::tempdir().unwrap();
+    let preset = workspace().join("examples/scenes/mobile-metallic.toml");
+    let output = solve()
+        .arg(&preset)
+        .arg("--out")
+        .arg(folder.path())
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        stdout.contains("MobileMetallicScene: 96 of 128 bits"),
+        "{stdout}"
+    );
+    for name in [
+        "mobile_metallic_scene.wgsl",
+        "mobile_metallic_scene.rs",
+        "mobile_metallic_scene.report.txt",
+        "mobile_metallic_scene.vulkan.glsl",
+        "mobile_metallic_scene.scene.wgsl",
+        "mobile_metallic_scene.lighting.wgsl",
+    ] {
+        assert!(folder.path().join(name).exists(), "{name} was not written");
+    }
+    let scene_wgsl =
+        std::fs::read_to_string(folder.path().join("mobile_metallic_scene.scene.wgsl")).unwrap();
+    gbuffer_validator::validate_wgsl(&scene_wgsl).unwrap();
+
+    let broken = folder.path().join("broken.toml");
+    let text = std::fs::read_to_string(&preset).unwrap();
+    std::fs::write(
+        &broken,
+        text.replace("normal_degrees = 0.5", "normal_degrees = -1"),
+    )
+    .unwrap();
+    let output = solve().arg(&broken).output().unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("broken.toml:15:18: error"), "{stderr}");
+    let missing = solve()
+        .arg(folder.path().join("none.toml"))
+        .output()
+        .unwrap();
+    assert_eq!(missing.status.code(), Some(2));
+}
