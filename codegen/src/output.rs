@@ -1,4 +1,4 @@
-//! What the `codegen` tool and the build-script API write for a layout, and how: every file
+//! What `gbuffer codegen` and the build-script API write for a layout, and how: every file
 //! is written atomically (a temporary file renamed over it), and a file whose contents are
 //! unchanged is left alone, so build timestamps stay put.
 

@@ -68,7 +68,7 @@ pub const TILE_BUDGETS: [(&str, u32); 3] = [
     ("Arm Mali PLS", 128),
 ];
 
-/// A layout's bit report. Its `Display` is the text the examples and the `codegen` tool print.
+/// A layout's bit report. Its `Display` is the text the examples and `gbuffer codegen` print.
 #[derive(Clone, Debug)]
 pub struct Report {
     pub layout: Layout,

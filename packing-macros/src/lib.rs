@@ -4,7 +4,7 @@
 //! 1. [`parse`]: read the struct and its `#[gbuffer]` / `#[pls]` attributes into a
 //!    [`gbuffer_codegen::Layout`], remembering the span of everything a message may point at;
 //! 2. check: [`gbuffer_codegen::Layout::check`] judges the layout (budget, types, names), the same
-//!    check the `codegen` tool runs on layout files;
+//!    check `gbuffer codegen` runs on layout files;
 //! 3. expand: [`gbuffer_codegen::emit`] writes the WGSL and the Rust mirror.
 //!
 //! Every problem becomes a `syn::Error` at its span, and all of them are reported together.

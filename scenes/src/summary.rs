@@ -1,5 +1,5 @@
 //! A solution in words: the layout's words and each quantity's encoding, predicted error and
-//! allowance, as the `solve` command prints it.
+//! allowance, as `gbuffer solve` prints it.
 
 use std::fmt;
 

@@ -1,7 +1,7 @@
 //! The Rust mirror emitter: the `GBufferLayout` impl that packs and unpacks a layout on the
 //! CPU with the bit-exact conversions of [`crate::convert`].
 //!
-//! The derive expands to these tokens, and the `codegen` tool prints them as source for crates
+//! The derive expands to these tokens, and `gbuffer codegen` prints them as source for crates
 //! that do not use the proc-macro. Every path is absolute (`::gbuffer::...`, or the path the
 //! user gives with `#[gbuffer(crate = "...")]` for a renamed or re-exported crate;
 //! `::core::primitive::f32`) so the code compiles under `#![no_implicit_prelude]` and beside
