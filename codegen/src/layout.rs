@@ -149,9 +149,37 @@ impl Layout {
         self.fields.len()
     }
 
-    /// Number of `Rgba32Uint` render targets (128 bits each) the words need.
+    /// Number of packed render targets the words need: one per four words.
     pub fn targets(&self) -> usize {
         self.words().div_ceil(4)
+    }
+
+    /// The WebGPU formats of the packed render targets: `rgba32uint` for every four words, the
+    /// last as narrow as the words it holds (`r32uint` for one, `rg32uint` for two; three take
+    /// `rgba32uint`, as there is no three-channel one).
+    pub fn packed_target_formats(&self) -> Vec<&'static str> {
+        let words = self.words();
+        let mut formats = vec!["rgba32uint"; words / 4];
+        match words % 4 {
+            0 => {}
+            1 => formats.push("r32uint"),
+            2 => formats.push("rg32uint"),
+            _ => formats.push("rgba32uint"),
+        }
+        formats
+    }
+
+    /// Bytes per sample of the packed render targets, as WebGPU counts them against
+    /// `maxColorAttachmentBytesPerSample`: 4 per 32-bit channel.
+    pub fn packed_target_bytes(&self) -> u32 {
+        self.packed_target_formats()
+            .iter()
+            .map(|format| match *format {
+                "r32uint" => 4,
+                "rg32uint" => 8,
+                _ => 16,
+            })
+            .sum()
     }
 
     /// The name in snake_case, used to name the generated WGSL functions.

@@ -1,5 +1,5 @@
 //! The bit report of a layout, and what the same fields would cost as separate WebGPU render
-//! targets: users choose between one packed `Rgba32Uint` target per 128 bits and several
+//! targets: users choose between packed `Rgba32Uint` targets (one per 128 bits) and several
 //! native-format targets, and WebGPU limits the bytes a sample may carry across all targets.
 
 use std::fmt;
@@ -91,9 +91,9 @@ impl Report {
         )
     }
 
-    /// Bytes per sample of the packed form: one `Rgba32Uint` (16 bytes) per 128 bits.
+    /// Bytes per sample of the packed form ([`Layout::packed_target_bytes`]).
     pub fn packed_targets_bytes(&self) -> u32 {
-        16 * self.layout.targets() as u32
+        self.layout.packed_target_bytes()
     }
 }
 
@@ -202,8 +202,8 @@ impl fmt::Display for Report {
         };
         writeln!(
             out,
-            "  packed: {} x rgba32uint = {packed} bytes per sample: {verdict} the default limit",
-            layout.targets()
+            "  packed: {} = {packed} bytes per sample: {verdict} the default limit",
+            layout.packed_target_formats().join(" + ")
         )
     }
 }

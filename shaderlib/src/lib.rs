@@ -46,6 +46,15 @@ pub mod shading;
 
 pub use gbuffer_macros::GBufferLayout;
 pub use glam;
+#[cfg(feature = "wgpu")]
+pub use targets::{GBufferTargets, GBufferTextures, LimitError};
+/// The wgpu this crate's helpers are written against (feature `wgpu`): use it, and versions
+/// never clash.
+#[cfg(feature = "wgpu")]
+pub use wgpu;
+
+#[cfg(feature = "wgpu")]
+pub mod targets;
 
 /// The layout model and the bit-exact conversions that derived code calls.
 pub mod packing {

@@ -46,6 +46,46 @@ pub fn expected_scalars(layout: &Layout, words: &[u32]) -> Vec<u32> {
     scalars
 }
 
+/// WGSL statements that declare `var texel: <Name>` and fill it from the scalar bits
+/// `harness_inputs[base..]` (a `base: u32` in scope).
+pub fn texel_from_inputs(layout: &Layout) -> String {
+    let mut out = format!("    var texel: {};\n", layout.name);
+    let mut first = 0;
+    for field in &layout.fields {
+        let _ = writeln!(
+            out,
+            "    texel.{} = {};",
+            field.name,
+            field_from_scalars(&field.ty, first)
+        );
+        first += field.ty.components;
+    }
+    out
+}
+
+/// WGSL statements that write the scalars of the texel `texel` as bits into
+/// `output[base + slot]`, in slot order.
+pub fn scalars_to_output(layout: &Layout, texel: &str, output: &str, base: &str) -> String {
+    let mut out = String::new();
+    let mut slot = 0;
+    for field in &layout.fields {
+        for component in 0..field.ty.components {
+            let access = if field.ty.components == 1 {
+                String::new()
+            } else {
+                format!(".{}", &"xyzw"[component..=component])
+            };
+            let _ = writeln!(
+                out,
+                "    {output}[{base} + {slot}u] = bitcast<u32>({texel}.{}{access});",
+                field.name
+            );
+            slot += 1;
+        }
+    }
+    out
+}
+
 /// The WGSL expression that builds field `field` from scalars `inputs[base + first..]`.
 fn field_from_scalars(ty: &gbuffer::packing::FieldType, first: usize) -> String {
     let components: Vec<String> = (0..ty.components)
@@ -78,17 +118,7 @@ pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
     out.push_str("    let index = id.x;\n");
     out.push_str("    if index >= harness_count.x {\n        return;\n    }\n");
     let _ = writeln!(out, "    let base = index * {scalars}u;");
-    let _ = writeln!(out, "    var texel: {};", layout.name);
-    let mut first = 0;
-    for field in &layout.fields {
-        let _ = writeln!(
-            out,
-            "    texel.{} = {};",
-            field.name,
-            field_from_scalars(&field.ty, first)
-        );
-        first += field.ty.components;
-    }
+    out.push_str(&texel_from_inputs(layout));
     let _ = writeln!(out, "    let words = pack_{prefix}(texel);");
     for word in 0..words {
         let _ = writeln!(
@@ -97,22 +127,12 @@ pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
         );
     }
     let _ = writeln!(out, "    let back = unpack_{prefix}(words);");
-    let mut slot = 0;
-    for field in &layout.fields {
-        for component in 0..field.ty.components {
-            let access = if field.ty.components == 1 {
-                String::new()
-            } else {
-                format!(".{}", &"xyzw"[component..=component])
-            };
-            let _ = writeln!(
-                out,
-                "    harness_unpacked[base + {slot}u] = bitcast<u32>(back.{}{access});",
-                field.name
-            );
-            slot += 1;
-        }
-    }
+    out.push_str(&scalars_to_output(
+        layout,
+        "back",
+        "harness_unpacked",
+        "base",
+    ));
     out.push_str("}\n");
     out
 }
