@@ -171,7 +171,7 @@ impl GBuffer {
     /// The render targets of the G-buffer pass.
     pub fn target_formats(&self) -> Vec<wgpu::TextureFormat> {
         match self.layout() {
-            Some(layout) => vec![wgpu::TextureFormat::Rgba32Uint; layout.targets()],
+            Some(layout) => gbuffer::targets::packed_target_formats(layout.words()).to_vec(),
             None => vec![
                 wgpu::TextureFormat::Rgba16Float,
                 wgpu::TextureFormat::Rgba8Unorm,

@@ -830,8 +830,9 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
     let pixel = vec2<i32>(position.xy);
     let direction = camera_ray(position.xy, viewport.xy);
     let targets = {targets};
-    // The G-buffer pass marks sky pixels with all ones in the first target.
-    if all(targets.target0 == vec4<u32>(0xffffffffu)) {{
+    // The G-buffer pass marks sky pixels with all ones in the first word (the first target
+    // may be narrower than four words).
+    if targets.target0.x == 0xffffffffu {{
         return vec4<f32>(sky(direction), 1.0);
     }}
     let values = decode_{snake}(unpack_{snake}_targets(targets));
