@@ -3,10 +3,7 @@
 //! when the layout file changes.
 
 fn main() {
-    if let Err(error) = gbuffer_codegen::Builder::new()
-        .layout("layouts/mobile_metallic.toml")
-        .build()
-    {
+    if let Err(error) = gbuffer::build::generate(["layouts/mobile_metallic.toml"]) {
         eprintln!("{error}");
         std::process::exit(1);
     }

@@ -685,7 +685,7 @@ pub fn lighting_wgsl(options: &Options) -> (String, Vec<u32>) {
             let snake = model.snake_name();
             (
                 format!("{}\n{}\n{bindings}", layout.wgsl(), layout.decode_wgsl()),
-                format!("let targets = {targets};\n    if targets.target0.x == 0xffffffffu {{\n        return vec4<f32>(sky(direction), 1.0);\n    }}\n    let shading = decode_texel(unpack_{snake}_targets(targets));"),
+                format!("let targets = {targets};\n    if targets.first.x == 0xffffffffu {{\n        return vec4<f32>(sky(direction), 1.0);\n    }}\n    let shading = decode_texel(unpack_{snake}_targets(targets));"),
             )
         }
         GBuffer::Classic => (
@@ -832,7 +832,7 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
     let targets = {targets};
     // The G-buffer pass marks sky pixels with all ones in the first word (the first target
     // may be narrower than four words).
-    if targets.target0.x == 0xffffffffu {{
+    if targets.first.x == 0xffffffffu {{
         return vec4<f32>(sky(direction), 1.0);
     }}
     let values = decode_{snake}(unpack_{snake}_targets(targets));

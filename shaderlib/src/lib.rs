@@ -53,6 +53,8 @@ pub use targets::{GBufferTargets, GBufferTextures, LimitError};
 #[cfg(feature = "wgpu")]
 pub use wgpu;
 
+#[cfg(feature = "build")]
+pub mod build;
 #[cfg(feature = "wgpu")]
 pub mod targets;
 
@@ -96,5 +98,15 @@ pub trait GBufferLayout: Sized {
     /// budget; and the WebGPU cost of the same fields as separate render targets.
     fn report() -> packing::Report {
         packing::Report::new(&Self::layout())
+    }
+
+    /// [`Self::WGSL`] as a naga_oil composable module, importable as `gbuffer::<snake>`
+    /// (`#import gbuffer::mobile_metallic::{MobileMetallic, unpack_mobile_metallic}`).
+    fn composable_wgsl() -> String {
+        format!(
+            "#define_import_path gbuffer::{}\n\n{}",
+            Self::layout().snake_name(),
+            Self::WGSL
+        )
     }
 }

@@ -181,7 +181,34 @@ fn write_header(out: &mut String, layout: &Layout, conversions: Conversions) {
     out.push('\n');
 }
 
-/// The fragment-output struct (one `vec4<u32>` per `Rgba32Uint` target) and its converters.
+/// The member of `<Name>Targets` for target `target`: `first`, `second`, ... (names that
+/// end in a digit are renamed by naga's GLSL and WGSL writers, which naga_oil refuses in a
+/// composable module), and `target<t>_words` past the sixteenth.
+pub fn target_member(target: usize) -> String {
+    const ORDINALS: [&str; 16] = [
+        "first",
+        "second",
+        "third",
+        "fourth",
+        "fifth",
+        "sixth",
+        "seventh",
+        "eighth",
+        "ninth",
+        "tenth",
+        "eleventh",
+        "twelfth",
+        "thirteenth",
+        "fourteenth",
+        "fifteenth",
+        "sixteenth",
+    ];
+    ORDINALS
+        .get(target)
+        .map_or_else(|| format!("target{target}_words"), |name| name.to_string())
+}
+
+/// The fragment-output struct (one `vec4<u32>` per target of four words) and its converters.
 fn write_targets(out: &mut String, layout: &Layout) {
     let prefix = layout.snake_name();
     let name = &layout.name;
@@ -197,7 +224,11 @@ fn write_targets(out: &mut String, layout: &Layout) {
     );
     let _ = writeln!(out, "struct {name}Targets {{");
     for target in 0..targets {
-        let _ = writeln!(out, "    @location({target}) target{target}: vec4<u32>,");
+        let _ = writeln!(
+            out,
+            "    @location({target}) {}: vec4<u32>,",
+            target_member(target)
+        );
     }
     out.push_str("}\n\n");
     let word_or_zero = |index: usize| {
@@ -229,7 +260,7 @@ fn write_targets(out: &mut String, layout: &Layout) {
         "fn {prefix}_words_from_targets(t: {name}Targets) -> array<u32, {words}> {{"
     );
     let lanes: Vec<String> = (0..words)
-        .map(|word| format!("t.target{}[{}]", word / 4, word % 4))
+        .map(|word| format!("t.{}[{}]", target_member(word / 4), word % 4))
         .collect();
     let _ = writeln!(
         out,
@@ -255,7 +286,7 @@ fn format_vector_type(format: Format) -> String {
     }
 }
 
-/// `prefix_encode_rgb10_a2(vec4<f32>(v.field, 0.0))`: the field widened with zeros to the
+/// `prefix_encode_rgb10_a2_word(vec4<f32>(v.field, 0.0))`: the field widened with zeros to the
 /// format's channel count, so padding channels encode as zero bits.
 fn encode_call(prefix: &str, field: &Field) -> String {
     let channels = field.format.channels().len();
@@ -271,12 +302,12 @@ fn encode_call(prefix: &str, field: &Field) -> String {
         let zeros = vec![zero; channels - field.ty.components].join(", ");
         format!("{}({value}, {zeros})", format_vector_type(field.format))
     };
-    format!("{prefix}_encode_{}({widened})", field.format.name())
+    format!("{prefix}_encode_{}_word({widened})", field.format.name())
 }
 
 /// Decodes word `word` and narrows it to the field's components.
 fn decode_expression(prefix: &str, field: &Field, word: usize) -> String {
-    let call = format!("{prefix}_decode_{}(w[{word}])", field.format.name());
+    let call = format!("{prefix}_decode_{}_word(w[{word}])", field.format.name());
     if field.ty.components == field.format.channels().len() {
         call
     } else {
@@ -306,9 +337,9 @@ fn write_format_helpers(out: &mut String, layout: &Layout, conversions: Conversi
             );
             let _ = writeln!(
                 out,
-                "fn {prefix}_encode_{name}(c: {vector}) -> u32 {{\n    return {pack}(c);\n}}\n"
+                "fn {prefix}_encode_{name}_word(c: {vector}) -> u32 {{\n    return {pack}(c);\n}}\n"
             );
-            let _ = writeln!(out, "fn {prefix}_decode_{name}(word: u32) -> {vector} {{\n    return {unpack}(word);\n}}\n");
+            let _ = writeln!(out, "fn {prefix}_decode_{name}_word(word: u32) -> {vector} {{\n    return {unpack}(word);\n}}\n");
             continue;
         }
         let vector = format_vector_type(format);
@@ -345,7 +376,7 @@ fn write_format_helpers(out: &mut String, layout: &Layout, conversions: Conversi
             .collect();
         let _ = writeln!(
             out,
-            "fn {prefix}_encode_{}(c: {vector}) -> u32 {{",
+            "fn {prefix}_encode_{}_word(c: {vector}) -> u32 {{",
             format.name()
         );
         let _ = writeln!(out, "    return {};\n}}\n", terms.join("\n        | "));
@@ -356,7 +387,7 @@ fn write_format_helpers(out: &mut String, layout: &Layout, conversions: Conversi
             .collect();
         let _ = writeln!(
             out,
-            "fn {prefix}_decode_{}(word: u32) -> {vector} {{",
+            "fn {prefix}_decode_{}_word(word: u32) -> {vector} {{",
             format.name()
         );
         if decoded.len() == 1 {
@@ -375,11 +406,11 @@ fn write_format_helpers(out: &mut String, layout: &Layout, conversions: Conversi
 fn encode_channel(prefix: &str, channel: Channel, value: &str) -> String {
     let max = max_code(channel.bits);
     match channel.encoding {
-        ChannelEncoding::Unorm => format!("{prefix}_unorm_from_f32({value}, {max}u)"),
+        ChannelEncoding::Unorm => format!("{prefix}_f32_to_unorm({value}, {max}u)"),
         ChannelEncoding::Float32 => format!("bitcast<u32>({value})"),
-        ChannelEncoding::Half => format!("{prefix}_half_from_f32({value})"),
+        ChannelEncoding::Half => format!("{prefix}_f32_to_half({value})"),
         ChannelEncoding::UnsignedFloat { mantissa_bits } => {
-            format!("{prefix}_unsigned_float_from_f32({value}, {mantissa_bits}u)")
+            format!("{prefix}_f32_to_unsigned_float({value}, {mantissa_bits}u)")
         }
         ChannelEncoding::Uint if channel.bits == 32 => value.to_string(),
         ChannelEncoding::Uint => format!("min({value}, {max}u)"),
@@ -463,7 +494,7 @@ const UNORM_FROM_F32: &str = "\
 // Unsigned normalized encode: floor(0.5 + max_code * clamp(value, 0, 1)), exact. The value is
 // significand * 2^-shift; the product with max_code (at most 16 bits) is formed in two 12-bit
 // halves so every step fits a u32. NaN and negatives give 0; 1.0 and above give max_code.
-fn PREFIX_unorm_from_f32(value: f32, max_code: u32) -> u32 {
+fn PREFIX_f32_to_unorm(value: f32, max_code: u32) -> u32 {
     let bits = bitcast<u32>(value);
     if bits > 0x7f800000u {
         return 0u; // NaN, or the sign bit set
@@ -533,7 +564,7 @@ fn PREFIX_f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
 
 const HALF: &str = "\
 // IEEE binary16 from f32, sign kept, saturating at +-65504; NaN gives 0.
-fn PREFIX_half_from_f32(value: f32) -> u32 {
+fn PREFIX_f32_to_half(value: f32) -> u32 {
     let bits = bitcast<u32>(value);
     let magnitude = bits & 0x7fffffffu;
     if magnitude > 0x7f800000u {
@@ -551,7 +582,7 @@ fn PREFIX_f32_from_half(code: u32) -> f32 {
 
 const UNSIGNED_FLOAT: &str = "\
 // The unsigned floats of r11f_g11f_b10f (6 or 5 mantissa bits); negatives and NaN give 0.
-fn PREFIX_unsigned_float_from_f32(value: f32, mantissa_bits: u32) -> u32 {
+fn PREFIX_f32_to_unsigned_float(value: f32, mantissa_bits: u32) -> u32 {
     let bits = bitcast<u32>(value);
     if bits >= 0x80000000u {
         return 0u;

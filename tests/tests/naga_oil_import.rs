@@ -1,0 +1,90 @@
+//! A layout's WGSL composes with naga_oil, as engines built on it (Bevy) write shaders: each
+//! layout is a composable module under `gbuffer::<snake>`, a user shader imports what it
+//! calls, and the composed shader round-trips texels on the adapter as the Rust mirror does.
+
+use gbuffer::seed_layouts::{MobileMetallic, SpecularWorkflow};
+use gbuffer::GBufferLayout;
+use gbuffer_testkit::gpu::Gpu;
+use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescriptor};
+use rand::{Rng, SeedableRng};
+
+/// A compute shader that unpacks words with the imported layout and packs them again.
+const USER_SHADER: &str = "
+#import gbuffer::mobile_metallic::{MobileMetallic, pack_mobile_metallic, unpack_mobile_metallic}
+#import gbuffer::specular_workflow::SpecularWorkflow
+
+@group(0) @binding(0) var<storage, read> inputs: array<u32>;
+@group(0) @binding(1) var<storage, read_write> outputs: array<u32>;
+@group(0) @binding(2) var<uniform> count: vec4<u32>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= count.x {
+        return;
+    }
+    let base = id.x * 4u;
+    let texel: MobileMetallic = unpack_mobile_metallic(
+        array<u32, 4>(inputs[base], inputs[base + 1u], inputs[base + 2u], inputs[base + 3u]));
+    let words = pack_mobile_metallic(texel);
+    for (var word = 0u; word < 4u; word++) {
+        outputs[base + word] = words[word];
+    }
+}
+";
+
+/// The user shader composed with the layouts' modules, as WGSL again.
+fn composed_shader() -> String {
+    let mut composer = Composer::default();
+    for (file_path, module) in [
+        ("mobile_metallic.wgsl", MobileMetallic::composable_wgsl()),
+        (
+            "specular_workflow.wgsl",
+            SpecularWorkflow::composable_wgsl(),
+        ),
+    ] {
+        let added = composer.add_composable_module(ComposableModuleDescriptor {
+            source: &module,
+            file_path,
+            ..Default::default()
+        });
+        if let Err(error) = added {
+            panic!("{file_path}: {}", error.emit_to_string(&composer));
+        }
+    }
+    let module = composer
+        .make_naga_module(NagaModuleDescriptor {
+            source: USER_SHADER,
+            file_path: "user.wgsl",
+            ..Default::default()
+        })
+        .unwrap_or_else(|error| panic!("{}", error.emit_to_string(&composer)));
+    let info = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    )
+    .validate(&module)
+    .expect("the composed module is valid");
+    naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty())
+        .expect("naga writes the composed module")
+}
+
+#[test]
+fn layouts_import_as_naga_oil_modules_and_round_trip_on_the_adapter() {
+    assert!(MobileMetallic::composable_wgsl()
+        .starts_with("#define_import_path gbuffer::mobile_metallic\n"));
+    let shader = composed_shader();
+    let mut random = rand::rngs::SmallRng::seed_from_u64(5);
+    let texels = 4096;
+    let inputs: Vec<u32> = (0..texels * 4).map(|_| random.random()).collect();
+    let gpu = Gpu::new();
+    let outputs = gpu.run_compute(&shader, "main", &inputs, &[inputs.len()], texels as u32);
+    for (index, (words, got)) in inputs
+        .chunks_exact(4)
+        .zip(outputs[0].chunks_exact(4))
+        .enumerate()
+    {
+        let words: [u32; 4] = words.try_into().unwrap();
+        let expected = MobileMetallic::unpack(&words).pack();
+        assert_eq!(got, expected, "texel {index}: words {words:08x?}");
+    }
+}
