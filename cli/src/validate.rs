@@ -44,6 +44,14 @@ fn problem_json(problem: &FileProblem) -> serde_json::Value {
         "column": problem.location.map(|(_, column)| column),
         "stage": stage_name(problem.stage),
         "message": problem.message,
+        "labels": problem.labels.iter().map(|label| serde_json::json!({
+            "origin": label.origin,
+            "line": label.line,
+            "column": label.column,
+            "length": label.length,
+            "text": label.text,
+        })).collect::<Vec<_>>(),
+        "notes": problem.notes,
     })
 }
 

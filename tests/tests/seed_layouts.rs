@@ -52,7 +52,7 @@ fn reports_state_bits_budget_and_target_cost() {
         "{text}"
     );
     assert!(
-        text.contains("packed: 2 x rgba32uint = 32 bytes per sample"),
+        text.contains("packed: rgba32uint + r32uint = 20 bytes per sample"),
         "{text}"
     );
 }

@@ -126,12 +126,22 @@ fn problems_in_an_included_wgsl_file_name_that_file() {
     let output = validate().arg(&shader).output().unwrap();
     assert_eq!(output.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&output.stderr);
-    // naga places a return-type mismatch at the function it is in.
+    // naga places a return-type mismatch at the function it is in, and labels the value.
     assert!(
         stderr.starts_with(&format!(
-            "{}:1:1: error: Function [0] 'helper' is invalid",
+            "{}:1:1: error: Function `helper` is invalid",
             folder.path().join("common.wgsl").display()
         )),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("2 |     return 1u;\n  |            ^^ expression `1u`"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains(
+            "note: The `return` expression `1u` does not match the declared return type `f32`"
+        ),
         "{stderr}"
     );
 }

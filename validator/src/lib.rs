@@ -5,6 +5,7 @@
 //! [`Problem`] that names the stage and, where the source has one, the line and column.
 
 pub mod cost;
+pub mod diagnostic;
 pub mod include;
 
 use std::fmt;
@@ -12,6 +13,8 @@ use std::path::Path;
 
 use naga::back::{glsl, hlsl, msl, spv};
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
+
+use diagnostic::{Handles, Label};
 
 /// A parsed and validated module.
 pub struct Validated {
@@ -58,9 +61,13 @@ pub struct Problem {
     pub stage: Stage,
     /// 1-based line and column in the WGSL source, where known.
     pub location: Option<(u32, u32)>,
-    /// One line: what is wrong.
+    /// One line: what is wrong, with naga's handles named.
     pub message: String,
-    /// naga's full report (labels, notes), where it has one.
+    /// The spans naga points at, with what it says of each (the first is the primary one).
+    pub labels: Vec<Label>,
+    /// What naga adds: the causes of a validation error, the hints of a parse error.
+    pub notes: Vec<String>,
+    /// naga's own report, as it prints it.
     pub detail: String,
 }
 
@@ -72,10 +79,14 @@ impl fmt::Display for Problem {
             Stage::Validate => "validation error".to_string(),
             Stage::Translate(backend) => format!("{} translation error", backend.name()),
         };
-        match self.location {
-            Some((line, column)) => write!(out, "{line}:{column}: {stage}: {}", self.message),
-            None => write!(out, "{stage}: {}", self.message),
+        if let Some((line, column)) = self.location {
+            write!(out, "{line}:{column}: ")?;
         }
+        write!(out, "{stage}: {}", self.message)?;
+        for note in &self.notes {
+            write!(out, ": {note}")?;
+        }
+        Ok(())
     }
 }
 
@@ -89,6 +100,16 @@ pub fn validate_wgsl(source: &str) -> Result<Validated, Problem> {
             .location(source)
             .map(|at| (at.line_number, at.line_position)),
         message: error.message().to_string(),
+        labels: error
+            .labels()
+            .filter_map(|(span, text)| {
+                Some(Label {
+                    span: span.to_range()?,
+                    text: text.to_string(),
+                })
+            })
+            .collect(),
+        notes: error.notes().map(str::to_string).collect(),
         detail: error.emit_to_string(source),
     })?;
     // f16 arithmetic (`enable f16`) and the f16 pack builtins are optional in WebGPU (wgpu's
@@ -99,13 +120,36 @@ pub fn validate_wgsl(source: &str) -> Result<Validated, Problem> {
         | Capabilities::SHADER_FLOAT16_IN_FLOAT32;
     let info = Validator::new(ValidationFlags::all(), capabilities)
         .validate(&module)
-        .map_err(|error| Problem {
-            stage: Stage::Validate,
-            location: error
-                .location(source)
-                .map(|at| (at.line_number, at.line_position)),
-            message: error_chain(error.as_inner()),
-            detail: error.emit_to_string(source),
+        .map_err(|error| {
+            let handles = Handles {
+                module: &module,
+                source,
+                function: diagnostic::function_of(&module, error.as_inner()),
+            };
+            let mut notes = Vec::new();
+            let mut cause = std::error::Error::source(error.as_inner());
+            while let Some(inner) = cause {
+                notes.push(handles.describe(&inner.to_string()));
+                cause = inner.source();
+            }
+            Problem {
+                stage: Stage::Validate,
+                location: error
+                    .location(source)
+                    .map(|at| (at.line_number, at.line_position)),
+                message: handles.describe(&error.as_inner().to_string()),
+                labels: error
+                    .spans()
+                    .filter_map(|(span, text)| {
+                        Some(Label {
+                            span: span.to_range()?,
+                            text: handles.describe(text),
+                        })
+                    })
+                    .collect(),
+                notes,
+                detail: error.emit_to_string(source),
+            }
         })?;
     Ok(Validated { module, info })
 }
@@ -118,6 +162,8 @@ pub fn translate(validated: &Validated, backend: Backend) -> Result<String, Prob
         stage: Stage::Translate(backend),
         location: None,
         message,
+        labels: Vec::new(),
+        notes: Vec::new(),
         detail: String::new(),
     };
     let Validated { module, info } = validated;
@@ -177,18 +223,6 @@ pub fn translate(validated: &Validated, backend: Backend) -> Result<String, Prob
     }
 }
 
-/// An error and its causes, as one line: "outer: inner: innermost".
-fn error_chain(error: &dyn std::error::Error) -> String {
-    let mut message = error.to_string();
-    let mut cause = error.source();
-    while let Some(inner) = cause {
-        message.push_str(": ");
-        message.push_str(&inner.to_string());
-        cause = inner.source();
-    }
-    message
-}
-
 /// A problem in a shader file, placed in the file (or module) it comes from.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FileProblem {
@@ -198,12 +232,28 @@ pub struct FileProblem {
     pub location: Option<(usize, usize)>,
     pub stage: Stage,
     pub message: String,
-    /// The source line, for display.
-    pub source_line: Option<String>,
+    /// naga's labelled spans, each placed in its own file.
+    pub labels: Vec<PlacedLabel>,
+    pub notes: Vec<String>,
+}
+
+/// A labelled span, placed in the file it comes from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PlacedLabel {
+    pub origin: String,
+    /// 1-based line and column of the span's start.
+    pub line: usize,
+    pub column: usize,
+    /// Its length on that line, in characters (at least 1).
+    pub length: usize,
+    /// The line's text.
+    pub source_line: String,
+    pub text: String,
 }
 
 impl fmt::Display for FileProblem {
-    /// `file:line:col: error: message`, the source line and a caret.
+    /// `file:line:col: error: message`, then each label under its source line (with its own
+    /// `--> file:line:col` when it is in another file) and the notes.
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
         let stage = match self.stage {
             Stage::Translate(backend) => format!(" ({} translation)", backend.name()),
@@ -217,14 +267,30 @@ impl fmt::Display for FileProblem {
             )?,
             None => write!(out, "{}: error{stage}: {}", self.origin, self.message)?,
         }
-        if let (Some(text), Some((line, column))) = (&self.source_line, self.location) {
-            let gutter = line.to_string().len();
-            let caret = " ".repeat(column.saturating_sub(1));
+        let gutter = self
+            .labels
+            .iter()
+            .map(|label| label.line.to_string().len())
+            .max()
+            .unwrap_or(1);
+        for label in &self.labels {
+            if label.origin != self.origin {
+                write!(
+                    out,
+                    "\n{:gutter$}--> {}:{}:{}",
+                    "", label.origin, label.line, label.column
+                )?;
+            }
+            let caret = " ".repeat(label.column.saturating_sub(1));
+            let underline = "^".repeat(label.length.max(1));
             write!(
                 out,
-                "\n{:gutter$} |\n{line} | {text}\n{:gutter$} | {caret}^",
-                "", ""
+                "\n{:gutter$} |\n{:>gutter$} | {}\n{:gutter$} | {caret}{underline} {}",
+                "", label.line, label.source_line, "", label.text
             )?;
+        }
+        for note in &self.notes {
+            write!(out, "\n{:gutter$} = note: {note}", "")?;
         }
         Ok(())
     }
@@ -241,29 +307,43 @@ pub fn check_file(path: &Path, portability: bool) -> Vec<FileProblem> {
                 location: (error.line > 0).then_some((error.line, 1)),
                 stage: Stage::Include,
                 message: error.message,
-                source_line: None,
+                labels: Vec::new(),
+                notes: Vec::new(),
             }]
         }
     };
     // Places a problem of the combined source in the file it came from.
     let place = |problem: Problem| {
-        let combined = problem
-            .location
-            .map(|(line, column)| (line as usize, column as usize));
-        let origin = combined.and_then(|(line, _)| resolved.origin_of(line));
+        let labels: Vec<PlacedLabel> = problem
+            .labels
+            .iter()
+            .filter_map(|label| place_label(&resolved, label))
+            .collect();
+        let (origin, location) = match labels.first() {
+            Some(label) => (label.origin.clone(), Some((label.line, label.column))),
+            None => {
+                let combined = problem
+                    .location
+                    .map(|(line, column)| (line as usize, column as usize));
+                let origin = combined.and_then(|(line, _)| resolved.origin_of(line));
+                (
+                    origin.map_or_else(
+                        || path.display().to_string(),
+                        |(origin, _)| origin.to_string(),
+                    ),
+                    origin
+                        .zip(combined)
+                        .map(|((_, line), (_, column))| (line, column)),
+                )
+            }
+        };
         FileProblem {
-            origin: origin.map_or_else(
-                || path.display().to_string(),
-                |(origin, _)| origin.to_string(),
-            ),
-            location: origin
-                .zip(combined)
-                .map(|((_, line), (_, column))| (line, column)),
+            origin,
+            location,
             stage: problem.stage,
             message: problem.message,
-            source_line: combined
-                .and_then(|(line, _)| resolved.source.lines().nth(line - 1))
-                .map(str::to_string),
+            labels,
+            notes: problem.notes,
         }
     };
     let validated = match validate_wgsl(&resolved.source) {
@@ -278,6 +358,32 @@ pub fn check_file(path: &Path, portability: bool) -> Vec<FileProblem> {
         .filter_map(|backend| translate(&validated, backend).err())
         .map(place)
         .collect()
+}
+
+/// A label of the combined source, placed in its file: line, column and length there.
+fn place_label(resolved: &include::Resolved, label: &Label) -> Option<PlacedLabel> {
+    let source = &resolved.source;
+    let before = source.get(..label.span.start)?;
+    let line = before.matches('\n').count() + 1;
+    let line_start = before.rfind('\n').map_or(0, |at| at + 1);
+    let source_line = source[line_start..].lines().next().unwrap_or("");
+    let column = before[line_start..].chars().count() + 1;
+    let on_line = source
+        .get(label.span.clone())?
+        .lines()
+        .next()
+        .unwrap_or("")
+        .chars()
+        .count();
+    let (origin, origin_line) = resolved.origin_of(line)?;
+    Some(PlacedLabel {
+        origin: origin.to_string(),
+        line: origin_line,
+        column,
+        length: on_line,
+        source_line: source_line.to_string(),
+        text: label.text.clone(),
+    })
 }
 
 /// Validates `source` and translates it to every backend; the first problem, if any.
