@@ -44,7 +44,9 @@ pub enum BuildError {
     NoOutDir,
     /// Writing an output failed.
     Write {
+        /// The file that could not be written.
         path: PathBuf,
+        /// Why.
         error: std::io::Error,
     },
     /// naga failed to translate the WGSL (a bug in this crate).

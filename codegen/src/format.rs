@@ -37,9 +37,11 @@ pub enum ChannelEncoding {
     Float32,
     /// IEEE-754 binary16, sign kept.
     Half,
-    /// An unsigned float with a 5-bit exponent (bias 15) and `mantissa_bits` of mantissa,
-    /// as in `r11f_g11f_b10f`.
-    UnsignedFloat { mantissa_bits: u32 },
+    /// An unsigned float with a 5-bit exponent (bias 15), as in `r11f_g11f_b10f`.
+    UnsignedFloat {
+        /// Bits of mantissa: 6 for the 11-bit channels, 5 for the 10-bit one.
+        mantissa_bits: u32,
+    },
     /// Unsigned integer.
     Uint,
     /// Two's-complement signed integer.
@@ -55,6 +57,7 @@ pub struct Channel {
     pub offset: u32,
     /// Its width in bits.
     pub bits: u32,
+    /// How its bits encode its value.
     pub encoding: ChannelEncoding,
 }
 
@@ -81,17 +84,29 @@ impl Channel {
 /// A pixel local storage format. Every format is exactly one 32-bit word.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Format {
+    /// Three unsigned floats: 11, 11 and 10 bits (6, 6 and 5 of mantissa).
     R11fG11fB10f,
+    /// One IEEE-754 binary32 float.
     R32f,
+    /// Two IEEE-754 binary16 floats.
     Rg16f,
+    /// Three 10-bit unorm channels and a 2-bit one.
     Rgb10A2,
+    /// Four 8-bit unorm channels.
     Rgba8,
+    /// Two 16-bit unorm channels.
     Rg16,
+    /// Four 8-bit signed integers.
     Rgba8i,
+    /// Two 16-bit signed integers.
     Rg16i,
+    /// Three 10-bit unsigned integers and a 2-bit one.
     Rgb10A2ui,
+    /// Four 8-bit unsigned integers.
     Rgba8ui,
+    /// Two 16-bit unsigned integers.
     Rg16ui,
+    /// One 32-bit unsigned integer.
     R32ui,
 }
 

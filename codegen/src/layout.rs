@@ -10,6 +10,7 @@ use crate::naming;
 /// The type of a field: a scalar or a vector of 2 to 4 components.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct FieldType {
+    /// Float, unsigned or signed integer.
     pub scalar: ScalarKind,
     /// 1 to 4.
     pub components: usize,
@@ -34,6 +35,7 @@ impl FieldType {
         all
     };
 
+    /// A type of `components` scalars of kind `scalar` (1 to 4).
     pub fn new(scalar: ScalarKind, components: usize) -> Self {
         FieldType { scalar, components }
     }
@@ -70,8 +72,11 @@ impl FieldType {
 /// One field of a layout: a name, the format of its word and the type it holds.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Field {
+    /// The field's name, as in the struct.
     pub name: String,
+    /// The pixel local storage format of its word.
     pub format: Format,
+    /// The type it holds.
     pub ty: FieldType,
 }
 
@@ -89,6 +94,7 @@ pub struct Layout {
     pub name: String,
     /// Bits of tile memory available per pixel: a positive multiple of 32.
     pub budget: u32,
+    /// The fields, one word each, in word order.
     pub fields: Vec<Field>,
 }
 
@@ -113,7 +119,9 @@ pub enum Subject {
 /// One problem with a layout.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
+    /// What the problem is about: the name, the budget or a field.
     pub subject: Subject,
+    /// What is wrong, in one sentence.
     pub message: String,
 }
 

@@ -53,6 +53,7 @@ struct FieldEntry {
 /// A layout file's contents: the layout, and how its WGSL converts values.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct LayoutFile {
+    /// The layout the file declares.
     pub layout: Layout,
     /// `conversions = "exact"` (the default) or `"native"`, as in `#[gbuffer(...)]`.
     pub conversions: Conversions,
@@ -61,11 +62,13 @@ pub struct LayoutFile {
 /// A problem in a layout file, at a position in it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FileDiagnostic {
+    /// The layout file.
     pub path: PathBuf,
     /// 1-based.
     pub line: usize,
     /// 1-based, in characters.
     pub column: usize,
+    /// What is wrong.
     pub message: String,
     /// The text of the line, for display.
     pub source_line: String,
@@ -143,7 +146,9 @@ impl fmt::Display for FileDiagnostic {
 pub enum LayoutFileError {
     /// The file could not be read at all.
     Io {
+        /// The file that could not be read.
         path: PathBuf,
+        /// Why.
         error: std::io::Error,
     },
     /// The file was read; these are its problems, in file order.

@@ -4,14 +4,16 @@
 //! `codegen` command both build a [`Layout`], [`Layout::check`] it, and hand it to the
 //! emitters. The pipeline, front to back:
 //!
-//! - [`format`]: the twelve pixel local storage formats and their channels;
+//! - [`format`](mod@format): the twelve pixel local storage formats and their channels;
 //! - [`layout`]: fields, types, the bit budget and its checks;
 //! - [`convert`]: the bit-exact conversions (the CPU side of the generated WGSL);
 //! - [`emit`]: WGSL and Rust mirror emitters;
 //! - [`report`]: the bit report and the WebGPU render-target cost;
 //! - with the `tools` feature (on by default): `layout_file` (layouts in TOML), `output` (the
 //!   files the tool writes, atomically and only when changed), the GLSL and
-//!   Rust-source emitters, `Builder` for build scripts, and the `codegen` command.
+//!   Rust-source emitters, `Builder` for build scripts (the `gbuffer codegen` command runs them).
+
+#![warn(missing_docs)]
 
 #[cfg(feature = "tools")]
 mod builder;

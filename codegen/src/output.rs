@@ -31,6 +31,7 @@ pub enum Output {
 }
 
 impl Output {
+    /// Every output, in the order the codegen writes them.
     pub const ALL: [Output; 6] = [
         Output::Wgsl,
         Output::GlslPixelLocalStorage,
@@ -53,7 +54,9 @@ impl Output {
 /// A file to write: its name in the output folder and its contents.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct GeneratedFile {
+    /// The file's name, e.g. `mobile_metallic.wgsl`.
     pub name: String,
+    /// Its text.
     pub contents: String,
 }
 
@@ -113,7 +116,9 @@ pub fn generate(
 /// Whether [`write_if_changed`] wrote the file.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum WriteOutcome {
+    /// The file was new or changed, and was written.
     Written,
+    /// The file already held these contents and was left alone.
     Unchanged,
 }
 

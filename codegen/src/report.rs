@@ -71,10 +71,12 @@ pub const TILE_BUDGETS: [(&str, u32); 3] = [
 /// A layout's bit report. Its `Display` is the text the examples and `gbuffer codegen` print.
 #[derive(Clone, Debug)]
 pub struct Report {
+    /// The layout reported on.
     pub layout: Layout,
 }
 
 impl Report {
+    /// The report of `layout`.
     pub fn new(layout: &Layout) -> Self {
         Report {
             layout: layout.clone(),

@@ -1,7 +1,7 @@
 //! `#[derive(GBufferLayout)]`, used through its re-export `gbuffer::GBufferLayout`.
 //!
 //! A derive in three stages, as serde_derive and thiserror do it:
-//! 1. [`parse`]: read the struct and its `#[gbuffer]` / `#[pls]` attributes into a
+//! 1. `parse`: read the struct and its `#[gbuffer]` / `#[pls]` attributes into a
 //!    [`gbuffer_codegen::Layout`], remembering the span of everything a message may point at;
 //! 2. check: [`gbuffer_codegen::Layout::check`] judges the layout (budget, types, names), the same
 //!    check `gbuffer codegen` runs on layout files;
@@ -9,6 +9,8 @@
 //!
 //! Every problem becomes a `syn::Error` at its span, and all of them are reported together.
 //! The derive never panics.
+
+#![warn(missing_docs)]
 
 mod parse;
 

@@ -10,7 +10,7 @@
 //!   the requirement that cannot be met;
 //! - [`texel`]: the WGSL that stores the scene's values in that layout and reads them back;
 //! - [`lighting`]: a lighting shader with only the terms the scene uses;
-//! - [`file`]: scene descriptions in TOML, with file:line:column errors.
+//! - [`file`](mod@file): scene descriptions in TOML, with file:line:column errors.
 
 pub mod description;
 pub mod encoding;

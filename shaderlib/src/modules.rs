@@ -22,7 +22,9 @@ use std::fmt;
 /// One WGSL module of the library.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Module {
+    /// The module's name, as `#include <gbuffer/NAME>` names it.
     pub name: &'static str,
+    /// Its WGSL.
     pub source: &'static str,
 }
 
@@ -99,7 +101,9 @@ impl Module {
 pub enum ComposeError {
     /// No module has this name; `required_by` is the module whose header named it, if any.
     UnknownModule {
+        /// The module asked for.
         name: String,
+        /// The module that requires it, when it is a dependency.
         required_by: Option<&'static str>,
     },
     /// The modules' requirements form a cycle, listed in order.

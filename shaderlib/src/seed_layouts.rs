@@ -14,14 +14,19 @@ use crate::GBufferLayout;
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
 #[gbuffer(budget = 256)]
 pub struct SpecularWorkflow {
+    /// HDR light accumulation, scaled into 0..1.
     #[pls(rgb10a2)]
     pub light_accumulation: Vec3,
+    /// Depth.
     #[pls(r32f)]
     pub depth: f32,
+    /// The normal mapped to 0..1 (xyz) and roughness (w).
     #[pls(rgba8)]
     pub normals_roughness: Vec4,
+    /// Base colour, in gamma space.
     #[pls(rgba8)]
     pub base_colour: Vec3,
+    /// Specular colour, in gamma space.
     #[pls(rgba8)]
     pub specular_colour: Vec3,
 }
@@ -30,12 +35,16 @@ pub struct SpecularWorkflow {
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
 #[gbuffer(budget = 128)]
 pub struct MobileMetallic {
+    /// HDR light accumulation, scaled into 0..1.
     #[pls(rgb10a2)]
     pub light_accumulation: Vec3,
+    /// Depth.
     #[pls(r32f)]
     pub depth: f32,
+    /// The normal mapped to 0..1 (xyz) and roughness (w).
     #[pls(rgba8)]
     pub normals_roughness: Vec4,
+    /// Albedo, in gamma space (rgb), and metallic (w).
     #[pls(rgba8)]
     pub albedo_metallic: Vec4,
 }
@@ -45,20 +54,28 @@ pub struct MobileMetallic {
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
 #[gbuffer(budget = 256)]
 pub struct FutureMetallic {
+    /// World position, x.
     #[pls(r32f)]
     pub position_x: f32,
+    /// World position, y.
     #[pls(r32f)]
     pub position_y: f32,
+    /// World position, z.
     #[pls(r32f)]
     pub position_z: f32,
+    /// Light accumulation, red and green.
     #[pls(rg16f)]
     pub light_accumulation_rg: Vec2,
+    /// Light accumulation, blue, and the normal's x.
     #[pls(rg16f)]
     pub light_accumulation_b_normal_x: Vec2,
+    /// The normal's y and z.
     #[pls(rg16f)]
     pub normal_yz: Vec2,
+    /// Roughness and metallic.
     #[pls(rg16f)]
     pub roughness_metallic: Vec2,
+    /// Albedo (dielectrics) or reflectance (metals), linear.
     #[pls(r11f_g11f_b10f)]
     pub albedo_or_reflectance: Vec3,
 }
@@ -67,20 +84,28 @@ pub struct FutureMetallic {
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
 #[gbuffer(budget = 256)]
 pub struct FutureSpecular {
+    /// World position, x.
     #[pls(r32f)]
     pub position_x: f32,
+    /// World position, y.
     #[pls(r32f)]
     pub position_y: f32,
+    /// World position, z.
     #[pls(r32f)]
     pub position_z: f32,
+    /// Light accumulation, red and green.
     #[pls(rg16f)]
     pub light_accumulation_rg: Vec2,
+    /// Light accumulation, blue, and roughness.
     #[pls(rg16f)]
     pub light_accumulation_b_roughness: Vec2,
+    /// The normal, mapped to 0..1.
     #[pls(r11f_g11f_b10f)]
     pub normal: Vec3,
+    /// Diffuse albedo, linear.
     #[pls(r11f_g11f_b10f)]
     pub albedo: Vec3,
+    /// Specular reflectance, linear.
     #[pls(r11f_g11f_b10f)]
     pub reflectance: Vec3,
 }
@@ -90,12 +115,16 @@ pub struct FutureSpecular {
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
 #[gbuffer(budget = 128)]
 pub struct ArmTileBlock {
+    /// HDR light accumulation.
     #[pls(r11f_g11f_b10f)]
     pub light: Vec3,
+    /// Albedo in pseudo-gamma (square root of linear).
     #[pls(rgba8)]
     pub albedo: Vec3,
+    /// The normal, mapped to 0..1.
     #[pls(rgb10_a2)]
     pub normal: Vec3,
+    /// Metallic and roughness.
     #[pls(rgba8)]
     pub metallic_roughness: Vec2,
 }

@@ -84,7 +84,9 @@ pub const fn packed_target_formats(words: usize) -> &'static [TextureFormat] {
 /// A layout's render targets: one texture and its view per target format.
 #[derive(Debug)]
 pub struct GBufferTextures {
+    /// One texture per target format.
     pub textures: Vec<Texture>,
+    /// A view of each texture, in the same order.
     pub views: Vec<TextureView>,
 }
 
@@ -96,9 +98,11 @@ pub struct LimitError {
     pub layout: String,
     /// Colour attachments the targets need, and `max_color_attachments`.
     pub attachments: u32,
+    /// `max_color_attachments` of the limits given.
     pub max_attachments: u32,
     /// Bytes per sample the targets need, and `max_color_attachment_bytes_per_sample`.
     pub bytes_per_sample: u32,
+    /// `max_color_attachment_bytes_per_sample` of the limits given.
     pub max_bytes_per_sample: u32,
 }
 

@@ -165,7 +165,7 @@ fn defined_input(value: f32, encoding: ChannelEncoding) -> bool {
 }
 
 /// The words a driver converted itself (native attachments) against the mirror's: within one
-/// code per channel where the input is defined (see [`defined_input`]); GL lets a driver round
+/// code per channel where the input is defined (see `defined_input`); GL lets a driver round
 /// to either neighbour of the exact value and leaves the rest to it.
 pub fn check_native_words(
     what: &str,

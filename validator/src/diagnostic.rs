@@ -12,6 +12,7 @@ use naga::{Handle, Module};
 pub struct Label {
     /// Byte range in the validated source.
     pub span: Range<usize>,
+    /// What naga says of the span, with its handles named.
     pub text: String,
 }
 
@@ -34,8 +35,11 @@ pub fn function_of<'module>(
 /// What the handles in naga's text refer to: the module, the source it came from and the
 /// function whose expressions are meant.
 pub struct Handles<'a> {
+    /// The module the handles index.
     pub module: &'a Module,
+    /// The source the module was parsed from.
     pub source: &'a str,
+    /// The function whose expressions and locals the handles index (none: the module's).
     pub function: Option<&'a naga::Function>,
 }
 

@@ -27,7 +27,9 @@ pub struct Segment {
 /// A resolved shader: one WGSL source and its line map.
 #[derive(Clone, Debug, Default)]
 pub struct Resolved {
+    /// The combined source: every include replaced by the text it names.
     pub source: String,
+    /// Where each run of lines of the combined source comes from.
     pub segments: Vec<Segment>,
 }
 
@@ -69,8 +71,11 @@ impl Resolved {
 /// An include that could not be resolved, at the line of its directive.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct IncludeError {
+    /// The file with the include line (or the file that could not be read).
     pub file: PathBuf,
+    /// The include line's number (0 when there is no line to point at).
     pub line: usize,
+    /// What is wrong.
     pub message: String,
 }
 

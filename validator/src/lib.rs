@@ -4,6 +4,8 @@
 //! The stages mirror naga's own: parse (front), validate, translate (back). Each problem is a
 //! [`Problem`] that names the stage and, where the source has one, the line and column.
 
+#![warn(missing_docs)]
+
 pub mod cost;
 pub mod diagnostic;
 pub mod include;
@@ -18,7 +20,9 @@ use diagnostic::{Handles, Label};
 
 /// A parsed and validated module.
 pub struct Validated {
+    /// The parsed module.
     pub module: naga::Module,
+    /// What naga's validator learned of it (types of expressions, uses).
     pub info: ModuleInfo,
 }
 
@@ -27,24 +31,32 @@ pub struct Validated {
 pub enum Stage {
     /// Resolving `#include` lines.
     Include,
+    /// Parsing the WGSL.
     Parse,
+    /// naga's validation of the parsed module.
     Validate,
+    /// Translating the valid module to a backend's language.
     Translate(Backend),
 }
 
 /// A target language of naga's backends.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Backend {
+    /// SPIR-V, for Vulkan.
     SpirV,
+    /// The Metal Shading Language.
     Msl,
+    /// HLSL, for DirectX.
     Hlsl,
     /// GLSL ES 3.00 (WebGL2) for vertex and fragment entry points, 3.10 for compute ones.
     GlslEs,
 }
 
 impl Backend {
+    /// Every backend the validator translates to.
     pub const ALL: [Backend; 4] = [Backend::SpirV, Backend::Msl, Backend::Hlsl, Backend::GlslEs];
 
+    /// The backend's usual name: `SPIR-V`, `MSL`, `HLSL`, `GLSL ES`.
     pub fn name(self) -> &'static str {
         match self {
             Backend::SpirV => "SPIR-V",
@@ -58,6 +70,7 @@ impl Backend {
 /// One problem with a shader.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Problem {
+    /// The stage that found it.
     pub stage: Stage,
     /// 1-based line and column in the WGSL source, where known.
     pub location: Option<(u32, u32)>,
@@ -230,24 +243,30 @@ pub struct FileProblem {
     pub origin: String,
     /// 1-based line and column in the origin, where known.
     pub location: Option<(usize, usize)>,
+    /// The stage that found it.
     pub stage: Stage,
+    /// What is wrong, with naga's handles named.
     pub message: String,
     /// naga's labelled spans, each placed in its own file.
     pub labels: Vec<PlacedLabel>,
+    /// naga's notes: the causes of the error, the hints of a parse error.
     pub notes: Vec<String>,
 }
 
 /// A labelled span, placed in the file it comes from.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct PlacedLabel {
+    /// The file (or library module) the span is in.
     pub origin: String,
     /// 1-based line and column of the span's start.
     pub line: usize,
+    /// 1-based column of the span's start, in characters.
     pub column: usize,
     /// Its length on that line, in characters (at least 1).
     pub length: usize,
     /// The line's text.
     pub source_line: String,
+    /// What naga says of the span.
     pub text: String,
 }
 

@@ -9,6 +9,7 @@ use super::reference::environment::integrate_env_brdf;
 /// roughness = (j + 0.5) / size (texel centres, as a texture addresses them).
 #[derive(Clone, Debug, PartialEq)]
 pub struct EnvBrdfLut {
+    /// Texels per side.
     pub size: usize,
     /// Row-major, `size * size` entries.
     pub texels: Vec<[f32; 2]>,

@@ -12,7 +12,9 @@ use half::f16;
 pub struct Half(f16);
 
 impl Half {
+    /// +0.
     pub const ZERO: Half = Half(f16::ZERO);
+    /// 1.
     pub const ONE: Half = Half(f16::ONE);
 
     /// Rounds an f32 to the nearest binary16 (past 65504: infinity, as a conversion does).
@@ -20,14 +22,17 @@ impl Half {
         Half(f16::from_f32(value))
     }
 
+    /// The value as an f32 (exact).
     pub fn to_f32(self) -> f32 {
         self.0.to_f32()
     }
 
+    /// Whether the value is neither infinite nor NaN.
     pub fn is_finite(self) -> bool {
         self.0.is_finite()
     }
 
+    /// The smaller of two values, as WGSL's `min`.
     pub fn min(self, other: Half) -> Half {
         if other.0 < self.0 {
             other
@@ -36,6 +41,7 @@ impl Half {
         }
     }
 
+    /// The larger of two values, as WGSL's `max`.
     pub fn max(self, other: Half) -> Half {
         if other.0 > self.0 {
             other
@@ -44,10 +50,12 @@ impl Half {
         }
     }
 
+    /// `min(max(self, low), high)`, as WGSL's `clamp`.
     pub fn clamp(self, low: Half, high: Half) -> Half {
         self.max(low).min(high)
     }
 
+    /// 2 to the power of the value, rounded to binary16.
     pub fn exp2(self) -> Half {
         Half::new(self.to_f32().exp2())
     }
@@ -75,7 +83,7 @@ impl Neg for Half {
     }
 }
 
-/// A vec3<f16>.
+/// A `vec3<f16>`.
 pub type Half3 = [Half; 3];
 
 fn h(value: f32) -> Half {

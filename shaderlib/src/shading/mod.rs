@@ -2,7 +2,7 @@
 //!
 //! - [`mirror`]: f32, the same formula in the same order of operations as the WGSL, for tests
 //!   and CPU tools; on a conforming adapter the two agree within a few ulp;
-//! - [`reference`]: the same functions in f64, the ground truth the f32 forms (and the
+//! - [`reference`](mod@reference): the same functions in f64, the ground truth the f32 forms (and the
 //!   approximations among them) are measured against.
 //!
 //! - [`half_precision`]: the mobile forms of `mobile_half.wgsl`, rounded to f16 at every step.

@@ -84,6 +84,7 @@ pub struct Attachment {
     pub name: String,
     /// Its `location` (fetch) or `input_attachment_index` and `binding` (Vulkan).
     pub index: u32,
+    /// Its format in GL and Vulkan terms.
     pub format: AttachmentFormat,
 }
 
@@ -96,6 +97,7 @@ pub struct AttachmentFormat {
     pub gl_name: &'static str,
     /// The `VkFormat` value, e.g. `64` (`VK_FORMAT_A2B10G10R10_UNORM_PACK32`).
     pub vulkan_format: i32,
+    /// Its name, e.g. `VK_FORMAT_A2B10G10R10_UNORM_PACK32`.
     pub vulkan_name: &'static str,
     /// The GLSL type the include declares it with: `vec4`, `uvec4` or `ivec4`, whatever the
     /// format's channel count (fetch and `subpassLoad` read four components; channels the
@@ -188,6 +190,7 @@ impl AttachmentFormat {
 /// `#extension`s and `#version`s from [`Include::shader_extensions`] and [`Include::versions`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Interface {
+    /// The include this interface belongs to.
     pub include: Include,
     /// The attachments, in location order. Empty for pixel local storage, which has none.
     pub attachments: Vec<Attachment>,

@@ -40,6 +40,7 @@ pub enum PlsBlock {
 }
 
 impl PlsBlock {
+    /// The three forms, in the order the codegen writes them.
     pub const ALL: [PlsBlock; 3] = [PlsBlock::InOut, PlsBlock::In, PlsBlock::Out];
 
     /// The block qualifier.

@@ -28,6 +28,7 @@ const ENTRY_POINT: &str = "gbuffer_translation_entry";
 pub struct Translation {
     /// Declarations only: no `#version`, `#extension` or precision statement.
     pub text: String,
+    /// The names naga gave the layout's struct, fields and targets.
     pub names: GlslNames,
 }
 

@@ -1,6 +1,8 @@
 // Mirrors constants.wgsl.
 
+/// π.
 pub const PI: Float = core::f64::consts::PI as Float;
+/// 1 / π.
 pub const INV_PI: Float = core::f64::consts::FRAC_1_PI as Float;
 /// The reflectance at normal incidence of a typical dielectric.
 pub const DIELECTRIC_F0: Float = 0.04;

@@ -3,7 +3,9 @@
 /// The colours a BRDF takes: Lambert's diffuse colour and the reflectance at normal incidence.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MaterialColours {
+    /// Lambert's diffuse colour.
     pub diffuse: Vec3,
+    /// Reflectance at normal incidence.
     pub f0: Vec3,
 }
 
