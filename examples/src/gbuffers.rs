@@ -30,15 +30,22 @@ pub enum GBuffer {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The seed layouts the renderer can use.
 pub enum SeedLayout {
+    /// GPU Pro 7 Listing 2.2.
     MobileMetallic,
+    /// GPU Pro 7 Listing 2.1.
     SpecularWorkflow,
+    /// GPU Pro 7 Listing 2.7.
     FutureMetallic,
+    /// GPU Pro 7 Listing 2.8.
     FutureSpecular,
+    /// Arm's pixel local storage block.
     ArmTileBlock,
 }
 
 impl SeedLayout {
+    /// Every seed layout.
     pub const ALL: [SeedLayout; 5] = [
         SeedLayout::MobileMetallic,
         SeedLayout::SpecularWorkflow,
@@ -58,6 +65,7 @@ impl SeedLayout {
         }
     }
 
+    /// Its layout.
     pub fn layout(self) -> Layout {
         match self {
             SeedLayout::MobileMetallic => MobileMetallic::layout(),
@@ -68,6 +76,7 @@ impl SeedLayout {
         }
     }
 
+    /// Its generated WGSL.
     pub fn wgsl(self) -> &'static str {
         match self {
             SeedLayout::MobileMetallic => MobileMetallic::WGSL,

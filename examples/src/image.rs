@@ -26,6 +26,7 @@ pub struct Comparison {
     pub max_error: u8,
 }
 
+/// How `b` differs from `a`. Panics unless the frames have the same size.
 pub fn compare(a: &Frame, b: &Frame) -> Comparison {
     assert_eq!(
         (a.width, a.height),

@@ -1,6 +1,8 @@
 //! The reference deferred renderer: a packed G-buffer pass, full PBS lighting and tone mapping
 //! on wgpu, beside a CPU reference renderer of the same analytic scene.
 
+#![warn(missing_docs)]
+
 pub mod gbuffers;
 pub mod image;
 pub mod presets;

@@ -32,7 +32,9 @@ pub fn preset_path(name: &str) -> PathBuf {
 /// One row of the report.
 #[derive(Clone, Debug)]
 pub struct PresetRow {
+    /// The preset's name.
     pub preset: String,
+    /// Its solved layout.
     pub solution: Arc<Solution>,
     /// The lighting pass's static cost (`lighting_main`).
     pub lighting: Cost,

@@ -29,18 +29,26 @@ pub use gbuffer_scenes::lighting::{IblForm, SunForm};
 /// scene shows its features, and the lighting pass is generated for them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Options {
+    /// The G-buffer the frame goes through.
     pub gbuffer: GBuffer,
+    /// The sun's specular form.
     pub sun: SunForm,
+    /// The image-based light's form.
     pub ibl: IblForm,
+    /// Frame width, pixels.
     pub width: u32,
+    /// Frame height, pixels.
     pub height: u32,
 }
 
 /// A rendered frame: sRGB pixels, row by row.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Frame {
+    /// Width, pixels.
     pub width: u32,
+    /// Height, pixels.
     pub height: u32,
+    /// RGBA, 8 bits per channel, sRGB encoded.
     pub pixels: Vec<[u8; 4]>,
 }
 
@@ -55,8 +63,11 @@ const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// The GPU side: device, the baked and prefiltered inputs.
 pub struct Renderer {
+    /// The device it renders with.
     pub device: wgpu::Device,
+    /// Its queue.
     pub queue: wgpu::Queue,
+    /// The adapter it runs on.
     pub adapter: wgpu::AdapterInfo,
     environment: wgpu::TextureView,
     lut: wgpu::TextureView,

@@ -14,7 +14,9 @@ use gbuffer_scenes::{Feature, Features};
 
 /// Sphere grid: columns of roughness, rows of material.
 pub const COLUMNS: usize = 6;
+/// Rows of the sphere grid: one material each.
 pub const ROWS: usize = 4;
+/// The spheres' radius.
 pub const SPHERE_RADIUS: f64 = 0.32;
 /// (base colour, metallic) per row, bottom to top.
 pub const ROW_MATERIALS: [([f64; 3], f64); ROWS] = [
@@ -24,17 +26,21 @@ pub const ROW_MATERIALS: [([f64; 3], f64); ROWS] = [
     ([0.955, 0.637, 0.538], 1.0), // copper
 ];
 
+/// The camera's position.
 pub const EYE: [f64; 3] = [0.0, 1.6, -5.4];
+/// The point the camera looks at.
 pub const TARGET: [f64; 3] = [0.0, 1.25, 0.0];
 /// Vertical field of view, degrees.
 pub const FIELD_OF_VIEW: f64 = 42.0;
 
 /// Towards the sun, and its colour.
 pub const SUN_DIRECTION: [f64; 3] = [0.4, 0.8, -0.45];
+/// The sun's radiance.
 pub const SUN_COLOUR: [f64; 3] = [3.0, 2.85, 2.6];
 
 /// The sphere that glows when the scene has emissive surfaces (row, column), and its emission.
 pub const EMISSIVE_SPHERE: (usize, usize) = (2, 0);
+/// The glowing sphere's emitted radiance.
 pub const EMISSION: [f64; 3] = [4.0, 1.6, 0.5];
 
 /// Point lights (when the scene has them): positions and colours, and the radius where their
@@ -43,11 +49,14 @@ pub const POINT_LIGHTS: [([f64; 3], [f64; 3]); 2] = [
     ([-1.2, 0.35, -0.9], [6.0, 3.0, 1.2]),
     ([1.4, 0.5, -0.8], [1.5, 3.0, 6.0]),
 ];
+/// Distance at which a point light's windowed falloff reaches 0.
 pub const POINT_LIGHT_RADIUS: f64 = 5.0;
 
 /// The sky: radiance A + B.d + C max(d.s, 0)^8 (a gradient and a broad glow towards the sun).
 pub const SKY_A: [f64; 3] = [0.55, 0.62, 0.75];
+/// The sky's gradient term B.
 pub const SKY_B: [f64; 3] = [0.15, 0.45, 0.75];
+/// The sky's glow term C.
 pub const SKY_C: [f64; 3] = [1.2, 1.0, 0.7];
 
 /// The light map covers the ground over x in [-4, 4], z in [-4, 4].
@@ -55,6 +64,7 @@ pub const LIGHT_MAP_EXTENT: f64 = 4.0;
 /// RGBM range of the light map (squared variant, as GPU Pro 7 Listing 2.5) and of the
 /// prefiltered environment (plain RGBM).
 pub const LIGHT_MAP_RANGE: f64 = 6.0;
+/// RGBM range of the prefiltered environment.
 pub const ENVIRONMENT_RANGE: f64 = 8.0;
 /// The prefiltered environment's mips: roughness r reads mip r * ENVIRONMENT_MIPS (Listing 2.6).
 pub const ENVIRONMENT_MIPS: u32 = 6;
@@ -63,6 +73,7 @@ fn v3(value: [f64; 3]) -> DVec3 {
     DVec3::from_array(value)
 }
 
+/// The centre of the sphere at `column` (roughness) and `row` (material).
 pub fn sphere_centre(column: usize, row: usize) -> DVec3 {
     DVec3::new(-2.0 + 0.8 * column as f64, 0.42 + 0.75 * row as f64, 0.0)
 }
@@ -100,9 +111,13 @@ pub fn sky(direction: DVec3) -> DVec3 {
 /// What a surface point carries into the G-buffer.
 #[derive(Clone, Copy, Debug)]
 pub struct Surface {
+    /// The shading normal, unit length.
     pub normal: DVec3,
+    /// Perceptual roughness.
     pub roughness: f64,
+    /// Base colour, linear.
     pub base_colour: DVec3,
+    /// Metallic, 0 or 1 (between on the gold/stone mask's edge).
     pub metallic: f64,
     /// The static diffuse irradiance (divided by pi) reaching it: the light map on the ground,
     /// the sky's cosine-weighted average on the spheres (without image-based light, only
@@ -110,6 +125,7 @@ pub struct Surface {
     pub irradiance: DVec3,
     /// The light it emits.
     pub emission: DVec3,
+    /// Distance from the eye along the ray.
     pub distance: f64,
 }
 

@@ -14,6 +14,7 @@ pub enum MaterialModel {
 }
 
 impl MaterialModel {
+    /// Both models, in the order scene files list them.
     pub const ALL: [MaterialModel; 2] = [MaterialModel::Metallic, MaterialModel::Specular];
 
     /// The name in scene files.
@@ -24,6 +25,7 @@ impl MaterialModel {
         }
     }
 
+    /// The model a scene file names, if any.
     pub fn from_name(name: &str) -> Option<MaterialModel> {
         MaterialModel::ALL
             .into_iter()
@@ -59,6 +61,7 @@ pub enum Feature {
 }
 
 impl Feature {
+    /// Every feature, in the order reports list them.
     pub const ALL: [Feature; 10] = [
         Feature::Metals,
         Feature::DielectricSpecular,
@@ -88,6 +91,7 @@ impl Feature {
         }
     }
 
+    /// The feature a scene file names, if any.
     pub fn from_name(name: &str) -> Option<Feature> {
         Feature::ALL
             .into_iter()
@@ -125,14 +129,17 @@ impl Features {
         ])
     }
 
+    /// Whether the set has `feature`.
     pub fn contains(self, feature: Feature) -> bool {
         self.0 & feature.bit() != 0
     }
 
+    /// The set with `feature` added.
     pub fn with(self, feature: Feature) -> Features {
         Features(self.0 | feature.bit())
     }
 
+    /// The set without `feature`.
     pub fn without(self, feature: Feature) -> Features {
         Features(self.0 & !feature.bit())
     }
@@ -210,8 +217,11 @@ pub const DEFAULT_BUDGET: u32 = gbuffer_codegen::DEFAULT_BUDGET;
 pub struct SceneDescription {
     /// The name of the layout solved for it, UpperCamelCase.
     pub name: String,
+    /// How materials are described: metallic or specular.
     pub model: MaterialModel,
+    /// What the scene uses.
     pub features: Features,
+    /// How precisely it must be stored.
     pub precision: Precision,
     /// Bits of tile memory per pixel: a positive multiple of 32.
     pub budget: u32,
@@ -220,13 +230,21 @@ pub struct SceneDescription {
 /// Which setting of a description a problem is about.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Setting {
+    /// The layout name.
     Name,
+    /// The bit budget.
     Budget,
+    /// The normal's allowed error, degrees.
     NormalDegrees,
+    /// Steps per colour channel.
     ColourSteps,
+    /// Steps of roughness and metallic.
     MaterialSteps,
+    /// The brightest light stored.
     HdrMax,
+    /// The dimmest light stored within the relative error.
     HdrMin,
+    /// The relative error allowed in light.
     HdrRelative,
 }
 
@@ -249,7 +267,9 @@ impl Setting {
 /// One problem with a description.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct DescriptionError {
+    /// The setting it is about.
     pub setting: Setting,
+    /// What is wrong with it.
     pub message: String,
 }
 
@@ -266,6 +286,7 @@ impl SceneDescription {
         }
     }
 
+    /// The material model.
     pub fn model(mut self, model: MaterialModel) -> Self {
         self.model = model;
         self
@@ -277,31 +298,37 @@ impl SceneDescription {
         self
     }
 
+    /// Adds a feature.
     pub fn with(mut self, feature: Feature) -> Self {
         self.features = self.features.with(feature);
         self
     }
 
+    /// Removes a feature.
     pub fn without(mut self, feature: Feature) -> Self {
         self.features = self.features.without(feature);
         self
     }
 
+    /// All precision settings at once.
     pub fn precision(mut self, precision: Precision) -> Self {
         self.precision = precision;
         self
     }
 
+    /// The normal's allowed error, degrees.
     pub fn normal_degrees(mut self, degrees: f64) -> Self {
         self.precision.normal_degrees = degrees;
         self
     }
 
+    /// Steps per colour channel.
     pub fn colour_steps(mut self, steps: u32) -> Self {
         self.precision.colour_steps = steps;
         self
     }
 
+    /// Steps of roughness and metallic.
     pub fn material_steps(mut self, steps: u32) -> Self {
         self.precision.material_steps = steps;
         self
@@ -315,6 +342,7 @@ impl SceneDescription {
         self
     }
 
+    /// The bit budget: a positive multiple of 32.
     pub fn budget(mut self, bits: u32) -> Self {
         self.budget = bits;
         self

@@ -27,19 +27,39 @@ pub enum Encoding {
     /// Light as shared-exponent rgb9e5 in an `r32ui` word: 9-bit mantissas, one exponent.
     SharedExponent,
     /// Light as RGBM (Karis 2009) in 4 x 8 bits: rgb times a multiplier of `range`.
-    Rgbm { range: f64 },
+    Rgbm {
+        /// The largest value stored: the multiplier's range.
+        range: f64,
+    },
     /// Light scaled by 1 / range into `bits`-bit unorm channels (the seeds' rgb10_a2).
-    ScaledUnorm { bits: u32, range: f64 },
+    ScaledUnorm {
+        /// Bits per channel.
+        bits: u32,
+        /// The value stored as 1.
+        range: f64,
+    },
     /// IEEE binary16 per channel, in `rg16f` channels (GPU Pro 7 Listings 2.7 and 2.8).
     Half,
     /// A normal's components mapped to [0, 1], `bits` each (the seeds' rgba8 normals).
-    NormalUnorm { bits: u32 },
+    NormalUnorm {
+        /// Bits per component.
+        bits: u32,
+    },
     /// Octahedral normal (Cigolle et al. 2014), 2 x `bits`.
-    Octahedral { bits: u32 },
+    Octahedral {
+        /// Bits per coordinate.
+        bits: u32,
+    },
     /// A colour's square root (pseudo-gamma, GPU Pro 7 Listing 2.4), `bits` per channel.
-    PseudoGamma { bits: u32 },
+    PseudoGamma {
+        /// Bits per channel.
+        bits: u32,
+    },
     /// A scalar in [0, 1], `bits` bits.
-    Unorm { bits: u32 },
+    Unorm {
+        /// Bits of the code.
+        bits: u32,
+    },
 }
 
 /// Storage an encoding needs: the pieces the solver places in words.

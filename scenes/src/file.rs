@@ -62,8 +62,11 @@ struct PrecisionEntry {
 /// Why a scene file could not be used.
 #[derive(Debug)]
 pub enum SceneFileError {
+    /// The file could not be read.
     Io {
+        /// The file.
         path: PathBuf,
+        /// Why.
         error: std::io::Error,
     },
     /// Its problems, in file order.

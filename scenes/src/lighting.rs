@@ -41,7 +41,9 @@ pub enum IblForm {
 /// The forms of the lighting terms.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Forms {
+    /// The sun's specular term: GGX or its mobile approximation.
     pub sun: SunForm,
+    /// The image-based light's BRDF: the split-sum LUT or EnvBRDFApprox.
     pub ibl: IblForm,
 }
 
@@ -78,6 +80,7 @@ pub struct HostInputs {
     pub env_brdf_lut: bool,
 }
 
+/// What the host must bind for the lighting of `solution` in `forms`.
 pub fn host_inputs(solution: &Solution, forms: Forms) -> HostInputs {
     let features = solution.scene.features;
     let environment = features.environment_specular();

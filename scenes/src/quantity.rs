@@ -12,6 +12,7 @@ pub enum Quantity {
     Depth,
     /// The shading normal, a unit vector.
     Normal,
+    /// Perceptual roughness, 0 to 1.
     Roughness,
     /// Metallic model: the base colour.
     BaseColour,
@@ -57,6 +58,7 @@ impl Quantity {
         }
     }
 
+    /// The kind of value it is, which sets the unit of its error.
     pub fn kind(self) -> Kind {
         match self {
             Quantity::Light => Kind::Hdr,
@@ -87,6 +89,7 @@ impl Quantity {
 /// A quantity the scene stores, and why.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Stored {
+    /// The quantity.
     pub quantity: Quantity,
     /// The features that read it.
     pub needed_by: Vec<Feature>,

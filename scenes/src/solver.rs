@@ -34,14 +34,18 @@ pub enum Slot {
 /// A piece of a quantity: its field (word) and slot.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Location {
+    /// The layout field (word) it is in.
     pub field: usize,
+    /// Where in the word.
     pub slot: Slot,
 }
 
 /// How the solution stores one quantity.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Placement {
+    /// The quantity stored.
     pub quantity: Quantity,
+    /// How it is encoded.
     pub encoding: Encoding,
     /// The features that read it.
     pub needed_by: Vec<Feature>,
@@ -56,12 +60,16 @@ pub struct Placement {
 /// A solved scene: an ordinary layout and where each quantity lives in it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Solution {
+    /// The scene solved for.
     pub scene: SceneDescription,
+    /// The layout that stores it.
     pub layout: Layout,
+    /// Where each stored quantity lives, in the order they are stored.
     pub placements: Vec<Placement>,
 }
 
 impl Solution {
+    /// Where `quantity` is stored, if the scene stores it.
     pub fn placement(&self, quantity: Quantity) -> Option<&Placement> {
         self.placements
             .iter()
@@ -87,7 +95,12 @@ pub enum SolveError {
     /// No feature needs the G-buffer to store anything.
     NothingStored,
     /// A requirement no encoding meets, or that cannot be met within the budget.
-    Unmet { setting: Setting, message: String },
+    Unmet {
+        /// The setting that cannot be met.
+        setting: Setting,
+        /// Why, with the figures.
+        message: String,
+    },
 }
 
 impl fmt::Display for SolveError {

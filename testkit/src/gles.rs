@@ -11,6 +11,7 @@ type Egl = khronos_egl::DynamicInstance<khronos_egl::EGL1_5>;
 
 /// A current GLES 3.2 context.
 pub struct Gles {
+    /// The GL functions of the context.
     pub gl: glow::Context,
     egl: Egl,
     display: khronos_egl::Display,
@@ -194,9 +195,13 @@ pub fn skip_without_driver(what: &str, error: &str) {
 
 /// A framebuffer of colour attachments, one texture each, in the given internal formats.
 pub struct Framebuffer {
+    /// The framebuffer object.
     pub framebuffer: glow::Framebuffer,
+    /// One texture per colour attachment, in location order.
     pub textures: Vec<glow::Texture>,
+    /// Width, pixels.
     pub width: i32,
+    /// Height, pixels.
     pub height: i32,
 }
 

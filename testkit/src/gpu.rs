@@ -3,9 +3,13 @@
 
 use wgpu::util::DeviceExt;
 
+/// A wgpu device on a real adapter, with helpers to run compute shaders.
 pub struct Gpu {
+    /// The device.
     pub device: wgpu::Device,
+    /// Its queue.
     pub queue: wgpu::Queue,
+    /// The adapter's name, backend and driver.
     pub info: wgpu::AdapterInfo,
 }
 

@@ -1,6 +1,8 @@
 //! Shared pieces of the cross-crate tests: a layout with every format, test values with the
 //! hard cases, WGSL harnesses around generated code, and a GPU runner.
 
+#![warn(missing_docs)]
+
 pub mod furnace;
 pub mod gles;
 pub mod gpu;
@@ -20,28 +22,40 @@ use gbuffer::GBufferLayout;
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
 #[gbuffer(budget = 384)]
 pub struct AllFormats {
+    /// `r11f_g11f_b10f`.
     #[pls(r11f_g11f_b10f)]
     pub small_floats: Vec3,
+    /// `r32f`.
     #[pls(r32f)]
     pub single: f32,
+    /// `rg16f`.
     #[pls(rg16f)]
     pub halves: Vec2,
+    /// `rgb10_a2`.
     #[pls(rgb10_a2)]
     pub unorm_10_10_10_2: Vec4,
+    /// `rgba8`.
     #[pls(rgba8)]
     pub unorm_8: Vec4,
+    /// `rg16`.
     #[pls(rg16)]
     pub unorm_16: Vec2,
+    /// `rgba8i`.
     #[pls(rgba8i)]
     pub sint_8: IVec4,
+    /// `rg16i`.
     #[pls(rg16i)]
     pub sint_16: IVec2,
+    /// `rgb10_a2ui`.
     #[pls(rgb10_a2ui)]
     pub uint_10_10_10_2: UVec4,
+    /// `rgba8ui`.
     #[pls(rgba8ui)]
     pub uint_8: UVec4,
+    /// `rg16ui`.
     #[pls(rg16ui)]
     pub uint_16: UVec2,
+    /// `r32ui`.
     #[pls(r32ui)]
     pub uint_32: u32,
 }
@@ -89,12 +103,16 @@ pub fn gbuffer_binary() -> &'static std::path::Path {
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
 #[gbuffer(budget = 128, conversions = "native")]
 pub struct NativeFormats {
+    /// `rgba8`, through `pack4x8unorm`.
     #[pls(rgba8)]
     pub unorm_8: Vec4,
+    /// `rg16`, through `pack2x16unorm`.
     #[pls(rg16)]
     pub unorm_16: Vec2,
+    /// `rg16f`, through `pack2x16float`.
     #[pls(rg16f)]
     pub halves: Vec2,
+    /// `rgb10_a2`, exact (WGSL has no builtin for it).
     #[pls(rgb10_a2)]
     pub unorm_10_10_10_2: Vec4,
 }

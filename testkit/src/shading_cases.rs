@@ -12,11 +12,24 @@ use crate::values::halton;
 #[derive(Clone, Copy, Debug)]
 pub enum Argument {
     /// An f32 on a uniform grid over [low, high], both ends included.
-    Scalar { low: f32, high: f32 },
+    Scalar {
+        /// The grid's first value.
+        low: f32,
+        /// Its last value.
+        high: f32,
+    },
     /// A vec3 from a fixed set of colours spanning [0, scale].
-    Colour { scale: f32 },
+    Colour {
+        /// The largest channel value.
+        scale: f32,
+    },
     /// A vec2 on a grid over [low, high]^2.
-    Pair { low: f32, high: f32 },
+    Pair {
+        /// The grid's first value on each axis.
+        low: f32,
+        /// Its last value.
+        high: f32,
+    },
     /// A unit vec3, spread over the sphere (a Fibonacci lattice).
     Direction,
     /// A vec4 tangent: a unit xyz and a sign in w.
@@ -24,7 +37,12 @@ pub enum Argument {
     /// A vec4 from a fixed set of RGBM texels.
     Rgbm,
     /// A u32 on a grid over [low, high].
-    Unsigned { low: u32, high: u32 },
+    Unsigned {
+        /// The grid's first value.
+        low: u32,
+        /// Its last value.
+        high: u32,
+    },
 }
 
 impl Argument {
@@ -142,7 +160,9 @@ pub fn fibonacci_sphere(count: usize) -> Vec<Vec3> {
 /// The function's values as f32 bits (floats) or raw u32 (integers).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Output {
+    /// This many f32 components.
     Floats(usize),
+    /// One u32.
     Unsigned,
 }
 
@@ -155,7 +175,9 @@ pub struct Case {
     pub module: &'static str,
     /// The WGSL expression over the arguments `a0`, `a1`, ...
     pub call: &'static str,
+    /// How each argument is sampled.
     pub arguments: &'static [Argument],
+    /// What it returns.
     pub output: Output,
     /// The f32 mirror, over the arguments' bits.
     pub mirror: fn(&[u32]) -> Vec<u32>,

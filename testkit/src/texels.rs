@@ -9,8 +9,11 @@ use crate::values::{float_edges, sint_edges, uint_edges, Values};
 
 /// One scalar slot of a texel: `field.channel`, its scalar kind and its channel's encoding.
 pub struct Slot {
+    /// `field.channel`.
     pub name: String,
+    /// Float, unsigned or signed.
     pub kind: ScalarKind,
+    /// How the channel's bits encode it.
     pub encoding: ChannelEncoding,
 }
 

@@ -99,6 +99,7 @@ pub struct Values {
 }
 
 impl Values {
+    /// A generator whose sequence `seed` fixes.
     pub fn new(seed: u64) -> Self {
         Values {
             rng: SmallRng::seed_from_u64(seed),
@@ -108,6 +109,8 @@ impl Values {
         }
     }
 
+    /// The next float: an edge case, random bits, or a value in [0, 1), [-1, 2), within
+    /// ±70000 or among the subnormals, chosen at random.
     pub fn float(&mut self) -> f32 {
         match self.rng.random_range(0..8) {
             0 | 1 => self.float_edges[self.rng.random_range(0..self.float_edges.len())],
@@ -122,6 +125,7 @@ impl Values {
         }
     }
 
+    /// The next unsigned integer: an edge case, a value below 70000 or random bits.
     pub fn uint(&mut self) -> u32 {
         match self.rng.random_range(0..4) {
             0 => self.uint_edges[self.rng.random_range(0..self.uint_edges.len())],
@@ -130,6 +134,7 @@ impl Values {
         }
     }
 
+    /// The next signed integer: an edge case, a value within ±70000 or random bits.
     pub fn sint(&mut self) -> i32 {
         match self.rng.random_range(0..4) {
             0 => self.sint_edges[self.rng.random_range(0..self.sint_edges.len())],

@@ -38,7 +38,9 @@ enum Object {
 
 /// A logical device with one graphics queue.
 pub struct Vulkan {
+    /// The logical device.
     pub device: ash::Device,
+    /// The physical device's limits.
     pub limits: vk::PhysicalDeviceLimits,
     instance: ash::Instance,
     physical_device: vk::PhysicalDevice,
@@ -53,6 +55,7 @@ pub struct Vulkan {
 
 /// A host-visible, coherent storage buffer of `u32` words.
 pub struct StorageBuffer {
+    /// The buffer, to bind.
     pub buffer: vk::Buffer,
     memory: vk::DeviceMemory,
     words: usize,
@@ -61,7 +64,9 @@ pub struct StorageBuffer {
 /// One subpass of a render pass: the attachments it reads as input attachments and those it
 /// writes as colour attachments, as indices into the render pass's attachments.
 pub struct Subpass {
+    /// Attachments read as input attachments, in input attachment index order.
     pub inputs: Vec<u32>,
+    /// Attachments written as colour attachments, in location order.
     pub colours: Vec<u32>,
 }
 
@@ -782,7 +787,9 @@ impl Drop for Vulkan {
 
 /// What a descriptor set binding holds.
 pub enum Resource {
+    /// An image view read as an input attachment.
     InputAttachment(vk::ImageView),
+    /// A storage buffer.
     StorageBuffer(vk::Buffer),
 }
 

@@ -7,6 +7,8 @@
 //! dependent chain of evaluations, median of 7 runs, less the harness's own time) and for its
 //! f32 mirror on the CPU.
 
+#![warn(missing_docs)]
+
 mod plot;
 mod rows;
 mod timing;
