@@ -108,25 +108,16 @@ pub struct LimitError {
 
 impl fmt::Display for LimitError {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let mut problems = Vec::new();
-        if self.attachments > self.max_attachments {
-            problems.push(format!(
-                "{} colour attachments, {} allowed (max_color_attachments)",
-                self.attachments, self.max_attachments
-            ));
-        }
-        if self.bytes_per_sample > self.max_bytes_per_sample {
-            problems.push(format!(
-                "{} bytes per sample, {} allowed (max_color_attachment_bytes_per_sample)",
-                self.bytes_per_sample, self.max_bytes_per_sample
-            ));
-        }
         write!(
             out,
-            "G-buffer layout `{}` needs {}; request the layout's required_limits from an \
-             adapter that offers them, or shrink the layout",
+            "G-buffer layout `{}` needs {} colour attachments (max_color_attachments allows {}) \
+             and {} bytes per sample (max_color_attachment_bytes_per_sample allows {}): request \
+             the layout's required_limits from an adapter that offers them, or shrink the layout",
             self.layout,
-            problems.join(" and ")
+            self.attachments,
+            self.max_attachments,
+            self.bytes_per_sample,
+            self.max_bytes_per_sample
         )
     }
 }

@@ -405,16 +405,20 @@ fn limit_errors_name_what_is_needed_against_what_is_allowed() {
     );
     assert_eq!(
         nine.to_string(),
-        "G-buffer layout `NineWords` needs 36 bytes per sample, 32 allowed \
-         (max_color_attachment_bytes_per_sample); request the layout's required_limits from \
-         an adapter that offers them, or shrink the layout"
+        format!(
+            "G-buffer layout `NineWords` needs 3 colour attachments (max_color_attachments allows \
+             {}) and 36 bytes per sample (max_color_attachment_bytes_per_sample allows 32): \
+             request the layout's required_limits from an adapter that offers them, or shrink \
+             the layout",
+            downlevel.max_color_attachments
+        )
     );
     let twenty = TwentyWords::check_limits(&downlevel)
         .unwrap_err()
         .to_string();
     assert!(
         twenty.contains(&format!(
-            "needs 5 colour attachments, {} allowed (max_color_attachments) and 80 bytes per sample, 32 allowed",
+            "needs 5 colour attachments (max_color_attachments allows {}) and 80 bytes per sample",
             downlevel.max_color_attachments
         )),
         "{twenty}"
