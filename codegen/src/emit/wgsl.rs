@@ -494,26 +494,20 @@ const UNORM_FROM_F32: &str = "\
 // Unsigned normalized encode: floor(0.5 + max_code * clamp(value, 0, 1)), exact. The value is
 // significand * 2^-shift; the product with max_code (at most 16 bits) is formed in two 12-bit
 // halves so every step fits a u32. NaN and negatives give 0; 1.0 and above give max_code.
+// No branch: every case is computed and `select` keeps the one that applies, so the fragments
+// of a tile never diverge on their data.
 fn PREFIX_f32_to_unorm(value: f32, max_code: u32) -> u32 {
     let bits = bitcast<u32>(value);
-    if bits > 0x7f800000u {
-        return 0u; // NaN, or the sign bit set
-    }
-    if bits >= 0x3f800000u {
-        return max_code;
-    }
     let exponent = bits >> 23u;
-    var significand = bits & 0x7fffffu;
-    var shift = 149u; // f32 denormal
-    if exponent != 0u {
-        significand |= 0x800000u;
-        shift = 150u - exponent;
-    }
-    if shift > 40u {
-        return 0u; // the product is under one half
-    }
+    let normal = exponent != 0u;
+    let significand = (bits & 0x7fffffu) | select(0u, 0x800000u, normal);
+    // Past a shift of 40 the product is under one half, as it is at 41: clamping keeps the
+    // shift amounts below 32. Values of 1.0 and above wrap here; their result is not kept.
+    let shift = min(select(149u, 150u - exponent, normal), 41u);
     let high = max_code * (significand >> 12u) + ((max_code * (significand & 0xfffu)) >> 12u);
-    return (high + (1u << (shift - 13u))) >> (shift - 12u);
+    let rounded = (high + (1u << ((shift - 13u) & 31u))) >> ((shift - 12u) & 31u);
+    // NaN, or the sign bit set, gives 0.
+    return select(select(rounded, max_code, bits >= 0x3f800000u), 0u, bits > 0x7f800000u);
 }
 
 ";
@@ -521,43 +515,36 @@ fn PREFIX_f32_to_unorm(value: f32, max_code: u32) -> u32 {
 const SMALL_FLOAT: &str = "\
 // Rounds a non-negative f32, given as its bits, to a float with a 5-bit exponent (bias 15) and
 // mantissa_bits of mantissa: to nearest even, denormals kept, saturating at the largest finite
-// code (never infinity). NaN gives 0. Integer operations only, so every adapter rounds alike.
+// code (never infinity). NaN gives 0. Integer operations and `select` only, so every adapter
+// rounds alike and no fragment branches on its data.
 fn PREFIX_small_float_from_magnitude(magnitude: u32, mantissa_bits: u32) -> u32 {
-    if magnitude > 0x7f800000u {
-        return 0u; // NaN
-    }
     let exponent = magnitude >> 23u;
-    var significand = (magnitude & 0x7fffffu) | 0x800000u;
-    var shift = 23u - mantissa_bits;
-    var exponent_part = 0u;
-    if exponent >= 113u {
-        exponent_part = (exponent - 113u) << mantissa_bits; // normal result
-    } else if exponent > 0u {
-        shift += 113u - exponent; // denormal result
-    } else {
-        significand = magnitude; // f32 denormal
-        shift += 112u;
-    }
-    if shift > 24u {
-        return 0u; // under half the smallest denormal
-    }
+    let normal_result = exponent >= 113u;
+    let f32_denormal = exponent == 0u;
+    let significand = select((magnitude & 0x7fffffu) | 0x800000u, magnitude, f32_denormal);
+    // A denormal result drops 113 - exponent more bits; an f32 denormal 112 more.
+    let extra = select(select(113u - exponent, 112u, f32_denormal), 0u, normal_result);
+    // Past 24 the value is under half the smallest denormal, as it is at 25.
+    let shift = min(23u - mantissa_bits + extra, 25u);
+    let exponent_part = select(0u, (exponent - 113u) << mantissa_bits, normal_result);
     let kept = significand >> shift;
     let remainder = significand & ((1u << shift) - 1u);
     let halfway = 1u << (shift - 1u);
-    let round_up = remainder > halfway || (remainder == halfway && (kept & 1u) == 1u);
+    // `&` and `|` rather than `&&` and `||`: both sides are evaluated, without a branch.
+    let round_up = (remainder > halfway) | ((remainder == halfway) & ((kept & 1u) == 1u));
     let max_code = (30u << mantissa_bits) | ((1u << mantissa_bits) - 1u);
-    return min(exponent_part + kept + select(0u, 1u, round_up), max_code);
+    let code = min(exponent_part + kept + u32(round_up), max_code);
+    return select(code, 0u, magnitude > 0x7f800000u);
 }
 
 // Decodes an unsigned small float, exactly (a denormal is mantissa * 2^-(14 + mantissa_bits)).
 fn PREFIX_f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
     let exponent = code >> mantissa_bits;
     let mantissa = code & ((1u << mantissa_bits) - 1u);
-    if exponent == 0u {
-        return f32(mantissa) * bitcast<f32>((113u - mantissa_bits) << 23u);
-    }
+    let denormal = f32(mantissa) * bitcast<f32>((113u - mantissa_bits) << 23u);
     let f32_exponent = select(exponent + 112u, 255u, exponent == 31u);
-    return bitcast<f32>((f32_exponent << 23u) | (mantissa << (23u - mantissa_bits)));
+    let normal = bitcast<f32>((f32_exponent << 23u) | (mantissa << (23u - mantissa_bits)));
+    return select(normal, denormal, exponent == 0u);
 }
 
 ";
@@ -567,10 +554,8 @@ const HALF: &str = "\
 fn PREFIX_f32_to_half(value: f32) -> u32 {
     let bits = bitcast<u32>(value);
     let magnitude = bits & 0x7fffffffu;
-    if magnitude > 0x7f800000u {
-        return 0u;
-    }
-    return ((bits >> 16u) & 0x8000u) | PREFIX_small_float_from_magnitude(magnitude, 10u);
+    let code = ((bits >> 16u) & 0x8000u) | PREFIX_small_float_from_magnitude(magnitude, 10u);
+    return select(code, 0u, magnitude > 0x7f800000u);
 }
 
 fn PREFIX_f32_from_half(code: u32) -> f32 {
@@ -584,10 +569,7 @@ const UNSIGNED_FLOAT: &str = "\
 // The unsigned floats of r11f_g11f_b10f (6 or 5 mantissa bits); negatives and NaN give 0.
 fn PREFIX_f32_to_unsigned_float(value: f32, mantissa_bits: u32) -> u32 {
     let bits = bitcast<u32>(value);
-    if bits >= 0x80000000u {
-        return 0u;
-    }
-    return PREFIX_small_float_from_magnitude(bits, mantissa_bits);
+    return select(PREFIX_small_float_from_magnitude(bits, mantissa_bits), 0u, bits >= 0x80000000u);
 }
 
 ";
