@@ -20,6 +20,7 @@ const F32_INFINITY_BITS: u32 = 0x7f80_0000;
 /// The bits of 1.0 as f32.
 const F32_ONE_BITS: u32 = 0x3f80_0000;
 /// The largest code of an unsigned integer of `bits` bits (`bits` from 1 to 32).
+#[inline]
 pub fn max_code(bits: u32) -> u32 {
     u32::MAX >> (32 - bits)
 }
@@ -29,6 +30,7 @@ pub fn max_code(bits: u32) -> u32 {
 /// Works on the float's bits: `value = significand * 2^-shift` with a 24-bit significand, and
 /// the product with `2^bits - 1` (at most 16 bits) is formed in two 12-bit halves so that every
 /// step fits a u32, as it must on the GPU. Valid for `bits` from 1 to 16.
+#[inline]
 pub fn unorm_from_f32(value: f32, bits: u32) -> u32 {
     let max_code = max_code(bits);
     let value_bits = value.to_bits();
@@ -56,11 +58,13 @@ pub fn unorm_from_f32(value: f32, bits: u32) -> u32 {
 }
 
 /// Unsigned normalized decode: the exact quotient `code / (2^bits - 1)`, correctly rounded.
+#[inline]
 pub fn f32_from_unorm(code: u32, bits: u32) -> f32 {
     code as f32 / max_code(bits) as f32
 }
 
 /// The largest finite code of a float with a 5-bit exponent and `mantissa_bits` of mantissa.
+#[inline]
 pub fn small_float_max_code(mantissa_bits: u32) -> u32 {
     (30 << mantissa_bits) | ((1 << mantissa_bits) - 1)
 }
@@ -71,6 +75,7 @@ pub fn small_float_max_code(mantissa_bits: u32) -> u32 {
 ///
 /// One formula covers normal and denormal results: the code is `exponent_part + significand >>
 /// shift`, rounded, where a normal result's implicit bit carries into the exponent field.
+#[inline]
 pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u32 {
     if magnitude_bits > F32_INFINITY_BITS {
         return 0; // NaN
@@ -100,6 +105,7 @@ pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u3
 }
 
 /// f32 to the 16-bit code of an IEEE binary16, sign kept, saturating at +-65504. NaN gives 0.
+#[inline]
 pub fn half_from_f32(value: f32) -> u32 {
     let value_bits = value.to_bits();
     let magnitude = value_bits & 0x7fff_ffff;
@@ -111,6 +117,7 @@ pub fn half_from_f32(value: f32) -> u32 {
 
 /// f32 to an unsigned small float (`mantissa_bits` 6 for r11f and g11f, 5 for b10f).
 /// Negatives and NaN give 0.
+#[inline]
 pub fn unsigned_float_from_f32(value: f32, mantissa_bits: u32) -> u32 {
     let value_bits = value.to_bits();
     if value_bits >> 31 == 1 {
@@ -121,6 +128,7 @@ pub fn unsigned_float_from_f32(value: f32, mantissa_bits: u32) -> u32 {
 
 /// Decodes an unsigned small float code, exactly. Exponent 31 decodes to infinity or NaN as
 /// the format defines (the encoders never produce it).
+#[inline]
 pub fn f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
     let exponent = code >> mantissa_bits;
     let mantissa = code & ((1 << mantissa_bits) - 1);
@@ -133,23 +141,27 @@ pub fn f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
 }
 
 /// Decodes the 16-bit code of an IEEE binary16, exactly.
+#[inline]
 pub fn f32_from_half(code: u32) -> f32 {
     let magnitude = f32_from_small_float(code & 0x7fff, 10);
     f32::from_bits(magnitude.to_bits() | ((code & 0x8000) << 16))
 }
 
 /// Clamps an unsigned integer to `bits` bits.
+#[inline]
 pub fn uint_saturate(value: u32, bits: u32) -> u32 {
     value.min(max_code(bits))
 }
 
 /// Clamps a signed integer to the range of `bits` bits and returns its two's complement code.
+#[inline]
 pub fn sint_saturate(value: i32, bits: u32) -> u32 {
     let highest = (max_code(bits) >> 1) as i32;
     (value.clamp(-highest - 1, highest) as u32) & max_code(bits)
 }
 
 /// Sign-extends a `bits`-bit two's complement code.
+#[inline]
 pub fn i32_from_sint(code: u32, bits: u32) -> i32 {
     ((code << (32 - bits)) as i32) >> (32 - bits)
 }
@@ -165,6 +177,7 @@ pub trait Scalar: Copy + Default {
 }
 
 impl Scalar for f32 {
+    #[inline]
     fn encode(self, channel: Channel) -> u32 {
         match channel.encoding {
             ChannelEncoding::Unorm => unorm_from_f32(self, channel.bits),
@@ -178,6 +191,7 @@ impl Scalar for f32 {
         }
     }
 
+    #[inline]
     fn decode(code: u32, channel: Channel) -> f32 {
         match channel.encoding {
             ChannelEncoding::Unorm => f32_from_unorm(code, channel.bits),
@@ -193,6 +207,7 @@ impl Scalar for f32 {
 }
 
 impl Scalar for u32 {
+    #[inline]
     fn encode(self, channel: Channel) -> u32 {
         match channel.encoding {
             ChannelEncoding::Uint => uint_saturate(self, channel.bits),
@@ -201,6 +216,7 @@ impl Scalar for u32 {
         }
     }
 
+    #[inline]
     fn decode(code: u32, channel: Channel) -> u32 {
         match channel.encoding {
             ChannelEncoding::Uint => code,
@@ -211,6 +227,7 @@ impl Scalar for u32 {
 }
 
 impl Scalar for i32 {
+    #[inline]
     fn encode(self, channel: Channel) -> u32 {
         match channel.encoding {
             ChannelEncoding::Sint => sint_saturate(self, channel.bits),
@@ -219,6 +236,7 @@ impl Scalar for i32 {
         }
     }
 
+    #[inline]
     fn decode(code: u32, channel: Channel) -> i32 {
         match channel.encoding {
             ChannelEncoding::Sint => i32_from_sint(code, channel.bits),
@@ -231,6 +249,7 @@ impl Scalar for i32 {
 impl Format {
     /// Packs up to four channel values into the format's word. Channels the format lacks are
     /// ignored; a field with fewer components passes zeros, which encode as zero bits.
+    #[inline]
     pub fn encode<S: Scalar>(self, values: [S; 4]) -> u32 {
         self.channels()
             .iter()
@@ -241,6 +260,7 @@ impl Format {
     }
 
     /// Unpacks a word into its channel values; channels the format lacks read as zero.
+    #[inline]
     pub fn decode<S: Scalar>(self, word: u32) -> [S; 4] {
         let mut values = [S::default(); 4];
         for (value, channel) in values.iter_mut().zip(self.channels()) {

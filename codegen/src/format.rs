@@ -72,6 +72,7 @@ impl Channel {
     }
 
     /// The mask of the channel's bits once shifted down to bit 0.
+    #[inline]
     pub fn mask(self) -> u32 {
         if self.bits == 32 {
             u32::MAX
@@ -215,6 +216,7 @@ impl Format {
     }
 
     /// The channels, from the least significant bit up.
+    #[inline]
     pub fn channels(self) -> &'static [Channel] {
         match self {
             Format::R11fG11fB10f => &R11F_G11F_B10F,

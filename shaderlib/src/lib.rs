@@ -84,7 +84,7 @@ pub trait GBufferLayout: Sized {
     /// Number of 32-bit words: one per field.
     const WORDS: usize;
     /// `[u32; WORDS]`.
-    type Packed: Copy + AsRef<[u32]> + AsMut<[u32]>;
+    type Packed: Copy + AsRef<[u32]> + AsMut<[u32]> + for<'a> TryFrom<&'a [u32]>;
     /// The WGSL: the struct, `pack_<snake>`, `unpack_<snake>`, `load_<snake>_<field>` and the
     /// `Rgba32Uint` target helpers. Valid on its own and beside other layouts' WGSL.
     const WGSL: &'static str;
@@ -95,6 +95,51 @@ pub trait GBufferLayout: Sized {
     fn unpack(words: &Self::Packed) -> Self;
     /// The layout's description: fields, formats, types and budget.
     fn layout() -> packing::Layout;
+
+    /// Packs `texels` into `words`, [`Self::WORDS`] per texel in order, each as [`Self::pack`]
+    /// packs it: a whole G-buffer at once, for uploads and readbacks.
+    ///
+    /// # Panics
+    ///
+    /// When `words` does not hold exactly `WORDS` words per texel.
+    fn pack_slice(texels: &[Self], words: &mut [u32]) {
+        assert_eq!(
+            words.len(),
+            texels.len() * Self::WORDS,
+            "pack_slice: {} texels of {} words need {} words, not {}",
+            texels.len(),
+            Self::WORDS,
+            texels.len() * Self::WORDS,
+            words.len()
+        );
+        for (texel, out) in texels.iter().zip(words.chunks_exact_mut(Self::WORDS)) {
+            out.copy_from_slice(texel.pack().as_ref());
+        }
+    }
+
+    /// Unpacks `words`, [`Self::WORDS`] per texel in order, into `texels`, each as
+    /// [`Self::unpack`] unpacks it.
+    ///
+    /// # Panics
+    ///
+    /// When `words` does not hold exactly `WORDS` words per texel.
+    fn unpack_slice(words: &[u32], texels: &mut [Self]) {
+        assert_eq!(
+            words.len(),
+            texels.len() * Self::WORDS,
+            "unpack_slice: {} texels of {} words need {} words, not {}",
+            texels.len(),
+            Self::WORDS,
+            texels.len() * Self::WORDS,
+            words.len()
+        );
+        for (texel, chunk) in texels.iter_mut().zip(words.chunks_exact(Self::WORDS)) {
+            let Ok(packed) = Self::Packed::try_from(chunk) else {
+                unreachable!("chunks_exact yields WORDS words")
+            };
+            *texel = Self::unpack(&packed);
+        }
+    }
 
     /// The bit report: per field the format, bits and used bits; the total against the
     /// budget; and the WebGPU cost of the same fields as separate render targets.
