@@ -29,32 +29,43 @@ pub fn max_code(bits: u32) -> u32 {
 ///
 /// Works on the float's bits: `value = significand * 2^-shift` with a 24-bit significand, and
 /// the product with `2^bits - 1` (at most 16 bits) is formed in two 12-bit halves so that every
-/// step fits a u32, as it must on the GPU. Valid for `bits` from 1 to 16.
+/// step fits a u32, as it must on the GPU. Every case is computed and the one that applies is
+/// selected, as the WGSL does (no branch on the data, here a conditional move). Valid for
+/// `bits` from 1 to 16.
 #[inline]
 pub fn unorm_from_f32(value: f32, bits: u32) -> u32 {
     let max_code = max_code(bits);
     let value_bits = value.to_bits();
-    if value_bits > F32_INFINITY_BITS {
-        return 0; // NaN, or the sign bit is set (negatives and -0.0)
-    }
-    if value_bits >= F32_ONE_BITS {
-        return max_code; // 1.0 and above, +infinity included
-    }
     let exponent = value_bits >> 23;
-    let (significand, shift) = if exponent == 0 {
-        (value_bits & 0x7f_ffff, 149) // f32 denormal
+    let normal = exponent != 0;
+    let significand = (value_bits & 0x7f_ffff) | if normal { 0x80_0000 } else { 0 };
+    // value < 1 gives shift >= 24. Past 40 the product is below 2^40 <= 2^(shift - 1), under
+    // one half, as it is at 41: clamping keeps the shifts in range. Values of 1.0 and above
+    // wrap here; their result is not kept.
+    let shift = if normal {
+        150u32.wrapping_sub(exponent)
     } else {
-        ((value_bits & 0x7f_ffff) | 0x80_0000, 150 - exponent)
-    };
-    // value < 1 gives shift >= 24. For shift > 40 the product is below 2^40 <= 2^(shift - 1),
-    // under one half: the code is 0.
-    if shift > 40 {
-        return 0;
+        149
     }
+    .min(41);
     // product = max_code * significand = high * 2^12 + low_remainder, with low_remainder < 2^12;
     // since shift >= 24 the remainder cannot carry into the rounded result.
-    let high = max_code * (significand >> 12) + ((max_code * (significand & 0xfff)) >> 12);
-    (high + (1 << (shift - 13))) >> (shift - 12)
+    let high = max_code
+        .wrapping_mul(significand >> 12)
+        .wrapping_add(max_code.wrapping_mul(significand & 0xfff) >> 12);
+    let rounded = high.wrapping_add(1u32.wrapping_shl(shift.wrapping_sub(13)))
+        >> (shift.wrapping_sub(12) & 31);
+    let in_range = if value_bits >= F32_ONE_BITS {
+        max_code
+    } else {
+        rounded
+    };
+    // NaN, or the sign bit set (negatives and -0.0), gives 0.
+    if value_bits > F32_INFINITY_BITS {
+        0
+    } else {
+        in_range
+    }
 }
 
 /// Unsigned normalized decode: the exact quotient `code / (2^bits - 1)`, correctly rounded.
@@ -74,34 +85,45 @@ pub fn small_float_max_code(mantissa_bits: u32) -> u32 {
 /// kept, saturating at the largest finite code. NaN gives 0.
 ///
 /// One formula covers normal and denormal results: the code is `exponent_part + significand >>
-/// shift`, rounded, where a normal result's implicit bit carries into the exponent field.
+/// shift`, rounded, where a normal result's implicit bit carries into the exponent field. As in
+/// the WGSL, every case is computed and the one that applies selected.
 #[inline]
 pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u32 {
-    if magnitude_bits > F32_INFINITY_BITS {
-        return 0; // NaN
-    }
-    let dropped_bits = 23 - mantissa_bits;
     let exponent = magnitude_bits >> 23;
-    let (significand, shift, exponent_part) = if exponent >= 113 {
-        // 2^-14 and above: a normal result (f32 exponent 113 is 2^-14).
-        let significand = (magnitude_bits & 0x7f_ffff) | 0x80_0000;
-        (significand, dropped_bits, (exponent - 113) << mantissa_bits)
-    } else if exponent > 0 {
-        let significand = (magnitude_bits & 0x7f_ffff) | 0x80_0000;
-        (significand, dropped_bits + 113 - exponent, 0)
+    // 2^-14 and above (f32 exponent 113) is a normal result.
+    let normal_result = exponent >= 113;
+    let f32_denormal = exponent == 0;
+    let significand = if f32_denormal {
+        magnitude_bits
     } else {
-        (magnitude_bits, dropped_bits + 112, 0) // f32 denormal
+        (magnitude_bits & 0x7f_ffff) | 0x80_0000
     };
-    // A significand below 2^24 shifted by 25 or more is under one half: code 0.
-    if shift > 24 {
-        return 0;
-    }
+    // A denormal result drops 113 - exponent more bits, an f32 denormal 112 more; past 24 the
+    // value is under half the smallest denormal, as it is at 25.
+    let extra = if normal_result {
+        0
+    } else if f32_denormal {
+        112
+    } else {
+        113 - exponent
+    };
+    let shift = (23 - mantissa_bits + extra).min(25);
+    let exponent_part = if normal_result {
+        (exponent - 113) << mantissa_bits
+    } else {
+        0
+    };
     let kept = significand >> shift;
     let remainder = significand & ((1 << shift) - 1);
     let halfway = 1 << (shift - 1);
-    let round_up = remainder > halfway || (remainder == halfway && kept & 1 == 1);
-    let code = exponent_part + kept + u32::from(round_up);
-    code.min(small_float_max_code(mantissa_bits))
+    let round_up = (remainder > halfway) | ((remainder == halfway) & (kept & 1 == 1));
+    let code =
+        (exponent_part + kept + u32::from(round_up)).min(small_float_max_code(mantissa_bits));
+    if magnitude_bits > F32_INFINITY_BITS {
+        0 // NaN
+    } else {
+        code
+    }
 }
 
 /// f32 to the 16-bit code of an IEEE binary16, sign kept, saturating at +-65504. NaN gives 0.
@@ -310,6 +332,54 @@ mod tests {
         // rounded quotient (which carries into the exponent when it reaches 2^(mantissa + 1)).
         let code = (((exponent + 14.0) as u32) << mantissa_bits) + rounded as u32;
         code.min(small_float_max_code(mantissa_bits))
+    }
+
+    /// Runs `check` on every f32 bit pattern, on two threads; the first failure, if any.
+    fn every_f32(check: impl Fn(u32) -> Option<String> + Sync) -> Option<String> {
+        std::thread::scope(|scope| {
+            let halves = [0..=0x7fff_ffffu32, 0x8000_0000..=u32::MAX];
+            let workers: Vec<_> = halves
+                .into_iter()
+                .map(|half| scope.spawn(|| half.into_iter().find_map(&check)))
+                .collect();
+            workers
+                .into_iter()
+                .find_map(|worker| worker.join().expect("a worker finishes"))
+        })
+    }
+
+    #[test]
+    fn unorm_is_exact_for_every_f32() {
+        for bits in [8, 10, 16] {
+            let failure = every_f32(|value_bits| {
+                let value = f32::from_bits(value_bits);
+                let (got, want) = (unorm_from_f32(value, bits), unorm_reference(value, bits));
+                (got != want)
+                    .then(|| format!("{value:e} ({value_bits:#010x}): {got}, exact {want}"))
+            });
+            assert_eq!(failure, None, "unorm at {bits} bits");
+        }
+    }
+
+    #[test]
+    fn half_rounds_every_f32_as_ieee_does() {
+        // The half crate's conversion rounds to nearest even and overflows to infinity; ours
+        // saturates at the largest finite value and stores NaN as 0.
+        let failure = every_f32(|value_bits| {
+            let value = f32::from_bits(value_bits);
+            let ieee = u32::from(half::f16::from_f32(value).to_bits());
+            let want = if value.is_nan() {
+                0
+            } else if ieee & 0x7fff == 0x7c00 {
+                (ieee & 0x8000) | 0x7bff
+            } else {
+                ieee
+            };
+            let got = half_from_f32(value);
+            (got != want)
+                .then(|| format!("{value:e} ({value_bits:#010x}): {got:#06x}, IEEE {want:#06x}"))
+        });
+        assert_eq!(failure, None);
     }
 
     #[test]
