@@ -1,9 +1,11 @@
 //! Bit-exact conversions between shader values and channel codes.
 //!
-//! These are the CPU mirrors of the WGSL helpers in [`crate::emit::wgsl`]: the same algorithm,
-//! on the same integer operations, so that a G-buffer packed on the CPU and on any conforming
-//! adapter holds the same bits. No step relies on float rounding, which differs between a
-//! plain multiply, a fused multiply-add and a GPU's builtins.
+//! These are the CPU mirrors of the WGSL helpers in [`crate::emit::wgsl`], so that a G-buffer
+//! packed on the CPU and on any conforming adapter holds the same bits. The small floats use
+//! the WGSL's own integer algorithm; unorm uses the exact formula in f64, which the CPU has and
+//! a GPU may not (the WGSL's integer algorithm is checked against it on every f32). No step
+//! relies on f32 rounding, which differs between a plain multiply, a fused multiply-add and a
+//! GPU's builtins.
 //!
 //! The rules, per encoding:
 //! - unorm: `floor(0.5 + (2^n - 1) * clamp(x, 0, 1))`, evaluated exactly; NaN gives 0.
@@ -17,8 +19,6 @@ use crate::format::{Channel, ChannelEncoding, Format};
 
 /// The bits of +infinity as f32; a magnitude above it is a NaN.
 const F32_INFINITY_BITS: u32 = 0x7f80_0000;
-/// The bits of 1.0 as f32.
-const F32_ONE_BITS: u32 = 0x3f80_0000;
 /// The largest code of an unsigned integer of `bits` bits (`bits` from 1 to 32).
 #[inline]
 pub fn max_code(bits: u32) -> u32 {
@@ -27,45 +27,15 @@ pub fn max_code(bits: u32) -> u32 {
 
 /// Unsigned normalized encode: `floor(0.5 + (2^bits - 1) * clamp(value, 0, 1))`, exact.
 ///
-/// Works on the float's bits: `value = significand * 2^-shift` with a 24-bit significand, and
-/// the product with `2^bits - 1` (at most 16 bits) is formed in two 12-bit halves so that every
-/// step fits a u32, as it must on the GPU. Every case is computed and the one that applies is
-/// selected, as the WGSL does (no branch on the data, here a conditional move). Valid for
-/// `bits` from 1 to 16.
+/// In f64 the formula is exact for every f32: the product has at most 40 significant bits
+/// (24 of the value, 16 of the code), and adding one half cannot round up to the next integer
+/// (a product within 2^-41 of a half-integer would need bits the value does not have). NaN
+/// clamps to NaN, which converts to 0. The WGSL reaches the same codes with integer operations
+/// (a GPU's f64 is optional); a test runs that algorithm on every f32 against this one. Valid
+/// for `bits` from 1 to 16.
 #[inline]
 pub fn unorm_from_f32(value: f32, bits: u32) -> u32 {
-    let max_code = max_code(bits);
-    let value_bits = value.to_bits();
-    let exponent = value_bits >> 23;
-    let normal = exponent != 0;
-    let significand = (value_bits & 0x7f_ffff) | if normal { 0x80_0000 } else { 0 };
-    // value < 1 gives shift >= 24. Past 40 the product is below 2^40 <= 2^(shift - 1), under
-    // one half, as it is at 41: clamping keeps the shifts in range. Values of 1.0 and above
-    // wrap here; their result is not kept.
-    let shift = if normal {
-        150u32.wrapping_sub(exponent)
-    } else {
-        149
-    }
-    .min(41);
-    // product = max_code * significand = high * 2^12 + low_remainder, with low_remainder < 2^12;
-    // since shift >= 24 the remainder cannot carry into the rounded result.
-    let high = max_code
-        .wrapping_mul(significand >> 12)
-        .wrapping_add(max_code.wrapping_mul(significand & 0xfff) >> 12);
-    let rounded = high.wrapping_add(1u32.wrapping_shl(shift.wrapping_sub(13)))
-        >> (shift.wrapping_sub(12) & 31);
-    let in_range = if value_bits >= F32_ONE_BITS {
-        max_code
-    } else {
-        rounded
-    };
-    // NaN, or the sign bit set (negatives and -0.0), gives 0.
-    if value_bits > F32_INFINITY_BITS {
-        0
-    } else {
-        in_range
-    }
+    (f64::from(value).clamp(0.0, 1.0) * f64::from(max_code(bits)) + 0.5) as u32
 }
 
 /// Unsigned normalized decode: the exact quotient `code / (2^bits - 1)`, correctly rounded.
@@ -191,6 +161,9 @@ pub fn i32_from_sint(code: u32, bits: u32) -> i32 {
 /// A scalar a field can hold: f32, u32 or i32. Each converts to and from any channel; the
 /// layout check pairs float fields with float and unorm formats and integer fields with their
 /// integer formats, and the other pairings saturate as Rust's `as` does.
+///
+/// The implementations are always inlined: with the channel known at compile time (as derived
+/// code has it) the match on its encoding disappears.
 pub trait Scalar: Copy + Default {
     /// The channel's code, in its low bits.
     fn encode(self, channel: Channel) -> u32;
@@ -199,7 +172,7 @@ pub trait Scalar: Copy + Default {
 }
 
 impl Scalar for f32 {
-    #[inline]
+    #[inline(always)]
     fn encode(self, channel: Channel) -> u32 {
         match channel.encoding {
             ChannelEncoding::Unorm => unorm_from_f32(self, channel.bits),
@@ -213,7 +186,7 @@ impl Scalar for f32 {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn decode(code: u32, channel: Channel) -> f32 {
         match channel.encoding {
             ChannelEncoding::Unorm => f32_from_unorm(code, channel.bits),
@@ -229,7 +202,7 @@ impl Scalar for f32 {
 }
 
 impl Scalar for u32 {
-    #[inline]
+    #[inline(always)]
     fn encode(self, channel: Channel) -> u32 {
         match channel.encoding {
             ChannelEncoding::Uint => uint_saturate(self, channel.bits),
@@ -238,7 +211,7 @@ impl Scalar for u32 {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn decode(code: u32, channel: Channel) -> u32 {
         match channel.encoding {
             ChannelEncoding::Uint => code,
@@ -249,7 +222,7 @@ impl Scalar for u32 {
 }
 
 impl Scalar for i32 {
-    #[inline]
+    #[inline(always)]
     fn encode(self, channel: Channel) -> u32 {
         match channel.encoding {
             ChannelEncoding::Sint => sint_saturate(self, channel.bits),
@@ -258,7 +231,7 @@ impl Scalar for i32 {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn decode(code: u32, channel: Channel) -> i32 {
         match channel.encoding {
             ChannelEncoding::Sint => i32_from_sint(code, channel.bits),
@@ -271,18 +244,21 @@ impl Scalar for i32 {
 impl Format {
     /// Packs up to four channel values into the format's word. Channels the format lacks are
     /// ignored; a field with fewer components passes zeros, which encode as zero bits.
-    #[inline]
+    // Always inlined: derived code calls it with a constant format, and inlined the channel
+    // loop unrolls and each channel's conversion is chosen at compile time (several times
+    // faster than a call that matches on the format at run time).
+    #[inline(always)]
     pub fn encode<S: Scalar>(self, values: [S; 4]) -> u32 {
-        self.channels()
-            .iter()
-            .zip(values)
-            .fold(0, |word, (channel, value)| {
-                word | (value.encode(*channel) << channel.offset)
-            })
+        let mut word = 0;
+        for (channel, value) in self.channels().iter().zip(values) {
+            word |= value.encode(*channel) << channel.offset;
+        }
+        word
     }
 
     /// Unpacks a word into its channel values; channels the format lacks read as zero.
-    #[inline]
+    // Always inlined, as `encode`.
+    #[inline(always)]
     pub fn decode<S: Scalar>(self, word: u32) -> [S; 4] {
         let mut values = [S::default(); 4];
         for (value, channel) in values.iter_mut().zip(self.channels()) {
@@ -296,16 +272,8 @@ impl Format {
 mod tests {
     use super::*;
 
-    /// `floor(0.5 + (2^bits - 1) * clamp(x, 0, 1))` in f64, where it is exact for f32 inputs:
-    /// the product has at most 40 significant bits and adding one half cannot reach the next
-    /// integer by rounding.
-    fn unorm_reference(value: f32, bits: u32) -> u32 {
-        if value.is_nan() {
-            return 0;
-        }
-        let clamped = f64::from(value).clamp(0.0, 1.0);
-        (0.5 + f64::from(max_code(bits)) * clamped).floor() as u32
-    }
+    /// The bits of 1.0 as f32.
+    const F32_ONE_BITS: u32 = 0x3f80_0000;
 
     /// Round to nearest even in f64 arithmetic, the textbook way, for comparison.
     fn small_float_reference(value: f32, mantissa_bits: u32) -> u32 {
@@ -334,6 +302,41 @@ mod tests {
         code.min(small_float_max_code(mantissa_bits))
     }
 
+    /// The WGSL's unorm encode (`PREFIX_f32_to_unorm` in `emit::wgsl`), transliterated: on
+    /// the float's bits, `value = significand * 2^-shift` with a 24-bit significand, and the
+    /// product with `2^bits - 1` formed in two 12-bit halves so that every step fits a u32, as
+    /// it must on a GPU without f64. Every case is computed and the one that applies selected.
+    fn wgsl_unorm_from_f32(value: f32, bits: u32) -> u32 {
+        let max_code = max_code(bits);
+        let value_bits = value.to_bits();
+        let exponent = value_bits >> 23;
+        let normal = exponent != 0;
+        let significand = (value_bits & 0x7f_ffff) | if normal { 0x80_0000 } else { 0 };
+        // Past a shift of 40 the product is under one half, as it is at 41.
+        let shift = if normal {
+            150u32.wrapping_sub(exponent)
+        } else {
+            149
+        }
+        .min(41);
+        let high = max_code
+            .wrapping_mul(significand >> 12)
+            .wrapping_add(max_code.wrapping_mul(significand & 0xfff) >> 12);
+        let rounded = high.wrapping_add(1u32.wrapping_shl(shift.wrapping_sub(13)))
+            >> (shift.wrapping_sub(12) & 31);
+        let in_range = if value_bits >= F32_ONE_BITS {
+            max_code
+        } else {
+            rounded
+        };
+        // NaN, or the sign bit set, gives 0.
+        if value_bits > F32_INFINITY_BITS {
+            0
+        } else {
+            in_range
+        }
+    }
+
     /// Runs `check` on every f32 bit pattern, on two threads; the first failure, if any.
     fn every_f32(check: impl Fn(u32) -> Option<String> + Sync) -> Option<String> {
         std::thread::scope(|scope| {
@@ -349,11 +352,14 @@ mod tests {
     }
 
     #[test]
-    fn unorm_is_exact_for_every_f32() {
+    fn the_wgsl_unorm_algorithm_is_exact_for_every_f32() {
         for bits in [8, 10, 16] {
             let failure = every_f32(|value_bits| {
                 let value = f32::from_bits(value_bits);
-                let (got, want) = (unorm_from_f32(value, bits), unorm_reference(value, bits));
+                let (got, want) = (
+                    wgsl_unorm_from_f32(value, bits),
+                    unorm_from_f32(value, bits),
+                );
                 (got != want)
                     .then(|| format!("{value:e} ({value_bits:#010x}): {got}, exact {want}"))
             });
@@ -383,7 +389,7 @@ mod tests {
     }
 
     #[test]
-    fn unorm_matches_the_exact_formula_at_every_midpoint() {
+    fn the_wgsl_unorm_algorithm_matches_at_every_midpoint() {
         for bits in [2, 8, 10, 16] {
             let max = max_code(bits);
             for code in 0..max {
@@ -395,8 +401,8 @@ mod tests {
                     f32::from_bits(nearest.to_bits() + 1),
                 ] {
                     assert_eq!(
+                        wgsl_unorm_from_f32(value, bits),
                         unorm_from_f32(value, bits),
-                        unorm_reference(value, bits),
                         "{value:e} at {bits} bits"
                     );
                 }

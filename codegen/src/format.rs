@@ -216,7 +216,7 @@ impl Format {
     }
 
     /// The channels, from the least significant bit up.
-    #[inline]
+    #[inline(always)]
     pub fn channels(self) -> &'static [Channel] {
         match self {
             Format::R11fG11fB10f => &R11F_G11F_B10F,
