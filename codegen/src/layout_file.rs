@@ -4,7 +4,7 @@
 //! ```toml
 //! name = "MobileMetallic"   # the struct's name, UpperCamelCase
 //! budget = 128              # bits; optional, 128 by default
-//! conversions = "exact"     # optional; "native" uses WGSL's pack builtins where it can
+//! conversions = "exact"     # optional; "fast" uses WGSL's pack builtins where it can
 //!
 //! [[fields]]
 //! name = "light_accumulation"
@@ -55,7 +55,7 @@ struct FieldEntry {
 pub struct LayoutFile {
     /// The layout the file declares.
     pub layout: Layout,
-    /// `conversions = "exact"` (the default) or `"native"`, as in `#[gbuffer(...)]`.
+    /// `conversions = "exact"` (the default) or `"fast"`, as in `#[gbuffer(...)]`.
     pub conversions: Conversions,
 }
 
@@ -194,9 +194,9 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDia
         .map(|value| (value.get_ref().as_str(), value.span()))
     {
         None | Some(("exact", _)) => Conversions::Exact,
-        Some(("native", _)) => Conversions::Native,
+        Some(("fast", _)) => Conversions::Fast,
         Some((other, span)) => {
-            let message = format!("unknown conversions `{other}`: expected \"exact\" (the default: bit-identical everywhere) or \"native\" (WGSL's pack builtins)");
+            let message = format!("unknown conversions `{other}`: expected \"exact\" (the default: bit-identical everywhere) or \"fast\" (WGSL's pack builtins where they exist)");
             diagnostics.push(FileDiagnostic::at(path, source, span, message));
             Conversions::Exact
         }
@@ -371,11 +371,11 @@ components = 4
     }
 
     #[test]
-    fn native_conversions_reach_the_wgsl() {
+    fn fast_conversions_reach_the_wgsl() {
         let source =
-            MOBILE_METALLIC.replace("budget = 128", "budget = 128\nconversions = \"native\"");
+            MOBILE_METALLIC.replace("budget = 128", "budget = 128\nconversions = \"fast\"");
         let file = parse_layout(&source, Path::new("mobile.toml")).unwrap();
-        assert_eq!(file.conversions, Conversions::Native);
+        assert_eq!(file.conversions, Conversions::Fast);
         assert!(crate::emit::wgsl::emit_with(&file.layout, file.conversions)
             .contains("pack4x8unorm(c)"));
     }

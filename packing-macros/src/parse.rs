@@ -127,7 +127,7 @@ pub struct Options {
     pub crate_path: TokenStream,
 }
 
-/// `#[gbuffer(budget = 128, conversions = "exact", crate = "::gbuffer")]`, each optional.
+/// `#[gbuffer(budget = 128, conversions = exact, crate = "::gbuffer")]`, each optional.
 fn parse_gbuffer_attributes(input: &DeriveInput, errors: &mut Option<syn::Error>) -> Options {
     let mut options = Options {
         budget: DEFAULT_BUDGET,
@@ -165,16 +165,26 @@ fn parse_gbuffer_attributes(input: &DeriveInput, errors: &mut Option<syn::Error>
                 options.budget_span = Some(expression.span());
                 Ok(())
             } else if meta.path.is_ident("conversions") {
-                let literal: syn::LitStr = meta.value()?.parse()?;
-                options.conversions = match literal.value().as_str() {
-                    "exact" => Conversions::Exact,
-                    "native" => Conversions::Native,
+                // `conversions = fast`, or as a string, `conversions = "fast"`.
+                let value: syn::Expr = meta.value()?.parse()?;
+                let name = match &value {
+                    syn::Expr::Path(path) => path.path.get_ident().map(ToString::to_string),
+                    syn::Expr::Lit(syn::ExprLit {
+                        lit: syn::Lit::Str(literal),
+                        ..
+                    }) => Some(literal.value()),
+                    _ => None,
+                };
+                options.conversions = match name.as_deref() {
+                    Some("exact") => Conversions::Exact,
+                    Some("fast") => Conversions::Fast,
                     other => {
-                        return Err(syn::Error::new_spanned(&literal, format!("unknown conversions `{other}`: expected \"exact\" (the default: bit-identical everywhere) or \"native\" (WGSL's pack builtins)")))
+                        let given = other.map_or_else(|| "this".to_string(), |name| format!("`{name}`"));
+                        return Err(syn::Error::new_spanned(&value, format!("unknown conversions {given}: expected `exact` (the default: bit-identical everywhere) or `fast` (WGSL's pack builtins where they exist)")))
                     }
                 };
                 if std::mem::replace(&mut seen.2, true) {
-                    return Err(syn::Error::new_spanned(&literal, "`conversions` is given twice"));
+                    return Err(syn::Error::new_spanned(&value, "`conversions` is given twice"));
                 }
                 Ok(())
             } else if meta.path.is_ident("crate") {
@@ -188,7 +198,7 @@ fn parse_gbuffer_attributes(input: &DeriveInput, errors: &mut Option<syn::Error>
                 options.crate_path = path.to_token_stream();
                 Ok(())
             } else {
-                Err(meta.error("unknown `gbuffer` option: expected `budget = <bits>`, `conversions = \"exact\" | \"native\"` or `crate = \"<path>\"`"))
+                Err(meta.error("unknown `gbuffer` option: expected `budget = <bits>`, `conversions = exact | fast` or `crate = \"<path>\"`"))
             }
         });
         if let Err(error) = result {

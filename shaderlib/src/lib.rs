@@ -31,7 +31,7 @@
 //! or `Vec2`..`Vec4` in float and unorm formats, `u32` or `UVec2`..`UVec4` in `ui` formats,
 //! `i32` or `IVec2`..`IVec4` in `i` formats; channels it does not fill are zero padding.
 //!
-//! `#[gbuffer(conversions = "native")]` makes the WGSL use the pack builtins for rgba8, rg16
+//! `#[gbuffer(conversions = fast)]` makes the WGSL use the pack builtins for rgba8, rg16
 //! and rg16f: fewer instructions, the adapter's rounding (one code at most from the Rust
 //! mirror), and no WebGL2. The default, `"exact"`, is bit-identical everywhere.
 //!
@@ -103,15 +103,7 @@ pub trait GBufferLayout: Sized {
     ///
     /// When `words` does not hold exactly `WORDS` words per texel.
     fn pack_slice(texels: &[Self], words: &mut [u32]) {
-        assert_eq!(
-            words.len(),
-            texels.len() * Self::WORDS,
-            "pack_slice: {} texels of {} words need {} words, not {}",
-            texels.len(),
-            Self::WORDS,
-            texels.len() * Self::WORDS,
-            words.len()
-        );
+        check_slice_lengths("pack_slice", texels.len(), Self::WORDS, words.len());
         for (texel, out) in texels.iter().zip(words.chunks_exact_mut(Self::WORDS)) {
             out.copy_from_slice(texel.pack().as_ref());
         }
@@ -124,15 +116,7 @@ pub trait GBufferLayout: Sized {
     ///
     /// When `words` does not hold exactly `WORDS` words per texel.
     fn unpack_slice(words: &[u32], texels: &mut [Self]) {
-        assert_eq!(
-            words.len(),
-            texels.len() * Self::WORDS,
-            "unpack_slice: {} texels of {} words need {} words, not {}",
-            texels.len(),
-            Self::WORDS,
-            texels.len() * Self::WORDS,
-            words.len()
-        );
+        check_slice_lengths("unpack_slice", texels.len(), Self::WORDS, words.len());
         for (texel, chunk) in texels.iter_mut().zip(words.chunks_exact(Self::WORDS)) {
             let Ok(packed) = Self::Packed::try_from(chunk) else {
                 unreachable!("chunks_exact yields WORDS words")
@@ -156,4 +140,14 @@ pub trait GBufferLayout: Sized {
             Self::WGSL
         )
     }
+}
+
+/// Panics, naming the call and the lengths, unless `words` is `texels` times `words_per_texel`.
+fn check_slice_lengths(call: &str, texels: usize, words_per_texel: usize, words: usize) {
+    assert_eq!(
+        words,
+        texels * words_per_texel,
+        "{call}: {texels} texels of {words_per_texel} words need {} words, not {words}",
+        texels * words_per_texel
+    );
 }

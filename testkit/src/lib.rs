@@ -98,11 +98,11 @@ pub fn gbuffer_binary() -> &'static std::path::Path {
     })
 }
 
-/// The formats WGSL has pack builtins for, with `conversions = "native"` (and rgb10_a2, which
+/// The formats WGSL has pack builtins for, with `conversions = fast` (and rgb10_a2, which
 /// has none and stays exact).
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 128, conversions = "native")]
-pub struct NativeFormats {
+#[gbuffer(budget = 128, conversions = fast)]
+pub struct FastFormats {
     /// `rgba8`, through `pack4x8unorm`.
     #[pls(rgba8)]
     pub unorm_8: Vec4,

@@ -108,7 +108,7 @@ const BAD_LAYOUTS: [(&str, &str, &str); 22] = [
     ("invalid_layout_name", "1:8", "layout name `2d` must be an ASCII identifier"),
     ("unknown_type", "6:8", "unknown field type `Vec5`"),
     ("name_not_a_string", "1:8", "invalid type: integer `5`, expected a string"),
-    ("unknown_conversions", "2:15", "unknown conversions `fast`: expected \"exact\""),
+    ("unknown_conversions", "2:15", "unknown conversions `approximate`: expected \"exact\""),
 ];
 
 #[test]

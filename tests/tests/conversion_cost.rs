@@ -3,7 +3,7 @@
 //! to SPIR-V and `spirv-opt -O`, counting the instructions in function bodies and the
 //! conditional branches. The exact conversions have no conditional branch (a fragment never
 //! diverges on its data); the table printed beside it (`-- --nocapture`) compares them with
-//! WGSL's pack builtins where the layout asks for those (`conversions = "native"`).
+//! WGSL's pack builtins where the layout asks for those (`conversions = fast`).
 
 use gbuffer::packing::{Field, FieldType, Format, Layout, ScalarKind};
 use gbuffer_codegen::emit::wgsl::{emit_with, Conversions};
@@ -105,15 +105,15 @@ fn exact_conversions_have_no_conditional_branch() {
     layouts.push(("Listing 2.2 (4 words)".into(), four_words));
     for (name, layout) in &layouts {
         let (exact, exact_branches) = cost(&harness(layout, Conversions::Exact));
-        let (native, native_branches) = cost(&harness(layout, Conversions::Native));
+        let (fast, fast_branches) = cost(&harness(layout, Conversions::Fast));
         rows.push(format!(
-            "{name:<24} {exact:>6} {exact_branches:>9} {native:>7} {native_branches:>9}"
+            "{name:<24} {exact:>6} {exact_branches:>9} {fast:>7} {fast_branches:>9}"
         ));
         assert_eq!(exact_branches, 0, "{name}: exact conversions branch");
     }
     println!(
         "{:<24} {:>6} {:>9} {:>7} {:>9}",
-        "layout", "exact", "branches", "native", "branches"
+        "layout", "exact", "branches", "fast", "branches"
     );
     println!("{}", rows.join("\n"));
 }

@@ -78,15 +78,15 @@ fn check_layout(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64
     failures
 }
 
-/// `conversions = "native"`: the adapter's pack builtins against the exact Rust mirror, over
+/// `conversions = fast`: the adapter's pack builtins against the exact Rust mirror, over
 /// values in the builtins' defined domain (finite, and within f16's range for rg16f). The
 /// deviation found is printed; the contract is at most one code per channel.
 #[test]
-fn native_conversions_deviate_from_the_exact_mirror_by_at_most_one_code() {
-    use gbuffer_testkit::NativeFormats;
+fn fast_conversions_deviate_from_the_exact_mirror_by_at_most_one_code() {
+    use gbuffer_testkit::FastFormats;
     let gpu = Gpu::new();
-    let layout = NativeFormats::layout();
-    let harness = compute_harness(&layout, NativeFormats::WGSL);
+    let layout = FastFormats::layout();
+    let harness = compute_harness(&layout, FastFormats::WGSL);
     let scalars = scalars_per_texel(&layout);
     let words = layout.words();
     let count = 1 << 18;
@@ -127,7 +127,7 @@ fn native_conversions_deviate_from_the_exact_mirror_by_at_most_one_code() {
                 }
                 assert!(
                     distance <= 1,
-                    "{}.{}: input {:?}: exact code {want:#x}, native {have:#x}",
+                    "{}.{}: input {:?}: exact code {want:#x}, fast {have:#x}",
                     field.name,
                     channel.name,
                     describe(input, &slots)
@@ -136,18 +136,18 @@ fn native_conversions_deviate_from_the_exact_mirror_by_at_most_one_code() {
         }
     }
     eprintln!(
-        "native conversions on {}: {differing} of {} channel codes differ from the exact mirror, by at most {worst_code}",
+        "fast conversions on {}: {differing} of {} channel codes differ from the exact mirror, by at most {worst_code}",
         gpu.describe(),
         count * slots.len()
     );
 }
 
 #[test]
-fn native_conversions_translate_everywhere_but_webgl2() {
+fn fast_conversions_translate_everywhere_but_webgl2() {
     use gbuffer::GBufferLayout;
-    use gbuffer_testkit::NativeFormats;
+    use gbuffer_testkit::FastFormats;
     let shader =
-        gbuffer_testkit::harness::fragment_harness(&NativeFormats::layout(), NativeFormats::WGSL);
+        gbuffer_testkit::harness::fragment_harness(&FastFormats::layout(), FastFormats::WGSL);
     let validated =
         gbuffer_validator::validate_wgsl(&shader).unwrap_or_else(|problem| panic!("{problem}"));
     for backend in [

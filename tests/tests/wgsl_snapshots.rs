@@ -3,7 +3,7 @@
 //! (or `cargo insta review`).
 
 use gbuffer::{seed_layouts, GBufferLayout};
-use gbuffer_testkit::{AllFormats, NativeFormats};
+use gbuffer_testkit::{AllFormats, FastFormats};
 
 #[test]
 fn seed_layout_wgsl() {
@@ -18,6 +18,6 @@ fn all_formats_wgsl() {
 }
 
 #[test]
-fn native_conversions_wgsl() {
-    insta::assert_snapshot!("native_formats", NativeFormats::WGSL);
+fn fast_conversions_wgsl() {
+    insta::assert_snapshot!("fast_formats", FastFormats::WGSL);
 }

@@ -9,7 +9,7 @@ struct UnknownOption {
 }
 
 #[derive(GBufferLayout)]
-#[gbuffer(conversions = "fast")]
+#[gbuffer(conversions = "approximate")]
 struct UnknownConversions {
     #[pls(r32f)]
     depth: f32,
