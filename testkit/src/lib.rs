@@ -98,8 +98,8 @@ pub fn gbuffer_binary() -> &'static std::path::Path {
     })
 }
 
-/// The formats WGSL has pack builtins for, with `conversions = fast` (and rgb10_a2, which
-/// has none and stays exact).
+/// The formats that fast conversions change: those WGSL has pack builtins for, and rgb10_a2,
+/// rounded in f32 arithmetic.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
 #[gbuffer(budget = 128, conversions = fast)]
 pub struct FastFormats {
@@ -112,7 +112,7 @@ pub struct FastFormats {
     /// `rg16f`, through `pack2x16float`.
     #[pls(rg16f)]
     pub halves: Vec2,
-    /// `rgb10_a2`, exact (WGSL has no builtin for it).
+    /// `rgb10_a2`, through f32 arithmetic (WGSL has no builtin for it).
     #[pls(rgb10_a2)]
     pub unorm_10_10_10_2: Vec4,
 }
