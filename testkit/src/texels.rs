@@ -237,7 +237,7 @@ pub fn word_from_components(format: Format, components: &[u32]) -> u32 {
 /// The bits of a float with a 5-bit exponent and `mantissa_bits` of mantissa (binary16 when
 /// `signed`, the unsigned floats of `r11f_g11f_b10f` otherwise) that `value` was converted
 /// from exactly. A NaN keeps the top of its payload (at least one bit of it).
-pub fn small_float_bits(value: f32, mantissa_bits: u32, signed: bool) -> u32 {
+fn small_float_bits(value: f32, mantissa_bits: u32, signed: bool) -> u32 {
     let bits = value.to_bits();
     let sign = if signed {
         (bits >> 31) << (5 + mantissa_bits)

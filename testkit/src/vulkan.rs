@@ -520,8 +520,8 @@ impl Vulkan {
         Ok(layout)
     }
 
-    /// A descriptor set of `layout` (made with `types`) whose binding i is `resources[i]`:
-    /// an input attachment's view or a storage buffer.
+    /// A descriptor set of `layout` (made by [`Vulkan::descriptor_set_layout`] with the same
+    /// kinds in the same order) whose binding i is `resources[i]`.
     pub fn descriptor_set(
         &self,
         layout: vk::DescriptorSetLayout,

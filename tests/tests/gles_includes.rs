@@ -19,7 +19,7 @@ use gbuffer_codegen::emit::glsl::{self, Include, Interface};
 use gbuffer_testkit::gles::{skip_without_driver, Framebuffer, Gles};
 use gbuffer_testkit::harness::scalars_per_texel;
 use gbuffer_testkit::texels::{
-    check_native_words, compare, compare_decoded, inputs, small_float_bits,
+    check_native_words, compare, compare_decoded, inputs, word_from_components,
 };
 use gbuffer_testkit::user_shaders::{
     has_storage_buffers, preambles, scalars_of_texel, texel_from_scalars,
@@ -117,20 +117,9 @@ fn word_from_pixel(format: Format, pixel: &[u8]) -> u32 {
     match format {
         Format::Rgb10A2 | Format::Rgba8 | Format::R11fG11fB10f | Format::Rgb10A2ui => u32_at(0),
         Format::Rg16 => u16_at(0) | (u16_at(1) << 16),
-        Format::Rg16f => {
-            // GLES reads RG16F back only as floats, which the halves converted to exactly.
-            let half = |bits| small_float_bits(f32::from_bits(bits), 10, true);
-            half(u32_at(0)) | (half(u32_at(1)) << 16)
-        }
-        Format::R32f => u32_at(0),
-        // Integer channels come one per u32: keep each channel's bits at its offset.
-        _ => format
-            .channels()
-            .iter()
-            .enumerate()
-            .fold(0, |word, (index, channel)| {
-                word | ((u32_at(index) & channel.mask()) << channel.offset)
-            }),
+        // Four 32-bit components, floats (RG16F and R32F read back only as floats, which the
+        // stored values converted to exactly) or integers: as the Vulkan test reads them.
+        _ => word_from_components(format, &[u32_at(0), u32_at(1), u32_at(2), u32_at(3)]),
     }
 }
 

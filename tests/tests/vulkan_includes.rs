@@ -18,7 +18,7 @@
 use std::collections::BTreeSet;
 
 use ash::vk;
-use gbuffer::packing::{Layout, ScalarKind};
+use gbuffer::packing::Layout;
 use gbuffer_codegen::emit::glsl::{self, GlslNames, Include, Interface};
 use gbuffer_testkit::gles::skip_without_driver;
 use gbuffer_testkit::harness::scalars_per_texel;
@@ -157,10 +157,8 @@ fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> UserShader
 }
 
 /// The user's colour outputs over the G-buffer attachments and `harness_store(texel)`, which
-/// writes a texel to them: the packed words through the include's pack functions, or each
-/// field into its own attachment.
+/// writes a texel to them with the statements the fetch include's `store_<layout>()` has.
 fn gbuffer_writer(layout: &Layout, names: &GlslNames, interface: &Interface) -> String {
-    let prefix = layout.snake_name();
     let mut out = String::new();
     for attachment in &interface.attachments {
         out.push_str(&format!(
@@ -172,37 +170,12 @@ fn gbuffer_writer(layout: &Layout, names: &GlslNames, interface: &Interface) -> 
         "\nvoid harness_store({} texel) {{\n",
         names.layout
     ));
-    if interface.include.is_packed() {
-        out.push_str(&format!(
-            "    {} targets = pack_{prefix}_targets(texel);\n",
-            names.targets
-        ));
-        for (attachment, member) in interface.attachments.iter().zip(&names.target_members) {
-            out.push_str(&format!(
-                "    harness_gbuffer{} = targets.{member};\n",
-                attachment.index
-            ));
-        }
-    } else {
-        for ((field, name), attachment) in layout
-            .fields
-            .iter()
-            .zip(&names.fields)
-            .zip(&interface.attachments)
-        {
-            let zero = match field.ty.scalar {
-                ScalarKind::Float => ", 0.0",
-                ScalarKind::Uint => ", 0u",
-                ScalarKind::Sint => ", 0",
-            };
-            out.push_str(&format!(
-                "    harness_gbuffer{} = {}(texel.{name}{});\n",
-                attachment.index,
-                attachment.format.glsl_type,
-                zero.repeat(4 - field.ty.components)
-            ));
-        }
-    }
+    out.push_str(&glsl::store_statements(
+        layout,
+        names,
+        interface,
+        |attachment| format!("harness_gbuffer{}", attachment.index),
+    ));
     out.push_str("}\n");
     out
 }

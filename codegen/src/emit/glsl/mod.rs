@@ -321,6 +321,24 @@ fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interfa
     }
     let _ = writeln!(out, "\n// Writes a texel into the attachments.");
     let _ = writeln!(out, "void store_{prefix}({texel} texel) {{");
+    out.push_str(&store_statements(layout, names, interface, |attachment| {
+        attachment.name.clone()
+    }));
+    out.push_str("}\n");
+}
+
+/// The statements that write the GLSL variable `texel` into the attachments of `interface`:
+/// the packed targets through `pack_<snake>_targets`, or each field widened with zeros to its
+/// attachment's four components. `output` names the variable written for each attachment: the
+/// `inout` itself for fetch, the user's own `out` for a Vulkan G-buffer subpass.
+pub fn store_statements(
+    layout: &Layout,
+    names: &GlslNames,
+    interface: &Interface,
+    output: impl Fn(&Attachment) -> String,
+) -> String {
+    let prefix = layout.snake_name();
+    let mut out = String::new();
     if interface.include.is_packed() {
         let _ = writeln!(
             out,
@@ -328,32 +346,30 @@ fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interfa
             names.targets
         );
         for (attachment, member) in interface.attachments.iter().zip(&names.target_members) {
-            let _ = writeln!(out, "    {} = targets.{member};", attachment.name);
+            let _ = writeln!(out, "    {} = targets.{member};", output(attachment));
         }
-    } else {
-        for ((field, name), attachment) in layout
-            .fields
-            .iter()
-            .zip(&names.fields)
-            .zip(&interface.attachments)
-        {
-            let padding = 4 - field.ty.components;
-            let value = if padding == 0 {
-                format!("texel.{name}")
-            } else {
-                let zero = match field.ty.scalar {
-                    ScalarKind::Float => "0.0",
-                    ScalarKind::Uint => "0u",
-                    ScalarKind::Sint => "0",
-                };
-                format!(
-                    "{}(texel.{name}{})",
-                    attachment.format.glsl_type,
-                    format!(", {zero}").repeat(padding)
-                )
-            };
-            let _ = writeln!(out, "    {} = {value};", attachment.name);
-        }
+        return out;
     }
-    out.push_str("}\n");
+    for ((field, name), attachment) in layout
+        .fields
+        .iter()
+        .zip(&names.fields)
+        .zip(&interface.attachments)
+    {
+        let zero = match field.ty.scalar {
+            ScalarKind::Float => ", 0.0",
+            ScalarKind::Uint => ", 0u",
+            ScalarKind::Sint => ", 0",
+        };
+        let value = match 4 - field.ty.components {
+            0 => format!("texel.{name}"),
+            padding => format!(
+                "{}(texel.{name}{})",
+                attachment.format.glsl_type,
+                zero.repeat(padding)
+            ),
+        };
+        let _ = writeln!(out, "    {} = {value};", output(attachment));
+    }
+    out
 }
