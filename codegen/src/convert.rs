@@ -302,46 +302,71 @@ mod tests {
         code.min(small_float_max_code(mantissa_bits))
     }
 
-    /// The WGSL's unorm encode (`PREFIX_f32_to_unorm` in `emit::wgsl`), transliterated: on
-    /// the float's bits, `value = significand * 2^-shift` with a 24-bit significand, and the
-    /// product with `2^bits - 1` formed in two 12-bit halves so that every step fits a u32, as
-    /// it must on a GPU without f64. Every case is computed and the one that applies selected.
+    /// The WGSL's unorm encode (`PREFIX_<lanes>_to_unorm` in `emit::wgsl`), transliterated:
+    /// integer operations on the float's bits.
     fn wgsl_unorm_from_f32(value: f32, bits: u32) -> u32 {
         let max_code = max_code(bits);
         let value_bits = value.to_bits();
-        let exponent = value_bits >> 23;
-        let normal = exponent != 0;
-        let significand = (value_bits & 0x7f_ffff) | if normal { 0x80_0000 } else { 0 };
-        // Past a shift of 40 the product is under one half, as it is at 41.
-        let shift = if normal {
-            150u32.wrapping_sub(exponent)
-        } else {
-            149
-        }
-        .min(41);
-        let high = max_code
-            .wrapping_mul(significand >> 12)
-            .wrapping_add(max_code.wrapping_mul(significand & 0xfff) >> 12);
-        let rounded = high.wrapping_add(1u32.wrapping_shl(shift.wrapping_sub(13)))
-            >> (shift.wrapping_sub(12) & 31);
-        let in_range = if value_bits >= F32_ONE_BITS {
-            max_code
-        } else {
-            rounded
-        };
-        // NaN, or the sign bit set, gives 0.
-        if value_bits > F32_INFINITY_BITS {
+        let clamped = if value_bits > F32_INFINITY_BITS {
             0
         } else {
-            in_range
+            value_bits.min(F32_ONE_BITS)
+        };
+        let significand = (clamped & 0x7f_ffff) | 0x80_0000;
+        let shift = (150 - bits - (clamped >> 23)).min(26);
+        let scaled = significand - ((significand + max_code) >> bits);
+        (scaled + ((1 << shift) >> 1)) >> shift
+    }
+
+    /// The WGSL's small-float rounding (`PREFIX_<lanes>_round_to_<name>`), transliterated.
+    fn wgsl_round_to_small_float(magnitude: u32, mantissa_bits: u32) -> u32 {
+        let shift = 23 - mantissa_bits;
+        let odd = (magnitude >> shift) & 1;
+        let rounding_and_rebias = ((1u32 << (shift - 1)) - 1).wrapping_sub(113 << 23);
+        let normal = (magnitude
+            .wrapping_add(rounding_and_rebias)
+            .wrapping_add(odd)
+            >> shift)
+            + (1 << mantissa_bits);
+        // 2^(14 + mantissa_bits); the conversion saturates, as naga's WGSL conversions do.
+        let scale = f32::from_bits((127 + 14 + mantissa_bits) << 23);
+        let denormal = (f32::from_bits(magnitude) * scale).round_ties_even() as u32;
+        normal.min(denormal).min((31 << mantissa_bits) - 1)
+    }
+
+    /// The WGSL's half encode (`PREFIX_<lanes>_to_half`), transliterated.
+    fn wgsl_half_from_f32(value: f32) -> u32 {
+        let bits = value.to_bits();
+        let magnitude = bits & 0x7fff_ffff;
+        let signed = wgsl_round_to_small_float(magnitude, 10) | ((bits >> 16) & 0x8000);
+        if magnitude > F32_INFINITY_BITS {
+            0
+        } else {
+            signed
         }
     }
 
-    /// Runs `check` on every f32 bit pattern, on two threads; the first failure, if any.
-    fn every_f32(check: impl Fn(u32) -> Option<String> + Sync) -> Option<String> {
+    /// The WGSL's unsigned-float encode (`PREFIX_<lanes>_to_unsigned_float`), transliterated.
+    fn wgsl_unsigned_float_from_f32(value: f32, mantissa_bits: u32) -> u32 {
+        let bits = value.to_bits();
+        let code = wgsl_round_to_small_float(bits, mantissa_bits);
+        if bits > F32_INFINITY_BITS {
+            0
+        } else {
+            code
+        }
+    }
+
+    /// Runs `check` on every bit pattern in `patterns`, split over two threads; the first
+    /// failure, if any.
+    fn every_pattern(
+        patterns: std::ops::RangeInclusive<u32>,
+        check: impl Fn(u32) -> Option<String> + Sync,
+    ) -> Option<String> {
+        let (first, last) = (*patterns.start(), *patterns.end());
+        let middle = first + (last - first) / 2;
         std::thread::scope(|scope| {
-            let halves = [0..=0x7fff_ffffu32, 0x8000_0000..=u32::MAX];
-            let workers: Vec<_> = halves
+            let workers: Vec<_> = [first..=middle, middle + 1..=last]
                 .into_iter()
                 .map(|half| scope.spawn(|| half.into_iter().find_map(&check)))
                 .collect();
@@ -353,25 +378,27 @@ mod tests {
 
     #[test]
     fn the_wgsl_unorm_algorithm_is_exact_for_every_f32() {
-        for bits in [8, 10, 16] {
-            let failure = every_f32(|value_bits| {
-                let value = f32::from_bits(value_bits);
+        let failure = every_pattern(0..=u32::MAX, |value_bits| {
+            let value = f32::from_bits(value_bits);
+            [2, 8, 10, 16].iter().find_map(|&bits| {
                 let (got, want) = (
                     wgsl_unorm_from_f32(value, bits),
                     unorm_from_f32(value, bits),
                 );
-                (got != want)
-                    .then(|| format!("{value:e} ({value_bits:#010x}): {got}, exact {want}"))
-            });
-            assert_eq!(failure, None, "unorm at {bits} bits");
-        }
+                (got != want).then(|| {
+                    format!("{value:e} ({value_bits:#010x}) at {bits} bits: {got}, exact {want}")
+                })
+            })
+        });
+        assert_eq!(failure, None);
     }
 
+    /// On every f32: the mirror's half is IEEE's rounding (the half crate's, which overflows to
+    /// infinity where ours saturates at the largest finite value and stores NaN as 0), and the
+    /// WGSL's half and unsigned floats are the mirror's.
     #[test]
-    fn half_rounds_every_f32_as_ieee_does() {
-        // The half crate's conversion rounds to nearest even and overflows to infinity; ours
-        // saturates at the largest finite value and stores NaN as 0.
-        let failure = every_f32(|value_bits| {
+    fn small_floats_round_every_f32_as_ieee_does_in_the_mirror_and_the_wgsl() {
+        let failure = every_pattern(0..=u32::MAX, |value_bits| {
             let value = f32::from_bits(value_bits);
             let ieee = u32::from(half::f16::from_f32(value).to_bits());
             let want = if value.is_nan() {
@@ -381,31 +408,35 @@ mod tests {
             } else {
                 ieee
             };
-            let got = half_from_f32(value);
-            (got != want)
-                .then(|| format!("{value:e} ({value_bits:#010x}): {got:#06x}, IEEE {want:#06x}"))
+            let (mirror, wgsl) = (half_from_f32(value), wgsl_half_from_f32(value));
+            if mirror != want || wgsl != want {
+                return Some(format!(
+                    "half of {value:e} ({value_bits:#010x}): mirror {mirror:#06x}, WGSL {wgsl:#06x}, IEEE {want:#06x}"
+                ));
+            }
+            [6, 5].iter().find_map(|&mantissa_bits| {
+                let got = wgsl_unsigned_float_from_f32(value, mantissa_bits);
+                let want = unsigned_float_from_f32(value, mantissa_bits);
+                (got != want).then(|| {
+                    format!("{value:e} with {mantissa_bits} mantissa bits: WGSL {got:#x}, mirror {want:#x}")
+                })
+            })
         });
         assert_eq!(failure, None);
     }
 
+    /// The WGSL decodes r11f_g11f_b10f by widening each code into a half (`unpack2x16float`):
+    /// every code decodes to the mirror's value that way.
     #[test]
-    fn the_wgsl_unorm_algorithm_matches_at_every_midpoint() {
-        for bits in [2, 8, 10, 16] {
-            let max = max_code(bits);
-            for code in 0..max {
-                let midpoint = (f64::from(code) + 0.5) / f64::from(max);
-                let nearest = midpoint as f32;
-                for value in [
-                    nearest,
-                    f32::from_bits(nearest.to_bits() - 1),
-                    f32::from_bits(nearest.to_bits() + 1),
-                ] {
-                    assert_eq!(
-                        wgsl_unorm_from_f32(value, bits),
-                        unorm_from_f32(value, bits),
-                        "{value:e} at {bits} bits"
-                    );
-                }
+    fn unsigned_floats_widened_into_halves_decode_as_the_mirror_does() {
+        for (mantissa_bits, widen) in [(6, 4), (5, 5)] {
+            for code in 0..(32u32 << mantissa_bits) {
+                let half = half::f16::from_bits((code << widen) as u16).to_f32();
+                let mirror = f32_from_small_float(code, mantissa_bits);
+                assert!(
+                    half.to_bits() == mirror.to_bits() || (half.is_nan() && mirror.is_nan()),
+                    "code {code:#x} with {mantissa_bits} mantissa bits: {half:e}, mirror {mirror:e}"
+                );
             }
         }
     }

@@ -34,20 +34,19 @@ fn one_field(format: Format) -> Layout {
     }
 }
 
-/// The shader measured: load the words, unpack, pack, store.
+/// The shader measured: pack a texel read from one buffer, unpack words read from another.
 fn harness(layout: &Layout, conversions: Conversions) -> String {
     let words = layout.words();
-    let loads: Vec<String> = (0..words).map(|word| format!("data[{word}]")).collect();
     format!(
-        "{}\n@group(0) @binding(0) var<storage, read_write> data: array<u32, {words}>;\n\n\
+        "{}\n\
+         @group(0) @binding(0) var<storage, read> texel_in: Texel;\n\
+         @group(0) @binding(1) var<storage, read_write> words_out: array<u32, {words}>;\n\
+         @group(0) @binding(2) var<storage, read> words_in: array<u32, {words}>;\n\
+         @group(0) @binding(3) var<storage, read_write> texel_out: Texel;\n\n\
          @compute @workgroup_size(1)\nfn main() {{\n    \
-         let texel = unpack_texel(array<u32, {words}>({}));\n    \
-         let words = pack_texel(texel);\n{}}}\n",
+         words_out = pack_texel(texel_in);\n    \
+         texel_out = unpack_texel(words_in);\n}}\n",
         emit_with(layout, conversions),
-        loads.join(", "),
-        (0..words)
-            .map(|word| format!("    data[{word}] = words[{word}];\n"))
-            .collect::<String>()
     )
 }
 
@@ -70,6 +69,10 @@ fn cost(wgsl: &str) -> (usize, usize) {
         "spirv-tools",
     );
     assert!(ok, "spirv-opt: {log}");
+    if let Ok(folder) = std::env::var("GBUFFER_DUMP_SPIRV") {
+        let name = format!("{folder}/{:016x}.spv", wgsl.len());
+        std::fs::copy(&output, name).unwrap();
+    }
     let optimised = std::fs::read(&output).unwrap();
     let words: Vec<u32> = optimised
         .chunks_exact(4)

@@ -1,11 +1,15 @@
 //! The WGSL emitter: a struct mirroring the layout, `pack_`/`unpack_`/`load_` functions, and
 //! the helpers for a fragment shader that writes `Rgba32Uint` targets.
 //!
-//! Every conversion is done with integer operations on the float's bits. WGSL's
-//! `pack2x16float` rounds in an implementation-defined way, a float multiply or fused
-//! multiply-add moves values next to rounding midpoints, and builtins such as `pack4x8unorm`
-//! and `extractBits` do not translate to every backend (GLSL ES 3.00 has neither), so the
-//! generated code uses shifts, masks and comparisons only. Its CPU twin is [`crate::convert`].
+//! Exact conversions (the default) give every conforming adapter the Rust mirror's bits. They
+//! use only steps whose result no adapter may choose: integer and bit operations, comparisons
+//! and `select`, `floor` and `round`, scaling by a power of two, and subtractions that
+//! Sterbenz's lemma makes exact. The one rounded step, unorm's product, is settled by its exact
+//! error. WGSL's `pack2x16float` rounds in an implementation-defined way and `pack4x8unorm`
+//! lets the adapter pick either neighbour, so exact conversions do not use them; the channels
+//! of a word are converted together, one vector instruction for all of them, and nothing
+//! branches on the data. Their CPU twin is [`crate::convert`]. Fast conversions
+//! ([`Conversions::Fast`]) use the builtins and the engines' f32 idioms instead.
 //!
 //! Helpers carry the layout's snake_case name as a prefix, so the WGSL of several layouts can
 //! be concatenated into one module.
@@ -24,21 +28,23 @@ pub enum Conversions {
     /// mirror, and portable to every backend.
     #[default]
     Exact,
-    /// WGSL's builtins where a format has one (`pack4x8unorm` for rgba8, `pack2x16unorm` for
-    /// rg16, `pack2x16float` for rg16f), f32 arithmetic for rgb10_a2, exact conversions
-    /// elsewhere. Fewer instructions; the
-    /// rounding (and for f16 the handling of values past 65504) is the adapter's, so a word
-    /// can differ from the Rust mirror's by one code, and the builtins do not translate to
-    /// GLSL ES 3.00 (WebGL2) everywhere. `tests/tests/gpu_packing.rs` measures the deviation.
+    /// What engines write: WGSL's builtins where a format has one (`pack4x8unorm` for rgba8,
+    /// `pack2x16unorm` for rg16, `pack2x16float` for rg16f), f32 arithmetic for rgb10_a2,
+    /// `pack2x16float` with cut mantissas for r11f_g11f_b10f; the integer formats and r32f are
+    /// exact either way. Fewer instructions; the rounding is the adapter's, so a channel's code
+    /// can differ from the Rust mirror's by one (and for the floats the adapter may flush
+    /// values under 2^-14 to zero and turn values past 65504 into infinity).
+    /// `tests/tests/gpu_packing.rs` measures the deviation on the adapter.
     Fast,
 }
 
 impl Conversions {
     /// Whether a format's encode is the exact one under these conversions (fast conversions
-    /// replace it for rgba8, rg16, rg16f and rgb10_a2).
+    /// replace it for rgba8, rg16, rg16f, rgb10_a2 and r11f_g11f_b10f).
     pub fn is_exact_for(self, format: Format) -> bool {
         self == Conversions::Exact
-            || !(self.builtins(format).is_some() || format == Format::Rgb10A2)
+            || !(self.builtins(format).is_some()
+                || matches!(format, Format::Rgb10A2 | Format::R11fG11fB10f))
     }
 
     /// The builtin pack and unpack functions for a format, under these conversions.
@@ -158,8 +164,12 @@ fn write_header(out: &mut String, layout: &Layout, conversions: Conversions) {
     );
     let _ = writeln!(out, "// Word i holds field i; inside a word the channels sit from the least significant bit up.");
     if conversions == Conversions::Fast {
-        let _ = writeln!(out, "// Fast conversions: rgba8, rg16 and rg16f use WGSL's pack builtins and rgb10_a2 f32 arithmetic,");
-        let _ = writeln!(out, "// whose rounding is the adapter's (a word may differ from the Rust mirror's by one code); other formats are exact.");
+        let _ = writeln!(out, "// Fast conversions: rgba8, rg16 and rg16f use WGSL's pack builtins, rgb10_a2 f32 arithmetic and");
+        let _ = writeln!(out, "// r11f_g11f_b10f cut halves, whose rounding is the adapter's (a channel may differ from the Rust");
+        let _ = writeln!(
+            out,
+            "// mirror's by one code); the other formats are exact."
+        );
     }
     let width = layout
         .fields
@@ -331,12 +341,59 @@ fn decode_expression(prefix: &str, field: &Field, word: usize) -> String {
     }
 }
 
-fn component(format: Format, index: usize) -> String {
-    if format.channels().len() == 1 {
-        "c".to_string()
-    } else {
-        format!("c.{}", &"xyzw"[index..=index])
+/// The lanes a format's helpers work on: a scalar for one channel, a vector for several, so
+/// that one instruction converts every channel of a word.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Lanes(usize);
+
+impl Lanes {
+    /// The lane count's name in helper names: `f32`, `f32x2`, `f32x3`, `f32x4` (no helper name
+    /// may end in a digit, which naga_oil refuses).
+    fn name(self) -> String {
+        match self.0 {
+            1 => "f32".to_string(),
+            n => format!("f32x{n}"),
+        }
     }
+
+    /// The WGSL type with `scalar` in every lane.
+    fn of(self, scalar: &str) -> String {
+        match self.0 {
+            1 => scalar.to_string(),
+            n => format!("vec{n}<{scalar}>"),
+        }
+    }
+
+    /// A literal with one value per lane, e.g. `vec4<u32>(0u, 8u, 16u, 24u)`; a splat when the
+    /// values agree.
+    fn literal(self, scalar: &str, values: &[String]) -> String {
+        if values.iter().all(|value| *value == values[0]) && self.0 > 1 {
+            format!("{}({})", self.of(scalar), values[0])
+        } else if self.0 == 1 {
+            values[0].clone()
+        } else {
+            format!("{}({})", self.of(scalar), values.join(", "))
+        }
+    }
+
+    /// `template` with its placeholders filled for these lanes.
+    fn fill(self, template: &str, prefix: &str) -> String {
+        template
+            .replace("PREFIX", prefix)
+            .replace("LANES", &self.name())
+            .replace("FLOATS", &self.of("f32"))
+            .replace("UINTS", &self.of("u32"))
+    }
+}
+
+/// A literal with one `u32` per channel of `format`.
+fn per_channel(format: Format, value: impl Fn(&Channel) -> u32) -> String {
+    let values: Vec<String> = format
+        .channels()
+        .iter()
+        .map(|channel| format!("{}u", value(channel)))
+        .collect();
+    Lanes(values.len()).literal("u32", &values)
 }
 
 /// One encode and one decode function per format the layout uses.
@@ -344,9 +401,9 @@ fn write_format_helpers(out: &mut String, layout: &Layout, conversions: Conversi
     let prefix = layout.snake_name();
     let formats: BTreeSet<Format> = layout.fields.iter().map(|field| field.format).collect();
     for format in formats {
+        let name = format.name();
+        let vector = format_vector_type(format);
         if let Some((pack, unpack)) = conversions.builtins(format) {
-            let vector = format_vector_type(format);
-            let name = format.name();
             let _ = writeln!(
                 out,
                 "// {name}: fast conversions, the adapter's `{pack}` and `{unpack}`."
@@ -358,22 +415,6 @@ fn write_format_helpers(out: &mut String, layout: &Layout, conversions: Conversi
             let _ = writeln!(out, "fn {prefix}_decode_{name}_word(word: u32) -> {vector} {{\n    return {unpack}(word);\n}}\n");
             continue;
         }
-        if format == Format::Rgb10A2 && !conversions.is_exact_for(format) {
-            // No builtin packs it: f32 arithmetic rounds, the decode stays exact.
-            out.push_str(&FAST_RGB10_A2.replace("PREFIX", &prefix));
-            let _ = writeln!(
-                out,
-                "fn {prefix}_decode_rgb10_a2_word(word: u32) -> vec4<f32> {{\n    return vec4<f32>(\n        {},\n    );\n}}\n",
-                format
-                    .channels()
-                    .iter()
-                    .map(|channel| decode_channel(&prefix, *channel))
-                    .collect::<Vec<_>>()
-                    .join(",\n        ")
-            );
-            continue;
-        }
-        let vector = format_vector_type(format);
         let channels = format.channels();
         let layout_description: Vec<String> = channels
             .iter()
@@ -388,142 +429,224 @@ fn write_format_helpers(out: &mut String, layout: &Layout, conversions: Conversi
             .collect();
         let _ = writeln!(
             out,
-            "// {}: {}, {}.",
-            format.name(),
+            "// {name}: {}, {}.",
             format.encoding_summary(),
             layout_description.join(", ")
         );
-        let terms: Vec<String> = channels
-            .iter()
-            .enumerate()
-            .map(|(index, channel)| {
-                let code = encode_channel(&prefix, *channel, &component(format, index));
-                if channel.offset == 0 {
-                    code
-                } else {
-                    format!("({code} << {}u)", channel.offset)
-                }
-            })
-            .collect();
-        let _ = writeln!(
-            out,
-            "fn {prefix}_encode_{}_word(c: {vector}) -> u32 {{",
-            format.name()
-        );
-        let _ = writeln!(out, "    return {};\n}}\n", terms.join("\n        | "));
-
-        let decoded: Vec<String> = channels
-            .iter()
-            .map(|channel| decode_channel(&prefix, *channel))
-            .collect();
-        let _ = writeln!(
-            out,
-            "fn {prefix}_decode_{}_word(word: u32) -> {vector} {{",
-            format.name()
-        );
-        if decoded.len() == 1 {
-            let _ = writeln!(out, "    return {};\n}}\n", decoded[0]);
-        } else {
-            let _ = writeln!(
-                out,
-                "    return {vector}(\n        {},\n    );\n}}\n",
-                decoded.join(",\n        ")
-            );
+        match (conversions.is_exact_for(format), format) {
+            (false, Format::Rgb10A2) => out.push_str(&FAST_RGB10_A2.replace("PREFIX", &prefix)),
+            (false, Format::R11fG11fB10f) => {
+                out.push_str(&FAST_R11F_G11F_B10F.replace("PREFIX", &prefix))
+            }
+            _ => {
+                let _ = writeln!(
+                    out,
+                    "fn {prefix}_encode_{name}_word(c: {vector}) -> u32 {{\n{}}}\n",
+                    encode_body(&prefix, format)
+                );
+            }
         }
+        let _ = writeln!(
+            out,
+            "fn {prefix}_decode_{name}_word(word: u32) -> {vector} {{\n{}}}\n",
+            decode_body(format)
+        );
     }
 }
 
-/// The expression that encodes one channel value into its code (not yet shifted into place).
-fn encode_channel(prefix: &str, channel: Channel, value: &str) -> String {
-    let max = max_code(channel.bits);
-    match channel.encoding {
-        ChannelEncoding::Unorm => format!("{prefix}_f32_to_unorm({value}, {max}u)"),
-        ChannelEncoding::Float32 => format!("bitcast<u32>({value})"),
-        ChannelEncoding::Half => format!("{prefix}_f32_to_half({value})"),
-        ChannelEncoding::UnsignedFloat { mantissa_bits } => {
-            format!("{prefix}_f32_to_unsigned_float({value}, {mantissa_bits}u)")
-        }
-        ChannelEncoding::Uint if channel.bits == 32 => value.to_string(),
-        ChannelEncoding::Uint => format!("min({value}, {max}u)"),
+/// The exact encode of a word: every channel's code at once, then the codes shifted into
+/// place and combined.
+fn encode_body(prefix: &str, format: Format) -> String {
+    let channels = format.channels();
+    let lanes = Lanes(channels.len());
+    let first = channels[0];
+    let codes = match first.encoding {
+        ChannelEncoding::Float32 => "bitcast<u32>(c)".to_string(),
+        ChannelEncoding::Uint if first.bits == 32 => "c".to_string(),
+        ChannelEncoding::Uint => format!("min(c, {})", per_channel(format, |c| max_code(c.bits))),
         ChannelEncoding::Sint => {
-            let highest = max >> 1;
+            let bound = |value: i64| {
+                Lanes(channels.len()).literal("i32", &vec![value.to_string(); channels.len()])
+            };
+            let highest = i64::from(max_code(first.bits) >> 1);
             format!(
-                "(bitcast<u32>(clamp({value}, -{}, {highest})) & {max:#x}u)",
-                highest + 1
+                "({}(clamp(c, {}, {})) & {})",
+                if channels.len() == 1 {
+                    "bitcast<u32>".to_string()
+                } else {
+                    format!("bitcast<{}>", lanes.of("u32"))
+                },
+                bound(-highest - 1),
+                bound(highest),
+                per_channel(format, |c| c.mask())
             )
         }
+        ChannelEncoding::Unorm => format!(
+            "{prefix}_{}_to_unorm(c, {}, {}, {})",
+            lanes.name(),
+            per_channel(format, |c| c.bits),
+            per_channel(format, |c| max_code(c.bits)),
+            per_channel(format, |c| 150 - c.bits)
+        ),
+        ChannelEncoding::Half => format!("{prefix}_{}_to_half(c)", lanes.name()),
+        ChannelEncoding::UnsignedFloat { .. } => {
+            format!("{prefix}_{}_to_unsigned_float(c)", lanes.name())
+        }
+    };
+    if channels.len() == 1 {
+        return format!("    return {codes};\n");
     }
+    let combined: Vec<String> = "xyzw"[..channels.len()]
+        .chars()
+        .map(|lane| format!("placed.{lane}"))
+        .collect();
+    format!(
+        "    let placed = {codes} << {};\n    return {};\n",
+        per_channel(format, |c| c.offset),
+        combined.join(" | ")
+    )
 }
 
-/// The expression that decodes one channel of `word`.
-fn decode_channel(prefix: &str, channel: Channel) -> String {
-    let code = match (channel.offset, channel.offset + channel.bits) {
-        (0, 32) => "word".to_string(),
-        (offset, 32) => format!("word >> {offset}u"),
-        (0, _) => format!("word & {:#x}u", channel.mask()),
-        (offset, _) => format!("(word >> {offset}u) & {:#x}u", channel.mask()),
-    };
-    match channel.encoding {
+/// The exact decode of a word: every channel's code moved to its own lane, then converted.
+fn decode_body(format: Format) -> String {
+    let channels = format.channels();
+    let lanes = Lanes(channels.len());
+    let codes = format!(
+        "({}(word) >> {}) & {}",
+        lanes.of("u32"),
+        per_channel(format, |c| c.offset),
+        per_channel(format, |c| c.mask())
+    );
+    let value = match channels[0].encoding {
+        ChannelEncoding::Float32 => "bitcast<f32>(word)".to_string(),
+        ChannelEncoding::Uint if channels.len() == 1 => "word".to_string(),
+        ChannelEncoding::Uint => codes,
+        // Move each channel's top bit to bit 31, then shift back arithmetically.
+        ChannelEncoding::Sint => format!(
+            "bitcast<{}>({}(word) << {}) >> {}",
+            lanes.of("i32"),
+            lanes.of("u32"),
+            per_channel(format, |c| 32 - c.offset - c.bits),
+            per_channel(format, |c| 32 - c.bits)
+        ),
         // The reciprocal is correctly rounded; the product stays within 1 ulp of the exact
         // quotient and the largest code decodes to exactly 1.0.
         ChannelEncoding::Unorm => {
-            format!("f32({code}) * {:?}", 1.0f32 / max_code(channel.bits) as f32)
+            let reciprocals: Vec<String> = channels
+                .iter()
+                .map(|c| format!("{:?}", 1.0f32 / max_code(c.bits) as f32))
+                .collect();
+            return format!(
+                "    let codes = {codes};\n    return {}(codes) * {};\n",
+                lanes.of("f32"),
+                lanes.literal("f32", &reciprocals)
+            );
         }
-        ChannelEncoding::Float32 => format!("bitcast<f32>({code})"),
-        ChannelEncoding::Half => format!("{prefix}_f32_from_half({code})"),
-        ChannelEncoding::UnsignedFloat { mantissa_bits } => {
-            format!("{prefix}_f32_from_small_float({code}, {mantissa_bits}u)")
+        // Every binary16 value is a binary32 value, and `unpack2x16float` is defined as that
+        // conversion: exact (unless an adapter flushes half denormals to zero, which WGSL does
+        // not allow it and some mobile GPUs are said to do).
+        ChannelEncoding::Half => "unpack2x16float(word)".to_string(),
+        // The codes are halves without their sign and low mantissa bits: widened back into
+        // halves, they decode exactly as rg16f does.
+        ChannelEncoding::UnsignedFloat { .. } => {
+            return "    let red_green = unpack2x16float(((word & 0x7ffu) << 4u) | ((word & 0x3ff800u) << 9u));\n    \
+                    return vec3<f32>(red_green, unpack2x16float((word >> 17u) & 0x7fe0u).x);\n"
+                .to_string()
         }
-        ChannelEncoding::Uint => code,
-        ChannelEncoding::Sint => {
-            // Move the channel's top bit to bit 31, then shift back arithmetically.
-            let up = 32 - channel.offset - channel.bits;
-            let raised = if up == 0 {
-                "word".to_string()
-            } else {
-                format!("word << {up}u")
-            };
-            format!("bitcast<i32>({raised}) >> {}u", 32 - channel.bits)
-        }
+    };
+    format!("    return {value};\n")
+}
+
+/// A literal with one `f32` per channel of `format`.
+fn per_channel_f32(format: Format, value: impl Fn(&Channel) -> f32) -> String {
+    let values: Vec<String> = format
+        .channels()
+        .iter()
+        .map(|channel| format!("{:?}", value(channel)))
+        .collect();
+    Lanes(values.len()).literal("f32", &values)
+}
+
+/// The mantissa bits of a small-float channel (half or unsigned float).
+fn mantissa_bits(channel: &Channel) -> u32 {
+    match channel.encoding {
+        ChannelEncoding::UnsignedFloat { mantissa_bits } => mantissa_bits,
+        _ => 10,
     }
 }
 
-/// The scalar conversion helpers, each emitted only when a format of the layout needs it.
+/// The conversion helpers of the layout's exact formats: unorm's per lane count, and the
+/// small floats' with their format's constants written out.
 fn write_conversion_helpers(out: &mut String, layout: &Layout, conversions: Conversions) {
     let prefix = layout.snake_name();
-    let encodings: Vec<ChannelEncoding> = layout
+    let exact: BTreeSet<Format> = layout
         .fields
         .iter()
-        .filter(|field| conversions.is_exact_for(field.format))
-        .flat_map(|field| {
-            field
-                .format
-                .channels()
-                .iter()
-                .map(|channel| channel.encoding)
-        })
+        .map(|field| field.format)
+        .filter(|format| conversions.is_exact_for(*format))
         .collect();
-    let uses = |wanted: fn(&ChannelEncoding) -> bool| encodings.iter().any(wanted);
-    let uses_half = uses(|encoding| *encoding == ChannelEncoding::Half);
-    let uses_unsigned_float =
-        uses(|encoding| matches!(encoding, ChannelEncoding::UnsignedFloat { .. }));
-    if uses(|encoding| *encoding == ChannelEncoding::Unorm) {
-        out.push_str(&UNORM_FROM_F32.replace("PREFIX", &prefix));
+    let unorm_lanes: BTreeSet<Lanes> = exact
+        .iter()
+        .filter(|format| format.channels()[0].encoding == ChannelEncoding::Unorm)
+        .map(|format| Lanes(format.channels().len()))
+        .collect();
+    for lanes in unorm_lanes {
+        out.push_str(&lanes.fill(UNORM_FROM_F32, &prefix));
     }
-    if uses_half || uses_unsigned_float {
-        out.push_str(&SMALL_FLOAT.replace("PREFIX", &prefix));
-    }
-    if uses_half {
-        out.push_str(&HALF.replace("PREFIX", &prefix));
-    }
-    if uses_unsigned_float {
-        out.push_str(&UNSIGNED_FLOAT.replace("PREFIX", &prefix));
+    for format in exact {
+        let (name, wrapper) = match format.channels()[0].encoding {
+            ChannelEncoding::Half => ("unsigned_half", HALF),
+            ChannelEncoding::UnsignedFloat { .. } => ("unsigned_float", UNSIGNED_FLOAT),
+            _ => continue,
+        };
+        let lanes = Lanes(format.channels().len());
+        let mantissas: BTreeSet<u32> = format.channels().iter().map(mantissa_bits).collect();
+        let mantissas: Vec<String> = mantissas.iter().map(u32::to_string).collect();
+        let shift = |c: &Channel| 23 - mantissa_bits(c);
+        let constants = [
+            ("MANTISSA_BITS", mantissas.join(" or ")),
+            ("ROUNDING_AND_REBIAS", {
+                let values: Vec<String> = format
+                    .channels()
+                    .iter()
+                    .map(|c| {
+                        format!(
+                            "{:#x}u",
+                            ((1u32 << (shift(c) - 1)) - 1).wrapping_sub(113 << 23)
+                        )
+                    })
+                    .collect();
+                lanes.literal("u32", &values)
+            }),
+            ("SHIFT", per_channel(format, shift)),
+            (
+                "DENORMAL_SCALE",
+                per_channel_f32(format, |c| ((14 + mantissa_bits(c)) as f32).exp2()),
+            ),
+            (
+                "MAX_CODE",
+                per_channel(format, |c| (31 << mantissa_bits(c)) - 1),
+            ),
+            (
+                "SMALLEST_NORMAL",
+                per_channel(format, |c| 1 << mantissa_bits(c)),
+            ),
+            ("NAME", name.to_string()),
+        ];
+        let mut helpers = String::new();
+        for template in [SMALL_FLOAT_FROM_MAGNITUDE, wrapper] {
+            helpers.push_str(&lanes.fill(template, &prefix));
+        }
+        for (placeholder, value) in constants {
+            helpers = helpers.replace(placeholder, &value);
+        }
+        out.push_str(&helpers);
     }
 }
 
 const FAST_RGB10_A2: &str = "\
-// rgb10_a2: fast conversions. The codes are rounded in f32 arithmetic: one code from the exact
-// ones at most, where the product lies within f32's rounding of a half-integer.
+// Fast conversions: the codes are rounded in f32 arithmetic, one code from the exact ones at
+// most (where the product lies within f32's rounding of a half-integer); the decode is exact.
 fn PREFIX_encode_rgb10_a2_word(c: vec4<f32>) -> u32 {
     let scale = vec4<f32>(1023.0, 1023.0, 1023.0, 3.0);
     let codes = vec4<u32>(clamp(c, vec4<f32>(0.0), vec4<f32>(1.0)) * scale + vec4<f32>(0.5));
@@ -532,86 +655,77 @@ fn PREFIX_encode_rgb10_a2_word(c: vec4<f32>) -> u32 {
 
 ";
 
-const UNORM_FROM_F32: &str = "\
-// Unsigned normalized encode: floor(0.5 + max_code * clamp(value, 0, 1)), exact. The value is
-// significand * 2^-shift; the product with max_code (at most 16 bits) is formed in two 12-bit
-// halves so every step fits a u32. NaN and negatives give 0; 1.0 and above give max_code.
-// No branch: every case is computed and `select` keeps the one that applies, so the fragments
-// of a tile never diverge on their data.
-fn PREFIX_f32_to_unorm(value: f32, max_code: u32) -> u32 {
-    let bits = bitcast<u32>(value);
-    let exponent = bits >> 23u;
-    let normal = exponent != 0u;
-    let significand = (bits & 0x7fffffu) | select(0u, 0x800000u, normal);
-    // Past a shift of 40 the product is under one half, as it is at 41: clamping keeps the
-    // shift amounts below 32. Values of 1.0 and above wrap here; their result is not kept.
-    let shift = min(select(149u, 150u - exponent, normal), 41u);
-    let high = max_code * (significand >> 12u) + ((max_code * (significand & 0xfffu)) >> 12u);
-    let rounded = (high + (1u << ((shift - 13u) & 31u))) >> ((shift - 12u) & 31u);
-    // NaN, or the sign bit set, gives 0.
-    return select(select(rounded, max_code, bits >= 0x3f800000u), 0u, bits > 0x7f800000u);
+const FAST_R11F_G11F_B10F: &str = "\
+// Fast conversions, the engines' idiom: the adapter converts to half floats with
+// `pack2x16float`, whose mantissas are cut to 6 and 5 bits (one code under the exact rounding
+// at most; the adapter may flush values under 2^-14 to zero and turn values past 65504 into
+// infinity). The decode is the exact one.
+fn PREFIX_encode_r11f_g11f_b10f_word(c: vec3<f32>) -> u32 {
+    let positive = max(c, vec3<f32>(0.0));
+    let red_green = pack2x16float(positive.xy);
+    let blue = pack2x16float(vec2<f32>(positive.z, 0.0));
+    return ((red_green >> 4u) & 0x7ffu) | ((red_green >> 9u) & 0x3ff800u) | ((blue & 0x7fe0u) << 17u);
 }
 
 ";
 
-const SMALL_FLOAT: &str = "\
-// Rounds a non-negative f32, given as its bits, to a float with a 5-bit exponent (bias 15) and
-// mantissa_bits of mantissa: to nearest even, denormals kept, saturating at the largest finite
-// code (never infinity). NaN gives 0. Integer operations and `select` only, so every adapter
-// rounds alike and no fragment branches on its data.
-fn PREFIX_small_float_from_magnitude(magnitude: u32, mantissa_bits: u32) -> u32 {
-    let exponent = magnitude >> 23u;
-    let normal_result = exponent >= 113u;
-    let f32_denormal = exponent == 0u;
-    let significand = select((magnitude & 0x7fffffu) | 0x800000u, magnitude, f32_denormal);
-    // A denormal result drops 113 - exponent more bits; an f32 denormal 112 more.
-    let extra = select(select(113u - exponent, 112u, f32_denormal), 0u, normal_result);
-    // Past 24 the value is under half the smallest denormal, as it is at 25.
-    let shift = min(23u - mantissa_bits + extra, 25u);
-    let exponent_part = select(0u, (exponent - 113u) << mantissa_bits, normal_result);
-    let kept = significand >> shift;
-    let remainder = significand & ((1u << shift) - 1u);
-    let halfway = 1u << (shift - 1u);
-    // `&` and `|` rather than `&&` and `||`: both sides are evaluated, without a branch.
-    let round_up = (remainder > halfway) | ((remainder == halfway) & ((kept & 1u) == 1u));
-    let max_code = (30u << mantissa_bits) | ((1u << mantissa_bits) - 1u);
-    let code = min(exponent_part + kept + u32(round_up), max_code);
-    return select(code, 0u, magnitude > 0x7f800000u);
+const UNORM_FROM_F32: &str = "\
+// Unsigned normalized encode, per lane: floor(0.5 + max_code * clamp(value, 0, 1)), exact, in
+// integer arithmetic on the float's bits (a GPU compiler may reassociate float arithmetic, so
+// exactness cannot rest on it). With value = significand * 2^-(shift + bits) and max_code =
+// 2^bits - 1, the code is (significand - significand / 2^bits + 2^(shift - 1)) >> shift, and
+// rounding significand / 2^bits up changes no result. NaN and negatives give 0 (as unsigned
+// integers their bits lie above infinity's), values from 1.0 up give max_code; past a shift of
+// 26 every code is 0, as it is at 26. No branch, so the fragments of a tile never diverge, and
+// no `select` on integer vectors, which GLSL ES 3.00 cannot express (a multiply by 0 or 1).
+// shift_bias is 150 - bits (passed in: an optimiser does not fold vector constants).
+fn PREFIX_LANES_to_unorm(value: FLOATS, bits: UINTS, max_code: UINTS, shift_bias: UINTS) -> UINTS {
+    let value_bits = bitcast<UINTS>(value);
+    let clamped = min(value_bits, UINTS(0x3f800000u)) * UINTS(value_bits <= UINTS(0x7f800000u));
+    let significand = (clamped & UINTS(0x7fffffu)) | UINTS(0x800000u);
+    let shift = min(shift_bias - (clamped >> UINTS(23u)), UINTS(26u));
+    let scaled = significand - ((significand + max_code) >> bits);
+    return (scaled + ((UINTS(1u) << shift) >> UINTS(1u))) >> shift;
 }
 
-// Decodes an unsigned small float, exactly (a denormal is mantissa * 2^-(14 + mantissa_bits)).
-fn PREFIX_f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
-    let exponent = code >> mantissa_bits;
-    let mantissa = code & ((1u << mantissa_bits) - 1u);
-    let denormal = f32(mantissa) * bitcast<f32>((113u - mantissa_bits) << 23u);
-    let f32_exponent = select(exponent + 112u, 255u, exponent == 31u);
-    let normal = bitcast<f32>((f32_exponent << 23u) | (mantissa << (23u - mantissa_bits)));
-    return select(normal, denormal, exponent == 0u);
+";
+
+/// Rounds non-negative f32s (bits) to small floats; the placeholders are per-lane literals.
+const SMALL_FLOAT_FROM_MAGNITUDE: &str = "\
+// Rounds non-negative f32s, given as bits, to floats with a 5-bit exponent (bias 15) and
+// MANTISSA_BITS bits of mantissa: to nearest even, denormals kept, saturating at the largest finite
+// code (never infinity); the caller maps NaN. Normal results round the f32 bits in integer
+// arithmetic, rebiasing the exponent in the same add (a carry moves into the exponent, as it
+// should). Denormal results scale the value by a power of two, exactly, and `round` it (to
+// nearest even). No step depends on how the adapter rounds. Each path gives at least the code
+// where the other applies (under 2^-14 the rebias wraps around; from 2^-14 up the scaled value
+// is at least the code, saturating in the conversion), so `min` picks the right one.
+fn PREFIX_LANES_round_to_NAME(magnitude: UINTS) -> UINTS {
+    let odd = (magnitude >> SHIFT) & UINTS(1u);
+    let normal = ((magnitude + ROUNDING_AND_REBIAS + odd) >> SHIFT) + SMALLEST_NORMAL;
+    let denormal = UINTS(round(bitcast<FLOATS>(magnitude) * DENORMAL_SCALE));
+    return min(min(normal, denormal), MAX_CODE);
 }
 
 ";
 
 const HALF: &str = "\
 // IEEE binary16 from f32, sign kept, saturating at +-65504; NaN gives 0.
-fn PREFIX_f32_to_half(value: f32) -> u32 {
-    let bits = bitcast<u32>(value);
-    let magnitude = bits & 0x7fffffffu;
-    let code = ((bits >> 16u) & 0x8000u) | PREFIX_small_float_from_magnitude(magnitude, 10u);
-    return select(code, 0u, magnitude > 0x7f800000u);
-}
-
-fn PREFIX_f32_from_half(code: u32) -> f32 {
-    let magnitude = PREFIX_f32_from_small_float(code & 0x7fffu, 10u);
-    return bitcast<f32>(bitcast<u32>(magnitude) | ((code & 0x8000u) << 16u));
+fn PREFIX_LANES_to_half(value: FLOATS) -> UINTS {
+    let bits = bitcast<UINTS>(value);
+    let magnitude = bits & UINTS(0x7fffffffu);
+    let signed = PREFIX_LANES_round_to_unsigned_half(magnitude) | ((bits >> UINTS(16u)) & UINTS(0x8000u));
+    return signed * UINTS(magnitude <= UINTS(0x7f800000u));
 }
 
 ";
 
 const UNSIGNED_FLOAT: &str = "\
-// The unsigned floats of r11f_g11f_b10f (6 or 5 mantissa bits); negatives and NaN give 0.
-fn PREFIX_f32_to_unsigned_float(value: f32, mantissa_bits: u32) -> u32 {
-    let bits = bitcast<u32>(value);
-    return select(PREFIX_small_float_from_magnitude(bits, mantissa_bits), 0u, bits >= 0x80000000u);
+// The unsigned floats of r11f_g11f_b10f; negatives and NaN give 0 (as unsigned integers, both
+// lie above the bits of infinity).
+fn PREFIX_LANES_to_unsigned_float(value: FLOATS) -> UINTS {
+    let bits = bitcast<UINTS>(value);
+    return PREFIX_LANES_round_to_unsigned_float(bits) * UINTS(bits <= UINTS(0x7f800000u));
 }
 
 ";

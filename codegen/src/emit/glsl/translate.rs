@@ -66,9 +66,11 @@ fn naga_glsl(layout: &Layout) -> Result<String, TranslationError> {
     ));
     let module = naga::front::wgsl::parse_str(&wgsl)
         .map_err(|error| TranslationError(error.emit_to_string(&wgsl)))?;
+    // The exact decode of rg16f and r11f_g11f_b10f uses `unpack2x16float` (GLSL ES 3.00 has
+    // `unpackHalf2x16`), which naga gates behind this capability.
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
+        naga::valid::Capabilities::default() | naga::valid::Capabilities::SHADER_FLOAT16_IN_FLOAT32,
     )
     .validate(&module)
     .map_err(|error| TranslationError(error.emit_to_string(&wgsl)))?;
