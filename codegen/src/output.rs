@@ -60,8 +60,7 @@ pub struct GeneratedFile {
     pub contents: String,
 }
 
-/// The files of the chosen outputs for a checked layout. The GLSL functions are translated
-/// from the exact WGSL whatever `conversions` says (GLSL ES lacks some of the builtins).
+/// The files of the chosen outputs for a checked layout, with the chosen conversions.
 pub fn generate(
     layout: &Layout,
     conversions: Conversions,
@@ -90,7 +89,7 @@ pub fn generate(
                 {
                     add(
                         format!("{snake}.{}.glsl", include.file_suffix()),
-                        glsl::include(layout, include, 0)?.0,
+                        glsl::include_with(layout, conversions, include, 0)?.0,
                     );
                 }
             }

@@ -8,6 +8,7 @@ pub mod gles;
 pub mod gpu;
 pub mod harness;
 pub mod layouts;
+pub mod packing_cost;
 pub mod shading_cases;
 pub mod texels;
 pub mod tools;
@@ -98,10 +99,10 @@ pub fn gbuffer_binary() -> &'static std::path::Path {
     })
 }
 
-/// The formats that fast conversions change: those WGSL has pack builtins for, and rgb10_a2,
-/// rounded in f32 arithmetic.
+/// The formats that fast conversions change: those WGSL has pack builtins for, rgb10_a2,
+/// rounded in f32 arithmetic, and r11f_g11f_b10f, through cut halves.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 128, conversions = fast)]
+#[gbuffer(budget = 160, conversions = fast)]
 pub struct FastFormats {
     /// `rgba8`, through `pack4x8unorm`.
     #[pls(rgba8)]
@@ -115,4 +116,7 @@ pub struct FastFormats {
     /// `rgb10_a2`, through f32 arithmetic (WGSL has no builtin for it).
     #[pls(rgb10_a2)]
     pub unorm_10_10_10_2: Vec4,
+    /// `r11f_g11f_b10f`, through `pack2x16float` and shifts.
+    #[pls(r11f_g11f_b10f)]
+    pub small_floats: Vec3,
 }

@@ -89,7 +89,9 @@ fn check_include_shape(layout: &Layout) {
     for (include, text, interface) in includes(layout) {
         for line in code_lines(&text) {
             assert!(
-                !line.starts_with('#') && !line.starts_with("precision "),
+                !line.starts_with("#version")
+                    && !line.starts_with("#extension")
+                    && !line.starts_with("precision "),
                 "{} {include:?}: `{line}` belongs to the user's preamble",
                 layout.name
             );
@@ -114,10 +116,10 @@ fn includes_leave_the_preamble_to_the_user_and_list_what_it_needs() {
 
 /// Compiles the Vulkan includes unedited under every preamble they allow, inside a user
 /// shader that loads the texel, and checks the SPIR-V.
-fn check_vulkan_includes(layout: &Layout) -> Result<(), String> {
+fn check_vulkan_includes(layout: &Layout, conversions: Conversions) -> Result<(), String> {
     let names = glsl::translate(layout).unwrap().names;
     for include in [Include::SubpassPacked, Include::SubpassNative] {
-        let (text, _) = glsl::include(layout, include, 0).unwrap();
+        let (text, _) = glsl::include_with(layout, conversions, include, 0).unwrap();
         for preamble in preambles(include) {
             let user = format!(
                 "layout(location = 0) out highp uvec4 user_output;
@@ -140,8 +142,13 @@ fn check_vulkan_includes(layout: &Layout) -> Result<(), String> {
 #[test]
 fn vulkan_includes_compile_unedited_to_valid_spirv() {
     for (_, layout) in layout_files() {
-        check_vulkan_includes(&layout).unwrap_or_else(|error| panic!("{error}"));
+        check_vulkan_includes(&layout, Conversions::Exact)
+            .unwrap_or_else(|error| panic!("{error}"));
     }
+    // Fast conversions: the builtins, and the `#if __VERSION__ >= 310` around rgba8's.
+    use gbuffer::GBufferLayout;
+    check_vulkan_includes(&gbuffer_testkit::FastFormats::layout(), Conversions::Fast)
+        .unwrap_or_else(|error| panic!("{error}"));
 }
 
 /// The member type EXT_shader_pixel_local_storage gives each format (its format table).
@@ -274,7 +281,7 @@ proptest! {
     fn random_layouts_give_includes_that_follow_the_rules(layout in gbuffer_testkit::layouts::random_layout()) {
         check_include_shape(&layout);
         check_pls_blocks(&layout).map_err(TestCaseError::fail)?;
-        check_vulkan_includes(&layout).map_err(TestCaseError::fail)?;
+        check_vulkan_includes(&layout, Conversions::Exact).map_err(TestCaseError::fail)?;
     }
 }
 

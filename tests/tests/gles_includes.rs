@@ -16,6 +16,7 @@
 
 use gbuffer::packing::{Format, Layout};
 use gbuffer_codegen::emit::glsl::{self, Include, Interface};
+use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_testkit::gles::{skip_without_driver, Framebuffer, Gles};
 use gbuffer_testkit::harness::scalars_per_texel;
 use gbuffer_testkit::texels::{
@@ -48,8 +49,13 @@ fn gles() -> Option<Gles> {
 }
 
 /// The two passes of the user's shader for `include` under `preamble`.
-fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> (String, String) {
-    let (text, _) = glsl::include(layout, include, 0).unwrap();
+fn user_shaders(
+    layout: &Layout,
+    conversions: Conversions,
+    include: Include,
+    preamble: &str,
+) -> (String, String) {
+    let (text, _) = glsl::include_with(layout, conversions, include, 0).unwrap();
     let names = glsl::translate(layout).unwrap().names;
     let prefix = layout.snake_name();
     let scalars = scalars_per_texel(layout);
@@ -178,7 +184,7 @@ fn check(
         return;
     }
     let what = format!("{include:?} under {:?}", preamble.replace('\n', " "));
-    let (store, reload) = user_shaders(layout, include, preamble);
+    let (store, reload) = user_shaders(layout, Conversions::Exact, include, preamble);
     let store = gles
         .program(&store)
         .unwrap_or_else(|log| panic!("{what}: {log}"));
@@ -314,5 +320,28 @@ proptest! {
             check(&gles, &layout, include, preamble, 7, &mut failures);
         }
         prop_assert!(failures.is_empty(), "{}", failures.join("\n"));
+    }
+}
+
+/// Fast conversions' includes compile on the driver under every preamble: under GLSL ES 3.00,
+/// which has no `packUnorm4x8`, rgba8 falls back to f32 arithmetic; from 3.10 up the builtins
+/// serve. (The WGSL of fast conversions is measured on the adapter in `gpu_packing.rs`.)
+#[test]
+fn fast_includes_compile_on_gles_under_every_preamble() {
+    use gbuffer::GBufferLayout;
+    let Some(gles) = gles() else { return };
+    let layout = gbuffer_testkit::FastFormats::layout();
+    for include in [Include::FetchPacked, Include::FetchNative] {
+        for preamble in preambles(include) {
+            let (store, reload) = user_shaders(&layout, Conversions::Fast, include, &preamble);
+            for shader in [store, reload] {
+                gles.program(&shader).unwrap_or_else(|log| {
+                    panic!(
+                        "{include:?} under {preamble:?}: {log}\n{}",
+                        gbuffer_testkit::gles::numbered(&shader)
+                    )
+                });
+            }
+        }
     }
 }

@@ -65,6 +65,21 @@ pub fn emit(layout: &Layout) -> String {
 
 /// The WGSL of a layout with the chosen conversions.
 pub fn emit_with(layout: &Layout, conversions: Conversions) -> String {
+    emit_for(layout, conversions, Target::Wgsl)
+}
+
+/// Who reads the emitted WGSL.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Target {
+    /// WGSL's users.
+    Wgsl,
+    /// naga's GLSL ES 3.00 writer, which has no `packUnorm4x8`: fast rgba8 is written in f32
+    /// arithmetic, and the GLSL include puts the builtins back from GLSL ES 3.10 up.
+    GlslEs300,
+}
+
+/// The WGSL of a layout with the chosen conversions, for `target`.
+pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target) -> String {
     let prefix = layout.snake_name();
     let name = &layout.name;
     let words = layout.words();
@@ -139,7 +154,7 @@ pub fn emit_with(layout: &Layout, conversions: Conversions) -> String {
     }
 
     write_targets(&mut out, layout);
-    write_format_helpers(&mut out, layout, conversions);
+    write_format_helpers(&mut out, layout, conversions, target);
     write_conversion_helpers(&mut out, layout, conversions);
     // One trailing newline.
     while out.ends_with("\n\n") {
@@ -397,13 +412,21 @@ fn per_channel(format: Format, value: impl Fn(&Channel) -> u32) -> String {
 }
 
 /// One encode and one decode function per format the layout uses.
-fn write_format_helpers(out: &mut String, layout: &Layout, conversions: Conversions) {
+fn write_format_helpers(
+    out: &mut String,
+    layout: &Layout,
+    conversions: Conversions,
+    target: Target,
+) {
     let prefix = layout.snake_name();
     let formats: BTreeSet<Format> = layout.fields.iter().map(|field| field.format).collect();
     for format in formats {
         let name = format.name();
         let vector = format_vector_type(format);
-        if let Some((pack, unpack)) = conversions.builtins(format) {
+        let builtins = conversions
+            .builtins(format)
+            .filter(|_| !(target == Target::GlslEs300 && format == Format::Rgba8));
+        if let Some((pack, unpack)) = builtins {
             let _ = writeln!(
                 out,
                 "// {name}: fast conversions, the adapter's `{pack}` and `{unpack}`."
@@ -435,6 +458,9 @@ fn write_format_helpers(out: &mut String, layout: &Layout, conversions: Conversi
         );
         match (conversions.is_exact_for(format), format) {
             (false, Format::Rgb10A2) => out.push_str(&FAST_RGB10_A2.replace("PREFIX", &prefix)),
+            (false, Format::Rgba8) => {
+                out.push_str(&FAST_RGBA8_ARITHMETIC.replace("PREFIX", &prefix))
+            }
             (false, Format::R11fG11fB10f) => {
                 out.push_str(&FAST_R11F_G11F_B10F.replace("PREFIX", &prefix))
             }
@@ -651,6 +677,17 @@ fn PREFIX_encode_rgb10_a2_word(c: vec4<f32>) -> u32 {
     let scale = vec4<f32>(1023.0, 1023.0, 1023.0, 3.0);
     let codes = vec4<u32>(clamp(c, vec4<f32>(0.0), vec4<f32>(1.0)) * scale + vec4<f32>(0.5));
     return codes.x | (codes.y << 10u) | (codes.z << 20u) | (codes.w << 30u);
+}
+
+";
+
+const FAST_RGBA8_ARITHMETIC: &str = "\
+// Fast conversions for GLSL ES 3.00, which has no packUnorm4x8: rounded in f32 arithmetic like
+// the builtin (one code from the exact ones at most); the decode is the exact one.
+fn PREFIX_encode_rgba8_word(c: vec4<f32>) -> u32 {
+    let codes = vec4<u32>(clamp(c, vec4<f32>(0.0), vec4<f32>(1.0)) * 255.0 + vec4<f32>(0.5));
+    let placed = codes << vec4<u32>(0u, 8u, 16u, 24u);
+    return placed.x | placed.y | placed.z | placed.w;
 }
 
 ";

@@ -12,8 +12,8 @@
 //! lists and leaves the user's defaults alone. What it needs from the preamble and the host is
 //! data too: [`Interface`].
 //!
-//! The functions are not written twice: naga's GLSL backend translates the layout's exact
-//! WGSL ([`translate`]), so WGSL stays the one source of truth. Where GLSL reserves a name,
+//! The functions are not written twice: naga's GLSL backend translates the layout's WGSL
+//! ([`translate_with`], exact or fast conversions), so WGSL stays the one source of truth. Where GLSL reserves a name,
 //! naga renames it (`sampler` -> `sampler_`, `main` -> `main_`, a name ending in a digit gets
 //! a `_`); the hand-written parts read those names back and use them too.
 
@@ -23,8 +23,9 @@ mod translate;
 use std::fmt::Write as _;
 
 pub use interface::{Attachment, AttachmentFormat, Include, Interface};
-pub use translate::{translate, with_explicit_precision, GlslNames, Translation};
+pub use translate::{translate, translate_with, with_explicit_precision, GlslNames, Translation};
 
+use crate::emit::wgsl::Conversions;
 use crate::format::{Format, ScalarKind};
 use crate::layout::Layout;
 
@@ -95,14 +96,26 @@ impl std::fmt::Display for TranslationError {
 
 impl std::error::Error for TranslationError {}
 
-/// The include's text and its interface, for a checked layout. Vulkan includes put their
-/// input attachments in descriptor set `set` (binding = input attachment index).
+/// The include's text and its interface, for a checked layout, with exact conversions.
+/// Vulkan includes put their input attachments in descriptor set `set` (binding = input
+/// attachment index).
 pub fn include(
     layout: &Layout,
     include: Include,
     set: u32,
 ) -> Result<(String, Interface), TranslationError> {
-    let translation = translate(layout)?;
+    include_with(layout, Conversions::Exact, include, set)
+}
+
+/// The include with the chosen conversions (pixel local storage blocks have none: the hardware
+/// converts).
+pub fn include_with(
+    layout: &Layout,
+    conversions: Conversions,
+    include: Include,
+    set: u32,
+) -> Result<(String, Interface), TranslationError> {
+    let translation = translate_with(layout, conversions)?;
     let interface = Interface::new(layout, include, &translation.names);
     let text = match include {
         Include::PixelLocalStorage(block) => {

@@ -13,6 +13,8 @@
 //! attachments, accessors) use the same names as the translated struct.
 
 use super::TranslationError;
+use crate::emit::wgsl::{Conversions, Target};
+use crate::format::Format;
 use crate::layout::Layout;
 
 /// The GLSL ES version the functions are translated for: the lowest a user can write, so the
@@ -47,20 +49,73 @@ pub struct GlslNames {
 
 /// Translates the layout's exact WGSL to GLSL ES declarations with explicit precision.
 pub fn translate(layout: &Layout) -> Result<Translation, TranslationError> {
-    let glsl = naga_glsl(layout)?;
+    translate_with(layout, Conversions::Exact)
+}
+
+/// Translates the layout's WGSL with the chosen conversions. GLSL ES 3.00 has no
+/// `packUnorm4x8`: under fast conversions rgba8 is translated from f32 arithmetic, and the
+/// builtins take over from GLSL ES 3.10 up (`#if __VERSION__ >= 310`).
+pub fn translate_with(
+    layout: &Layout,
+    conversions: Conversions,
+) -> Result<Translation, TranslationError> {
+    let glsl = naga_glsl(layout, conversions)?;
     let body = declarations(&glsl);
     let names = read_names(&body, layout)?;
-    Ok(Translation {
-        text: with_explicit_precision(&body),
-        names,
-    })
+    let mut text = with_explicit_precision(&body);
+    if !conversions.is_exact_for(Format::Rgba8) {
+        let prefix = layout.snake_name();
+        for (function, builtin) in [("encode", "packUnorm4x8"), ("decode", "unpackUnorm4x8")] {
+            text =
+                with_builtin_from_310(&text, &format!("{prefix}_{function}_rgba8_word("), builtin);
+        }
+    }
+    Ok(Translation { text, names })
+}
+
+/// Wraps the function whose signature contains `signature` (if the text has it) in
+/// `#if __VERSION__ >= 310`, with a body that calls `builtin` on its one parameter first and
+/// the translated one after `#else`.
+fn with_builtin_from_310(glsl: &str, signature: &str, builtin: &str) -> String {
+    let lines: Vec<&str> = glsl.lines().collect();
+    let Some(start) = lines.iter().position(|line| line.contains(signature)) else {
+        return glsl.to_string();
+    };
+    let Some(length) = lines[start..].iter().position(|line| *line == "}") else {
+        return glsl.to_string();
+    };
+    let header = lines[start];
+    // `highp uint name(highp vec4 c_1) {`: the parameter is the last word in the parentheses.
+    let parameter = header
+        .split_once('(')
+        .and_then(|(_, rest)| rest.split_once(')'))
+        .and_then(|(parameters, _)| parameters.split_whitespace().last())
+        .unwrap_or_default();
+    let mut out: Vec<String> = lines[..start].iter().map(|line| line.to_string()).collect();
+    out.push("#if __VERSION__ >= 310".into());
+    out.push(header.to_string());
+    out.push(format!("    return {builtin}({parameter});"));
+    out.push("}".into());
+    out.push("#else".into());
+    out.extend(
+        lines[start..=start + length]
+            .iter()
+            .map(|line| line.to_string()),
+    );
+    out.push("#endif".into());
+    out.extend(
+        lines[start + length + 1..]
+            .iter()
+            .map(|line| line.to_string()),
+    );
+    out.join("\n") + "\n"
 }
 
 /// naga's whole GLSL ES shader for the layout's WGSL plus an empty fragment entry point.
-fn naga_glsl(layout: &Layout) -> Result<String, TranslationError> {
+fn naga_glsl(layout: &Layout, conversions: Conversions) -> Result<String, TranslationError> {
     use naga::back::glsl;
 
-    let mut wgsl = crate::emit::wgsl::emit(layout);
+    let mut wgsl = crate::emit::wgsl::emit_for(layout, conversions, Target::GlslEs300);
     wgsl.push_str(&format!(
         "\n@fragment\nfn {ENTRY_POINT}() -> @location(0) vec4<f32> {{\n    return vec4<f32>(0.0);\n}}\n"
     ));

@@ -1,0 +1,249 @@
+//! What a layout's conversions cost and how far they stray from the exact ones, measured the
+//! way the issue on packing cost measured them: a compute shader that packs one texel read
+//! from a buffer and unpacks words read from another, through naga to SPIR-V and
+//! `spirv-opt -O`, counting the instructions in function bodies (about 14 are the harness's)
+//! and the conditional branches. The engines' idiom for each format ([`builtin_form`]) is
+//! measured in the same harness, so the three columns compare like with like.
+
+use gbuffer::packing::{Field, FieldType, Format, Layout, ScalarKind};
+use gbuffer_codegen::emit::wgsl::Conversions;
+
+use crate::gpu::Gpu;
+use crate::harness::{compute_harness, expected_words, scalars_per_texel};
+use crate::texels::slots;
+use crate::tools::run;
+use crate::values::{float_edges, Values};
+
+/// SPIR-V opcodes counted.
+const OP_FUNCTION: u32 = 54;
+const OP_FUNCTION_END: u32 = 56;
+const OP_BRANCH_CONDITIONAL: u32 = 250;
+const OP_SWITCH: u32 = 251;
+
+/// The formats whose conversions differ between exact and fast (the integer formats and r32f
+/// are exact either way), in the order the issue lists them.
+pub const CONVERTED_FORMATS: [Format; 5] = [
+    Format::Rgba8,
+    Format::Rg16,
+    Format::Rg16f,
+    Format::Rgb10A2,
+    Format::R11fG11fB10f,
+];
+
+/// Instructions in function bodies and conditional branches of the optimised SPIR-V.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Cost {
+    /// Instructions between `OpFunction` and `OpFunctionEnd`.
+    pub instructions: usize,
+    /// `OpBranchConditional` and `OpSwitch` among them.
+    pub conditional_branches: usize,
+}
+
+/// A layout `Texel` of one field `value` of `format`, as wide as the format (three
+/// components for r11f_g11f_b10f).
+pub fn one_field(format: Format) -> Layout {
+    let scalar = format.scalar_kind();
+    let components = if scalar == ScalarKind::Float && format.channels().len() == 3 {
+        3
+    } else {
+        format.channels().len()
+    };
+    Layout {
+        name: "Texel".into(),
+        budget: 32,
+        fields: vec![Field {
+            name: "value".into(),
+            format,
+            ty: FieldType::new(scalar, components),
+        }],
+    }
+}
+
+/// The shader measured, around WGSL that declares `Texel`, `pack_texel` and `unpack_texel`
+/// for `words` words: pack a texel read from one buffer, unpack words read from another.
+pub fn harness(texel_wgsl: &str, words: usize) -> String {
+    format!(
+        "{texel_wgsl}\n\
+         @group(0) @binding(0) var<storage, read> texel_in: Texel;\n\
+         @group(0) @binding(1) var<storage, read_write> words_out: array<u32, {words}>;\n\
+         @group(0) @binding(2) var<storage, read> words_in: array<u32, {words}>;\n\
+         @group(0) @binding(3) var<storage, read_write> texel_out: Texel;\n\n\
+         @compute @workgroup_size(1)\nfn main() {{\n    \
+         words_out = pack_texel(texel_in);\n    \
+         texel_out = unpack_texel(words_in);\n}}\n"
+    )
+}
+
+/// The cost of `layout` (named `Texel`) under `conversions`.
+pub fn layout_cost(layout: &Layout, conversions: Conversions) -> Result<Cost, String> {
+    let wgsl = gbuffer_codegen::emit::wgsl::emit_with(layout, conversions);
+    cost(&harness(&wgsl, layout.words()))
+}
+
+/// The engines' idiom for one field of `format` (see [`one_field`]), as `Texel`,
+/// `pack_texel` and `unpack_texel`: WGSL's pack builtins where they exist, and for rgb10_a2 and
+/// r11f_g11f_b10f what engines write instead (f32 rounding and shifts; halves with their
+/// mantissas cut). None for the formats that need no conversion.
+pub fn builtin_form(format: Format) -> Option<String> {
+    let (value_type, pack, unpack) = match format {
+        Format::Rgba8 => ("vec4<f32>", "return pack4x8unorm(v);", "return unpack4x8unorm(w);"),
+        Format::Rg16 => ("vec2<f32>", "return pack2x16unorm(v);", "return unpack2x16unorm(w);"),
+        Format::Rg16f => ("vec2<f32>", "return pack2x16float(v);", "return unpack2x16float(w);"),
+        Format::Rgb10A2 => (
+            "vec4<f32>",
+            "let c = vec4<u32>(round(saturate(v) * vec4<f32>(1023.0, 1023.0, 1023.0, 3.0)));\n    \
+             return c.x | (c.y << 10u) | (c.z << 20u) | (c.w << 30u);",
+            "let c = (vec4<u32>(w) >> vec4<u32>(0u, 10u, 20u, 30u)) & vec4<u32>(1023u, 1023u, 1023u, 3u);\n    \
+             return vec4<f32>(c) / vec4<f32>(1023.0, 1023.0, 1023.0, 3.0);",
+        ),
+        Format::R11fG11fB10f => (
+            "vec3<f32>",
+            "let red_green = pack2x16float(max(v.xy, vec2<f32>(0.0)));\n    \
+             let blue = pack2x16float(vec2<f32>(max(v.z, 0.0), 0.0));\n    \
+             return ((red_green >> 4u) & 0x7ffu) | ((red_green >> 9u) & 0x3ff800u) | ((blue & 0x7fe0u) << 17u);",
+            "let red_green = unpack2x16float(((w & 0x7ffu) << 4u) | ((w & 0x3ff800u) << 9u));\n    \
+             return vec3<f32>(red_green, unpack2x16float((w >> 17u) & 0x7fe0u).x);",
+        ),
+        _ => return None,
+    };
+    Some(format!(
+        "struct Texel {{\n    value: {value_type},\n}}\n\n\
+         fn encode(v: {value_type}) -> u32 {{\n    {pack}\n}}\n\n\
+         fn decode(w: u32) -> {value_type} {{\n    {unpack}\n}}\n\n\
+         fn pack_texel(texel: Texel) -> array<u32, 1> {{\n    return array<u32, 1>(encode(texel.value));\n}}\n\n\
+         fn unpack_texel(words: array<u32, 1>) -> Texel {{\n    return Texel(decode(words[0]));\n}}\n"
+    ))
+}
+
+/// Compiles `wgsl` (a whole shader) with naga, optimises it with `spirv-opt -O` (Debian's
+/// `spirv-tools`) and counts.
+pub fn cost(wgsl: &str) -> Result<Cost, String> {
+    let (_, words) = gbuffer_validator::cost::compile_compacted(wgsl)?;
+    let folder = tempfile::tempdir().map_err(|error| error.to_string())?;
+    let input = folder.path().join("in.spv");
+    let output = folder.path().join("out.spv");
+    std::fs::write(&input, bytemuck::cast_slice::<u32, u8>(&words))
+        .map_err(|error| error.to_string())?;
+    let paths = [input.to_str(), output.to_str()];
+    let [Some(input), Some(output)] = paths else {
+        return Err("a temporary path is not UTF-8".to_string());
+    };
+    let (ok, log) = run("spirv-opt", &["-O", input, "-o", output], "spirv-tools");
+    if !ok {
+        return Err(format!("spirv-opt: {log}"));
+    }
+    let optimised = std::fs::read(output).map_err(|error| error.to_string())?;
+    Ok(count(&optimised))
+}
+
+/// Counts a SPIR-V binary's instructions inside functions, and its conditional branches.
+fn count(binary: &[u8]) -> Cost {
+    let words: Vec<u32> = binary
+        .chunks_exact(4)
+        .map(|bytes| u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]))
+        .collect();
+    let mut cost = Cost {
+        instructions: 0,
+        conditional_branches: 0,
+    };
+    let mut in_function = false;
+    // After the 5-word header, each instruction's first word holds its length and opcode.
+    let mut at = 5;
+    while at < words.len() {
+        let (length, opcode) = ((words[at] >> 16) as usize, words[at] & 0xffff);
+        match opcode {
+            OP_FUNCTION => in_function = true,
+            OP_FUNCTION_END => in_function = false,
+            _ if in_function => {
+                cost.instructions += 1;
+                cost.conditional_branches +=
+                    usize::from(opcode == OP_BRANCH_CONDITIONAL || opcode == OP_SWITCH);
+            }
+            _ => {}
+        }
+        at += length.max(1);
+    }
+    cost
+}
+
+/// How far an adapter's codes stray from the exact mirror's.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Deviation {
+    /// The largest difference between a channel's code and the exact one.
+    pub largest_code_error: u32,
+    /// Channel codes that differ from the exact ones.
+    pub differing: usize,
+    /// Channel codes compared.
+    pub channels: usize,
+}
+
+impl Deviation {
+    /// The fraction of channel codes that differ from the exact ones.
+    pub fn differing_fraction(&self) -> f64 {
+        self.differing as f64 / self.channels.max(1) as f64
+    }
+}
+
+/// The float inputs fast conversions are asked to handle: finite values within f16's range
+/// (past it `pack2x16float`'s result is undefined, and engines keep G-buffer values there).
+pub fn in_fast_domain(value: f32) -> bool {
+    value.is_finite() && value.abs() <= 65504.0
+}
+
+/// Packs `texels` texels of a layout of float fields on the adapter with `wgsl` (the layout's
+/// WGSL, of either conversions) and compares every channel's code with the exact mirror's.
+/// The inputs are the float edge cases in the fast domain first, then random values from
+/// [`Values::float`] kept to that domain.
+pub fn deviation(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64) -> Deviation {
+    const BATCH: usize = 1 << 18;
+    let harness = compute_harness(layout, wgsl);
+    let scalars = scalars_per_texel(layout);
+    let words = layout.words();
+    let edges: Vec<f32> = float_edges()
+        .into_iter()
+        .filter(|value| in_fast_domain(*value))
+        .collect();
+    let mut values = Values::new(seed);
+    let mut next = 0usize;
+    let mut input = move || {
+        next += 1;
+        match edges.get(next - 1) {
+            Some(edge) => *edge,
+            None => loop {
+                let value = values.float();
+                if in_fast_domain(value) {
+                    break value;
+                }
+            },
+        }
+    };
+    let slot_count = slots(layout).len();
+    let mut deviation = Deviation::default();
+    for first in (0..texels).step_by(BATCH) {
+        let count = BATCH.min(texels - first);
+        let inputs: Vec<u32> = (0..count * scalars).map(|_| input().to_bits()).collect();
+        let outputs = gpu.run_compute(
+            &harness,
+            "harness_main",
+            &inputs,
+            &[count * words, count * scalars],
+            count as u32,
+        );
+        for texel in 0..count {
+            let expected = expected_words(layout, &inputs[texel * scalars..][..scalars]);
+            for (word, field) in layout.fields.iter().enumerate() {
+                let got = outputs[0][texel * words + word];
+                for channel in &field.format.channels()[..field.ty.components] {
+                    let code = |bits: u32| (bits >> channel.offset) & channel.mask();
+                    // Codes of one sign are ordered like their values (a sign bit is the
+                    // top bit, so a sign flip shows as a large difference).
+                    let error = code(expected[word]).abs_diff(code(got));
+                    deviation.largest_code_error = deviation.largest_code_error.max(error);
+                    deviation.differing += usize::from(error != 0);
+                }
+            }
+        }
+        deviation.channels += count * slot_count;
+    }
+    deviation
+}
