@@ -1,0 +1,167 @@
+//! The packing conversions' trade, per format and mode (exact, fast): SPIR-V instructions after
+//! `spirv-opt -O` and conditional branches (`gbuffer_testkit::packing_cost`), the largest error
+//! in codes and the fraction of channel codes that differ from exact, measured on the adapter
+//! over edge cases and random values in fast conversions' domain, and the adapter's time to
+//! pack and unpack a million texels.
+
+use std::fmt::Write as _;
+
+use gbuffer::packing::Format;
+use gbuffer_codegen::emit::wgsl::{emit_with, Conversions};
+use gbuffer_testkit::gpu::Gpu;
+use gbuffer_testkit::packing_cost::{
+    deviation, layout_cost, one_field, Cost, Deviation, CONVERTED_FORMATS,
+};
+
+use crate::timing;
+
+/// Texels packed on the adapter per row to measure the deviation.
+const TEXELS: usize = 1 << 20;
+
+/// One format under one mode.
+pub struct PackingRow {
+    format: Format,
+    conversions: Conversions,
+    /// None where spirv-opt is missing or failed (the reason was printed).
+    cost: Option<Cost>,
+    deviation: Deviation,
+    /// Milliseconds to pack and unpack a million texels (nanoseconds per texel).
+    ms_per_million: Option<f64>,
+}
+
+impl PackingRow {
+    fn mode(&self) -> &'static str {
+        match self.conversions {
+            Conversions::Exact => "exact",
+            Conversions::Fast => "fast",
+        }
+    }
+}
+
+/// `row_eval` for the timing harness: the input's components packed as one texel of the
+/// format and unpacked again, padded back to four components.
+fn row_wgsl(format: Format, conversions: Conversions) -> String {
+    let layout = one_field(format);
+    let (value, rest) = match layout.fields[0].ty.components {
+        2 => ("x.xy", ", x.zw"),
+        3 => ("x.xyz", ", x.w"),
+        _ => ("x", ""),
+    };
+    format!(
+        "{}\n\nfn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    \
+         let texel = unpack_texel(pack_texel(Texel({value})));\n    \
+         return vec4<f32>(texel.value{rest});\n}}\n",
+        emit_with(&layout, conversions)
+    )
+}
+
+/// Measures both modes of every format fast conversions change.
+pub fn measure(gpu: &Gpu, baseline_gpu: Option<f64>) -> Vec<PackingRow> {
+    let mut rows = Vec::new();
+    for format in CONVERTED_FORMATS {
+        for conversions in [Conversions::Exact, Conversions::Fast] {
+            eprintln!("packing: {} ({conversions:?})", format.name());
+            let layout = one_field(format);
+            let cost = layout_cost(&layout, conversions)
+                .map_err(|error| eprintln!("  no instruction count: {error}"))
+                .ok();
+            let wgsl = emit_with(&layout, conversions);
+            let deviation = deviation(gpu, &layout, &wgsl, TEXELS, 91);
+            let ms_per_million = timing::gpu_ns_per_eval(
+                gpu,
+                &timing::harness(&row_wgsl(format, conversions)),
+                &[],
+                1,
+            )
+            .map_err(|error| eprintln!("  GPU timing failed: {error}"))
+            .ok()
+            .map(|time| (time - baseline_gpu.unwrap_or(0.0)).max(0.0));
+            rows.push(PackingRow {
+                format,
+                conversions,
+                cost,
+                deviation,
+                ms_per_million,
+            });
+        }
+    }
+    rows
+}
+
+/// What the time column means on this adapter.
+fn time_note(adapter: &str) -> &'static str {
+    if adapter.contains("llvmpipe") || adapter.contains("lavapipe") || adapter.contains("Cpu") {
+        "The adapter is a software rasteriser: its times are a CPU's, not a GPU's."
+    } else {
+        "Times are the adapter's."
+    }
+}
+
+fn count(cost: Option<Cost>, pick: fn(Cost) -> usize) -> String {
+    cost.map_or_else(|| "n/a".to_string(), |cost| pick(cost).to_string())
+}
+
+fn time(ms: Option<f64>) -> String {
+    ms.map_or_else(|| "n/a".to_string(), |ms| format!("{ms:.3}"))
+}
+
+/// The table on standard output.
+pub fn print(rows: &[PackingRow], adapter: &str) {
+    println!("\npacking conversions ({})", time_note(adapter));
+    println!(
+        "{:<16} {:<6} {:>12} {:>8} {:>11} {:>10} {:>13}",
+        "format", "mode", "instructions", "branches", "max codes", "differing", "ms/Mtexel"
+    );
+    for row in rows {
+        println!(
+            "{:<16} {:<6} {:>12} {:>8} {:>11} {:>9.3}% {:>13}",
+            row.format.name(),
+            row.mode(),
+            count(row.cost, |cost| cost.instructions),
+            count(row.cost, |cost| cost.conditional_branches),
+            row.deviation.largest_code_error,
+            100.0 * row.deviation.differing_fraction(),
+            time(row.ms_per_million)
+        );
+    }
+}
+
+/// The report's section.
+pub fn markdown(rows: &[PackingRow], adapter: &str) -> String {
+    let mut out = String::from("\n## Packing conversions\n\n");
+    let _ = writeln!(out, "Per format and mode: SPIR-V instructions of a compute shader that packs one texel and unpacks one (naga, then `spirv-opt -O`; about 14 are the harness's) and its conditional branches; the largest difference between a channel's code and the exact one, and the fraction of channel codes that differ, over {TEXELS} texels packed on the adapter (edge cases, then random values: finite, within f16's range); the adapter's milliseconds to pack and unpack a million texels. {}\n", time_note(adapter));
+    out.push_str(
+        "| format | mode | instructions | branches | largest error (codes) | differing | ms per million texels |\n",
+    );
+    out.push_str("| --- | --- | ---: | ---: | ---: | ---: | ---: |\n");
+    for row in rows {
+        let _ = writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {:.3}% | {} |",
+            row.format.name(),
+            row.mode(),
+            count(row.cost, |cost| cost.instructions),
+            count(row.cost, |cost| cost.conditional_branches),
+            row.deviation.largest_code_error,
+            100.0 * row.deviation.differing_fraction(),
+            time(row.ms_per_million)
+        );
+    }
+    out
+}
+
+/// The report's JSON entries.
+pub fn json(rows: &[PackingRow]) -> serde_json::Value {
+    serde_json::json!(rows
+        .iter()
+        .map(|row| serde_json::json!({
+            "format": row.format.name(),
+            "mode": row.mode(),
+            "spirv_instructions": row.cost.map(|cost| cost.instructions),
+            "conditional_branches": row.cost.map(|cost| cost.conditional_branches),
+            "largest_code_error": row.deviation.largest_code_error,
+            "differing_fraction": row.deviation.differing_fraction(),
+            "ms_per_million_texels": row.ms_per_million,
+        }))
+        .collect::<Vec<_>>())
+}
