@@ -1,11 +1,10 @@
 //! Bit-exact conversions between shader values and channel codes.
 //!
 //! These are the CPU mirrors of the WGSL helpers in [`crate::emit::wgsl`], so that a G-buffer
-//! packed on the CPU and on any conforming adapter holds the same bits. The small floats use
-//! the WGSL's own integer algorithm; unorm uses the exact formula in f64, which the CPU has and
-//! a GPU may not (the WGSL's integer algorithm is checked against it on every f32). No step
-//! relies on f32 rounding, which differs between a plain multiply, a fused multiply-add and a
-//! GPU's builtins.
+//! packed on the CPU and on any conforming adapter holds the same bits: the encoders run the
+//! WGSL's own algorithms (integer operations on the float's bits, no branch), and the tests
+//! check them on every f32 against references written the plain way (the exact formula in f64
+//! for unorm, IEEE's rounding for half, a branching bit-level rounding for the small floats).
 //!
 //! The rules, per encoding:
 //! - unorm: `floor(0.5 + (2^n - 1) * clamp(x, 0, 1))`, evaluated exactly; NaN gives 0.
@@ -19,23 +18,34 @@ use crate::format::{Channel, ChannelEncoding, Format};
 
 /// The bits of +infinity as f32; a magnitude above it is a NaN.
 const F32_INFINITY_BITS: u32 = 0x7f80_0000;
+/// The bits of 1.0 as f32.
+const F32_ONE_BITS: u32 = 0x3f80_0000;
 /// The largest code of an unsigned integer of `bits` bits (`bits` from 1 to 32).
 #[inline]
 pub fn max_code(bits: u32) -> u32 {
     u32::MAX >> (32 - bits)
 }
 
-/// Unsigned normalized encode: `floor(0.5 + (2^bits - 1) * clamp(value, 0, 1))`, exact.
+/// Unsigned normalized encode: `floor(0.5 + (2^bits - 1) * clamp(value, 0, 1))`, exact; NaN
+/// gives 0. Valid for `bits` from 1 to 16.
 ///
-/// In f64 the formula is exact for every f32: the product has at most 40 significant bits
-/// (24 of the value, 16 of the code), and adding one half cannot round up to the next integer
-/// (a product within 2^-41 of a half-integer would need bits the value does not have). NaN
-/// clamps to NaN, which converts to 0. The WGSL reaches the same codes with integer operations
-/// (a GPU's f64 is optional); a test runs that algorithm on every f32 against this one. Valid
-/// for `bits` from 1 to 16.
-#[inline]
+/// The WGSL's algorithm (`PREFIX_<lanes>_to_unorm`): with `value = significand *
+/// 2^-(shift + bits)` and `2^bits - 1 = max_code`, the code is `(significand - significand /
+/// 2^bits + 2^(shift - 1)) >> shift`, where rounding `significand / 2^bits` up changes no
+/// result. NaN and negatives (as unsigned integers above infinity's bits) clamp to 0, values
+/// from 1.0 up to 1.0; past a shift of 26 every code is 0, as it is at 26.
+#[inline(always)]
 pub fn unorm_from_f32(value: f32, bits: u32) -> u32 {
-    (f64::from(value).clamp(0.0, 1.0) * f64::from(max_code(bits)) + 0.5) as u32
+    let value_bits = value.to_bits();
+    let clamped = if value_bits > F32_INFINITY_BITS {
+        0
+    } else {
+        value_bits.min(F32_ONE_BITS)
+    };
+    let significand = (clamped & 0x7f_ffff) | 0x80_0000;
+    let shift = (150 - bits - (clamped >> 23)).min(26);
+    let scaled = significand - ((significand + max_code(bits)) >> bits);
+    (scaled + ((1 << shift) >> 1)) >> shift
 }
 
 /// Unsigned normalized decode: the exact quotient `code / (2^bits - 1)`, correctly rounded.
@@ -54,46 +64,30 @@ pub fn small_float_max_code(mantissa_bits: u32) -> u32 {
 /// 5-bit exponent (bias 15) and `mantissa_bits` of mantissa: round to nearest even, denormals
 /// kept, saturating at the largest finite code. NaN gives 0.
 ///
-/// One formula covers normal and denormal results: the code is `exponent_part + significand >>
-/// shift`, rounded, where a normal result's implicit bit carries into the exponent field. As in
-/// the WGSL, every case is computed and the one that applies selected.
-#[inline]
+/// The WGSL's algorithm (`PREFIX_<lanes>_round_to_<name>`): normal results round the f32 bits
+/// in integer arithmetic, rebiasing the exponent in the same add (a carry moves into the
+/// exponent, as it should); denormal results scale the value by a power of two, exactly, and
+/// round it to nearest even. Each path gives at least the code where the other applies (under
+/// 2^-14 the rebias wraps around; from 2^-14 up the scaled value is at least the code), so the
+/// smaller is the code. NaN scales to NaN, which converts to 0.
+#[inline(always)]
 pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u32 {
-    let exponent = magnitude_bits >> 23;
-    // 2^-14 and above (f32 exponent 113) is a normal result.
-    let normal_result = exponent >= 113;
-    let f32_denormal = exponent == 0;
-    let significand = if f32_denormal {
-        magnitude_bits
-    } else {
-        (magnitude_bits & 0x7f_ffff) | 0x80_0000
-    };
-    // A denormal result drops 113 - exponent more bits, an f32 denormal 112 more; past 24 the
-    // value is under half the smallest denormal, as it is at 25.
-    let extra = if normal_result {
-        0
-    } else if f32_denormal {
-        112
-    } else {
-        113 - exponent
-    };
-    let shift = (23 - mantissa_bits + extra).min(25);
-    let exponent_part = if normal_result {
-        (exponent - 113) << mantissa_bits
-    } else {
-        0
-    };
-    let kept = significand >> shift;
-    let remainder = significand & ((1 << shift) - 1);
-    let halfway = 1 << (shift - 1);
-    let round_up = (remainder > halfway) | ((remainder == halfway) & (kept & 1 == 1));
-    let code =
-        (exponent_part + kept + u32::from(round_up)).min(small_float_max_code(mantissa_bits));
-    if magnitude_bits > F32_INFINITY_BITS {
-        0 // NaN
-    } else {
-        code
-    }
+    let shift = 23 - mantissa_bits;
+    let odd = (magnitude_bits >> shift) & 1;
+    let rounding_and_rebias = ((1u32 << (shift - 1)) - 1).wrapping_sub(113 << 23);
+    let normal = (magnitude_bits
+        .wrapping_add(rounding_and_rebias)
+        .wrapping_add(odd)
+        >> shift)
+        + (1 << mantissa_bits);
+    // value * 2^(14 + mantissa_bits), rounded to nearest even by adding and removing 2^23 (the
+    // CPU rounds to nearest even, and a denormal result is under 2^10); larger values stay
+    // large, and the conversion saturates.
+    let scaled = f32::from_bits(magnitude_bits) * f32::from_bits((141 + mantissa_bits) << 23);
+    let denormal = ((scaled + 8_388_608.0) - 8_388_608.0) as u32;
+    normal
+        .min(denormal)
+        .min(small_float_max_code(mantissa_bits))
 }
 
 /// f32 to the 16-bit code of an IEEE binary16, sign kept, saturating at +-65504. NaN gives 0.
@@ -101,21 +95,26 @@ pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u3
 pub fn half_from_f32(value: f32) -> u32 {
     let value_bits = value.to_bits();
     let magnitude = value_bits & 0x7fff_ffff;
+    let code = ((value_bits >> 16) & 0x8000) | small_float_from_magnitude(magnitude, 10);
+    // NaN, whatever its sign, gives 0.
     if magnitude > F32_INFINITY_BITS {
-        return 0; // NaN, whatever its sign
+        0
+    } else {
+        code
     }
-    ((value_bits >> 16) & 0x8000) | small_float_from_magnitude(magnitude, 10)
 }
 
 /// f32 to an unsigned small float (`mantissa_bits` 6 for r11f and g11f, 5 for b10f).
-/// Negatives and NaN give 0.
-#[inline]
+/// Negatives and NaN give 0 (as unsigned integers, both lie above infinity's bits).
+#[inline(always)]
 pub fn unsigned_float_from_f32(value: f32, mantissa_bits: u32) -> u32 {
     let value_bits = value.to_bits();
-    if value_bits >> 31 == 1 {
-        return 0;
+    let code = small_float_from_magnitude(value_bits, mantissa_bits);
+    if value_bits > F32_INFINITY_BITS {
+        0
+    } else {
+        code
     }
-    small_float_from_magnitude(value_bits, mantissa_bits)
 }
 
 /// Decodes an unsigned small float code, exactly. Exponent 31 decodes to infinity or NaN as
@@ -272,9 +271,6 @@ impl Format {
 mod tests {
     use super::*;
 
-    /// The bits of 1.0 as f32.
-    const F32_ONE_BITS: u32 = 0x3f80_0000;
-
     /// Round to nearest even in f64 arithmetic, the textbook way, for comparison.
     fn small_float_reference(value: f32, mantissa_bits: u32) -> u32 {
         let max = f64::from(f32_from_small_float(
@@ -302,59 +298,36 @@ mod tests {
         code.min(small_float_max_code(mantissa_bits))
     }
 
-    /// The WGSL's unorm encode (`PREFIX_<lanes>_to_unorm` in `emit::wgsl`), transliterated:
-    /// integer operations on the float's bits.
-    fn wgsl_unorm_from_f32(value: f32, bits: u32) -> u32 {
-        let max_code = max_code(bits);
-        let value_bits = value.to_bits();
-        let clamped = if value_bits > F32_INFINITY_BITS {
-            0
+    /// The unorm formula evaluated plainly, in f64: exact for every f32 (the product has at
+    /// most 40 significant bits, and adding one half cannot round up to the next integer: a
+    /// product within 2^-41 of a half-integer would need bits the value does not have).
+    fn unorm_reference(value: f32, bits: u32) -> u32 {
+        (f64::from(value).clamp(0.0, 1.0) * f64::from(max_code(bits)) + 0.5) as u32
+    }
+
+    /// Small-float rounding written the branching way, bit by bit: the reference the
+    /// branch-free algorithm is checked against on every f32.
+    fn small_float_by_branches(magnitude_bits: u32, mantissa_bits: u32) -> u32 {
+        if magnitude_bits > F32_INFINITY_BITS {
+            return 0;
+        }
+        let exponent = magnitude_bits >> 23;
+        let significand = (magnitude_bits & 0x7f_ffff) | 0x80_0000;
+        // A normal result (2^-14 and up) drops 23 - mantissa_bits bits; a denormal one more,
+        // and past 25 the value is under half the smallest denormal.
+        let (exponent_part, extra) = if exponent >= 113 {
+            ((exponent - 113) << mantissa_bits, 0)
+        } else if exponent == 0 {
+            return 0;
         } else {
-            value_bits.min(F32_ONE_BITS)
+            (0, 113 - exponent)
         };
-        let significand = (clamped & 0x7f_ffff) | 0x80_0000;
-        let shift = (150 - bits - (clamped >> 23)).min(26);
-        let scaled = significand - ((significand + max_code) >> bits);
-        (scaled + ((1 << shift) >> 1)) >> shift
-    }
-
-    /// The WGSL's small-float rounding (`PREFIX_<lanes>_round_to_<name>`), transliterated.
-    fn wgsl_round_to_small_float(magnitude: u32, mantissa_bits: u32) -> u32 {
-        let shift = 23 - mantissa_bits;
-        let odd = (magnitude >> shift) & 1;
-        let rounding_and_rebias = ((1u32 << (shift - 1)) - 1).wrapping_sub(113 << 23);
-        let normal = (magnitude
-            .wrapping_add(rounding_and_rebias)
-            .wrapping_add(odd)
-            >> shift)
-            + (1 << mantissa_bits);
-        // 2^(14 + mantissa_bits); the conversion saturates, as naga's WGSL conversions do.
-        let scale = f32::from_bits((127 + 14 + mantissa_bits) << 23);
-        let denormal = (f32::from_bits(magnitude) * scale).round_ties_even() as u32;
-        normal.min(denormal).min((31 << mantissa_bits) - 1)
-    }
-
-    /// The WGSL's half encode (`PREFIX_<lanes>_to_half`), transliterated.
-    fn wgsl_half_from_f32(value: f32) -> u32 {
-        let bits = value.to_bits();
-        let magnitude = bits & 0x7fff_ffff;
-        let signed = wgsl_round_to_small_float(magnitude, 10) | ((bits >> 16) & 0x8000);
-        if magnitude > F32_INFINITY_BITS {
-            0
-        } else {
-            signed
-        }
-    }
-
-    /// The WGSL's unsigned-float encode (`PREFIX_<lanes>_to_unsigned_float`), transliterated.
-    fn wgsl_unsigned_float_from_f32(value: f32, mantissa_bits: u32) -> u32 {
-        let bits = value.to_bits();
-        let code = wgsl_round_to_small_float(bits, mantissa_bits);
-        if bits > F32_INFINITY_BITS {
-            0
-        } else {
-            code
-        }
+        let shift = (23 - mantissa_bits + extra).min(25);
+        let kept = significand >> shift;
+        let remainder = significand & ((1 << shift) - 1);
+        let halfway = 1 << (shift - 1);
+        let round_up = remainder > halfway || (remainder == halfway && kept & 1 == 1);
+        (exponent_part + kept + u32::from(round_up)).min(small_float_max_code(mantissa_bits))
     }
 
     /// Runs `check` on every bit pattern in `patterns`, split over two threads; the first
@@ -377,14 +350,11 @@ mod tests {
     }
 
     #[test]
-    fn the_wgsl_unorm_algorithm_is_exact_for_every_f32() {
+    fn the_unorm_algorithm_is_exact_for_every_f32() {
         let failure = every_pattern(0..=u32::MAX, |value_bits| {
             let value = f32::from_bits(value_bits);
             [2, 8, 10, 16].iter().find_map(|&bits| {
-                let (got, want) = (
-                    wgsl_unorm_from_f32(value, bits),
-                    unorm_from_f32(value, bits),
-                );
+                let (got, want) = (unorm_from_f32(value, bits), unorm_reference(value, bits));
                 (got != want).then(|| {
                     format!("{value:e} ({value_bits:#010x}) at {bits} bits: {got}, exact {want}")
                 })
@@ -393,11 +363,11 @@ mod tests {
         assert_eq!(failure, None);
     }
 
-    /// On every f32: the mirror's half is IEEE's rounding (the half crate's, which overflows to
-    /// infinity where ours saturates at the largest finite value and stores NaN as 0), and the
-    /// WGSL's half and unsigned floats are the mirror's.
+    /// On every f32: half is IEEE's rounding (the half crate's, which overflows to infinity
+    /// where ours saturates at the largest finite value and stores NaN as 0), and the unsigned
+    /// floats are the branching reference's.
     #[test]
-    fn small_floats_round_every_f32_as_ieee_does_in_the_mirror_and_the_wgsl() {
+    fn small_floats_round_every_f32_as_the_references_do() {
         let failure = every_pattern(0..=u32::MAX, |value_bits| {
             let value = f32::from_bits(value_bits);
             let ieee = u32::from(half::f16::from_f32(value).to_bits());
@@ -408,17 +378,21 @@ mod tests {
             } else {
                 ieee
             };
-            let (mirror, wgsl) = (half_from_f32(value), wgsl_half_from_f32(value));
-            if mirror != want || wgsl != want {
+            let got = half_from_f32(value);
+            if got != want {
                 return Some(format!(
-                    "half of {value:e} ({value_bits:#010x}): mirror {mirror:#06x}, WGSL {wgsl:#06x}, IEEE {want:#06x}"
+                    "half of {value:e} ({value_bits:#010x}): {got:#06x}, IEEE {want:#06x}"
                 ));
             }
             [6, 5].iter().find_map(|&mantissa_bits| {
-                let got = wgsl_unsigned_float_from_f32(value, mantissa_bits);
-                let want = unsigned_float_from_f32(value, mantissa_bits);
+                let got = unsigned_float_from_f32(value, mantissa_bits);
+                let want = if value_bits >> 31 == 1 {
+                    0
+                } else {
+                    small_float_by_branches(value_bits, mantissa_bits)
+                };
                 (got != want).then(|| {
-                    format!("{value:e} with {mantissa_bits} mantissa bits: WGSL {got:#x}, mirror {want:#x}")
+                    format!("{value:e} with {mantissa_bits} mantissa bits: {got:#x}, reference {want:#x}")
                 })
             })
         });

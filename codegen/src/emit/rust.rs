@@ -113,10 +113,12 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
             type Packed = [::core::primitive::u32; #words];
             const WGSL: &'static ::core::primitive::str = #wgsl;
 
+            #[inline]
             fn pack(&self) -> [::core::primitive::u32; #words] {
                 [#(#encoded_words),*]
             }
 
+            #[inline]
             fn unpack(#words_parameter: &[::core::primitive::u32; #words]) -> Self {
                 Self { #(#decoded_fields),* }
             }
