@@ -55,7 +55,12 @@ fn v3(index: usize) -> Vec3 {
 }
 
 fn v4(index: usize) -> Vec4 {
-    Vec4::new(value(index, 0), value(index, 1), value(index, 2), value(index, 3))
+    Vec4::new(
+        value(index, 0),
+        value(index, 1),
+        value(index, 2),
+        value(index, 3),
+    )
 }
 
 /// Pack, unpack and copy `TEXELS` texels of `make(i)`.
@@ -74,7 +79,10 @@ fn layout_group<L: GBufferLayout + Copy>(criterion: &mut Criterion, make: impl F
     });
     group.bench_function(BenchmarkId::from_parameter("pack, plain loop"), |bench| {
         bench.iter(|| {
-            for (texel, out) in black_box(&texels).iter().zip(black_box(&mut packed).iter_mut()) {
+            for (texel, out) in black_box(&texels)
+                .iter()
+                .zip(black_box(&mut packed).iter_mut())
+            {
                 *out = texel.pack();
             }
         })
