@@ -89,7 +89,9 @@ pub trait GBufferLayout: Sized {
     /// `Rgba32Uint` target helpers. Valid on its own and beside other layouts' WGSL.
     const WGSL: &'static str;
 
-    /// Packs the texel, bit for bit as the WGSL `pack_<snake>` does.
+    /// Packs the texel, bit for bit as the WGSL `pack_<snake>` does with exact conversions
+    /// (the default). Under `conversions = fast` the mirror stays exact and the WGSL's
+    /// channels are within one code of it on finite values within f16's range.
     fn pack(&self) -> Self::Packed;
     /// Unpacks a texel: floats and integers exactly, unorm as the correctly rounded quotient.
     fn unpack(words: &Self::Packed) -> Self;

@@ -109,7 +109,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
             "Exact conversions: the bits match the Rust mirror's on every adapter."
         }
         Conversions::Fast => {
-            "Fast conversions: each channel within one code of the Rust mirror's on finite values."
+            "Fast conversions: each channel within one code of the Rust mirror's on finite values within f16's range."
         }
     };
     let _ = writeln!(out, "// Packs a texel. {guarantee}");
