@@ -16,6 +16,9 @@
 //! Rust mirror, `include_str!(concat!(env!("OUT_DIR"), "/mobile_metallic.wgsl"))` for the
 //! WGSL, and likewise the GLSL includes. [`Builder`] chooses the outputs and the folder.
 
+// The example is a build script, whose `fn main` is the point.
+#![allow(clippy::needless_doctest_main)]
+
 use std::path::{Path, PathBuf};
 
 pub use gbuffer_codegen::output::Output;

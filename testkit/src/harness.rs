@@ -137,6 +137,33 @@ pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
     out
 }
 
+/// Runs a [`compute_harness`] of `layout` over `texels` texels on the adapter, in batches small
+/// enough for the default storage binding size. `inputs(first, count)` gives a batch's scalar
+/// bits; `results(inputs, packed words, unpacked scalar bits)` receives each batch's.
+pub fn run_in_batches(
+    gpu: &crate::gpu::Gpu,
+    layout: &Layout,
+    harness: &str,
+    texels: usize,
+    mut inputs: impl FnMut(usize, usize) -> Vec<u32>,
+    mut results: impl FnMut(&[u32], &[u32], &[u32]),
+) {
+    const BATCH: usize = 1 << 18;
+    let (scalars, words) = (scalars_per_texel(layout), layout.words());
+    for first in (0..texels).step_by(BATCH) {
+        let count = BATCH.min(texels - first);
+        let batch = inputs(first, count);
+        let outputs = gpu.run_compute(
+            harness,
+            "harness_main",
+            &batch,
+            &[count * words, count * scalars],
+            count as u32,
+        );
+        results(&batch, &outputs[0], &outputs[1]);
+    }
+}
+
 /// A fragment shader that uses every generated function (pack, unpack, each `load_`, the
 /// target helpers) on values made from the fragment position: what the backend translation
 /// tests compile. GLSL ES 3.00 (WebGL2) has fragment shaders but no compute ones.

@@ -9,7 +9,7 @@ use gbuffer::packing::{Field, FieldType, Format, Layout, ScalarKind};
 use gbuffer_codegen::emit::wgsl::Conversions;
 
 use crate::gpu::Gpu;
-use crate::harness::{compute_harness, expected_words, scalars_per_texel};
+use crate::harness::{compute_harness, expected_words, run_in_batches, scalars_per_texel};
 use crate::texels::slots;
 use crate::tools::run;
 use crate::values::{float_edges, Values};
@@ -195,7 +195,6 @@ pub fn in_fast_domain(value: f32) -> bool {
 /// The inputs are the float edge cases in the fast domain first, then random values from
 /// [`Values::float`] kept to that domain.
 pub fn deviation(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64) -> Deviation {
-    const BATCH: usize = 1 << 18;
     let harness = compute_harness(layout, wgsl);
     let scalars = scalars_per_texel(layout);
     let words = layout.words();
@@ -219,31 +218,28 @@ pub fn deviation(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u6
     };
     let slot_count = slots(layout).len();
     let mut deviation = Deviation::default();
-    for first in (0..texels).step_by(BATCH) {
-        let count = BATCH.min(texels - first);
-        let inputs: Vec<u32> = (0..count * scalars).map(|_| input().to_bits()).collect();
-        let outputs = gpu.run_compute(
-            &harness,
-            "harness_main",
-            &inputs,
-            &[count * words, count * scalars],
-            count as u32,
-        );
-        for texel in 0..count {
-            let expected = expected_words(layout, &inputs[texel * scalars..][..scalars]);
-            for (word, field) in layout.fields.iter().enumerate() {
-                let got = outputs[0][texel * words + word];
-                for channel in &field.format.channels()[..field.ty.components] {
-                    let code = |bits: u32| (bits >> channel.offset) & channel.mask();
-                    // Codes of one sign are ordered like their values (a sign bit is the
-                    // top bit, so a sign flip shows as a large difference).
-                    let error = code(expected[word]).abs_diff(code(got));
-                    deviation.largest_code_error = deviation.largest_code_error.max(error);
-                    deviation.differing += usize::from(error != 0);
+    run_in_batches(
+        gpu,
+        layout,
+        &harness,
+        texels,
+        |_, count| (0..count * scalars).map(|_| input().to_bits()).collect(),
+        |inputs, packed, _| {
+            for (texel, got) in packed.chunks_exact(words).enumerate() {
+                let expected = expected_words(layout, &inputs[texel * scalars..][..scalars]);
+                for (word, field) in layout.fields.iter().enumerate() {
+                    for channel in &field.format.channels()[..field.ty.components] {
+                        let code = |bits: u32| (bits >> channel.offset) & channel.mask();
+                        // Codes of one sign are ordered like their values (a sign bit is the
+                        // top bit, so a sign flip shows as a large difference).
+                        let error = code(expected[word]).abs_diff(code(got[word]));
+                        deviation.largest_code_error = deviation.largest_code_error.max(error);
+                        deviation.differing += usize::from(error != 0);
+                    }
                 }
             }
-        }
-        deviation.channels += count * slot_count;
-    }
+            deviation.channels += packed.len() / words * slot_count;
+        },
+    );
     deviation
 }

@@ -6,13 +6,10 @@
 use gbuffer::packing::Layout;
 use gbuffer::{seed_layouts, GBufferLayout};
 use gbuffer_testkit::gpu::Gpu;
-use gbuffer_testkit::harness::{compute_harness, expected_words, scalars_per_texel};
-use gbuffer_testkit::texels::{compare, describe, inputs, slots};
+use gbuffer_testkit::harness::{compute_harness, run_in_batches, scalars_per_texel};
+use gbuffer_testkit::texels::{compare, inputs};
 use gbuffer_testkit::values::Values;
 use gbuffer_testkit::AllFormats;
-
-/// Texels per dispatch, to stay under the default storage binding size.
-const BATCH: usize = 1 << 18;
 
 #[test]
 fn generated_wgsl_matches_the_rust_mirror_bit_for_bit_on_the_adapter() {
@@ -51,26 +48,24 @@ fn check_layout(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64
     let words = layout.words();
     let mut values = Values::new(seed);
     let mut failures = Vec::new();
-    for first in (0..texels).step_by(BATCH) {
-        let count = BATCH.min(texels - first);
-        let inputs = inputs(layout, first, count, &mut values);
-        let outputs = gpu.run_compute(
-            &harness,
-            "harness_main",
-            &inputs,
-            &[count * words, count * scalars],
-            count as u32,
-        );
-        compare(
-            "wgpu",
-            layout,
-            &inputs,
-            Some(&outputs[0]),
-            Some(&outputs[1]),
-            &mut failures,
-            20,
-        );
-    }
+    run_in_batches(
+        gpu,
+        layout,
+        &harness,
+        texels,
+        |first, count| inputs(layout, first, count, &mut values),
+        |inputs, packed, unpacked| {
+            compare(
+                "wgpu",
+                layout,
+                inputs,
+                Some(packed),
+                Some(unpacked),
+                &mut failures,
+                20,
+            )
+        },
+    );
     eprintln!(
         "{}: compared {texels} texels ({} scalars, {} words each)",
         layout.name, scalars, words

@@ -97,32 +97,45 @@ fn time_note(adapter: &str) -> &'static str {
     }
 }
 
-fn count(cost: Option<Cost>, pick: fn(Cost) -> usize) -> String {
-    cost.map_or_else(|| "n/a".to_string(), |cost| pick(cost).to_string())
-}
-
-fn time(ms: Option<f64>) -> String {
-    ms.map_or_else(|| "n/a".to_string(), |ms| format!("{ms:.3}"))
+/// A row's cells: format, mode, instructions, branches, largest error, differing, time.
+fn cells(row: &PackingRow) -> [String; 7] {
+    let count = |pick: fn(Cost) -> usize| {
+        row.cost
+            .map_or_else(|| "n/a".to_string(), |cost| pick(cost).to_string())
+    };
+    [
+        row.format.name().to_string(),
+        row.mode().to_string(),
+        count(|cost| cost.instructions),
+        count(|cost| cost.conditional_branches),
+        row.deviation.largest_code_error.to_string(),
+        format!("{:.3}%", 100.0 * row.deviation.differing_fraction()),
+        row.ms_per_million
+            .map_or_else(|| "n/a".to_string(), |ms| format!("{ms:.3}")),
+    ]
 }
 
 /// The table on standard output.
 pub fn print(rows: &[PackingRow], adapter: &str) {
     println!("\npacking conversions ({})", time_note(adapter));
-    println!(
-        "{:<16} {:<6} {:>12} {:>8} {:>11} {:>10} {:>13}",
-        "format", "mode", "instructions", "branches", "max codes", "differing", "ms/Mtexel"
-    );
+    let line = |cells: &[String; 7]| {
+        format!(
+            "{:<16} {:<6} {:>12} {:>8} {:>11} {:>10} {:>13}",
+            cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], cells[6]
+        )
+    };
+    let header = [
+        "format",
+        "mode",
+        "instructions",
+        "branches",
+        "max codes",
+        "differing",
+        "ms/Mtexel",
+    ];
+    println!("{}", line(&header.map(str::to_string)));
     for row in rows {
-        println!(
-            "{:<16} {:<6} {:>12} {:>8} {:>11} {:>9.3}% {:>13}",
-            row.format.name(),
-            row.mode(),
-            count(row.cost, |cost| cost.instructions),
-            count(row.cost, |cost| cost.conditional_branches),
-            row.deviation.largest_code_error,
-            100.0 * row.deviation.differing_fraction(),
-            time(row.ms_per_million)
-        );
+        println!("{}", line(&cells(row)));
     }
 }
 
@@ -135,17 +148,7 @@ pub fn markdown(rows: &[PackingRow], adapter: &str) -> String {
     );
     out.push_str("| --- | --- | ---: | ---: | ---: | ---: | ---: |\n");
     for row in rows {
-        let _ = writeln!(
-            out,
-            "| {} | {} | {} | {} | {} | {:.3}% | {} |",
-            row.format.name(),
-            row.mode(),
-            count(row.cost, |cost| cost.instructions),
-            count(row.cost, |cost| cost.conditional_branches),
-            row.deviation.largest_code_error,
-            100.0 * row.deviation.differing_fraction(),
-            time(row.ms_per_million)
-        );
+        let _ = writeln!(out, "| {} |", cells(row).join(" | "));
     }
     out
 }
