@@ -3,12 +3,13 @@
 //! least), for Listing 2.2 (`MobileMetallic`), the other seed layouts and a layout of every
 //! format. `pack, plain loop` is the per-texel `pack` in a loop compiled for the default
 //! target, what `pack_slice` does without AVX2. Criterion prints each one's throughput in
-//! texels (elements) per second; run with `cargo bench -p gbuffer --bench packing`.
+//! texels (elements) per second, and a table of each layout's rates and their shares of
+//! memcpy's closes the run; run with `cargo bench -p gbuffer --bench packing`.
 
 use std::hint::black_box;
 use std::time::Duration;
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
 use gbuffer::seed_layouts::{ArmTileBlock, FutureMetallic, MobileMetallic, SpecularWorkflow};
 use gbuffer::GBufferLayout;
@@ -152,4 +153,65 @@ criterion_group! {
         .sample_size(20);
     targets = slices
 }
-criterion_main!(benches);
+/// The functions measured per layout, in the table's order.
+const FUNCTIONS: [&str; 4] = ["pack_slice", "unpack_slice", "pack, plain loop", "memcpy"];
+
+/// Criterion's mean time of one iteration, in nanoseconds, from the estimates it saved.
+fn mean_nanoseconds(folder: &std::path::Path, group: &str, function: &str) -> Option<f64> {
+    let path = folder.join(group).join(function).join("new/estimates.json");
+    let estimates: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()?;
+    estimates["mean"]["point_estimate"].as_f64()
+}
+
+/// The side-by-side table: millions of texels a second, and pack's and unpack's shares of
+/// memcpy's rate, for the layouts criterion has measured.
+fn print_table() {
+    // Criterion writes under the target folder; the bench runs from target/<profile>/deps.
+    let folder = std::env::var_os("CRITERION_HOME")
+        .map(std::path::PathBuf::from)
+        .or_else(|| {
+            let exe = std::env::current_exe().ok()?;
+            Some(exe.parent()?.parent()?.parent()?.join("criterion"))
+        });
+    let Some(folder) = folder else { return };
+    println!(
+        "\n{TEXELS} texels, one thread; Mtexel/s (criterion's mean), pack and unpack as shares of memcpy"
+    );
+    println!(
+        "{:<28} {:>10} {:>12} {:>16} {:>8} {:>6} {:>7}",
+        "layout", FUNCTIONS[0], FUNCTIONS[1], FUNCTIONS[2], FUNCTIONS[3], "pack", "unpack"
+    );
+    let groups = [
+        "MobileMetallic (4 words)",
+        "SpecularWorkflow (5 words)",
+        "FutureMetallic (8 words)",
+        "ArmTileBlock (4 words)",
+        "EveryFormat (12 words)",
+    ];
+    for group in groups {
+        let rates: Option<Vec<f64>> = FUNCTIONS
+            .iter()
+            .map(|function| {
+                mean_nanoseconds(&folder, group, function).map(|ns| TEXELS as f64 / ns * 1e3)
+            })
+            .collect();
+        if let Some(rates) = rates {
+            println!(
+                "{group:<28} {:>10.0} {:>12.0} {:>16.0} {:>8.0} {:>5.0}% {:>6.0}%",
+                rates[0],
+                rates[1],
+                rates[2],
+                rates[3],
+                100.0 * rates[0] / rates[3],
+                100.0 * rates[1] / rates[3]
+            );
+        }
+    }
+}
+
+fn main() {
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+    print_table();
+}
