@@ -27,7 +27,7 @@ pub fn max_code(bits: u32) -> u32 {
 }
 
 /// Unsigned normalized encode: `floor(0.5 + (2^bits - 1) * clamp(value, 0, 1))`, exact; NaN
-/// gives 0. Valid for `bits` from 1 to 16.
+/// gives 0. Valid for `bits` from 1 to 23 (past that an f32 has no more bits to give).
 ///
 /// The WGSL's algorithm (`PREFIX_<lanes>_to_unorm`): with `value = significand *
 /// 2^-(shift + bits)` and `2^bits - 1 = max_code`, the code is `(significand - significand /
@@ -52,6 +52,76 @@ pub fn unorm_from_f32(value: f32, bits: u32) -> u32 {
 #[inline]
 pub fn f32_from_unorm(code: u32, bits: u32) -> f32 {
     code as f32 / max_code(bits) as f32
+}
+
+/// Signed normalized encode, GL's formula `round(clamp(value, -1, 1) * (2^(bits - 1) - 1))`
+/// with halves rounded away from zero, exact; the code is the `bits`-bit two's complement. NaN
+/// gives 0. Valid for `bits` from 2 to 24.
+///
+/// The magnitude is [`unorm_from_f32`] of `|value|` at `bits - 1` bits (the same formula), and
+/// the sign is applied to the code, so the encoding is symmetric about zero.
+#[inline(always)]
+pub fn snorm_from_f32(value: f32, bits: u32) -> u32 {
+    // NaN's magnitude encodes as 0, whatever its sign.
+    let magnitude = unorm_from_f32(f32::from_bits(value.to_bits() & 0x7fff_ffff), bits - 1);
+    if value.to_bits() >> 31 == 1 {
+        magnitude.wrapping_neg() & max_code(bits)
+    } else {
+        magnitude
+    }
+}
+
+/// Signed normalized decode, GL's formula `max(code / (2^(bits - 1) - 1), -1)`: the most
+/// negative code decodes to -1, as the next one does.
+#[inline]
+pub fn f32_from_snorm(code: u32, bits: u32) -> f32 {
+    (i32_from_sint(code, bits) as f32 / (max_code(bits) >> 1) as f32).max(-1.0)
+}
+
+/// The largest value rgb9e5 holds: (511 / 512) 2^16.
+const RGB9E5_MAX_BITS: u32 = 0x477f_8000;
+
+/// Shared-exponent rgb9e5 (EXT_texture_shared_exponent), its algorithm evaluated exactly: each
+/// channel clamped to [0, 65408] (NaN to 0); the shared exponent `max(-16, floor(log2(max))) +
+/// 16`, one more where the largest channel rounds up to 512; each mantissa `floor(channel /
+/// 2^(exponent - 24) + 0.5)`. Red in bits 0-8, green 9-17, blue 18-26, the exponent 27-31.
+///
+/// On the float's bits: `floor(log2)` is the exponent field, and rounding a value scaled by a
+/// power of two is a shift of its significand with half its last place added.
+#[inline(always)]
+pub fn rgb9e5_from_f32(rgb: [f32; 3]) -> u32 {
+    // Non-negative floats order like their bits; NaN and negatives lie above infinity's.
+    let clamped = rgb.map(|value| {
+        let bits = value.to_bits();
+        if bits > F32_INFINITY_BITS {
+            0
+        } else {
+            bits.min(RGB9E5_MAX_BITS)
+        }
+    });
+    let largest = clamped[0].max(clamped[1]).max(clamped[2]);
+    // Biased exponent 111 is 2^-16: the smallest the shared exponent represents.
+    let exponent = (largest >> 23).max(111) - 111;
+    let exponent = exponent + u32::from(mantissa_at(largest, exponent) == 512);
+    let [red, green, blue] = clamped.map(|bits| mantissa_at(bits, exponent));
+    red | (green << 9) | (blue << 18) | (exponent << 27)
+}
+
+/// `floor(value * 2^(24 - exponent) + 0.5)` for a non-negative f32 given as bits: its
+/// significand shifted right by `150 - e - (24 - exponent)` with rounding; past a shift of 25
+/// the result is 0, as it is at 25 (an f32 denormal shifts by at least that much).
+#[inline(always)]
+fn mantissa_at(bits: u32, exponent: u32) -> u32 {
+    let significand = (bits & 0x7f_ffff) | 0x80_0000;
+    let shift = (126 + exponent).saturating_sub(bits >> 23).min(25);
+    (significand + ((1 << shift) >> 1)) >> shift
+}
+
+/// Decodes rgb9e5, exactly: each mantissa times 2^(exponent - 24).
+#[inline]
+pub fn f32_from_rgb9e5(word: u32) -> [f32; 3] {
+    let scale = f32::from_bits(((word >> 27) + 103) << 23);
+    [0, 9, 18].map(|offset| ((word >> offset) & 0x1ff) as f32 * scale)
 }
 
 /// The largest finite code of a float with a 5-bit exponent and `mantissa_bits` of mantissa.
@@ -305,6 +375,45 @@ mod tests {
         (f64::from(value).clamp(0.0, 1.0) * f64::from(max_code(bits)) + 0.5) as u32
     }
 
+    /// Snorm evaluated plainly, in f64 (exact, as for unorm), halves rounded away from zero.
+    fn snorm_reference(value: f32, bits: u32) -> u32 {
+        if value.is_nan() {
+            return 0;
+        }
+        let scaled = f64::from(value).clamp(-1.0, 1.0) * f64::from(max_code(bits) >> 1);
+        let rounded = (scaled.abs() + 0.5).floor().copysign(scaled) as i32;
+        (rounded as u32) & max_code(bits)
+    }
+
+    /// EXT_texture_shared_exponent's rgb9e5 algorithm as its text writes it, in f64 (every
+    /// step exact for f32 inputs; `floor(log2)` read from the f64's exponent field).
+    fn rgb9e5_reference(rgb: [f32; 3]) -> u32 {
+        let clamped = rgb.map(|value| {
+            let value = f64::from(value);
+            if value.is_nan() {
+                0.0
+            } else {
+                value.clamp(0.0, 65408.0)
+            }
+        });
+        let largest = clamped[0].max(clamped[1]).max(clamped[2]);
+        let floor_log2 = if largest > 0.0 {
+            ((largest.to_bits() >> 52) & 0x7ff) as i32 - 1023
+        } else {
+            i32::MIN
+        };
+        let exponent_p = floor_log2.max(-16) + 16;
+        let mantissa =
+            |value: f64, exponent: i32| (value / 2f64.powi(exponent - 24) + 0.5).floor() as u32;
+        let exponent = if mantissa(largest, exponent_p) == 512 {
+            exponent_p + 1
+        } else {
+            exponent_p
+        };
+        let [red, green, blue] = clamped.map(|value| mantissa(value, exponent));
+        red | (green << 9) | (blue << 18) | ((exponent as u32) << 27)
+    }
+
     /// Small-float rounding written the branching way, bit by bit: the reference the
     /// branch-free algorithm is checked against on every f32.
     fn small_float_by_branches(magnitude_bits: u32, mantissa_bits: u32) -> u32 {
@@ -350,13 +459,23 @@ mod tests {
     }
 
     #[test]
-    fn the_unorm_algorithm_is_exact_for_every_f32() {
+    fn the_unorm_and_snorm_algorithms_are_exact_for_every_f32() {
         let failure = every_pattern(0..=u32::MAX, |value_bits| {
             let value = f32::from_bits(value_bits);
-            [2, 8, 10, 16].iter().find_map(|&bits| {
+            let unorm = [2, 8, 10, 16, 20, 23].iter().find_map(|&bits| {
                 let (got, want) = (unorm_from_f32(value, bits), unorm_reference(value, bits));
                 (got != want).then(|| {
-                    format!("{value:e} ({value_bits:#010x}) at {bits} bits: {got}, exact {want}")
+                    format!("{value:e} ({value_bits:#010x}) as unorm{bits}: {got}, exact {want}")
+                })
+            });
+            unorm.or_else(|| {
+                [8, 16, 24].iter().find_map(|&bits| {
+                    let (got, want) = (snorm_from_f32(value, bits), snorm_reference(value, bits));
+                    (got != want).then(|| {
+                        format!(
+                            "{value:e} ({value_bits:#010x}) as snorm{bits}: {got}, exact {want}"
+                        )
+                    })
                 })
             })
         });
@@ -411,6 +530,103 @@ mod tests {
                     half.to_bits() == mirror.to_bits() || (half.is_nan() && mirror.is_nan()),
                     "code {code:#x} with {mantissa_bits} mantissa bits: {half:e}, mirror {mirror:e}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn snorm_is_symmetric_and_decodes_the_most_negative_code_to_minus_one() {
+        for bits in [2, 4, 8, 12, 16, 24] {
+            let highest = max_code(bits) >> 1;
+            for (value, expected) in [
+                (1.0f32, highest),
+                (-1.0, highest.wrapping_neg() & max_code(bits)),
+                (-0.0, 0),
+                (f32::NAN, 0),
+                (-f32::NAN, 0),
+                (f32::NEG_INFINITY, highest.wrapping_neg() & max_code(bits)),
+            ] {
+                assert_eq!(
+                    snorm_from_f32(value, bits),
+                    expected,
+                    "{value} at {bits} bits"
+                );
+            }
+            assert_eq!(f32_from_snorm(highest + 1, bits), -1.0);
+            assert_eq!(f32_from_snorm(highest, bits), 1.0);
+            for code in [0, 1, highest / 2, highest] {
+                let negative = code.wrapping_neg() & max_code(bits);
+                assert_eq!(f32_from_snorm(negative, bits), -f32_from_snorm(code, bits));
+                assert_eq!(snorm_from_f32(f32_from_snorm(code, bits), bits), code);
+            }
+        }
+    }
+
+    /// rgb9e5 against the extension's algorithm: edge cases, the exponent carry beside every
+    /// power of two, the largest value, and a million random triples.
+    #[test]
+    fn rgb9e5_is_the_extensions_algorithm_evaluated_exactly() {
+        let mut cases: Vec<[f32; 3]> = vec![
+            [0.0, 0.0, 0.0],
+            [-0.0, -1.0, f32::NAN],
+            [65408.0, 65408.0, 65408.0],
+            [65409.0, 1e9, f32::INFINITY],
+            [f32::NEG_INFINITY, f32::MIN_POSITIVE, f32::from_bits(1)],
+            [1.0, 0.5, 0.25],
+        ];
+        for exponent in -20..17 {
+            let power = 2f32.powi(exponent);
+            for largest in [
+                power,
+                power * (1.0 - 2f32.powi(-10)),
+                f32::from_bits((power * (1.0 - 2f32.powi(-10))).to_bits() - 1),
+                power * (1.0 - 2f32.powi(-11)),
+                f32::from_bits(power.to_bits() - 1),
+            ] {
+                cases.push([largest, largest / 3.0, largest / 700.0]);
+                cases.push([
+                    largest / 512.0,
+                    largest,
+                    f32::from_bits(largest.to_bits() + 1),
+                ]);
+            }
+        }
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut random = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let bits = (state >> 32) as u32;
+            // Mostly magnitudes rgb9e5 holds, some of anything.
+            if state & 3 == 0 {
+                f32::from_bits(bits)
+            } else {
+                f32::from_bits(0x3000_0000 + bits % 0x1800_0000)
+            }
+        };
+        cases.extend((0..1_000_000).map(|_| [random(), random(), random()]));
+        for rgb in cases {
+            assert_eq!(
+                rgb9e5_from_f32(rgb),
+                rgb9e5_reference(rgb),
+                "{rgb:?}: {:#010x}, reference {:#010x}",
+                rgb9e5_from_f32(rgb),
+                rgb9e5_reference(rgb)
+            );
+        }
+        // Decoding is exact: the mantissa times 2^(exponent - 24).
+        for exponent in 0..32u32 {
+            for mantissa in [0u32, 1, 255, 256, 511] {
+                let word = mantissa | (mantissa << 9) | (mantissa << 18) | (exponent << 27);
+                let expected = (f64::from(mantissa) * 2f64.powi(exponent as i32 - 24)) as f32;
+                assert_eq!(f32_from_rgb9e5(word), [expected; 3]);
+                if mantissa >= 256 {
+                    assert_eq!(
+                        rgb9e5_from_f32([expected; 3]),
+                        word,
+                        "canonical words round-trip"
+                    );
+                }
             }
         }
     }

@@ -396,9 +396,25 @@ impl Lanes {
         template
             .replace("PREFIX", prefix)
             .replace("LANES", &self.name())
+            .replace("SINTS", &self.of("i32"))
             .replace("FLOATS", &self.of("f32"))
             .replace("UINTS", &self.of("u32"))
     }
+}
+
+/// The conversions that bit fields add to the formats': scalar unorm and snorm (unorm from 1
+/// to 23 bits, snorm from 2 to 24, the width passed as parameters) and rgb9e5, with the helpers they call, named with
+/// `prefix`. Each mirrors [`crate::convert`] bit for bit (`tests/tests/gpu_encodings.rs`).
+pub fn bit_field_helpers(prefix: &str) -> String {
+    let (scalar, triple) = (Lanes(1), Lanes(3));
+    [
+        scalar.fill(UNORM_FROM_F32, prefix),
+        scalar.fill(SNORM_FROM_F32, prefix),
+        scalar.fill(RGB9E5_MANTISSA, prefix),
+        triple.fill(RGB9E5_MANTISSA, prefix),
+        triple.fill(RGB9E5, prefix),
+    ]
+    .concat()
 }
 
 /// A literal with one `u32` per channel of `format`.
@@ -723,6 +739,65 @@ fn PREFIX_LANES_to_unorm(value: FLOATS, bits: UINTS, max_code: UINTS, shift_bias
     let shift = min(shift_bias - (clamped >> UINTS(23u)), UINTS(26u));
     let scaled = significand - ((significand + max_code) >> bits);
     return (scaled + ((UINTS(1u) << shift) >> UINTS(1u))) >> shift;
+}
+
+";
+
+const SNORM_FROM_F32: &str = "\
+// Signed normalized encode, per lane: GL's round(clamp(value, -1, 1) * (2^(bits - 1) - 1)),
+// halves away from zero, exact: the magnitude's unorm code at bits - 1 bits (NaN's is 0),
+// negated in the bits-bit two's complement for a set sign bit (a multiply-free negation, as
+// GLSL ES 3.00 has no `select` on integer vectors). magnitude_* are to_unorm's parameters
+// at bits - 1 bits; mask is 2^bits - 1.
+fn PREFIX_LANES_to_snorm(value: FLOATS, magnitude_bits: UINTS, magnitude_max: UINTS, shift_bias: UINTS, mask: UINTS) -> UINTS {
+    let value_bits = bitcast<UINTS>(value);
+    let magnitude = bitcast<FLOATS>(value_bits & UINTS(0x7fffffffu));
+    let code = PREFIX_LANES_to_unorm(magnitude, magnitude_bits, magnitude_max, shift_bias);
+    let negative = value_bits >> UINTS(31u);
+    return ((code ^ (UINTS(0u) - negative)) + negative) & mask;
+}
+
+// Signed normalized decode: max(code / (2^(bits - 1) - 1), -1), the code sign-extended by
+// moving its top bit to bit 31 and shifting back arithmetically (up is 32 - bits).
+fn PREFIX_LANES_from_snorm(code: UINTS, up: UINTS, reciprocal: FLOATS) -> FLOATS {
+    let signed = bitcast<SINTS>(code << up) >> up;
+    return max(FLOATS(signed) * reciprocal, FLOATS(-1.0));
+}
+
+";
+
+const RGB9E5_MANTISSA: &str = "\
+// floor(value * 2^(24 - exponent) + 0.5) for non-negative f32 bits; past a shift of 25 the
+// result is 0, as it is at 25 (the shift is never negative: no channel exceeds the largest).
+fn PREFIX_LANES_rgb9e5_mantissa(bits: UINTS, exponent: UINTS) -> UINTS {
+    let significand = (bits & UINTS(0x7fffffu)) | UINTS(0x800000u);
+    let shift = min(UINTS(126u) + exponent - (bits >> UINTS(23u)), UINTS(25u));
+    return (significand + ((UINTS(1u) << shift) >> UINTS(1u))) >> shift;
+}
+
+";
+
+const RGB9E5: &str = "\
+// Shared-exponent rgb9e5 (EXT_texture_shared_exponent), its algorithm evaluated exactly: the
+// channels clamped to [0, 65408] (NaN to 0; as unsigned integers, NaN and negatives lie above
+// infinity's bits), the exponent max(-16, floor(log2(largest))) + 16 read from the exponent
+// field, one more where the largest channel's mantissa rounds up to 512, and each mantissa
+// floor(channel / 2^(exponent - 24) + 0.5) by shifting the significand with half its last
+// place added. Red in bits 0-8, green 9-17, blue 18-26, the exponent 27-31.
+fn PREFIX_f32x3_to_rgb9e5(value: vec3<f32>) -> u32 {
+    let bits = bitcast<vec3<u32>>(value);
+    let clamped = min(bits, vec3<u32>(0x477f8000u)) * vec3<u32>(bits <= vec3<u32>(0x7f800000u));
+    let largest = max(clamped.x, max(clamped.y, clamped.z));
+    let rough_exponent = max(largest >> 23u, 111u) - 111u;
+    let exponent = rough_exponent + u32(PREFIX_f32_rgb9e5_mantissa(largest, rough_exponent) == 512u);
+    let mantissas = PREFIX_f32x3_rgb9e5_mantissa(clamped, vec3<u32>(exponent)) << vec3<u32>(0u, 9u, 18u);
+    return mantissas.x | mantissas.y | mantissas.z | (exponent << 27u);
+}
+
+// Decodes rgb9e5, exactly: each mantissa times 2^(exponent - 24).
+fn PREFIX_f32x3_from_rgb9e5(word: u32) -> vec3<f32> {
+    let scale = bitcast<f32>(((word >> 27u) + 103u) << 23u);
+    return vec3<f32>((vec3<u32>(word) >> vec3<u32>(0u, 9u, 18u)) & vec3<u32>(0x1ffu)) * scale;
 }
 
 ";
