@@ -69,6 +69,52 @@ impl FieldType {
     }
 }
 
+/// How the WGSL converts values to and from channel codes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Conversions {
+    /// Integer operations on the float's bits: the same words on every adapter as the Rust
+    /// mirror, and portable to every backend.
+    #[default]
+    Exact,
+    /// What engines write: WGSL's builtins where a format has one (`pack4x8unorm` for rgba8,
+    /// `pack2x16unorm` for rg16, `pack2x16float` for rg16f), f32 arithmetic for rgb10_a2,
+    /// `pack2x16float` with cut mantissas for r11f_g11f_b10f; the integer formats and r32f are
+    /// exact either way. Fewer instructions; the rounding is the adapter's, so a channel's code
+    /// can differ from the Rust mirror's by one (and for the floats the adapter may flush
+    /// values under 2^-14 to zero and turn values past 65504 into infinity).
+    /// `tests/tests/gpu_packing.rs` measures the deviation on the adapter.
+    Fast,
+}
+
+impl Conversions {
+    /// Whether a format's encode is the exact one under these conversions (fast conversions
+    /// replace it for rgba8, rg16, rg16f, rgb10_a2 and r11f_g11f_b10f).
+    pub fn is_exact_for(self, format: Format) -> bool {
+        self == Conversions::Exact
+            || !(self.builtins(format).is_some()
+                || matches!(format, Format::Rgb10A2 | Format::R11fG11fB10f))
+    }
+
+    /// What the generated functions of a field with these conversions add to their names
+    /// where the layout's conversions differ: `_exact` or `_fast`.
+    pub fn name_suffix(self) -> &'static str {
+        match self {
+            Conversions::Exact => "_exact",
+            Conversions::Fast => "_fast",
+        }
+    }
+
+    /// The builtin pack and unpack functions for a format, under these conversions.
+    pub fn builtins(self, format: Format) -> Option<(&'static str, &'static str)> {
+        match (self, format) {
+            (Conversions::Fast, Format::Rgba8) => Some(("pack4x8unorm", "unpack4x8unorm")),
+            (Conversions::Fast, Format::Rg16) => Some(("pack2x16unorm", "unpack2x16unorm")),
+            (Conversions::Fast, Format::Rg16f) => Some(("pack2x16float", "unpack2x16float")),
+            _ => None,
+        }
+    }
+}
+
 /// One field of a layout: a name, the format of its word and the type it holds.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Field {
@@ -78,6 +124,9 @@ pub struct Field {
     pub format: Format,
     /// The type it holds.
     pub ty: FieldType,
+    /// Its own conversions, where they differ from the layout's (`#[pls(rgba8, conversions =
+    /// fast)]`); `None` follows the layout's.
+    pub conversions: Option<Conversions>,
 }
 
 impl Field {
@@ -126,17 +175,23 @@ pub struct Diagnostic {
 }
 
 impl Layout {
-    /// Builds a layout from borrowed parts (what the generated `layout()` functions call).
-    pub fn from_parts(name: &str, budget: u32, fields: &[(&str, Format, FieldType)]) -> Self {
+    /// Builds a layout from borrowed parts (what the generated `layout()` functions call):
+    /// per field its name, format, type and own conversions.
+    pub fn from_parts(
+        name: &str,
+        budget: u32,
+        fields: &[(&str, Format, FieldType, Option<Conversions>)],
+    ) -> Self {
         Layout {
             name: name.to_string(),
             budget,
             fields: fields
                 .iter()
-                .map(|&(name, format, ty)| Field {
+                .map(|&(name, format, ty, conversions)| Field {
                     name: name.to_string(),
                     format,
                     ty,
+                    conversions,
                 })
                 .collect(),
         }
@@ -335,6 +390,7 @@ mod tests {
             name: name.into(),
             format,
             ty: FieldType::from_rust_name(ty).unwrap(),
+            conversions: None,
         }
     }
 

@@ -15,6 +15,12 @@
 //! name = "depth"
 //! format = "r32f"
 //! type = "f32"
+//!
+//! [[fields]]
+//! name = "albedo"
+//! format = "rgba8"
+//! type = "Vec4"
+//! conversions = "fast"      # optional: this field's own, over the layout's
 //! ```
 //!
 //! Every problem, from TOML syntax to the budget, is a [`FileDiagnostic`] naming the file,
@@ -27,9 +33,8 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::emit::wgsl::Conversions;
 use crate::format::Format;
-use crate::layout::{Field, FieldType, Layout, Subject, DEFAULT_BUDGET};
+use crate::layout::{Conversions, Field, FieldType, Layout, Subject, DEFAULT_BUDGET};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -48,6 +53,7 @@ struct FieldEntry {
     #[serde(rename = "type")]
     ty: Option<Spanned<String>>,
     components: Option<Spanned<i64>>,
+    conversions: Option<Spanned<String>>,
 }
 
 /// A layout file's contents: the layout, and how its WGSL converts values.
@@ -188,19 +194,25 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDia
         .map_err(|error| vec![FileDiagnostic::from_toml(path, source, &error)])?;
 
     let mut diagnostics = Vec::new();
-    let conversions = match entry
-        .conversions
-        .as_ref()
-        .map(|value| (value.get_ref().as_str(), value.span()))
-    {
-        None | Some(("exact", _)) => Conversions::Exact,
-        Some(("fast", _)) => Conversions::Fast,
-        Some((other, span)) => {
-            let message = format!("unknown conversions `{other}`: expected \"exact\" (the default: bit-identical everywhere) or \"fast\" (WGSL's pack builtins where they exist)");
-            diagnostics.push(FileDiagnostic::at(path, source, span, message));
-            Conversions::Exact
+    let mut conversions_of = |value: &Option<Spanned<String>>| {
+        let value = value.as_ref()?;
+        match value.get_ref().as_str() {
+            "exact" => Some(Conversions::Exact),
+            "fast" => Some(Conversions::Fast),
+            other => {
+                let message = format!("unknown conversions `{other}`: expected \"exact\" (the default: bit-identical everywhere) or \"fast\" (WGSL's pack builtins where they exist)");
+                diagnostics.push(FileDiagnostic::at(path, source, value.span(), message));
+                None
+            }
         }
     };
+    let conversions = conversions_of(&entry.conversions).unwrap_or_default();
+    let field_conversions: Vec<Option<Conversions>> = entry
+        .fields
+        .get_ref()
+        .iter()
+        .map(|field| conversions_of(&field.get_ref().conversions))
+        .collect();
     let mut layout = Layout {
         name: entry.name.get_ref().clone(),
         budget: entry
@@ -288,6 +300,7 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDia
             name: field.name.get_ref().clone(),
             format,
             ty,
+            conversions: field_conversions[layout.fields.len()],
         });
         field_spans.push([field.name.span(), field.format.span(), ty_span]);
     }
@@ -378,6 +391,42 @@ components = 4
         assert_eq!(file.conversions, Conversions::Fast);
         assert!(crate::emit::wgsl::emit_with(&file.layout, file.conversions)
             .contains("pack4x8unorm(c)"));
+    }
+
+    #[test]
+    fn a_field_chooses_its_own_conversions() {
+        let source =
+            MOBILE_METALLIC.replace("\"rgba8\"\ntype", "\"rgba8\"\nconversions = \"fast\"\ntype");
+        let file = parse_layout(&source, Path::new("mobile.toml")).unwrap();
+        assert_eq!(file.conversions, Conversions::Exact);
+        let fast = file
+            .layout
+            .fields
+            .iter()
+            .find(|field| field.conversions.is_some());
+        assert_eq!(
+            fast.map(|field| field.conversions),
+            Some(Some(Conversions::Fast))
+        );
+        assert!(
+            crate::emit::wgsl::emit_with(&file.layout, file.conversions).contains(
+                "_encode_rgba8_fast_word(c: vec4<f32>) -> u32 {\n    return pack4x8unorm(c);"
+            )
+        );
+        let source = MOBILE_METALLIC.replace(
+            "\"rgba8\"\ntype",
+            "\"rgba8\"\nconversions = \"quick\"\ntype",
+        );
+        let errors = parse_layout(&source, Path::new("mobile.toml")).unwrap_err();
+        assert_eq!(
+            (errors.len(), errors[0].line, errors[0].column),
+            (1, 18, 15)
+        );
+        assert!(
+            errors[0].message.starts_with("unknown conversions `quick`"),
+            "{}",
+            errors[0].message
+        );
     }
 
     #[test]

@@ -32,5 +32,5 @@ pub mod report;
 pub use builder::{BuildError, Builder};
 
 pub use format::{Channel, ChannelEncoding, Format, ScalarKind};
-pub use layout::{Diagnostic, Field, FieldType, Layout, Subject, DEFAULT_BUDGET};
+pub use layout::{Conversions, Diagnostic, Field, FieldType, Layout, Subject, DEFAULT_BUDGET};
 pub use report::Report;

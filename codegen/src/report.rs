@@ -249,21 +249,25 @@ mod tests {
                     name: "light_accumulation".into(),
                     format: Format::Rgb10A2,
                     ty: ty("Vec3"),
+                    conversions: None,
                 },
                 Field {
                     name: "depth".into(),
                     format: Format::R32f,
                     ty: ty("f32"),
+                    conversions: None,
                 },
                 Field {
                     name: "normals_roughness".into(),
                     format: Format::Rgba8,
                     ty: ty("Vec4"),
+                    conversions: None,
                 },
                 Field {
                     name: "albedo_metallic".into(),
                     format: Format::Rgba8,
                     ty: ty("Vec4"),
+                    conversions: None,
                 },
             ],
         };

@@ -93,16 +93,24 @@ pub fn parse(input: &DeriveInput) -> syn::Result<Parsed> {
         let name = ident.to_string().trim_start_matches("r#").to_string();
         let format = parse_pls_attribute(field, &name, &mut errors);
         let ty = parse_field_type(&field.ty, &mut errors);
-        let (format, format_span, ty) = match (format, ty) {
-            (Some((format, format_span)), Some(ty)) => (format, format_span, ty),
+        let (format, format_span, conversions, ty) = match (format, ty) {
+            (Some((format, format_span, conversions)), Some(ty)) => {
+                (format, format_span, conversions, ty)
+            }
             // The error is reported; a stand-in keeps the field's word in the budget check.
             _ => (
                 Format::R32f,
                 ident.span(),
+                None,
                 FieldType::new(ScalarKind::Float, 1),
             ),
         };
-        layout.fields.push(Field { name, format, ty });
+        layout.fields.push(Field {
+            name,
+            format,
+            ty,
+            conversions,
+        });
         spans
             .fields
             .push([ident.span(), format_span, field.ty.span()]);
@@ -165,24 +173,8 @@ fn parse_gbuffer_attributes(input: &DeriveInput, errors: &mut Option<syn::Error>
                 options.budget_span = Some(expression.span());
                 Ok(())
             } else if meta.path.is_ident("conversions") {
-                // `conversions = fast`, or as a string, `conversions = "fast"`.
                 let value: syn::Expr = meta.value()?.parse()?;
-                let name = match &value {
-                    syn::Expr::Path(path) => path.path.get_ident().map(ToString::to_string),
-                    syn::Expr::Lit(syn::ExprLit {
-                        lit: syn::Lit::Str(literal),
-                        ..
-                    }) => Some(literal.value()),
-                    _ => None,
-                };
-                options.conversions = match name.as_deref() {
-                    Some("exact") => Conversions::Exact,
-                    Some("fast") => Conversions::Fast,
-                    other => {
-                        let given = other.map_or_else(|| "this".to_string(), |name| format!("`{name}`"));
-                        return Err(syn::Error::new_spanned(&value, format!("unknown conversions {given}: expected `exact` (the default: bit-identical everywhere) or `fast` (WGSL's pack builtins where they exist)")))
-                    }
-                };
+                options.conversions = conversions_value(&value)?;
                 if std::mem::replace(&mut seen.2, true) {
                     return Err(syn::Error::new_spanned(&value, "`conversions` is given twice"));
                 }
@@ -208,6 +200,26 @@ fn parse_gbuffer_attributes(input: &DeriveInput, errors: &mut Option<syn::Error>
     options
 }
 
+/// `fast` or `exact`, written as a path or a string (`conversions = "fast"`).
+fn conversions_value(value: &syn::Expr) -> syn::Result<Conversions> {
+    let name = match value {
+        syn::Expr::Path(path) => path.path.get_ident().map(ToString::to_string),
+        syn::Expr::Lit(syn::ExprLit {
+            lit: syn::Lit::Str(literal),
+            ..
+        }) => Some(literal.value()),
+        _ => None,
+    };
+    match name.as_deref() {
+        Some("exact") => Ok(Conversions::Exact),
+        Some("fast") => Ok(Conversions::Fast),
+        other => {
+            let given = other.map_or_else(|| "this".to_string(), |name| format!("`{name}`"));
+            Err(syn::Error::new_spanned(value, format!("unknown conversions {given}: expected `exact` (the default: bit-identical everywhere) or `fast` (WGSL's pack builtins where they exist)")))
+        }
+    }
+}
+
 /// A budget written as an integer literal that fits a u32.
 fn budget_value(expression: &syn::Expr) -> Option<u32> {
     match expression {
@@ -219,12 +231,13 @@ fn budget_value(expression: &syn::Expr) -> Option<u32> {
     }
 }
 
-/// `#[pls(rgba8)]`: the field's format and the span of its name.
+/// `#[pls(rgba8)]` or `#[pls(rgba8, conversions = fast)]`: the field's format, the span of its
+/// name, and the field's own conversions.
 fn parse_pls_attribute(
     field: &syn::Field,
     name: &str,
     errors: &mut Option<syn::Error>,
-) -> Option<(Format, Span)> {
+) -> Option<(Format, Span, Option<Conversions>)> {
     let attributes: Vec<&syn::Attribute> = field
         .attrs
         .iter()
@@ -249,14 +262,35 @@ fn parse_pls_attribute(
             ),
         );
     }
-    let format_ident = match first.parse_args::<syn::Ident>() {
-        Ok(ident) => ident,
+    let arguments = first.parse_args_with(|input: syn::parse::ParseStream| {
+        let format: syn::Ident = input.parse()?;
+        if input.is_empty() {
+            return Ok((format, None));
+        }
+        input.parse::<syn::Token![,]>()?;
+        let key: syn::Ident = input.parse()?;
+        if key != "conversions" {
+            return Err(syn::Error::new(
+                key.span(),
+                format!("unknown `pls` option `{key}`: expected `conversions = exact | fast`"),
+            ));
+        }
+        input.parse::<syn::Token![=]>()?;
+        let value: syn::Expr = input.parse()?;
+        Ok((format, Some(conversions_value(&value)?)))
+    });
+    let (format_ident, conversions) = match arguments {
+        Ok(arguments) => arguments,
+        Err(error) if error.to_string().starts_with("unknown") => {
+            combine(errors, error);
+            return None;
+        }
         Err(_) => {
             combine(
                 errors,
                 syn::Error::new_spanned(
                     first,
-                    format!("expected `#[pls(<format>)]` with one of: {}", format_list()),
+                    format!("expected `#[pls(<format>)]` or `#[pls(<format>, conversions = fast)]` with a format among: {}", format_list()),
                 ),
             );
             return None;
@@ -264,7 +298,7 @@ fn parse_pls_attribute(
     };
     let format_name = format_ident.to_string();
     match Format::from_name(&format_name) {
-        Some(format) => Some((format, format_ident.span())),
+        Some(format) => Some((format, format_ident.span(), conversions)),
         None => {
             let nearest = Format::nearest(&format_name);
             combine(

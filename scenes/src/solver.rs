@@ -468,6 +468,7 @@ fn build(scene: &SceneDescription, stored: &[Stored], best: Candidate) -> Soluti
             name: field_name(stored, &best.encodings, word),
             format: word.format,
             ty: field_type(word),
+            conversions: None,
         });
     }
     let placements = stored

@@ -31,9 +31,11 @@
 //! or `Vec2`..`Vec4` in float and unorm formats, `u32` or `UVec2`..`UVec4` in `ui` formats,
 //! `i32` or `IVec2`..`IVec4` in `i` formats; channels it does not fill are zero padding.
 //!
-//! `#[gbuffer(conversions = fast)]` makes the WGSL use the pack builtins for rgba8, rg16
-//! and rg16f: fewer instructions, the adapter's rounding (one code at most from the Rust
-//! mirror), and no WebGL2. The default, `"exact"`, is bit-identical everywhere.
+//! `#[gbuffer(conversions = fast)]` makes the WGSL use what engines write (the pack builtins
+//! for rgba8, rg16 and rg16f, f32 rounding for rgb10_a2, cut halves for r11f_g11f_b10f): fewer
+//! instructions, the adapter's rounding (one code at most from the Rust mirror). One field can
+//! choose for itself: `#[pls(rgba8, conversions = fast)]`. The default, `exact`, is
+//! bit-identical everywhere.
 //!
 //! A layout over its budget does not compile, and the error lists every field's bits.
 
@@ -65,7 +67,7 @@ pub mod packing {
     pub use gbuffer_codegen::convert::Scalar;
     pub use gbuffer_codegen::report::Report;
     pub use gbuffer_codegen::{
-        Channel, ChannelEncoding, Field, FieldType, Format, Layout, ScalarKind,
+        Channel, ChannelEncoding, Conversions, Field, FieldType, Format, Layout, ScalarKind,
     };
 }
 

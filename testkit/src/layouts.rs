@@ -106,7 +106,12 @@ pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
                 if named.iter().any(|field| field.name == name) {
                     name = format!("{name}_{index}");
                 }
-                named.push(Field { name, format, ty });
+                named.push(Field {
+                    name,
+                    format,
+                    ty,
+                    conversions: None,
+                });
             }
             Layout {
                 name: layout_name.map_or(format!("RandomLayout{tag}"), |pick| {

@@ -99,6 +99,25 @@ pub fn gbuffer_binary() -> &'static std::path::Path {
     })
 }
 
+/// Exact and fast conversions side by side: each field chooses its own, the layout's are
+/// exact. rgba8 appears in both.
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 128)]
+pub struct MixedConversions {
+    /// Exact, as the layout says.
+    #[pls(rgba8)]
+    pub exact_colour: Vec4,
+    /// Fast: `pack4x8unorm` (f32 arithmetic under GLSL ES 3.00).
+    #[pls(rgba8, conversions = fast)]
+    pub fast_colour: Vec4,
+    /// Fast: f32 rounding.
+    #[pls(rgb10_a2, conversions = fast)]
+    pub fast_normal: Vec4,
+    /// Exact, said again.
+    #[pls(r11f_g11f_b10f, conversions = exact)]
+    pub light: Vec3,
+}
+
 /// The formats that fast conversions change: those WGSL has pack builtins for, rgb10_a2,
 /// rounded in f32 arithmetic, and r11f_g11f_b10f, through cut halves.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]

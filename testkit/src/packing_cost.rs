@@ -55,6 +55,7 @@ pub fn one_field(format: Format) -> Layout {
             name: "value".into(),
             format,
             ty: FieldType::new(scalar, components),
+            conversions: None,
         }],
     }
 }
@@ -167,7 +168,7 @@ fn count(binary: &[u8]) -> Cost {
 }
 
 /// How far an adapter's codes stray from the exact mirror's.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Deviation {
     /// The largest difference between a channel's code and the exact one.
     pub largest_code_error: u32,
@@ -175,6 +176,8 @@ pub struct Deviation {
     pub differing: usize,
     /// Channel codes compared.
     pub channels: usize,
+    /// The largest difference per field, in field order.
+    pub largest_code_error_by_field: Vec<u32>,
 }
 
 impl Deviation {
@@ -217,7 +220,10 @@ pub fn deviation(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u6
         }
     };
     let slot_count = slots(layout).len();
-    let mut deviation = Deviation::default();
+    let mut deviation = Deviation {
+        largest_code_error_by_field: vec![0; layout.fields.len()],
+        ..Deviation::default()
+    };
     run_in_batches(
         gpu,
         layout,
@@ -234,6 +240,8 @@ pub fn deviation(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u6
                         // top bit, so a sign flip shows as a large difference).
                         let error = code(expected[word]).abs_diff(code(got[word]));
                         deviation.largest_code_error = deviation.largest_code_error.max(error);
+                        let by_field = &mut deviation.largest_code_error_by_field[word];
+                        *by_field = (*by_field).max(error);
                         deviation.differing += usize::from(error != 0);
                     }
                 }

@@ -149,6 +149,11 @@ fn vulkan_includes_compile_unedited_to_valid_spirv() {
     use gbuffer::GBufferLayout;
     check_vulkan_includes(&gbuffer_testkit::FastFormats::layout(), Conversions::Fast)
         .unwrap_or_else(|error| panic!("{error}"));
+    check_vulkan_includes(
+        &gbuffer_testkit::MixedConversions::layout(),
+        Conversions::Exact,
+    )
+    .unwrap_or_else(|error| panic!("{error}"));
 }
 
 /// The member type EXT_shader_pixel_local_storage gives each format (its format table).

@@ -330,10 +330,19 @@ proptest! {
 fn fast_includes_compile_on_gles_under_every_preamble() {
     use gbuffer::GBufferLayout;
     let Some(gles) = gles() else { return };
-    let layout = gbuffer_testkit::FastFormats::layout();
-    for include in [Include::FetchPacked, Include::FetchNative] {
+    // A fast layout, and an exact one whose fields choose fast conversions of their own.
+    let layouts = [
+        (gbuffer_testkit::FastFormats::layout(), Conversions::Fast),
+        (
+            gbuffer_testkit::MixedConversions::layout(),
+            Conversions::Exact,
+        ),
+    ];
+    for ((layout, conversions), include) in layouts.iter().flat_map(|layout| {
+        [Include::FetchPacked, Include::FetchNative].map(|include| (layout, include))
+    }) {
         for preamble in preambles(include) {
-            let (store, reload) = user_shaders(&layout, Conversions::Fast, include, &preamble);
+            let (store, reload) = user_shaders(layout, *conversions, include, &preamble);
             for shader in [store, reload] {
                 gles.program(&shader).unwrap_or_else(|log| {
                     panic!(

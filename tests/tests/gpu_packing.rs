@@ -98,6 +98,33 @@ fn fast_conversions_deviate_from_the_exact_mirror_by_at_most_one_code() {
     assert_eq!(found.differing, 0, "{found:?}");
 }
 
+/// A layout whose fields choose their own conversions: the exact ones keep the mirror's bits,
+/// the fast ones stay within one code, on the same adapter and in the same texels.
+#[test]
+fn each_field_keeps_its_own_conversions() {
+    use gbuffer_testkit::packing_cost::deviation;
+    use gbuffer_testkit::MixedConversions;
+    let gpu = Gpu::new();
+    let layout = MixedConversions::layout();
+    let found = deviation(&gpu, &layout, MixedConversions::WGSL, 1 << 20, 79);
+    for (field, largest) in layout.fields.iter().zip(&found.largest_code_error_by_field) {
+        let bound = match field.conversions {
+            Some(gbuffer::packing::Conversions::Fast) => 1,
+            _ => 0,
+        };
+        assert!(
+            *largest <= bound,
+            "{}: codes differ by {largest} from the exact mirror's (allowed {bound})",
+            field.name
+        );
+    }
+    eprintln!(
+        "mixed conversions on {}: largest code error per field {:?}",
+        gpu.describe(),
+        found.largest_code_error_by_field
+    );
+}
+
 #[test]
 fn fast_conversions_translate_everywhere_but_webgl2() {
     use gbuffer::GBufferLayout;

@@ -3,7 +3,7 @@
 //! (or `cargo insta review`).
 
 use gbuffer::{seed_layouts, GBufferLayout};
-use gbuffer_testkit::{AllFormats, FastFormats};
+use gbuffer_testkit::{AllFormats, FastFormats, MixedConversions};
 
 #[test]
 fn seed_layout_wgsl() {
@@ -20,4 +20,9 @@ fn all_formats_wgsl() {
 #[test]
 fn fast_conversions_wgsl() {
     insta::assert_snapshot!("fast_formats", FastFormats::WGSL);
+}
+
+#[test]
+fn per_field_conversions_wgsl() {
+    insta::assert_snapshot!("mixed_conversions", MixedConversions::WGSL);
 }

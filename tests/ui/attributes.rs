@@ -31,6 +31,7 @@ struct TwoGbufferAttributes {
 }
 
 #[derive(GBufferLayout)]
+#[gbuffer(budget = 256)]
 struct PlsProblems {
     missing: f32,
     #[pls(rgba8)]
@@ -40,6 +41,10 @@ struct PlsProblems {
     quoted: Vec4,
     #[pls]
     empty: Vec4,
+    #[pls(rgba8, conversions = slow)]
+    slow: Vec4,
+    #[pls(rgba8, rounding = fast)]
+    unknown_option: Vec4,
 }
 
 fn main() {}

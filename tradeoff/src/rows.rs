@@ -282,6 +282,7 @@ fn single_format_layout(name: &str, fields: &[(&str, Format, usize)]) -> Layout 
                 name: field.to_string(),
                 format,
                 ty: FieldType::new(ScalarKind::Float, components),
+                conversions: None,
             })
             .collect(),
     }

@@ -97,10 +97,17 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
         let format = variant(field.format);
         let scalar = variant(field.ty.scalar);
         let components = Literal::usize_unsuffixed(field.ty.components);
+        let conversions = match field.conversions {
+            Some(own) => {
+                let own = variant(own);
+                quote!(::core::option::Option::Some(#packing::Conversions::#own))
+            }
+            None => quote!(::core::option::Option::None),
+        };
         quote!((#field_name, #packing::Format::#format, #packing::FieldType {
             scalar: #packing::ScalarKind::#scalar,
             components: #components,
-        }))
+        }, #conversions))
     });
     let layout_name = &layout.name;
 

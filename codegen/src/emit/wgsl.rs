@@ -21,42 +21,7 @@ use crate::convert::max_code;
 use crate::format::{Channel, ChannelEncoding, Format, ScalarKind};
 use crate::layout::{Field, Layout};
 
-/// How the WGSL converts values to and from channel codes.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Conversions {
-    /// Integer operations on the float's bits: the same words on every adapter as the Rust
-    /// mirror, and portable to every backend.
-    #[default]
-    Exact,
-    /// What engines write: WGSL's builtins where a format has one (`pack4x8unorm` for rgba8,
-    /// `pack2x16unorm` for rg16, `pack2x16float` for rg16f), f32 arithmetic for rgb10_a2,
-    /// `pack2x16float` with cut mantissas for r11f_g11f_b10f; the integer formats and r32f are
-    /// exact either way. Fewer instructions; the rounding is the adapter's, so a channel's code
-    /// can differ from the Rust mirror's by one (and for the floats the adapter may flush
-    /// values under 2^-14 to zero and turn values past 65504 into infinity).
-    /// `tests/tests/gpu_packing.rs` measures the deviation on the adapter.
-    Fast,
-}
-
-impl Conversions {
-    /// Whether a format's encode is the exact one under these conversions (fast conversions
-    /// replace it for rgba8, rg16, rg16f, rgb10_a2 and r11f_g11f_b10f).
-    pub fn is_exact_for(self, format: Format) -> bool {
-        self == Conversions::Exact
-            || !(self.builtins(format).is_some()
-                || matches!(format, Format::Rgb10A2 | Format::R11fG11fB10f))
-    }
-
-    /// The builtin pack and unpack functions for a format, under these conversions.
-    pub fn builtins(self, format: Format) -> Option<(&'static str, &'static str)> {
-        match (self, format) {
-            (Conversions::Fast, Format::Rgba8) => Some(("pack4x8unorm", "unpack4x8unorm")),
-            (Conversions::Fast, Format::Rg16) => Some(("pack2x16unorm", "unpack2x16unorm")),
-            (Conversions::Fast, Format::Rg16f) => Some(("pack2x16float", "unpack2x16float")),
-            _ => None,
-        }
-    }
-}
+pub use crate::layout::Conversions;
 
 /// The WGSL of a layout with exact conversions. The layout must have passed [`Layout::check`].
 pub fn emit(layout: &Layout) -> String {
@@ -86,7 +51,17 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
     let words_type = format!("array<u32, {words}>");
     let mut out = String::new();
 
-    write_header(&mut out, layout, conversions);
+    let fast_fields = fast_field_names(layout, conversions);
+    let overridden = layout
+        .fields
+        .iter()
+        .any(|field| mode_suffix(field, conversions) != "");
+    let fast = match (fast_fields.is_empty(), overridden) {
+        (true, _) => None,
+        (false, false) => Some(String::new()),
+        (false, true) => Some(format!(" for {}", fast_fields.join(", "))),
+    };
+    write_header(&mut out, layout, fast.as_deref());
 
     let _ = writeln!(out, "struct {name} {{");
     for field in &layout.fields {
@@ -104,13 +79,12 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         prefix.to_uppercase()
     );
 
-    let guarantee = match conversions {
-        Conversions::Exact => {
-            "Exact conversions: the bits match the Rust mirror's on every adapter."
-        }
-        Conversions::Fast => {
-            "Fast conversions: each channel within one code of the Rust mirror's on finite values within f16's range."
-        }
+    let guarantee = if fast_fields.is_empty() {
+        "Exact conversions: the bits match the Rust mirror's on every adapter.".to_string()
+    } else if !overridden {
+        "Fast conversions: each channel within one code of the Rust mirror's on finite values within f16's range.".to_string()
+    } else {
+        format!("Exact conversions but for {}, whose channels are within one code of the Rust mirror's on finite values within f16's range.", fast_fields.join(", "))
     };
     let _ = writeln!(out, "// Packs a texel. {guarantee}");
     let _ = writeln!(out, "fn pack_{prefix}(v: {name}) -> {words_type} {{");
@@ -119,7 +93,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         let _ = writeln!(
             out,
             "        {}, // {}",
-            encode_call(&prefix, field),
+            encode_call(&prefix, field, conversions),
             field.name
         );
     }
@@ -132,7 +106,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         let _ = writeln!(
             out,
             "        {}, // {}",
-            decode_expression(&prefix, field, word),
+            decode_expression(&prefix, field, word, conversions),
             field.name
         );
     }
@@ -149,7 +123,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         let _ = writeln!(
             out,
             "    return {};\n}}\n",
-            decode_expression(&prefix, field, word)
+            decode_expression(&prefix, field, word, conversions)
         );
     }
 
@@ -163,7 +137,9 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
     out
 }
 
-fn write_header(out: &mut String, layout: &Layout, conversions: Conversions) {
+/// `fast` is None for exact conversions, or says which fields are fast (empty for all, or
+/// " for a, b").
+fn write_header(out: &mut String, layout: &Layout, fast: Option<&str>) {
     let _ = writeln!(
         out,
         "// G-buffer layout `{}`: {} words, {} bits ({} used) of a {}-bit budget.",
@@ -178,12 +154,12 @@ fn write_header(out: &mut String, layout: &Layout, conversions: Conversions) {
         "// Generated by gbuffer from the layout declaration: edit that, not this file."
     );
     let _ = writeln!(out, "// Word i holds field i; inside a word the channels sit from the least significant bit up.");
-    if conversions == Conversions::Fast {
-        let _ = writeln!(out, "// Fast conversions: rgba8, rg16 and rg16f use WGSL's pack builtins, rgb10_a2 f32 arithmetic and");
-        let _ = writeln!(out, "// r11f_g11f_b10f cut halves, whose rounding is the adapter's (a channel may differ from the Rust");
+    if let Some(which) = fast {
+        let _ = writeln!(out, "// Fast conversions{which}: rgba8, rg16 and rg16f use WGSL's pack builtins, rgb10_a2 f32");
+        let _ = writeln!(out, "// arithmetic and r11f_g11f_b10f cut halves, whose rounding is the adapter's (a channel may differ");
         let _ = writeln!(
             out,
-            "// mirror's by one code); the other formats are exact."
+            "// from the Rust mirror's by one code); the other formats are exact."
         );
     }
     let width = layout
@@ -329,7 +305,7 @@ fn format_vector_type(format: Format) -> String {
 
 /// `prefix_encode_rgb10_a2_word(vec4<f32>(v.field, 0.0))`: the field widened with zeros to the
 /// format's channel count, so padding channels encode as zero bits.
-fn encode_call(prefix: &str, field: &Field) -> String {
+fn encode_call(prefix: &str, field: &Field, conversions: Conversions) -> String {
     let channels = field.format.channels().len();
     let value = format!("v.{}", field.name);
     let widened = if field.ty.components == channels {
@@ -343,17 +319,58 @@ fn encode_call(prefix: &str, field: &Field) -> String {
         let zeros = vec![zero; channels - field.ty.components].join(", ");
         format!("{}({value}, {zeros})", format_vector_type(field.format))
     };
-    format!("{prefix}_encode_{}_word({widened})", field.format.name())
+    let function = function_name(
+        prefix,
+        "encode",
+        field.format,
+        mode_suffix(field, conversions),
+    );
+    format!("{function}({widened})")
 }
 
 /// Decodes word `word` and narrows it to the field's components.
-fn decode_expression(prefix: &str, field: &Field, word: usize) -> String {
-    let call = format!("{prefix}_decode_{}_word(w[{word}])", field.format.name());
+fn decode_expression(prefix: &str, field: &Field, word: usize, conversions: Conversions) -> String {
+    let function = function_name(
+        prefix,
+        "decode",
+        field.format,
+        mode_suffix(field, conversions),
+    );
+    let call = format!("{function}(w[{word}])");
     if field.ty.components == field.format.channels().len() {
         call
     } else {
         format!("{call}.{}", &"xyzw"[..field.ty.components])
     }
+}
+
+/// A field's conversions: its own, or the layout's.
+fn mode(field: &Field, conversions: Conversions) -> Conversions {
+    field.conversions.unwrap_or(conversions)
+}
+
+/// The names of the fields whose encode is not the exact one.
+fn fast_field_names(layout: &Layout, conversions: Conversions) -> Vec<&str> {
+    layout
+        .fields
+        .iter()
+        .filter(|field| !mode(field, conversions).is_exact_for(field.format))
+        .map(|field| field.name.as_str())
+        .collect()
+}
+
+/// What a format's functions add to their names for a field whose conversions differ from
+/// the layout's: `_fast` or `_exact` (nothing otherwise).
+fn mode_suffix(field: &Field, conversions: Conversions) -> &'static str {
+    match field.conversions {
+        Some(own) if own != conversions => own.name_suffix(),
+        _ => "",
+    }
+}
+
+/// `<prefix>_<verb>_<format><suffix>_word`, e.g. `mobile_metallic_encode_rgba8_word`.
+pub(crate) fn function_name(prefix: &str, verb: &str, format: Format, suffix: &str) -> String {
+    format!("{prefix}_{verb}_{}{suffix}_word", format.name())
 }
 
 /// The lanes a format's helpers work on: a scalar for one channel, a vector for several, so
@@ -435,10 +452,29 @@ fn write_format_helpers(
     target: Target,
 ) {
     let prefix = layout.snake_name();
-    let formats: BTreeSet<Format> = layout.fields.iter().map(|field| field.format).collect();
-    for format in formats {
+    // Each format once per name suffix, with the conversions the suffix stands for.
+    let functions: BTreeSet<(Format, &str, bool)> = layout
+        .fields
+        .iter()
+        .map(|field| {
+            let suffix = mode_suffix(field, conversions);
+            (
+                field.format,
+                suffix,
+                mode(field, conversions) == Conversions::Fast,
+            )
+        })
+        .collect();
+    for (format, suffix, fast) in functions {
+        let conversions = if fast {
+            Conversions::Fast
+        } else {
+            Conversions::Exact
+        };
         let name = format.name();
         let vector = format_vector_type(format);
+        let encode = function_name(&prefix, "encode", format, suffix);
+        let decode = function_name(&prefix, "decode", format, suffix);
         let builtins = conversions
             .builtins(format)
             .filter(|_| !(target == Target::GlslEs300 && format == Format::Rgba8));
@@ -449,9 +485,12 @@ fn write_format_helpers(
             );
             let _ = writeln!(
                 out,
-                "fn {prefix}_encode_{name}_word(c: {vector}) -> u32 {{\n    return {pack}(c);\n}}\n"
+                "fn {encode}(c: {vector}) -> u32 {{\n    return {pack}(c);\n}}\n"
             );
-            let _ = writeln!(out, "fn {prefix}_decode_{name}_word(word: u32) -> {vector} {{\n    return {unpack}(word);\n}}\n");
+            let _ = writeln!(
+                out,
+                "fn {decode}(word: u32) -> {vector} {{\n    return {unpack}(word);\n}}\n"
+            );
             continue;
         }
         let channels = format.channels();
@@ -472,25 +511,25 @@ fn write_format_helpers(
             format.encoding_summary(),
             layout_description.join(", ")
         );
-        match (conversions.is_exact_for(format), format) {
-            (false, Format::Rgb10A2) => out.push_str(&FAST_RGB10_A2.replace("PREFIX", &prefix)),
-            (false, Format::Rgba8) => {
-                out.push_str(&FAST_RGBA8_ARITHMETIC.replace("PREFIX", &prefix))
-            }
-            (false, Format::R11fG11fB10f) => {
-                out.push_str(&FAST_R11F_G11F_B10F.replace("PREFIX", &prefix))
-            }
-            _ => {
+        let template = match (conversions.is_exact_for(format), format) {
+            (false, Format::Rgb10A2) => Some(FAST_RGB10_A2),
+            (false, Format::Rgba8) => Some(FAST_RGBA8_ARITHMETIC),
+            (false, Format::R11fG11fB10f) => Some(FAST_R11F_G11F_B10F),
+            _ => None,
+        };
+        match template {
+            Some(template) => out.push_str(&template.replace("ENCODE", &encode)),
+            None => {
                 let _ = writeln!(
                     out,
-                    "fn {prefix}_encode_{name}_word(c: {vector}) -> u32 {{\n{}}}\n",
+                    "fn {encode}(c: {vector}) -> u32 {{\n{}}}\n",
                     encode_body(&prefix, format)
                 );
             }
         }
         let _ = writeln!(
             out,
-            "fn {prefix}_decode_{name}_word(word: u32) -> {vector} {{\n{}}}\n",
+            "fn {decode}(word: u32) -> {vector} {{\n{}}}\n",
             decode_body(format)
         );
     }
@@ -624,8 +663,8 @@ fn write_conversion_helpers(out: &mut String, layout: &Layout, conversions: Conv
     let exact: BTreeSet<Format> = layout
         .fields
         .iter()
+        .filter(|field| mode(field, conversions).is_exact_for(field.format))
         .map(|field| field.format)
-        .filter(|format| conversions.is_exact_for(*format))
         .collect();
     let unorm_lanes: BTreeSet<Lanes> = exact
         .iter()
@@ -689,7 +728,7 @@ fn write_conversion_helpers(out: &mut String, layout: &Layout, conversions: Conv
 const FAST_RGB10_A2: &str = "\
 // Fast conversions: the codes are rounded in f32 arithmetic, one code from the exact ones at
 // most (where the product lies within f32's rounding of a half-integer); the decode is exact.
-fn PREFIX_encode_rgb10_a2_word(c: vec4<f32>) -> u32 {
+fn ENCODE(c: vec4<f32>) -> u32 {
     let scale = vec4<f32>(1023.0, 1023.0, 1023.0, 3.0);
     let codes = vec4<u32>(clamp(c, vec4<f32>(0.0), vec4<f32>(1.0)) * scale + vec4<f32>(0.5));
     return codes.x | (codes.y << 10u) | (codes.z << 20u) | (codes.w << 30u);
@@ -700,7 +739,7 @@ fn PREFIX_encode_rgb10_a2_word(c: vec4<f32>) -> u32 {
 const FAST_RGBA8_ARITHMETIC: &str = "\
 // Fast conversions for GLSL ES 3.00, which has no packUnorm4x8: rounded in f32 arithmetic like
 // the builtin (one code from the exact ones at most); the decode is the exact one.
-fn PREFIX_encode_rgba8_word(c: vec4<f32>) -> u32 {
+fn ENCODE(c: vec4<f32>) -> u32 {
     let codes = vec4<u32>(clamp(c, vec4<f32>(0.0), vec4<f32>(1.0)) * 255.0 + vec4<f32>(0.5));
     let placed = codes << vec4<u32>(0u, 8u, 16u, 24u);
     return placed.x | placed.y | placed.z | placed.w;
@@ -713,7 +752,7 @@ const FAST_R11F_G11F_B10F: &str = "\
 // `pack2x16float`, whose mantissas are cut to 6 and 5 bits (one code under the exact rounding
 // at most; the adapter may flush values under 2^-14 to zero and turn values past 65504 into
 // infinity). The decode is the exact one.
-fn PREFIX_encode_r11f_g11f_b10f_word(c: vec3<f32>) -> u32 {
+fn ENCODE(c: vec3<f32>) -> u32 {
     let positive = max(c, vec3<f32>(0.0));
     let red_green = pack2x16float(positive.xy);
     let blue = pack2x16float(vec2<f32>(positive.z, 0.0));

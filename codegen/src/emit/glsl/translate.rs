@@ -13,7 +13,7 @@
 //! attachments, accessors) use the same names as the translated struct.
 
 use super::TranslationError;
-use crate::emit::wgsl::{Conversions, Target};
+use crate::emit::wgsl::{function_name, Conversions, Target};
 use crate::format::Format;
 use crate::layout::Layout;
 
@@ -63,11 +63,17 @@ pub fn translate_with(
     let body = declarations(&glsl);
     let names = read_names(&body, layout)?;
     let mut text = with_explicit_precision(&body);
-    if !conversions.is_exact_for(Format::Rgba8) {
-        let prefix = layout.snake_name();
-        for (function, builtin) in [("encode", "packUnorm4x8"), ("decode", "unpackUnorm4x8")] {
-            text =
-                with_builtin_from_310(&text, &format!("{prefix}_{function}_rgba8_word("), builtin);
+    // rgba8's fast functions: the layout's own where its conversions are fast, and those of
+    // fields that choose fast conversions against exact ones.
+    let prefix = layout.snake_name();
+    let fast_suffixes: &[&str] = match conversions {
+        Conversions::Fast => &[""],
+        Conversions::Exact => &["_fast"],
+    };
+    for suffix in fast_suffixes {
+        for (verb, builtin) in [("encode", "packUnorm4x8"), ("decode", "unpackUnorm4x8")] {
+            let name = function_name(&prefix, verb, Format::Rgba8, suffix);
+            text = with_builtin_from_310(&text, &format!(" {name}("), builtin);
         }
     }
     Ok(Translation { text, names })
@@ -78,7 +84,8 @@ pub fn translate_with(
 /// the translated one after `#else`.
 fn with_builtin_from_310(glsl: &str, signature: &str, builtin: &str) -> String {
     let lines: Vec<&str> = glsl.lines().collect();
-    let Some(start) = lines.iter().position(|line| line.contains(signature)) else {
+    let definition = |line: &&str| line.contains(signature) && line.ends_with(") {");
+    let Some(start) = lines.iter().position(definition) else {
         return glsl.to_string();
     };
     let Some(length) = lines[start..].iter().position(|line| *line == "}") else {
