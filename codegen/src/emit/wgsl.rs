@@ -55,7 +55,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
     let overridden = layout
         .fields
         .iter()
-        .any(|field| mode_suffix(field, conversions) != "");
+        .any(|field| !mode_suffix(field, conversions).is_empty());
     let fast = match (fast_fields.is_empty(), overridden) {
         (true, _) => None,
         (false, false) => Some(String::new()),
