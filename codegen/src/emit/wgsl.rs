@@ -2,13 +2,14 @@
 //! the helpers for a fragment shader that writes `Rgba32Uint` targets.
 //!
 //! Exact conversions (the default) give every conforming adapter the Rust mirror's bits. They
-//! use only steps whose result no adapter may choose: integer and bit operations, comparisons
-//! and `select`, `floor` and `round`, scaling by a power of two, and subtractions that
-//! Sterbenz's lemma makes exact. The one rounded step, unorm's product, is settled by its exact
-//! error. WGSL's `pack2x16float` rounds in an implementation-defined way and `pack4x8unorm`
-//! lets the adapter pick either neighbour, so exact conversions do not use them; the channels
-//! of a word are converted together, one vector instruction for all of them, and nothing
-//! branches on the data. Their CPU twin is [`crate::convert`]. Fast conversions
+//! use only steps whose result no adapter may choose: integer and bit operations on the
+//! float's bits, comparisons, `min`, `round` of a value scaled by a power of two, and
+//! `unpack2x16float` (binary16 to binary32 loses nothing). Float arithmetic is avoided: a GPU
+//! compiler may reassociate it. WGSL's `pack2x16float` rounds in an implementation-defined
+//! way and `pack4x8unorm` lets the adapter pick either neighbour, so exact conversions do not
+//! use them. The channels of a word are converted together, one vector instruction for all of
+//! them; nothing branches on the data, and no `select` works on integer vectors (GLSL ES 3.00
+//! cannot translate it). Their CPU twin is [`crate::convert`]. Fast conversions
 //! ([`Conversions::Fast`]) use the builtins and the engines' f32 idioms instead.
 //!
 //! Helpers carry the layout's snake_case name as a prefix, so the WGSL of several layouts can
