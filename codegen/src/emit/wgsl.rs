@@ -625,8 +625,7 @@ fn decode_body(format: Format) -> String {
             );
         }
         // Every binary16 value is a binary32 value, and `unpack2x16float` is defined as that
-        // conversion: exact (unless an adapter flushes half denormals to zero, which WGSL does
-        // not allow it and some mobile GPUs are said to do).
+        // conversion: exact, on an adapter that keeps half denormals as WGSL asks.
         ChannelEncoding::Half => "unpack2x16float(word)".to_string(),
         // The codes are halves without their sign and low mantissa bits: widened back into
         // halves, they decode exactly as rg16f does.
