@@ -163,17 +163,18 @@ fn read_words(
     words
 }
 
-/// Runs both passes of `include` for `layout` under `preamble`; pushes mismatches onto
-/// `failures`. Prints why and returns when the driver has too few draw buffers for the layout.
+/// Runs both passes of `include` for `layout` with `conversions` under `preamble`; pushes
+/// mismatches onto `failures`. Prints why and returns when the driver has too few draw
+/// buffers for the layout.
 fn check(
     gles: &Gles,
-    layout: &Layout,
+    (layout, conversions): (&Layout, Conversions),
     include: Include,
     preamble: &str,
     seed: u64,
     failures: &mut Vec<String>,
 ) {
-    let (_, interface) = glsl::include(layout, include, 0).unwrap();
+    let (_, interface) = glsl::include_with(layout, conversions, include, 0).unwrap();
     let draw_buffers = gles.limit(glow::MAX_DRAW_BUFFERS) as usize;
     if interface.attachments.len() > draw_buffers {
         eprintln!(
@@ -184,7 +185,7 @@ fn check(
         return;
     }
     let what = format!("{include:?} under {:?}", preamble.replace('\n', " "));
-    let (store, reload) = user_shaders(layout, Conversions::Exact, include, preamble);
+    let (store, reload) = user_shaders(layout, conversions, include, preamble);
     let store = gles
         .program(&store)
         .unwrap_or_else(|log| panic!("{what}: {log}"));
@@ -218,7 +219,13 @@ fn check(
     gles.delete(first);
     gles.delete(both);
 
-    if include.is_packed() {
+    let fast = layout.fields.iter().any(|field| {
+        !field
+            .conversions
+            .unwrap_or(conversions)
+            .is_exact_for(field.format)
+    });
+    if include.is_packed() && !fast {
         // The include's own conversions: the mirror's words, bit for bit.
         compare(
             &what,
@@ -230,10 +237,11 @@ fn check(
             12,
         );
     } else {
-        // The driver converts: its words are its own rounding (GLES lets either neighbour of
-        // the exact value stand, and leaves NaN, infinities and out-of-range values to it),
-        // so they are held to one code of the mirror on finite inputs in range, and what the
-        // shader decodes must equal the mirror's decoding of the words the driver stored.
+        // The driver converts (native attachments, or the builtins of fast conversions): its
+        // words are its own rounding (GLES lets either neighbour of the exact value stand, and
+        // leaves NaN, infinities and out-of-range values to it), so they are held to one code
+        // of the mirror on finite inputs in range, and what the shader decodes must equal the
+        // mirror's decoding of the words the driver stored.
         check_native_words(&what, layout, &inputs, &stored, failures);
         if let Some(decoded) = &decoded {
             compare_decoded(&what, layout, &stored, decoded, failures, 24);
@@ -291,7 +299,7 @@ fn fetch_includes_round_trip_bit_exactly_on_gles_under_every_preamble() {
             for preamble in preambles(include) {
                 check(
                     &gles,
-                    layout,
+                    (layout, Conversions::Exact),
                     include,
                     &preamble,
                     index as u64,
@@ -317,20 +325,21 @@ proptest! {
         for include in [Include::FetchPacked, Include::FetchNative] {
             let preambles = preambles(include);
             let preamble = &preambles[preamble_index % preambles.len()];
-            check(&gles, &layout, include, preamble, 7, &mut failures);
+            check(&gles, (&layout, Conversions::Exact), include, preamble, 7, &mut failures);
         }
         prop_assert!(failures.is_empty(), "{}", failures.join("\n"));
     }
 }
 
-/// Fast conversions' includes compile on the driver under every preamble: under GLSL ES 3.00,
-/// which has no `packUnorm4x8`, rgba8 falls back to f32 arithmetic; from 3.10 up the builtins
-/// serve. (The WGSL of fast conversions is measured on the adapter in `gpu_packing.rs`.)
+/// Fast conversions' includes on the driver under every preamble, as the exact ones are run:
+/// under GLSL ES 3.00, which has no `packUnorm4x8`, rgba8 falls back to f32 arithmetic; from
+/// 3.10 up the builtins serve. Every channel within one code of the mirror on finite inputs
+/// in range, store(load()) changing no bit. For a fast layout, and for an exact one whose
+/// fields choose fast conversions of their own.
 #[test]
-fn fast_includes_compile_on_gles_under_every_preamble() {
+fn fast_includes_round_trip_within_one_code_on_gles_under_every_preamble() {
     use gbuffer::GBufferLayout;
     let Some(gles) = gles() else { return };
-    // A fast layout, and an exact one whose fields choose fast conversions of their own.
     let layouts = [
         (gbuffer_testkit::FastFormats::layout(), Conversions::Fast),
         (
@@ -338,19 +347,20 @@ fn fast_includes_compile_on_gles_under_every_preamble() {
             Conversions::Exact,
         ),
     ];
-    for ((layout, conversions), include) in layouts.iter().flat_map(|layout| {
-        [Include::FetchPacked, Include::FetchNative].map(|include| (layout, include))
-    }) {
-        for preamble in preambles(include) {
-            let (store, reload) = user_shaders(layout, *conversions, include, &preamble);
-            for shader in [store, reload] {
-                gles.program(&shader).unwrap_or_else(|log| {
-                    panic!(
-                        "{include:?} under {preamble:?}: {log}\n{}",
-                        gbuffer_testkit::gles::numbered(&shader)
-                    )
-                });
+    let mut failures = Vec::new();
+    for (layout, conversions) in &layouts {
+        for include in [Include::FetchPacked, Include::FetchNative] {
+            for preamble in preambles(include) {
+                check(
+                    &gles,
+                    (layout, *conversions),
+                    include,
+                    &preamble,
+                    11,
+                    &mut failures,
+                );
             }
         }
     }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
