@@ -4,7 +4,8 @@
 //! `target/tradeoff/report.md`, `report.json` and PNG plots (or into `--out DIR`). Each row's error is measured
 //! against the f64 references over the stated domain; its cost is counted in naga IR
 //! expressions and SPIR-V instructions; its time is measured on the adapter at hand (a
-//! dependent chain of evaluations, median of 7 runs, less the harness's own time) and for its
+//! dependent chain of evaluations grown until a run lasts 10 ms, median of 7 runs, less the
+//! harness's own time, `n/r` where that does not stand clear of the runs' spread) and for its
 //! f32 mirror on the CPU. The packing conversions get their own table: per format, exact and
 //! fast, their instructions, branches, error in codes and time per million texels.
 
@@ -27,7 +28,8 @@ use rows::Row;
 struct Measured {
     naga_expressions: usize,
     spirv_instructions: usize,
-    gpu_ns_per_eval: Option<f64>,
+    /// The adapter's time, less the harness's.
+    gpu: Option<timing::GpuTime>,
     cpu_ns_per_eval: f64,
 }
 
@@ -51,8 +53,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
 
     let (_, baseline_spirv) = compile(timing::BASELINE_ROW).expect("the baseline harness compiles");
     let baseline_instructions = gbuffer_validator::cost::spirv_instructions(&baseline_spirv);
-    let baseline_gpu =
-        timing::gpu_ns_per_eval(&gpu, &timing::harness(timing::BASELINE_ROW), &[], 1).ok();
+    let baseline_gpu = timing::gpu_time(&gpu, timing::BASELINE_ROW, &[], 1).ok();
     let luts: Vec<(usize, Vec<[f32; 2]>)> = [16, 32]
         .into_iter()
         .map(|size| (size, EnvBrdfLut::bake(size, 1024).texels))
@@ -77,15 +78,15 @@ pub fn run(folder: &Path) -> Result<(), String> {
                 .unwrap_or((1, &[])),
             None => (1, &[][..]),
         };
-        let gpu_time = timing::gpu_ns_per_eval(&gpu, &timing::harness(&row.wgsl), lut, lut_size)
+        let gpu_time = timing::gpu_time(&gpu, &row.wgsl, lut, lut_size)
             .map_err(|error| eprintln!("  GPU timing failed: {error}"))
             .ok()
-            .map(|time| (time - baseline_gpu.unwrap_or(0.0)).max(0.0));
+            .map(|time| time.less(baseline_gpu));
         measured.push(Measured {
             naga_expressions: gbuffer_validator::cost::naga_expressions(&module, "row_eval"),
             spirv_instructions: gbuffer_validator::cost::spirv_instructions(&spirv)
                 .saturating_sub(baseline_instructions),
-            gpu_ns_per_eval: gpu_time,
+            gpu: gpu_time,
             cpu_ns_per_eval: timing::cpu_ns_per_eval(&row.cpu),
         });
     }
@@ -120,8 +121,36 @@ pub fn run(folder: &Path) -> Result<(), String> {
     Ok(())
 }
 
-fn format_time(time: Option<f64>) -> String {
-    time.map_or_else(|| "n/a".to_string(), |time| format!("{time:.2}"))
+/// A time with three significant digits; "n/r" where it did not resolve (within the runs'
+/// spread), "n/a" where it could not be measured.
+fn format_time(time: Option<timing::GpuTime>) -> String {
+    match time {
+        None => "n/a".to_string(),
+        Some(time) if !time.resolved() => "n/r".to_string(),
+        Some(time) => significant(time.median_ns),
+    }
+}
+
+/// `value` with three significant digits.
+fn significant(value: f64) -> String {
+    let digits = (2 - value.abs().log10().floor() as i32).max(0) as usize;
+    format!("{value:.digits$}")
+}
+
+/// The report's timing objects of a row: one per stage measured.
+fn timings_json(time: Option<timing::GpuTime>) -> serde_json::Value {
+    serde_json::json!(time
+        .map(|time| vec![serde_json::json!({
+            "stage": "compute",
+            "clock": "wall",
+            "evaluations_per_run": time.evaluations_per_run(),
+            "run_ms": time.run_ms,
+            "median_ns": time.median_ns,
+            "min_ns": time.min_ns,
+            "max_ns": time.max_ns,
+            "resolved": time.resolved(),
+        })])
+        .unwrap_or_default())
 }
 
 fn print_table(rows: &[Row], measured: &[Measured], adapter: &str) {
@@ -151,7 +180,7 @@ fn print_table(rows: &[Row], measured: &[Measured], adapter: &str) {
             row.unit,
             measured.naga_expressions,
             measured.spirv_instructions,
-            format_time(measured.gpu_ns_per_eval),
+            format_time(measured.gpu),
             measured.cpu_ns_per_eval
         );
     }
@@ -172,7 +201,8 @@ fn json_report(rows: &[Row], measured: &[Measured], adapter: &str) -> serde_json
                 "rms_error": row.errors.rms,
                 "naga_expressions": measured.naga_expressions,
                 "spirv_instructions": measured.spirv_instructions,
-                "gpu_ns_per_eval": measured.gpu_ns_per_eval,
+                "gpu_ns_per_eval": measured.gpu.filter(timing::GpuTime::resolved).map(|time| time.median_ns),
+                "timings": timings_json(measured.gpu),
                 "cpu_ns_per_eval": measured.cpu_ns_per_eval,
             });
             if let Some(bits) = row.bits {
@@ -280,8 +310,9 @@ fn markdown_report(
     );
     let _ = writeln!(out, "Generated by `gbuffer report` on **{adapter}**. Errors are measured against the f64 references");
     let _ = writeln!(out, "of `gbuffer::shading::reference` over each row's domain; costs are naga IR expressions reachable from the row's");
-    let _ = writeln!(out, "WGSL and the SPIR-V instructions it adds to a compute shader; GPU time is per evaluation in a dependent chain of 2^20");
-    let _ = writeln!(out, "evaluations (median of {} runs, less the harness's own time); CPU time is the f32 mirror's.\n", timing::GPU_RUNS);
+    let _ = writeln!(out, "WGSL and the SPIR-V instructions it adds to a compute shader; GPU time is ns per evaluation and invocation in a dependent");
+    let _ = writeln!(out, "chain whose length grows until a run lasts 10 ms (median of {} runs, wall clock around a synchronised submit, less the", timing::GPU_RUNS);
+    let _ = writeln!(out, "harness's own time; n/r where the median is within the runs' spread); CPU time is the f32 mirror's.\n");
     let mut family = "";
     for (row, measured) in rows.iter().zip(measured) {
         if row.family != family {
@@ -307,7 +338,7 @@ fn markdown_report(
             row.errors.rms,
             measured.naga_expressions,
             measured.spirv_instructions,
-            format_time(measured.gpu_ns_per_eval),
+            format_time(measured.gpu),
             measured.cpu_ns_per_eval
         );
     }

@@ -25,8 +25,9 @@ pub struct PackingRow {
     /// None where spirv-opt is missing or failed (the reason was printed).
     cost: Option<Cost>,
     deviation: Deviation,
-    /// Milliseconds to pack and unpack a million texels (nanoseconds per texel).
-    ms_per_million: Option<f64>,
+    /// The adapter's time to pack and unpack a texel, less the harness's: nanoseconds per
+    /// texel are milliseconds per million.
+    time: Option<timing::GpuTime>,
 }
 
 impl PackingRow {
@@ -56,7 +57,7 @@ fn row_wgsl(format: Format, conversions: Conversions) -> String {
 }
 
 /// Measures both modes of every format fast conversions change.
-pub fn measure(gpu: &Gpu, baseline_gpu: Option<f64>) -> Vec<PackingRow> {
+pub fn measure(gpu: &Gpu, baseline_gpu: Option<timing::GpuTime>) -> Vec<PackingRow> {
     let mut rows = Vec::new();
     for format in CONVERTED_FORMATS {
         for conversions in [Conversions::Exact, Conversions::Fast] {
@@ -67,21 +68,16 @@ pub fn measure(gpu: &Gpu, baseline_gpu: Option<f64>) -> Vec<PackingRow> {
                 .ok();
             let wgsl = emit_with(&layout, conversions);
             let deviation = deviation(gpu, &layout, &wgsl, TEXELS, 91);
-            let ms_per_million = timing::gpu_ns_per_eval(
-                gpu,
-                &timing::harness(&row_wgsl(format, conversions)),
-                &[],
-                1,
-            )
-            .map_err(|error| eprintln!("  GPU timing failed: {error}"))
-            .ok()
-            .map(|time| (time - baseline_gpu.unwrap_or(0.0)).max(0.0));
+            let time = timing::gpu_time(gpu, &row_wgsl(format, conversions), &[], 1)
+                .map_err(|error| eprintln!("  GPU timing failed: {error}"))
+                .ok()
+                .map(|time| time.less(baseline_gpu));
             rows.push(PackingRow {
                 format,
                 conversions,
                 cost,
                 deviation,
-                ms_per_million,
+                time,
             });
         }
     }
@@ -110,8 +106,7 @@ fn cells(row: &PackingRow) -> [String; 7] {
         count(|cost| cost.conditional_branches),
         row.deviation.largest_code_error.to_string(),
         format!("{:.3}%", 100.0 * row.deviation.differing_fraction()),
-        row.ms_per_million
-            .map_or_else(|| "n/a".to_string(), |ms| format!("{ms:.3}")),
+        crate::format_time(row.time),
     ]
 }
 
@@ -164,7 +159,8 @@ pub fn json(rows: &[PackingRow]) -> serde_json::Value {
             "conditional_branches": row.cost.map(|cost| cost.conditional_branches),
             "largest_code_error": row.deviation.largest_code_error,
             "differing_fraction": row.deviation.differing_fraction(),
-            "ms_per_million_texels": row.ms_per_million,
+            "ms_per_million_texels": row.time.filter(timing::GpuTime::resolved).map(|time| time.median_ns),
+            "timings": crate::timings_json(row.time),
         }))
         .collect::<Vec<_>>())
 }

@@ -1,20 +1,73 @@
 //! Time per evaluation: on the adapter, a compute shader that feeds each result into the next
-//! evaluation (so nothing is optimised away), timed around a synchronised submit; on the CPU,
-//! the f32 mirror over the same kind of inputs. Both are medians of several runs.
+//! evaluation (so nothing is optimised away), its chain grown until a run lasts 10 ms, timed
+//! around a synchronised submit (wall clock; no timestamp queries yet); on the CPU, the f32
+//! mirror over the same kind of inputs. Both are medians of several runs.
 
 use std::time::Instant;
 
 use gbuffer::glam::Vec4;
 use gbuffer_testkit::gpu::Gpu;
 
-/// Invocations per dispatch and evaluations per invocation: 2^20 evaluations a run.
+/// Invocations per dispatch, and the evaluations per invocation a calibration starts from.
 const INVOCATIONS: u32 = 1 << 14;
 const CHAIN: u32 = 64;
+/// The chain grows until one run lasts this long (seconds), or reaches `MAX_CHAIN`.
+const TARGET_RUN: f64 = 0.010;
+const MAX_CHAIN: u32 = 1 << 16;
+/// Timed runs per row, after the calibration's.
 pub const GPU_RUNS: usize = 7;
 const CPU_RUNS: usize = 5;
 
-/// The compute shader around a row's `row_eval`.
+/// A row's time on the adapter: wall clock around a synchronised submit, per evaluation and
+/// invocation, over `GPU_RUNS` runs of `chain` evaluations in each of `invocations`.
+#[derive(Clone, Copy, Debug)]
+pub struct GpuTime {
+    /// The median run's nanoseconds per evaluation.
+    pub median_ns: f64,
+    /// The fastest run's.
+    pub min_ns: f64,
+    /// The slowest run's.
+    pub max_ns: f64,
+    /// Evaluations per invocation, as calibrated.
+    pub chain: u32,
+    /// Invocations per run.
+    pub invocations: u32,
+    /// The median run's milliseconds.
+    pub run_ms: f64,
+}
+
+impl GpuTime {
+    /// The time less `harness`'s (the baseline row's), each statistic less the harness's
+    /// median.
+    pub fn less(self, harness: Option<GpuTime>) -> GpuTime {
+        let base = harness.map_or(0.0, |harness| harness.median_ns);
+        GpuTime {
+            median_ns: self.median_ns - base,
+            min_ns: self.min_ns - base,
+            max_ns: self.max_ns - base,
+            ..self
+        }
+    }
+
+    /// Whether the median stands clear of the runs' spread: a time within the spread (or
+    /// under zero, once the harness is taken off) is not a measurement to print.
+    pub fn resolved(&self) -> bool {
+        self.median_ns > 0.0 && self.median_ns > self.max_ns - self.min_ns
+    }
+
+    /// Evaluations per run, over the whole device.
+    pub fn evaluations_per_run(&self) -> u64 {
+        u64::from(self.chain) * u64::from(self.invocations)
+    }
+}
+
+/// The compute shader around a row's `row_eval`, as the static costs count it.
 pub fn harness(row_wgsl: &str) -> String {
+    harness_with_chain(row_wgsl, CHAIN)
+}
+
+/// The compute shader around a row's `row_eval`, with `chain` evaluations per invocation.
+fn harness_with_chain(row_wgsl: &str, chain: u32) -> String {
     format!(
         "{row_wgsl}\n\
          @group(0) @binding(0) var<storage, read> bench_inputs: array<vec4<f32>>;\n\
@@ -24,7 +77,7 @@ pub fn harness(row_wgsl: &str) -> String {
          @compute @workgroup_size(64)\n\
          fn bench(@builtin(global_invocation_id) id: vec3<u32>) {{\n\
          \x20   var x = bench_inputs[id.x];\n\
-         \x20   for (var step = 0u; step < {CHAIN}u; step++) {{\n\
+         \x20   for (var step = 0u; step < {chain}u; step++) {{\n\
          \x20       x = fract(row_eval(x) * 0.25 + x * 0.75 + vec4<f32>(0.1));\n\
          \x20   }}\n\
          \x20   bench_outputs[id.x] = x;\n\
@@ -35,20 +88,17 @@ pub fn harness(row_wgsl: &str) -> String {
 /// A row whose evaluation is free: its time is the harness's own, subtracted from each row's.
 pub const BASELINE_ROW: &str = "fn row_eval(x: vec4<f32>) -> vec4<f32> {\n    return x;\n}\n";
 
-/// Times `harness` on the adapter: nanoseconds per evaluation (median of the runs), with the
-/// environment BRDF LUT texture bound (a `lut_size` square of (scale, bias), or 1x1).
-pub fn gpu_ns_per_eval(
+/// Times a row's `row_eval` on the adapter, with the environment BRDF LUT texture bound (a
+/// `lut_size` square of (scale, bias), or 1x1): the chain of evaluations grows until one run
+/// lasts `TARGET_RUN`, then `GPU_RUNS` runs are timed.
+pub fn gpu_time(
     gpu: &Gpu,
-    harness: &str,
+    row_wgsl: &str,
     lut: &[[f32; 2]],
     lut_size: usize,
-) -> Result<f64, String> {
+) -> Result<GpuTime, String> {
     let device = &gpu.device;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("bench"),
-        source: wgpu::ShaderSource::Wgsl(harness.into()),
-    });
     let storage = |read_only| wgpu::BindingType::Buffer {
         ty: wgpu::BufferBindingType::Storage { read_only },
         has_dynamic_offset: false,
@@ -84,14 +134,20 @@ pub fn gpu_ns_per_eval(
         bind_group_layouts: &[Some(&layout)],
         immediate_size: 0,
     });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("bench"),
-        layout: Some(&pipeline_layout),
-        module: &module,
-        entry_point: Some("bench"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
+    let pipeline_for = |chain: u32| {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("bench"),
+            source: wgpu::ShaderSource::Wgsl(harness_with_chain(row_wgsl, chain).into()),
+        });
+        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("bench"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("bench"),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+    };
     use wgpu::util::DeviceExt;
     let inputs: Vec<[f32; 4]> = (0..INVOCATIONS)
         .map(|index| {
@@ -171,16 +227,11 @@ pub fn gpu_ns_per_eval(
             },
         ],
     });
-    if let Some(error) = pollster::block_on(scope.pop()) {
-        return Err(error.to_string());
-    }
-    let mut times = Vec::new();
-    // One warm-up run, then the timed ones.
-    for run in 0..=GPU_RUNS {
+    let run = |pipeline: &wgpu::ComputePipeline| -> Result<f64, String> {
         let mut encoder = device.create_command_encoder(&Default::default());
         {
             let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&pipeline);
+            pass.set_pipeline(pipeline);
             pass.set_bind_group(0, &bind_group, &[]);
             pass.dispatch_workgroups(INVOCATIONS / 64, 1, 1);
         }
@@ -189,11 +240,37 @@ pub fn gpu_ns_per_eval(
         device
             .poll(wgpu::PollType::wait_indefinitely())
             .map_err(|error| error.to_string())?;
-        if run > 0 {
-            times.push(start.elapsed().as_secs_f64());
-        }
+        Ok(start.elapsed().as_secs_f64())
+    };
+    // Calibration: each run also warms the pipeline up; the chain grows by twice the factor
+    // the run fell short (timed runs vary), at least doubling.
+    let mut chain = CHAIN;
+    let mut pipeline = pipeline_for(chain);
+    if let Some(error) = pollster::block_on(scope.pop()) {
+        return Err(error.to_string());
     }
-    Ok(median(&mut times) * 1e9 / f64::from(INVOCATIONS * CHAIN))
+    loop {
+        let time = run(&pipeline)?;
+        if time >= TARGET_RUN || chain >= MAX_CHAIN {
+            break;
+        }
+        let factor = (2.0 * TARGET_RUN / time.max(1e-7)).max(2.0);
+        chain = ((f64::from(chain) * factor).ceil() as u32).min(MAX_CHAIN);
+        pipeline = pipeline_for(chain);
+    }
+    let mut times: Vec<f64> = (0..GPU_RUNS)
+        .map(|_| run(&pipeline))
+        .collect::<Result<_, _>>()?;
+    let per_evaluation = 1e9 / (f64::from(INVOCATIONS) * f64::from(chain));
+    let median = median(&mut times);
+    Ok(GpuTime {
+        median_ns: median * per_evaluation,
+        min_ns: times[0] * per_evaluation,
+        max_ns: times[times.len() - 1] * per_evaluation,
+        chain,
+        invocations: INVOCATIONS,
+        run_ms: median * 1e3,
+    })
 }
 
 /// Nanoseconds per evaluation of a row's CPU mirror, chained as on the GPU (median of runs).
