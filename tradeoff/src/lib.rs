@@ -5,7 +5,8 @@
 //! against the f64 references over the stated domain; its cost is counted in naga IR
 //! expressions and SPIR-V instructions; its time is measured on the adapter at hand (a
 //! dependent chain of evaluations grown until a run lasts 10 ms, median of 7 runs, less the
-//! harness's own time, `n/r` where that does not stand clear of the runs' spread) and for its
+//! harness's own time, `n/r` where that does not stand clear of the runs' spread, and nowhere
+//! printed when the times contradict the order the instruction counts predict) and for its
 //! f32 mirror on the CPU. The packing conversions get their own table: per format, exact and
 //! fast, their instructions, branches, error in codes and time per million texels.
 
@@ -91,20 +92,36 @@ pub fn run(folder: &Path) -> Result<(), String> {
         });
     }
 
+    let mut packing = packing::measure(&gpu, baseline_gpu);
+    let inconsistencies = check_consistency(&rows, &mut measured, &mut packing);
     print_table(&rows, &measured, &adapter);
-    let packing = packing::measure(&gpu, baseline_gpu);
     packing::print(&packing, &adapter);
+    if !inconsistencies.is_empty() {
+        println!(
+            "\nthe timing did not resolve on {adapter}, so no time is printed: {}",
+            inconsistencies.join("; ")
+        );
+    }
     let furnace = white_furnace();
     print_furnace(&furnace);
     let plots = write_plots(folder, &rows).map_err(|error| format!("writing plots: {error}"))?;
     let mut json = json_report(&rows, &measured, &adapter);
     json["packing"] = packing::json(&packing);
+    json["timing_consistent"] = serde_json::json!(inconsistencies.is_empty());
+    json["timing_inconsistencies"] = serde_json::json!(inconsistencies);
     json["white_furnace"] = serde_json::json!(furnace
         .iter()
         .map(|energy| serde_json::json!({"roughness": energy.roughness, "metal_head_on": energy.metal_head_on, "metal_grazing": energy.metal_grazing, "white_dielectric_max": energy.dielectric_max}))
         .collect::<Vec<_>>());
     let mut markdown = markdown_report(&rows, &measured, &adapter, &plots);
     markdown.push_str(&packing::markdown(&packing, &adapter));
+    if !inconsistencies.is_empty() {
+        let _ = writeln!(
+            markdown,
+            "\n**The timing did not resolve on {adapter}**, so no time is printed: {}.",
+            inconsistencies.join("; ")
+        );
+    }
     markdown.push_str(&furnace_markdown(&furnace));
     for (name, contents) in [
         (
@@ -123,6 +140,47 @@ pub fn run(folder: &Path) -> Result<(), String> {
 
 /// A time with three significant digits; "n/r" where it did not resolve (within the runs'
 /// spread), "n/a" where it could not be measured.
+/// Checks the adapter's times against the order the instruction counts predict, within each
+/// family of rows and each format's two packing modes; where they disagree, every time is
+/// marked untrusted (and printed as n/r). The disagreements, a line each.
+fn check_consistency(
+    rows: &[Row],
+    measured: &mut [Measured],
+    packing: &mut [packing::PackingRow],
+) -> Vec<String> {
+    let mut families: Vec<&str> = rows.iter().map(|row| row.family).collect();
+    families.dedup();
+    let mut found: Vec<String> = families
+        .iter()
+        .flat_map(|family| {
+            let group: Vec<timing::Timed> = rows
+                .iter()
+                .zip(measured.iter())
+                .filter(|(row, _)| row.family == *family)
+                .map(|(row, measured)| timing::Timed {
+                    name: row.name.clone(),
+                    instructions: measured.spirv_instructions,
+                    time: measured.gpu.as_ref(),
+                })
+                .collect();
+            timing::inconsistencies(&group)
+        })
+        .collect();
+    for group in packing::timed_groups(packing) {
+        found.extend(timing::inconsistencies(&group));
+    }
+    if !found.is_empty() {
+        for time in measured
+            .iter_mut()
+            .filter_map(|measured| measured.gpu.as_mut())
+        {
+            time.trusted = false;
+        }
+        packing::distrust(packing);
+    }
+    found
+}
+
 fn format_time(time: Option<timing::GpuTime>) -> String {
     match time {
         None => "n/a".to_string(),

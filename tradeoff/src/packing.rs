@@ -84,6 +84,32 @@ pub fn measure(gpu: &Gpu, baseline_gpu: Option<timing::GpuTime>) -> Vec<PackingR
     rows
 }
 
+/// The rows as the consistency check groups them: each format's two modes.
+pub fn timed_groups(rows: &[PackingRow]) -> Vec<Vec<timing::Timed<'_>>> {
+    CONVERTED_FORMATS
+        .iter()
+        .map(|format| {
+            rows.iter()
+                .filter(|row| row.format == *format)
+                .filter_map(|row| {
+                    Some(timing::Timed {
+                        name: format!("{} {}", row.format.name(), row.mode()),
+                        instructions: row.cost?.instructions,
+                        time: row.time.as_ref(),
+                    })
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Marks every row's time untrusted.
+pub fn distrust(rows: &mut [PackingRow]) {
+    for time in rows.iter_mut().filter_map(|row| row.time.as_mut()) {
+        time.trusted = false;
+    }
+}
+
 /// What the time column means on this adapter.
 fn time_note(adapter: &str) -> &'static str {
     if adapter.contains("llvmpipe") || adapter.contains("lavapipe") || adapter.contains("Cpu") {

@@ -34,6 +34,9 @@ pub struct GpuTime {
     pub invocations: u32,
     /// The median run's milliseconds.
     pub run_ms: f64,
+    /// False once the consistency check found the adapter's times out of the order the
+    /// instruction counts predict: no time of the run is then printed.
+    pub trusted: bool,
 }
 
 impl GpuTime {
@@ -52,7 +55,7 @@ impl GpuTime {
     /// Whether the median stands clear of the runs' spread: a time within the spread (or
     /// under zero, once the harness is taken off) is not a measurement to print.
     pub fn resolved(&self) -> bool {
-        self.median_ns > 0.0 && self.median_ns > self.max_ns - self.min_ns
+        self.trusted && self.median_ns > 0.0 && self.median_ns > self.max_ns - self.min_ns
     }
 
     /// Evaluations per run, over the whole device.
@@ -283,7 +286,49 @@ pub fn gpu_time(
         chain,
         invocations: INVOCATIONS,
         run_ms: median * 1e3,
+        trusted: true,
     })
+}
+
+/// A measured item for the consistency check: its name, SPIR-V instructions and time.
+pub struct Timed<'a> {
+    /// Names the item in a message.
+    pub name: String,
+    /// Its SPIR-V instructions.
+    pub instructions: usize,
+    /// Its time, where measured.
+    pub time: Option<&'a GpuTime>,
+}
+
+/// Pairs of one group whose order the instruction counts predict (one has at least twice the
+/// other's instructions) but whose resolved times say the opposite: a line each. Empty when
+/// the adapter's times can be trusted.
+pub fn inconsistencies(group: &[Timed]) -> Vec<String> {
+    let mut found = Vec::new();
+    for cheap in group {
+        for dear in group {
+            let (Some(cheap_time), Some(dear_time)) = (cheap.time, dear.time) else {
+                continue;
+            };
+            let predicted = 2 * cheap.instructions <= dear.instructions;
+            if predicted
+                && cheap_time.resolved()
+                && dear_time.resolved()
+                && cheap_time.min_ns > dear_time.max_ns
+            {
+                found.push(format!(
+                    "{} ({} instructions) took {:.3} ns, more than {} ({} instructions) at {:.3} ns",
+                    cheap.name,
+                    cheap.instructions,
+                    cheap_time.median_ns,
+                    dear.name,
+                    dear.instructions,
+                    dear_time.median_ns
+                ));
+            }
+        }
+    }
+    found
 }
 
 /// Nanoseconds per evaluation of a row's CPU mirror, chained as on the GPU (median of runs).
@@ -306,4 +351,52 @@ pub fn cpu_ns_per_eval(evaluate: &dyn Fn(Vec4) -> Vec4) -> f64 {
 fn median(values: &mut [f64]) -> f64 {
     values.sort_by(f64::total_cmp);
     values[values.len() / 2]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn time(median_ns: f64) -> GpuTime {
+        GpuTime {
+            median_ns,
+            min_ns: median_ns * 0.95,
+            max_ns: median_ns * 1.05,
+            chain: 64,
+            invocations: INVOCATIONS,
+            run_ms: 10.0,
+            trusted: true,
+        }
+    }
+
+    /// A builtin of 16 instructions and an exact conversion of 44, timed as given.
+    fn pair<'a>(builtin: &'a GpuTime, exact: &'a GpuTime) -> Vec<Timed<'a>> {
+        vec![
+            Timed {
+                name: "builtin".into(),
+                instructions: 16,
+                time: Some(builtin),
+            },
+            Timed {
+                name: "exact".into(),
+                instructions: 44,
+                time: Some(exact),
+            },
+        ]
+    }
+
+    #[test]
+    fn times_out_of_the_predicted_order_are_found_and_others_are_not() {
+        let (fast, slow) = (time(2.0), time(5.0));
+        assert!(inconsistencies(&pair(&fast, &slow)).is_empty());
+        let found = inconsistencies(&pair(&slow, &fast));
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!(found[0].starts_with("builtin (16 instructions) took 5.000 ns"));
+        // Untrusted or unresolved times are not compared.
+        let untrusted = GpuTime {
+            trusted: false,
+            ..slow
+        };
+        assert!(inconsistencies(&pair(&untrusted, &fast)).is_empty());
+    }
 }
