@@ -70,7 +70,7 @@ impl FieldType {
 }
 
 /// How the WGSL converts values to and from channel codes.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Conversions {
     /// Integer operations on the float's bits: the same words on every adapter as the Rust
     /// mirror, and portable to every backend.

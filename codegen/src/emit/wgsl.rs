@@ -400,10 +400,10 @@ impl Lanes {
     /// A literal with one value per lane, e.g. `vec4<u32>(0u, 8u, 16u, 24u)`; a splat when the
     /// values agree.
     fn literal(self, scalar: &str, values: &[String]) -> String {
-        if values.iter().all(|value| *value == values[0]) && self.0 > 1 {
-            format!("{}({})", self.of(scalar), values[0])
-        } else if self.0 == 1 {
+        if self.0 == 1 {
             values[0].clone()
+        } else if values.iter().all(|value| *value == values[0]) {
+            format!("{}({})", self.of(scalar), values[0])
         } else {
             format!("{}({})", self.of(scalar), values.join(", "))
         }
@@ -437,12 +437,13 @@ pub fn bit_field_helpers(prefix: &str) -> String {
 
 /// A literal with one `u32` per channel of `format`.
 fn per_channel(format: Format, value: impl Fn(&Channel) -> u32) -> String {
-    let values: Vec<String> = format
-        .channels()
-        .iter()
-        .map(|channel| format!("{}u", value(channel)))
-        .collect();
-    Lanes(values.len()).literal("u32", &values)
+    channel_literal(format, "u32", |channel| format!("{}u", value(channel)))
+}
+
+/// A literal of `scalar`s, one per channel of `format`, each written by `write`.
+fn channel_literal(format: Format, scalar: &str, write: impl Fn(&Channel) -> String) -> String {
+    let values: Vec<String> = format.channels().iter().map(write).collect();
+    Lanes(values.len()).literal(scalar, &values)
 }
 
 /// One encode and one decode function per format the layout uses.
@@ -454,24 +455,18 @@ fn write_format_helpers(
 ) {
     let prefix = layout.snake_name();
     // Each format once per name suffix, with the conversions the suffix stands for.
-    let functions: BTreeSet<(Format, &str, bool)> = layout
+    let functions: BTreeSet<(Format, &str, Conversions)> = layout
         .fields
         .iter()
         .map(|field| {
-            let suffix = mode_suffix(field, conversions);
             (
                 field.format,
-                suffix,
-                mode(field, conversions) == Conversions::Fast,
+                mode_suffix(field, conversions),
+                mode(field, conversions),
             )
         })
         .collect();
-    for (format, suffix, fast) in functions {
-        let conversions = if fast {
-            Conversions::Fast
-        } else {
-            Conversions::Exact
-        };
+    for (format, suffix, conversions) in functions {
         let name = format.name();
         let vector = format_vector_type(format);
         let encode = function_name(&prefix, "encode", format, suffix);
@@ -640,12 +635,7 @@ fn decode_body(format: Format) -> String {
 
 /// A literal with one `f32` per channel of `format`.
 fn per_channel_f32(format: Format, value: impl Fn(&Channel) -> f32) -> String {
-    let values: Vec<String> = format
-        .channels()
-        .iter()
-        .map(|channel| format!("{:?}", value(channel)))
-        .collect();
-    Lanes(values.len()).literal("f32", &values)
+    channel_literal(format, "f32", |channel| format!("{:?}", value(channel)))
 }
 
 /// The mantissa bits of a small-float channel (half or unsigned float).
@@ -686,19 +676,15 @@ fn write_conversion_helpers(out: &mut String, layout: &Layout, conversions: Conv
         let shift = |c: &Channel| 23 - mantissa_bits(c);
         let constants = [
             ("MANTISSA_BITS", mantissas.join(" or ")),
-            ("ROUNDING_AND_REBIAS", {
-                let values: Vec<String> = format
-                    .channels()
-                    .iter()
-                    .map(|c| {
-                        format!(
-                            "{:#x}u",
-                            ((1u32 << (shift(c) - 1)) - 1).wrapping_sub(113 << 23)
-                        )
-                    })
-                    .collect();
-                lanes.literal("u32", &values)
-            }),
+            (
+                "ROUNDING_AND_REBIAS",
+                channel_literal(format, "u32", |c| {
+                    format!(
+                        "{:#x}u",
+                        ((1u32 << (shift(c) - 1)) - 1).wrapping_sub(113 << 23)
+                    )
+                }),
+            ),
             ("SHIFT", per_channel(format, shift)),
             (
                 "DENORMAL_SCALE",
