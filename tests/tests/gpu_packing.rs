@@ -89,9 +89,9 @@ fn fast_conversions_deviate_from_the_exact_mirror_by_at_most_one_code() {
         found.differing,
         found.channels,
         100.0 * found.differing_fraction(),
-        found.largest_code_error
+        found.largest_code_error()
     );
-    assert!(found.largest_code_error <= 1, "{found:?}");
+    assert!(found.largest_code_error() <= 1, "{found:?}");
     // The exact conversions of the same layout do not differ at all.
     let exact = gbuffer_codegen::emit::wgsl::emit(&FastFormats::layout());
     let found = deviation(&gpu, &FastFormats::layout(), &exact, 1 << 16, 78);

@@ -130,7 +130,7 @@ fn cells(row: &PackingRow) -> [String; 7] {
         row.mode().to_string(),
         count(|cost| cost.instructions),
         count(|cost| cost.conditional_branches),
-        row.deviation.largest_code_error.to_string(),
+        row.deviation.largest_code_error().to_string(),
         format!("{:.3}%", 100.0 * row.deviation.differing_fraction()),
         crate::format_time(row.time),
     ]
@@ -183,7 +183,7 @@ pub fn json(rows: &[PackingRow]) -> serde_json::Value {
             "mode": row.mode(),
             "spirv_instructions": row.cost.map(|cost| cost.instructions),
             "conditional_branches": row.cost.map(|cost| cost.conditional_branches),
-            "largest_code_error": row.deviation.largest_code_error,
+            "largest_code_error": row.deviation.largest_code_error(),
             "differing_fraction": row.deviation.differing_fraction(),
             "ms_per_million_texels": row.time.filter(timing::GpuTime::resolved).map(|time| time.median_ns),
             "timings": crate::timings_json(row.time),
