@@ -95,7 +95,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
     let mut packing = packing::measure(&gpu, baseline_gpu);
     let inconsistencies = check_consistency(&rows, &mut measured, &mut packing);
     print_table(&rows, &measured, &adapter);
-    packing::print(&packing, &adapter);
+    packing::print(&packing, &gpu);
     if !inconsistencies.is_empty() {
         println!(
             "\nthe timing did not resolve on {adapter}, so no time is printed: {}",
@@ -114,7 +114,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
         .map(|energy| serde_json::json!({"roughness": energy.roughness, "metal_head_on": energy.metal_head_on, "metal_grazing": energy.metal_grazing, "white_dielectric_max": energy.dielectric_max}))
         .collect::<Vec<_>>());
     let mut markdown = markdown_report(&rows, &measured, &adapter, &plots);
-    markdown.push_str(&packing::markdown(&packing, &adapter));
+    markdown.push_str(&packing::markdown(&packing, &gpu));
     if !inconsistencies.is_empty() {
         let _ = writeln!(
             markdown,

@@ -110,9 +110,9 @@ pub fn distrust(rows: &mut [PackingRow]) {
     }
 }
 
-/// What the time column means on this adapter.
-fn time_note(adapter: &str) -> &'static str {
-    if adapter.contains("llvmpipe") || adapter.contains("lavapipe") || adapter.contains("Cpu") {
+/// What the time column means on this adapter: a software rasteriser's times are a CPU's.
+fn time_note(gpu: &Gpu) -> &'static str {
+    if gpu.info.device_type == wgpu::DeviceType::Cpu {
         "The adapter is a software rasteriser: its times are a CPU's, not a GPU's."
     } else {
         "Times are the adapter's."
@@ -137,8 +137,8 @@ fn cells(row: &PackingRow) -> [String; 7] {
 }
 
 /// The table on standard output.
-pub fn print(rows: &[PackingRow], adapter: &str) {
-    println!("\npacking conversions ({})", time_note(adapter));
+pub fn print(rows: &[PackingRow], gpu: &Gpu) {
+    println!("\npacking conversions ({})", time_note(gpu));
     let line = |cells: &[String; 7]| {
         format!(
             "{:<16} {:<6} {:>12} {:>8} {:>11} {:>10} {:>13}",
@@ -161,9 +161,9 @@ pub fn print(rows: &[PackingRow], adapter: &str) {
 }
 
 /// The report's section.
-pub fn markdown(rows: &[PackingRow], adapter: &str) -> String {
+pub fn markdown(rows: &[PackingRow], gpu: &Gpu) -> String {
     let mut out = String::from("\n## Packing conversions\n\n");
-    let _ = writeln!(out, "Per format and mode: SPIR-V instructions of a compute shader that packs one texel and unpacks one (naga, then `spirv-opt -O`; about 14 are the harness's) and its conditional branches; the largest difference between a channel's code and the exact one, and the fraction of channel codes that differ, over {TEXELS} texels packed on the adapter (edge cases, then random values: finite, within f16's range); the adapter's milliseconds to pack and unpack a million texels. {}\n", time_note(adapter));
+    let _ = writeln!(out, "Per format and mode: SPIR-V instructions of a compute shader that packs one texel and unpacks one (naga, then `spirv-opt -O`; about 14 are the harness's) and its conditional branches; the largest difference between a channel's code and the exact one, and the fraction of channel codes that differ, over {TEXELS} texels packed on the adapter (edge cases, then random values: finite, within f16's range); the adapter's milliseconds to pack and unpack a million texels. {}\n", time_note(gpu));
     out.push_str(
         "| format | mode | instructions | branches | largest error (codes) | differing | ms per million texels |\n",
     );
