@@ -124,6 +124,135 @@ pub fn f32_from_rgb9e5(word: u32) -> [f32; 3] {
     [0, 9, 18].map(|offset| ((word >> offset) & 0x1ff) as f32 * scale)
 }
 
+/// `floor(((2^bits - 1) numerator + bias) / denominator)`, exactly, for `numerator <=
+/// denominator < 2^31` and `bias < denominator`: the rounding step of the octahedral and RGBM
+/// encodings (bias `denominator / 2` rounds to nearest, `denominator - 1` rounds up).
+///
+/// The WGSL's algorithm (`PREFIX_<lanes>_scaled_quotient`): `bits` steps of binary long
+/// division give `floor(2^bits numerator / denominator)` and its remainder in 32-bit integers;
+/// taking `numerator` away and adding `bias` moves the quotient by at most one either way.
+#[inline(always)]
+pub fn scaled_quotient(numerator: u32, denominator: u32, bias: u32, bits: u32) -> u32 {
+    let whole = u32::from(numerator >= denominator);
+    let mut quotient = whole;
+    let mut remainder = numerator - whole * denominator;
+    for _ in 0..bits {
+        remainder <<= 1;
+        let bit = u32::from(remainder >= denominator);
+        quotient = (quotient << 1) | bit;
+        remainder -= bit * denominator;
+    }
+    let up = u32::from(remainder + bias >= numerator + denominator);
+    let down = u32::from(remainder + bias < numerator);
+    quotient + up - down
+}
+
+/// A float's significand (the implicit bit included) and its exponent field (denormals read
+/// as exponent 1, as their value is), for a non-negative float given as bits.
+#[inline(always)]
+fn significand_and_exponent(bits: u32) -> (u32, u32) {
+    let exponent = bits >> 23;
+    (
+        (bits & 0x7f_ffff) | (u32::from(exponent != 0) << 23),
+        exponent.max(1),
+    )
+}
+
+/// Octahedral encode (Cigolle et al. 2014, "A Survey of Efficient Representations for
+/// Independent Unit Vectors"): `p = n.xy / (|x| + |y| + |z|)`, folded for `z < 0` to `(1 -
+/// |p.yx|) * sign_not_zero(p)`, each coordinate mapped to `[0, 1]` and rounded to
+/// `bits`-bit unorm (half up), x in the low bits. Evaluated exactly: the magnitudes are
+/// aligned to the largest one's exponent with 28 bits below its leading one (smaller
+/// components lose the bits under that, and a component 2^31 times smaller than the largest
+/// counts as 0), every coordinate is a ratio of their integer sums, and
+/// [`scaled_quotient`] rounds it. NaN components count as 0 and so does the zero vector,
+/// which encodes as +z. `-0.0` is not negative: sign_not_zero gives +1. `bits` from 1 to 16.
+#[inline(always)]
+pub fn octahedral_from_f32(normal: [f32; 3], bits: u32) -> u32 {
+    let magnitude = normal.map(|value| {
+        let magnitude = value.to_bits() & 0x7fff_ffff;
+        magnitude * u32::from(magnitude <= F32_INFINITY_BITS)
+    });
+    let negative =
+        [0, 1, 2].map(|axis| (normal[axis].to_bits() >> 31) & u32::from(magnitude[axis] != 0));
+    let parts = magnitude.map(significand_and_exponent);
+    let largest = parts[0].1.max(parts[1].1).max(parts[2].1);
+    let [x, y, z] =
+        parts.map(|(significand, exponent)| (significand << 4) >> (largest - exponent).min(31));
+    let sum = x + y + z;
+    // The zero vector is +z.
+    let z = z + u32::from(sum == 0);
+    let sum = x + y + z;
+    // The folded coordinates: |p.y| and |p.x| taken from 1, i.e. (x + z, y + z) over the sum.
+    let lower = negative[2];
+    let (along_x, along_y) = (x + lower * z, y + lower * z);
+    let code = |along: u32, negative: u32| {
+        // (1 +- along / sum) / 2 as numerator over 2 sum, rounded half up.
+        let numerator = if negative == 1 {
+            sum - along
+        } else {
+            sum + along
+        };
+        scaled_quotient(numerator, 2 * sum, sum, bits)
+    };
+    code(along_x, negative[0]) | (code(along_y, negative[1]) << bits)
+}
+
+/// Octahedral decode: the coordinates back to `[-1, 1]`, the lower hemisphere unfolded
+/// (Stubbe's branch-free form) and the vector normalized, in f32 arithmetic (an adapter's
+/// `normalize` is within a few ulp of this).
+#[inline]
+pub fn f32_from_octahedral(code: u32, bits: u32) -> [f32; 3] {
+    let coordinate = |code: u32| f32_from_unorm(code & max_code(bits), bits) * 2.0 - 1.0;
+    let (x, y) = (coordinate(code), coordinate(code >> bits));
+    let z = 1.0 - x.abs() - y.abs();
+    let fold = (-z).max(0.0);
+    let unfold = |value: f32| {
+        if value >= 0.0 {
+            value - fold
+        } else {
+            value + fold
+        }
+    };
+    let (x, y) = (unfold(x), unfold(y));
+    let length = (x * x + y * y + z * z).sqrt();
+    [x / length, y / length, z / length]
+}
+
+/// RGBM encode (Karis 2009) of a colour in `[0, range]`: the multiplier `m = ceil(255
+/// max(r, g, b) / range) / 255` (at least 1/255) in bits 24-31, and each channel
+/// `round(255 c / (m range))` in bits 0-7, 8-15 and 16-23. Evaluated exactly: channels are
+/// clamped to `[0, range]` (NaN to 0) and taken in multiples of `range 2^-22` (rounded
+/// down), and [`scaled_quotient`] rounds the ratios. `range` has at most 16 significant bits
+/// ([`crate::encoding::RgbmRange`]).
+#[inline(always)]
+pub fn rgbm_from_f32(rgb: [f32; 3], range: f32) -> u32 {
+    let range_bits = range.to_bits();
+    let (range_significand, range_exponent) = significand_and_exponent(range_bits);
+    // range 2^(22 - floor(log2 range)): 2^22 and up, exact as the low significand bit is 0.
+    let range_fixed = range_significand >> 1;
+    let fixed = rgb.map(|value| {
+        let bits = value.to_bits();
+        let clamped = bits.min(range_bits) * u32::from(bits <= F32_INFINITY_BITS);
+        let (significand, exponent) = significand_and_exponent(clamped);
+        significand >> (range_exponent + 1 - exponent).min(31)
+    });
+    let largest = fixed[0].max(fixed[1]).max(fixed[2]);
+    let multiplier = scaled_quotient(largest, range_fixed, range_fixed - 1, 8).max(1);
+    let denominator = multiplier * range_fixed;
+    let [red, green, blue] =
+        fixed.map(|channel| scaled_quotient(255 * channel, denominator, denominator >> 1, 8));
+    red | (green << 8) | (blue << 16) | (multiplier << 24)
+}
+
+/// RGBM decode: `rgb * m * range`, each unorm code divided by 255 (f32 arithmetic; an
+/// adapter's product may differ from this in the last place).
+#[inline]
+pub fn f32_from_rgbm(word: u32, range: f32) -> [f32; 3] {
+    let scale = f32_from_unorm(word >> 24, 8) * range;
+    [0, 8, 16].map(|offset| f32_from_unorm((word >> offset) & 0xff, 8) * scale)
+}
+
 /// The largest finite code of a float with a 5-bit exponent and `mantissa_bits` of mantissa.
 #[inline]
 pub fn small_float_max_code(mantissa_bits: u32) -> u32 {
@@ -749,5 +878,246 @@ mod tests {
             Format::Rg16i.decode::<i32>(Format::Rg16i.encode([-5i32, 7, 0, 0])),
             [-5, 7, 0, 0]
         );
+    }
+
+    /// `floor(((2^bits - 1) numerator + bias) / denominator)` in 128-bit integers.
+    fn scaled_quotient_reference(numerator: u32, denominator: u32, bias: u32, bits: u32) -> u32 {
+        let product = u128::from(max_code(bits)) * u128::from(numerator) + u128::from(bias);
+        (product / u128::from(denominator)) as u32
+    }
+
+    #[test]
+    fn scaled_quotient_is_the_exact_floor() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand::rngs::SmallRng::seed_from_u64(5);
+        let largest = (1u32 << 31) - 1;
+        let mut cases = vec![
+            (0, 1, 0),
+            (1, 1, 0),
+            (largest, largest, largest - 1),
+            (0, largest, largest / 2),
+        ];
+        for _ in 0..400_000 {
+            // Denominators of every size, not only near 2^31.
+            let denominator = rng.random_range(1..=largest) >> rng.random_range(0..31);
+            let denominator = denominator.max(1);
+            let numerator = rng.random_range(0..=denominator);
+            let bias = rng.random_range(0..denominator);
+            cases.push((numerator, denominator, bias));
+        }
+        for (numerator, denominator, bias) in cases {
+            for bits in [1, 8, 12, 16] {
+                assert_eq!(
+                    scaled_quotient(numerator, denominator, bias, bits),
+                    scaled_quotient_reference(numerator, denominator, bias, bits),
+                    "{numerator} {denominator} {bias} {bits}"
+                );
+            }
+        }
+    }
+
+    /// The octahedral contract written another way: the magnitudes scaled by a power of two
+    /// in f64 (exact) and floored, the ratios rounded in 128-bit integers, the hemisphere and
+    /// sign rules spelled out.
+    fn octahedral_reference(normal: [f32; 3], bits: u32) -> u32 {
+        let magnitude = normal.map(|value| {
+            if value.is_nan() {
+                0.0
+            } else {
+                f64::from(value.abs())
+            }
+        });
+        let exponent = normal.map(|value| {
+            let field = (value.to_bits() >> 23) & 0xff;
+            if value.is_nan() {
+                1
+            } else {
+                field.max(1)
+            }
+        });
+        let largest = exponent.iter().copied().max().unwrap_or(1) as i32;
+        // Leading bit of the largest at bit 27: scale by 2^(27 - (largest - 127)).
+        let scale = 2f64.powi(27 - (largest - 127));
+        let [x, y, z] = magnitude.map(|value| {
+            if value.is_infinite() {
+                1u128 << 27 // infinity reads as 2^128, the largest exponent
+            } else {
+                (value * scale).floor() as u128
+            }
+        });
+        let z = if x + y + z == 0 { 1 } else { z };
+        let sum = x + y + z;
+        let negative = |value: f32| value < 0.0;
+        let (along_x, along_y) = if negative(normal[2]) {
+            (x + z, y + z)
+        } else {
+            (x, y)
+        };
+        let code = |along: u128, negative: bool| {
+            let numerator = if negative { sum - along } else { sum + along };
+            ((u128::from(max_code(bits)) * numerator + sum) / (2 * sum)) as u32
+        };
+        code(along_x, negative(normal[0])) | (code(along_y, negative(normal[1])) << bits)
+    }
+
+    /// The angle between two vectors in radians, from their cross and dot products (accurate
+    /// for small angles, where `acos` of the dot product is not).
+    fn angle_between(a: [f64; 3], b: [f64; 3]) -> f64 {
+        let cross = [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ];
+        let dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        cross.iter().map(|c| c * c).sum::<f64>().sqrt().atan2(dot)
+    }
+
+    /// Unit vectors at the octahedral map's poles, seams and diagonals, with signed zeros,
+    /// non-unit, tiny, infinite and NaN ones.
+    fn octahedral_edges() -> Vec<[f32; 3]> {
+        let root2 = std::f32::consts::FRAC_1_SQRT_2;
+        let root3 = 1.0 / 3f32.sqrt();
+        let mut edges = vec![
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+            [-0.0, -0.0, -1.0],
+            [0.0, 0.0, -0.0],
+            [0.0, 0.0, 0.0],
+            [f32::NAN, 0.0, 1.0],
+            [f32::NAN, f32::NAN, f32::NAN],
+            [f32::INFINITY, 0.0, 0.0],
+            [f32::INFINITY, f32::NEG_INFINITY, 1.0],
+            [1e-40, -1e-42, 0.0],
+            [3.0, 4.0, -12.0],
+            [1.0, 1e-30, -1e-30],
+        ];
+        for x in [-1.0f32, -0.0, 0.0, 1.0] {
+            for y in [-1.0f32, -0.0, 0.0, 1.0] {
+                for z in [-1.0f32, -0.0, 0.0, 1.0] {
+                    edges.push([x, y, z]);
+                    edges.push([x * root2, y * root2, z]);
+                    edges.push([x * root3, y * root3, z * root3]);
+                    // Just beside the equator (the fold's seam).
+                    edges.push([x * root2, y * root2, z * 1e-7]);
+                }
+            }
+        }
+        edges
+    }
+
+    #[test]
+    fn octahedral_follows_its_contract_and_the_map() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand::rngs::SmallRng::seed_from_u64(9);
+        let mut vectors = octahedral_edges();
+        for _ in 0..200_000 {
+            let v = [0; 3].map(|_| rng.random_range(-1.0f32..1.0));
+            vectors.push(v);
+            // Raw bits too: any exponents, signs, NaNs.
+            vectors.push([0; 3].map(|_| f32::from_bits(rng.random())));
+        }
+        for bits in [1, 2, 8, 12, 16] {
+            let mut largest_angle = 0f64;
+            for &v in &vectors {
+                let code = octahedral_from_f32(v, bits);
+                assert_eq!(code, octahedral_reference(v, bits), "{v:?} at {bits} bits");
+                let length = v.iter().map(|c| f64::from(*c).powi(2)).sum::<f64>().sqrt();
+                if !(length.is_finite() && length > 1e-30 && bits >= 8) {
+                    continue;
+                }
+                // The round trip stays within the quantisation bound: sqrt(18) half-steps.
+                let decoded = f32_from_octahedral(code, bits).map(f64::from);
+                largest_angle = largest_angle.max(angle_between(decoded, v.map(f64::from)));
+            }
+            if bits >= 8 {
+                let bound = 18f64.sqrt() / f64::from(max_code(bits)) + 1e-6;
+                assert!(
+                    largest_angle <= bound,
+                    "{bits} bits: {largest_angle} > {bound}"
+                );
+            }
+        }
+        // The poles and the zero vector: +z is the centre, -z the corners.
+        let centre = (1 << 15) | (1 << 31);
+        assert_eq!(octahedral_from_f32([0.0, 0.0, 1.0], 16), centre);
+        assert_eq!(octahedral_from_f32([0.0, 0.0, 0.0], 16), centre);
+        assert_eq!(octahedral_from_f32([0.0, 0.0, -1.0], 16), 0xffff_ffff);
+        assert_eq!(f32_from_octahedral(0xffff_ffff, 16), [0.0, 0.0, -1.0]);
+        assert_eq!(octahedral_from_f32([-0.0, -0.0, -1.0], 16), 0xffff_ffff);
+        assert_eq!(octahedral_from_f32([-1.0, -0.0, -0.0], 16), 0x8000_0000);
+    }
+
+    /// The RGBM contract written another way: fixed point by scaling in f64 (exact) and
+    /// flooring, the multiplier and channels rounded in 128-bit integers.
+    fn rgbm_reference(rgb: [f32; 3], range: f32) -> u32 {
+        let scale = 2f64.powi(22 - f64::from(range).log2().floor() as i32);
+        let range_fixed = (f64::from(range) * scale) as u128;
+        let fixed = rgb.map(|value| {
+            let value = if value.is_nan() {
+                0.0
+            } else {
+                f64::from(value).clamp(0.0, f64::from(range))
+            };
+            (value * scale).floor() as u128
+        });
+        let largest = fixed[0].max(fixed[1]).max(fixed[2]);
+        let multiplier = (255 * largest).div_ceil(range_fixed).max(1);
+        let denominator = multiplier * range_fixed;
+        let [red, green, blue] =
+            fixed.map(|channel| ((255 * 255 * channel + denominator / 2) / denominator) as u32);
+        red | (green << 8) | (blue << 16) | ((multiplier as u32) << 24)
+    }
+
+    #[test]
+    fn rgbm_follows_its_contract_within_its_bound() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand::rngs::SmallRng::seed_from_u64(13);
+        for range in [1.0f32, 6.0, 8.0, 51.5, 65535.0] {
+            let mut values: Vec<f32> = vec![
+                0.0,
+                -0.0,
+                range,
+                range * 2.0,
+                -1.0,
+                f32::NAN,
+                f32::INFINITY,
+                f32::NEG_INFINITY,
+                f32::MAX,
+                1e-30,
+                1e-45,
+            ];
+            // Each multiplier step k range / 255 and its neighbours.
+            for k in 0..=255u32 {
+                let step = (f64::from(k) * f64::from(range) / 255.0) as f32;
+                values.extend([
+                    step,
+                    f32::from_bits(step.to_bits().saturating_sub(1)),
+                    f32::from_bits(step.to_bits() + 1),
+                ]);
+            }
+            let mut cases: Vec<[f32; 3]> = values.iter().map(|&v| [v, v * 0.5, v * 0.25]).collect();
+            for _ in 0..100_000 {
+                cases.push([0; 3].map(|_| rng.random_range(0.0..range)));
+                cases.push([0; 3].map(|_| values[rng.random_range(0..values.len())]));
+            }
+            for rgb in cases {
+                let word = rgbm_from_f32(rgb, range);
+                assert_eq!(word, rgbm_reference(rgb, range), "{rgb:?} in range {range}");
+                let decoded = f32_from_rgbm(word, range);
+                let multiplier = f64::from(word >> 24) / 255.0;
+                // Half a code of the channel's step, and the fixed point's 2^-22 range.
+                let bound =
+                    0.5 / 255.0 * multiplier * f64::from(range) + f64::from(range) * 2f64.powi(-21);
+                for (value, decoded) in rgb.iter().zip(decoded) {
+                    if value.is_finite() && (0.0..=range).contains(value) {
+                        let error = (f64::from(*value) - f64::from(decoded)).abs();
+                        assert!(
+                            error <= bound * (1.0 + 1e-6),
+                            "{rgb:?} -> {decoded} in range {range}: {error} > {bound}"
+                        );
+                    }
+                }
+            }
+        }
     }
 }

@@ -15,6 +15,8 @@ pub enum ScalarKind {
     Uint,
     /// `i32` (the `i` formats).
     Sint,
+    /// `bool` (bit fields only).
+    Bool,
 }
 
 impl ScalarKind {
@@ -24,6 +26,7 @@ impl ScalarKind {
             ScalarKind::Float => "f32",
             ScalarKind::Uint => "u32",
             ScalarKind::Sint => "i32",
+            ScalarKind::Bool => "bool",
         }
     }
 }

@@ -1,9 +1,11 @@
-//! The layout model: named fields, each one word of a pixel local storage format, under a bit
-//! budget. The derive and the layout files both build a [`Layout`]; [`Layout::check`] is the
-//! one place that decides what is valid.
+//! The layout model: named fields under a bit budget, each either a whole word of a pixel
+//! local storage format or a bit field of a shared `r32ui` word. The derive and the layout
+//! files both build a [`Layout`]; [`Layout::check`] is the one place that decides what is
+//! valid, and [`Layout::word_contents`] the one place that places fields in words.
 
 use std::fmt::Write as _;
 
+use crate::encoding::BitField;
 use crate::format::{Format, ScalarKind};
 use crate::naming;
 
@@ -17,13 +19,13 @@ pub struct FieldType {
 }
 
 impl FieldType {
-    /// Every supported type.
-    pub const ALL: [FieldType; 12] = {
+    /// Every supported type: the scalars and vectors of f32, u32 and i32, and `bool`.
+    pub const ALL: [FieldType; 13] = {
         let kinds = [ScalarKind::Float, ScalarKind::Uint, ScalarKind::Sint];
         let mut all = [FieldType {
-            scalar: ScalarKind::Float,
+            scalar: ScalarKind::Bool,
             components: 1,
-        }; 12];
+        }; 13];
         let mut index = 0;
         while index < 12 {
             all[index] = FieldType {
@@ -40,7 +42,7 @@ impl FieldType {
         FieldType { scalar, components }
     }
 
-    /// The Rust type's name as the derive sees it: `f32`, `Vec3`, `UVec2`, `i32`, ...
+    /// The Rust type's name as the derive sees it: `f32`, `Vec3`, `UVec2`, `i32`, `bool`, ...
     pub fn rust_name(self) -> &'static str {
         const NAMES: [[&str; 4]; 3] = [
             ["f32", "Vec2", "Vec3", "Vec4"],
@@ -51,6 +53,7 @@ impl FieldType {
             ScalarKind::Float => 0,
             ScalarKind::Uint => 1,
             ScalarKind::Sint => 2,
+            ScalarKind::Bool => return "bool",
         };
         NAMES[row][self.components - 1]
     }
@@ -115,13 +118,22 @@ impl Conversions {
     }
 }
 
-/// One field of a layout: a name, the format of its word and the type it holds.
+/// Where a field's bits live.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Storage {
+    /// A whole word of a pixel local storage format (`#[pls(rgba8)]`).
+    Word(Format),
+    /// A bit field of a shared `r32ui` word (`#[bits(4, unorm)]`).
+    Bits(BitField),
+}
+
+/// One field of a layout: a name, where its bits live and the type it holds.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Field {
     /// The field's name, as in the struct.
     pub name: String,
-    /// The pixel local storage format of its word.
-    pub format: Format,
+    /// A whole word of a format, or a bit field.
+    pub storage: Storage,
     /// The type it holds.
     pub ty: FieldType,
     /// Its own conversions, where they differ from the layout's (`#[pls(rgba8, conversions =
@@ -130,20 +142,72 @@ pub struct Field {
 }
 
 impl Field {
-    /// The bits of the channels this field uses; the rest of its word is padding.
+    /// The bits this field uses: its channels' for a word (the rest is padding), its width
+    /// for a bit field.
     pub fn used_bits(&self) -> u32 {
-        self.format.used_bits(self.ty.components)
+        match self.storage {
+            Storage::Word(format) => format.used_bits(self.ty.components),
+            Storage::Bits(field) => field.bits,
+        }
+    }
+
+    /// The format of its word, for a whole-word field.
+    pub fn format(&self) -> Option<Format> {
+        match self.storage {
+            Storage::Word(format) => Some(format),
+            Storage::Bits(_) => None,
+        }
+    }
+
+    /// Its bit field, for a bit field.
+    pub fn bit_field(&self) -> Option<BitField> {
+        match self.storage {
+            Storage::Word(_) => None,
+            Storage::Bits(field) => Some(field),
+        }
+    }
+
+    /// How it is stored, for comments and reports: `rgba8` or `4-bit unorm`.
+    pub fn storage_name(&self) -> String {
+        match self.storage {
+            Storage::Word(format) => format.name().to_string(),
+            Storage::Bits(field) => field.to_string(),
+        }
     }
 }
 
-/// A G-buffer layout: field i is word i.
+/// A field's place in a word.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Member {
+    /// The field's index in the layout.
+    pub field: usize,
+    /// The position of its least significant bit in the word (0 for a whole word).
+    pub offset: u32,
+    /// Its width in bits (32 for a whole word).
+    pub bits: u32,
+}
+
+/// One 32-bit word of a layout: a whole-word field, or the bit fields that share an `r32ui`
+/// word.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Word {
+    /// The word's format: the field's, or `r32ui` for bit fields.
+    pub format: Format,
+    /// Its fields, from the least significant bit up.
+    pub members: Vec<Member>,
+    /// Whether it holds bit fields (rather than one whole-word field).
+    pub is_bit_fields: bool,
+}
+
+/// A G-buffer layout: the fields in declaration order and, through
+/// [`Layout::word_contents`], the words they fill.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Layout {
     /// The struct's name, in UpperCamelCase.
     pub name: String,
     /// Bits of tile memory available per pixel: a positive multiple of 32.
     pub budget: u32,
-    /// The fields, one word each, in word order.
+    /// The fields, in declaration order.
     pub fields: Vec<Field>,
 }
 
@@ -159,7 +223,7 @@ pub enum Subject {
     Budget,
     /// Field `index`'s name.
     FieldName(usize),
-    /// Field `index`'s format.
+    /// Field `index`'s storage: its format, or its bit field's width and encoding.
     FieldFormat(usize),
     /// Field `index`'s type.
     FieldType(usize),
@@ -176,20 +240,20 @@ pub struct Diagnostic {
 
 impl Layout {
     /// Builds a layout from borrowed parts (what the generated `layout()` functions call):
-    /// per field its name, format, type and own conversions.
+    /// per field its name, storage, type and own conversions.
     pub fn from_parts(
         name: &str,
         budget: u32,
-        fields: &[(&str, Format, FieldType, Option<Conversions>)],
+        fields: &[(&str, Storage, FieldType, Option<Conversions>)],
     ) -> Self {
         Layout {
             name: name.to_string(),
             budget,
             fields: fields
                 .iter()
-                .map(|&(name, format, ty, conversions)| Field {
+                .map(|&(name, storage, ty, conversions)| Field {
                     name: name.to_string(),
-                    format,
+                    storage,
                     ty,
                     conversions,
                 })
@@ -197,19 +261,136 @@ impl Layout {
         }
     }
 
-    /// Bits the layout occupies: 32 per field.
-    pub fn bits(&self) -> u32 {
-        32 * self.fields.len() as u32
+    /// The words the fields fill, in order. A whole-word field takes the next word;
+    /// consecutive bit fields fill an `r32ui` word from its least significant bit up, in
+    /// declaration order, and one that does not fit in what is left starts the next word
+    /// (the bits left over are zero): no field straddles two words.
+    pub fn word_contents(&self) -> Vec<Word> {
+        let mut words: Vec<Word> = Vec::new();
+        // The bits used of the last word, while it takes bit fields.
+        let mut open: Option<u32> = None;
+        for (index, field) in self.fields.iter().enumerate() {
+            match field.storage {
+                Storage::Word(format) => {
+                    open = None;
+                    words.push(Word {
+                        format,
+                        members: vec![Member {
+                            field: index,
+                            offset: 0,
+                            bits: 32,
+                        }],
+                        is_bit_fields: false,
+                    });
+                }
+                Storage::Bits(bit_field) => {
+                    let bits = bit_field.bits.min(32);
+                    let offset = match open {
+                        Some(used) if used + bits <= 32 => used,
+                        _ => {
+                            words.push(Word {
+                                format: Format::R32ui,
+                                members: Vec::new(),
+                                is_bit_fields: true,
+                            });
+                            0
+                        }
+                    };
+                    open = Some(offset + bits);
+                    if let Some(word) = words.last_mut() {
+                        word.members.push(Member {
+                            field: index,
+                            offset,
+                            bits,
+                        });
+                    }
+                }
+            }
+        }
+        words
     }
 
-    /// Bits of the channels the fields use.
+    /// Per field, its word and its member entry there.
+    pub fn field_locations(&self) -> Vec<(usize, Member)> {
+        let mut locations = vec![
+            (
+                0,
+                Member {
+                    field: 0,
+                    offset: 0,
+                    bits: 0
+                }
+            );
+            self.fields.len()
+        ];
+        for (word, contents) in self.word_contents().iter().enumerate() {
+            for member in &contents.members {
+                locations[member.field] = (word, *member);
+            }
+        }
+        locations
+    }
+
+    /// Bits the layout occupies: 32 per word.
+    pub fn bits(&self) -> u32 {
+        32 * self.words() as u32
+    }
+
+    /// Bits of the channels and bit fields the fields use.
     pub fn used_bits(&self) -> u32 {
         self.fields.iter().map(Field::used_bits).sum()
     }
 
     /// Number of 32-bit words.
     pub fn words(&self) -> usize {
-        self.fields.len()
+        self.word_contents().len()
+    }
+
+    /// Whether any field is a bit field.
+    pub fn has_bit_fields(&self) -> bool {
+        self.fields.iter().any(|field| field.bit_field().is_some())
+    }
+
+    /// Packs field values, given per field as lanes of bits (f32 bits, u32, i32 as u32, bool
+    /// as 0 or 1), into words: the Rust mirror at run time, for tests and tools (derived code
+    /// does the same with the layout known at compile time).
+    pub fn encode_lanes(&self, values: &[[u32; 4]]) -> Vec<u32> {
+        self.word_contents()
+            .iter()
+            .map(|word| {
+                word.members.iter().fold(0, |packed, member| {
+                    let field = &self.fields[member.field];
+                    let lanes = values[member.field];
+                    packed
+                        | match field.storage {
+                            Storage::Word(format) => encode_word(format, field.ty.scalar, lanes),
+                            Storage::Bits(bit_field) => {
+                                bit_field.encode(lanes, field.ty.components) << member.offset
+                            }
+                        }
+                })
+            })
+            .collect()
+    }
+
+    /// Unpacks words into field values as lanes of bits, as [`Layout::encode_lanes`] takes
+    /// them; lanes past a field's components are 0.
+    pub fn decode_lanes(&self, words: &[u32]) -> Vec<[u32; 4]> {
+        self.field_locations()
+            .iter()
+            .zip(&self.fields)
+            .map(|(&(word, member), field)| {
+                let mut lanes = match field.storage {
+                    Storage::Word(format) => decode_word(format, field.ty.scalar, words[word]),
+                    Storage::Bits(bit_field) => bit_field.decode(
+                        (words[word] >> member.offset) & crate::convert::max_code(member.bits),
+                        field.ty.components,
+                    ),
+                };
+                lanes[field.ty.components..].fill(0);
+                lanes
+            })
+            .collect()
     }
 
     /// Number of packed render targets the words need: one per four words.
@@ -266,8 +447,8 @@ impl Layout {
             report(
                 Subject::Budget,
                 format!(
-                    "budget must be a positive multiple of 32 bits (each field is one 32-bit \
-                     word), not {}",
+                    "budget must be a positive multiple of 32 bits (the fields fill 32-bit \
+                     words), not {}",
                     self.budget
                 ),
             );
@@ -300,8 +481,20 @@ impl Layout {
                     ),
                 );
             }
-            if let Some(reason) = type_mismatch(field) {
-                report(Subject::FieldType(index), reason);
+            match field.storage {
+                Storage::Word(format) => {
+                    if let Some(reason) = type_mismatch(format, field.ty) {
+                        report(Subject::FieldType(index), reason);
+                    }
+                }
+                Storage::Bits(bit_field) => {
+                    if let Some(reason) = bit_field.mismatch(field.ty) {
+                        report(
+                            Subject::FieldFormat(index),
+                            format!("field `{}`: {reason}", field.name),
+                        );
+                    }
+                }
             }
         }
         if self.budget > 0 && self.budget % 32 == 0 && self.bits() > self.budget {
@@ -318,9 +511,19 @@ impl Layout {
             self.budget
         );
         let terms: Vec<String> = self
-            .fields
+            .word_contents()
             .iter()
-            .map(|field| format!("{} 32", field.name))
+            .map(|word| {
+                let names: Vec<&str> = word
+                    .members
+                    .iter()
+                    .map(|member| self.fields[member.field].name.as_str())
+                    .collect();
+                match names.as_slice() {
+                    [name] if !word.is_bit_fields => format!("{name} 32"),
+                    _ => format!("({}) 32", names.join(" | ")),
+                }
+            })
             .collect();
         let spill = self.bits() - self.budget;
         let _ = write!(
@@ -337,17 +540,34 @@ impl Layout {
     }
 }
 
-/// Why a field's type cannot be stored in its format, if it cannot.
-fn type_mismatch(field: &Field) -> Option<String> {
-    let format = field.format;
+/// The lanes of a whole word's field from its channels' values.
+fn encode_word(format: Format, scalar: ScalarKind, lanes: [u32; 4]) -> u32 {
+    match scalar {
+        ScalarKind::Float => format.encode(lanes.map(f32::from_bits)),
+        ScalarKind::Uint | ScalarKind::Bool => format.encode(lanes),
+        ScalarKind::Sint => format.encode(lanes.map(|bits| bits as i32)),
+    }
+}
+
+/// A whole word's channels as lanes of bits.
+fn decode_word(format: Format, scalar: ScalarKind, word: u32) -> [u32; 4] {
+    match scalar {
+        ScalarKind::Float => format.decode::<f32>(word).map(f32::to_bits),
+        ScalarKind::Uint | ScalarKind::Bool => format.decode::<u32>(word),
+        ScalarKind::Sint => format.decode::<i32>(word).map(|value| value as u32),
+    }
+}
+
+/// Why a type cannot be stored in a format, if it cannot.
+fn type_mismatch(format: Format, ty: FieldType) -> Option<String> {
     let channels = format.channels().len();
-    let ty = field.ty;
     let fitting = fitting_types(format);
     if ty.scalar != format.scalar_kind() {
         let holds = match format.scalar_kind() {
             ScalarKind::Float => "floats",
             ScalarKind::Uint => "unsigned integers",
             ScalarKind::Sint => "signed integers",
+            ScalarKind::Bool => "booleans",
         };
         return Some(format!(
             "`{}` cannot be stored in `{format}`, which holds {holds}: use {fitting}",
@@ -388,7 +608,7 @@ mod tests {
     fn field(name: &str, format: Format, ty: &str) -> Field {
         Field {
             name: name.into(),
-            format,
+            storage: Storage::Word(format),
             ty: FieldType::from_rust_name(ty).unwrap(),
             conversions: None,
         }

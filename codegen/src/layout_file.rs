@@ -21,7 +21,23 @@
 //! format = "rgba8"
 //! type = "Vec4"
 //! conversions = "fast"      # optional: this field's own, over the layout's
+//!
+//! [[fields]]                # a bit field: bits of a shared r32ui word
+//! name = "normal"
+//! bits = 24
+//! encoding = "octahedral"   # unorm, snorm, uint, sint, bool, half, rgb9e5, octahedral, rgbm
+//! type = "Vec3"             # or: components = 3
+//!
+//! [[fields]]
+//! name = "emissive"
+//! bits = 32
+//! encoding = "rgbm"
+//! range = 8.0               # rgbm's largest value
+//! type = "Vec3"
 //! ```
+//!
+//! A field has either `format` (a whole word) or `bits` and `encoding` (a bit field), as
+//! `#[pls(...)]` and `#[bits(...)]` in the derive.
 //!
 //! Every problem, from TOML syntax to the budget, is a [`FileDiagnostic`] naming the file,
 //! line and column; the model's checks are [`Layout::check`], the same as the derive's.
@@ -33,8 +49,9 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::format::Format;
-use crate::layout::{Conversions, Field, FieldType, Layout, Subject, DEFAULT_BUDGET};
+use crate::encoding::{BitField, Encoding};
+use crate::format::{Format, ScalarKind};
+use crate::layout::{Conversions, Field, FieldType, Layout, Storage, Subject, DEFAULT_BUDGET};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -49,7 +66,10 @@ struct LayoutEntry {
 #[serde(deny_unknown_fields)]
 struct FieldEntry {
     name: Spanned<String>,
-    format: Spanned<String>,
+    format: Option<Spanned<String>>,
+    bits: Option<Spanned<i64>>,
+    encoding: Option<Spanned<String>>,
+    range: Option<Spanned<f64>>,
     #[serde(rename = "type")]
     ty: Option<Spanned<String>>,
     components: Option<Spanned<i64>>,
@@ -226,28 +246,17 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDia
     for field in entry.fields.get_ref() {
         let field_span = field.span();
         let field = field.get_ref();
-        let format = match Format::from_name(field.format.get_ref()) {
-            Some(format) => Some(format),
-            None => {
-                let name = field.format.get_ref();
-                let message = format!(
-                    "unknown pixel local storage format `{name}`; did you mean `{}`? The formats are: {}",
-                    Format::nearest(name),
-                    Format::ALL.map(Format::name).join(", ")
-                );
-                diagnostics.push(FileDiagnostic::at(
-                    path,
-                    source,
-                    field.format.span(),
-                    message,
-                ));
-                None
-            }
+        let mut report = |span: Range<usize>, message: String| {
+            diagnostics.push(FileDiagnostic::at(path, source, span, message));
         };
-        let (ty, ty_span) = match (format, &field.ty, &field.components) {
+        let (storage, storage_span) = storage_of(field, &mut report);
+        let storage_span = storage_span.unwrap_or_else(|| field.name.span());
+        let (ty, ty_span) = match (storage, &field.ty, &field.components) {
             (_, Some(_), Some(components)) => {
-                let message = "give the field either `type` or `components`, not both";
-                diagnostics.push(FileDiagnostic::at(path, source, components.span(), message));
+                report(
+                    components.span(),
+                    "give the field either `type` or `components`, not both".to_string(),
+                );
                 (None, field_span.clone())
             }
             (_, None, None) => {
@@ -255,36 +264,47 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDia
                     "field `{}` needs `type` (e.g. \"Vec3\") or `components` (1 to 4)",
                     field.name.get_ref()
                 );
-                diagnostics.push(FileDiagnostic::at(path, source, field.name.span(), message));
+                report(field.name.span(), message);
                 (None, field_span.clone())
             }
             (_, Some(ty), None) => match FieldType::from_rust_name(ty.get_ref()) {
                 Some(parsed) => (Some(parsed), ty.span()),
                 None => {
                     let message = format!(
-                        "unknown field type `{}`: use f32, Vec2, Vec3, Vec4, u32, UVec2, UVec3, UVec4, i32, IVec2, IVec3 or IVec4",
+                        "unknown field type `{}`: use f32, Vec2, Vec3, Vec4, u32, UVec2, UVec3, UVec4, i32, IVec2, IVec3, IVec4 or bool",
                         ty.get_ref()
                     );
-                    diagnostics.push(FileDiagnostic::at(path, source, ty.span(), message));
+                    report(ty.span(), message);
                     (None, ty.span())
                 }
             },
-            (format, None, Some(components)) => {
+            (storage, None, Some(components)) => {
                 let count = *components.get_ref();
-                match format {
-                    Some(format) if (1..=format.channels().len() as i64).contains(&count) => (
-                        Some(FieldType::new(format.scalar_kind(), count as usize)),
+                let (scalar, most, what) = match storage {
+                    Some(Storage::Word(format)) => (
+                        format.scalar_kind(),
+                        format.channels().len() as i64,
+                        format!("`{format}`"),
+                    ),
+                    Some(Storage::Bits(bit_field)) => {
+                        let scalar = bit_field.encoding.scalar_kind();
+                        let most = if scalar == ScalarKind::Bool { 1 } else { 4 };
+                        (scalar, most, format!("`{}`", bit_field.encoding))
+                    }
+                    None => (ScalarKind::Float, 0, String::new()),
+                };
+                match storage {
+                    Some(_) if (1..=most).contains(&count) => (
+                        Some(FieldType::new(scalar, count as usize)),
                         components.span(),
                     ),
-                    Some(format) => {
-                        let channels = format.channels().len();
-                        let message = format!("`{format}` has {channels} channel{}: components must be 1 to {channels}, not {count}", if channels == 1 { "" } else { "s" });
-                        diagnostics.push(FileDiagnostic::at(
-                            path,
-                            source,
-                            components.span(),
-                            message,
-                        ));
+                    Some(storage) => {
+                        let plural = if most == 1 { "" } else { "s" };
+                        let message = match storage {
+                            Storage::Word(_) => format!("{what} has {most} channel{plural}: components must be 1 to {most}, not {count}"),
+                            Storage::Bits(_) => format!("{what} takes 1 to {most} component{plural}, not {count}"),
+                        };
+                        report(components.span(), message);
                         (None, components.span())
                     }
                     None => (None, components.span()),
@@ -292,17 +312,20 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDia
             }
         };
         // A field in error still takes its word, so the budget check counts it.
-        let (format, ty) = match (format, ty) {
-            (Some(format), Some(ty)) => (format, ty),
-            _ => (Format::R32f, FieldType::new(crate::ScalarKind::Float, 1)),
+        let (storage, ty) = match (storage, ty) {
+            (Some(storage), Some(ty)) => (storage, ty),
+            _ => (
+                Storage::Word(Format::R32f),
+                FieldType::new(ScalarKind::Float, 1),
+            ),
         };
         layout.fields.push(Field {
             name: field.name.get_ref().clone(),
-            format,
+            storage,
             ty,
             conversions: field_conversions[layout.fields.len()],
         });
-        field_spans.push([field.name.span(), field.format.span(), ty_span]);
+        field_spans.push([field.name.span(), storage_span, ty_span]);
     }
 
     for diagnostic in layout.check() {
@@ -339,6 +362,113 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDia
         })
     } else {
         Err(diagnostics)
+    }
+}
+
+/// A field's storage from its `format`, or its `bits`, `encoding` and `range`, with the span
+/// the model's storage diagnostics point at (the format, or the bits); problems go to
+/// `report`.
+fn storage_of(
+    field: &FieldEntry,
+    report: &mut impl FnMut(Range<usize>, String),
+) -> (Option<Storage>, Option<Range<usize>>) {
+    let name = field.name.get_ref();
+    match (&field.format, &field.bits, &field.encoding) {
+        (Some(format), None, None) => {
+            if let Some(range) = &field.range {
+                report(
+                    range.span(),
+                    format!(
+                        "field `{name}`: `range` belongs to an rgbm bit field, not to a `format`"
+                    ),
+                );
+            }
+            let storage = match Format::from_name(format.get_ref()) {
+                Some(format) => Some(Storage::Word(format)),
+                None => {
+                    let wrong = format.get_ref();
+                    report(
+                        format.span(),
+                        format!(
+                            "unknown pixel local storage format `{wrong}`; did you mean `{}`? The formats are: {}",
+                            Format::nearest(wrong),
+                            Format::ALL.map(Format::name).join(", ")
+                        ),
+                    );
+                    None
+                }
+            };
+            (storage, Some(format.span()))
+        }
+        (Some(format), _, _) => {
+            report(
+                format.span(),
+                format!(
+                    "field `{name}` has both `format` (a whole word) and `bits`/`encoding` (a bit field): keep one"
+                ),
+            );
+            (None, Some(format.span()))
+        }
+        (None, Some(bits), Some(encoding)) => {
+            let range = field.range.as_ref().map(|range| *range.get_ref() as f32);
+            let parsed = match Encoding::from_name(encoding.get_ref(), range) {
+                Ok(parsed) => Some(parsed),
+                Err(message) => {
+                    // A known encoding with a range it cannot take (or rgbm's bad range):
+                    // the range is wrong; otherwise the encoding is.
+                    let known = Encoding::NAMES.contains(&encoding.get_ref().as_str());
+                    let span = match &field.range {
+                        Some(range) if known => range.span(),
+                        _ => encoding.span(),
+                    };
+                    report(span, format!("field `{name}`: {message}"));
+                    None
+                }
+            };
+            let width = *bits.get_ref();
+            let storage = match u32::try_from(width) {
+                Ok(width) => parsed.map(|encoding| {
+                    Storage::Bits(BitField {
+                        bits: width,
+                        encoding,
+                    })
+                }),
+                Err(_) => {
+                    report(
+                        bits.span(),
+                        format!("field `{name}`: a bit field has 1 to 32 bits, not {width}"),
+                    );
+                    None
+                }
+            };
+            (storage, Some(bits.span()))
+        }
+        (None, Some(bits), None) => {
+            report(
+                bits.span(),
+                format!(
+                    "field `{name}` has `bits` but no `encoding`: add one of {}",
+                    Encoding::NAMES.join(", ")
+                ),
+            );
+            (None, Some(bits.span()))
+        }
+        (None, None, Some(encoding)) => {
+            report(
+                encoding.span(),
+                format!(
+                    "field `{name}` has an `encoding` but no `bits`: say how many bits it takes"
+                ),
+            );
+            (None, Some(encoding.span()))
+        }
+        (None, None, None) => {
+            report(
+                field.name.span(),
+                format!("field `{name}` needs `format` (a whole word, e.g. \"rgba8\") or `bits` and `encoding` (a bit field)"),
+            );
+            (None, None)
+        }
     }
 }
 

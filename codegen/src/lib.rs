@@ -5,7 +5,8 @@
 //! emitters. The pipeline, front to back:
 //!
 //! - [`format`](mod@format): the twelve pixel local storage formats and their channels;
-//! - [`layout`]: fields, types, the bit budget and its checks;
+//! - [`encoding`](mod@encoding): bit fields and their encodings;
+//! - [`layout`]: fields, types, the words they fill, the bit budget and its checks;
 //! - [`convert`]: the bit-exact conversions (the CPU side of the generated WGSL);
 //! - [`emit`]: WGSL and Rust mirror emitters;
 //! - [`report`]: the bit report and the WebGPU render-target cost;
@@ -19,6 +20,7 @@
 mod builder;
 pub mod convert;
 pub mod emit;
+pub mod encoding;
 pub mod format;
 pub mod layout;
 #[cfg(feature = "tools")]
@@ -31,6 +33,10 @@ pub mod report;
 #[cfg(feature = "tools")]
 pub use builder::{BuildError, Builder};
 
+pub use encoding::{BitField, Encoding, RgbmRange};
 pub use format::{Channel, ChannelEncoding, Format, ScalarKind};
-pub use layout::{Conversions, Diagnostic, Field, FieldType, Layout, Subject, DEFAULT_BUDGET};
+pub use layout::{
+    Conversions, Diagnostic, Field, FieldType, Layout, Member, Storage, Subject, Word,
+    DEFAULT_BUDGET,
+};
 pub use report::Report;

@@ -83,13 +83,14 @@ impl Report {
         }
     }
 
-    /// Bytes per sample if every field were its own render target.
+    /// Bytes per sample if every word were its own render target (a whole-word field in its
+    /// format, a word of bit fields as `r32uint`).
     pub fn separate_targets_bytes(&self) -> u32 {
         bytes_per_sample(
             self.layout
-                .fields
+                .word_contents()
                 .iter()
-                .map(|field| webgpu_target(field.format)),
+                .map(|word| webgpu_target(word.format)),
         )
     }
 
@@ -118,28 +119,35 @@ impl fmt::Display for Report {
             layout.used_bits(),
             layout.budget
         )?;
+        let storage_width = layout
+            .fields
+            .iter()
+            .map(|field| field.storage_name().len())
+            .max()
+            .unwrap_or(0)
+            .max(15);
         writeln!(
             out,
-            "  {:<4} {:<width$} {:<15} {:<6} {:>4} {:>4}",
-            "word", "field", "format", "type", "bits", "used"
+            "  {:<4} {:<width$} {:<storage_width$} {:<6} {:>5} {:>4}",
+            "word", "field", "storage", "type", "bits", "used"
         )?;
-        for (word, field) in layout.fields.iter().enumerate() {
+        for (field, (word, member)) in layout.fields.iter().zip(layout.field_locations()) {
+            let range = format!("{}-{}", member.offset, member.offset + member.bits - 1);
             writeln!(
                 out,
-                "  {word:<4} {:<width$} {:<15} {:<6} {:>4} {:>4}",
+                "  {word:<4} {:<width$} {:<storage_width$} {:<6} {range:>5} {:>4}",
                 field.name,
-                field.format.name(),
+                field.storage_name(),
                 field.ty.rust_name(),
-                32,
                 field.used_bits()
             )?;
         }
         writeln!(
             out,
-            "  {:<total_width$} {bits:>4} {:>4}",
+            "  {:<total_width$} {bits:>5} {:>4}",
             "total",
             layout.used_bits(),
-            total_width = width + 27
+            total_width = width + storage_width + 14
         )?;
         if bits <= layout.budget {
             writeln!(
@@ -173,17 +181,35 @@ impl fmt::Display for Report {
             }
         )?;
 
-        writeln!(out, "  as separate WebGPU render targets (one per field):")?;
-        for field in &layout.fields {
-            let target = webgpu_target(field.format);
+        writeln!(out, "  as separate WebGPU render targets (one per word):")?;
+        let words = layout.word_contents();
+        let word_names: Vec<String> = words
+            .iter()
+            .map(|word| {
+                let names: Vec<&str> = word
+                    .members
+                    .iter()
+                    .map(|member| layout.fields[member.field].name.as_str())
+                    .collect();
+                names.join(", ")
+            })
+            .collect();
+        let width = word_names
+            .iter()
+            .map(String::len)
+            .max()
+            .unwrap_or(0)
+            .max(width);
+        for (word, names) in words.iter().zip(&word_names) {
+            let target = webgpu_target(word.format);
             let note = match target.feature {
                 Some(feature) => format!("  (renderable only with the {feature} feature)"),
                 None => String::new(),
             };
             writeln!(
                 out,
-                "    {:<width$} {:<15} {} bytes{note}",
-                field.name, target.name, target.byte_cost
+                "    {names:<width$} {:<15} {} bytes{note}",
+                target.name, target.byte_cost
             )?;
         }
         let separate = self.separate_targets_bytes();
@@ -193,8 +219,8 @@ impl fmt::Display for Report {
             "within"
         };
         writeln!(out, "    total {separate} bytes per sample: {verdict} the default limit of {WEBGPU_BYTES_PER_SAMPLE_LIMIT}")?;
-        if layout.fields.len() > WEBGPU_COLOR_ATTACHMENT_LIMIT {
-            writeln!(out, "    {} targets exceed the default limit of {WEBGPU_COLOR_ATTACHMENT_LIMIT} colour attachments", layout.fields.len())?;
+        if words.len() > WEBGPU_COLOR_ATTACHMENT_LIMIT {
+            writeln!(out, "    {} targets exceed the default limit of {WEBGPU_COLOR_ATTACHMENT_LIMIT} colour attachments", words.len())?;
         }
         let packed = self.packed_targets_bytes();
         let verdict = if packed > WEBGPU_BYTES_PER_SAMPLE_LIMIT {
@@ -213,7 +239,7 @@ impl fmt::Display for Report {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::layout::{Field, FieldType};
+    use crate::layout::{Field, FieldType, Storage};
 
     #[test]
     fn separate_targets_follow_webgpu_alignment_rules() {
@@ -247,25 +273,25 @@ mod tests {
             fields: vec![
                 Field {
                     name: "light_accumulation".into(),
-                    format: Format::Rgb10A2,
+                    storage: Storage::Word(Format::Rgb10A2),
                     ty: ty("Vec3"),
                     conversions: None,
                 },
                 Field {
                     name: "depth".into(),
-                    format: Format::R32f,
+                    storage: Storage::Word(Format::R32f),
                     ty: ty("f32"),
                     conversions: None,
                 },
                 Field {
                     name: "normals_roughness".into(),
-                    format: Format::Rgba8,
+                    storage: Storage::Word(Format::Rgba8),
                     ty: ty("Vec4"),
                     conversions: None,
                 },
                 Field {
                     name: "albedo_metallic".into(),
-                    format: Format::Rgba8,
+                    storage: Storage::Word(Format::Rgba8),
                     ty: ty("Vec4"),
                     conversions: None,
                 },

@@ -1,7 +1,7 @@
 //! `#[derive(GBufferLayout)]`, used through its re-export `gbuffer::GBufferLayout`.
 //!
 //! A derive in three stages, as serde_derive and thiserror do it:
-//! 1. `parse`: read the struct and its `#[gbuffer]` / `#[pls]` attributes into a
+//! 1. `parse`: read the struct and its `#[gbuffer]`, `#[pls]` and `#[bits]` attributes into a
 //!    [`gbuffer_codegen::Layout`], remembering the span of everything a message may point at;
 //! 2. check: [`gbuffer_codegen::Layout::check`] judges the layout (budget, types, names), the same
 //!    check `gbuffer codegen` runs on layout files;
@@ -18,7 +18,7 @@ use proc_macro::TokenStream;
 
 /// Derives `gbuffer::GBufferLayout`: the bit budget check, the WGSL pack/unpack code and a
 /// bit-exact Rust mirror of it. See the `gbuffer` crate for the attributes.
-#[proc_macro_derive(GBufferLayout, attributes(gbuffer, pls))]
+#[proc_macro_derive(GBufferLayout, attributes(gbuffer, pls, bits))]
 pub fn derive_gbuffer_layout(input: TokenStream) -> TokenStream {
     let input = syn::parse_macro_input!(input as syn::DeriveInput);
     expand(&input)
@@ -30,8 +30,10 @@ fn expand(input: &syn::DeriveInput) -> syn::Result<proc_macro2::TokenStream> {
     let parsed = parse::parse(input)?;
     let mut errors = parsed.errors;
     for diagnostic in parsed.layout.check() {
-        let error = syn::Error::new(parsed.spans.span_of(diagnostic.subject), diagnostic.message);
-        combine(&mut errors, error);
+        combine(
+            &mut errors,
+            parsed.spans.error(diagnostic.subject, diagnostic.message),
+        );
     }
     if let Some(errors) = errors {
         return Err(errors);

@@ -2,7 +2,10 @@
 //! part so that the check's diagnostics can point at it.
 
 use gbuffer_codegen::emit::wgsl::Conversions;
-use gbuffer_codegen::{Field, FieldType, Format, Layout, ScalarKind, Subject, DEFAULT_BUDGET};
+use gbuffer_codegen::{
+    BitField, Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage, Subject,
+    DEFAULT_BUDGET,
+};
 use proc_macro2::{Span, TokenStream};
 use quote::ToTokens;
 use syn::spanned::Spanned;
@@ -16,17 +19,25 @@ pub struct Spans {
     budget: Option<Span>,
     /// Per field of the layout: its name, its format and its type.
     fields: Vec<[Span; 3]>,
+    /// Per field, its `#[bits(...)]` attribute where it has one: a bit field's errors
+    /// underline the whole attribute.
+    bits_attributes: Vec<Option<TokenStream>>,
 }
 
 impl Spans {
-    pub fn span_of(&self, subject: Subject) -> Span {
-        match subject {
+    /// The error `message` at what `subject` names.
+    pub fn error(&self, subject: Subject, message: String) -> syn::Error {
+        let span = match subject {
             Subject::Name => self.name,
             Subject::Budget => self.budget.unwrap_or(self.name),
             Subject::FieldName(index) => self.fields[index][0],
-            Subject::FieldFormat(index) => self.fields[index][1],
+            Subject::FieldFormat(index) => match &self.bits_attributes[index] {
+                Some(attribute) => return syn::Error::new_spanned(attribute, message),
+                None => self.fields[index][1],
+            },
             Subject::FieldType(index) => self.fields[index][2],
-        }
+        };
+        syn::Error::new(span, message)
     }
 }
 
@@ -86,20 +97,26 @@ pub fn parse(input: &DeriveInput) -> syn::Result<Parsed> {
         name: input.ident.span(),
         budget: options.budget_span,
         fields: Vec::new(),
+        bits_attributes: Vec::new(),
     };
 
     for field in named_fields {
         let Some(ident) = &field.ident else { continue };
         let name = ident.to_string().trim_start_matches("r#").to_string();
-        let format = parse_pls_attribute(field, &name, &mut errors);
+        let storage = parse_storage_attribute(field, &name, &mut errors);
         let ty = parse_field_type(&field.ty, &mut errors);
-        let (format, format_span, conversions, ty) = match (format, ty) {
-            (Some((format, format_span, conversions)), Some(ty)) => {
-                (format, format_span, conversions, ty)
+        let bits_attribute = field
+            .attrs
+            .iter()
+            .find(|attribute| attribute.path().is_ident("bits"))
+            .map(ToTokens::to_token_stream);
+        let (storage, storage_span, conversions, ty) = match (storage, ty) {
+            (Some((storage, storage_span, conversions)), Some(ty)) => {
+                (storage, storage_span, conversions, ty)
             }
             // The error is reported; a stand-in keeps the field's word in the budget check.
             _ => (
-                Format::R32f,
+                Storage::Word(Format::R32f),
                 ident.span(),
                 None,
                 FieldType::new(ScalarKind::Float, 1),
@@ -107,13 +124,14 @@ pub fn parse(input: &DeriveInput) -> syn::Result<Parsed> {
         };
         layout.fields.push(Field {
             name,
-            format,
+            storage,
             ty,
             conversions,
         });
         spans
             .fields
-            .push([ident.span(), format_span, field.ty.span()]);
+            .push([ident.span(), storage_span, field.ty.span()]);
+        spans.bits_attributes.push(bits_attribute);
     }
     Ok(Parsed {
         layout,
@@ -231,24 +249,24 @@ fn budget_value(expression: &syn::Expr) -> Option<u32> {
     }
 }
 
-/// `#[pls(rgba8)]` or `#[pls(rgba8, conversions = fast)]`: the field's format, the span of its
-/// name, and the field's own conversions.
-fn parse_pls_attribute(
+/// A field's storage from its `#[pls(...)]` or `#[bits(...)]` attribute (exactly one of them),
+/// the span its diagnostics point at, and the field's own conversions.
+fn parse_storage_attribute(
     field: &syn::Field,
     name: &str,
     errors: &mut Option<syn::Error>,
-) -> Option<(Format, Span, Option<Conversions>)> {
+) -> Option<(Storage, Span, Option<Conversions>)> {
     let attributes: Vec<&syn::Attribute> = field
         .attrs
         .iter()
-        .filter(|attribute| attribute.path().is_ident("pls"))
+        .filter(|attribute| attribute.path().is_ident("pls") || attribute.path().is_ident("bits"))
         .collect();
     let Some(first) = attributes.first() else {
         combine(
             errors,
             syn::Error::new(
                 field.ident.span(),
-                format!("field `{name}` needs a `#[pls(<format>)]` attribute naming its pixel local storage format, e.g. `#[pls(rgba8)]`"),
+                format!("field `{name}` needs `#[pls(<format>)]` (a whole word, e.g. `#[pls(rgba8)]`) or `#[bits(<bits>, <encoding>)]` (a bit field, e.g. `#[bits(4, unorm)]`)"),
             ),
         );
         return None;
@@ -258,26 +276,16 @@ fn parse_pls_attribute(
             errors,
             syn::Error::new_spanned(
                 repeated,
-                format!("field `{name}` has more than one `#[pls]` attribute"),
+                format!("field `{name}` has more than one `#[pls]` or `#[bits]` attribute: a field is one word or one bit field"),
             ),
         );
     }
+    if first.path().is_ident("bits") {
+        return parse_bits_attribute(first, errors);
+    }
     let arguments = first.parse_args_with(|input: syn::parse::ParseStream| {
         let format: syn::Ident = input.parse()?;
-        if input.is_empty() {
-            return Ok((format, None));
-        }
-        input.parse::<syn::Token![,]>()?;
-        let key: syn::Ident = input.parse()?;
-        if key != "conversions" {
-            return Err(syn::Error::new(
-                key.span(),
-                format!("unknown `pls` option `{key}`: expected `conversions = exact | fast`"),
-            ));
-        }
-        input.parse::<syn::Token![=]>()?;
-        let value: syn::Expr = input.parse()?;
-        Ok((format, Some(conversions_value(&value)?)))
+        Ok((format, parse_conversions_option(input, "pls")?))
     });
     let (format_ident, conversions) = match arguments {
         Ok(arguments) => arguments,
@@ -298,7 +306,7 @@ fn parse_pls_attribute(
     };
     let format_name = format_ident.to_string();
     match Format::from_name(&format_name) {
-        Some(format) => Some((format, format_ident.span(), conversions)),
+        Some(format) => Some((Storage::Word(format), format_ident.span(), conversions)),
         None => {
             let nearest = Format::nearest(&format_name);
             combine(
@@ -311,6 +319,111 @@ fn parse_pls_attribute(
             None
         }
     }
+}
+
+/// `, conversions = fast` after an attribute's main arguments, if present.
+fn parse_conversions_option(
+    input: syn::parse::ParseStream,
+    attribute: &str,
+) -> syn::Result<Option<Conversions>> {
+    if input.is_empty() {
+        return Ok(None);
+    }
+    input.parse::<syn::Token![,]>()?;
+    let key: syn::Ident = input.parse()?;
+    if key != "conversions" {
+        return Err(syn::Error::new(
+            key.span(),
+            format!("unknown `{attribute}` option `{key}`: expected `conversions = exact | fast`"),
+        ));
+    }
+    input.parse::<syn::Token![=]>()?;
+    let value: syn::Expr = input.parse()?;
+    Ok(Some(conversions_value(&value)?))
+}
+
+/// `#[bits(4, unorm)]`, `#[bits(32, rgbm(8.0))]`, `#[bits(24, octahedral, conversions =
+/// fast)]`: a bit field's width and encoding (the model checks that they suit the type).
+fn parse_bits_attribute(
+    attribute: &syn::Attribute,
+    errors: &mut Option<syn::Error>,
+) -> Option<(Storage, Span, Option<Conversions>)> {
+    let parsed = attribute.parse_args_with(|input: syn::parse::ParseStream| {
+        let width: syn::LitInt = input.parse()?;
+        input.parse::<syn::Token![,]>()?;
+        let encoding: syn::Ident = input.parse()?;
+        let range = if input.peek(syn::token::Paren) {
+            let content;
+            syn::parenthesized!(content in input);
+            let literal: syn::Lit = content.parse()?;
+            let value = match &literal {
+                syn::Lit::Float(float) => float.base10_parse::<f32>()?,
+                syn::Lit::Int(int) => int.base10_parse::<f32>()?,
+                _ => {
+                    return Err(syn::Error::new_spanned(
+                        &literal,
+                        "a range is a number, e.g. `rgbm(8.0)`",
+                    ))
+                }
+            };
+            Some((value, literal.span()))
+        } else {
+            None
+        };
+        let conversions = parse_conversions_option(input, "bits")?;
+        Ok((width, encoding, range, conversions))
+    });
+    let (width, encoding_ident, range, conversions) = match parsed {
+        Ok(parsed) => parsed,
+        Err(error)
+            if error.to_string().starts_with("unknown")
+                || error.to_string().starts_with("a range") =>
+        {
+            combine(errors, error);
+            return None;
+        }
+        Err(_) => {
+            combine(
+                errors,
+                syn::Error::new_spanned(
+                    attribute,
+                    format!("expected `#[bits(<bits>, <encoding>)]`, e.g. `#[bits(4, unorm)]` or `#[bits(32, rgbm(8.0))]`, with an encoding among: {}", Encoding::NAMES.join(", ")),
+                ),
+            );
+            return None;
+        }
+    };
+    let bits = match width.base10_parse::<u32>() {
+        Ok(bits) => bits,
+        Err(_) => {
+            combine(
+                errors,
+                syn::Error::new(width.span(), "a bit field has 1 to 32 bits"),
+            );
+            return None;
+        }
+    };
+    let encoding =
+        match Encoding::from_name(&encoding_ident.to_string(), range.map(|(value, _)| value)) {
+            Ok(encoding) => encoding,
+            Err(message) => {
+                let span = match range {
+                    Some((_, span))
+                        if Encoding::NAMES.contains(&encoding_ident.to_string().as_str()) =>
+                    {
+                        span
+                    }
+                    _ => encoding_ident.span(),
+                };
+                combine(errors, syn::Error::new(span, message));
+                return None;
+            }
+        };
+    Some((
+        Storage::Bits(BitField { bits, encoding }),
+        encoding_ident.span(),
+        conversions,
+    ))
 }
 
 fn format_list() -> String {
@@ -335,7 +448,8 @@ fn parse_field_type(ty: &syn::Type, errors: &mut Option<syn::Error>) -> Option<F
                 ty.span(),
                 "unsupported G-buffer field type: use `f32`, `Vec2`, `Vec3` or `Vec4` for float and \
                  unorm formats, `u32` or `UVec2`..`UVec4` for the `ui` formats, `i32` or \
-                 `IVec2`..`IVec4` for the `i` formats (glam types, re-exported as `gbuffer::glam`)",
+                 `IVec2`..`IVec4` for the `i` formats (glam types, re-exported as `gbuffer::glam`), \
+                 and `bool` for a `bool` bit field",
             ),
         );
     }

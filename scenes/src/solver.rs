@@ -82,7 +82,7 @@ impl Solution {
         self.layout
             .fields
             .iter()
-            .filter(|field| field.format == Format::R32ui)
+            .filter(|field| field.format() == Some(Format::R32ui))
             .count()
     }
 }
@@ -466,7 +466,7 @@ fn build(scene: &SceneDescription, stored: &[Stored], best: Candidate) -> Soluti
         }
         fields.push(Field {
             name: field_name(stored, &best.encodings, word),
-            format: word.format,
+            storage: gbuffer_codegen::Storage::Word(word.format),
             ty: field_type(word),
             conversions: None,
         });

@@ -24,7 +24,7 @@ impl fmt::Display for Solution {
                 out,
                 "  {index:<4}  {:<28}  {} {}",
                 field.name,
-                field.format,
+                field.storage_name(),
                 field.ty.rust_name()
             )?;
         }

@@ -44,6 +44,7 @@
 // The derive's expansion names `::gbuffer`; this lets the seed layouts below use it too.
 extern crate self as gbuffer;
 
+pub mod engine_layouts;
 pub mod modules;
 pub mod seed_layouts;
 pub mod shading;
@@ -67,23 +68,26 @@ pub mod packing {
     pub use gbuffer_codegen::convert::Scalar;
     pub use gbuffer_codegen::report::Report;
     pub use gbuffer_codegen::{
-        Channel, ChannelEncoding, Conversions, Field, FieldType, Format, Layout, ScalarKind,
+        BitField, Channel, ChannelEncoding, Conversions, Encoding, Field, FieldType, Format,
+        Layout, Member, RgbmRange, ScalarKind, Storage, Word,
     };
 }
 
 /// A pixel local storage G-buffer layout. Derive it with `#[derive(GBufferLayout)]`.
 ///
-/// Field i of the struct is word i of [`Self::Packed`]; inside a word the channels r, g, b, a
-/// sit from the least significant bit up, so the words load unchanged into `Rgba32Uint`
-/// render targets.
+/// A `#[pls(format)]` field takes the next word of [`Self::Packed`]; consecutive
+/// `#[bits(N, encoding)]` fields share `r32ui` words from the least significant bit up, a
+/// field that does not fit starting the next word. Inside a word the channels r, g, b, a sit
+/// from the least significant bit up, so the words load unchanged into `Rgba32Uint` render
+/// targets.
 pub trait GBufferLayout: Sized {
-    /// Bits the layout occupies: 32 per field.
+    /// Bits the layout occupies: 32 per word.
     const BITS: u32;
-    /// Bits of the channels the fields use (the rest is zero padding).
+    /// Bits of the channels and bit fields the fields use (the rest is zero padding).
     const USED_BITS: u32;
     /// The tile memory budget the layout was checked against.
     const BUDGET: u32;
-    /// Number of 32-bit words: one per field.
+    /// Number of 32-bit words.
     const WORDS: usize;
     /// `[u32; WORDS]`.
     type Packed: Copy + AsRef<[u32]> + AsMut<[u32]> + for<'a> TryFrom<&'a [u32]>;

@@ -11,39 +11,37 @@ pub fn scalars_per_texel(layout: &Layout) -> usize {
     layout.fields.iter().map(|field| field.ty.components).sum()
 }
 
-/// What the Rust mirror packs for one texel given as scalar bits (field by field, component
-/// by component): the conversions the derive's `pack` calls.
-pub fn expected_words(layout: &Layout, scalars: &[u32]) -> Vec<u32> {
+/// A texel's scalar bits (field by field, component by component) as the lanes of each
+/// field, as [`Layout::encode_lanes`] takes them.
+pub fn lanes_of_scalars(layout: &Layout, scalars: &[u32]) -> Vec<[u32; 4]> {
     let mut scalars = scalars.iter().copied();
     layout
         .fields
         .iter()
         .map(|field| {
-            let mut channels = [0u32; 4];
-            for channel in channels.iter_mut().take(field.ty.components) {
-                *channel = scalars.next().expect("one scalar per component");
+            let mut lanes = [0u32; 4];
+            for lane in lanes.iter_mut().take(field.ty.components) {
+                *lane = scalars.next().expect("one scalar per component");
             }
-            match field.ty.scalar {
-                ScalarKind::Float => field.format.encode(channels.map(f32::from_bits)),
-                ScalarKind::Uint => field.format.encode(channels),
-                ScalarKind::Sint => field.format.encode(channels.map(|bits| bits as i32)),
-            }
+            lanes
         })
         .collect()
 }
 
+/// What the Rust mirror packs for one texel given as scalar bits (field by field, component
+/// by component): the conversions the derive's `pack` calls.
+pub fn expected_words(layout: &Layout, scalars: &[u32]) -> Vec<u32> {
+    layout.encode_lanes(&lanes_of_scalars(layout, scalars))
+}
+
 /// What the Rust mirror unpacks from one texel's words, as scalar bits.
 pub fn expected_scalars(layout: &Layout, words: &[u32]) -> Vec<u32> {
-    let mut scalars = Vec::with_capacity(scalars_per_texel(layout));
-    for (field, &word) in layout.fields.iter().zip(words) {
-        let channels: [u32; 4] = match field.ty.scalar {
-            ScalarKind::Float => field.format.decode::<f32>(word).map(f32::to_bits),
-            ScalarKind::Uint => field.format.decode::<u32>(word),
-            ScalarKind::Sint => field.format.decode::<i32>(word).map(|value| value as u32),
-        };
-        scalars.extend_from_slice(&channels[..field.ty.components]);
-    }
-    scalars
+    layout
+        .decode_lanes(words)
+        .iter()
+        .zip(&layout.fields)
+        .flat_map(|(lanes, field)| lanes[..field.ty.components].to_vec())
+        .collect()
 }
 
 /// WGSL statements that declare `var texel: <Name>` and fill it from the scalar bits
@@ -75,11 +73,12 @@ pub fn scalars_to_output(layout: &Layout, texel: &str, output: &str, base: &str)
             } else {
                 format!(".{}", &"xyzw"[component..=component])
             };
-            let _ = writeln!(
-                out,
-                "    {output}[{base} + {slot}u] = bitcast<u32>({texel}.{}{access});",
-                field.name
-            );
+            let value = format!("{texel}.{}{access}", field.name);
+            let bits = match field.ty.scalar {
+                ScalarKind::Bool => format!("u32({value})"),
+                _ => format!("bitcast<u32>({value})"),
+            };
+            let _ = writeln!(out, "    {output}[{base} + {slot}u] = {bits};");
             slot += 1;
         }
     }
@@ -93,6 +92,7 @@ fn field_from_scalars(ty: &gbuffer::packing::FieldType, first: usize) -> String 
             let load = format!("harness_inputs[base + {}u]", first + component);
             match ty.scalar {
                 ScalarKind::Uint => load,
+                ScalarKind::Bool => format!("({load} != 0u)"),
                 kind => format!("bitcast<{}>({load})", kind.wgsl()),
             }
         })
@@ -180,6 +180,7 @@ pub fn fragment_harness(layout: &Layout, wgsl: &str) -> String {
     for field in &layout.fields {
         let scalar = match field.ty.scalar {
             ScalarKind::Float => "position.x".to_string(),
+            ScalarKind::Bool => "position.y > 0.5".to_string(),
             kind => format!("{}(position.y)", kind.wgsl()),
         };
         let _ = writeln!(

@@ -1,8 +1,9 @@
-//! Random layouts for property tests: random formats and fitting types, and names drawn from
-//! words that GLSL or naga treat specially (keywords, reserved words, built-in functions,
-//! `main`, names ending in a digit or `_`, `gl_` prefixes, double underscores).
+//! Random layouts for property tests: whole words of random formats and bit fields of random
+//! encodings and widths, with fitting types, and names drawn from words that GLSL or naga
+//! treat specially (keywords, reserved words, built-in functions, `main`, names ending in a
+//! digit or `_`, `gl_` prefixes, double underscores).
 
-use gbuffer::packing::{Field, FieldType, Format, Layout};
+use gbuffer::packing::{BitField, Encoding, Field, FieldType, Format, Layout, RgbmRange, Storage};
 use gbuffer::GBufferLayout;
 use proptest::prelude::*;
 
@@ -75,22 +76,90 @@ pub const AWKWARD_LAYOUT_NAMES: &[&str] = &[
     "uniform",
 ];
 
-/// A random valid layout of `1..=max_fields` fields, with awkward names about half the time.
-pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
-    let field = (
-        0..Format::ALL.len(),
-        1usize..=4,
-        prop::option::of(0..AWKWARD_FIELD_NAMES.len()),
-    )
-        .prop_map(|(format_index, components, name)| {
-            let format = Format::ALL[format_index];
-            let components = components.min(format.channels().len());
+/// A random bit field and a type that fits it: `encoding` picks one of
+/// [`Encoding::NAMES`], `components` and `width` (any values) are folded into what the
+/// encoding allows.
+pub fn bit_field(encoding: usize, components: usize, width: u32) -> (Storage, FieldType) {
+    let float = |components| FieldType::new(gbuffer::packing::ScalarKind::Float, components);
+    let per_component = |encoding: Encoding, lowest: u32, highest: u32| {
+        let components = components % 4 + 1;
+        let most = highest.min(32 / components as u32);
+        let each = lowest + width % (most - lowest + 1);
+        (
+            BitField {
+                bits: each * components as u32,
+                encoding,
+            },
+            FieldType::new(encoding.scalar_kind(), components),
+        )
+    };
+    let (bit_field, ty) = match Encoding::NAMES[encoding % Encoding::NAMES.len()] {
+        "unorm" => per_component(Encoding::Unorm, 1, 23),
+        "snorm" => per_component(Encoding::Snorm, 2, 24),
+        "uint" => per_component(Encoding::Uint, 1, 32),
+        "sint" => per_component(Encoding::Sint, 1, 32),
+        "half" => {
+            let components = components % 2 + 1;
             (
-                format,
-                FieldType::new(format.scalar_kind(), components),
-                name,
+                BitField {
+                    bits: 16 * components as u32,
+                    encoding: Encoding::Half,
+                },
+                float(components),
             )
-        });
+        }
+        "rgb9e5" => (
+            BitField {
+                bits: 32,
+                encoding: Encoding::Rgb9e5,
+            },
+            float(3),
+        ),
+        "octahedral" => (
+            BitField {
+                bits: 2 * (1 + width % 16),
+                encoding: Encoding::Octahedral,
+            },
+            float(3),
+        ),
+        "rgbm" => {
+            let range = [6.0, 8.0, 16.0, 51.5][width as usize % 4];
+            (
+                BitField {
+                    bits: 32,
+                    encoding: Encoding::Rgbm(RgbmRange::new(range).expect("a valid range")),
+                },
+                float(3),
+            )
+        }
+        _ => (
+            BitField {
+                bits: 1,
+                encoding: Encoding::Bool,
+            },
+            FieldType::new(gbuffer::packing::ScalarKind::Bool, 1),
+        ),
+    };
+    (Storage::Bits(bit_field), ty)
+}
+
+/// A random valid layout of `1..=max_fields` fields, whole words and bit fields, with awkward
+/// names about half the time.
+pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
+    let word = (0..Format::ALL.len(), 1usize..=4).prop_map(|(format_index, components)| {
+        let format = Format::ALL[format_index];
+        let components = components.min(format.channels().len());
+        (
+            Storage::Word(format),
+            FieldType::new(format.scalar_kind(), components),
+        )
+    });
+    let bits = (0..Encoding::NAMES.len(), 0usize..4, 0u32..64)
+        .prop_map(|(encoding, components, width)| bit_field(encoding, components, width));
+    let field = (
+        prop_oneof![word, bits],
+        prop::option::of(0..AWKWARD_FIELD_NAMES.len()),
+    );
     (
         prop::collection::vec(field, 1..=max_fields),
         0u32..3,
@@ -99,7 +168,7 @@ pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
     )
         .prop_map(|(fields, extra_words, tag, layout_name)| {
             let mut named: Vec<Field> = Vec::new();
-            for (index, (format, ty, name)) in fields.into_iter().enumerate() {
+            for (index, ((storage, ty), name)) in fields.into_iter().enumerate() {
                 let mut name = name.map_or(format!("field_{index}"), |pick| {
                     AWKWARD_FIELD_NAMES[pick].to_string()
                 });
@@ -108,18 +177,20 @@ pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
                 }
                 named.push(Field {
                     name,
-                    format,
+                    storage,
                     ty,
                     conversions: None,
                 });
             }
-            Layout {
+            let mut layout = Layout {
                 name: layout_name.map_or(format!("RandomLayout{tag}"), |pick| {
                     AWKWARD_LAYOUT_NAMES[pick].to_string()
                 }),
-                budget: 32 * (named.len() as u32 + extra_words),
+                budget: 0,
                 fields: named,
-            }
+            };
+            layout.budget = 32 * (layout.words() as u32 + extra_words);
+            layout
         })
         .prop_filter("a valid layout", |layout| layout.check().is_empty())
 }
@@ -129,11 +200,12 @@ pub fn random_layout() -> impl Strategy<Value = Layout> {
     random_layout_with(8)
 }
 
-/// The seed layouts and a layout of every format, also split in two for the native includes,
-/// whose twelve attachments are more than GLES and Vulkan guarantee.
+/// The seed and engine layouts and a layout of every format, also split in two for the native
+/// includes, whose twelve attachments are more than GLES and Vulkan guarantee.
 pub fn seeds_and_every_format() -> Vec<Layout> {
     let mut layouts: Vec<Layout> = gbuffer::seed_layouts::all()
         .into_iter()
+        .chain(gbuffer::engine_layouts::all())
         .map(|(layout, _)| layout)
         .collect();
     let every = crate::AllFormats::layout();

@@ -139,3 +139,73 @@ pub struct FastFormats {
     #[pls(r11f_g11f_b10f)]
     pub small_floats: Vec3,
 }
+
+/// A layout with every bit-field encoding at the widths where each is hardest (1 bit, the
+/// largest, odd ones, vectors), beside whole words.
+#[allow(missing_docs)] // each field's name says its encoding and width
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 704)]
+pub struct EveryEncoding {
+    #[bits(1, unorm)]
+    pub unorm_1: f32,
+    #[bits(4, unorm)]
+    pub unorm_4: f32,
+    #[bits(12, unorm)]
+    pub unorm_12: f32,
+    #[bits(20, unorm)]
+    pub unorm_20: f32,
+    #[bits(23, unorm)]
+    pub unorm_23: f32,
+    #[bits(30, unorm)]
+    pub unorm_3x10: Vec3,
+    #[bits(2, snorm)]
+    pub snorm_2: f32,
+    #[bits(8, snorm)]
+    pub snorm_8: f32,
+    #[bits(16, snorm)]
+    pub snorm_16: f32,
+    #[bits(24, snorm)]
+    pub snorm_24: f32,
+    #[bits(32, snorm)]
+    pub snorm_4x8: Vec4,
+    #[bits(1, sint)]
+    pub sint_1: i32,
+    #[bits(7, sint)]
+    pub sint_7: i32,
+    #[bits(32, sint)]
+    pub sint_32: i32,
+    #[bits(16, sint)]
+    pub sint_2x8: IVec2,
+    #[bits(1, uint)]
+    pub uint_1: u32,
+    #[bits(13, uint)]
+    pub uint_13: u32,
+    #[bits(32, uint)]
+    pub uint_32: u32,
+    #[bits(24, uint)]
+    pub uint_4x6: UVec4,
+    #[bits(1, bool)]
+    pub flag: bool,
+    #[bits(16, half)]
+    pub half: f32,
+    #[bits(32, half)]
+    pub halves: Vec2,
+    #[bits(32, rgb9e5)]
+    pub shared_exponent: Vec3,
+    #[bits(2, octahedral)]
+    pub octahedral_2: Vec3,
+    #[bits(16, octahedral)]
+    pub octahedral_16: Vec3,
+    #[bits(24, octahedral)]
+    pub octahedral_24: Vec3,
+    #[bits(32, octahedral)]
+    pub octahedral_32: Vec3,
+    #[bits(32, rgbm(6))]
+    pub rgbm_6: Vec3,
+    #[bits(32, rgbm(51.5))]
+    pub rgbm_51_5: Vec3,
+    #[pls(rgba8)]
+    pub whole_word: Vec4,
+    #[bits(3, unorm)]
+    pub after_a_whole_word: f32,
+}

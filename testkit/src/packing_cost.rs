@@ -5,12 +5,12 @@
 //! and the conditional branches. The engines' idiom for each format ([`builtin_form`]) is
 //! measured in the same harness, so the three columns compare like with like.
 
-use gbuffer::packing::{Field, FieldType, Format, Layout, ScalarKind};
+use gbuffer::packing::{Field, FieldType, Format, Layout, ScalarKind, Storage};
 use gbuffer_codegen::emit::wgsl::Conversions;
 
 use crate::gpu::Gpu;
 use crate::harness::{compute_harness, expected_words, run_in_batches, scalars_per_texel};
-use crate::texels::slots;
+use crate::texels::component_codes;
 use crate::tools::run;
 use crate::values::{float_edges, Values};
 
@@ -53,7 +53,7 @@ pub fn one_field(format: Format) -> Layout {
         budget: 32,
         fields: vec![Field {
             name: "value".into(),
-            format,
+            storage: Storage::Word(format),
             ty: FieldType::new(scalar, components),
             conversions: None,
         }],
@@ -226,7 +226,6 @@ pub fn deviation(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u6
             },
         }
     };
-    let slot_count = slots(layout).len();
     let mut deviation = Deviation {
         largest_code_error_by_field: vec![0; layout.fields.len()],
         ..Deviation::default()
@@ -240,19 +239,20 @@ pub fn deviation(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u6
         |inputs, packed, _| {
             for (texel, got) in packed.chunks_exact(words).enumerate() {
                 let expected = expected_words(layout, &inputs[texel * scalars..][..scalars]);
-                for (word, field) in layout.fields.iter().enumerate() {
-                    for channel in &field.format.channels()[..field.ty.components] {
-                        let code = |bits: u32| (bits >> channel.offset) & channel.mask();
+                for (field, (word, member)) in layout.field_locations().into_iter().enumerate() {
+                    let want = component_codes(layout, field, member, expected[word]);
+                    let have = component_codes(layout, field, member, got[word]);
+                    for (want, have) in want.iter().zip(&have) {
                         // Codes of one sign are ordered like their values (a sign bit is the
                         // top bit, so a sign flip shows as a large difference).
-                        let error = code(expected[word]).abs_diff(code(got[word]));
-                        let by_field = &mut deviation.largest_code_error_by_field[word];
+                        let error = want.abs_diff(*have);
+                        let by_field = &mut deviation.largest_code_error_by_field[field];
                         *by_field = (*by_field).max(error);
                         deviation.differing += usize::from(error != 0);
+                        deviation.channels += 1;
                     }
                 }
             }
-            deviation.channels += packed.len() / words * slot_count;
         },
     );
     deviation

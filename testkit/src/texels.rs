@@ -2,36 +2,140 @@
 //! values, and the comparison of what a driver produced with the Rust mirror. The wgpu,
 //! GLES and Vulkan tests share them, so every path is held to the same contract.
 
-use gbuffer::packing::{ChannelEncoding, Format, Layout, ScalarKind};
+use gbuffer::packing::{ChannelEncoding, Encoding, Format, Layout, Member, ScalarKind, Storage};
 
 use crate::harness::{expected_scalars, expected_words, scalars_per_texel};
 use crate::values::{float_edges, sint_edges, uint_edges, Values};
 
-/// One scalar slot of a texel: `field.channel`, its scalar kind and its channel's encoding.
+/// How far a decoded scalar may be from the mirror's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tolerance {
+    /// Bit for bit.
+    Exact,
+    /// Within this many ulp: shaders multiply by a correctly rounded reciprocal where the
+    /// mirror divides (unorm, snorm), and chain such products (RGBM).
+    Ulps(u32),
+    /// Within this distance: `normalize` in a shader against the mirror's square root and
+    /// divisions (octahedral normals).
+    Absolute(f32),
+}
+
+impl Tolerance {
+    /// Whether `have` (bits) is close enough to `want` (bits).
+    pub fn accepts(self, want: u32, have: u32) -> bool {
+        match self {
+            Tolerance::Exact => want == have,
+            Tolerance::Ulps(ulps) => want.abs_diff(have) <= ulps,
+            Tolerance::Absolute(distance) => {
+                (f32::from_bits(want) - f32::from_bits(have)).abs() <= distance
+            }
+        }
+    }
+}
+
+/// One scalar slot of a texel: `field.channel` (or `field.x` for a bit field), its scalar
+/// kind and how close a decode must come to the mirror's.
 pub struct Slot {
     /// `field.channel`.
     pub name: String,
-    /// Float, unsigned or signed.
+    /// Float, unsigned, signed or bool.
     pub kind: ScalarKind,
-    /// How the channel's bits encode it.
-    pub encoding: ChannelEncoding,
+    /// How close a shader's decode must be.
+    pub tolerance: Tolerance,
+    /// Whether it is a small float (half or unsigned float) channel, whose NaN codes a driver
+    /// may decode to any NaN.
+    pub small_float: bool,
 }
 
 /// The slots of a texel, field by field, component by component.
 pub fn slots(layout: &Layout) -> Vec<Slot> {
-    layout
-        .fields
-        .iter()
-        .flat_map(|field| {
-            field.format.channels()[..field.ty.components]
-                .iter()
-                .map(move |channel| Slot {
-                    name: format!("{}.{}", field.name, channel.name),
+    let mut slots = Vec::new();
+    for field in &layout.fields {
+        match field.storage {
+            Storage::Word(format) => {
+                slots.extend(
+                    format.channels()[..field.ty.components]
+                        .iter()
+                        .map(|channel| Slot {
+                            name: format!("{}.{}", field.name, channel.name),
+                            kind: field.ty.scalar,
+                            tolerance: match channel.encoding {
+                                ChannelEncoding::Unorm => Tolerance::Ulps(2),
+                                _ => Tolerance::Exact,
+                            },
+                            small_float: matches!(
+                                channel.encoding,
+                                ChannelEncoding::Half | ChannelEncoding::UnsignedFloat { .. }
+                            ),
+                        }),
+                );
+            }
+            Storage::Bits(bit_field) => {
+                let tolerance = match bit_field.encoding {
+                    Encoding::Unorm | Encoding::Snorm => Tolerance::Ulps(2),
+                    Encoding::Rgbm(_) => Tolerance::Ulps(4),
+                    Encoding::Octahedral => Tolerance::Absolute(1e-6),
+                    _ => Tolerance::Exact,
+                };
+                slots.extend((0..field.ty.components).map(|component| Slot {
+                    name: format!("{}.{}", field.name, &"xyzw"[component..=component]),
                     kind: field.ty.scalar,
-                    encoding: channel.encoding,
-                })
-        })
-        .collect()
+                    tolerance,
+                    small_float: false,
+                }));
+            }
+        }
+    }
+    slots
+}
+
+/// The codes of a field's components in its word (channels of a whole word, per-component
+/// codes of a bit field, the two coordinates of an octahedral one, the four bytes of an RGBM
+/// one, the whole code of rgb9e5 or a bool): what fast conversions may change by one.
+pub fn component_codes(layout: &Layout, field: usize, member: Member, word: u32) -> Vec<u32> {
+    let field = &layout.fields[field];
+    match field.storage {
+        Storage::Word(format) => format.channels()[..field.ty.components]
+            .iter()
+            .map(|channel| (word >> channel.offset) & channel.mask())
+            .collect(),
+        Storage::Bits(bit_field) => {
+            let (count, each) = match bit_field.encoding {
+                Encoding::Octahedral => (2, bit_field.bits / 2),
+                Encoding::Rgbm(_) => (4, 8),
+                Encoding::Rgb9e5 | Encoding::Bool => (1, bit_field.bits),
+                _ => (
+                    field.ty.components,
+                    bit_field.component_bits(field.ty.components),
+                ),
+            };
+            let code = (word >> member.offset) & mask(member.bits);
+            (0..count)
+                .map(|index| (code >> (each * index as u32)) & mask(each))
+                .collect()
+        }
+    }
+}
+
+/// The low `bits` bits set.
+fn mask(bits: u32) -> u32 {
+    u32::MAX >> (32 - bits)
+}
+
+/// What word `word` holds, for messages: `normal (rgb10_a2)` or `reflectance, metallic
+/// (bit fields)`.
+pub fn describe_word(layout: &Layout, word: usize) -> String {
+    let contents = &layout.word_contents()[word];
+    let names: Vec<&str> = contents
+        .members
+        .iter()
+        .map(|member| layout.fields[member.field].name.as_str())
+        .collect();
+    if contents.is_bit_fields {
+        format!("{} (bit fields)", names.join(", "))
+    } else {
+        format!("{} ({})", names[0], contents.format)
+    }
 }
 
 /// Inputs (scalar bits) for `count` texels starting at texel `first`: the first texels walk
@@ -49,6 +153,7 @@ pub fn inputs(layout: &Layout, first: usize, count: usize, values: &mut Values) 
                     ScalarKind::Float => floats[pick % floats.len()].to_bits(),
                     ScalarKind::Uint => uints[pick % uints.len()],
                     ScalarKind::Sint => sints[pick % sints.len()] as u32,
+                    ScalarKind::Bool => (pick & 1) as u32,
                 }
             } else {
                 values.bits(slot.kind)
@@ -66,20 +171,10 @@ pub fn describe(input: &[u32], slots: &[Slot]) -> Vec<String> {
         .zip(slots)
         .map(|(&bits, slot)| match slot.kind {
             ScalarKind::Float => format!("{}={:e}", slot.name, f32::from_bits(bits)),
-            ScalarKind::Uint => format!("{}={bits}", slot.name),
+            ScalarKind::Uint | ScalarKind::Bool => format!("{}={bits}", slot.name),
             ScalarKind::Sint => format!("{}={}", slot.name, bits as i32),
         })
         .collect()
-}
-
-/// How far a decoded scalar may be from the mirror's: unorm channels 2 ulp (shaders multiply
-/// by a correctly rounded reciprocal where the mirror divides), everything else not at all.
-pub fn decode_tolerance(encoding: ChannelEncoding) -> u32 {
-    if encoding == ChannelEncoding::Unorm {
-        2
-    } else {
-        0
-    }
 }
 
 /// Compares what a driver produced for `inputs` with the Rust mirror: `words` (packed words
@@ -104,13 +199,11 @@ pub fn compare(
         for (index, (want, have)) in expected.iter().zip(words).enumerate() {
             if want != have && failures.len() < limit {
                 let (texel, word) = (index / word_count, index % word_count);
-                let field = &layout.fields[word];
                 let input = &inputs[texel * slots.len()..][..slots.len()];
                 failures.push(format!(
-                    "{what}: {}: word {word} ({}, {}): mirror {want:#010x}, driver {have:#010x}; inputs {:?}",
+                    "{what}: {}: word {word} ({}): mirror {want:#010x}, driver {have:#010x}; inputs {:?}",
                     layout.name,
-                    field.name,
-                    field.format,
+                    describe_word(layout, word),
                     describe(input, &slots)
                 ));
             }
@@ -139,15 +232,11 @@ pub fn compare_decoded(
         let want = expected_scalars(layout, texel_words);
         let got = &decoded[texel * scalars..][..scalars];
         for (slot, (want, have)) in slots.iter().zip(want.iter().zip(got)) {
-            let small_float = matches!(
-                slot.encoding,
-                ChannelEncoding::Half | ChannelEncoding::UnsignedFloat { .. }
-            );
             let both_nan = f32::from_bits(*want).is_nan() && f32::from_bits(*have).is_nan();
-            if small_float && both_nan {
+            if slot.small_float && both_nan {
                 continue;
             }
-            if want.abs_diff(*have) > decode_tolerance(slot.encoding) && failures.len() < limit {
+            if !slot.tolerance.accepts(*want, *have) && failures.len() < limit {
                 failures.push(format!(
                     "{what}: {}: decoded {}: mirror {want:#010x} ({:e}), driver {have:#010x} ({:e})",
                     layout.name,
@@ -187,20 +276,30 @@ pub fn check_native_words(
     failures: &mut Vec<String>,
 ) {
     let scalars = scalars_per_texel(layout);
-    let words = layout.words();
+    let words = layout.word_contents();
     for (texel, input) in inputs.chunks_exact(scalars).enumerate() {
         let expected = expected_words(layout, input);
-        let mut values = input.iter();
-        for (word, field) in layout.fields.iter().enumerate() {
-            let got = stored[texel * words + word];
+        let lanes = crate::harness::lanes_of_scalars(layout, input);
+        for (word, contents) in words.iter().enumerate() {
+            let got = stored[texel * words.len() + word];
+            if contents.is_bit_fields {
+                // Shader code packs bit fields: the word is the mirror's, bit for bit.
+                if got != expected[word] && failures.len() < 24 {
+                    failures.push(format!(
+                        "{what}: {}: word {word} ({}): driver {got:#010x}, mirror {:#010x}",
+                        layout.name,
+                        describe_word(layout, word),
+                        expected[word]
+                    ));
+                }
+                continue;
+            }
+            let field = &layout.fields[contents.members[0].field];
+            let values = lanes[contents.members[0].field];
             let float = field.ty.scalar == ScalarKind::Float;
-            for (index, channel) in field.format.channels().iter().enumerate() {
+            for (index, channel) in contents.format.channels().iter().enumerate() {
                 // Channels past the field's components are padding: zero on both sides.
-                let value = if index < field.ty.components {
-                    values.next().map(|&bits| f32::from_bits(bits))
-                } else {
-                    None
-                };
+                let value = (index < field.ty.components).then(|| f32::from_bits(values[index]));
                 let defined =
                     !float || value.is_none_or(|value| defined_input(value, channel.encoding));
                 let code = |bits: u32| (bits >> channel.offset) & channel.mask();
@@ -269,4 +368,48 @@ fn small_float_bits(value: f32, mantissa_bits: u32, signed: bool) -> u32 {
             .unwrap_or(0),
     };
     sign | magnitude
+}
+
+/// What `store(load())` did to the words of `stored` (words per texel, as the layout packs
+/// them): `(unexpected, twins)`. A word must come back unchanged, but for one that holds an
+/// octahedral or RGBM bit field, which may come back as the mirror's re-encoding of its
+/// decoding: those encodings name some values by two codes (the octahedral map's folded
+/// border, where a code and its mirror image are one vector; an RGBM multiplier and a channel
+/// that trade a step), and re-encoding picks one of them. Those are counted in `twins`.
+pub fn restore_changes(layout: &Layout, stored: &[u32], reloaded: &[u32]) -> (usize, usize) {
+    let words = layout.word_contents();
+    let has_twin_codes: Vec<bool> = words
+        .iter()
+        .map(|word| {
+            word.members.iter().any(|member| {
+                matches!(
+                    layout.fields[member.field]
+                        .bit_field()
+                        .map(|field| field.encoding),
+                    Some(Encoding::Octahedral | Encoding::Rgbm(_))
+                )
+            })
+        })
+        .collect();
+    let (mut unexpected, mut twins) = (0, 0);
+    for (before, after) in stored
+        .chunks_exact(words.len())
+        .zip(reloaded.chunks_exact(words.len()))
+    {
+        if before == after {
+            continue;
+        }
+        let canonical = layout.encode_lanes(&layout.decode_lanes(before));
+        for (index, (&was, &is)) in before.iter().zip(after).enumerate() {
+            if was == is {
+                continue;
+            }
+            if has_twin_codes[index] && is == canonical[index] {
+                twins += 1;
+            } else {
+                unexpected += 1;
+            }
+        }
+    }
+    (unexpected, twins)
 }

@@ -60,6 +60,7 @@ pub fn texel_from_scalars(
                         ScalarKind::Float => format!("uintBitsToFloat({bits})"),
                         ScalarKind::Uint => bits,
                         ScalarKind::Sint => format!("int({bits})"),
+                        ScalarKind::Bool => format!("({bits} != 0u)"),
                     }
                 })
                 .collect();
@@ -70,6 +71,7 @@ pub fn texel_from_scalars(
                         ScalarKind::Float => "",
                         ScalarKind::Uint => "u",
                         ScalarKind::Sint => "i",
+                        ScalarKind::Bool => "b",
                     };
                     format!("{prefix}vec{n}({})", components.join(", "))
                 }
@@ -92,7 +94,7 @@ pub fn scalars_of_texel(layout: &Layout, names: &GlslNames, texel: &str) -> Vec<
             scalars.push(match field.ty.scalar {
                 ScalarKind::Float => format!("floatBitsToUint({value})"),
                 ScalarKind::Uint => value,
-                ScalarKind::Sint => format!("uint({value})"),
+                ScalarKind::Sint | ScalarKind::Bool => format!("uint({value})"),
             });
         }
     }

@@ -149,6 +149,11 @@ impl Values {
             ScalarKind::Float => self.float().to_bits(),
             ScalarKind::Uint => self.uint(),
             ScalarKind::Sint => self.sint() as u32,
+            // A shader's `bool` from bits is `bits != 0`: mostly 0 and 1, sometimes others.
+            ScalarKind::Bool => match self.rng.random_range(0..4) {
+                0 => self.rng.random(),
+                pick => pick & 1,
+            },
         }
     }
 }

@@ -86,20 +86,20 @@ fn output_switches_choose_what_is_written() {
 }
 
 /// Each bad layout file and the start of the error it must give, after `file:line:col: error: `.
-const BAD_LAYOUTS: [(&str, &str, &str); 22] = [
+const BAD_LAYOUTS: [(&str, &str, &str); 28] = [
     ("unclosed_string", "1:15", "invalid basic string"),
     ("unknown_key", "2:1", "unknown key `budjet`, expected one of `name`, `budget`, `conversions`, `fields`"),
     ("unknown_field_key", "5:1", "unknown key `formt`"),
     ("missing_name", "1:1", "missing key `name`"),
-    ("missing_format", "3:1", "missing key `format`"),
+    ("missing_format", "4:8", "field `depth` needs `format` (a whole word, e.g. \"rgba8\") or `bits` and `encoding` (a bit field)"),
     ("unknown_format", "5:10", "unknown pixel local storage format `rgba16f`; did you mean `rg16f`?"),
     ("type_and_components", "7:14", "give the field either `type` or `components`, not both"),
     ("neither_type_nor_components", "4:8", "field `colour` needs `type` (e.g. \"Vec3\") or `components` (1 to 4)"),
     ("too_many_components", "6:14", "`rgba8` has 4 channels: components must be 1 to 4, not 5"),
     ("vec4_in_r32f", "6:8", "`Vec4` has 4 components but `r32f` has 1 channel: use `f32`"),
     ("i32_in_rgba8", "6:8", "`i32` cannot be stored in `rgba8`, which holds floats"),
-    ("budget_not_multiple_of_32", "2:10", "budget must be a positive multiple of 32 bits (each field is one 32-bit word), not 100"),
-    ("budget_zero", "2:10", "budget must be a positive multiple of 32 bits (each field is one 32-bit word), not 0"),
+    ("budget_not_multiple_of_32", "2:10", "budget must be a positive multiple of 32 bits (the fields fill 32-bit words), not 100"),
+    ("budget_zero", "2:10", "budget must be a positive multiple of 32 bits (the fields fill 32-bit words), not 0"),
     ("budget_negative", "2:10", "invalid value: integer `-32`, expected u32"),
     ("over_budget", "3:10", "layout `SpecularWorkflow` needs 160 bits but the budget is 128: light 32 + depth 32 + normal 32 + albedo 32 + specular 32 = 160 > 128"),
     ("duplicate_field", "9:8", "field `depth` is declared twice"),
@@ -109,6 +109,12 @@ const BAD_LAYOUTS: [(&str, &str, &str); 22] = [
     ("unknown_type", "6:8", "unknown field type `Vec5`"),
     ("name_not_a_string", "1:8", "invalid type: integer `5`, expected a string"),
     ("unknown_conversions", "2:15", "unknown conversions `approximate`: expected \"exact\""),
+    ("octahedral_on_a_scalar", "5:8", "field `normal`: `octahedral` stores a unit `Vec3`, not `f32`"),
+    ("bits_and_format", "5:10", "field `normal` has both `format` (a whole word) and `bits`/`encoding` (a bit field): keep one"),
+    ("rgb9e5_in_16_bits", "5:8", "field `emissive`: `rgb9e5` stores a `Vec3` in exactly 32 bits, not `Vec3` in 16"),
+    ("bits_33", "5:8", "field `depth`: a bit field has 1 to 32 bits (it lives in one 32-bit word), not 33"),
+    ("sint_on_unsigned", "5:8", "field `flags`: `sint` holds signed integers (`i32` or an `IVec`), not `u32`"),
+    ("rgbm_without_range", "6:12", "field `light`: `rgbm` needs the largest value it stores"),
 ];
 
 #[test]

@@ -39,14 +39,15 @@ fn layout_files() -> Vec<(PathBuf, Layout)> {
 }
 
 #[test]
-fn layout_files_describe_the_derived_seed_layouts_and_give_the_same_wgsl() {
-    let derived = gbuffer::seed_layouts::all();
+fn layout_files_describe_the_derived_seed_and_engine_layouts_and_give_the_same_wgsl() {
+    let mut derived = gbuffer::seed_layouts::all();
+    derived.extend(gbuffer::engine_layouts::all());
     assert_eq!(layout_files().len(), derived.len());
     for (path, layout) in layout_files() {
         let (seed, wgsl) = derived
             .iter()
             .find(|(seed, _)| seed.name == layout.name)
-            .unwrap_or_else(|| panic!("{} is no seed", path.display()));
+            .unwrap_or_else(|| panic!("{} is no seed or engine layout", path.display()));
         assert_eq!(&layout, seed);
         let files = generate(&layout, Conversions::Exact, &[Output::Wgsl]).unwrap();
         assert_eq!(
@@ -237,6 +238,30 @@ fn check_pls_block(
     Ok(members)
 }
 
+/// `    name(0.0, vec3(0.0), ...);`: a call of the GLSL function defined on `line` with zero
+/// arguments of its parameters' types.
+fn call_with_zeros(name: &str, line: &str) -> String {
+    let parameters = line
+        .split_once('(')
+        .and_then(|(_, rest)| rest.rsplit_once(')'))
+        .map_or("", |(parameters, _)| parameters);
+    let arguments: Vec<String> = parameters
+        .split(',')
+        .filter(|parameter| !parameter.trim().is_empty())
+        .map(|parameter| {
+            let ty = parameter.split_whitespace().rev().nth(1).unwrap_or("float");
+            match ty {
+                "bool" => "false".to_string(),
+                "uint" => "0u".to_string(),
+                "int" => "0".to_string(),
+                "float" => "0.0".to_string(),
+                vector => format!("{vector}(0)"),
+            }
+        })
+        .collect();
+    format!("    {name}({});\n", arguments.join(", "))
+}
+
 /// Checks every pixel local storage block of a layout against the extension's rules, and
 /// compiles a shader that uses its members as plain globals (no driver here has the
 /// extension, and glslang does not know it).
@@ -246,15 +271,15 @@ fn check_pls_blocks(layout: &Layout) -> Result<(), String> {
         let (text, _) = glsl::include(layout, Include::PixelLocalStorage(block), 0).unwrap();
         let members = check_pls_block(&text, block, layout.budget)
             .map_err(|error| format!("{} {block:?}: {error}\n{text}", layout.name))?;
-        assert_eq!(members.len(), layout.fields.len());
-        for (((_, ty, name), field), glsl_name) in
-            members.iter().zip(&layout.fields).zip(&names.fields)
-        {
+        let words = layout.word_contents();
+        assert_eq!(members.len(), words.len());
+        for ((_, ty, name), word) in members.iter().zip(&words) {
             assert_eq!(
-                name, glsl_name,
-                "a member is named as the field is in the functions"
+                *name,
+                glsl::word_name(word, &names),
+                "a member is named as its field is in the functions (bit words, as their fields)"
             );
-            assert_eq!(Some(ty.as_str()), extension_type(field.format.name()));
+            assert_eq!(Some(ty.as_str()), extension_type(word.format.name()));
         }
         let globals: String = members
             .iter()
@@ -264,7 +289,25 @@ fn check_pls_blocks(layout: &Layout) -> Result<(), String> {
             .iter()
             .map(|(_, _, name)| format!("    {name} = {name};\n"))
             .collect();
-        let shader = format!("#version 310 es\n{globals}void main() {{\n{uses}}}\n");
+        // A layout with bit fields adds functions after the block: compiled with the members
+        // as globals too, and every accessor called.
+        let after_block = text.split_once("\n};\n").map_or("", |(_, rest)| rest);
+        let calls: String = after_block
+            .lines()
+            .filter_map(|line| {
+                let name = line.split('(').next()?.rsplit(' ').next()?;
+                let accessor = name.starts_with("load_pls_") || name.starts_with("store_pls_");
+                (accessor && line.ends_with(") {")).then(|| call_with_zeros(name, line))
+            })
+            .collect();
+        assert_eq!(
+            calls.is_empty(),
+            !layout.has_bit_fields(),
+            "a layout with bit fields has PLS accessors: {}",
+            layout.name
+        );
+        let shader =
+            format!("#version 310 es\n{globals}{after_block}\nvoid main() {{\n{uses}{calls}}}\n");
         glslang(&shader, "frag", false).map_err(|error| format!("{}: {error}", layout.name))?;
     }
     Ok(())

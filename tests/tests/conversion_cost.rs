@@ -30,7 +30,7 @@ fn exact_conversions_never_branch_and_cost_at_most_three_times_the_fast_ones() {
         let exact = measured(layout, Conversions::Exact);
         let fast = measured(layout, Conversions::Fast);
         let builtin = match layout.fields.as_slice() {
-            [field] => builtin_form(field.format).map(|wgsl| {
+            [field] => field.format().and_then(builtin_form).map(|wgsl| {
                 cost(&harness(&wgsl, 1)).unwrap_or_else(|error| panic!("{name}: {error}"))
             }),
             _ => None,

@@ -2,7 +2,7 @@
 //! bits, and the derived `pack`/`unpack` are the model's conversions exactly.
 
 use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
-use gbuffer::packing::{Layout, ScalarKind};
+use gbuffer::packing::{Layout, ScalarKind, Storage};
 use gbuffer::{seed_layouts, GBufferLayout};
 use gbuffer_testkit::harness::{expected_scalars, expected_words, scalars_per_texel};
 use gbuffer_testkit::values::Values;
@@ -73,8 +73,17 @@ fn a_poisoned_channel_changes_no_other_bits() {
             let texel = random_texel(layout, &mut values);
             let baseline = expected_words(layout, &texel);
             let mut slot = 0;
-            for (field_index, field) in layout.fields.iter().enumerate() {
-                for channel in &field.format.channels()[..field.ty.components] {
+            for (field, (field_word, member)) in layout.fields.iter().zip(layout.field_locations())
+            {
+                for component in 0..field.ty.components {
+                    // The bits this component may change: its channel, or its bit field.
+                    let allowed_in_word = match field.storage {
+                        Storage::Word(format) => {
+                            let channel = format.channels()[component];
+                            channel.mask() << channel.offset
+                        }
+                        Storage::Bits(_) => (u32::MAX >> (32 - member.bits)) << member.offset,
+                    };
                     if field.ty.scalar == ScalarKind::Float {
                         for poison in POISONS {
                             let mut poisoned = texel.clone();
@@ -83,18 +92,17 @@ fn a_poisoned_channel_changes_no_other_bits() {
                             for (word, (&before, &after)) in baseline.iter().zip(&words).enumerate()
                             {
                                 let changed = before ^ after;
-                                let allowed = if word == field_index {
-                                    channel.mask() << channel.offset
+                                let allowed = if word == field_word {
+                                    allowed_in_word
                                 } else {
                                     0
                                 };
                                 assert_eq!(
                                     changed & !allowed,
                                     0,
-                                    "{}: {poison} in {}.{} changed word {word}",
+                                    "{}: {poison} in {} component {component} changed word {word}",
                                     layout.name,
                                     field.name,
-                                    channel.name
                                 );
                             }
                         }

@@ -23,7 +23,10 @@ fn generated_wgsl_matches_the_rust_mirror_bit_for_bit_on_the_adapter() {
         1 << 20,
         1,
     ));
-    for (index, (layout, wgsl)) in seed_layouts::all().into_iter().enumerate() {
+    let seeds_and_engines = seed_layouts::all()
+        .into_iter()
+        .chain(gbuffer::engine_layouts::all());
+    for (index, (layout, wgsl)) in seeds_and_engines.enumerate() {
         failures.extend(check_layout(
             &gpu,
             &layout,

@@ -137,7 +137,11 @@ fn report_cost_matches_wgpu_validation() {
     let gpu = Gpu::with_limits_and_features(limits, wgpu::Features::RG11B10UFLOAT_RENDERABLE);
     let features = gpu.device.features();
     for (layout, _) in gbuffer::seed_layouts::all() {
-        let formats: Vec<Format> = layout.fields.iter().map(|field| field.format).collect();
+        let formats: Vec<Format> = layout
+            .fields
+            .iter()
+            .filter_map(|field| field.format())
+            .collect();
         let report = Report::new(&layout);
         // The formats' features, by the name the report prints.
         let renderable = formats

@@ -11,6 +11,7 @@ use proptest::prelude::*;
 
 fn fixtures() -> Vec<(Layout, &'static str)> {
     let mut fixtures = seed_layouts::all();
+    fixtures.extend(gbuffer::engine_layouts::all());
     fixtures.push((AllFormats::layout(), AllFormats::WGSL));
     fixtures
 }

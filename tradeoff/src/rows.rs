@@ -280,7 +280,7 @@ fn single_format_layout(name: &str, fields: &[(&str, Format, usize)]) -> Layout 
             .iter()
             .map(|&(field, format, components)| Field {
                 name: field.to_string(),
-                format,
+                storage: gbuffer_codegen::Storage::Word(format),
                 ty: FieldType::new(ScalarKind::Float, components),
                 conversions: None,
             })

@@ -10,8 +10,9 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
+use crate::encoding::{BitField, Encoding};
 use crate::format::ScalarKind;
-use crate::layout::{FieldType, Layout};
+use crate::layout::{Field, FieldType, Layout, Storage};
 
 /// The path of the `gbuffer` crate when the user names no other: `::gbuffer`.
 pub fn default_crate_path() -> TokenStream {
@@ -40,8 +41,41 @@ fn scalar_path(scalar: ScalarKind) -> TokenStream {
 fn scalar_zero(scalar: ScalarKind) -> TokenStream {
     match scalar {
         ScalarKind::Float => quote!(0.0),
-        ScalarKind::Uint | ScalarKind::Sint => quote!(0),
+        ScalarKind::Uint | ScalarKind::Sint | ScalarKind::Bool => quote!(0),
     }
+}
+
+/// `self.<field>`'s components, each as an expression of the field's scalar type; zeros past
+/// its components, up to four.
+fn components(field: &Field) -> Vec<TokenStream> {
+    let field_name = Ident::new(&field.name, Span::call_site());
+    let zero = scalar_zero(field.ty.scalar);
+    (0..4)
+        .map(|index| match (field.ty.components, index) {
+            (1, 0) => quote!(self.#field_name),
+            (components, index) if index < components => {
+                let axis = format_ident!("{}", &"xyzw"[index..=index]);
+                quote!(self.#field_name.#axis)
+            }
+            _ => zero.clone(),
+        })
+        .collect()
+}
+
+/// `<packing>::BitField { bits: 4, encoding: <packing>::Encoding::Unorm }`.
+fn bit_field_tokens(bit_field: BitField, packing: &TokenStream) -> TokenStream {
+    let bits = Literal::u32_unsuffixed(bit_field.bits);
+    let encoding = match bit_field.encoding {
+        Encoding::Rgbm(range) => {
+            let range = Literal::f32_suffixed(range.get());
+            quote!(#packing::Encoding::Rgbm(#packing::RgbmRange::from_checked(#range)))
+        }
+        other => {
+            let other = variant(other);
+            quote!(#packing::Encoding::#other)
+        }
+    };
+    quote!(#packing::BitField { bits: #bits, encoding: #encoding })
 }
 
 /// `impl <krate>::GBufferLayout for <Name> { ... }`. The layout must have passed
@@ -56,45 +90,98 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
     let budget = Literal::u32_unsuffixed(layout.budget);
     let packing = quote!(#krate::packing);
 
-    let encoded_words = layout.fields.iter().map(|field| {
-        let field_name = Ident::new(&field.name, Span::call_site());
-        let format = variant(field.format);
-        let zero = scalar_zero(field.ty.scalar);
-        let values: Vec<TokenStream> = (0..4)
-            .map(|index| match (field.ty.components, index) {
-                (1, 0) => quote!(self.#field_name),
-                (components, index) if index < components => {
-                    let axis = format_ident!("{}", &"xyzw"[index..=index]);
-                    quote!(self.#field_name.#axis)
+    let encoded_words = layout.word_contents().into_iter().map(|word| {
+        let codes = word.members.iter().map(|member| {
+            let field = &layout.fields[member.field];
+            let values = components(field);
+            match field.storage {
+                Storage::Word(format) => {
+                    let format = variant(format);
+                    quote!(#packing::Format::#format.encode([#(#values),*]))
                 }
-                _ => zero.clone(),
-            })
-            .collect();
-        quote!(#packing::Format::#format.encode([#(#values),*]))
+                Storage::Bits(bit_field) => {
+                    // The values' lanes as bits; past the field's components, zeros.
+                    let lanes = values.iter().enumerate().map(|(index, value)| {
+                        if index >= field.ty.components {
+                            return quote!(0);
+                        }
+                        match field.ty.scalar {
+                            ScalarKind::Float => quote!(#value.to_bits()),
+                            ScalarKind::Uint => quote!(#value),
+                            ScalarKind::Sint => quote!((#value as ::core::primitive::u32)),
+                            ScalarKind::Bool => quote!(::core::primitive::u32::from(#value)),
+                        }
+                    });
+                    let bit_field = bit_field_tokens(bit_field, &packing);
+                    let components = Literal::usize_unsuffixed(field.ty.components);
+                    let offset = Literal::u32_unsuffixed(member.offset);
+                    quote!((#bit_field.encode([#(#lanes),*], #components) << #offset))
+                }
+            }
+        });
+        quote!(#(#codes)|*)
     });
 
     // A parameter is a pattern: a user's unit struct or const of the same name would capture
     // it. The reserved-looking name keeps clear of user items, as serde's `__deserializer`.
     let words_parameter = Ident::new("__gbuffer_words", Span::call_site());
-    let decoded_fields = layout.fields.iter().enumerate().map(|(word, field)| {
+    let locations = layout.field_locations();
+    let decoded_fields = layout.fields.iter().zip(&locations).map(|(field, &(word, member))| {
         let field_name = Ident::new(&field.name, Span::call_site());
-        let format = variant(field.format);
-        let scalar = scalar_path(field.ty.scalar);
         let ty = type_path(field.ty, krate);
         let word = Literal::usize_unsuffixed(word);
-        let channels = quote!(#packing::Format::#format.decode::<#scalar>(#words_parameter[#word]));
-        let value = if field.ty.components == 1 {
-            quote!(#channels[0])
-        } else {
-            let components = Literal::usize_unsuffixed(field.ty.components);
-            quote!(#ty::from_slice(&#channels[..#components]))
+        let value = match field.storage {
+            Storage::Word(format) => {
+                let format = variant(format);
+                let scalar = scalar_path(field.ty.scalar);
+                let channels =
+                    quote!(#packing::Format::#format.decode::<#scalar>(#words_parameter[#word]));
+                if field.ty.components == 1 {
+                    quote!(#channels[0])
+                } else {
+                    let components = Literal::usize_unsuffixed(field.ty.components);
+                    quote!(#ty::from_slice(&#channels[..#components]))
+                }
+            }
+            Storage::Bits(bit_field) => {
+                let bit_field = bit_field_tokens(bit_field, &packing);
+                let offset = Literal::u32_unsuffixed(member.offset);
+                let mask = Literal::u32_unsuffixed(crate::convert::max_code(member.bits));
+                let components = Literal::usize_unsuffixed(field.ty.components);
+                let lanes = quote!(#bit_field.decode((#words_parameter[#word] >> #offset) & #mask, #components));
+                let scalar = |index: usize| match field.ty.scalar {
+                    ScalarKind::Float => quote!(::core::primitive::f32::from_bits(__gbuffer_lanes[#index])),
+                    ScalarKind::Uint => quote!(__gbuffer_lanes[#index]),
+                    ScalarKind::Sint => quote!((__gbuffer_lanes[#index] as ::core::primitive::i32)),
+                    ScalarKind::Bool => quote!((__gbuffer_lanes[#index] != 0)),
+                };
+                let value = if field.ty.components == 1 {
+                    scalar(0)
+                } else {
+                    let each = (0..field.ty.components).map(scalar);
+                    quote!(#ty::new(#(#each),*))
+                };
+                quote!({
+                    let __gbuffer_lanes = #lanes;
+                    #value
+                })
+            }
         };
         quote!(#field_name: #value)
     });
 
     let described_fields = layout.fields.iter().map(|field| {
         let field_name = &field.name;
-        let format = variant(field.format);
+        let storage = match field.storage {
+            Storage::Word(format) => {
+                let format = variant(format);
+                quote!(#packing::Storage::Word(#packing::Format::#format))
+            }
+            Storage::Bits(bit_field) => {
+                let bit_field = bit_field_tokens(bit_field, &packing);
+                quote!(#packing::Storage::Bits(#bit_field))
+            }
+        };
         let scalar = variant(field.ty.scalar);
         let components = Literal::usize_unsuffixed(field.ty.components);
         let conversions = match field.conversions {
@@ -104,7 +191,7 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
             }
             None => quote!(::core::option::Option::None),
         };
-        quote!((#field_name, #packing::Format::#format, #packing::FieldType {
+        quote!((#field_name, #storage, #packing::FieldType {
             scalar: #packing::ScalarKind::#scalar,
             components: #components,
         }, #conversions))
@@ -147,7 +234,10 @@ pub fn emit_source(layout: &Layout, wgsl_file: &str) -> String {
     let fields = layout.fields.iter().map(|field| {
         let field_name = Ident::new(&field.name, Span::call_site());
         let ty = type_path(field.ty, &krate);
-        let doc = format!(" `{}`: word of format `{}`.", field.name, field.format);
+        let doc = match field.storage {
+            Storage::Word(format) => format!(" `{}`: a word of format `{format}`.", field.name),
+            Storage::Bits(bit_field) => format!(" `{}`: a {bit_field} bit field.", field.name),
+        };
         quote!(#[doc = #doc] pub #field_name: #ty)
     });
     let header = format!(

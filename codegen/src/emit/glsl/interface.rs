@@ -211,14 +211,13 @@ impl Interface {
                 })
                 .collect(),
             Include::FetchNative | Include::SubpassNative => layout
-                .fields
+                .word_contents()
                 .iter()
-                .zip(&names.fields)
                 .enumerate()
-                .map(|(index, (field, name))| Attachment {
-                    name: format!("{prefix}_{name}_attachment"),
+                .map(|(index, word)| Attachment {
+                    name: format!("{prefix}_{}_attachment", super::word_name(word, names)),
                     index: index as u32,
-                    format: AttachmentFormat::native(field.format),
+                    format: AttachmentFormat::native(word.format),
                 })
                 .collect(),
         };

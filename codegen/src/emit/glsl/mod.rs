@@ -25,9 +25,10 @@ use std::fmt::Write as _;
 pub use interface::{Attachment, AttachmentFormat, Include, Interface};
 pub use translate::{translate, translate_with, with_explicit_precision, GlslNames, Translation};
 
+use crate::convert::max_code;
 use crate::emit::wgsl::Conversions;
 use crate::format::{Format, ScalarKind};
-use crate::layout::Layout;
+use crate::layout::{FieldType, Layout, Member, Word};
 
 /// Which of the three pixel local storage block forms to declare.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -77,7 +78,70 @@ pub fn pls_member_type(format: Format) -> &'static str {
         (ScalarKind::Uint, 1) => "uint",
         (ScalarKind::Uint, 2) => "uvec2",
         (ScalarKind::Uint, _) => "uvec4",
+        (ScalarKind::Bool, _) => "bool",
     }
+}
+
+/// A field type's GLSL declaration type, with `highp` for floats and integers.
+fn declared_type(ty: FieldType) -> String {
+    let base = match ty.scalar {
+        ScalarKind::Float => "vec",
+        ScalarKind::Uint => "uvec",
+        ScalarKind::Sint => "ivec",
+        ScalarKind::Bool => return "bool".to_string(),
+    };
+    match (ty.scalar, ty.components) {
+        (ScalarKind::Float, 1) => "highp float".to_string(),
+        (ScalarKind::Uint, 1) => "highp uint".to_string(),
+        (ScalarKind::Sint, 1) => "highp int".to_string(),
+        (_, components) => format!("highp {base}{components}"),
+    }
+}
+
+/// What a word is called in GLSL (its PLS member, its native attachment): its field's name,
+/// or its bit fields' names joined, ending in `_bits`.
+pub fn word_name(word: &Word, names: &GlslNames) -> String {
+    if !word.is_bit_fields {
+        return names.fields[word.members[0].field].clone();
+    }
+    // naga's names may end in `_` (`field_0_`): trimmed, so that no `__` appears.
+    let fields: Vec<&str> = word
+        .members
+        .iter()
+        .map(|member| names.fields[member.field].trim_end_matches('_'))
+        .collect();
+    format!("{}_bits", fields.join("_"))
+}
+
+/// `(word >> offset) & mask` in GLSL: a bit field's code out of its word.
+fn bit_field_code(word: &str, member: Member) -> String {
+    let shifted = match member.offset {
+        0 => word.to_string(),
+        offset => format!("({word} >> {offset}u)"),
+    };
+    match member.bits {
+        32 => shifted,
+        bits => format!("({shifted} & {:#x}u)", max_code(bits)),
+    }
+}
+
+/// A bit word's value in GLSL: each field's code from `value(field)`, shifted into place and
+/// combined.
+fn bit_word_value(word: &Word, names: &GlslNames, value: impl Fn(usize) -> String) -> String {
+    let codes: Vec<String> = word
+        .members
+        .iter()
+        .map(|member| {
+            let (encode, _) = names.bit_field_functions[member.field]
+                .as_ref()
+                .expect("a bit word's members are bit fields");
+            match member.offset {
+                0 => format!("{encode}({})", value(member.field)),
+                offset => format!("({encode}({}) << {offset}u)", value(member.field)),
+            }
+        })
+        .collect();
+    codes.join(" | ")
 }
 
 /// Why naga could not translate a layout's WGSL (a bug, since the WGSL is generated valid).
@@ -119,7 +183,7 @@ pub fn include_with(
     let interface = Interface::new(layout, include, &translation.names);
     let text = match include {
         Include::PixelLocalStorage(block) => {
-            pixel_local_storage(layout, block, &translation.names, &interface)
+            pixel_local_storage(layout, block, &translation, &interface)
         }
         _ => attachments(layout, &translation, &interface, set),
     };
@@ -190,9 +254,10 @@ fn write_header(out: &mut String, title: &str, interface: &Interface) {
 fn pixel_local_storage(
     layout: &Layout,
     block: PlsBlock,
-    names: &GlslNames,
+    translation: &Translation,
     interface: &Interface,
 ) -> String {
+    let names = &translation.names;
     let mut out = String::new();
     write_header(
         &mut out,
@@ -210,8 +275,31 @@ fn pixel_local_storage(
         block.qualifier(),
         names.layout
     );
-    for (field, name) in layout.fields.iter().zip(&names.fields) {
-        let unused: Vec<String> = field.format.channels()[field.ty.components..]
+    let words = layout.word_contents();
+    for word in &words {
+        let name = word_name(word, names);
+        if word.is_bit_fields {
+            let fields: Vec<String> = word
+                .members
+                .iter()
+                .map(|member| {
+                    format!(
+                        "{} {}-{}",
+                        names.fields[member.field],
+                        member.offset,
+                        member.offset + member.bits - 1
+                    )
+                })
+                .collect();
+            let _ = writeln!(
+                out,
+                "    layout(r32ui) highp uint {name}; // bit fields: {}",
+                fields.join(", ")
+            );
+            continue;
+        }
+        let field = &layout.fields[word.members[0].field];
+        let unused: Vec<String> = word.format.channels()[field.ty.components..]
             .iter()
             .map(|channel| channel.name.to_string())
             .collect();
@@ -223,12 +311,75 @@ fn pixel_local_storage(
         let _ = writeln!(
             out,
             "    layout({}) highp {} {name};{note}",
-            field.format.name(),
-            pls_member_type(field.format),
+            word.format.name(),
+            pls_member_type(word.format),
         );
     }
     out.push_str("};\n");
+    if layout.has_bit_fields() {
+        write_pls_bit_field_accessors(&mut out, layout, block, translation, &words);
+    }
     out
+}
+
+/// For a layout with bit fields, after its pixel local storage block: the translated
+/// functions, `load_pls_<snake>_<field>()` per bit field where the block is readable and
+/// `store_pls_<snake>_<word>(...)` per bit word where it is writable (a word is written
+/// whole).
+fn write_pls_bit_field_accessors(
+    out: &mut String,
+    layout: &Layout,
+    block: PlsBlock,
+    translation: &Translation,
+    words: &[Word],
+) {
+    let prefix = layout.snake_name();
+    let names = &translation.names;
+    let _ = writeln!(
+        out,
+        "\n// The bit fields' conversions, translated by naga from the layout's WGSL.\n"
+    );
+    out.push_str(&translation.text);
+    for word in words.iter().filter(|word| word.is_bit_fields) {
+        let name = word_name(word, names);
+        if block != PlsBlock::Out {
+            for member in &word.members {
+                let field = &layout.fields[member.field];
+                let (_, decode) = names.bit_field_functions[member.field]
+                    .as_ref()
+                    .expect("a bit word's members are bit fields");
+                let _ = writeln!(
+                    out,
+                    "\n// `{}` from bits {}-{} of `{name}`.\n{} load_pls_{prefix}_{}() {{\n    return {decode}({});\n}}",
+                    field.name,
+                    member.offset,
+                    member.offset + member.bits - 1,
+                    declared_type(field.ty),
+                    names.fields[member.field],
+                    bit_field_code(&name, *member)
+                );
+            }
+        }
+        if block != PlsBlock::In {
+            let parameters: Vec<String> = word
+                .members
+                .iter()
+                .map(|member| {
+                    format!(
+                        "{} {}",
+                        declared_type(layout.fields[member.field].ty),
+                        names.fields[member.field]
+                    )
+                })
+                .collect();
+            let value = bit_word_value(word, names, |field| names.fields[field].clone());
+            let _ = writeln!(
+                out,
+                "\n// Writes `{name}` whole: every bit field it holds.\nvoid store_pls_{prefix}_{name}({}) {{\n    {name} = {value};\n}}",
+                parameters.join(", ")
+            );
+        }
+    }
 }
 
 /// A framebuffer-fetch or subpass-input include: the header, one declaration per attachment,
@@ -313,14 +464,22 @@ fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interfa
             reads.join(", ")
         );
     } else {
-        // Native attachments hold the values: take each field's components.
+        // Native attachments hold the values: take each field's components, or decode its
+        // bits from the word's.
         let fields: Vec<String> = layout
             .fields
             .iter()
-            .zip(&reads)
-            .map(|(field, read)| match field.ty.components {
-                4 => read.clone(),
-                n => format!("{read}.{}", &"xyzw"[..n]),
+            .zip(layout.field_locations())
+            .enumerate()
+            .map(|(index, (field, (word, member)))| {
+                let read = &reads[word];
+                if let Some((_, decode)) = &names.bit_field_functions[index] {
+                    return format!("{decode}({})", bit_field_code(&format!("{read}.x"), member));
+                }
+                match field.ty.components {
+                    4 => read.clone(),
+                    n => format!("{read}.{}", &"xyzw"[..n]),
+                }
             })
             .collect();
         let _ = writeln!(
@@ -363,15 +522,23 @@ pub fn store_statements(
         }
         return out;
     }
-    for ((field, name), attachment) in layout
-        .fields
-        .iter()
-        .zip(&names.fields)
-        .zip(&interface.attachments)
-    {
+    for (word, attachment) in layout.word_contents().iter().zip(&interface.attachments) {
+        if word.is_bit_fields {
+            let value = bit_word_value(word, names, |field| {
+                format!("texel.{}", names.fields[field])
+            });
+            let _ = writeln!(
+                out,
+                "    {} = uvec4({value}, 0u, 0u, 0u);",
+                output(attachment)
+            );
+            continue;
+        }
+        let field = &layout.fields[word.members[0].field];
+        let name = &names.fields[word.members[0].field];
         let zero = match field.ty.scalar {
             ScalarKind::Float => ", 0.0",
-            ScalarKind::Uint => ", 0u",
+            ScalarKind::Uint | ScalarKind::Bool => ", 0u",
             ScalarKind::Sint => ", 0",
         };
         let value = match 4 - field.ty.components {

@@ -45,6 +45,9 @@ pub struct GlslNames {
     pub targets: String,
     /// Its `vec4<u32>` members, one per `Rgba32Uint` target.
     pub target_members: Vec<String>,
+    /// Per bit field (in field order; `None` for whole-word fields), its encode and decode
+    /// functions' names.
+    pub bit_field_functions: Vec<Option<(String, String)>>,
 }
 
 /// Translates the layout's exact WGSL to GLSL ES declarations with explicit precision.
@@ -61,7 +64,8 @@ pub fn translate_with(
 ) -> Result<Translation, TranslationError> {
     let glsl = naga_glsl(layout, conversions)?;
     let body = declarations(&glsl);
-    let names = read_names(&body, layout)?;
+    let mut names = read_names(&body, layout)?;
+    names.bit_field_functions = bit_field_functions(&body, layout)?;
     let mut text = with_explicit_precision(&body);
     // rgba8's fast functions: the layout's own where its conversions are fast, and those of
     // fields that choose fast conversions against exact ones.
@@ -159,6 +163,37 @@ fn naga_glsl(layout: &Layout, conversions: Conversions) -> Result<String, Transl
     Ok(text)
 }
 
+/// The GLSL names of the bit fields' functions: their WGSL names, which name no field and hold
+/// no `__`, so naga keeps them (checked: a translation without one is an error).
+fn bit_field_functions(
+    glsl: &str,
+    layout: &Layout,
+) -> Result<Vec<Option<(String, String)>>, TranslationError> {
+    let prefix = layout.snake_name();
+    let defined = |name: String| {
+        if glsl.contains(&format!(" {name}(")) {
+            Ok(name)
+        } else {
+            Err(TranslationError(format!(
+                "naga's GLSL for `{}` has no function `{name}`",
+                layout.name
+            )))
+        }
+    };
+    layout
+        .fields
+        .iter()
+        .enumerate()
+        .map(|(index, field)| {
+            if field.bit_field().is_none() {
+                return Ok(None);
+            }
+            let name = |verb| crate::emit::wgsl::bit_field_function_name(&prefix, verb, index);
+            Ok(Some((defined(name("encode"))?, defined(name("decode"))?)))
+        })
+        .collect()
+}
+
 /// The declarations from the first struct up to the entry point, without the entry point's
 /// output variable, and with runs of blank lines folded into one.
 fn declarations(glsl: &str) -> String {
@@ -213,6 +248,7 @@ fn read_names(glsl: &str, layout: &Layout) -> Result<GlslNames, TranslationError
                 fields,
                 targets,
                 target_members,
+                bit_field_functions: Vec::new(),
             })
         }
         _ => Err(TranslationError(format!(
