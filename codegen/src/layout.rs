@@ -643,6 +643,80 @@ mod tests {
     }
 
     #[test]
+    fn bit_fields_fill_words_from_the_low_bit_and_never_straddle() {
+        use crate::encoding::Encoding;
+        let bits = |name: &str, bits, encoding, ty: &str| Field {
+            name: name.into(),
+            storage: Storage::Bits(BitField { bits, encoding }),
+            ty: FieldType::from_rust_name(ty).unwrap(),
+            conversions: None,
+        };
+        let layout = Layout {
+            name: "Packed".into(),
+            budget: 128,
+            fields: vec![
+                bits("a", 20, Encoding::Unorm, "f32"),
+                bits("b", 12, Encoding::Unorm, "f32"),
+                // Does not fit beside a and b: starts word 1.
+                bits("c", 4, Encoding::Uint, "u32"),
+                field("whole", Format::Rgba8, "Vec4"),
+                // After a whole word, a new word even though word 1 has room.
+                bits("d", 1, Encoding::Bool, "bool"),
+                bits("e", 30, Encoding::Octahedral, "Vec3"),
+                // 31 bits do not fit beside d and e.
+                bits("f", 31, Encoding::Sint, "i32"),
+            ],
+        };
+        let places: Vec<(usize, u32, u32)> = layout
+            .field_locations()
+            .iter()
+            .map(|(word, member)| (*word, member.offset, member.bits))
+            .collect();
+        assert_eq!(
+            places,
+            [
+                (0, 0, 20),
+                (0, 20, 12),
+                (1, 0, 4),
+                (2, 0, 32),
+                (3, 0, 1),
+                (3, 1, 30),
+                (4, 0, 31)
+            ]
+        );
+        assert_eq!(
+            (layout.words(), layout.bits(), layout.used_bits()),
+            (5, 160, 130)
+        );
+        let diagnostics = layout.check();
+        assert_eq!(diagnostics.len(), 1, "{diagnostics:?}");
+        assert!(
+            diagnostics[0]
+                .message
+                .contains("(a | b) 32 + (c) 32 + whole 32 + (d | e) 32 + (f) 32 = 160 > 128"),
+            "{}",
+            diagnostics[0].message
+        );
+        // The words hold the lanes' codes, and decoding them gives the codes' values back.
+        let lanes = [
+            [0.5f32.to_bits(), 0, 0, 0],
+            [1.0f32.to_bits(), 0, 0, 0],
+            [9, 0, 0, 0],
+            [0.25f32.to_bits(); 4],
+            [1, 0, 0, 0],
+            [0.0f32.to_bits(), 0.0f32.to_bits(), 1.0f32.to_bits(), 0],
+            [(-5i32) as u32, 0, 0, 0],
+        ];
+        let words = layout.encode_lanes(&lanes);
+        assert_eq!(words[0], 0x7ffff + 1 + (0xfff << 20)); // 0.5 of 20 bits rounds up
+        assert_eq!(words[1], 9 & 0xf);
+        let decoded = layout.decode_lanes(&words);
+        assert_eq!(layout.encode_lanes(&decoded), words);
+        assert_eq!(decoded[1], lanes[1]);
+        assert_eq!(decoded[6], lanes[6]);
+    }
+
+    #[test]
     fn type_names_round_trip() {
         for ty in FieldType::ALL {
             assert_eq!(FieldType::from_rust_name(ty.rust_name()), Some(ty));

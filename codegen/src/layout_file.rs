@@ -472,6 +472,41 @@ fn storage_of(
     }
 }
 
+/// The layout file of a layout: what [`parse_layout`] reads back as the same layout (field
+/// types written as `type`, whole words as `format`, bit fields as `bits`, `encoding` and, for
+/// rgbm, `range`).
+pub fn to_toml(layout: &Layout, conversions: Conversions) -> String {
+    let mut out = format!("name = \"{}\"\nbudget = {}\n", layout.name, layout.budget);
+    if conversions == Conversions::Fast {
+        out.push_str("conversions = \"fast\"\n");
+    }
+    for field in &layout.fields {
+        out.push_str(&format!("\n[[fields]]\nname = \"{}\"\n", field.name));
+        match field.storage {
+            Storage::Word(format) => out.push_str(&format!("format = \"{format}\"\n")),
+            Storage::Bits(bit_field) => {
+                out.push_str(&format!(
+                    "bits = {}\nencoding = \"{}\"\n",
+                    bit_field.bits,
+                    bit_field.encoding.name()
+                ));
+                if let Encoding::Rgbm(range) = bit_field.encoding {
+                    out.push_str(&format!("range = {:?}\n", range.get()));
+                }
+            }
+        }
+        out.push_str(&format!("type = \"{}\"\n", field.ty.rust_name()));
+        if let Some(own) = field.conversions {
+            let name = match own {
+                Conversions::Exact => "exact",
+                Conversions::Fast => "fast",
+            };
+            out.push_str(&format!("conversions = \"{name}\"\n"));
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -557,6 +592,42 @@ components = 4
             "{}",
             errors[0].message
         );
+    }
+
+    #[test]
+    fn layouts_written_as_files_read_back_the_same() {
+        let bits = |bits, encoding| Storage::Bits(BitField { bits, encoding });
+        let field = |name: &str, storage, ty: &str| Field {
+            name: name.into(),
+            storage,
+            ty: FieldType::from_rust_name(ty).unwrap(),
+            conversions: None,
+        };
+        let mut layout = Layout {
+            name: "Written".into(),
+            budget: 128,
+            fields: vec![
+                field("colour", Storage::Word(Format::Rgba8), "Vec3"),
+                field(
+                    "light",
+                    bits(32, Encoding::from_name("rgbm", Some(51.5)).unwrap()),
+                    "Vec3",
+                ),
+                field("normal", bits(20, Encoding::Octahedral), "Vec3"),
+                field("flag", bits(1, Encoding::Bool), "bool"),
+                field("id", bits(11, Encoding::Sint), "i32"),
+            ],
+        };
+        layout.fields[0].conversions = Some(Conversions::Exact);
+        for conversions in [Conversions::Exact, Conversions::Fast] {
+            let text = to_toml(&layout, conversions);
+            let file = parse_layout(&text, Path::new("written.toml")).unwrap();
+            assert_eq!(
+                (file.layout, file.conversions),
+                (layout.clone(), conversions),
+                "{text}"
+            );
+        }
     }
 
     #[test]

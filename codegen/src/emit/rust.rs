@@ -224,6 +224,61 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
     }
 }
 
+/// The layout as a struct that derives it: `#[derive(GBufferLayout)]` with `#[gbuffer(...)]`
+/// and a `#[pls(...)]` or `#[bits(...)]` attribute per field, public fields of `gbuffer`'s
+/// glam types. What the derive reads back as the same layout and WGSL.
+#[cfg(feature = "tools")]
+pub fn derive_source(layout: &Layout, conversions: crate::layout::Conversions) -> String {
+    use crate::layout::Conversions;
+    let conversions_name = |conversions| match conversions {
+        Conversions::Exact => "exact",
+        Conversions::Fast => "fast",
+    };
+    let mut options = format!("budget = {}", layout.budget);
+    if conversions == Conversions::Fast {
+        options.push_str(", conversions = fast");
+    }
+    let glam: std::collections::BTreeSet<&str> = layout
+        .fields
+        .iter()
+        .filter(|field| field.ty.components > 1)
+        .map(|field| field.ty.rust_name())
+        .collect();
+    let mut out = String::new();
+    if !glam.is_empty() {
+        let names: Vec<&str> = glam.into_iter().collect();
+        out.push_str(&format!("use gbuffer::glam::{{{}}};\n", names.join(", ")));
+    }
+    out.push_str("use gbuffer::GBufferLayout;\n\n");
+    out.push_str(&format!(
+        "#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]\n#[gbuffer({options})]\npub struct {} {{\n",
+        layout.name
+    ));
+    for field in &layout.fields {
+        let own = field
+            .conversions
+            .map(|own| format!(", conversions = {}", conversions_name(own)))
+            .unwrap_or_default();
+        let attribute = match field.storage {
+            Storage::Word(format) => format!("#[pls({format}{own})]"),
+            Storage::Bits(bit_field) => {
+                let encoding = match bit_field.encoding {
+                    Encoding::Rgbm(range) => format!("rgbm({:?})", range.get()),
+                    other => other.name().to_string(),
+                };
+                format!("#[bits({}, {encoding}{own})]", bit_field.bits)
+            }
+        };
+        out.push_str(&format!(
+            "    {attribute}\n    pub {}: {},\n",
+            field.name,
+            field.ty.rust_name()
+        ));
+    }
+    out.push_str("}\n");
+    out
+}
+
 /// A Rust source file for crates that do not use the derive: the struct, with public fields
 /// of `gbuffer`'s glam types, and its `GBufferLayout` impl, whose WGSL is included from
 /// `<wgsl_file>` beside it.
