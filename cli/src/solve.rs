@@ -3,8 +3,8 @@
 //! Prints each scene's solved layout with the encoding and predicted error of every stored
 //! quantity. With `--out`, writes what a hand-written layout gets from `codegen` (WGSL, GLSL
 //! ES includes, Rust mirror, bit report) plus `<name>.scene.wgsl` (the values struct, encode
-//! and decode, with the shading library modules they call) and `<name>.lighting.wgsl` (the
-//! specialised lighting function).
+//! and decode), `<name>.lighting.wgsl` (the specialised lighting function), and the solved
+//! layout as a layout file (`<name>.layout.toml`) and as derive source (`<name>.derive.rs`).
 //!
 //! Exit status: 0 on success, 1 when a scene cannot be solved or an output cannot be written,
 //! 2 on a usage error (bad arguments, an unreadable file).
@@ -22,7 +22,8 @@ use gbuffer_scenes::lighting::{lighting_wgsl, Forms};
 ///
 /// Prints each scene's layout with the encoding and predicted error of every stored quantity.
 /// With `--out`, writes what `gbuffer codegen` writes for a layout file, plus
-/// `<name>.scene.wgsl` and `<name>.lighting.wgsl`.
+/// `<name>.scene.wgsl`, `<name>.lighting.wgsl`, and the layout as `<name>.layout.toml` and
+/// `<name>.derive.rs`.
 ///
 /// Exit status: 0 on success, 1 when a scene cannot be solved or an output cannot be written,
 /// 2 on a usage error (bad arguments, an unreadable file).
@@ -75,11 +76,19 @@ pub fn run(arguments: Arguments) -> ExitCode {
         };
         files.push(gbuffer_codegen::output::GeneratedFile {
             name: format!("{snake}.scene.wgsl"),
-            contents: gbuffer_scenes::texel::standalone_wgsl(&solution),
+            contents: gbuffer_scenes::texel::texel_wgsl(&solution),
         });
         files.push(gbuffer_codegen::output::GeneratedFile {
             name: format!("{snake}.lighting.wgsl"),
             contents: lighting_wgsl(&solution, forms),
+        });
+        files.push(gbuffer_codegen::output::GeneratedFile {
+            name: format!("{snake}.layout.toml"),
+            contents: solution.layout_file(),
+        });
+        files.push(gbuffer_codegen::output::GeneratedFile {
+            name: format!("{snake}.derive.rs"),
+            contents: solution.derive_source(),
         });
         if let Err(error) = std::fs::create_dir_all(folder) {
             eprintln!("gbuffer solve: cannot create {}: {error}", folder.display());

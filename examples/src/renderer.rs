@@ -559,7 +559,7 @@ fn read_packed_targets(layout: &Layout) -> (String, String) {
 
 /// The G-buffer pass's WGSL for a configuration.
 fn gbuffer_wgsl(gbuffer: &GBuffer) -> String {
-    let mut modules = vec!["normals", "colour", "hdr", "material", "mobile"];
+    let modules = vec!["normals", "colour", "hdr", "material", "mobile"];
     let (layout_wgsl, encode, output_type, output) = match gbuffer {
         GBuffer::Packed(layout) => {
             let (encode, output_type) = write_packed_targets(&layout.layout());
@@ -571,7 +571,6 @@ fn gbuffer_wgsl(gbuffer: &GBuffer) -> String {
             )
         }
         GBuffer::Solved(solution) => {
-            modules.extend(solution.modules());
             let (encode, output_type) = write_packed_targets(&solution.layout);
             (
                 format!(
@@ -821,7 +820,7 @@ fn env_brdf_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
     } else {
         "vec3<f32>(0.0)" // without point lights nothing reads it
     };
-    let mut modules = vec![
+    let modules = vec![
         "shading",
         "environment",
         "normals",
@@ -830,7 +829,6 @@ fn env_brdf_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
         "material",
         "mobile",
     ];
-    modules.extend(solution.modules());
     let source = format!(
         "{}\n{}\n{FULL_SCREEN_WGSL}\n{}\n{target_bindings}{host}
 @group(0) @binding(0) var<uniform> viewport: vec4<f32>;

@@ -180,8 +180,8 @@ impl fmt::Debug for Features {
 pub struct Precision {
     /// The largest angle, in degrees, between a normal and the normal read back.
     pub normal_degrees: f64,
-    /// Distinct levels per channel of base colour, albedo and specular colour, in the
-    /// perceptual (pseudo-gamma) space they are stored in: 256 is what 8 bits give.
+    /// Distinct levels per channel of base colour, albedo and specular colour, in the [0, 1]
+    /// space they are stored in: 256 is what 8 bits give.
     pub colour_steps: u32,
     /// Distinct levels of roughness, metallic and the dielectric specular parameter.
     pub material_steps: u32,

@@ -1,76 +1,56 @@
-//! How a quantity becomes bits: the encodings the solver chooses from, what storage each takes,
-//! the error each is predicted to make, and its round trip on the CPU (to measure that error).
+//! How a quantity becomes bits: the encodings the solver chooses from, each a storage of the
+//! layout vocabulary (a whole word of a format, or a bit field), the error each is predicted to
+//! make, and its round trip through the layout's own mirror (to measure that error).
 //!
 //! Errors are measured per kind of quantity (see [`Kind`]): degrees for normals; the largest
-//! error in the stored [0, 1] space for colours (pseudo-gamma) and scalars; for light, the
-//! largest channel error relative to the pixel's brightest channel, or to `hdr_min` when that
-//! is larger. The predictions are bounds for exact arithmetic; f32 rounding adds about 1e-7.
+//! error in the stored [0, 1] space for colours and scalars; for light, the largest channel
+//! error relative to the pixel's brightest channel, or to `hdr_min` when that is larger. The
+//! predictions are bounds for exact arithmetic; f32 rounding adds about 1e-7.
 
 use std::fmt;
 
-use gbuffer::glam::{Vec2, Vec3};
-use gbuffer::shading::mirror as m;
-use gbuffer::shading::mirror::rgb9e5;
-use gbuffer_codegen::convert;
-use gbuffer_codegen::Format;
+use gbuffer::glam::Vec3;
+use gbuffer_codegen::{
+    convert, BitField, Encoding as BitEncoding, FieldType, Format, RgbmRange, ScalarKind, Storage,
+};
 
 use crate::description::Precision;
 use crate::quantity::{Kind, Quantity};
 
-/// One way to store a quantity.
+/// One way to store a quantity: one field of the layout, or for light in halves two (a
+/// quantity's components may span fields; each field's conversions are the layout's own).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Encoding {
     /// A 32-bit float (`r32f`): depth.
     Float32,
     /// Light in `r11f_g11f_b10f`: per-channel unsigned floats, 6, 6 and 5-bit mantissas.
     PackedFloat,
-    /// Light as shared-exponent rgb9e5 in an `r32ui` word: 9-bit mantissas, one exponent.
+    /// Light as a 32-bit rgb9e5 bit field: 9-bit mantissas, one exponent.
     SharedExponent,
-    /// Light as RGBM (Karis 2009) in 4 x 8 bits: rgb times a multiplier of `range`.
+    /// Light as a 32-bit RGBM bit field (Karis 2009): rgb times a multiplier of `range`.
     Rgbm {
         /// The largest value stored: the multiplier's range.
         range: f64,
     },
-    /// Light scaled by 1 / range into `bits`-bit unorm channels (the seeds' rgb10_a2).
-    ScaledUnorm {
-        /// Bits per channel.
-        bits: u32,
-        /// The value stored as 1.
-        range: f64,
-    },
-    /// IEEE binary16 per channel, in `rg16f` channels (GPU Pro 7 Listings 2.7 and 2.8).
+    /// IEEE binary16 per component: a 16-bit bit field for a scalar; for light, a 32-bit
+    /// field of red and green beside a 16-bit one of blue.
     Half,
-    /// A normal's components mapped to [0, 1], `bits` each (the seeds' rgba8 normals).
-    NormalUnorm {
-        /// Bits per component.
-        bits: u32,
-    },
-    /// Octahedral normal (Cigolle et al. 2014), 2 x `bits`.
+    /// Octahedral normal (Cigolle et al. 2014), a bit field of 2 x `bits`.
     Octahedral {
         /// Bits per coordinate.
         bits: u32,
     },
-    /// A colour's square root (pseudo-gamma, GPU Pro 7 Listing 2.4), `bits` per channel.
-    PseudoGamma {
-        /// Bits per channel.
-        bits: u32,
-    },
-    /// A scalar in [0, 1], `bits` bits.
+    /// A colour or scalar in [0, 1], a unorm bit field of `bits` per component.
     Unorm {
-        /// Bits of the code.
+        /// Bits per component.
         bits: u32,
     },
-}
-
-/// Storage an encoding needs: the pieces the solver places in words.
-#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Part {
-    /// A whole word of a format.
-    Word(Format),
-    /// Unsigned normalized components of these widths, in one word.
-    Unorm(Vec<u32>),
-    /// One binary16 channel of an `rg16f` word.
-    Half,
+    /// A colour in [0, 1] alone in a word of a unorm format (`rgba8`, `rgb10_a2`): the format
+    /// converts, no shader code does.
+    UnormWord {
+        /// The format.
+        format: Format,
+    },
 }
 
 /// The largest value of a binary16 and of the two formats with a 5-bit exponent.
@@ -78,31 +58,73 @@ const HALF_MAX: f64 = 65504.0;
 const PACKED_FLOAT_MAX: f64 = 64512.0; // b10f: (2 - 2^-5) 2^15
 const SHARED_EXPONENT_MAX: f64 = 65408.0; // (511 / 512) 2^16
 
+/// One field of a quantity's storage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Piece {
+    /// What the field's name adds to the quantity's: empty for a whole quantity, `rg` or `b`
+    /// for light in halves.
+    pub suffix: &'static str,
+    /// Its storage.
+    pub storage: Storage,
+    /// Its type.
+    pub ty: FieldType,
+    /// The quantity's first component it holds.
+    pub first_component: usize,
+}
+
 impl Encoding {
-    /// The pieces of storage it takes.
-    pub fn parts(self, quantity: Quantity) -> Vec<Part> {
+    /// The fields that store `quantity` this way.
+    pub fn pieces(self, quantity: Quantity) -> Vec<Piece> {
+        let components = quantity.components();
+        let bits = |bits, encoding| Storage::Bits(BitField { bits, encoding });
+        let whole = |storage| {
+            vec![Piece {
+                suffix: "",
+                storage,
+                ty: FieldType::new(ScalarKind::Float, components),
+                first_component: 0,
+            }]
+        };
         match self {
-            Encoding::Float32 => vec![Part::Word(Format::R32f)],
-            Encoding::PackedFloat => vec![Part::Word(Format::R11fG11fB10f)],
-            Encoding::SharedExponent => vec![Part::Word(Format::R32ui)],
-            Encoding::Rgbm { .. } => vec![Part::Unorm(vec![8; 4])],
-            Encoding::Half => vec![Part::Half; quantity.components()],
-            Encoding::ScaledUnorm { bits, .. }
-            | Encoding::NormalUnorm { bits }
-            | Encoding::PseudoGamma { bits } => vec![Part::Unorm(vec![bits; 3])],
-            Encoding::Octahedral { bits } => vec![Part::Unorm(vec![bits; 2])],
-            Encoding::Unorm { bits } => vec![Part::Unorm(vec![bits])],
+            Encoding::Float32 => whole(Storage::Word(Format::R32f)),
+            Encoding::PackedFloat => whole(Storage::Word(Format::R11fG11fB10f)),
+            Encoding::SharedExponent => whole(bits(32, BitEncoding::Rgb9e5)),
+            Encoding::Rgbm { range } => whole(bits(
+                32,
+                BitEncoding::Rgbm(
+                    RgbmRange::new(range as f32).expect("the catalogue offers valid ranges only"),
+                ),
+            )),
+            Encoding::Half if components == 3 => vec![
+                Piece {
+                    suffix: "rg",
+                    storage: bits(32, BitEncoding::Half),
+                    ty: FieldType::new(ScalarKind::Float, 2),
+                    first_component: 0,
+                },
+                Piece {
+                    suffix: "b",
+                    storage: bits(16, BitEncoding::Half),
+                    ty: FieldType::new(ScalarKind::Float, 1),
+                    first_component: 2,
+                },
+            ],
+            Encoding::Half => whole(bits(16, BitEncoding::Half)),
+            Encoding::Octahedral { bits: each } => whole(bits(2 * each, BitEncoding::Octahedral)),
+            Encoding::Unorm { bits: each } => {
+                whole(bits(each * components as u32, BitEncoding::Unorm))
+            }
+            Encoding::UnormWord { format } => whole(Storage::Word(format)),
         }
     }
 
-    /// Bits of storage.
+    /// Bits of storage: 32 for a whole word, a bit field's width otherwise.
     pub fn bits(self, quantity: Quantity) -> u32 {
-        self.parts(quantity)
+        self.pieces(quantity)
             .iter()
-            .map(|part| match part {
-                Part::Word(_) => 32,
-                Part::Unorm(widths) => widths.iter().sum(),
-                Part::Half => 16,
+            .map(|piece| match piece.storage {
+                Storage::Word(_) => 32,
+                Storage::Bits(field) => field.bits,
             })
             .sum()
     }
@@ -113,7 +135,7 @@ impl Encoding {
             Encoding::PackedFloat => PACKED_FLOAT_MAX,
             Encoding::SharedExponent => SHARED_EXPONENT_MAX,
             Encoding::Half => HALF_MAX,
-            Encoding::Rgbm { range } | Encoding::ScaledUnorm { range, .. } => range,
+            Encoding::Rgbm { range } => range,
             _ => f64::INFINITY,
         }
     }
@@ -130,21 +152,18 @@ impl Encoding {
             // Half a step of the brightest channel's mantissa (>= 256 of 512), or half the
             // smallest step 2^-24.
             Encoding::SharedExponent => 0.5f64.powi(9).max(0.5f64.powi(25) / floor),
-            // Channel error <= half a code times m range, with m range < brightest + range / 255.
-            Encoding::Rgbm { range } => 0.5 / 255.0 * (1.0 + range / (255.0 * floor)),
-            // An absolute half step of range / (2^bits - 1), against the floor.
-            Encoding::ScaledUnorm { bits, range } => 0.5 * range * step(bits) / floor,
-            // Light: half an ulp of a 10-bit mantissa, or half the denormal step 2^-24; a
-            // scalar in [0, 1]: half the ulp of [0.5, 1).
-            Encoding::Half => 0.5f64.powi(11).max(0.5f64.powi(25) / floor),
-            // Each component off by at most one step e (half a code of [0, 1], times 2):
-            // the vector moves by at most sqrt(3) e.
-            Encoding::NormalUnorm { bits } => {
-                (3f64.sqrt() * step(bits)).min(1.0).asin().to_degrees()
+            // Channel error <= half a code times m range, with m range < brightest + range /
+            // 255; and the fixed point's 2^-22 range.
+            Encoding::Rgbm { range } => {
+                0.5 / 255.0 * (1.0 + range / (255.0 * floor)) + range * 0.5f64.powi(21) / floor
             }
-            // Proven in tests/tests/shading_physics.rs: sqrt(18) e.
+            // Light: half an ulp of a 10-bit mantissa, or half the denormal step 2^-24.
+            Encoding::Half => 0.5f64.powi(11).max(0.5f64.powi(25) / floor),
+            // Proven in tests/tests/shading_physics.rs and `convert`'s tests: sqrt(18)
+            // half-steps of a coordinate.
             Encoding::Octahedral { bits } => (18f64.sqrt() * step(bits)).to_degrees(),
-            Encoding::PseudoGamma { bits } | Encoding::Unorm { bits } => 0.5 * step(bits),
+            Encoding::Unorm { bits } => 0.5 * step(bits),
+            Encoding::UnormWord { format } => 0.5 * step(format.channels()[0].bits),
         }
     }
 
@@ -171,6 +190,7 @@ impl Encoding {
     /// module's doc).
     pub fn predicted_error(self, quantity: Quantity, precision: &Precision) -> f64 {
         match (self, quantity.kind()) {
+            // A scalar in [0, 1]: half the ulp of [0.5, 1).
             (Encoding::Half, Kind::Scalar) => 0.5f64.powi(12),
             _ => self.bound(precision),
         }
@@ -178,27 +198,29 @@ impl Encoding {
 
     /// Every encoding of a quantity the solver considers, before precision: for each family
     /// the widths from 1 bit up to what one word holds. The light encodings clip at the
-    /// scene's `hdr_max`.
+    /// scene's `hdr_max` (RGBM takes it as its range where the exact encoding can hold it).
     pub fn catalogue(quantity: Quantity, precision: &Precision) -> Vec<Encoding> {
-        let range = precision.hdr_max;
         match quantity.kind() {
             Kind::Hdr => {
                 let mut all = vec![
                     Encoding::PackedFloat,
                     Encoding::SharedExponent,
-                    Encoding::Rgbm { range },
                     Encoding::Half,
                 ];
-                all.extend((1..=10).map(|bits| Encoding::ScaledUnorm { bits, range }));
+                if RgbmRange::new(precision.hdr_max as f32).is_ok() {
+                    all.push(Encoding::Rgbm {
+                        range: precision.hdr_max,
+                    });
+                }
                 all
             }
             Kind::Distance => vec![Encoding::Float32],
-            Kind::Direction => (1..=10)
-                .map(|bits| Encoding::NormalUnorm { bits })
-                .chain((2..=16).map(|bits| Encoding::Octahedral { bits }))
-                .collect(),
+            Kind::Direction => (1..=16).map(|bits| Encoding::Octahedral { bits }).collect(),
             Kind::Colour => (1..=10)
-                .map(|bits| Encoding::PseudoGamma { bits })
+                .map(|bits| Encoding::Unorm { bits })
+                .chain(
+                    [Format::Rgba8, Format::Rgb10A2].map(|format| Encoding::UnormWord { format }),
+                )
                 .collect(),
             Kind::Scalar => (1..=16)
                 .map(|bits| Encoding::Unorm { bits })
@@ -207,116 +229,29 @@ impl Encoding {
         }
     }
 
-    /// The shading library modules its WGSL calls.
-    pub fn modules(self) -> &'static [&'static str] {
-        match self {
-            Encoding::SharedExponent | Encoding::Rgbm { .. } | Encoding::ScaledUnorm { .. } => {
-                &["hdr"]
+    /// The CPU round trip of a value (a scalar in `value.x`) through the layout's own mirror:
+    /// the same bits the generated WGSL and GLSL store, for measuring the error.
+    pub fn round_trip(self, quantity: Quantity, value: Vec3) -> Vec3 {
+        let mut back = Vec3::ZERO;
+        for piece in self.pieces(quantity) {
+            let count = piece.ty.components;
+            let mut lanes = [0u32; 4];
+            for (index, lane) in lanes.iter_mut().enumerate().take(count) {
+                *lane = value[piece.first_component + index].to_bits();
             }
-            Encoding::NormalUnorm { .. } | Encoding::Octahedral { .. } => &["normals"],
-            Encoding::PseudoGamma { .. } => &["colour"],
-            _ => &[],
+            let decoded = match piece.storage {
+                Storage::Word(format) => {
+                    format.decode::<f32>(format.encode(lanes.map(f32::from_bits)))
+                }
+                Storage::Bits(field) => field
+                    .decode(field.encode(lanes, count), count)
+                    .map(f32::from_bits),
+            };
+            for (index, component) in decoded.iter().enumerate().take(count) {
+                back[piece.first_component + index] = *component;
+            }
         }
-    }
-
-    /// WGSL that turns `value` (of the quantity's type) into what is stored: a `vecN<f32>`
-    /// of unorm components, the value itself, or a whole word.
-    pub fn encode_wgsl(self, value: &str) -> String {
-        match self {
-            Encoding::Float32 | Encoding::PackedFloat | Encoding::Half | Encoding::Unorm { .. } => {
-                value.to_string()
-            }
-            Encoding::SharedExponent => format!("rgb9e5_encode({value})"),
-            Encoding::Rgbm { range } => format!("rgbm_encode({value}, {})", wgsl_float(range)),
-            Encoding::ScaledUnorm { range, .. } => {
-                format!("scale_hdr_to_unit({value}, {})", wgsl_float(range))
-            }
-            Encoding::NormalUnorm { .. } => format!("normal_to_unorm({value})"),
-            Encoding::Octahedral { .. } => {
-                format!("octahedral_encode({value}) * 0.5 + vec2<f32>(0.5)")
-            }
-            Encoding::PseudoGamma { .. } => format!("linear_to_pseudo_gamma({value})"),
-        }
-    }
-
-    /// Scalar components of what `encode_wgsl` makes of `quantity`, for the pieces that sit in
-    /// channels or bit fields.
-    pub fn stored_components(self, quantity: Quantity) -> usize {
-        match self {
-            Encoding::Rgbm { .. } => 4,
-            Encoding::Octahedral { .. } => 2,
-            Encoding::Unorm { .. } | Encoding::Float32 => 1,
-            _ => quantity.components(),
-        }
-    }
-
-    /// WGSL that turns what was stored (`stored`, as `encode_wgsl` made it) back into the
-    /// quantity.
-    pub fn decode_wgsl(self, stored: &str) -> String {
-        match self {
-            Encoding::Float32 | Encoding::PackedFloat | Encoding::Half | Encoding::Unorm { .. } => {
-                stored.to_string()
-            }
-            Encoding::SharedExponent => format!("rgb9e5_decode({stored})"),
-            Encoding::Rgbm { range } => format!("rgbm_decode({stored}, {})", wgsl_float(range)),
-            Encoding::ScaledUnorm { range, .. } => {
-                format!("scale_unit_to_hdr({stored}, {})", wgsl_float(range))
-            }
-            Encoding::NormalUnorm { .. } => format!("unorm_to_normal({stored})"),
-            Encoding::Octahedral { .. } => {
-                format!("octahedral_decode({stored} * 2.0 - vec2<f32>(1.0))")
-            }
-            Encoding::PseudoGamma { .. } => format!("pseudo_gamma_to_linear({stored})"),
-        }
-    }
-
-    /// The CPU round trip of a value (a scalar in `value.x`), as the generated WGSL does it
-    /// with the layout's exact conversions: for measuring the error.
-    pub fn round_trip(self, value: Vec3) -> Vec3 {
-        let unorm = |value: f32, bits: u32| {
-            convert::f32_from_unorm(convert::unorm_from_f32(value, bits), bits)
-        };
-        let unorm3 = |value: Vec3, bits: u32| {
-            Vec3::new(
-                unorm(value.x, bits),
-                unorm(value.y, bits),
-                unorm(value.z, bits),
-            )
-        };
-        let half = |value: f32| convert::f32_from_half(convert::half_from_f32(value));
-        match self {
-            Encoding::Float32 => value,
-            Encoding::PackedFloat => {
-                let format = Format::R11fG11fB10f;
-                let decoded: [f32; 4] =
-                    format.decode(format.encode([value.x, value.y, value.z, 0.0]));
-                Vec3::new(decoded[0], decoded[1], decoded[2])
-            }
-            Encoding::SharedExponent => rgb9e5::rgb9e5_decode(rgb9e5::rgb9e5_encode(value)),
-            Encoding::Rgbm { range } => {
-                let encoded = m::hdr::rgbm_encode(value, range as f32);
-                let stored = unorm3(encoded.truncate(), 8).extend(unorm(encoded.w, 8));
-                m::hdr::rgbm_decode(stored, range as f32)
-            }
-            Encoding::ScaledUnorm { bits, range } => m::hdr::scale_unit_to_hdr(
-                unorm3(m::hdr::scale_hdr_to_unit(value, range as f32), bits),
-                range as f32,
-            ),
-            Encoding::Half => Vec3::new(half(value.x), half(value.y), half(value.z)),
-            Encoding::NormalUnorm { bits } => {
-                m::normals::unorm_to_normal(unorm3(m::normals::normal_to_unorm(value), bits))
-            }
-            Encoding::Octahedral { bits } => {
-                let encoded = m::normals::octahedral_encode(value) * 0.5 + Vec2::splat(0.5);
-                let stored = Vec2::new(unorm(encoded.x, bits), unorm(encoded.y, bits));
-                m::normals::octahedral_decode(stored * 2.0 - Vec2::ONE)
-            }
-            Encoding::PseudoGamma { bits } => m::colour::pseudo_gamma_to_linear(unorm3(
-                m::colour::linear_to_pseudo_gamma(value),
-                bits,
-            )),
-            Encoding::Unorm { bits } => Vec3::new(unorm(value.x, bits), 0.0, 0.0),
-        }
+        back
     }
 }
 
@@ -328,21 +263,12 @@ impl fmt::Display for Encoding {
             Encoding::PackedFloat => write!(out, "r11f_g11f_b10f floats"),
             Encoding::SharedExponent => write!(out, "rgb9e5 shared exponent"),
             Encoding::Rgbm { range } => write!(out, "RGBM, 4 x 8 bits, range {range}"),
-            Encoding::ScaledUnorm { bits, range } => {
-                write!(out, "scaled by 1/{range}, 3 x {bits}-bit unorm")
-            }
             Encoding::Half => write!(out, "binary16"),
-            Encoding::NormalUnorm { bits } => write!(out, "xyz to unorm, 3 x {bits} bits"),
             Encoding::Octahedral { bits } => write!(out, "octahedral, 2 x {bits} bits"),
-            Encoding::PseudoGamma { bits } => write!(out, "pseudo-gamma, 3 x {bits} bits"),
             Encoding::Unorm { bits } => write!(out, "unorm, {bits} bits"),
+            Encoding::UnormWord { format } => write!(out, "unorm in a {format} word"),
         }
     }
-}
-
-/// A WGSL float literal that round-trips.
-fn wgsl_float(value: f64) -> String {
-    format!("{:?}", value as f32)
 }
 
 #[cfg(test)]
@@ -351,12 +277,19 @@ mod tests {
 
     #[test]
     fn storage_sizes() {
-        assert_eq!(Encoding::Half.bits(Quantity::Light), 48);
         assert_eq!(Encoding::Half.bits(Quantity::Roughness), 16);
         assert_eq!(Encoding::Octahedral { bits: 12 }.bits(Quantity::Normal), 24);
+        assert_eq!(Encoding::Unorm { bits: 8 }.bits(Quantity::BaseColour), 24);
+        assert_eq!(Encoding::Rgbm { range: 8.0 }.bits(Quantity::Light), 32);
+        assert_eq!(Encoding::Half.bits(Quantity::Light), 48);
+        assert_eq!(Encoding::Half.pieces(Quantity::Light).len(), 2);
         assert_eq!(
-            Encoding::Rgbm { range: 8.0 }.parts(Quantity::Light),
-            [Part::Unorm(vec![8; 4])]
+            Encoding::UnormWord {
+                format: Format::Rgba8
+            }
+            .pieces(Quantity::BaseColour)[0]
+                .storage,
+            Storage::Word(Format::Rgba8)
         );
     }
 
@@ -364,21 +297,14 @@ mod tests {
     fn predictions_match_the_textbook_figures() {
         let precision = Precision::default();
         let degrees = |encoding: Encoding| encoding.predicted_error(Quantity::Normal, &precision);
-        // 8-bit xyz: asin(sqrt(3) / 255) = 0.389 degrees.
-        assert!((degrees(Encoding::NormalUnorm { bits: 8 }) - 0.3892).abs() < 1e-3);
         assert!((degrees(Encoding::Octahedral { bits: 16 }) - 0.00371).abs() < 1e-4);
         assert_eq!(
-            Encoding::PseudoGamma { bits: 8 }.predicted_error(Quantity::BaseColour, &precision),
+            Encoding::Unorm { bits: 8 }.predicted_error(Quantity::BaseColour, &precision),
             0.5 / 255.0
         );
-        assert!(Encoding::PseudoGamma { bits: 8 }.meets(Quantity::BaseColour, &precision));
-        assert!(!Encoding::PseudoGamma { bits: 7 }.meets(Quantity::BaseColour, &precision));
-        // r11f_g11f_b10f: 1/64 relative meets 2%; a 10-bit scale of 8 does not at 1/64.
+        assert!(Encoding::Unorm { bits: 8 }.meets(Quantity::BaseColour, &precision));
+        assert!(!Encoding::Unorm { bits: 7 }.meets(Quantity::BaseColour, &precision));
+        // r11f_g11f_b10f: 1/64 relative meets 2%.
         assert!(Encoding::PackedFloat.meets(Quantity::Light, &precision));
-        let scaled = Encoding::ScaledUnorm {
-            bits: 10,
-            range: 8.0,
-        };
-        assert!(!scaled.meets(Quantity::Light, &precision));
     }
 }

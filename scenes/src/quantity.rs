@@ -36,7 +36,7 @@ pub enum Kind {
     Distance,
     /// A unit vector: angular error.
     Direction,
-    /// A colour in [0, 1]: levels per channel in pseudo-gamma space.
+    /// A colour in [0, 1]: levels per channel.
     Colour,
     /// A scalar in [0, 1]: levels.
     Scalar,

@@ -1,44 +1,26 @@
 //! The layout solver: the smallest layout that stores what a scene needs at the precision it
-//! asks for, within its budget.
+//! asks for, within its budget, in the layout vocabulary the derive and layout files speak.
 //!
-//! For each stored quantity the candidates are the encodings that meet its precision (for each
-//! family, the narrowest that does and the wider ones a native format stores); the solver tries
-//! every combination, places the pieces in 32-bit words (unorm pieces by an exhaustive bin
-//! packing, in a native format where their widths match one, else in an `r32ui` word split
-//! into bit fields), and keeps the combination with, in this order: the fewest words, the
-//! fewest `r32ui` words (bit fields and rgb9e5 cost shader instructions where native formats
-//! convert in hardware), the most precision
-//! (the least sum of predicted over allowed error). Ties go to the first found: the search
-//! order is fixed, so the result is deterministic.
+//! Each stored quantity becomes one field: a whole word of a format (depth in `r32f`, light in
+//! `r11f_g11f_b10f`, a colour alone in `rgba8`) or a bit field (octahedral normals, rgb9e5 and
+//! RGBM light, unorm colours and scalars, half scalars). For each quantity the candidates are
+//! the encodings that meet its precision (of each family the narrowest, and the wider ones a
+//! format stores natively); the solver tries every combination, packs the bit fields into
+//! `r32ui` words by an exhaustive bin packing, and keeps the combination with, in this order:
+//! the fewest words, the fewest `r32ui` words (bit fields cost shader instructions where
+//! native formats convert in hardware), the most precision (the least sum of predicted over
+//! allowed error). Ties go to the first found: the search order is fixed, so the result is
+//! deterministic. The solution is an ordinary [`Layout`]: [`Solution::layout_file`] and
+//! [`Solution::derive_source`] write it out, and its mirror is the solver's.
 
 use std::collections::HashMap;
 use std::fmt;
 
-use gbuffer_codegen::{Field, FieldType, Format, Layout};
+use gbuffer_codegen::{Conversions, Field, Layout, Storage};
 
 use crate::description::{DescriptionError, Feature, SceneDescription, Setting};
-use crate::encoding::{Encoding, Part};
+use crate::encoding::Encoding;
 use crate::quantity::{stored_quantities, Kind, Quantity, Stored};
-
-/// Where one piece of a quantity lives in its word.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Slot {
-    /// The whole word.
-    Word,
-    /// These channels of a native format (0 = r), one per component.
-    Channels(Vec<usize>),
-    /// Bit fields of an `r32ui` word: (offset, width) per component.
-    Bits(Vec<(u32, u32)>),
-}
-
-/// A piece of a quantity: its field (word) and slot.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Location {
-    /// The layout field (word) it is in.
-    pub field: usize,
-    /// Where in the word.
-    pub slot: Slot,
-}
 
 /// How the solution stores one quantity.
 #[derive(Clone, Debug, PartialEq)]
@@ -53,8 +35,8 @@ pub struct Placement {
     pub predicted_error: f64,
     /// What the scene allows, in the same unit.
     pub allowed_error: f64,
-    /// One per piece of [`Encoding::parts`], in order.
-    pub locations: Vec<Location>,
+    /// The layout fields that store it, one per [`Encoding::pieces`].
+    pub fields: Vec<usize>,
 }
 
 /// A solved scene: an ordinary layout and where each quantity lives in it.
@@ -76,14 +58,31 @@ impl Solution {
             .find(|placement| placement.quantity == quantity)
     }
 
-    /// `r32ui` words: bit fields or rgb9e5, converted by shader code rather than by the
-    /// format.
+    /// `r32ui` words of bit fields, converted by shader code rather than by a format.
     pub fn custom_words(&self) -> usize {
         self.layout
-            .fields
+            .word_contents()
             .iter()
-            .filter(|field| field.format() == Some(Format::R32ui))
+            .filter(|word| word.is_bit_fields)
             .count()
+    }
+
+    /// The solved layout as a layout file (`gbuffer codegen` reads it back as this layout).
+    pub fn layout_file(&self) -> String {
+        format!(
+            "# Solved by gbuffer for scene `{}`.\n{}",
+            self.scene.name,
+            gbuffer_codegen::layout_file::to_toml(&self.layout, Conversions::Exact)
+        )
+    }
+
+    /// The solved layout as Rust source that derives it (`#[derive(GBufferLayout)]`).
+    pub fn derive_source(&self) -> String {
+        format!(
+            "// Solved by gbuffer for scene `{}`.\n{}",
+            self.scene.name,
+            gbuffer_codegen::emit::rust::derive_source(&self.layout, Conversions::Exact)
+        )
     }
 }
 
@@ -159,46 +158,33 @@ fn candidates_meeting(quantity: Quantity, scene: &SceneDescription) -> Vec<Encod
     prune(meeting)
 }
 
-/// Keeps, of each family of widths, the narrowest and the native widths (2, 8, 10, 16): a wider
-/// non-native piece can only sit in an `r32ui` word, where the narrowest fits too.
+/// Keeps, of each family of widths, the narrowest: a wider bit field takes more of its word
+/// and is no cheaper to convert. Whole-word encodings all stay.
 fn prune(encodings: Vec<Encoding>) -> Vec<Encoding> {
-    let width = |encoding: &Encoding| match *encoding {
-        Encoding::ScaledUnorm { bits, .. }
-        | Encoding::NormalUnorm { bits }
-        | Encoding::Octahedral { bits }
-        | Encoding::PseudoGamma { bits }
-        | Encoding::Unorm { bits } => Some(bits),
-        _ => None,
-    };
     let mut kept: Vec<Encoding> = Vec::new();
     for encoding in encodings {
-        let narrowest_of_family = !kept
+        let widened = matches!(
+            encoding,
+            Encoding::Octahedral { .. } | Encoding::Unorm { .. }
+        ) && kept
             .iter()
             .any(|other| std::mem::discriminant(other) == std::mem::discriminant(&encoding));
-        match width(&encoding) {
-            Some(bits) if !narrowest_of_family && ![2, 8, 10, 16].contains(&bits) => {}
-            _ => kept.push(encoding),
+        if !widened {
+            kept.push(encoding);
         }
     }
     kept
 }
 
-/// One combination's layout: its words and its score.
+/// One combination's layout: the pieces in each word, and its score.
 #[derive(Clone, Debug)]
 struct Candidate {
     encodings: Vec<Encoding>,
-    words: Vec<Word>,
+    /// Per word, the pieces it holds as (quantity index, piece index): one for a whole word.
+    words: Vec<Vec<(usize, usize)>>,
     custom_words: usize,
     /// Sum of predicted over allowed error.
     slack: f64,
-}
-
-/// A word of a candidate: its format and the pieces in it, as (quantity index, part index).
-#[derive(Clone, Debug)]
-struct Word {
-    format: Format,
-    pieces: Vec<(usize, usize)>,
-    slots: Vec<Slot>,
 }
 
 /// Tries every combination of candidates; the best whose words fit `budget` (any, without one).
@@ -245,7 +231,8 @@ fn better(candidate: &Candidate, best: &Candidate) -> bool {
             && candidate.slack < best.slack)
 }
 
-/// Places one combination's pieces in words.
+/// Places one combination's fields in words: a whole word each, and the bit fields packed
+/// into as few `r32ui` words as hold them.
 fn arrange(
     stored: &[Stored],
     encodings: Vec<Encoding>,
@@ -253,50 +240,23 @@ fn arrange(
     packer: &mut Packer,
 ) -> Candidate {
     let mut words = Vec::new();
-    let mut halves = Vec::new();
-    let mut unorm_pieces = Vec::new();
-    for (quantity_index, (entry, encoding)) in stored.iter().zip(&encodings).enumerate() {
-        for (part_index, part) in encoding.parts(entry.quantity).into_iter().enumerate() {
-            let piece = (quantity_index, part_index);
-            match part {
-                Part::Word(format) => words.push(Word {
-                    format,
-                    pieces: vec![piece],
-                    slots: vec![Slot::Word],
-                }),
-                Part::Half => halves.push(piece),
-                Part::Unorm(widths) => unorm_pieces.push((piece, widths)),
+    let mut bit_fields = Vec::new();
+    for (index, (entry, encoding)) in stored.iter().zip(&encodings).enumerate() {
+        for (part, piece) in encoding.pieces(entry.quantity).into_iter().enumerate() {
+            match piece.storage {
+                Storage::Word(_) => words.push(vec![(index, part)]),
+                Storage::Bits(field) => bit_fields.push(((index, part), field.bits)),
             }
         }
     }
-    for pair in halves.chunks(2) {
-        words.push(Word {
-            format: Format::Rg16f,
-            pieces: pair.to_vec(),
-            slots: (0..pair.len())
-                .map(|channel| Slot::Channels(vec![channel]))
-                .collect(),
-        });
-    }
-    let widths: Vec<Vec<u32>> = unorm_pieces
-        .iter()
-        .map(|(_, widths)| widths.clone())
-        .collect();
-    for bin in packer.pack(&widths) {
-        let bin_widths: Vec<&Vec<u32>> = bin.iter().map(|&item| &widths[item]).collect();
-        let (format, slots) = place_in_word(&bin_widths);
-        words.push(Word {
-            format,
-            pieces: bin.iter().map(|&item| unorm_pieces[item].0).collect(),
-            slots,
-        });
+    let widths: Vec<u32> = bit_fields.iter().map(|&(_, bits)| bits).collect();
+    let bins = packer.pack(&widths);
+    let custom_words = bins.len();
+    for bin in bins {
+        words.push(bin.iter().map(|&item| bit_fields[item].0).collect());
     }
     // Words in the order of the quantities they hold, light first, as the seeds order them.
-    words.sort_by_key(|word| word.pieces.iter().min().copied());
-    let custom_words = words
-        .iter()
-        .filter(|word| word.format == Format::R32ui)
-        .count();
+    words.sort_by_key(|word| word.iter().min().copied());
     let slack = stored
         .iter()
         .zip(&encodings)
@@ -317,129 +277,45 @@ fn arrange(
     }
 }
 
-/// The native format whose channels take these unorm pieces, with each piece's channels; else
-/// an `r32ui` word with each piece's bit fields, packed from bit 0 up.
-fn place_in_word(pieces: &[&Vec<u32>]) -> (Format, Vec<Slot>) {
-    let all_widths: Vec<u32> = pieces
-        .iter()
-        .flat_map(|widths| widths.iter().copied())
-        .collect();
-    let count = |width: u32| all_widths.iter().filter(|&&w| w == width).count();
-    let sequential = |format: Format| {
-        let mut next = 0;
-        let slots = pieces
-            .iter()
-            .map(|widths| {
-                let channels = (next..next + widths.len()).collect();
-                next += widths.len();
-                Slot::Channels(channels)
-            })
-            .collect();
-        (format, slots)
-    };
-    if count(8) == all_widths.len() && all_widths.len() <= 4 {
-        return sequential(Format::Rgba8);
-    }
-    if count(16) == all_widths.len() && all_widths.len() <= 2 {
-        return sequential(Format::Rg16);
-    }
-    if count(10) + count(2) == all_widths.len() && count(10) <= 3 && count(2) <= 1 {
-        // 10-bit components in r, g, b; a 2-bit one in a.
-        let mut next_rgb = 0;
-        let slots = pieces
-            .iter()
-            .map(|widths| {
-                Slot::Channels(
-                    widths
-                        .iter()
-                        .map(|&width| {
-                            if width == 2 {
-                                3
-                            } else {
-                                next_rgb += 1;
-                                next_rgb - 1
-                            }
-                        })
-                        .collect(),
-                )
-            })
-            .collect();
-        return (Format::Rgb10A2, slots);
-    }
-    let mut offset = 0;
-    let slots = pieces
-        .iter()
-        .map(|widths| {
-            Slot::Bits(
-                widths
-                    .iter()
-                    .map(|&width| {
-                        offset += width;
-                        (offset - width, width)
-                    })
-                    .collect(),
-            )
-        })
-        .collect();
-    (Format::R32ui, slots)
-}
-
-/// Exhaustive bin packing of unorm pieces into 32-bit words: the fewest words, then the fewest
-/// that no native format takes. Pieces are few (one per stored quantity at most), so every
-/// assignment is tried; results are remembered per list of widths.
+/// Exhaustive bin packing of bit fields into 32-bit words: the fewest words. Fields are few
+/// (one per stored quantity at most), so every assignment is tried; results are remembered per
+/// list of widths.
 #[derive(Default)]
 struct Packer {
-    known: HashMap<Vec<Vec<u32>>, Vec<Vec<usize>>>,
+    known: HashMap<Vec<u32>, Vec<Vec<usize>>>,
 }
 
 impl Packer {
-    /// Bins of item indices.
-    fn pack(&mut self, items: &[Vec<u32>]) -> Vec<Vec<usize>> {
+    /// Bins of item indices, each item's index in ascending order within its bin.
+    fn pack(&mut self, items: &[u32]) -> Vec<Vec<usize>> {
         if let Some(bins) = self.known.get(items) {
             return bins.clone();
         }
-        let mut best: Option<(usize, usize, Vec<Vec<usize>>)> = None;
+        let mut best: Option<Vec<Vec<usize>>> = None;
         let mut bins: Vec<Vec<usize>> = Vec::new();
         assign(items, 0, &mut bins, &mut best);
-        let bins = best.map(|(_, _, bins)| bins).unwrap_or_default();
+        let bins = best.unwrap_or_default();
         self.known.insert(items.to_vec(), bins.clone());
         bins
     }
 }
 
 fn assign(
-    items: &[Vec<u32>],
+    items: &[u32],
     next: usize,
     bins: &mut Vec<Vec<usize>>,
-    best: &mut Option<(usize, usize, Vec<Vec<usize>>)>,
+    best: &mut Option<Vec<Vec<usize>>>,
 ) {
-    if best
-        .as_ref()
-        .is_some_and(|(count, _, _)| bins.len() > *count)
-    {
+    if best.as_ref().is_some_and(|best| bins.len() >= best.len()) {
         return;
     }
-    let bits = |item: usize| items[item].iter().sum::<u32>();
     if next == items.len() {
-        let custom = bins
-            .iter()
-            .filter(|bin| {
-                let widths: Vec<&Vec<u32>> = bin.iter().map(|&item| &items[item]).collect();
-                place_in_word(&widths).0 == Format::R32ui
-            })
-            .count();
-        let score = (bins.len(), custom);
-        if best
-            .as_ref()
-            .is_none_or(|(count, custom, _)| score < (*count, *custom))
-        {
-            *best = Some((score.0, score.1, bins.clone()));
-        }
+        *best = Some(bins.clone());
         return;
     }
     for bin in 0..bins.len() {
-        let used: u32 = bins[bin].iter().map(|&item| bits(item)).sum();
-        if used + bits(next) <= 32 {
+        let used: u32 = bins[bin].iter().map(|&item| items[item]).sum();
+        if used + items[next] <= 32 {
             bins[bin].push(next);
             assign(items, next + 1, bins, best);
             bins[bin].pop();
@@ -450,96 +326,56 @@ fn assign(
     bins.pop();
 }
 
-/// The solution's layout and placements.
+/// The solution's layout and placements: a field per piece, named for its quantity, in word
+/// order. The bit fields of one bin are consecutive, so they fill one `r32ui` word (a bin's
+/// first field may join the word before, which only saves a word: the solver's count is a
+/// bound).
 fn build(scene: &SceneDescription, stored: &[Stored], best: Candidate) -> Solution {
-    let mut locations: Vec<Vec<(usize, Location)>> = vec![Vec::new(); stored.len()];
     let mut fields = Vec::new();
-    for (field_index, word) in best.words.iter().enumerate() {
-        for (&(quantity, part), slot) in word.pieces.iter().zip(&word.slots) {
-            locations[quantity].push((
-                part,
-                Location {
-                    field: field_index,
-                    slot: slot.clone(),
-                },
-            ));
-        }
+    let mut fields_of: Vec<Vec<(usize, usize)>> = vec![Vec::new(); stored.len()];
+    for &(quantity, part) in best.words.iter().flatten() {
+        let entry = &stored[quantity];
+        let piece = best.encodings[quantity].pieces(entry.quantity)[part];
+        fields_of[quantity].push((part, fields.len()));
+        let name = entry.quantity.name();
         fields.push(Field {
-            name: field_name(stored, &best.encodings, word),
-            storage: gbuffer_codegen::Storage::Word(word.format),
-            ty: field_type(word),
+            name: if piece.suffix.is_empty() {
+                name.to_string()
+            } else {
+                format!("{name}_{}", piece.suffix)
+            },
+            storage: piece.storage,
+            ty: piece.ty,
             conversions: None,
         });
     }
     let placements = stored
         .iter()
         .zip(&best.encodings)
-        .zip(locations)
+        .zip(fields_of)
         .map(|((entry, &encoding), mut pieces)| {
-            pieces.sort_by_key(|(part, _)| *part);
+            pieces.sort_unstable();
             Placement {
                 quantity: entry.quantity,
                 encoding,
                 needed_by: entry.needed_by.clone(),
                 predicted_error: encoding.predicted_error(entry.quantity, &scene.precision),
                 allowed_error: Encoding::allowed_error(entry.quantity.kind(), &scene.precision),
-                locations: pieces.into_iter().map(|(_, location)| location).collect(),
+                fields: pieces.into_iter().map(|(_, field)| field).collect(),
             }
         })
         .collect();
+    let layout = Layout {
+        name: scene.name.clone(),
+        budget: scene.budget,
+        fields,
+    };
+    debug_assert!(layout.words() <= best.words.len());
     Solution {
         scene: scene.clone(),
-        layout: Layout {
-            name: scene.name.clone(),
-            budget: scene.budget,
-            fields,
-        },
+        layout,
         placements,
     }
-}
-
-/// A field's name from what it holds: `normal_roughness`, `light_rg`, `light_b_roughness`.
-fn field_name(stored: &[Stored], encodings: &[Encoding], word: &Word) -> String {
-    let mut groups: Vec<(usize, String)> = Vec::new();
-    for &(quantity, part) in &word.pieces {
-        let split = encodings[quantity].parts(stored[quantity].quantity).len() > 1;
-        let suffix = if split {
-            ["r", "g", "b"][part].to_string()
-        } else {
-            String::new()
-        };
-        match groups.last_mut() {
-            Some((last, suffixes)) if *last == quantity => suffixes.push_str(&suffix),
-            _ => groups.push((quantity, suffix)),
-        }
-    }
-    groups
-        .into_iter()
-        .map(|(quantity, suffix)| {
-            let name = stored[quantity].quantity.name();
-            if suffix.is_empty() {
-                name.to_string()
-            } else {
-                format!("{name}_{suffix}")
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("_")
-}
-
-/// A field's type: as many components as its highest channel in use.
-fn field_type(word: &Word) -> FieldType {
-    let components = word
-        .slots
-        .iter()
-        .map(|slot| match slot {
-            Slot::Channels(channels) => channels.iter().max().map_or(1, |last| last + 1),
-            Slot::Word => word.format.channels().len().min(3),
-            Slot::Bits(_) => 1,
-        })
-        .max()
-        .unwrap_or(1);
-    FieldType::new(word.format.scalar_kind(), components)
 }
 
 /// The setting that governs a quantity's precision.
@@ -682,37 +518,37 @@ mod tests {
     use super::*;
 
     #[test]
-    fn native_widths_find_their_format() {
-        let eights = vec![8, 8, 8];
-        let one = vec![8];
-        assert_eq!(place_in_word(&[&eights, &one]).0, Format::Rgba8);
-        let tens = vec![10, 10, 10];
-        let two = vec![2];
-        let (format, slots) = place_in_word(&[&two, &tens]);
-        assert_eq!(format, Format::Rgb10A2);
-        assert_eq!(slots[0], Slot::Channels(vec![3]));
-        let twelves = vec![12, 12];
-        let (format, slots) = place_in_word(&[&twelves, &one]);
-        assert_eq!(format, Format::R32ui);
-        assert_eq!(slots[1], Slot::Bits(vec![(24, 8)]));
+    fn pruning_keeps_the_narrowest_bit_field_and_every_word() {
+        let kept = prune(
+            (5..=16)
+                .map(|bits| Encoding::Unorm { bits })
+                .chain([Encoding::UnormWord {
+                    format: gbuffer_codegen::Format::Rgba8,
+                }])
+                .collect(),
+        );
+        assert_eq!(
+            kept,
+            [
+                Encoding::Unorm { bits: 5 },
+                Encoding::UnormWord {
+                    format: gbuffer_codegen::Format::Rgba8
+                }
+            ]
+        );
     }
 
     #[test]
-    fn pruning_keeps_the_narrowest_and_native_widths() {
-        let kept = prune((5..=16).map(|bits| Encoding::Unorm { bits }).collect());
-        assert_eq!(kept, [5, 8, 10, 16].map(|bits| Encoding::Unorm { bits }));
-    }
-
-    #[test]
-    fn bin_packing_prefers_native_words() {
+    fn bin_packing_finds_the_fewest_words() {
         let mut packer = Packer::default();
-        // 24 + 24 + 8 + 8: two rgba8 words, not a 24 + 8 custom split of the wrong kind.
-        let items = vec![vec![8; 3], vec![8; 3], vec![8], vec![8]];
-        let bins = packer.pack(&items);
+        // 20 + 12 and 24 + 8 fill two words exactly; first fit in this order would take three.
+        let bins = packer.pack(&[20, 24, 12, 8]);
         assert_eq!(bins.len(), 2);
         for bin in &bins {
-            let widths: Vec<&Vec<u32>> = bin.iter().map(|&item| &items[item]).collect();
-            assert_eq!(place_in_word(&widths).0, Format::Rgba8);
+            assert_eq!(
+                bin.iter().map(|&item| [20, 24, 12, 8][item]).sum::<u32>(),
+                32
+            );
         }
     }
 }

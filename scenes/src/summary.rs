@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use crate::solver::{describe_error, Slot, Solution};
+use crate::solver::{describe_error, Solution};
 
 impl fmt::Display for Solution {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -18,11 +18,12 @@ impl fmt::Display for Solution {
             layout.used_bits(),
             self.custom_words()
         )?;
-        writeln!(out, "  word  field                         format")?;
-        for (index, field) in layout.fields.iter().enumerate() {
+        writeln!(out, "  word  bits   field                         storage")?;
+        for (field, (word, member)) in layout.fields.iter().zip(layout.field_locations()) {
+            let range = format!("{}-{}", member.offset, member.offset + member.bits - 1);
             writeln!(
                 out,
-                "  {index:<4}  {:<28}  {} {}",
+                "  {word:<4}  {range:<5}  {:<28}  {} {}",
                 field.name,
                 field.storage_name(),
                 field.ty.rust_name()
@@ -35,25 +36,12 @@ impl fmt::Display for Solution {
         )?;
         for placement in &self.placements {
             let needed_by: Vec<&str> = placement.needed_by.iter().map(|f| f.name()).collect();
-            let where_: Vec<String> = placement
-                .locations
+            let names: Vec<&str> = placement
+                .fields
                 .iter()
-                .map(|location| {
-                    let field = &layout.fields[location.field].name;
-                    match &location.slot {
-                        Slot::Bits(bits) => {
-                            let ranges: Vec<String> = bits
-                                .iter()
-                                .map(|(offset, width)| format!("{}..{}", offset, offset + width))
-                                .collect();
-                            format!("{field}[bits {}]", ranges.join(", "))
-                        }
-                        _ => field.clone(),
-                    }
-                })
+                .map(|&field| layout.fields[field].name.as_str())
                 .collect();
-            let mut where_ = where_;
-            where_.dedup();
+            let where_ = names.join(", ");
             writeln!(
                 out,
                 "  {:<16} {:<36} {:<34} {:<34} {} (in {})",
@@ -66,7 +54,7 @@ impl fmt::Display for Solution {
                     "exact".to_string()
                 },
                 needed_by.join(", "),
-                where_.join(", ")
+                where_
             )?;
         }
         Ok(())

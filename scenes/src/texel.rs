@@ -2,26 +2,15 @@
 //! member per stored quantity, `encode_<name>` (values to the layout's struct, which the
 //! layout's own `pack_<name>` turns into words) and `decode_<name>` (the inverse).
 //!
-//! It calls the shading library's encodings (octahedral, pseudo-gamma, RGBM, rgb9e5, ...); compose
-//! [`Solution::modules`] before it, or take [`standalone_wgsl`].
+//! Every quantity is one field of the layout and every encoding is the layout's own (a format,
+//! or a bit field's encoding in the generated WGSL), so these only move values between the two
+//! structs: the scene's code stores nothing itself.
 
 use std::fmt::Write as _;
 
-use crate::solver::{describe_error, Placement, Slot, Solution};
+use crate::solver::{describe_error, Solution};
 
 impl Solution {
-    /// The shading library modules the encode and decode functions call.
-    pub fn modules(&self) -> Vec<&'static str> {
-        let mut modules: Vec<&'static str> = self
-            .placements
-            .iter()
-            .flat_map(|placement| placement.encoding.modules().iter().copied())
-            .collect();
-        modules.sort();
-        modules.dedup();
-        modules
-    }
-
     /// The name of the values struct: `<Name>Values`.
     pub fn values_type(&self) -> String {
         format!("{}Values", self.layout.name)
@@ -29,7 +18,7 @@ impl Solution {
 }
 
 /// The layout's WGSL (struct, pack and unpack), then the values struct and the encode and
-/// decode functions.
+/// decode functions. Valid WGSL alone.
 pub fn texel_wgsl(solution: &Solution) -> String {
     let layout = &solution.layout;
     let name = &layout.name;
@@ -43,11 +32,17 @@ pub fn texel_wgsl(solution: &Solution) -> String {
     );
     let _ = writeln!(out, "struct {values} {{");
     for placement in &solution.placements {
+        let storage: Vec<String> = placement
+            .fields
+            .iter()
+            .map(|&field| layout.fields[field].storage_name())
+            .collect();
         let _ = writeln!(
             out,
-            "    // {}: {}, within {}.",
+            "    // {}: {} ({}), within {}.",
             placement.quantity.name(),
             placement.encoding,
+            storage.join(" and "),
             describe_error(placement.quantity, placement.predicted_error)
         );
         let _ = writeln!(
@@ -59,147 +54,45 @@ pub fn texel_wgsl(solution: &Solution) -> String {
     }
     out.push_str("}\n");
 
-    if solution.custom_words() > 0 {
-        let _ = write!(
-            out,
-            "
-// A value in [0, 1] as a `bits`-bit unsigned normalized code, rounded to nearest.
-fn {snake}_unorm_to_bits(value: f32, bits: u32) -> u32 {{
-    return u32(clamp(value, 0.0, 1.0) * f32((1u << bits) - 1u) + 0.5);
-}}
-
-// The `bits`-bit code at `offset` in `word`, as a value in [0, 1].
-fn {snake}_bits_to_unorm(word: u32, offset: u32, bits: u32) -> f32 {{
-    return f32(extractBits(word, offset, bits)) / f32((1u << bits) - 1u);
-}}
-"
-        );
+    // Each field holds a quantity, or some of its components: moved, never converted here.
+    let mut fields = vec![String::new(); layout.fields.len()];
+    for placement in &solution.placements {
+        let quantity = placement.quantity;
+        let pieces = placement.encoding.pieces(quantity);
+        for (piece, &field) in pieces.iter().zip(&placement.fields) {
+            let count = piece.ty.components;
+            fields[field] = if count == quantity.components() {
+                format!("values.{}", quantity.name())
+            } else {
+                let lanes = &"xyzw"[piece.first_component..piece.first_component + count];
+                format!("values.{}.{lanes}", quantity.name())
+            };
+        }
     }
-
-    // Encode: each quantity's stored form, then each field from its pieces.
     let _ = write!(
         out,
-        "\n// Stores the values in the {name} layout (pack the result with pack_{snake}).\nfn encode_{snake}(values: {values}) -> {name} {{\n"
+        "\n// Stores the values in the {name} layout (pack the result with pack_{snake}).\nfn encode_{snake}(values: {values}) -> {name} {{\n    return {name}({});\n}}\n",
+        fields.join(", ")
     );
-    for placement in &solution.placements {
-        let quantity = placement.quantity.name();
-        let _ = writeln!(
-            out,
-            "    let {quantity} = {};",
-            placement
-                .encoding
-                .encode_wgsl(&format!("values.{quantity}"))
-        );
-    }
-    let fields: Vec<String> = (0..layout.fields.len())
-        .map(|field| field_from_pieces(solution, field))
+    let members: Vec<String> = solution
+        .placements
+        .iter()
+        .map(|placement| {
+            let parts: Vec<String> = placement
+                .fields
+                .iter()
+                .map(|&field| format!("texel.{}", layout.fields[field].name))
+                .collect();
+            match parts.as_slice() {
+                [whole] => whole.clone(),
+                _ => format!("{}({})", placement.quantity.wgsl_type(), parts.join(", ")),
+            }
+        })
         .collect();
-    let _ = write!(out, "    return {name}({});\n}}\n", fields.join(", "));
-
-    // Decode: each quantity's stored form from its pieces, then the quantity.
     let _ = write!(
         out,
-        "\n// The values stored in a {name} texel (from unpack_{snake}).\nfn decode_{snake}(texel: {name}) -> {values} {{\n"
+        "\n// The values stored in a {name} texel (from unpack_{snake}).\nfn decode_{snake}(texel: {name}) -> {values} {{\n    return {values}({});\n}}\n",
+        members.join(", ")
     );
-    let mut members = Vec::new();
-    for placement in &solution.placements {
-        let quantity = placement.quantity.name();
-        let _ = writeln!(
-            out,
-            "    let {quantity} = {};",
-            stored_from_fields(solution, placement)
-        );
-        members.push(placement.encoding.decode_wgsl(quantity));
-    }
-    let _ = write!(out, "    return {values}({});\n}}\n", members.join(", "));
     out
-}
-
-/// The solution's modules composed, then [`texel_wgsl`]: a WGSL module that validates alone.
-pub fn standalone_wgsl(solution: &Solution) -> String {
-    let modules = gbuffer::modules::compose(&solution.modules())
-        .expect("the encodings name modules that exist");
-    format!("{modules}\n{}", texel_wgsl(solution))
-}
-
-fn component(name: &str, count: usize, index: usize) -> String {
-    if count == 1 {
-        name.to_string()
-    } else {
-        format!("{name}.{}", ["x", "y", "z", "w"][index])
-    }
-}
-
-/// The WGSL value of field `field` built from the stored forms of the quantities in it.
-fn field_from_pieces(solution: &Solution, field: usize) -> String {
-    let layout_field = &solution.layout.fields[field];
-    let snake = solution.layout.snake_name();
-    let mut channels = vec!["0.0".to_string(); layout_field.ty.components];
-    let mut bit_fields = Vec::new();
-    for placement in &solution.placements {
-        let name = placement.quantity.name();
-        let count = placement.encoding.stored_components(placement.quantity);
-        let split = placement.locations.len() > 1;
-        for (part, location) in placement.locations.iter().enumerate() {
-            if location.field != field {
-                continue;
-            }
-            match &location.slot {
-                Slot::Word => return name.to_string(),
-                Slot::Channels(list) => {
-                    for (index, &channel) in list.iter().enumerate() {
-                        let component_index = if split { part } else { index };
-                        channels[channel] = component(name, count, component_index);
-                    }
-                }
-                Slot::Bits(list) => {
-                    for (index, &(offset, bits)) in list.iter().enumerate() {
-                        let value = component(name, count, index);
-                        bit_fields.push(if offset == 0 {
-                            format!("{snake}_unorm_to_bits({value}, {bits}u)")
-                        } else {
-                            format!("({snake}_unorm_to_bits({value}, {bits}u) << {offset}u)")
-                        });
-                    }
-                }
-            }
-        }
-    }
-    if !bit_fields.is_empty() {
-        return bit_fields.join(" | ");
-    }
-    if channels.len() == 1 {
-        channels.remove(0)
-    } else {
-        format!("{}({})", layout_field.ty.wgsl(), channels.join(", "))
-    }
-}
-
-/// The WGSL value of a quantity's stored form read from the texel's fields.
-fn stored_from_fields(solution: &Solution, placement: &Placement) -> String {
-    let snake = solution.layout.snake_name();
-    let mut components = Vec::new();
-    for location in &placement.locations {
-        let field = &solution.layout.fields[location.field];
-        let access = format!("texel.{}", field.name);
-        match &location.slot {
-            Slot::Word => return access,
-            Slot::Channels(list) => {
-                for &channel in list {
-                    components.push(component(&access, field.ty.components, channel));
-                }
-            }
-            Slot::Bits(list) => {
-                for &(offset, bits) in list {
-                    components.push(format!(
-                        "{snake}_bits_to_unorm({access}, {offset}u, {bits}u)"
-                    ));
-                }
-            }
-        }
-    }
-    match components.len() {
-        1 => components.remove(0),
-        count => format!("vec{count}<f32>({})", components.join(", ")),
-    }
 }

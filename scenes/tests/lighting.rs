@@ -30,7 +30,6 @@ const FORMS: [Forms; 4] = [
 /// The lighting function in a fragment shader, with the host items it may read.
 fn shader(solution: &Solution, forms: Forms) -> String {
     let mut modules = lighting_modules();
-    modules.extend(solution.modules());
     modules.extend(["environment", "mobile"]);
     format!(
         "{}\n{}\n{}

@@ -38,12 +38,18 @@ fn writes_every_output_and_places_errors() {
         "mobile_metallic_scene.vulkan.glsl",
         "mobile_metallic_scene.scene.wgsl",
         "mobile_metallic_scene.lighting.wgsl",
+        "mobile_metallic_scene.layout.toml",
+        "mobile_metallic_scene.derive.rs",
     ] {
         assert!(folder.path().join(name).exists(), "{name} was not written");
     }
     let scene_wgsl =
         std::fs::read_to_string(folder.path().join("mobile_metallic_scene.scene.wgsl")).unwrap();
     gbuffer_validator::validate_wgsl(&scene_wgsl).unwrap();
+    // The layout file it writes is a layout `gbuffer codegen` reads.
+    let layout_file = folder.path().join("mobile_metallic_scene.layout.toml");
+    let read = gbuffer_codegen::layout_file::read_layout_file(&layout_file).unwrap();
+    assert_eq!(read.layout.name, "MobileMetallicScene");
 
     let broken = folder.path().join("broken.toml");
     let text = std::fs::read_to_string(&preset).unwrap();
