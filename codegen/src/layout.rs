@@ -82,10 +82,13 @@ pub enum Conversions {
     /// What engines write: WGSL's builtins where a format has one (`pack4x8unorm` for rgba8,
     /// `pack2x16unorm` for rg16, `pack2x16float` for rg16f), f32 arithmetic for rgb10_a2,
     /// `pack2x16float` with cut mantissas for r11f_g11f_b10f; the integer formats and r32f are
-    /// exact either way. Fewer instructions; the rounding is the adapter's, so a channel's code
-    /// can differ from the Rust mirror's by one (and for the floats the adapter may flush
-    /// values under 2^-14 to zero and turn values past 65504 into infinity).
-    /// `tests/tests/gpu_packing.rs` measures the deviation on the adapter.
+    /// exact either way. Bit fields: f32 arithmetic for unorm, octahedral and RGBM,
+    /// `pack2x16float` for half; the others are exact either way. Fewer instructions; the
+    /// rounding is the adapter's, so a channel's code can differ from the Rust mirror's by one
+    /// (an octahedral normal or RGBM colour by two steps of its decoded value, as those name
+    /// some values by two codes), and for the floats the adapter may flush values under 2^-14
+    /// to zero and turn values past 65504 into infinity.
+    /// `tests/tests/gpu_packing.rs` and `gpu_bit_fields.rs` measure the deviation on the adapter.
     Fast,
 }
 

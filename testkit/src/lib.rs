@@ -209,3 +209,26 @@ pub struct EveryEncoding {
     #[bits(3, unorm)]
     pub after_a_whole_word: f32,
 }
+
+/// Bit fields of every encoding with a fast form, under fast conversions.
+#[allow(missing_docs)] // each field's name says its encoding and width
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 224, conversions = fast)]
+pub struct FastBitFields {
+    #[bits(12, unorm)]
+    pub unorm_12: f32,
+    #[bits(15, unorm)]
+    pub unorm_3x5: Vec3,
+    #[bits(16, half)]
+    pub half: f32,
+    #[bits(32, half)]
+    pub halves: Vec2,
+    #[bits(24, octahedral)]
+    pub octahedral_24: Vec3,
+    #[bits(32, octahedral)]
+    pub octahedral_32: Vec3,
+    #[bits(32, rgbm(6))]
+    pub rgbm_6: Vec3,
+    #[bits(32, rgbm(51.5))]
+    pub rgbm_51_5: Vec3,
+}

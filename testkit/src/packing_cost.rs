@@ -10,7 +10,7 @@ use gbuffer_codegen::emit::wgsl::Conversions;
 
 use crate::gpu::Gpu;
 use crate::harness::{compute_harness, expected_words, run_in_batches, scalars_per_texel};
-use crate::texels::component_codes;
+use crate::texels::field_code_errors;
 use crate::tools::run;
 use crate::values::{float_edges, Values};
 
@@ -240,12 +240,11 @@ pub fn deviation(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u6
             for (texel, got) in packed.chunks_exact(words).enumerate() {
                 let expected = expected_words(layout, &inputs[texel * scalars..][..scalars]);
                 for (field, (word, member)) in layout.field_locations().into_iter().enumerate() {
-                    let want = component_codes(layout, field, member, expected[word]);
-                    let have = component_codes(layout, field, member, got[word]);
-                    for (want, have) in want.iter().zip(&have) {
-                        // Codes of one sign are ordered like their values (a sign bit is the
-                        // top bit, so a sign flip shows as a large difference).
-                        let error = want.abs_diff(*have);
+                    // Codes of one sign are ordered like their values (a sign bit is the top
+                    // bit, so a sign flip shows as a large difference).
+                    let errors =
+                        field_code_errors(layout, field, member, expected[word], got[word]);
+                    for error in errors {
                         let by_field = &mut deviation.largest_code_error_by_field[field];
                         *by_field = (*by_field).max(error);
                         deviation.differing += usize::from(error != 0);

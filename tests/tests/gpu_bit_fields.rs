@@ -175,3 +175,36 @@ proptest! {
         prop_assert!(failures.is_empty(), "{}", failures.join("\n"));
     }
 }
+
+/// Fast conversions of bit fields (f32 arithmetic and the pack builtins) stay within one code
+/// of the exact mirror on the adapter (octahedral normals and RGBM colours within two steps of
+/// their decoded values), and the exact WGSL of the same layout does not differ.
+#[test]
+fn fast_bit_fields_stay_within_their_steps_of_the_exact_mirror() {
+    use gbuffer_testkit::packing_cost::deviation;
+    use gbuffer_testkit::FastBitFields;
+    let gpu = Gpu::new();
+    let layout = FastBitFields::layout();
+    let found = deviation(&gpu, &layout, FastBitFields::WGSL, 1 << 18, 41);
+    eprintln!(
+        "fast bit fields on {}: {} of {} codes ({:.3}%) differ from the exact mirror, by at most {:?} per field",
+        gpu.describe(),
+        found.differing,
+        found.channels,
+        100.0 * found.differing_fraction(),
+        found.largest_code_error_by_field
+    );
+    // Codes within one; octahedral and RGBM fields, measured on their decoded values, within
+    // two steps (each side is within one of the input).
+    for (field, largest) in layout.fields.iter().zip(&found.largest_code_error_by_field) {
+        let allowed = match field.bit_field().map(|bits| bits.encoding) {
+            Some(Encoding::Octahedral | Encoding::Rgbm(_)) => 2,
+            _ => 1,
+        };
+        assert!(*largest <= allowed, "{}: {found:?}", field.name);
+    }
+    let exact =
+        gbuffer_codegen::emit::wgsl::emit_with(&layout, gbuffer_codegen::Conversions::Exact);
+    let found = deviation(&gpu, &layout, &exact, 1 << 16, 42);
+    assert_eq!(found.differing, 0, "{found:?}");
+}

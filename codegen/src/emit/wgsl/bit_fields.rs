@@ -5,7 +5,8 @@
 //! Exact conversions keep [`crate::encoding`]'s contracts bit for bit with integer operations
 //! only (the decodes of unorm, snorm, octahedral and RGBM are f32 arithmetic, within a few ulp
 //! of the mirror); fast conversions use f32 arithmetic and builtins where the encoding has a
-//! fast form (unorm, half, octahedral, RGBM), one code from the exact ones at most.
+//! fast form (unorm, half, octahedral, RGBM), one code from the exact ones at most (for
+//! octahedral and RGBM, which name some values by two codes, two steps of the decoded value).
 
 use crate::convert::max_code;
 use crate::encoding::{BitField, Encoding};
@@ -322,7 +323,8 @@ fn PREFIX_octahedral_from_f32x3(normal: vec3<f32>, bits: u32) -> u32 {
 
 const FAST_OCTAHEDRAL: &str = "\
 // Octahedral encode, fast: Cigolle et al.'s f32 arithmetic, the adapter's division and
-// rounding (one code from the exact ones at most; the zero vector is undefined).
+// rounding: the decoded normal within twice the quantisation bound of the exact one (on the
+// fold's border the other of two twin codes may come out); the zero vector is undefined.
 fn PREFIX_octahedral_from_f32x3_fast(normal: vec3<f32>, bits: u32) -> u32 {
     let projected = normal.xy / (abs(normal.x) + abs(normal.y) + abs(normal.z));
     let sign_not_zero = vec2<f32>(projected >= vec2<f32>(0.0)) * 2.0 - vec2<f32>(1.0);
@@ -373,8 +375,8 @@ fn PREFIX_rgbm_from_f32x3(value: vec3<f32>, range: f32) -> u32 {
 ";
 
 const FAST_RGBM: &str = "\
-// RGBM encode, fast: Karis's f32 arithmetic and rounding (one code from the exact ones at
-// most).
+// RGBM encode, fast: Karis's f32 arithmetic and rounding: each decoded channel within two
+// steps of the exact one (the multiplier may come out one step apart, the channels trading it).
 fn PREFIX_rgbm_from_f32x3_fast(value: vec3<f32>, range: f32) -> u32 {
     let colour = clamp(value, vec3<f32>(0.0), vec3<f32>(range));
     let multiplier = max(ceil(max(colour.x, max(colour.y, colour.z)) / range * 255.0), 1.0);
