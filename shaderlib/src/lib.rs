@@ -25,11 +25,32 @@
 //! assert!(MobileMetallic::WGSL.contains("fn unpack_mobile_metallic(w: array<u32, 4>) -> MobileMetallic"));
 //! ```
 //!
-//! Each field is one 32-bit word of a format of EXT_shader_pixel_local_storage, named in
-//! `#[pls(...)]`: `r11f_g11f_b10f`, `r32f`, `rg16f`, `rgb10_a2` (or `rgb10a2`), `rgba8`,
-//! `rg16`, `rgba8i`, `rg16i`, `rgb10_a2ui`, `rgba8ui`, `rg16ui`, `r32ui`. A field holds `f32`
-//! or `Vec2`..`Vec4` in float and unorm formats, `u32` or `UVec2`..`UVec4` in `ui` formats,
-//! `i32` or `IVec2`..`IVec4` in `i` formats; channels it does not fill are zero padding.
+//! A `#[pls(...)]` field is one 32-bit word of a format of EXT_shader_pixel_local_storage:
+//! `r11f_g11f_b10f`, `r32f`, `rg16f`, `rgb10_a2` (or `rgb10a2`), `rgba8`, `rg16`, `rgba8i`,
+//! `rg16i`, `rgb10_a2ui`, `rgba8ui`, `rg16ui`, `r32ui`. It holds `f32` or `Vec2`..`Vec4` in
+//! float and unorm formats, `u32` or `UVec2`..`UVec4` in `ui` formats, `i32` or
+//! `IVec2`..`IVec4` in `i` formats; channels it does not fill are zero padding.
+//!
+//! A `#[bits(N, encoding)]` field is N bits of a shared `r32ui` word: consecutive bit fields
+//! fill a word from its least significant bit up, and one that does not fit starts the next.
+//! The encodings are `unorm`, `snorm`, `uint`, `sint`, `bool`, `half`, `rgb9e5`, `octahedral`
+//! and `rgbm(range)` ([`packing::Encoding`]); [`engine_layouts`] declares Bevy's and HDRP's
+//! G-buffers with them:
+//!
+//! ```
+//! use gbuffer::{GBufferLayout, glam::{Vec3, Vec4}};
+//!
+//! #[derive(GBufferLayout)]
+//! #[gbuffer(budget = 64)]
+//! struct Small {
+//!     #[bits(24, octahedral)] normal: Vec3,   // word 0, bits 0-23
+//!     #[bits(8, unorm)]       roughness: f32, // word 0, bits 24-31
+//!     #[pls(rgba8)]           albedo: Vec4,   // word 1
+//! }
+//!
+//! let words = Small { normal: Vec3::Z, roughness: 1.0, albedo: Vec4::ONE }.pack();
+//! assert_eq!(words, [0xff80_0800, 0xffff_ffff]);
+//! ```
 //!
 //! `#[gbuffer(conversions = fast)]` makes the WGSL use what engines write (the pack builtins
 //! for rgba8, rg16 and rg16f, f32 rounding for rgb10_a2, cut halves for r11f_g11f_b10f): fewer
