@@ -313,6 +313,14 @@ impl Layout {
         words
     }
 
+    /// The names of the fields in `word`, from its least significant bit up.
+    pub fn field_names<'a>(&'a self, word: &Word) -> Vec<&'a str> {
+        word.members
+            .iter()
+            .map(|member| self.fields[member.field].name.as_str())
+            .collect()
+    }
+
     /// Per field, its word and its member entry there.
     pub fn field_locations(&self) -> Vec<(usize, Member)> {
         let mut locations = vec![
@@ -517,11 +525,7 @@ impl Layout {
             .word_contents()
             .iter()
             .map(|word| {
-                let names: Vec<&str> = word
-                    .members
-                    .iter()
-                    .map(|member| self.fields[member.field].name.as_str())
-                    .collect();
+                let names = self.field_names(word);
                 match names.as_slice() {
                     [name] if !word.is_bit_fields => format!("{name} 32"),
                     _ => format!("({}) 32", names.join(" | ")),

@@ -185,14 +185,7 @@ impl fmt::Display for Report {
         let words = layout.word_contents();
         let word_names: Vec<String> = words
             .iter()
-            .map(|word| {
-                let names: Vec<&str> = word
-                    .members
-                    .iter()
-                    .map(|member| layout.fields[member.field].name.as_str())
-                    .collect();
-                names.join(", ")
-            })
+            .map(|word| layout.field_names(word).join(", "))
             .collect();
         let width = word_names
             .iter()

@@ -200,14 +200,16 @@ pub fn random_layout() -> impl Strategy<Value = Layout> {
     random_layout_with(8)
 }
 
-/// The seed and engine layouts and a layout of every format, also split in two for the native
-/// includes, whose twelve attachments are more than GLES and Vulkan guarantee.
+/// The seed and engine layouts, a layout of every bit-field encoding, and a layout of every
+/// format, also split in two for the native includes, whose twelve attachments are more than
+/// GLES and Vulkan guarantee.
 pub fn seeds_and_every_format() -> Vec<Layout> {
     let mut layouts: Vec<Layout> = gbuffer::seed_layouts::all()
         .into_iter()
         .chain(gbuffer::engine_layouts::all())
         .map(|(layout, _)| layout)
         .collect();
+    layouts.push(crate::EveryEncoding::layout());
     let every = crate::AllFormats::layout();
     layouts.push(every.clone());
     for (index, half) in every.fields.chunks(6).enumerate() {

@@ -176,11 +176,7 @@ fn mask(bits: u32) -> u32 {
 /// (bit fields)`.
 pub fn describe_word(layout: &Layout, word: usize) -> String {
     let contents = &layout.word_contents()[word];
-    let names: Vec<&str> = contents
-        .members
-        .iter()
-        .map(|member| layout.fields[member.field].name.as_str())
-        .collect();
+    let names = layout.field_names(contents);
     if contents.is_bit_fields {
         format!("{} (bit fields)", names.join(", "))
     } else {
@@ -421,45 +417,57 @@ fn small_float_bits(value: f32, mantissa_bits: u32, signed: bool) -> u32 {
 }
 
 /// What `store(load())` did to the words of `stored` (words per texel, as the layout packs
-/// them): `(unexpected, twins)`. A word must come back unchanged, but for one that holds an
-/// octahedral or RGBM bit field, which may come back as the mirror's re-encoding of its
-/// decoding: those encodings name some values by two codes (the octahedral map's folded
-/// border, where a code and its mirror image are one vector; an RGBM multiplier and a channel
-/// that trade a step), and re-encoding picks one of them. Those are counted in `twins`.
+/// them): `(unexpected, twins)`. A field must come back with the same bits, but for an
+/// octahedral or RGBM bit field, which may come back as another code of (nearly) the same
+/// value: those encodings name some values by two codes (the octahedral map's folded border,
+/// where a code and its mirror image are one vector; an RGBM multiplier and a channel that
+/// trade a step), and a decode a few ulp from the mirror's can re-encode to the other. Such a
+/// field must decode within one step (see [`field_code_errors`]) of what it held; the words
+/// where one changed so are counted in `twins`.
 pub fn restore_changes(layout: &Layout, stored: &[u32], reloaded: &[u32]) -> (usize, usize) {
-    let words = layout.word_contents();
-    let has_twin_codes: Vec<bool> = words
-        .iter()
-        .map(|word| {
-            word.members.iter().any(|member| {
-                matches!(
-                    layout.fields[member.field]
-                        .bit_field()
-                        .map(|field| field.encoding),
-                    Some(Encoding::Octahedral | Encoding::Rgbm(_))
-                )
-            })
-        })
-        .collect();
+    let locations = layout.field_locations();
+    let word_count = layout.words();
+    // The bits no field covers (left over at the top of a word of bit fields): kept too.
+    let mut uncovered = vec![u32::MAX; word_count];
+    for &(word, member) in &locations {
+        uncovered[word] &= !(mask(member.bits) << member.offset);
+    }
     let (mut unexpected, mut twins) = (0, 0);
     for (before, after) in stored
-        .chunks_exact(words.len())
-        .zip(reloaded.chunks_exact(words.len()))
+        .chunks_exact(word_count)
+        .zip(reloaded.chunks_exact(word_count))
     {
-        if before == after {
-            continue;
-        }
-        let canonical = layout.encode_lanes(&layout.decode_lanes(before));
-        for (index, (&was, &is)) in before.iter().zip(after).enumerate() {
-            if was == is {
+        // Per word: (changed unexpectedly, changed as a twin).
+        let mut changed: Vec<(bool, bool)> = (0..word_count)
+            .map(|word| ((before[word] ^ after[word]) & uncovered[word] != 0, false))
+            .collect();
+        for (field, &(word, member)) in locations.iter().enumerate() {
+            let (was, is) = (before[word], after[word]);
+            let bits = mask(member.bits) << member.offset;
+            if was & bits == is & bits {
                 continue;
             }
-            if has_twin_codes[index] && is == canonical[index] {
-                twins += 1;
+            let twin_codes = matches!(
+                layout.fields[field]
+                    .bit_field()
+                    .map(|bit_field| bit_field.encoding),
+                Some(Encoding::Octahedral | Encoding::Rgbm(_))
+            );
+            if twin_codes
+                && field_code_errors(layout, field, member, was, is)
+                    .iter()
+                    .all(|&steps| steps <= 1)
+            {
+                changed[word].1 = true;
             } else {
-                unexpected += 1;
+                changed[word].0 = true;
             }
         }
+        unexpected += changed.iter().filter(|(wrong, _)| *wrong).count();
+        twins += changed
+            .iter()
+            .filter(|(wrong, twin)| *twin && !*wrong)
+            .count();
     }
     (unexpected, twins)
 }

@@ -158,6 +158,33 @@ fn every_encoding_matches_the_mirror_at_its_extremes_on_the_adapter() {
     );
 }
 
+/// The solver's layouts of the scene presets, as `gbuffer solve` writes them: their WGSL on the
+/// adapter is the solver's mirror.
+#[test]
+fn solved_layouts_match_the_mirror_on_the_adapter() {
+    let gpu = Gpu::new();
+    let presets = gbuffer_testkit::workspace().join("examples/scenes");
+    let mut paths: Vec<_> = std::fs::read_dir(presets)
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .collect();
+    paths.sort();
+    for path in paths {
+        let solution = gbuffer_scenes::file::read_and_solve(&path).unwrap();
+        let layout = solution.layout;
+        let wgsl = gbuffer_codegen::emit::wgsl::emit(&layout);
+        let mut values = Values::new(43);
+        let inputs = every_encoding_inputs(&layout, 16384, &mut values);
+        let failures = check(&gpu, &layout, &wgsl, inputs);
+        assert!(
+            failures.is_empty(),
+            "{}:\n{}",
+            path.display(),
+            failures.join("\n")
+        );
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 16, failure_persistence: None, ..ProptestConfig::default() })]
 

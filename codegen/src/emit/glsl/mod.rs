@@ -183,7 +183,14 @@ pub fn include_with(
     let interface = Interface::new(layout, include, &translation.names);
     let text = match include {
         Include::PixelLocalStorage(block) => {
-            pixel_local_storage(layout, block, &translation, &interface)
+            // Bit fields need their conversions beside the block (and nothing else, as the
+            // block's members share the global namespace).
+            let functions = if layout.has_bit_fields() {
+                translate::translate_bit_field_functions(layout, conversions)?
+            } else {
+                String::new()
+            };
+            pixel_local_storage(layout, block, (&functions, &translation), &interface)
         }
         _ => attachments(layout, &translation, &interface, set),
     };
@@ -254,7 +261,7 @@ fn write_header(out: &mut String, title: &str, interface: &Interface) {
 fn pixel_local_storage(
     layout: &Layout,
     block: PlsBlock,
-    translation: &Translation,
+    (functions, translation): (&str, &Translation),
     interface: &Interface,
 ) -> String {
     let names = &translation.names;
@@ -317,7 +324,7 @@ fn pixel_local_storage(
     }
     out.push_str("};\n");
     if layout.has_bit_fields() {
-        write_pls_bit_field_accessors(&mut out, layout, block, translation, &words);
+        write_pls_bit_field_accessors(&mut out, layout, block, (functions, translation), &words);
     }
     out
 }
@@ -330,7 +337,7 @@ fn write_pls_bit_field_accessors(
     out: &mut String,
     layout: &Layout,
     block: PlsBlock,
-    translation: &Translation,
+    (functions, translation): (&str, &Translation),
     words: &[Word],
 ) {
     let prefix = layout.snake_name();
@@ -339,7 +346,7 @@ fn write_pls_bit_field_accessors(
         out,
         "\n// The bit fields' conversions, translated by naga from the layout's WGSL.\n"
     );
-    out.push_str(&translation.text);
+    out.push_str(functions);
     for word in words.iter().filter(|word| word.is_bit_fields) {
         let name = word_name(word, names);
         if block != PlsBlock::Out {

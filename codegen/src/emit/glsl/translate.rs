@@ -122,11 +122,39 @@ fn with_builtin_from_310(glsl: &str, signature: &str, builtin: &str) -> String {
     out.join("\n") + "\n"
 }
 
+/// The bit fields' functions and their helpers alone, translated to GLSL ES declarations
+/// with explicit precision (for pixel local storage includes, whose block members share the
+/// global namespace with whatever the include declares).
+pub fn translate_bit_field_functions(
+    layout: &Layout,
+    conversions: Conversions,
+) -> Result<String, TranslationError> {
+    let wgsl = crate::emit::wgsl::bit_field_functions(layout, conversions);
+    let glsl = naga_glsl_of(wgsl)?;
+    let body: Vec<&str> = glsl
+        .lines()
+        .skip_while(|line| {
+            line.is_empty() || line.starts_with('#') || line.starts_with("precision ")
+        })
+        .take_while(|line| !line.starts_with("void main()"))
+        .filter(|line| !line.starts_with("layout("))
+        .collect();
+    Ok(with_explicit_precision(body.join("\n").trim_end()) + "\n")
+}
+
 /// naga's whole GLSL ES shader for the layout's WGSL plus an empty fragment entry point.
 fn naga_glsl(layout: &Layout, conversions: Conversions) -> Result<String, TranslationError> {
+    naga_glsl_of(crate::emit::wgsl::emit_for(
+        layout,
+        conversions,
+        Target::GlslEs300,
+    ))
+}
+
+/// naga's whole GLSL ES shader for `wgsl` plus an empty fragment entry point.
+fn naga_glsl_of(mut wgsl: String) -> Result<String, TranslationError> {
     use naga::back::glsl;
 
-    let mut wgsl = crate::emit::wgsl::emit_for(layout, conversions, Target::GlslEs300);
     wgsl.push_str(&format!(
         "\n@fragment\nfn {ENTRY_POINT}() -> @location(0) vec4<f32> {{\n    return vec4<f32>(0.0);\n}}\n"
     ));

@@ -93,16 +93,11 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
     let _ = writeln!(out, "fn pack_{prefix}(v: {name}) -> {words_type} {{");
     let _ = writeln!(out, "    return {words_type}(");
     for word in layout.word_contents() {
-        let names: Vec<&str> = word
-            .members
-            .iter()
-            .map(|member| layout.fields[member.field].name.as_str())
-            .collect();
         let _ = writeln!(
             out,
             "        {}, // {}",
             encode_word(&prefix, layout, &word.members, conversions),
-            names.join(", ")
+            layout.field_names(&word).join(", ")
         );
     }
     out.push_str("    );\n}\n\n");
@@ -722,6 +717,26 @@ fn mantissa_bits(channel: &Channel) -> u32 {
         ChannelEncoding::UnsignedFloat { mantissa_bits } => mantissa_bits,
         _ => 10,
     }
+}
+
+/// The bit fields' encode and decode functions and the helpers they call, alone (no struct,
+/// no pack or unpack): what a pixel local storage include adds beside its block.
+#[cfg(feature = "tools")]
+pub(crate) fn bit_field_functions(layout: &Layout, conversions: Conversions) -> String {
+    let prefix = layout.snake_name();
+    let mut out = String::new();
+    write_bit_field_functions(&mut out, layout, conversions);
+    let mut written = BTreeSet::new();
+    for field in &layout.fields {
+        if let Storage::Bits(bit_field) = field.storage {
+            for helper in bit_fields::helpers(&prefix, field, bit_field, mode(field, conversions)) {
+                if written.insert(helper.clone()) {
+                    out.push_str(&helper);
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Each bit field's encode and decode functions.
