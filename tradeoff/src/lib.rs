@@ -3,11 +3,12 @@
 //! Run with `cargo run --release -p gbuffer-cli -- report`. Prints a table and writes
 //! `target/tradeoff/report.md`, `report.json` and PNG plots (or into `--out DIR`). Each row's error is measured
 //! against the f64 references over the stated domain; its cost is counted in naga IR
-//! expressions and SPIR-V instructions; its time is measured on the adapter at hand (a
-//! dependent chain of evaluations grown until a run lasts 10 ms, median of 7 runs, less the
-//! harness's own time, `n/r` where that does not stand clear of the runs' spread, and nowhere
-//! printed when the times contradict the order the instruction counts predict) and for its
-//! f32 mirror on the CPU. The packing conversions get their own table: per format, exact and
+//! expressions and SPIR-V instructions; its time is measured on the adapter at hand, in a
+//! compute dispatch and in a fullscreen draw's fragment shader (a dependent chain of
+//! evaluations grown until a run lasts 10 ms, median of 7 runs, less the harness's own time,
+//! `n/r` where that does not stand clear of the runs' spread, and nowhere printed when the
+//! times contradict the order the instruction counts predict) and for its f32 mirror on the
+//! CPU. The packing conversions get their own table: per format, exact and
 //! fast, their instructions, branches, error in codes and time per million texels.
 
 #![warn(missing_docs)]
@@ -29,8 +30,8 @@ use rows::Row;
 struct Measured {
     naga_expressions: usize,
     spirv_instructions: usize,
-    /// The adapter's time, less the harness's.
-    gpu: Option<timing::GpuTime>,
+    /// The adapter's times in both stages, less the harness's.
+    gpu: timing::StageTimes,
     cpu_ns_per_eval: f64,
 }
 
@@ -54,7 +55,13 @@ pub fn run(folder: &Path) -> Result<(), String> {
 
     let (_, baseline_spirv) = compile(timing::BASELINE_ROW).expect("the baseline harness compiles");
     let baseline_instructions = gbuffer_validator::cost::spirv_instructions(&baseline_spirv);
-    let baseline_gpu = timing::gpu_time(&gpu, timing::BASELINE_ROW, &[], 1).ok();
+    let baseline_gpu = timing::StageTimes::measure(
+        &gpu,
+        timing::BASELINE_ROW,
+        &[],
+        1,
+        &timing::StageTimes::default(),
+    );
     let luts: Vec<(usize, Vec<[f32; 2]>)> = [16, 32]
         .into_iter()
         .map(|size| (size, EnvBrdfLut::bake(size, 1024).texels))
@@ -79,10 +86,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
                 .unwrap_or((1, &[])),
             None => (1, &[][..]),
         };
-        let gpu_time = timing::gpu_time(&gpu, &row.wgsl, lut, lut_size)
-            .map_err(|error| eprintln!("  GPU timing failed: {error}"))
-            .ok()
-            .map(|time| time.less(baseline_gpu));
+        let gpu_time = timing::StageTimes::measure(&gpu, &row.wgsl, lut, lut_size, &baseline_gpu);
         measured.push(Measured {
             naga_expressions: gbuffer_validator::cost::naga_expressions(&module, "row_eval"),
             spirv_instructions: gbuffer_validator::cost::spirv_instructions(&spirv)
@@ -92,7 +96,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
         });
     }
 
-    let mut packing = packing::measure(&gpu, baseline_gpu);
+    let mut packing = packing::measure(&gpu, &baseline_gpu);
     let inconsistencies = check_consistency(&rows, &mut measured, &mut packing);
     print_table(&rows, &measured, &adapter);
     packing::print(&packing, &gpu);
@@ -138,11 +142,9 @@ pub fn run(folder: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// A time with three significant digits; "n/r" where it did not resolve (within the runs'
-/// spread), "n/a" where it could not be measured.
 /// Checks the adapter's times against the order the instruction counts predict, within each
-/// family of rows and each format's two packing modes; where they disagree, every time is
-/// marked untrusted (and printed as n/r). The disagreements, a line each.
+/// family of rows and each format's two packing modes, in each stage; where they disagree,
+/// every time is marked untrusted (and printed as n/r). The disagreements, a line each.
 fn check_consistency(
     rows: &[Row],
     measured: &mut [Measured],
@@ -150,37 +152,43 @@ fn check_consistency(
 ) -> Vec<String> {
     let mut families: Vec<&str> = rows.iter().map(|row| row.family).collect();
     families.dedup();
-    let mut found: Vec<String> = families
-        .iter()
-        .flat_map(|family| {
+    let mut found = Vec::new();
+    for stage in timing::Stage::ALL {
+        let times: Vec<Option<timing::GpuTime>> = measured
+            .iter()
+            .map(|measured| measured.gpu.get(stage))
+            .collect();
+        for family in &families {
             let group: Vec<timing::Timed> = rows
                 .iter()
                 .zip(measured.iter())
-                .filter(|(row, _)| row.family == *family)
-                .map(|(row, measured)| timing::Timed {
-                    name: row.name.clone(),
+                .zip(&times)
+                .filter(|((row, _), _)| row.family == *family)
+                .map(|((row, measured), time)| timing::Timed {
+                    name: format!("{} ({})", row.name, stage.name()),
                     instructions: measured.spirv_instructions,
-                    time: measured.gpu.as_ref(),
+                    time: time.as_ref(),
                 })
                 .collect();
-            timing::inconsistencies(&group)
-        })
-        .collect();
-    for group in packing::timed_groups(packing) {
-        found.extend(timing::inconsistencies(&group));
+            found.extend(timing::inconsistencies(&group));
+        }
+        let packing_times: Vec<Option<timing::GpuTime>> =
+            packing.iter().map(|row| row.time(stage)).collect();
+        for group in packing::timed_groups(packing, &packing_times, stage) {
+            found.extend(timing::inconsistencies(&group));
+        }
     }
     if !found.is_empty() {
-        for time in measured
-            .iter_mut()
-            .filter_map(|measured| measured.gpu.as_mut())
-        {
-            time.trusted = false;
+        for measured in measured.iter_mut() {
+            measured.gpu.distrust();
         }
         packing::distrust(packing);
     }
     found
 }
 
+/// A time with three significant digits; "n/r" where it did not resolve (within the runs'
+/// spread), "n/a" where it could not be measured.
 fn format_time(time: Option<timing::GpuTime>) -> String {
     match time {
         None => "n/a".to_string(),
@@ -196,25 +204,30 @@ fn significant(value: f64) -> String {
 }
 
 /// The report's timing objects of a row: one per stage measured.
-fn timings_json(time: Option<timing::GpuTime>) -> serde_json::Value {
-    serde_json::json!(time
-        .map(|time| vec![serde_json::json!({
-            "stage": "compute",
-            "clock": "wall",
-            "evaluations_per_run": time.evaluations_per_run(),
-            "run_ms": time.run_ms,
-            "median_ns": time.median_ns,
-            "min_ns": time.min_ns,
-            "max_ns": time.max_ns,
-            "resolved": time.resolved(),
-        })])
-        .unwrap_or_default())
+fn timings_json(times: &timing::StageTimes) -> serde_json::Value {
+    let objects: Vec<serde_json::Value> = timing::Stage::ALL
+        .into_iter()
+        .filter_map(|stage| times.get(stage))
+        .map(|time| {
+            serde_json::json!({
+                "stage": time.stage.name(),
+                "clock": "wall",
+                "evaluations_per_run": time.evaluations_per_run(),
+                "run_ms": time.run_ms,
+                "median_ns": time.median_ns,
+                "min_ns": time.min_ns,
+                "max_ns": time.max_ns,
+                "resolved": time.resolved(),
+            })
+        })
+        .collect();
+    serde_json::json!(objects)
 }
 
 fn print_table(rows: &[Row], measured: &[Measured], adapter: &str) {
     println!("adapter: {adapter}");
     println!(
-        "{:<17} {:<34} {:>4} {:>11} {:>11} {:<24} {:>5} {:>5} {:>8} {:>8}",
+        "{:<17} {:<34} {:>4} {:>11} {:>11} {:<24} {:>5} {:>5} {:>8} {:>8} {:>8}",
         "family",
         "row",
         "bits",
@@ -224,11 +237,12 @@ fn print_table(rows: &[Row], measured: &[Measured], adapter: &str) {
         "naga",
         "spirv",
         "gpu ns",
+        "frag ns",
         "cpu ns"
     );
     for (row, measured) in rows.iter().zip(measured) {
         println!(
-            "{:<17} {:<34} {:>4} {:>11.3e} {:>11.3e} {:<24} {:>5} {:>5} {:>8} {:>8.2}",
+            "{:<17} {:<34} {:>4} {:>11.3e} {:>11.3e} {:<24} {:>5} {:>5} {:>8} {:>8} {:>8.2}",
             row.family,
             row.name,
             row.bits
@@ -238,7 +252,8 @@ fn print_table(rows: &[Row], measured: &[Measured], adapter: &str) {
             row.unit,
             measured.naga_expressions,
             measured.spirv_instructions,
-            format_time(measured.gpu),
+            format_time(measured.gpu.compute),
+            format_time(measured.gpu.fragment),
             measured.cpu_ns_per_eval
         );
     }
@@ -259,8 +274,8 @@ fn json_report(rows: &[Row], measured: &[Measured], adapter: &str) -> serde_json
                 "rms_error": row.errors.rms,
                 "naga_expressions": measured.naga_expressions,
                 "spirv_instructions": measured.spirv_instructions,
-                "gpu_ns_per_eval": measured.gpu.filter(timing::GpuTime::resolved).map(|time| time.median_ns),
-                "timings": timings_json(measured.gpu),
+                "gpu_ns_per_eval": measured.gpu.compute.filter(timing::GpuTime::resolved).map(|time| time.median_ns),
+                "timings": timings_json(&measured.gpu),
                 "cpu_ns_per_eval": measured.cpu_ns_per_eval,
             });
             if let Some(bits) = row.bits {
@@ -380,15 +395,15 @@ fn markdown_report(
                 "\n## {family}\n\nDomain: {}. Unit: {}.\n",
                 row.domain, row.unit
             );
-            let _ = writeln!(out, "| row | bits | max error | RMS error | naga expressions | SPIR-V instructions | GPU ns/eval | CPU ns/eval |");
+            let _ = writeln!(out, "| row | bits | max error | RMS error | naga expressions | SPIR-V instructions | GPU ns/eval (compute) | GPU ns/eval (fragment) | CPU ns/eval |");
             let _ = writeln!(
                 out,
-                "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+                "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
             );
         }
         let _ = writeln!(
             out,
-            "| {} | {} | {:.3e} | {:.3e} | {} | {} | {} | {:.2} |",
+            "| {} | {} | {:.3e} | {:.3e} | {} | {} | {} | {} | {:.2} |",
             row.name,
             row.bits
                 .map_or_else(|| "-".to_string(), |bits| bits.to_string()),
@@ -396,7 +411,8 @@ fn markdown_report(
             row.errors.rms,
             measured.naga_expressions,
             measured.spirv_instructions,
-            format_time(measured.gpu),
+            format_time(measured.gpu.compute),
+            format_time(measured.gpu.fragment),
             measured.cpu_ns_per_eval
         );
     }

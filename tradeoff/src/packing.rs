@@ -25,12 +25,17 @@ pub struct PackingRow {
     /// None where spirv-opt is missing or failed (the reason was printed).
     cost: Option<Cost>,
     deviation: Deviation,
-    /// The adapter's time to pack and unpack a texel, less the harness's: nanoseconds per
-    /// texel are milliseconds per million.
-    time: Option<timing::GpuTime>,
+    /// The adapter's times to pack and unpack a texel in both stages, less the harness's:
+    /// nanoseconds per texel are milliseconds per million.
+    times: timing::StageTimes,
 }
 
 impl PackingRow {
+    /// The time in `stage`.
+    pub fn time(&self, stage: timing::Stage) -> Option<timing::GpuTime> {
+        self.times.get(stage)
+    }
+
     fn mode(&self) -> &'static str {
         match self.conversions {
             Conversions::Exact => "exact",
@@ -57,7 +62,7 @@ fn row_wgsl(format: Format, conversions: Conversions) -> String {
 }
 
 /// Measures both modes of every format fast conversions change.
-pub fn measure(gpu: &Gpu, baseline_gpu: Option<timing::GpuTime>) -> Vec<PackingRow> {
+pub fn measure(gpu: &Gpu, baseline_gpu: &timing::StageTimes) -> Vec<PackingRow> {
     let mut rows = Vec::new();
     for format in CONVERTED_FORMATS {
         for conversions in [Conversions::Exact, Conversions::Fast] {
@@ -68,34 +73,43 @@ pub fn measure(gpu: &Gpu, baseline_gpu: Option<timing::GpuTime>) -> Vec<PackingR
                 .ok();
             let wgsl = emit_with(&layout, conversions);
             let deviation = deviation(gpu, &layout, &wgsl, TEXELS, 91);
-            let time = timing::gpu_time(gpu, &row_wgsl(format, conversions), &[], 1)
-                .map_err(|error| eprintln!("  GPU timing failed: {error}"))
-                .ok()
-                .map(|time| time.less(baseline_gpu));
+            let times = timing::StageTimes::measure(
+                gpu,
+                &row_wgsl(format, conversions),
+                &[],
+                1,
+                baseline_gpu,
+            );
             rows.push(PackingRow {
                 format,
                 conversions,
                 cost,
                 deviation,
-                time,
+                times,
             });
         }
     }
     rows
 }
 
-/// The rows as the consistency check groups them: each format's two modes.
-pub fn timed_groups(rows: &[PackingRow]) -> Vec<Vec<timing::Timed<'_>>> {
+/// The rows as the consistency check groups them in `stage`: each format's two modes, with
+/// `times` (one per row, the stage's).
+pub fn timed_groups<'a>(
+    rows: &'a [PackingRow],
+    times: &'a [Option<timing::GpuTime>],
+    stage: timing::Stage,
+) -> Vec<Vec<timing::Timed<'a>>> {
     CONVERTED_FORMATS
         .iter()
         .map(|format| {
             rows.iter()
-                .filter(|row| row.format == *format)
-                .filter_map(|row| {
+                .zip(times)
+                .filter(|(row, _)| row.format == *format)
+                .filter_map(|(row, time)| {
                     Some(timing::Timed {
-                        name: format!("{} {}", row.format.name(), row.mode()),
+                        name: format!("{} {} ({})", row.format.name(), row.mode(), stage.name()),
                         instructions: row.cost?.instructions,
-                        time: row.time.as_ref(),
+                        time: time.as_ref(),
                     })
                 })
                 .collect()
@@ -105,8 +119,8 @@ pub fn timed_groups(rows: &[PackingRow]) -> Vec<Vec<timing::Timed<'_>>> {
 
 /// Marks every row's time untrusted.
 pub fn distrust(rows: &mut [PackingRow]) {
-    for time in rows.iter_mut().filter_map(|row| row.time.as_mut()) {
-        time.trusted = false;
+    for row in rows {
+        row.times.distrust();
     }
 }
 
@@ -119,8 +133,9 @@ fn time_note(gpu: &Gpu) -> &'static str {
     }
 }
 
-/// A row's cells: format, mode, instructions, branches, largest error, differing, time.
-fn cells(row: &PackingRow) -> [String; 7] {
+/// A row's cells: format, mode, instructions, branches, largest error, differing, and the
+/// compute and fragment times.
+fn cells(row: &PackingRow) -> [String; 8] {
     let count = |pick: fn(Cost) -> usize| {
         row.cost
             .map_or_else(|| "n/a".to_string(), |cost| pick(cost).to_string())
@@ -132,17 +147,18 @@ fn cells(row: &PackingRow) -> [String; 7] {
         count(|cost| cost.conditional_branches),
         row.deviation.largest_code_error().to_string(),
         format!("{:.3}%", 100.0 * row.deviation.differing_fraction()),
-        crate::format_time(row.time),
+        crate::format_time(row.times.compute),
+        crate::format_time(row.times.fragment),
     ]
 }
 
 /// The table on standard output.
 pub fn print(rows: &[PackingRow], gpu: &Gpu) {
     println!("\npacking conversions ({})", time_note(gpu));
-    let line = |cells: &[String; 7]| {
+    let line = |cells: &[String; 8]| {
         format!(
-            "{:<16} {:<6} {:>12} {:>8} {:>11} {:>10} {:>13}",
-            cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], cells[6]
+            "{:<16} {:<6} {:>12} {:>8} {:>11} {:>10} {:>13} {:>13}",
+            cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], cells[6], cells[7]
         )
     };
     let header = [
@@ -153,6 +169,7 @@ pub fn print(rows: &[PackingRow], gpu: &Gpu) {
         "max codes",
         "differing",
         "ms/Mtexel",
+        "frag ms/Mtexel",
     ];
     println!("{}", line(&header.map(str::to_string)));
     for row in rows {
@@ -163,11 +180,11 @@ pub fn print(rows: &[PackingRow], gpu: &Gpu) {
 /// The report's section.
 pub fn markdown(rows: &[PackingRow], gpu: &Gpu) -> String {
     let mut out = String::from("\n## Packing conversions\n\n");
-    let _ = writeln!(out, "Per format and mode: SPIR-V instructions of a compute shader that packs one texel and unpacks one (naga, then `spirv-opt -O`; about 14 are the harness's) and its conditional branches; the largest difference between a channel's code and the exact one, and the fraction of channel codes that differ, over {TEXELS} texels packed on the adapter (edge cases, then random values: finite, within f16's range); the adapter's milliseconds to pack and unpack a million texels. {}\n", time_note(gpu));
+    let _ = writeln!(out, "Per format and mode: SPIR-V instructions of a compute shader that packs one texel and unpacks one (naga, then `spirv-opt -O`; about 14 are the harness's) and its conditional branches; the largest difference between a channel's code and the exact one, and the fraction of channel codes that differ, over {TEXELS} texels packed on the adapter (edge cases, then random values: finite, within f16's range); the adapter's milliseconds to pack and unpack a million texels, in a compute dispatch and in a fullscreen draw's fragment shader. {}\n", time_note(gpu));
     out.push_str(
-        "| format | mode | instructions | branches | largest error (codes) | differing | ms per million texels |\n",
+        "| format | mode | instructions | branches | largest error (codes) | differing | ms per million texels (compute) | ms per million texels (fragment) |\n",
     );
-    out.push_str("| --- | --- | ---: | ---: | ---: | ---: | ---: |\n");
+    out.push_str("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for row in rows {
         let _ = writeln!(out, "| {} |", cells(row).join(" | "));
     }
@@ -185,8 +202,8 @@ pub fn json(rows: &[PackingRow]) -> serde_json::Value {
             "conditional_branches": row.cost.map(|cost| cost.conditional_branches),
             "largest_code_error": row.deviation.largest_code_error(),
             "differing_fraction": row.deviation.differing_fraction(),
-            "ms_per_million_texels": row.time.filter(timing::GpuTime::resolved).map(|time| time.median_ns),
-            "timings": crate::timings_json(row.time),
+            "ms_per_million_texels": row.times.compute.filter(timing::GpuTime::resolved).map(|time| time.median_ns),
+            "timings": crate::timings_json(&row.times),
         }))
         .collect::<Vec<_>>())
 }

@@ -1,7 +1,10 @@
-//! Time per evaluation: on the adapter, a compute shader that feeds each result into the next
-//! evaluation (so nothing is optimised away), its chain grown until a run lasts 10 ms, timed
-//! around a synchronised submit (wall clock; no timestamp queries yet); on the CPU, the f32
-//! mirror over the same kind of inputs. Both are medians of several runs.
+//! Time per evaluation: on the adapter, in both stages, a shader that feeds each result into
+//! the next evaluation (so nothing is optimised away), its chain grown until a run lasts 10 ms,
+//! timed around a synchronised submit (wall clock; no timestamp queries yet): a compute
+//! dispatch of 2^14 invocations, and a fullscreen draw into a 1920x1080 target whose fragment
+//! shader runs the chain (G-buffer packing and lighting are fragment work, and some GPUs run
+//! fragments on few of their units). On the CPU, the f32 mirror over the same kind of inputs.
+//! All are medians of several runs.
 
 use std::time::Instant;
 
@@ -11,6 +14,9 @@ use gbuffer_testkit::gpu::Gpu;
 /// Invocations per dispatch, and the evaluations per invocation a calibration starts from.
 const INVOCATIONS: u32 = 1 << 14;
 const CHAIN: u32 = 64;
+/// The fragment stage's target: one invocation per pixel.
+const FRAGMENT_WIDTH: u32 = 1920;
+const FRAGMENT_HEIGHT: u32 = 1080;
 /// The chain grows until one run lasts this long (seconds), or reaches `MAX_CHAIN`.
 const TARGET_RUN: f64 = 0.010;
 const MAX_CHAIN: u32 = 1 << 16;
@@ -18,10 +24,34 @@ const MAX_CHAIN: u32 = 1 << 16;
 pub const GPU_RUNS: usize = 7;
 const CPU_RUNS: usize = 5;
 
+/// Where a row's chain runs on the adapter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// A compute dispatch.
+    Compute,
+    /// A fullscreen draw's fragment shader.
+    Fragment,
+}
+
+impl Stage {
+    /// Both stages, in report order.
+    pub const ALL: [Stage; 2] = [Stage::Compute, Stage::Fragment];
+
+    /// The stage's name in the report: `compute` or `fragment`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Compute => "compute",
+            Stage::Fragment => "fragment",
+        }
+    }
+}
+
 /// A row's time on the adapter: wall clock around a synchronised submit, per evaluation and
 /// invocation, over `GPU_RUNS` runs of `chain` evaluations in each of `invocations`.
 #[derive(Clone, Copy, Debug)]
 pub struct GpuTime {
+    /// The stage timed.
+    pub stage: Stage,
     /// The median run's nanoseconds per evaluation.
     pub median_ns: f64,
     /// The fastest run's.
@@ -64,9 +94,88 @@ impl GpuTime {
     }
 }
 
+/// A row's times in both stages, each less the harness's own (the baseline row's) in that
+/// stage; `None` where the stage could not be timed.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct StageTimes {
+    /// The compute dispatch's.
+    pub compute: Option<GpuTime>,
+    /// The fullscreen draw's.
+    pub fragment: Option<GpuTime>,
+}
+
+impl StageTimes {
+    /// Times `row_wgsl` in both stages (see [`gpu_time`]), less `baseline`'s; a stage that
+    /// fails is reported on stderr and left out.
+    pub fn measure(
+        gpu: &Gpu,
+        row_wgsl: &str,
+        lut: &[[f32; 2]],
+        lut_size: usize,
+        baseline: &StageTimes,
+    ) -> StageTimes {
+        let mut times = StageTimes::default();
+        for stage in Stage::ALL {
+            *times.get_mut(stage) = gpu_time(gpu, stage, row_wgsl, lut, lut_size)
+                .map_err(|error| eprintln!("  {} timing failed: {error}", stage.name()))
+                .ok()
+                .map(|time| time.less(baseline.get(stage)));
+        }
+        times
+    }
+
+    /// The time in `stage`.
+    pub fn get(&self, stage: Stage) -> Option<GpuTime> {
+        match stage {
+            Stage::Compute => self.compute,
+            Stage::Fragment => self.fragment,
+        }
+    }
+
+    fn get_mut(&mut self, stage: Stage) -> &mut Option<GpuTime> {
+        match stage {
+            Stage::Compute => &mut self.compute,
+            Stage::Fragment => &mut self.fragment,
+        }
+    }
+
+    /// Marks both stages' times untrusted.
+    pub fn distrust(&mut self) {
+        for time in [&mut self.compute, &mut self.fragment]
+            .into_iter()
+            .flatten()
+        {
+            time.trusted = false;
+        }
+    }
+}
+
 /// The compute shader around a row's `row_eval`, as the static costs count it.
 pub fn harness(row_wgsl: &str) -> String {
     harness_with_chain(row_wgsl, CHAIN)
+}
+
+/// The fragment stage's shaders around a row's `row_eval`, with `chain` evaluations per
+/// pixel: a fullscreen triangle, and a fragment shader whose inputs come from its position.
+fn fragment_harness_with_chain(row_wgsl: &str, chain: u32) -> String {
+    format!(
+        "{row_wgsl}\n\
+         @group(0) @binding(2) var lut_texture: texture_2d<f32>;\n\
+         @group(0) @binding(3) var lut_sampler: sampler;\n\n\
+         @vertex\n\
+         fn bench_vertex(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {{\n\
+         \x20   let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));\n\
+         \x20   return vec4<f32>(corner * 2.0 - vec2<f32>(1.0), 0.0, 1.0);\n\
+         }}\n\n\
+         @fragment\n\
+         fn bench_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{\n\
+         \x20   var x = fract(vec4<f32>(position.x * 0.000521, position.y * 0.000927, (position.x + position.y) * 0.00037, 0.5));\n\
+         \x20   for (var step = 0u; step < {chain}u; step++) {{\n\
+         \x20       x = fract(row_eval(x) * 0.25 + x * 0.75 + vec4<f32>(0.1));\n\
+         \x20   }}\n\
+         \x20   return x;\n\
+         }}\n"
+    )
 }
 
 /// The compute shader around a row's `row_eval`, with `chain` evaluations per invocation.
@@ -91,17 +200,22 @@ fn harness_with_chain(row_wgsl: &str, chain: u32) -> String {
 /// A row whose evaluation is free: its time is the harness's own, subtracted from each row's.
 pub const BASELINE_ROW: &str = "fn row_eval(x: vec4<f32>) -> vec4<f32> {\n    return x;\n}\n";
 
-/// Times a row's `row_eval` on the adapter, with the environment BRDF LUT texture bound (a
-/// `lut_size` square of (scale, bias), or 1x1): the chain of evaluations grows until one run
-/// lasts `TARGET_RUN`, then `GPU_RUNS` runs are timed.
+/// Times a row's `row_eval` on the adapter in `stage`, with the environment BRDF LUT texture
+/// bound (a `lut_size` square of (scale, bias), or 1x1): the chain of evaluations grows until
+/// one run lasts `TARGET_RUN`, then `GPU_RUNS` runs are timed.
 pub fn gpu_time(
     gpu: &Gpu,
+    stage: Stage,
     row_wgsl: &str,
     lut: &[[f32; 2]],
     lut_size: usize,
 ) -> Result<GpuTime, String> {
     let device = &gpu.device;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let visibility = match stage {
+        Stage::Compute => wgpu::ShaderStages::COMPUTE,
+        Stage::Fragment => wgpu::ShaderStages::FRAGMENT,
+    };
     let storage = |read_only| wgpu::BindingType::Buffer {
         ty: wgpu::BufferBindingType::Storage { read_only },
         has_dynamic_offset: false,
@@ -109,47 +223,85 @@ pub fn gpu_time(
     };
     let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
         binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
+        visibility,
         ty,
         count: None,
     };
+    let mut entries = vec![
+        entry(
+            2,
+            wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+        ),
+        entry(
+            3,
+            wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+        ),
+    ];
+    if stage == Stage::Compute {
+        entries.extend([entry(0, storage(true)), entry(1, storage(false))]);
+    }
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: None,
-        entries: &[
-            entry(0, storage(true)),
-            entry(1, storage(false)),
-            entry(
-                2,
-                wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-            ),
-            entry(
-                3,
-                wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-            ),
-        ],
+        entries: &entries,
     });
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: None,
         bind_group_layouts: &[Some(&layout)],
         immediate_size: 0,
     });
-    let pipeline_for = |chain: u32| {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("bench"),
-            source: wgpu::ShaderSource::Wgsl(harness_with_chain(row_wgsl, chain).into()),
-        });
-        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("bench"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("bench"),
-            compilation_options: Default::default(),
-            cache: None,
-        })
+    let target_format = wgpu::TextureFormat::Rgba32Float;
+    let pipeline_for = |chain: u32| match stage {
+        Stage::Compute => {
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("bench"),
+                source: wgpu::ShaderSource::Wgsl(harness_with_chain(row_wgsl, chain).into()),
+            });
+            Pipeline::Compute(
+                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("bench"),
+                    layout: Some(&pipeline_layout),
+                    module: &module,
+                    entry_point: Some("bench"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                }),
+            )
+        }
+        Stage::Fragment => {
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("bench"),
+                source: wgpu::ShaderSource::Wgsl(
+                    fragment_harness_with_chain(row_wgsl, chain).into(),
+                ),
+            });
+            Pipeline::Render(
+                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some("bench"),
+                    layout: Some(&pipeline_layout),
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some("bench_vertex"),
+                        compilation_options: Default::default(),
+                        buffers: &[],
+                    },
+                    primitive: Default::default(),
+                    depth_stencil: None,
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("bench_fragment"),
+                        compilation_options: Default::default(),
+                        targets: &[Some(target_format.into())],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                }),
+            )
+        }
     };
     use wgpu::util::DeviceExt;
     let inputs: Vec<[f32; 4]> = (0..INVOCATIONS)
@@ -174,6 +326,21 @@ pub fn gpu_time(
         usage: wgpu::BufferUsages::STORAGE,
         mapped_at_creation: false,
     });
+    let target = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("bench target"),
+        size: wgpu::Extent3d {
+            width: FRAGMENT_WIDTH,
+            height: FRAGMENT_HEIGHT,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: target_format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+        view_formats: &[],
+    });
+    let target_view = target.create_view(&Default::default());
     // The LUT as rgba16float (filterable everywhere): scale in r, bias in g.
     let size = lut_size.max(1) as u32;
     let texels: Vec<u16> = (0..(size * size) as usize)
@@ -208,10 +375,18 @@ pub fn gpu_time(
         ..Default::default()
     });
     let view = texture.create_view(&Default::default());
-    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: None,
-        layout: &layout,
-        entries: &[
+    let mut bind_entries = vec![
+        wgpu::BindGroupEntry {
+            binding: 2,
+            resource: wgpu::BindingResource::TextureView(&view),
+        },
+        wgpu::BindGroupEntry {
+            binding: 3,
+            resource: wgpu::BindingResource::Sampler(&sampler),
+        },
+    ];
+    if stage == Stage::Compute {
+        bind_entries.extend([
             wgpu::BindGroupEntry {
                 binding: 0,
                 resource: input.as_entire_binding(),
@@ -220,23 +395,43 @@ pub fn gpu_time(
                 binding: 1,
                 resource: output.as_entire_binding(),
             },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(&view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: wgpu::BindingResource::Sampler(&sampler),
-            },
-        ],
+        ]);
+    }
+    let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout: &layout,
+        entries: &bind_entries,
     });
-    let run = |pipeline: &wgpu::ComputePipeline| -> Result<f64, String> {
+    let run = |pipeline: &Pipeline| -> Result<f64, String> {
         let mut encoder = device.create_command_encoder(&Default::default());
-        {
-            let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &bind_group, &[]);
-            pass.dispatch_workgroups(INVOCATIONS / 64, 1, 1);
+        match pipeline {
+            Pipeline::Compute(pipeline) => {
+                let mut pass = encoder.begin_compute_pass(&Default::default());
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &bind_group, &[]);
+                pass.dispatch_workgroups(INVOCATIONS / 64, 1, 1);
+            }
+            Pipeline::Render(pipeline) => {
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("bench"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: &target_view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    depth_stencil_attachment: None,
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &bind_group, &[]);
+                pass.draw(0..3, 0..1);
+            }
         }
         let start = Instant::now();
         gpu.queue.submit([encoder.finish()]);
@@ -246,8 +441,12 @@ pub fn gpu_time(
         Ok(start.elapsed().as_secs_f64())
     };
     // Calibration: each run also warms the pipeline up; the chain grows by twice the factor
-    // the run fell short (timed runs vary), at least doubling.
-    let mut chain = CHAIN;
+    // the run fell short (timed runs vary), at least doubling. A fullscreen draw has a
+    // hundred times a dispatch's invocations: its chain starts at one.
+    let mut chain = match stage {
+        Stage::Compute => CHAIN,
+        Stage::Fragment => 1,
+    };
     let mut pipeline = pipeline_for(chain);
     if let Some(error) = pollster::block_on(scope.pop()) {
         return Err(error.to_string());
@@ -277,17 +476,28 @@ pub fn gpu_time(
         pipeline = pipeline_for(chain);
         run(&pipeline)?;
     }
-    let per_evaluation = 1e9 / (f64::from(INVOCATIONS) * f64::from(chain));
+    let invocations = match stage {
+        Stage::Compute => INVOCATIONS,
+        Stage::Fragment => FRAGMENT_WIDTH * FRAGMENT_HEIGHT,
+    };
+    let per_evaluation = 1e9 / (f64::from(invocations) * f64::from(chain));
     let median = median(&mut times);
     Ok(GpuTime {
+        stage,
         median_ns: median * per_evaluation,
         min_ns: times[0] * per_evaluation,
         max_ns: times[times.len() - 1] * per_evaluation,
         chain,
-        invocations: INVOCATIONS,
+        invocations,
         run_ms: median * 1e3,
         trusted: true,
     })
+}
+
+/// A timing harness's pipeline, of either stage.
+enum Pipeline {
+    Compute(wgpu::ComputePipeline),
+    Render(wgpu::RenderPipeline),
 }
 
 /// A measured item for the consistency check: its name, SPIR-V instructions and time.
@@ -359,6 +569,7 @@ mod tests {
 
     fn time(median_ns: f64) -> GpuTime {
         GpuTime {
+            stage: Stage::Compute,
             median_ns,
             min_ns: median_ns * 0.95,
             max_ns: median_ns * 1.05,
@@ -383,6 +594,27 @@ mod tests {
                 time: Some(exact),
             },
         ]
+    }
+
+    #[test]
+    fn both_stages_calibrate_their_runs_to_ten_milliseconds_on_the_adapter() {
+        let gpu = Gpu::new();
+        let row =
+            "fn row_eval(x: vec4<f32>) -> vec4<f32> {\n    return sqrt(x + vec4<f32>(0.5));\n}\n";
+        for stage in Stage::ALL {
+            let time = gpu_time(&gpu, stage, row, &[], 1).unwrap();
+            assert_eq!(time.stage, stage);
+            assert!(
+                time.run_ms >= 1e3 * TARGET_RUN || time.chain == MAX_CHAIN,
+                "{stage:?}: {time:?}"
+            );
+            assert!(time.min_ns <= time.median_ns && time.median_ns <= time.max_ns);
+            let invocations = match stage {
+                Stage::Compute => INVOCATIONS,
+                Stage::Fragment => FRAGMENT_WIDTH * FRAGMENT_HEIGHT,
+            };
+            assert_eq!(time.invocations, invocations);
+        }
     }
 
     #[test]
