@@ -23,6 +23,11 @@ impl Gpu {
         Gpu::open(None, wgpu::Features::empty())
     }
 
+    /// As [`Gpu::new`], with those of `features` the adapter has (e.g. timestamp queries).
+    pub fn with_features(features: wgpu::Features) -> Gpu {
+        Gpu::open(None, features)
+    }
+
     /// As [`Gpu::new`], but with the adapter's limits lowered to the given ones (so WebGPU's
     /// default limits can be enforced on a more capable adapter) and with those of `features`
     /// the adapter has.

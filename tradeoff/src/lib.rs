@@ -49,7 +49,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
         .map_err(|error| format!("cannot create {}: {error}", folder.display()))?;
     eprintln!("measuring errors against the f64 references...");
     let rows = rows::rows();
-    let gpu = Gpu::new();
+    let gpu = Gpu::with_features(wgpu::Features::TIMESTAMP_QUERY);
     let adapter = gpu.describe();
     eprintln!("timing on {adapter}");
 
@@ -211,7 +211,8 @@ fn timings_json(times: &timing::StageTimes) -> serde_json::Value {
         .map(|time| {
             serde_json::json!({
                 "stage": time.stage.name(),
-                "clock": "wall",
+                "clock": time.clock.name(),
+                "evaluations_per_second": time.evaluations_per_second(),
                 "evaluations_per_run": time.evaluations_per_run(),
                 "run_ms": time.run_ms,
                 "median_ns": time.median_ns,
