@@ -454,16 +454,17 @@ pub fn gpu_time(
         mapped_at_creation: false,
     });
     let compute_timestamps =
-        (clock == Clock::Timestamps).then(|| wgpu::ComputePassTimestampWrites {
+        (clock == Clock::Timestamps).then_some(wgpu::ComputePassTimestampWrites {
             query_set: &query_set,
             beginning_of_pass_write_index: Some(0),
             end_of_pass_write_index: Some(1),
         });
-    let render_timestamps = (clock == Clock::Timestamps).then(|| wgpu::RenderPassTimestampWrites {
-        query_set: &query_set,
-        beginning_of_pass_write_index: Some(0),
-        end_of_pass_write_index: Some(1),
-    });
+    let render_timestamps =
+        (clock == Clock::Timestamps).then_some(wgpu::RenderPassTimestampWrites {
+            query_set: &query_set,
+            beginning_of_pass_write_index: Some(0),
+            end_of_pass_write_index: Some(1),
+        });
     // A run's seconds: (wall clock, the timestamps' where the device has them).
     let run = |pipeline: &Pipeline| -> Result<(f64, Option<f64>), String> {
         let mut encoder = device.create_command_encoder(&Default::default());
