@@ -12,14 +12,17 @@ pub enum Include {
     /// EXT_shader_framebuffer_fetch over the packed words: `inout highp uvec4` attachments in
     /// `RGBA32UI`, four words each. Fits layouts of up to 32 words in 8 attachments.
     FetchPacked,
-    /// EXT_shader_framebuffer_fetch with one attachment per field in the field's own format
-    /// (as Arm's deferred example does): the driver converts.
+    /// EXT_shader_framebuffer_fetch with one attachment per word: a whole-word field's in its
+    /// own format (as Arm's deferred example does: the driver converts), a word of bit fields
+    /// in `R32UI` (the include's code converts).
     FetchNative,
     /// Vulkan GLSL: the packed words as `usubpassInput`s.
     SubpassPacked,
-    /// Vulkan GLSL: one input attachment per field in the field's own format.
+    /// Vulkan GLSL: one input attachment per word, as [`Include::FetchNative`].
     SubpassNative,
-    /// EXT_shader_pixel_local_storage: one block member per field; the hardware converts.
+    /// EXT_shader_pixel_local_storage: one block member per word (a whole-word field in its
+    /// format, the hardware converting; a word of bit fields as `r32ui`, with the functions
+    /// and accessors that convert them).
     PixelLocalStorage(super::PlsBlock),
 }
 

@@ -3,8 +3,9 @@
 //! - pixel local storage blocks (EXT_shader_pixel_local_storage), where the hardware does the
 //!   conversions, as the seeds write them;
 //! - framebuffer fetch (EXT_shader_framebuffer_fetch), over the packed words in `RGBA32UI`
-//!   attachments or over one attachment per field in the field's own format;
-//! - Vulkan GLSL subpass inputs, packed or one per field likewise.
+//!   attachments or over one attachment per word: a whole-word field's in its own format, a
+//!   word of bit fields in `R32UI`;
+//! - Vulkan GLSL subpass inputs, packed or one per word likewise.
 //!
 //! Every include is pasted (or `#include`d) after the user's own preamble: it carries no
 //! `#version`, no `#extension` and no default precision statement, and gives each of its
@@ -407,6 +408,11 @@ fn attachments(
             "{} packed words in {} RGBA32UI attachment(s)",
             layout.words(),
             layout.targets()
+        )
+    } else if layout.has_bit_fields() {
+        format!(
+            "one attachment per word, a field's own format or R32UI for bit fields ({})",
+            interface.attachments.len()
         )
     } else {
         format!(
