@@ -108,7 +108,12 @@ pub fn run(folder: &Path) -> Result<(), String> {
     }
     let furnace = white_furnace();
     print_furnace(&furnace);
-    let plots = write_plots(folder, &rows).map_err(|error| format!("writing plots: {error}"))?;
+    let mut plots =
+        write_plots(folder, &rows).map_err(|error| format!("writing plots: {error}"))?;
+    plots.extend(
+        write_time_plots(folder, &rows, &measured)
+            .map_err(|error| format!("writing plots: {error}"))?,
+    );
     let mut json = json_report(&rows, &measured, &adapter);
     json["packing"] = packing::json(&packing);
     json["timing_consistent"] = serde_json::json!(inconsistencies.is_empty());
@@ -364,6 +369,56 @@ fn write_plots(folder: &Path, rows: &[Row]) -> std::io::Result<Vec<WrittenPlot>>
                 caption: format!(
                     "{}, {}: error over {x_label} (left to right) and {y_label} (bottom to top), from dark blue (0) to yellow ({maximum:.3e} {}).",
                     row.family, row.name, row.unit
+                ),
+            });
+        }
+    }
+    Ok(written)
+}
+
+/// Per family and stage, its rows' resolved times against their largest errors, on log-log
+/// axes; none where no time resolved (a time the report cannot trust is not drawn either).
+fn write_time_plots(
+    folder: &Path,
+    rows: &[Row],
+    measured: &[Measured],
+) -> std::io::Result<Vec<WrittenPlot>> {
+    let mut written = Vec::new();
+    let mut families: Vec<&str> = rows.iter().map(|row| row.family).collect();
+    families.dedup();
+    for family in families {
+        for stage in timing::Stage::ALL {
+            let members: Vec<(&Row, f64)> = rows
+                .iter()
+                .zip(measured)
+                .filter(|(row, _)| row.family == family)
+                .filter_map(|(row, measured)| {
+                    let time = measured.gpu.get(stage).filter(timing::GpuTime::resolved)?;
+                    Some((row, time.median_ns))
+                })
+                .collect();
+            if members.len() < 2 {
+                continue;
+            }
+            let file = format!("time_{}_{}.png", file_stem(family), stage.name());
+            let points: Vec<(f64, f64)> = members
+                .iter()
+                .map(|(row, time)| (*time, row.errors.max))
+                .collect();
+            let ((x_low, x_high), (y_low, y_high)) =
+                plot::log_scatter(&folder.join(&file), &points)?;
+            let legend: Vec<String> = members
+                .iter()
+                .zip(plot::CURVE_COLOURS.iter().cycle())
+                .map(|((row, _), colour)| format!("{} ({colour})", row.name))
+                .collect();
+            written.push(WrittenPlot {
+                file,
+                caption: format!(
+                    "{family}, {} stage: largest error ({y_low:.2e} to {y_high:.2e} {}, log, bottom to top) against GPU ns per evaluation ({x_low:.3} to {x_high:.3}, log, left to right): {}.",
+                    stage.name(),
+                    members[0].0.unit,
+                    legend.join(", ")
                 ),
             });
         }

@@ -1,5 +1,6 @@
-//! PNG images of errors: heatmaps over a 2D domain and error-per-code curves. No text is drawn:
-//! the report names the axes, the ranges and the colour scale beside each image.
+//! PNG images of errors: heatmaps over a 2D domain, error-per-code curves, and time against
+//! error per family. No text is drawn: the report names the axes, the ranges and the colour
+//! scale beside each image.
 
 use std::path::Path;
 
@@ -139,3 +140,87 @@ pub fn curves(path: &Path, series: &[&[(f64, f64)]]) -> std::io::Result<(f64, f6
 
 /// The colour names of `curves`' series, for the report.
 pub const CURVE_COLOURS: [&str; 6] = ["black", "red", "blue", "green", "magenta", "ochre"];
+
+/// Points (x, y) on log-log axes spanning their ranges, a 7-pixel square each, in the colours
+/// of `CURVE_COLOURS` by index, with the axes drawn in grey. Returns the ranges ((x low, x
+/// high), (y low, y high)). Points that are not positive and finite are left out.
+pub fn log_scatter(
+    path: &Path,
+    points: &[(f64, f64)],
+) -> std::io::Result<((f64, f64), (f64, f64))> {
+    const COLOURS: [[u8; 3]; 6] = [
+        [0, 0, 0],
+        [220, 50, 47],
+        [38, 139, 210],
+        [133, 153, 0],
+        [211, 54, 130],
+        [181, 137, 0],
+    ];
+    let (width, height, margin) = (512usize, 384usize, 24usize);
+    let shown: Vec<(usize, (f64, f64))> = points
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|(_, (x, y))| x.is_finite() && y.is_finite() && *x > 0.0 && *y > 0.0)
+        .collect();
+    let range = |pick: fn(&(f64, f64)) -> f64| {
+        let values = shown.iter().map(|(_, point)| pick(point).log10());
+        let low = values.clone().fold(f64::INFINITY, f64::min);
+        let high = values.fold(f64::NEG_INFINITY, f64::max);
+        // A single value gets a decade around it.
+        if high - low < 1e-9 {
+            (low - 0.5, high + 0.5)
+        } else {
+            (low, high)
+        }
+    };
+    let (x_range, y_range) = (range(|point| point.0), range(|point| point.1));
+    let mut rgb = vec![255u8; width * height * 3];
+    let mut set = |x: usize, y: usize, colour: [u8; 3]| {
+        if x < width && y < height {
+            rgb[(y * width + x) * 3..][..3].copy_from_slice(&colour);
+        }
+    };
+    for x in margin..width - margin {
+        set(x, height - margin, [160, 160, 160]);
+    }
+    for y in margin..height - margin {
+        set(margin, y, [160, 160, 160]);
+    }
+    for (index, (x, y)) in &shown {
+        let column = margin as f64
+            + (x.log10() - x_range.0) / (x_range.1 - x_range.0) * (width - 2 * margin) as f64;
+        let row = (height - margin) as f64
+            - (y.log10() - y_range.0) / (y_range.1 - y_range.0) * (height - 2 * margin) as f64;
+        for dx in 0..7 {
+            for dy in 0..7 {
+                set(
+                    (column.round() as usize + dx).saturating_sub(3),
+                    (row.round() as usize + dy).saturating_sub(3),
+                    COLOURS[index % COLOURS.len()],
+                );
+            }
+        }
+    }
+    write_png(path, width, height, &rgb)?;
+    let power = |range: (f64, f64)| (10f64.powf(range.0), 10f64.powf(range.1));
+    Ok((power(x_range), power(y_range)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_log_scatter_spans_its_points_and_leaves_out_the_unplottable() {
+        let folder = std::env::temp_dir().join(format!("scatter-{}", std::process::id()));
+        std::fs::create_dir_all(&folder).unwrap();
+        let path = folder.join("scatter.png");
+        let points = [(1.0, 0.5), (100.0, 0.005), (f64::NAN, 1.0), (0.0, 2.0)];
+        let ((x_low, x_high), (y_low, y_high)) = log_scatter(&path, &points).unwrap();
+        assert!((x_low - 1.0).abs() < 1e-9 && (x_high - 100.0).abs() < 1e-9);
+        assert!((y_low - 0.005).abs() < 1e-12 && (y_high - 0.5).abs() < 1e-9);
+        assert!(std::fs::metadata(&path).unwrap().len() > 100);
+        std::fs::remove_dir_all(&folder).unwrap();
+    }
+}
