@@ -174,14 +174,6 @@ impl Encoding {
         }
     }
 
-    /// Whether each component is encoded alone, in `bits / components` bits.
-    pub fn is_per_component(self) -> bool {
-        matches!(
-            self,
-            Encoding::Unorm | Encoding::Snorm | Encoding::Uint | Encoding::Sint | Encoding::Half
-        )
-    }
-
     /// Whether fast conversions change its WGSL (float arithmetic and builtins in place of
     /// the exact integer algorithm).
     pub fn has_fast_form(self) -> bool {
@@ -294,22 +286,21 @@ impl BitField {
     pub fn encode(self, lanes: [u32; 4], components: usize) -> u32 {
         let each = self.component_bits(components);
         let floats = lanes.map(f32::from_bits);
-        let per_component = |code: &dyn Fn(u32) -> u32| {
-            (0..components).fold(0, |word, index| {
-                word | (code(lanes[index]) << (each * index as u32))
-            })
-        };
         match self.encoding {
-            Encoding::Unorm => {
-                per_component(&|lane| convert::unorm_from_f32(f32::from_bits(lane), each))
-            }
-            Encoding::Snorm => {
-                per_component(&|lane| convert::snorm_from_f32(f32::from_bits(lane), each))
-            }
-            Encoding::Uint => per_component(&|lane| convert::uint_saturate(lane, each)),
-            Encoding::Sint => per_component(&|lane| convert::sint_saturate(lane as i32, each)),
+            Encoding::Unorm => join_codes(lanes, components, each, |lane, each| {
+                convert::unorm_from_f32(f32::from_bits(lane), each)
+            }),
+            Encoding::Snorm => join_codes(lanes, components, each, |lane, each| {
+                convert::snorm_from_f32(f32::from_bits(lane), each)
+            }),
+            Encoding::Uint => join_codes(lanes, components, each, convert::uint_saturate),
+            Encoding::Sint => join_codes(lanes, components, each, |lane, each| {
+                convert::sint_saturate(lane as i32, each)
+            }),
             Encoding::Bool => u32::from(lanes[0] != 0),
-            Encoding::Half => per_component(&|lane| convert::half_from_f32(f32::from_bits(lane))),
+            Encoding::Half => join_codes(lanes, components, each, |lane, _| {
+                convert::half_from_f32(f32::from_bits(lane))
+            }),
             Encoding::Rgb9e5 => convert::rgb9e5_from_f32([floats[0], floats[1], floats[2]]),
             Encoding::Octahedral => {
                 convert::octahedral_from_f32([floats[0], floats[1], floats[2]], each)
@@ -349,6 +340,20 @@ impl BitField {
         }
         lanes
     }
+}
+
+/// Each of the first `components` lanes' code at `each` bits, x in the low bits. Always
+/// inlined with a known `code`: derived code's packing calls it per texel.
+#[inline(always)]
+fn join_codes(
+    lanes: [u32; 4],
+    components: usize,
+    each: u32,
+    code: impl Fn(u32, u32) -> u32,
+) -> u32 {
+    (0..components).fold(0, |word, index| {
+        word | (code(lanes[index], each) << (each * index as u32))
+    })
 }
 
 impl fmt::Display for BitField {

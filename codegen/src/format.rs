@@ -74,6 +74,16 @@ impl Channel {
         }
     }
 
+    /// Its bits in the word, as comments write them: `r 0-9`.
+    pub fn bit_range(self) -> String {
+        format!(
+            "{} {}-{}",
+            self.name,
+            self.offset,
+            self.offset + self.bits - 1
+        )
+    }
+
     /// The mask of the channel's bits once shifted down to bit 0.
     #[inline]
     pub fn mask(self) -> u32 {

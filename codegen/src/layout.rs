@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use crate::encoding::BitField;
+use crate::encoding::{BitField, Encoding};
 use crate::format::{Format, ScalarKind};
 use crate::naming;
 
@@ -101,6 +101,12 @@ impl Conversions {
                 || matches!(format, Format::Rgb10A2 | Format::R11fG11fB10f))
     }
 
+    /// Whether a bit field's encode is the exact one under these conversions (fast conversions
+    /// replace it for unorm, half, octahedral and RGBM).
+    pub fn is_exact_for_encoding(self, encoding: Encoding) -> bool {
+        self == Conversions::Exact || !encoding.has_fast_form()
+    }
+
     /// What the generated functions of a field with these conversions add to their names
     /// where the layout's conversions differ: `_exact` or `_fast`.
     pub fn name_suffix(self) -> &'static str {
@@ -188,6 +194,13 @@ pub struct Member {
     pub offset: u32,
     /// Its width in bits (32 for a whole word).
     pub bits: u32,
+}
+
+impl Member {
+    /// Its bits in the word, as reports and comments write them: `4-7`.
+    pub fn bit_range(&self) -> String {
+        format!("{}-{}", self.offset, self.offset + self.bits - 1)
+    }
 }
 
 /// One 32-bit word of a layout: a whole-word field, or the bit fields that share an `r32ui`

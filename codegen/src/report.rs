@@ -132,7 +132,7 @@ impl fmt::Display for Report {
             "word", "field", "storage", "type", "bits", "used"
         )?;
         for (field, (word, member)) in layout.fields.iter().zip(layout.field_locations()) {
-            let range = format!("{}-{}", member.offset, member.offset + member.bits - 1);
+            let range = member.bit_range();
             writeln!(
                 out,
                 "  {word:<4} {:<width$} {:<storage_width$} {:<6} {range:>5} {:>4}",

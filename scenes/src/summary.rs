@@ -20,7 +20,7 @@ impl fmt::Display for Solution {
         )?;
         writeln!(out, "  word  bits   field                         storage")?;
         for (field, (word, member)) in layout.fields.iter().zip(layout.field_locations()) {
-            let range = format!("{}-{}", member.offset, member.offset + member.bits - 1);
+            let range = member.bit_range();
             writeln!(
                 out,
                 "  {word:<4}  {range:<5}  {:<28}  {} {}",

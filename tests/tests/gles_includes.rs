@@ -223,9 +223,7 @@ fn check(
         let mode = field.conversions.unwrap_or(conversions);
         match field.storage {
             Storage::Word(format) => !mode.is_exact_for(format),
-            Storage::Bits(bit_field) => {
-                mode == Conversions::Fast && bit_field.encoding.has_fast_form()
-            }
+            Storage::Bits(bit_field) => !mode.is_exact_for_encoding(bit_field.encoding),
         }
     });
     if include.is_packed() && !fast {

@@ -6,7 +6,7 @@
 //! The GLSL of the same layouts runs on Mesa's GLES and lavapipe in `gles_includes` and
 //! `vulkan_includes`, whose random layouts hold bit fields too.
 
-use gbuffer::packing::{Encoding, Layout, Storage};
+use gbuffer::packing::{Encoding, Layout};
 use gbuffer::GBufferLayout;
 use gbuffer_testkit::gpu::Gpu;
 use gbuffer_testkit::harness::{compute_harness, run_in_batches, scalars_per_texel};
@@ -79,26 +79,23 @@ fn rgbm_edges(range: f32) -> Vec<[f32; 3]> {
 fn every_encoding_inputs(layout: &Layout, texels: usize, values: &mut Values) -> Vec<u32> {
     let mut inputs = inputs(layout, 0, texels, values);
     let scalars = scalars_per_texel(layout);
-    let octahedral = octahedral_edges();
-    let shared_exponent = rgb9e5_edges();
-    for texel in 0..texels {
+    // Per field, the edge vectors its encoding takes (none for the others).
+    let edges: Vec<Option<Vec<[f32; 3]>>> = layout
+        .fields
+        .iter()
+        .map(|field| match field.bit_field()?.encoding {
+            Encoding::Octahedral => Some(octahedral_edges()),
+            Encoding::Rgb9e5 => Some(rgb9e5_edges()),
+            Encoding::Rgbm(range) => Some(rgbm_edges(range.get())),
+            _ => None,
+        })
+        .collect();
+    // The first texels take the edges; the rest keep their random values.
+    for texel in 0..texels.min(4096) {
         let mut slot = texel * scalars;
-        for field in &layout.fields {
-            let vector = match field.storage {
-                Storage::Bits(bit_field) => match bit_field.encoding {
-                    Encoding::Octahedral => Some(octahedral[texel % octahedral.len()]),
-                    Encoding::Rgb9e5 => Some(shared_exponent[texel % shared_exponent.len()]),
-                    Encoding::Rgbm(range) => {
-                        let edges = rgbm_edges(range.get());
-                        Some(edges[texel % edges.len()])
-                    }
-                    _ => None,
-                },
-                Storage::Word(_) => None,
-            };
-            // The first texels take the edges; the rest keep their random values.
-            if let Some(vector) = vector.filter(|_| texel < 4096) {
-                for (index, component) in vector.iter().enumerate() {
+        for (field, edges) in layout.fields.iter().zip(&edges) {
+            if let Some(edges) = edges {
+                for (index, component) in edges[texel % edges.len()].iter().enumerate() {
                     inputs[slot + index] = component.to_bits();
                 }
             }

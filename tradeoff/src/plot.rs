@@ -87,14 +87,6 @@ pub fn heatmap(
 /// Curves of (x, y) points on one chart, y from 0 to the largest value, each series in its own
 /// colour (in the order of `COLOURS`), with the axes drawn in grey.
 pub fn curves(path: &Path, series: &[&[(f64, f64)]]) -> std::io::Result<(f64, f64)> {
-    const COLOURS: [[u8; 3]; 6] = [
-        [0, 0, 0],
-        [220, 50, 47],
-        [38, 139, 210],
-        [133, 153, 0],
-        [211, 54, 130],
-        [181, 137, 0],
-    ];
     let (width, height, margin) = (768usize, 384usize, 16usize);
     let x_max = series
         .iter()
@@ -104,42 +96,76 @@ pub fn curves(path: &Path, series: &[&[(f64, f64)]]) -> std::io::Result<(f64, f6
         .iter()
         .flat_map(|points| points.iter().map(|point| point.1))
         .fold(0.0, f64::max);
-    let mut rgb = vec![255u8; width * height * 3];
-    let mut set = |x: usize, y: usize, colour: [u8; 3]| {
-        if x < width && y < height {
-            rgb[(y * width + x) * 3..][..3].copy_from_slice(&colour);
-        }
-    };
-    for x in margin..width - margin {
-        set(x, height - margin, [160, 160, 160]);
-    }
-    for y in margin..height - margin {
-        set(margin, y, [160, 160, 160]);
-    }
+    let mut canvas = Canvas::with_axes(width, height, margin);
     let to_pixel = |(x, y): (f64, f64)| {
         let column = margin as f64 + x / x_max.max(f64::MIN_POSITIVE) * (width - 2 * margin) as f64;
         let row = (height - margin) as f64
             - y / y_max.max(f64::MIN_POSITIVE) * (height - 2 * margin) as f64;
         (column, row)
     };
-    for (points, colour) in series.iter().zip(COLOURS.iter().cycle()) {
+    for (points, colour) in series.iter().zip(SERIES_COLOURS.iter().cycle()) {
         for pair in points.windows(2) {
             let (from, to) = (to_pixel(pair[0]), to_pixel(pair[1]));
             let steps = ((to.0 - from.0).abs().max((to.1 - from.1).abs()).ceil() as usize).max(1);
             for step in 0..=steps {
                 let t = step as f64 / steps as f64;
                 let (x, y) = (from.0 + (to.0 - from.0) * t, from.1 + (to.1 - from.1) * t);
-                set(x.round() as usize, y.round() as usize, *colour);
-                set(x.round() as usize, y.round() as usize + 1, *colour);
+                canvas.set(x.round() as usize, y.round() as usize, *colour);
+                canvas.set(x.round() as usize, y.round() as usize + 1, *colour);
             }
         }
     }
-    write_png(path, width, height, &rgb)?;
+    canvas.write(path)?;
     Ok((x_max, y_max))
 }
 
-/// The colour names of `curves`' series, for the report.
+/// The colours of a chart's series, in order; `CURVE_COLOURS` names them.
+const SERIES_COLOURS: [[u8; 3]; 6] = [
+    [0, 0, 0],
+    [220, 50, 47],
+    [38, 139, 210],
+    [133, 153, 0],
+    [211, 54, 130],
+    [181, 137, 0],
+];
+
+/// The colour names of a chart's series (`curves`, `log_scatter`), for the report.
 pub const CURVE_COLOURS: [&str; 6] = ["black", "red", "blue", "green", "magenta", "ochre"];
+
+/// A white RGB image with grey axes along its left and bottom margins.
+struct Canvas {
+    width: usize,
+    height: usize,
+    rgb: Vec<u8>,
+}
+
+impl Canvas {
+    fn with_axes(width: usize, height: usize, margin: usize) -> Canvas {
+        let mut canvas = Canvas {
+            width,
+            height,
+            rgb: vec![255; width * height * 3],
+        };
+        for x in margin..width - margin {
+            canvas.set(x, height - margin, [160, 160, 160]);
+        }
+        for y in margin..height - margin {
+            canvas.set(margin, y, [160, 160, 160]);
+        }
+        canvas
+    }
+
+    /// Colours pixel (x, y), y down; outside the image, nothing.
+    fn set(&mut self, x: usize, y: usize, colour: [u8; 3]) {
+        if x < self.width && y < self.height {
+            self.rgb[(y * self.width + x) * 3..][..3].copy_from_slice(&colour);
+        }
+    }
+
+    fn write(&self, path: &Path) -> std::io::Result<()> {
+        write_png(path, self.width, self.height, &self.rgb)
+    }
+}
 
 /// Points (x, y) on log-log axes spanning their ranges, a 7-pixel square each, in the colours
 /// of `CURVE_COLOURS` by index, with the axes drawn in grey. Returns the ranges ((x low, x
@@ -148,14 +174,6 @@ pub fn log_scatter(
     path: &Path,
     points: &[(f64, f64)],
 ) -> std::io::Result<((f64, f64), (f64, f64))> {
-    const COLOURS: [[u8; 3]; 6] = [
-        [0, 0, 0],
-        [220, 50, 47],
-        [38, 139, 210],
-        [133, 153, 0],
-        [211, 54, 130],
-        [181, 137, 0],
-    ];
     let (width, height, margin) = (512usize, 384usize, 24usize);
     let shown: Vec<(usize, (f64, f64))> = points
         .iter()
@@ -175,18 +193,7 @@ pub fn log_scatter(
         }
     };
     let (x_range, y_range) = (range(|point| point.0), range(|point| point.1));
-    let mut rgb = vec![255u8; width * height * 3];
-    let mut set = |x: usize, y: usize, colour: [u8; 3]| {
-        if x < width && y < height {
-            rgb[(y * width + x) * 3..][..3].copy_from_slice(&colour);
-        }
-    };
-    for x in margin..width - margin {
-        set(x, height - margin, [160, 160, 160]);
-    }
-    for y in margin..height - margin {
-        set(margin, y, [160, 160, 160]);
-    }
+    let mut canvas = Canvas::with_axes(width, height, margin);
     for (index, (x, y)) in &shown {
         let column = margin as f64
             + (x.log10() - x_range.0) / (x_range.1 - x_range.0) * (width - 2 * margin) as f64;
@@ -194,15 +201,15 @@ pub fn log_scatter(
             - (y.log10() - y_range.0) / (y_range.1 - y_range.0) * (height - 2 * margin) as f64;
         for dx in 0..7 {
             for dy in 0..7 {
-                set(
+                canvas.set(
                     (column.round() as usize + dx).saturating_sub(3),
                     (row.round() as usize + dy).saturating_sub(3),
-                    COLOURS[index % COLOURS.len()],
+                    SERIES_COLOURS[index % SERIES_COLOURS.len()],
                 );
             }
         }
     }
-    write_png(path, width, height, &rgb)?;
+    canvas.write(path)?;
     let power = |range: (f64, f64)| (10f64.powf(range.0), 10f64.powf(range.1));
     Ok((power(x_range), power(y_range)))
 }

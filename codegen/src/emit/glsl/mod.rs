@@ -126,16 +126,20 @@ fn bit_field_code(word: &str, member: Member) -> String {
     }
 }
 
+/// The GLSL name of bit field `field`'s encode or decode function: its WGSL name, which naga
+/// keeps (the translation checks it).
+fn bit_field_function(layout: &Layout, verb: &str, field: usize) -> String {
+    crate::emit::wgsl::bit_field_function_name(&layout.snake_name(), verb, field)
+}
+
 /// A bit word's value in GLSL: each field's code from `value(field)`, shifted into place and
 /// combined.
-fn bit_word_value(word: &Word, names: &GlslNames, value: impl Fn(usize) -> String) -> String {
+fn bit_word_value(layout: &Layout, word: &Word, value: impl Fn(usize) -> String) -> String {
     let codes: Vec<String> = word
         .members
         .iter()
         .map(|member| {
-            let (encode, _) = names.bit_field_functions[member.field]
-                .as_ref()
-                .expect("a bit word's members are bit fields");
+            let encode = bit_field_function(layout, "encode", member.field);
             match member.offset {
                 0 => format!("{encode}({})", value(member.field)),
                 offset => format!("({encode}({}) << {offset}u)", value(member.field)),
@@ -290,14 +294,7 @@ fn pixel_local_storage(
             let fields: Vec<String> = word
                 .members
                 .iter()
-                .map(|member| {
-                    format!(
-                        "{} {}-{}",
-                        names.fields[member.field],
-                        member.offset,
-                        member.offset + member.bits - 1
-                    )
-                })
+                .map(|member| format!("{} {}", names.fields[member.field], member.bit_range()))
                 .collect();
             let _ = writeln!(
                 out,
@@ -353,15 +350,12 @@ fn write_pls_bit_field_accessors(
         if block != PlsBlock::Out {
             for member in &word.members {
                 let field = &layout.fields[member.field];
-                let (_, decode) = names.bit_field_functions[member.field]
-                    .as_ref()
-                    .expect("a bit word's members are bit fields");
+                let decode = bit_field_function(layout, "decode", member.field);
                 let _ = writeln!(
                     out,
-                    "\n// `{}` from bits {}-{} of `{name}`.\n{} load_pls_{prefix}_{}() {{\n    return {decode}({});\n}}",
+                    "\n// `{}` from bits {} of `{name}`.\n{} load_pls_{prefix}_{}() {{\n    return {decode}({});\n}}",
                     field.name,
-                    member.offset,
-                    member.offset + member.bits - 1,
+                    member.bit_range(),
                     declared_type(field.ty),
                     names.fields[member.field],
                     bit_field_code(&name, *member)
@@ -380,7 +374,7 @@ fn write_pls_bit_field_accessors(
                     )
                 })
                 .collect();
-            let value = bit_word_value(word, names, |field| names.fields[field].clone());
+            let value = bit_word_value(layout, word, |field| names.fields[field].clone());
             let _ = writeln!(
                 out,
                 "\n// Writes `{name}` whole: every bit field it holds.\nvoid store_pls_{prefix}_{name}({}) {{\n    {name} = {value};\n}}",
@@ -486,7 +480,8 @@ fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interfa
             .enumerate()
             .map(|(index, (field, (word, member)))| {
                 let read = &reads[word];
-                if let Some((_, decode)) = &names.bit_field_functions[index] {
+                if field.bit_field().is_some() {
+                    let decode = bit_field_function(layout, "decode", index);
                     return format!("{decode}({})", bit_field_code(&format!("{read}.x"), member));
                 }
                 match field.ty.components {
@@ -537,7 +532,7 @@ pub fn store_statements(
     }
     for (word, attachment) in layout.word_contents().iter().zip(&interface.attachments) {
         if word.is_bit_fields {
-            let value = bit_word_value(word, names, |field| {
+            let value = bit_word_value(layout, word, |field| {
                 format!("texel.{}", names.fields[field])
             });
             let _ = writeln!(

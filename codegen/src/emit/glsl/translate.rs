@@ -45,9 +45,6 @@ pub struct GlslNames {
     pub targets: String,
     /// Its `vec4<u32>` members, one per `Rgba32Uint` target.
     pub target_members: Vec<String>,
-    /// Per bit field (in field order; `None` for whole-word fields), its encode and decode
-    /// functions' names.
-    pub bit_field_functions: Vec<Option<(String, String)>>,
 }
 
 /// Translates the layout's exact WGSL to GLSL ES declarations with explicit precision.
@@ -64,8 +61,8 @@ pub fn translate_with(
 ) -> Result<Translation, TranslationError> {
     let glsl = naga_glsl(layout, conversions)?;
     let body = declarations(&glsl);
-    let mut names = read_names(&body, layout)?;
-    names.bit_field_functions = bit_field_functions(&body, layout)?;
+    let names = read_names(&body, layout)?;
+    check_bit_field_functions(&body, layout)?;
     let mut text = with_explicit_precision(&body);
     // rgba8's fast functions: the layout's own where its conversions are fast, and those of
     // fields that choose fast conversions against exact ones.
@@ -191,35 +188,27 @@ fn naga_glsl_of(mut wgsl: String) -> Result<String, TranslationError> {
     Ok(text)
 }
 
-/// The GLSL names of the bit fields' functions: their WGSL names, which name no field and hold
-/// no `__`, so naga keeps them (checked: a translation without one is an error).
-fn bit_field_functions(
-    glsl: &str,
-    layout: &Layout,
-) -> Result<Vec<Option<(String, String)>>, TranslationError> {
+/// Checks that naga kept the bit fields' functions' WGSL names, which name no field and hold
+/// no `__` (the includes call them by those names).
+fn check_bit_field_functions(glsl: &str, layout: &Layout) -> Result<(), TranslationError> {
     let prefix = layout.snake_name();
-    let defined = |name: String| {
-        if glsl.contains(&format!(" {name}(")) {
-            Ok(name)
-        } else {
-            Err(TranslationError(format!(
-                "naga's GLSL for `{}` has no function `{name}`",
-                layout.name
-            )))
-        }
-    };
-    layout
+    for (index, _) in layout
         .fields
         .iter()
         .enumerate()
-        .map(|(index, field)| {
-            if field.bit_field().is_none() {
-                return Ok(None);
+        .filter(|(_, field)| field.bit_field().is_some())
+    {
+        for verb in ["encode", "decode"] {
+            let name = crate::emit::wgsl::bit_field_function_name(&prefix, verb, index);
+            if !glsl.contains(&format!(" {name}(")) {
+                return Err(TranslationError(format!(
+                    "naga's GLSL for `{}` has no function `{name}`",
+                    layout.name
+                )));
             }
-            let name = |verb| crate::emit::wgsl::bit_field_function_name(&prefix, verb, index);
-            Ok(Some((defined(name("encode"))?, defined(name("decode"))?)))
-        })
-        .collect()
+        }
+    }
+    Ok(())
 }
 
 /// The declarations from the first struct up to the entry point, without the entry point's
@@ -276,7 +265,6 @@ fn read_names(glsl: &str, layout: &Layout) -> Result<GlslNames, TranslationError
                 fields,
                 targets,
                 target_members,
-                bit_field_functions: Vec::new(),
             })
         }
         _ => Err(TranslationError(format!(

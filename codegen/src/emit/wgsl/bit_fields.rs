@@ -60,7 +60,7 @@ pub(super) fn functions(
     let each = bit_field.component_bits(components);
     let lanes = Lanes(components);
     let ty = field.ty.wgsl();
-    let fast = conversions == Conversions::Fast && bit_field.encoding.has_fast_form();
+    let fast = !conversions.is_exact_for_encoding(bit_field.encoding);
     let max = max_code(each);
     let reciprocal = |bits: u32| splat_f32(lanes, 1.0 / max_code(bits) as f32);
     // The codes of every component, as a vector of `lanes`, from `value`.
@@ -233,7 +233,7 @@ pub(super) fn helpers(
     conversions: Conversions,
 ) -> Vec<String> {
     let lanes = Lanes(field.ty.components);
-    let fast = conversions == Conversions::Fast && bit_field.encoding.has_fast_form();
+    let fast = !conversions.is_exact_for_encoding(bit_field.encoding);
     match bit_field.encoding {
         Encoding::Unorm if !fast => vec![lanes.fill(UNORM_FROM_F32, prefix)],
         Encoding::Snorm => vec![

@@ -119,11 +119,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
     for (field, &(word, member)) in layout.fields.iter().zip(&locations) {
         let place = match field.storage {
             Storage::Word(_) => format!("word {word}"),
-            Storage::Bits(_) => format!(
-                "bits {}-{} of word {word}",
-                member.offset,
-                member.offset + member.bits - 1
-            ),
+            Storage::Bits(_) => format!("bits {} of word {word}", member.bit_range()),
         };
         let _ = writeln!(out, "// Decodes `{}` alone, from {place}.", field.name);
         let _ = writeln!(
@@ -190,10 +186,9 @@ fn write_header(out: &mut String, layout: &Layout, fast: Option<&str>) {
                 let field = &layout.fields[member.field];
                 let _ = writeln!(
                     out,
-                    "//     {:<width$}  bits {}-{}, {}",
+                    "//     {:<width$}  bits {}, {}",
                     field.name,
-                    member.offset,
-                    member.offset + member.bits - 1,
+                    member.bit_range(),
                     field.storage_name()
                 );
             }
@@ -206,12 +201,7 @@ fn write_header(out: &mut String, layout: &Layout, fast: Option<&str>) {
             .iter()
             .enumerate()
             .map(|(index, channel)| {
-                let range = format!(
-                    "{} {}-{}",
-                    channel.name,
-                    channel.offset,
-                    channel.offset + channel.bits - 1
-                );
+                let range = channel.bit_range();
                 if index < field.ty.components {
                     range
                 } else {
@@ -431,9 +421,7 @@ fn is_exact(field: &Field, conversions: Conversions) -> bool {
     let mode = mode(field, conversions);
     match field.storage {
         Storage::Word(format) => mode.is_exact_for(format),
-        Storage::Bits(bit_field) => {
-            mode == Conversions::Exact || !bit_field.encoding.has_fast_form()
-        }
+        Storage::Bits(bit_field) => mode.is_exact_for_encoding(bit_field.encoding),
     }
 }
 
@@ -568,17 +556,8 @@ fn write_format_helpers(
             continue;
         }
         let channels = format.channels();
-        let layout_description: Vec<String> = channels
-            .iter()
-            .map(|channel| {
-                format!(
-                    "{} {}-{}",
-                    channel.name,
-                    channel.offset,
-                    channel.offset + channel.bits - 1
-                )
-            })
-            .collect();
+        let layout_description: Vec<String> =
+            channels.iter().map(|channel| channel.bit_range()).collect();
         let _ = writeln!(
             out,
             "// {name}: {}, {}.",
