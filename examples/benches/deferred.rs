@@ -91,7 +91,7 @@ fn main() {
     let reference = reference::render(
         width,
         height,
-        gbuffer_scenes::Features::reference_scene(),
+        gbuffer_render::scene::reference_features(),
         &|_| {},
     );
     println!("\nagainst the CPU reference at {width}x{height}:");

@@ -173,7 +173,7 @@ impl GBuffer {
     pub fn features(&self) -> Features {
         match self {
             GBuffer::Solved(solution) => solution.scene.features,
-            _ => Features::reference_scene(),
+            _ => crate::scene::reference_features(),
         }
     }
 

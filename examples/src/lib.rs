@@ -5,7 +5,10 @@
 
 pub mod gbuffers;
 pub mod image;
+pub mod inputs;
+pub mod mesh;
 pub mod presets;
 pub mod reference;
 pub mod renderer;
 pub mod scene;
+pub mod shaders;

@@ -1,12 +1,14 @@
-//! The CPU reference renderer: the same scene, shading and tone mapping in f64, without
-//! packing, without texture filtering, with every integral evaluated at the pixel: the full
+//! The CPU reference renderer: the same triangles, decals, shading and tone mapping in f64,
+//! without packing, without texture filtering, with every integral evaluated at the pixel: the full
 //! model a specialised lighting pass is measured against.
 
 use gbuffer::glam::DVec3;
 use gbuffer::shading::reference as r;
 use gbuffer_scenes::{Feature, Features};
 
-use crate::renderer::{Frame, EXPOSURE, PREFILTER_SAMPLES};
+use crate::inputs::PREFILTER_SAMPLES;
+use crate::mesh::Mesh;
+use crate::renderer::{Frame, EXPOSURE};
 use crate::scene::{self, sky, trace};
 
 /// The GGX lobe of `roughness` around `normal` (n = v = r) integrated over the sky with the
@@ -41,14 +43,19 @@ pub fn prefiltered_sky(normal: DVec3, roughness: f64) -> DVec3 {
 
 /// The linear radiance of one pixel of the scene with these features, by the full model: the
 /// accurate forms, the environment's specular at every roughness, exact integrals.
-pub fn radiance(x: u32, y: u32, width: u32, height: u32, features: Features) -> DVec3 {
+pub fn radiance(
+    mesh: &Mesh,
+    (x, y): (u32, u32),
+    (width, height): (u32, u32),
+    features: Features,
+) -> DVec3 {
     let (origin, direction) = scene::camera_ray(
         f64::from(x),
         f64::from(y),
         f64::from(width),
         f64::from(height),
     );
-    let Some(surface) = trace(origin, direction, features) else {
+    let Some(surface) = trace(mesh, origin, direction, features) else {
         return sky(direction);
     };
     let colours = r::material::metallic_workflow(
@@ -56,8 +63,7 @@ pub fn radiance(x: u32, y: u32, width: u32, height: u32, features: Features) -> 
         surface.metallic,
         r::constants::DIELECTRIC_F0,
     );
-    // The light accumulation: static diffuse light and emission.
-    let light = surface.irradiance * colours.diffuse + surface.emission;
+    let light = surface.light;
     let view = -direction;
     let normal = surface.normal;
     let n_dot_v = normal.dot(view).clamp(r::constants::MIN_N_DOT_V, 1.0);
@@ -95,7 +101,7 @@ pub fn radiance(x: u32, y: u32, width: u32, height: u32, features: Features) -> 
     }
     if features.contains(Feature::PointLights) {
         let position = origin + direction * surface.distance;
-        for (light_position, colour) in scene::POINT_LIGHTS {
+        for (light_position, colour) in scene::point_lights() {
             let to_light = DVec3::from_array(light_position) - position;
             let distance = to_light.length();
             let falloff = r::shading::point_light_falloff(distance, scene::POINT_LIGHT_RADIUS);
@@ -116,6 +122,7 @@ pub fn render(
     features: Features,
     progress: &(dyn Fn(f64) + Sync),
 ) -> Frame {
+    let mesh = &Mesh::scene();
     let threads = std::thread::available_parallelism().map_or(2, |count| count.get()) as u32;
     let done = std::sync::atomic::AtomicU32::new(0);
     let mut rows: Vec<(u32, Vec<[u8; 4]>)> = std::thread::scope(|scope| {
@@ -127,7 +134,7 @@ pub fn render(
                         .step_by(threads as usize)
                         .map(|y| {
                             let row = (0..width)
-                                .map(|x| display(radiance(x, y, width, height, features)))
+                                .map(|x| display(radiance(mesh, (x, y), (width, height), features)))
                                 .collect();
                             let finished =
                                 done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;

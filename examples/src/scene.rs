@@ -1,5 +1,5 @@
-//! The reference scene, analytic so that the GPU renderer and the CPU reference see the same
-//! thing at every pixel: a wall of spheres across roughness 0 to 1 (dielectric and metal rows
+//! The reference scene, as triangles (`mesh`) that every backend rasterises and the CPU
+//! reference ray-casts, so that both see the same thing at every pixel: a wall of spheres across roughness 0 to 1 (dielectric and metal rows
 //! in several base colours) on a ground plane where gold meets stone through a filtered
 //! metallic mask (the halo case of GPU Pro 7, Figure 2.4), with a procedural normal map and a
 //! static diffuse light map; a directional sun; and a smooth procedural sky as the image-based
@@ -32,6 +32,10 @@ pub const EYE: [f64; 3] = [0.0, 1.6, -5.4];
 pub const TARGET: [f64; 3] = [0.0, 1.25, 0.0];
 /// Vertical field of view, degrees.
 pub const FIELD_OF_VIEW: f64 = 42.0;
+/// The near and far planes of the rasterised depth (the depth buffer's range).
+pub const CAMERA_NEAR: f64 = 0.05;
+/// The far plane.
+pub const CAMERA_FAR: f64 = 100.0;
 
 /// Towards the sun, and its colour.
 pub const SUN_DIRECTION: [f64; 3] = [0.4, 0.8, -0.45];
@@ -43,14 +47,93 @@ pub const EMISSIVE_SPHERE: (usize, usize) = (2, 0);
 /// The glowing sphere's emitted radiance.
 pub const EMISSION: [f64; 3] = [4.0, 1.6, 0.5];
 
-/// Point lights (when the scene has them): positions and colours, and the radius where their
-/// windowed falloff reaches 0.
-pub const POINT_LIGHTS: [([f64; 3], [f64; 3]); 2] = [
-    ([-1.2, 0.35, -0.9], [6.0, 3.0, 1.2]),
-    ([1.4, 0.5, -0.8], [1.5, 3.0, 6.0]),
+/// How many point lights the scene has (when it has them): each is drawn as a light volume.
+pub const POINT_LIGHT_COUNT: usize = 32;
+/// Distance at which a point light's windowed falloff reaches 0: its light volume's radius.
+pub const POINT_LIGHT_RADIUS: f64 = 1.1;
+
+/// The point lights: positions and colours, in four rows of eight over the ground in front of
+/// the spheres and between them, in a cycle of colours.
+pub fn point_lights() -> [([f64; 3], [f64; 3]); POINT_LIGHT_COUNT] {
+    const COLOURS: [[f64; 3]; 4] = [
+        [1.6, 0.8, 0.3],
+        [0.3, 0.9, 1.6],
+        [1.2, 1.4, 0.5],
+        [1.4, 0.4, 1.2],
+    ];
+    std::array::from_fn(|index| {
+        let (row, column) = (index / 8, index % 8);
+        let x = -2.8 + 0.8 * column as f64 + 0.2 * (row % 2) as f64;
+        let y = 0.2 + 0.5 * row as f64;
+        let z = -0.55 - 0.3 * (row % 2) as f64;
+        ([x, y, z], COLOURS[(index + row) % COLOURS.len()])
+    })
+}
+
+/// A decal: paint that blends base colour and roughness towards its own inside an
+/// axis-aligned box, fading out over the outer 30% of each half-extent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Decal {
+    /// The box's centre.
+    pub centre: [f64; 3],
+    /// Its half-extents.
+    pub half_size: [f64; 3],
+    /// The paint's base colour, linear.
+    pub base_colour: [f64; 3],
+    /// The paint's perceptual roughness.
+    pub roughness: f64,
+}
+
+/// The scene's decals: two patches of paint on the ground (one across the gold/stone edge),
+/// one band across the ceramic row, one across the copper row.
+pub const DECALS: [Decal; 4] = [
+    Decal {
+        centre: [-1.6, 0.0, -1.4],
+        half_size: [0.9, 0.3, 0.6],
+        base_colour: [0.05, 0.35, 0.6],
+        roughness: 0.15,
+    },
+    Decal {
+        centre: [1.3, 0.0, -1.7],
+        half_size: [0.8, 0.3, 0.5],
+        base_colour: [0.9, 0.9, 0.9],
+        roughness: 0.9,
+    },
+    Decal {
+        centre: [-0.8, 1.92, -0.2],
+        half_size: [0.7, 0.08, 0.5],
+        base_colour: [0.7, 0.05, 0.05],
+        roughness: 0.5,
+    },
+    Decal {
+        centre: [1.2, 2.67, -0.2],
+        half_size: [0.6, 0.25, 0.5],
+        base_colour: [0.1, 0.1, 0.1],
+        roughness: 0.05,
+    },
 ];
-/// Distance at which a point light's windowed falloff reaches 0.
-pub const POINT_LIGHT_RADIUS: f64 = 5.0;
+
+/// How strongly decal `decal` paints the point: 1 inside, fading to 0 over the outer 30% of
+/// each half-extent (a smooth edge, so a one-pixel difference in where a surface lies
+/// changes little).
+pub fn decal_weight(decal: &Decal, point: DVec3) -> f64 {
+    let local = (point - v3(decal.centre)).abs() / v3(decal.half_size);
+    local
+        .to_array()
+        .iter()
+        .map(|&distance| 1.0 - smoothstep(0.7, 1.0, distance))
+        .product()
+}
+
+/// The surface after the decals: each in turn blends base colour and roughness towards its
+/// own by its weight (metallic stays: paint over gold is still gold underneath).
+pub fn paint(surface: &mut Surface, point: DVec3) {
+    for decal in &DECALS {
+        let weight = decal_weight(decal, point);
+        surface.base_colour = surface.base_colour.lerp(v3(decal.base_colour), weight);
+        surface.roughness += (decal.roughness - surface.roughness) * weight;
+    }
+}
 
 /// The sky: radiance A + B.d + C max(d.s, 0)^8 (a gradient and a broad glow towards the sun).
 pub const SKY_A: [f64; 3] = [0.55, 0.62, 0.75];
@@ -68,6 +151,12 @@ pub const LIGHT_MAP_RANGE: f64 = 6.0;
 pub const ENVIRONMENT_RANGE: f64 = 8.0;
 /// The prefiltered environment's mips: roughness r reads mip r * ENVIRONMENT_MIPS (Listing 2.6).
 pub const ENVIRONMENT_MIPS: u32 = 6;
+
+/// What the reference scene shows (the seed layouts and `classic` render it): metals, normal
+/// maps, image-based light, light maps, the sun and the point lights.
+pub fn reference_features() -> Features {
+    Features::reference_scene().with(Feature::PointLights)
+}
 
 fn v3(value: [f64; 3]) -> DVec3 {
     DVec3::from_array(value)
@@ -119,12 +208,10 @@ pub struct Surface {
     pub base_colour: DVec3,
     /// Metallic, 0 or 1 (between on the gold/stone mask's edge).
     pub metallic: f64,
-    /// The static diffuse irradiance (divided by pi) reaching it: the light map on the ground,
-    /// the sky's cosine-weighted average on the spheres (without image-based light, only
-    /// the light map).
-    pub irradiance: DVec3,
-    /// The light it emits.
-    pub emission: DVec3,
+    /// The light accumulation's start: the static diffuse irradiance (the light map on the
+    /// ground, the sky's cosine-weighted average on the spheres) times the diffuse colour
+    /// before the decals (they do not change the baked light), plus the light it emits.
+    pub light: DVec3,
     /// Distance from the eye along the ray.
     pub distance: f64,
 }
@@ -186,10 +273,17 @@ pub fn ground_normal(x: f64, z: f64) -> DVec3 {
     r::normals::tangent_to_world(tangent_normal, DVec3::Y, DVec4::new(1.0, 0.0, 0.0, 1.0))
 }
 
-/// The first surface a ray meets, if any, as a scene of these features shows it: without
-/// metals every metallic is 0, fully rough scenes have roughness 1, normal maps, light maps,
-/// image-based light and the emissive sphere come and go with their features.
-pub fn trace(origin: DVec3, direction: DVec3, features: Features) -> Option<Surface> {
+/// The surface of `object` (a sphere index or `mesh::GROUND`) at `point`, with the mesh's
+/// interpolated `normal`, as a scene of these features shows it: without metals every metallic
+/// is 0, fully rough scenes have roughness 1, normal maps, light maps, image-based light and the
+/// emissive sphere come and go with their features; the decals paint it.
+pub fn surface_at(
+    object: u32,
+    point: DVec3,
+    normal: DVec3,
+    distance: f64,
+    features: Features,
+) -> Surface {
     let has = |feature| features.contains(feature);
     let metals = if has(Feature::Metals) { 1.0 } else { 0.0 };
     let sky_light = |normal: DVec3| {
@@ -199,77 +293,73 @@ pub fn trace(origin: DVec3, direction: DVec3, features: Features) -> Option<Surf
             DVec3::ZERO
         }
     };
-    let roughness_of = |roughness: f64| {
-        if has(Feature::FullyRough) {
-            1.0
-        } else {
-            roughness
-        }
-    };
-    let mut nearest: Option<(f64, usize, usize)> = None;
-    for row in 0..ROWS {
-        for column in 0..COLUMNS {
-            let offset = origin - sphere_centre(column, row);
-            let b = offset.dot(direction);
-            let c = offset.dot(offset) - SPHERE_RADIUS * SPHERE_RADIUS;
-            let discriminant = b * b - c;
-            if discriminant > 0.0 {
-                let distance = -b - discriminant.sqrt();
-                if distance > 0.0 && nearest.is_none_or(|(best, _, _)| distance < best) {
-                    nearest = Some((distance, column, row));
-                }
-            }
-        }
-    }
-    let ground = if direction.y < 0.0 {
-        Some(-origin.y / direction.y)
-    } else {
-        None
-    };
-    match (nearest, ground) {
-        (Some((distance, column, row)), ground)
-            if ground.is_none_or(|ground| distance < ground) =>
-        {
-            let point = origin + direction * distance;
-            let normal = (point - sphere_centre(column, row)).normalize();
+    // (normal, roughness, base colour, metallic, irradiance, emission)
+    let (normal, roughness, base_colour, metallic, irradiance, emission) =
+        if object < crate::mesh::GROUND {
+            let (row, column) = (object as usize / COLUMNS, object as usize % COLUMNS);
             let (base_colour, metallic) = ROW_MATERIALS[row];
             let glows = has(Feature::Emissive) && (row, column) == EMISSIVE_SPHERE;
-            Some(Surface {
+            (
                 normal,
-                roughness: roughness_of(sphere_roughness(column)),
-                base_colour: v3(base_colour),
-                metallic: metallic * metals,
-                irradiance: sky_light(normal),
-                emission: if glows { v3(EMISSION) } else { DVec3::ZERO },
-                distance,
-            })
-        }
-        (_, Some(distance)) if distance < 40.0 => {
-            let point = origin + direction * distance;
+                sphere_roughness(column),
+                v3(base_colour),
+                metallic * metals,
+                sky_light(normal),
+                if glows { v3(EMISSION) } else { DVec3::ZERO },
+            )
+        } else {
             let (base_colour, roughness, mask) = ground_material(point.x, point.z);
             let inside = point.x.abs() < LIGHT_MAP_EXTENT && point.z.abs() < LIGHT_MAP_EXTENT;
-            let irradiance = if inside && has(Feature::LightMaps) {
-                light_map(point.x, point.z)
-            } else {
-                sky_light(DVec3::Y)
-            };
-            let normal = if has(Feature::NormalMaps) {
-                ground_normal(point.x, point.z)
-            } else {
-                DVec3::Y
-            };
-            Some(Surface {
-                normal,
-                roughness: roughness_of(roughness),
+            (
+                if has(Feature::NormalMaps) {
+                    ground_normal(point.x, point.z)
+                } else {
+                    DVec3::Y
+                },
+                roughness,
                 base_colour,
-                metallic: mask * metals,
-                irradiance,
-                emission: DVec3::ZERO,
-                distance,
-            })
-        }
-        _ => None,
+                mask * metals,
+                if inside && has(Feature::LightMaps) {
+                    light_map(point.x, point.z)
+                } else {
+                    sky_light(DVec3::Y)
+                },
+                DVec3::ZERO,
+            )
+        };
+    let diffuse =
+        r::material::metallic_workflow(base_colour, metallic, r::constants::DIELECTRIC_F0).diffuse;
+    let mut surface = Surface {
+        normal,
+        roughness,
+        base_colour,
+        metallic,
+        light: irradiance * diffuse + emission,
+        distance,
+    };
+    paint(&mut surface, point);
+    if has(Feature::FullyRough) {
+        surface.roughness = 1.0;
     }
+    surface
+}
+
+/// The first surface a ray meets on the scene's mesh, if any.
+pub fn trace(
+    mesh: &crate::mesh::Mesh,
+    origin: DVec3,
+    direction: DVec3,
+    features: Features,
+) -> Option<Surface> {
+    let hit = mesh.intersect(origin, direction)?;
+    let point = origin + direction * hit.distance;
+    Some(surface_at(
+        hit.object,
+        point,
+        hit.normal,
+        hit.distance,
+        features,
+    ))
 }
 
 /// The scene in WGSL for the G-buffer pass: the same constants and functions as above, and the
@@ -313,6 +403,14 @@ const POINT_LIGHT_COUNT: u32 = {point_light_count}u;
 const POINT_LIGHT_POSITIONS: array<vec3<f32>, {point_light_count}> = array<vec3<f32>, {point_light_count}>({point_light_positions});
 const POINT_LIGHT_COLOURS: array<vec3<f32>, {point_light_count}> = array<vec3<f32>, {point_light_count}>({point_light_colours});
 const POINT_LIGHT_RADIUS: f32 = {point_light_radius:?};
+const DECAL_COUNT: u32 = {decal_count}u;
+const DECAL_CENTRES: array<vec3<f32>, {decal_count}> = array<vec3<f32>, {decal_count}>({decal_centres});
+const DECAL_HALF_SIZES: array<vec3<f32>, {decal_count}> = array<vec3<f32>, {decal_count}>({decal_half_sizes});
+const DECAL_COLOURS: array<vec3<f32>, {decal_count}> = array<vec3<f32>, {decal_count}>({decal_colours});
+const DECAL_ROUGHNESS: array<f32, {decal_count}> = array<f32, {decal_count}>({decal_roughness});
+const GROUND_OBJECT: u32 = {ground}u;
+const CAMERA_NEAR: f32 = {near:?};
+const CAMERA_FAR: f32 = {far:?};
 // The scene's features.
 const SCENE_METALS: bool = {metals};
 const SCENE_NORMAL_MAPS: bool = {normal_maps};
@@ -320,6 +418,7 @@ const SCENE_EMISSIVE: bool = {emissive};
 const SCENE_IMAGE_BASED_LIGHTING: bool = {image_based_lighting};
 const SCENE_LIGHT_MAPS: bool = {light_maps};
 const SCENE_FULLY_ROUGH: bool = {fully_rough};
+const SCENE_POINT_LIGHTS: bool = {point_lights};
 
 fn sphere_centre(column: u32, row: u32) -> vec3<f32> {{
     return vec3<f32>(-2.0 + 0.8 * f32(column), 0.42 + 0.75 * f32(row), 0.0);
@@ -332,6 +431,37 @@ fn camera_ray(pixel: vec2<f32>, size: vec2<f32>) -> vec3<f32> {{
     let half_width = SCENE_HALF_HEIGHT * size.x / size.y;
     let ndc = vec2<f32>(pixel.x / size.x * 2.0 - 1.0, 1.0 - pixel.y / size.y * 2.0);
     return normalize(forward + right * (ndc.x * half_width) + up * (ndc.y * SCENE_HALF_HEIGHT));
+}}
+
+// World position to clip space for a `size` viewport: the projection `camera_ray` inverts,
+// depth in [0, 1]. `y_sign` -1 renders upside down (GL's bottom-up rows, Vulkan's y-down NDC).
+fn clip_position(position: vec3<f32>, size: vec2<f32>, y_sign: f32) -> vec4<f32> {{
+    let forward = normalize(SCENE_TARGET - SCENE_EYE);
+    let right = normalize(cross(vec3<f32>(0.0, 1.0, 0.0), forward));
+    let up = cross(forward, right);
+    let offset = position - SCENE_EYE;
+    let depth = dot(offset, forward);
+    let half_width = SCENE_HALF_HEIGHT * size.x / size.y;
+    return vec4<f32>(dot(offset, right) / half_width, y_sign * dot(offset, up) / SCENE_HALF_HEIGHT, CAMERA_FAR / (CAMERA_FAR - CAMERA_NEAR) * (depth - CAMERA_NEAR), depth);
+}}
+
+// How strongly decal `decal` paints `point`: 1 inside its box, fading out over the outer 30%.
+fn decal_weight(decal: u32, point: vec3<f32>) -> f32 {{
+    var centres = DECAL_CENTRES;
+    var half_sizes = DECAL_HALF_SIZES;
+    let fade = vec3<f32>(1.0) - smoothstep(vec3<f32>(0.7), vec3<f32>(1.0), abs(point - centres[decal]) / half_sizes[decal]);
+    return fade.x * fade.y * fade.z;
+}}
+
+// Decal `decal`'s paint over a base colour and roughness, by `weight`.
+fn paint_base_colour(base_colour: vec3<f32>, decal: u32, weight: f32) -> vec3<f32> {{
+    var colours = DECAL_COLOURS;
+    return mix(base_colour, colours[decal], weight);
+}}
+
+fn paint_roughness(roughness: f32, decal: u32, weight: f32) -> f32 {{
+    var roughness_values = DECAL_ROUGHNESS;
+    return roughness + (roughness_values[decal] - roughness) * weight;
 }}
 
 fn sky(direction: vec3<f32>) -> vec3<f32> {{
@@ -376,9 +506,19 @@ fn ground_normal(x: f32, z: f32) -> vec3<f32> {{
         emissive_row = EMISSIVE_SPHERE.0,
         emissive_column = EMISSIVE_SPHERE.1,
         emission = vec3(EMISSION),
-        point_light_count = POINT_LIGHTS.len(),
-        point_light_positions = POINT_LIGHTS.map(|(position, _)| vec3(position)).join(", "),
-        point_light_colours = POINT_LIGHTS.map(|(_, colour)| vec3(colour)).join(", "),
+        point_light_count = POINT_LIGHT_COUNT,
+        point_light_positions = point_lights()
+            .map(|(position, _)| vec3(position))
+            .join(", "),
+        point_light_colours = point_lights().map(|(_, colour)| vec3(colour)).join(", "),
+        decal_centres = DECALS.map(|decal| vec3(decal.centre)).join(", "),
+        decal_half_sizes = DECALS.map(|decal| vec3(decal.half_size)).join(", "),
+        decal_colours = DECALS.map(|decal| vec3(decal.base_colour)).join(", "),
+        decal_roughness = DECALS
+            .map(|decal| format!("{:?}", decal.roughness as f32))
+            .join(", "),
+        decal_count = DECALS.len(),
+        ground = crate::mesh::GROUND,
         point_light_radius = POINT_LIGHT_RADIUS as f32,
         metals = features.contains(Feature::Metals),
         normal_maps = features.contains(Feature::NormalMaps),
@@ -386,5 +526,74 @@ fn ground_normal(x: f32, z: f32) -> vec3<f32> {{
         image_based_lighting = features.contains(Feature::ImageBasedLighting),
         light_maps = features.contains(Feature::LightMaps),
         fully_rough = features.contains(Feature::FullyRough),
+        point_lights = features.contains(Feature::PointLights),
+        near = CAMERA_NEAR as f32,
+        far = CAMERA_FAR as f32,
     )
 }
+
+/// `fn surface_at(object: u32, point: vec3<f32>, normal: vec3<f32>) -> Surface`: the WGSL of
+/// [`surface_at`] before the decals, with the light accumulation's static light folded in, and
+/// `fn paint_surface(surface: Surface) -> Surface`, the decals.
+/// Its host provides `fn light_map_irradiance(uv: vec2<f32>) -> vec3<f32>` and the `Surface`
+/// struct; the scene's constants come from [`scene_wgsl`].
+pub const SURFACE_AT_WGSL: &str = "
+fn surface_at(object: u32, point: vec3<f32>, interpolated_normal: vec3<f32>) -> Surface {
+    var surface: Surface;
+    var emission = vec3<f32>(0.0);
+    if object < GROUND_OBJECT {
+        let row = object / SCENE_COLUMNS;
+        let column = object % SCENE_COLUMNS;
+        var materials = ROW_MATERIALS;
+        let material = materials[row];
+        surface.normal = normalize(interpolated_normal);
+        surface.roughness = f32(column) / f32(SCENE_COLUMNS - 1u);
+        surface.base_colour = material.rgb;
+        surface.metallic = select(0.0, material.a, SCENE_METALS);
+        surface.light = select(vec3<f32>(0.0), sky_irradiance(surface.normal), SCENE_IMAGE_BASED_LIGHTING);
+        if SCENE_EMISSIVE && row == EMISSIVE_ROW && column == EMISSIVE_COLUMN {
+            emission = EMISSION;
+        }
+    } else {
+        let mask = ground_metallic(point.x, point.z);
+        surface.normal = vec3<f32>(0.0, 1.0, 0.0);
+        if SCENE_NORMAL_MAPS {
+            surface.normal = ground_normal(point.x, point.z);
+        }
+        surface.roughness = 0.75 * (1.0 - mask) + 0.28 * mask;
+        surface.base_colour = ground_base_colour(point.x, point.z, mask);
+        surface.metallic = select(0.0, mask, SCENE_METALS);
+        surface.light = select(vec3<f32>(0.0), sky_irradiance(vec3<f32>(0.0, 1.0, 0.0)), SCENE_IMAGE_BASED_LIGHTING);
+        if SCENE_LIGHT_MAPS && abs(point.x) < LIGHT_MAP_EXTENT && abs(point.z) < LIGHT_MAP_EXTENT {
+            surface.light = light_map_irradiance(vec2<f32>(point.x, point.z) / (2.0 * LIGHT_MAP_EXTENT) + vec2<f32>(0.5));
+        }
+    }
+    if SCENE_FULLY_ROUGH {
+        surface.roughness = 1.0;
+    }
+    surface.distance = length(point - SCENE_EYE);
+    surface.position = point;
+    // The light accumulation holds the static diffuse light (irradiance times diffuse colour)
+    // and the emitted light. On fully rough scenes with image-based light the environment's
+    // specular is folded in as 0.45 f0 (seed 001): the lighting pass skips the environment.
+    let colours = metallic_workflow(surface.base_colour, surface.metallic, DIELECTRIC_F0);
+    var ambient_colour = colours.diffuse;
+    if SCENE_FULLY_ROUGH && SCENE_IMAGE_BASED_LIGHTING {
+        ambient_colour = fully_rough_diffuse_colour(colours.diffuse, colours.f0);
+    }
+    surface.light = surface.light * ambient_colour + emission;
+    return surface;
+}
+
+// The decals painted over a surface in turn, as a G-buffer pass without framebuffer fetch
+// applies them (after the static light: decals do not change the baked light).
+fn paint_surface(unpainted: Surface) -> Surface {
+    var surface = unpainted;
+    for (var decal = 0u; decal < DECAL_COUNT; decal++) {
+        let weight = decal_weight(decal, surface.position);
+        surface.base_colour = paint_base_colour(surface.base_colour, decal, weight);
+        surface.roughness = select(paint_roughness(surface.roughness, decal, weight), 1.0, SCENE_FULLY_ROUGH);
+    }
+    return surface;
+}
+";

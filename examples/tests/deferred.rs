@@ -29,7 +29,7 @@ fn every_gbuffer_renders_a_frame_that_matches_the_cpu_reference() {
     let reference = reference::render(
         WIDTH,
         HEIGHT,
-        gbuffer_scenes::Features::reference_scene(),
+        gbuffer_render::scene::reference_features(),
         &|_| {},
     );
     assert!(!is_blank(&reference));
@@ -74,7 +74,7 @@ fn the_mobile_forms_render_close_to_the_accurate_reference() {
         &reference::render(
             WIDTH,
             HEIGHT,
-            gbuffer_scenes::Features::reference_scene(),
+            gbuffer_render::scene::reference_features(),
             &|_| {},
         ),
     );

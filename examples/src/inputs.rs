@@ -1,0 +1,144 @@
+//! The renderer's baked inputs, computed once on the CPU and uploaded as they are by every
+//! backend, so that the wgpu, GLES and Vulkan frames sample the same texels:
+//!
+//! - the split-sum LUT (32x32 `Rgba16Float`: scale, bias, 0, 1);
+//! - the light map (128x128 `Rgba8Unorm`, RGBM squared, range 6, as GPU Pro 7 Listing 2.5);
+//! - the prefiltered sky: an equirectangular RGBM mip chain (`Rgba8Unorm`), mip m integrating
+//!   the GGX lobe of roughness m / ENVIRONMENT_MIPS (Karis's split sum: n = v = r) with
+//!   PREFILTER_SAMPLES importance samples, as the seed stores its PMREM (Listing 2.6).
+
+use gbuffer::glam::DVec3;
+use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
+use gbuffer::shading::mirror as m;
+use gbuffer_codegen::convert::{half_from_f32, unorm_from_f32};
+
+use crate::reference::prefiltered_sky;
+use crate::scene::{self, ENVIRONMENT_MIPS, ENVIRONMENT_RANGE, LIGHT_MAP_EXTENT, LIGHT_MAP_RANGE};
+
+/// The split-sum LUT's size.
+pub const LUT_SIZE: u32 = 32;
+/// The light map's size.
+pub const LIGHT_MAP_SIZE: u32 = 128;
+/// The prefiltered environment's width at mip 0 (its height is half).
+pub const ENVIRONMENT_WIDTH: u32 = 512;
+/// Importance samples per texel of the prefiltered environment and per LUT texel (the CPU
+/// reference integrates with the same estimator).
+pub const PREFILTER_SAMPLES: u32 = 256;
+
+/// One texture's texels, row by row, and its size.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Texels {
+    /// Width, texels.
+    pub width: u32,
+    /// Height, texels.
+    pub height: u32,
+    /// The texel bytes, tightly packed.
+    pub bytes: Vec<u8>,
+}
+
+/// Everything the passes sample.
+#[derive(Clone, Debug)]
+pub struct Inputs {
+    /// The split-sum LUT, `Rgba16Float`.
+    pub lut: Texels,
+    /// The light map, `Rgba8Unorm` RGBM squared.
+    pub light_map: Texels,
+    /// The prefiltered environment's mips, largest first, `Rgba8Unorm` RGBM.
+    pub environment: Vec<Texels>,
+}
+
+impl Inputs {
+    /// Bakes the inputs (rows shared between the machine's threads).
+    pub fn bake() -> Inputs {
+        let lut = EnvBrdfLut::bake(LUT_SIZE as usize, PREFILTER_SAMPLES);
+        let lut = Texels {
+            width: LUT_SIZE,
+            height: LUT_SIZE,
+            bytes: lut
+                .texels
+                .iter()
+                .flat_map(|[scale, bias]| [*scale, *bias, 0.0, 1.0].map(half_from_f32))
+                .flat_map(|half| (half as u16).to_le_bytes())
+                .collect(),
+        };
+        let light_map = Texels {
+            width: LIGHT_MAP_SIZE,
+            height: LIGHT_MAP_SIZE,
+            bytes: rows(LIGHT_MAP_SIZE, LIGHT_MAP_SIZE, |x, y| {
+                let centre = |coordinate: u32| {
+                    ((f64::from(coordinate) + 0.5) / f64::from(LIGHT_MAP_SIZE) * 2.0 - 1.0)
+                        * LIGHT_MAP_EXTENT
+                };
+                let irradiance = scene::light_map(centre(x), centre(y));
+                m::hdr::rgbm_squared_encode(irradiance.as_vec3(), LIGHT_MAP_RANGE as f32).to_array()
+            }),
+        };
+        let environment = (0..=ENVIRONMENT_MIPS)
+            .map(|mip| {
+                let (width, height) = (ENVIRONMENT_WIDTH >> mip, (ENVIRONMENT_WIDTH / 2) >> mip);
+                let roughness = f64::from(mip) / f64::from(ENVIRONMENT_MIPS);
+                Texels {
+                    width,
+                    height,
+                    bytes: rows(width, height, |x, y| {
+                        let normal = equirectangular_direction(
+                            (f64::from(x) + 0.5) / f64::from(width),
+                            (f64::from(y) + 0.5) / f64::from(height),
+                        );
+                        let radiance = prefiltered_sky(normal, roughness);
+                        m::hdr::rgbm_encode(radiance.as_vec3(), ENVIRONMENT_RANGE as f32).to_array()
+                    }),
+                }
+            })
+            .collect();
+        Inputs {
+            lut,
+            light_map,
+            environment,
+        }
+    }
+}
+
+/// The direction an equirectangular texture holds at (u, v): u around the vertical from -z
+/// through +x, v from the zenith (the inverse of the shaders' `equirectangular`).
+fn equirectangular_direction(u: f64, v: f64) -> DVec3 {
+    let phi = (u - 0.5) * std::f64::consts::TAU;
+    let theta = v * std::f64::consts::PI;
+    DVec3::new(
+        theta.sin() * phi.sin(),
+        theta.cos(),
+        theta.sin() * phi.cos(),
+    )
+}
+
+/// `Rgba8Unorm` texels of a `width` x `height` texture whose texel (x, y) holds
+/// `texel(x, y)` (four values in [0, 1]), rows computed on the machine's threads.
+fn rows(width: u32, height: u32, texel: impl Fn(u32, u32) -> [f32; 4] + Sync) -> Vec<u8> {
+    let threads = std::thread::available_parallelism().map_or(2, |count| count.get()) as u32;
+    let mut rows: Vec<(u32, Vec<u8>)> = std::thread::scope(|scope| {
+        let workers: Vec<_> = (0..threads)
+            .map(|thread| {
+                let texel = &texel;
+                scope.spawn(move || {
+                    (thread..height)
+                        .step_by(threads as usize)
+                        .map(|y| {
+                            let row = (0..width)
+                                .flat_map(|x| {
+                                    texel(x, y).map(|value| unorm_from_f32(value, 8) as u8)
+                                })
+                                .collect();
+                            (y, row)
+                        })
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        workers
+            .into_iter()
+            .flat_map(|worker| worker.join().expect("a baking thread panicked"))
+            .collect()
+    });
+    rows.sort_by_key(|(y, _)| *y);
+    rows.into_iter().flat_map(|(_, row)| row).collect()
+}
