@@ -1,7 +1,9 @@
-//! The reference deferred renderer, headless: renders the scene with a chosen G-buffer layout
-//! and lighting forms to a PNG, and optionally compares it with the CPU reference.
+//! The reference deferred renderer, headless: renders the scene with a chosen G-buffer layout,
+//! lighting forms, backend and path to a PNG, and optionally compares it with the CPU reference.
 //!
 //! `cargo run --release --example deferred -- --layout mobile-metallic --size 1280x720 --out frame.png`
+//! `cargo run --release --example deferred -- --backend gles --path fetch-native --reference`
+//! `cargo run --release --example deferred -- --backend vulkan --path subpass --reference`
 //! `cargo run --release --example deferred -- --scene examples/scenes/dielectric-only.toml --reference`
 
 use std::path::PathBuf;
@@ -10,8 +12,11 @@ use std::process::ExitCode;
 use clap::Parser;
 use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
 use gbuffer_render::image::{compare, difference, write_png};
+use gbuffer_render::on_tile::gles::GlesRenderer;
+use gbuffer_render::on_tile::vulkan::VulkanRenderer;
+use gbuffer_render::on_tile::{Backend, Path, TileOptions};
 use gbuffer_render::reference;
-use gbuffer_render::renderer::{IblForm, Options, Renderer, SunForm};
+use gbuffer_render::renderer::{Frame, IblForm, Options, Renderer, SunForm};
 
 /// Renders the reference scene (spheres across roughness and metallic on a gold-and-stone
 /// ground, a sun, image-based light and a light map) through a packed G-buffer layout and
@@ -28,6 +33,15 @@ struct Arguments {
     /// the layout solved for it and a lighting pass with only its terms.
     #[arg(long, value_name = "SCENE.toml")]
     scene: Option<PathBuf>,
+    /// The API: `wgpu` (the G-buffer through memory), `gles` (GLES 3.2 through EGL
+    /// surfaceless) or `vulkan`.
+    #[arg(long, default_value = "wgpu")]
+    backend: String,
+    /// How the G-buffer travels: for gles `fetch-native` (default), `fetch-packed` or
+    /// `two-pass`; for vulkan `subpass` (default) or `two-pass`. The fused paths keep it in the
+    /// render pass and never store it.
+    #[arg(long)]
+    path: Option<String>,
     /// Frame size, WIDTHxHEIGHT.
     #[arg(long, default_value = "1280x720")]
     size: String,
@@ -44,6 +58,43 @@ struct Arguments {
     /// `<out>.reference.png` and `<out>.difference.png` (differences x8).
     #[arg(long)]
     reference: bool,
+}
+
+/// The backend and path named on the command line (the backend's default path if none).
+fn parse_backend(arguments: &Arguments) -> Result<(Backend, Option<Path>), String> {
+    let backend = [Backend::Wgpu, Backend::Gles, Backend::Vulkan]
+        .into_iter()
+        .find(|backend| backend.flag() == arguments.backend)
+        .ok_or_else(|| {
+            format!(
+                "unknown backend `{}`: use wgpu, gles or vulkan",
+                arguments.backend
+            )
+        })?;
+    let names = |paths: &[Path]| paths.iter().map(|path| path.flag()).collect::<Vec<_>>().join(", ");
+    let path = match (&arguments.path, backend.paths()) {
+        (None, paths) => paths.first().copied(),
+        (Some(name), []) => {
+            return Err(format!(
+                "--path {name}: the wgpu backend has one path (the G-buffer through memory); \
+                 the on-tile paths are --backend gles or vulkan"
+            ))
+        }
+        (Some(name), paths) => Some(
+            paths
+                .iter()
+                .copied()
+                .find(|path| path.flag() == name)
+                .ok_or_else(|| {
+                    format!(
+                        "unknown path `{name}` for --backend {}: use {}",
+                        backend.flag(),
+                        names(paths)
+                    )
+                })?,
+        ),
+    };
+    Ok((backend, path))
 }
 
 fn parse(arguments: &Arguments) -> Result<Options, String> {
@@ -98,10 +149,39 @@ fn parse(arguments: &Arguments) -> Result<Options, String> {
     })
 }
 
+/// The frame, on the chosen backend and path.
+fn render(
+    backend: Backend,
+    path: Option<Path>,
+    options: &Options,
+    progress: &dyn Fn(&str),
+) -> Result<Frame, String> {
+    let tile = |path: Option<Path>| TileOptions {
+        options: options.clone(),
+        path: path.expect("the on-tile backends have a path"),
+    };
+    let (frame, recording) = match backend {
+        Backend::Wgpu => return Renderer::new(progress)?.render(options),
+        Backend::Gles => GlesRenderer::new(progress)?.render(&tile(path))?,
+        Backend::Vulkan => VulkanRenderer::new(progress)?.render(&tile(path))?,
+    };
+    let traffic = recording.traffic(options.width, options.height);
+    eprintln!(
+        "{} passes; stored: {}; {:.1} MB loaded, {:.1} MB stored ({:.1} BU)",
+        recording.passes(),
+        recording.stored().join(", "),
+        traffic.loaded as f64 / 1e6,
+        traffic.stored as f64 / 1e6,
+        traffic.bandwidth_units(options.width, options.height)
+    );
+    Ok(frame)
+}
+
 fn main() -> ExitCode {
     let arguments = Arguments::parse();
-    let options = match parse(&arguments) {
-        Ok(options) => options,
+    let parsed = parse(&arguments).and_then(|options| Ok((options, parse_backend(&arguments)?)));
+    let (options, (backend, path)) = match parsed {
+        Ok(parsed) => parsed,
         Err(message) => {
             eprintln!("deferred: {message}");
             return ExitCode::from(2);
@@ -109,15 +189,16 @@ fn main() -> ExitCode {
     };
     let progress = |message: &str| eprintln!("{message}");
     let run = || -> Result<(), String> {
-        let renderer = Renderer::new(&progress)?;
         eprintln!(
-            "rendering {}x{} with {} ({} bytes per pixel)...",
+            "rendering {}x{} with {} ({} bytes per pixel) on {}{}...",
             options.width,
             options.height,
             options.gbuffer.name(),
-            options.gbuffer.bytes_per_pixel()
+            options.gbuffer.bytes_per_pixel(),
+            backend.flag(),
+            path.map(|path| format!(", path {}", path.flag())).unwrap_or_default()
         );
-        let frame = renderer.render(&options)?;
+        let frame = render(backend, path, &options, &progress)?;
         write_png(&arguments.out, &frame)
             .map_err(|error| format!("{}: {error}", arguments.out.display()))?;
         eprintln!("wrote {}", arguments.out.display());

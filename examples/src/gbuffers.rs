@@ -112,6 +112,72 @@ impl SeedLayout {
         }
     }
 
+    /// What the on-tile paths need beyond `encode_texel` and `decode_texel`, for layouts that
+    /// store where the surface is and its base colour (the decals paint base colour, the
+    /// point lights need the position): `texel_position(t, direction)`, `with_light(t,
+    /// light)` (the light accumulation replaced) and `paint_texel(t, decal, weight)`. The
+    /// error says why another layout cannot be kept on tile by this renderer.
+    pub fn on_tile_wgsl(self) -> Result<&'static str, String> {
+        match self {
+            SeedLayout::MobileMetallic => Ok("fn texel_position(t: MobileMetallic, direction: vec3<f32>) -> vec3<f32> {
+    return SCENE_EYE + direction * t.depth;
+}
+
+fn with_light(t: MobileMetallic, light: vec3<f32>) -> MobileMetallic {
+    var lit = t;
+    lit.light_accumulation = scale_hdr_to_unit(light, LIGHT_SCALE);
+    return lit;
+}
+
+fn paint_texel(t: MobileMetallic, decal: u32, weight: f32) -> MobileMetallic {
+    var painted = t;
+    let base_colour = paint_base_colour(pseudo_gamma_to_linear(t.albedo_metallic.rgb), decal, weight);
+    painted.albedo_metallic = vec4<f32>(linear_to_pseudo_gamma(base_colour), t.albedo_metallic.a);
+    painted.normals_roughness.w = paint_roughness(t.normals_roughness.w, decal, weight);
+    return painted;
+}"),
+            SeedLayout::FutureMetallic => Ok("fn texel_position(t: FutureMetallic, direction: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(t.position_x, t.position_y, t.position_z);
+}
+
+fn with_light(t: FutureMetallic, light: vec3<f32>) -> FutureMetallic {
+    var lit = t;
+    lit.light_accumulation_rg = light.rg;
+    lit.light_accumulation_b_normal_x.x = light.b;
+    return lit;
+}
+
+fn paint_texel(t: FutureMetallic, decal: u32, weight: f32) -> FutureMetallic {
+    var painted = t;
+    painted.albedo_or_reflectance = paint_base_colour(t.albedo_or_reflectance, decal, weight);
+    painted.roughness_metallic.x = paint_roughness(t.roughness_metallic.x, decal, weight);
+    return painted;
+}"),
+            SeedLayout::SpecularWorkflow | SeedLayout::FutureSpecular => Err(format!(
+                "layout `{}` stores diffuse and specular colour, not the base colour the decals \
+                 paint in place; keep mobile-metallic or future-metallic on tile",
+                self.flag()
+            )),
+            SeedLayout::ArmTileBlock => Err(format!(
+                "layout `{}` stores neither depth nor position, which the decals and point \
+                 lights read on tile; keep mobile-metallic or future-metallic on tile",
+                self.flag()
+            )),
+        }
+    }
+
+    /// The fields `with_light` changes, and those `paint_texel` changes: an on-tile draw
+    /// writes only the attachments that hold them.
+    pub fn on_tile_fields(self) -> (&'static [&'static str], &'static [&'static str]) {
+        match self {
+            SeedLayout::FutureMetallic => (
+                &["light_accumulation_rg", "light_accumulation_b_normal_x"],
+                &["roughness_metallic", "albedo_or_reflectance"],
+            ),
+            _ => (&["light_accumulation"], &["normals_roughness", "albedo_metallic"]),
+        }
+    }
+
     /// `fn decode_texel(t: <Name>) -> Shading`: the inverse of `encode_texel`.
     pub fn decode_wgsl(self) -> &'static str {
         match self {

@@ -7,6 +7,7 @@ pub mod gbuffers;
 pub mod image;
 pub mod inputs;
 pub mod mesh;
+pub mod on_tile;
 pub mod presets;
 pub mod reference;
 pub mod renderer;

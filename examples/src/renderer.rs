@@ -413,8 +413,9 @@ fn read_packed_targets(layout: &Layout) -> (String, String) {
 }
 
 /// The G-buffer pass's WGSL for a configuration: `geometry_vertex`, and `gbuffer_main`, which
-/// writes the surface with the decals painted over it.
-fn gbuffer_wgsl(options: &Options) -> String {
+/// writes the surface with the decals painted over it. `y_sign` is the backend's clip-space y
+/// (wgpu 1, GL and Vulkan -1).
+pub fn gbuffer_wgsl(options: &Options, y_sign: f32) -> String {
     let (layout_wgsl, encode, output_type) = match &options.gbuffer {
         GBuffer::Packed(layout) => {
             let (encode, output_type) = write_packed_targets(&layout.layout());
@@ -452,7 +453,7 @@ fn gbuffer_main(input: GeometryVarying) -> {output_type} {{
 }}
 ",
         library(&shaders::MODULES),
-        shaders::frame_wgsl(options, 1.0),
+        shaders::frame_wgsl(options, y_sign),
         shaders::geometry_wgsl(options),
     )
 }
@@ -461,7 +462,7 @@ fn gbuffer_main(input: GeometryVarying) -> {output_type} {{
 /// inputs, the depth buffer and `surface_position`.
 fn lighting_prelude(options: &Options) -> String {
     format!(
-        "{}\n{}\n{}\n{SURFACE_WGSL}\n{INPUTS_WGSL}\n{}\n{FULL_SCREEN_WGSL}
+        "{}\n{}\n{}\n{SURFACE_WGSL}\n{INPUTS_WGSL}\n{}\n{}\n{FULL_SCREEN_WGSL}
 @group(0) @binding(4) var depth_buffer: texture_depth_2d;
 
 // Where the surface at `pixel` lies: the depth buffer's depth along the camera ray.
@@ -475,6 +476,7 @@ fn surface_position(pixel: vec2<i32>, direction: vec3<f32>) -> vec3<f32> {{
         shaders::frame_wgsl(options, 1.0),
         scene::scene_wgsl(options.gbuffer.features()),
         shaders::lighting_functions_wgsl(options),
+        shaders::display_wgsl(),
     )
 }
 
@@ -488,18 +490,18 @@ pub fn lighting_pass_wgsl(options: &Options) -> String {
             let snake = model.snake_name();
             (
                 format!("{}\n{}\n{bindings}", layout.wgsl(), layout.decode_wgsl()),
-                format!("let targets = {targets};\n    if targets.first.x == 0xffffffffu {{\n        return vec4<f32>(sky(direction), 1.0);\n    }}\n    let shading = decode_texel(unpack_{snake}_targets(targets));"),
+                format!("let targets = {targets};\n    if targets.first.x == 0xffffffffu {{\n        return sky(direction);\n    }}\n    let shading = decode_texel(unpack_{snake}_targets(targets));"),
             )
         }
         GBuffer::Classic => (
             "@group(0) @binding(10) var gbuffer_light: texture_2d<f32>;\n@group(0) @binding(11) var gbuffer_normal: texture_2d<f32>;\n@group(0) @binding(12) var gbuffer_colour: texture_2d<f32>;\n".to_string(),
-            "let light = textureLoad(gbuffer_light, pixel, 0);\n    if light.a == 0.0 {\n        return vec4<f32>(sky(direction), 1.0);\n    }\n    let normal_roughness = textureLoad(gbuffer_normal, pixel, 0);\n    let colour = textureLoad(gbuffer_colour, pixel, 0);\n    let colours = metallic_workflow(colour.rgb, colour.a, DIELECTRIC_F0);\n    let shading = Shading(unorm_to_normal(normal_roughness.xyz), normal_roughness.w, colours.diffuse, colours.f0, light.rgb);".to_string(),
+            "let light = textureLoad(gbuffer_light, pixel, 0);\n    if light.a == 0.0 {\n        return sky(direction);\n    }\n    let normal_roughness = textureLoad(gbuffer_normal, pixel, 0);\n    let colour = textureLoad(gbuffer_colour, pixel, 0);\n    let colours = metallic_workflow(colour.rgb, colour.a, DIELECTRIC_F0);\n    let shading = Shading(unorm_to_normal(normal_roughness.xyz), normal_roughness.w, colours.diffuse, colours.f0, light.rgb);".to_string(),
         ),
     };
     format!(
         "{}\n{bindings}
-@fragment
-fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
+// The radiance the camera sees at a pixel.
+fn pixel_radiance(position: vec4<f32>) -> vec3<f32> {{
     let pixel = vec2<i32>(position.xy);
     let direction = camera_ray(position.xy, VIEWPORT);
     {read}
@@ -511,7 +513,18 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
             radiance += point_light(shading, view, surface, index);
         }}
     }}
-    return vec4<f32>(radiance, 1.0);
+    return radiance;
+}}
+
+@fragment
+fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
+    return vec4<f32>(pixel_radiance(position), 1.0);
+}}
+
+// Lighting and tone mapping in one pass (the on-tile backends' two-pass path).
+@fragment
+fn lighting_resolve_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
+    return display_colour(pixel_radiance(position));
 }}
 ",
         lighting_prelude(options),
@@ -715,7 +728,7 @@ impl Passes {
         };
         let gbuffer = pipeline(
             "gbuffer",
-            gbuffer_wgsl(options),
+            gbuffer_wgsl(options, 1.0),
             ("geometry_vertex", "gbuffer_main"),
             &options.gbuffer.target_formats(),
             true,

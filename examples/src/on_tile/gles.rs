@@ -1,0 +1,819 @@
+//! The on-tile renderer on GLES 3.2 (EGL surfaceless, `glow`): the fused paths read the
+//! G-buffer by EXT_shader_framebuffer_fetch inside one framebuffer and invalidate it before
+//! the frame ends; the two-pass path stores it to textures and samples them, as wgpu does.
+//!
+//! GL draws upside down here (`CLIP_Y_SIGN` -1): the framebuffer's first row is the image's
+//! top, so `gl_FragCoord` counts rows from the top as WGSL's position does and `glReadPixels`
+//! returns the image in order.
+
+use std::time::Instant;
+
+use glow::HasContext as _;
+
+use gbuffer_codegen::emit::glsl::{self as includes, Include};
+use gbuffer_testkit::gles::{numbered, Gles};
+
+use super::glsl::{self, Dialect};
+use super::recording::{Attachment, Call, Load, Recording};
+use super::{fused_wgsl, tile_layout, Path, TileOptions};
+use crate::gbuffers::SeedLayout;
+use crate::inputs::{Inputs, Texels};
+use crate::mesh::Mesh;
+use crate::renderer::{Frame, Options};
+use crate::scene::{DECALS, POINT_LIGHT_COUNT};
+
+const FETCH: &str = "GL_EXT_shader_framebuffer_fetch";
+/// Texture units of the inputs: the bindings the WGSL gives them.
+const ENVIRONMENT_UNIT: u32 = 1;
+const LUT_UNIT: u32 = 2;
+const LIGHT_MAP_UNIT: u32 = 5;
+/// The two-pass lighting reads the depth buffer at unit 4 and the G-buffer from unit 10 on.
+const DEPTH_UNIT: u32 = 4;
+const GBUFFER_UNIT: u32 = 10;
+
+/// A GLES 3.2 context with the inputs and the mesh uploaded.
+pub struct GlesRenderer {
+    gles: Gles,
+    mesh: glow::VertexArray,
+    index_count: i32,
+    volumes: glow::VertexArray,
+    volume_indices: glow::Buffer,
+}
+
+/// A framebuffer attachment: its GL object and what the recording calls it.
+struct Target {
+    name: String,
+    renderbuffer: Option<glow::Renderbuffer>,
+    texture: Option<glow::Texture>,
+    format: u32,
+    bytes_per_pixel: u32,
+}
+
+/// The programs and framebuffers of one configuration, made once and drawn every frame.
+struct Plan {
+    path: Path,
+    width: i32,
+    height: i32,
+    programs: Vec<(&'static str, glow::Program)>,
+    /// Per program, which colour attachments of its framebuffer it writes (the rest are
+    /// masked: an on-tile draw writes back only what it changed).
+    writes: Vec<Vec<bool>>,
+    framebuffers: Vec<glow::Framebuffer>,
+    /// Per framebuffer, its colour attachments (location order) then its depth.
+    targets: Vec<Vec<Target>>,
+    depth: Vec<Target>,
+}
+
+impl GlesRenderer {
+    /// A context on EGL's surfaceless platform, with the inputs and the mesh uploaded. The
+    /// error says what is missing (libEGL, GLES 3.2).
+    pub fn new(progress: &dyn Fn(&str)) -> Result<GlesRenderer, String> {
+        let gles = Gles::new()?;
+        progress(&format!("GLES: {}", gles.describe()));
+        progress("baking the split-sum LUT, the light map and the prefiltered sky...");
+        let inputs = Inputs::bake();
+        let mesh = Mesh::scene();
+        // SAFETY: objects of the current context; the slices outlive the uploads.
+        unsafe {
+            let gl = &gles.gl;
+            upload(gl, ENVIRONMENT_UNIT, glow::RGBA8, glow::UNSIGNED_BYTE, &inputs.environment)?;
+            upload(gl, LUT_UNIT, glow::RGBA16F, glow::HALF_FLOAT, &[inputs.lut])?;
+            upload(gl, LIGHT_MAP_UNIT, glow::RGBA8, glow::UNSIGNED_BYTE, &[inputs.light_map])?;
+            // One sampler for the inputs, as wgpu's: trilinear, u repeating (around the sky).
+            let sampler = gl.create_sampler()?;
+            for (name, value) in [
+                (glow::TEXTURE_MIN_FILTER, glow::LINEAR_MIPMAP_LINEAR),
+                (glow::TEXTURE_MAG_FILTER, glow::LINEAR),
+                (glow::TEXTURE_WRAP_S, glow::REPEAT),
+                (glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE),
+            ] {
+                gl.sampler_parameter_i32(sampler, name, value as i32);
+            }
+            for unit in [ENVIRONMENT_UNIT, LUT_UNIT, LIGHT_MAP_UNIT] {
+                gl.bind_sampler(unit, Some(sampler));
+            }
+
+            let vertices = buffer(gl, glow::ARRAY_BUFFER, bytemuck::cast_slice(&mesh.vertices))?;
+            let mesh_array = gl.create_vertex_array()?;
+            gl.bind_vertex_array(Some(mesh_array));
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vertices));
+            let stride = std::mem::size_of::<crate::mesh::Vertex>() as i32;
+            gl.enable_vertex_attrib_array(0);
+            gl.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, stride, 0);
+            gl.enable_vertex_attrib_array(1);
+            gl.vertex_attrib_pointer_f32(1, 3, glow::FLOAT, false, stride, 12);
+            gl.enable_vertex_attrib_array(2);
+            gl.vertex_attrib_pointer_i32(2, 1, glow::UNSIGNED_INT, stride, 24);
+            buffer(gl, glow::ELEMENT_ARRAY_BUFFER, bytemuck::cast_slice(&mesh.indices))?;
+            // Volumes read their index from an instanced attribute: a buffer of 0, 1, 2, ...,
+            // whose offset picks the volume (GLES has no base instance).
+            let volume_count = (POINT_LIGHT_COUNT + DECALS.len()) as u32;
+            let indices: Vec<u32> = (0..volume_count).collect();
+            let volumes = gl.create_vertex_array()?;
+            gl.bind_vertex_array(Some(volumes));
+            let volume_indices = buffer(gl, glow::ARRAY_BUFFER, bytemuck::cast_slice(&indices))?;
+            gl.enable_vertex_attrib_array(0);
+            gl.vertex_attrib_divisor(0, 1);
+            gl.bind_vertex_array(None);
+            gles.check("uploading the inputs and the mesh")?;
+            Ok(GlesRenderer {
+                gles,
+                mesh: mesh_array,
+                index_count: mesh.indices.len() as i32,
+                volumes,
+                volume_indices,
+            })
+        }
+    }
+
+    /// The driver, for messages.
+    pub fn describe(&self) -> String {
+        self.gles.describe()
+    }
+
+    /// Renders a frame and reads it back, with the calls it made.
+    pub fn render(&self, tile: &TileOptions) -> Result<(Frame, Recording), String> {
+        let plan = self.plan(tile)?;
+        let mut recording = Recording::default();
+        let result = self.draw(&plan, &mut recording).and_then(|()| {
+            let pixels = self.read_output(&plan, &mut recording)?;
+            Ok(Frame {
+                width: tile.options.width,
+                height: tile.options.height,
+                pixels,
+            })
+        });
+        self.delete(plan);
+        result.map(|frame| (frame, recording))
+    }
+
+    /// Times `frames` frames (after one that warms up): seconds each, by the wall clock around
+    /// the draws and `glFinish` (llvmpipe has no timer queries).
+    pub fn time_frames(&self, tile: &TileOptions, frames: usize) -> Result<Vec<f64>, String> {
+        let plan = self.plan(tile)?;
+        let mut times = Vec::with_capacity(frames);
+        let result = (0..=frames).try_for_each(|_| {
+            let start = Instant::now();
+            self.draw(&plan, &mut Recording::default())?;
+            // SAFETY: a plain synchronisation of the current context.
+            unsafe { self.gles.gl.finish() };
+            times.push(start.elapsed().as_secs_f64());
+            Ok::<(), String>(())
+        });
+        self.delete(plan);
+        result?;
+        times.remove(0);
+        Ok(times)
+    }
+
+    /// The packed words the geometry writes (a debug view: the G-buffer stored, before decals
+    /// and light), one `[u32; 4]` per target per pixel, row by row.
+    pub fn gbuffer_words(&self, options: &Options) -> Result<Vec<u32>, String> {
+        let layout = tile_layout(options)?;
+        let (width, height) = (options.width as i32, options.height as i32);
+        let model = layout.layout();
+        let (include, interface) = includes::include(&model, Include::FetchPacked, 0)
+            .map_err(|error| error.to_string())?;
+        let wgsl = fused_wgsl(options, layout, -1.0);
+        let snake = model.snake_name();
+        let program = self.fused_program(&wgsl, &include, &interface, "geometry_vertex", &format!(
+            "{}void main() {{\n    store_{snake}(geometry_texel(_vs2fs_location2, _vs2fs_location0, _vs2fs_location1));\n}}\n",
+            GEOMETRY_INPUTS
+        ))?;
+        let targets = interface.attachments.len();
+        // SAFETY: objects of the current context, deleted before returning.
+        unsafe {
+            let gl = &self.gles.gl;
+            let (framebuffer, colours, depth) =
+                self.framebuffer(&vec![(glow::RGBA32UI, 16); targets], width, height, true)?;
+            for index in 0..targets {
+                gl.clear_buffer_u32_slice(glow::COLOR, index as u32, &[0; 4]);
+            }
+            gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+            gl.enable(glow::DEPTH_TEST);
+            gl.depth_mask(true);
+            gl.depth_func(glow::LESS);
+            gl.use_program(Some(program));
+            gl.bind_vertex_array(Some(self.mesh));
+            gl.draw_elements(glow::TRIANGLES, self.index_count, glow::UNSIGNED_INT, 0);
+            let mut words = vec![0u32; (width * height) as usize * 4 * targets];
+            let per_target = (width * height) as usize * 4;
+            for index in 0..targets {
+                gl.read_buffer(glow::COLOR_ATTACHMENT0 + index as u32);
+                gl.read_pixels(
+                    0,
+                    0,
+                    width,
+                    height,
+                    glow::RGBA_INTEGER,
+                    glow::UNSIGNED_INT,
+                    glow::PixelPackData::Slice(Some(bytemuck::cast_slice_mut(
+                        &mut words[index * per_target..(index + 1) * per_target],
+                    ))),
+                );
+            }
+            self.gles.check("reading the G-buffer back")?;
+            gl.delete_program(program);
+            gl.delete_framebuffer(framebuffer);
+            for target in colours.into_iter().chain(depth) {
+                delete_target(gl, target);
+            }
+            // Per pixel, its targets' words in order.
+            let pixels = (width * height) as usize;
+            Ok((0..pixels)
+                .flat_map(|pixel| {
+                    (0..targets).flat_map(move |target| {
+                        let start = target * per_target + pixel * 4;
+                        start..start + 4
+                    })
+                })
+                .map(|index| words[index])
+                .collect())
+        }
+    }
+
+    /// The programs and framebuffers of a configuration, after checking what it needs.
+    fn plan(&self, tile: &TileOptions) -> Result<Plan, String> {
+        let options = &tile.options;
+        let layout = tile_layout(options)?;
+        let (width, height) = (options.width as i32, options.height as i32);
+        match tile.path {
+            Path::FetchNative | Path::FetchPacked => {
+                if !self.gles.has_extension(FETCH) {
+                    return Err(format!(
+                        "the GLES driver ({}) lacks {FETCH}, which --path {} needs",
+                        self.gles.describe(),
+                        tile.path.flag()
+                    ));
+                }
+                self.fused_plan(options, layout, tile.path, (width, height))
+            }
+            Path::TwoPass => self.two_pass_plan(options, (width, height)),
+            Path::Subpass => Err("--path subpass is Vulkan's: use --backend vulkan".into()),
+        }
+    }
+
+    /// The fused paths: one framebuffer of the G-buffer, the output and depth, six programs.
+    fn fused_plan(
+        &self,
+        options: &Options,
+        layout: SeedLayout,
+        path: Path,
+        (width, height): (i32, i32),
+    ) -> Result<Plan, String> {
+        let model = layout.layout();
+        let kind = if path == Path::FetchPacked {
+            Include::FetchPacked
+        } else {
+            Include::FetchNative
+        };
+        let (include, interface) =
+            includes::include(&model, kind, 0).map_err(|error| error.to_string())?;
+        let colour_attachments = interface.attachments.len() as i32 + 1;
+        let draw_buffers = self.gles.limit(glow::MAX_DRAW_BUFFERS);
+        let attachments_limit = self.gles.limit(glow::MAX_COLOR_ATTACHMENTS);
+        if colour_attachments > draw_buffers.min(attachments_limit) {
+            return Err(format!(
+                "layout `{}` on --path {} needs {} colour attachments ({} for the G-buffer and \
+                 the output), but the driver offers GL_MAX_DRAW_BUFFERS = {draw_buffers} and \
+                 GL_MAX_COLOR_ATTACHMENTS = {attachments_limit}",
+                layout.flag(),
+                path.flag(),
+                colour_attachments,
+                interface.attachments.len()
+            ));
+        }
+        let wgsl = fused_wgsl(options, layout, -1.0);
+        let snake = model.snake_name();
+        let texel = includes::translate(&model)
+            .map_err(|error| error.to_string())?
+            .names
+            .layout;
+        let output = format!(
+            "layout(location = {}) inout highp vec4 frame_colour;\n",
+            interface.attachments.len()
+        );
+        let volume = "uniform highp uint volume_index;\n";
+        let stages: [(&'static str, &str, String); 6] = [
+            ("geometry", "geometry_vertex", format!(
+                "{output}{GEOMETRY_INPUTS}void main() {{\n    store_{snake}(geometry_texel(_vs2fs_location2, _vs2fs_location0, _vs2fs_location1));\n}}\n"
+            )),
+            ("decal", "volume_vertex", format!(
+                "{output}{volume}void main() {{\n    {texel} texel = load_{snake}();\n    uint decal = volume_index - POINT_LIGHT_COUNT;\n    float weight = decal_weight_at(texel, gl_FragCoord.xy, decal);\n    if (weight <= 0.0) {{\n        discard;\n    }}\n    store_{snake}(paint_texel(texel, decal, weight));\n}}\n"
+            )),
+            ("sun and environment", "surfaces_vertex", format!(
+                "{output}void main() {{\n    store_{snake}(sun_and_environment_texel(load_{snake}(), gl_FragCoord.xy));\n}}\n"
+            )),
+            ("point light", "volume_vertex", format!(
+                "{output}{volume}void main() {{\n    {texel} texel = load_{snake}();\n    if (!point_light_reaches(texel, gl_FragCoord.xy, volume_index)) {{\n        discard;\n    }}\n    store_{snake}(point_light_texel(texel, gl_FragCoord.xy, volume_index));\n}}\n"
+            )),
+            ("resolve", "surfaces_vertex", format!(
+                "{output}void main() {{\n    frame_colour = resolve_colour(load_{snake}());\n}}\n"
+            )),
+            ("sky", "sky_vertex", format!(
+                "{output}void main() {{\n    frame_colour = sky_colour(gl_FragCoord.xy);\n}}\n"
+            )),
+        ];
+        // Which attachments each stage writes: the G-buffer's for the geometry, those holding
+        // the painted fields for the decals, the light's for the lighting, the output for the
+        // resolve and the sky.
+        let gbuffer_attachments = interface.attachments.len();
+        let locations = model.field_locations();
+        let attachments_of = |fields: &[&str]| -> Vec<bool> {
+            let mut writes = vec![false; gbuffer_attachments + 1];
+            for name in fields {
+                let field = model
+                    .fields
+                    .iter()
+                    .position(|field| field.name == *name)
+                    .expect("the on-tile fields are the layout's");
+                let word = locations[field].0;
+                writes[if kind == Include::FetchPacked { word / 4 } else { word }] = true;
+            }
+            writes
+        };
+        let (light_fields, painted_fields) = layout.on_tile_fields();
+        let mut everything = vec![true; gbuffer_attachments + 1];
+        everything[gbuffer_attachments] = false;
+        let mut output_only = vec![false; gbuffer_attachments + 1];
+        output_only[gbuffer_attachments] = true;
+        let writes = vec![
+            everything,
+            attachments_of(painted_fields),
+            attachments_of(light_fields),
+            attachments_of(light_fields),
+            output_only.clone(),
+            output_only,
+        ];
+        let mut programs = Vec::new();
+        for (name, vertex, main) in stages {
+            match self.fused_program(&wgsl, &include, &interface, vertex, &main) {
+                Ok(program) => programs.push((name, program)),
+                Err(error) => {
+                    // SAFETY: programs of the current context.
+                    unsafe { programs.iter().for_each(|(_, p)| self.gles.gl.delete_program(*p)) };
+                    return Err(format!("the {name} program: {error}"));
+                }
+            }
+        }
+        let formats: Vec<(u32, u32)> = interface
+            .attachments
+            .iter()
+            .map(|attachment| {
+                let bytes = if kind == Include::FetchPacked { 16 } else { 4 };
+                (attachment.format.gl_internal_format, bytes)
+            })
+            .chain([(glow::RGBA8, 4)])
+            .collect();
+        // SAFETY: objects of the current context.
+        let (framebuffer, mut colours, depth) =
+            unsafe { self.framebuffer(&formats, width, height, false)? };
+        for (index, target) in colours.iter_mut().enumerate() {
+            target.name = if index < interface.attachments.len() {
+                format!("gbuffer{index}")
+            } else {
+                "output".into()
+            };
+        }
+        Ok(Plan {
+            path,
+            width,
+            height,
+            programs,
+            writes,
+            framebuffers: vec![framebuffer],
+            targets: vec![colours],
+            depth: depth.into_iter().collect(),
+        })
+    }
+
+    /// The two-pass path: wgpu's G-buffer and lighting passes, translated, over two
+    /// framebuffers; the second samples the first's G-buffer and depth.
+    fn two_pass_plan(&self, options: &Options, (width, height): (i32, i32)) -> Result<Plan, String> {
+        let gbuffer_wgsl = crate::renderer::gbuffer_wgsl(options, -1.0);
+        let lighting_wgsl = crate::renderer::lighting_pass_wgsl(options);
+        let program = |wgsl: &str, vertex: &str, fragment: &str| -> Result<glow::Program, String> {
+            let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
+            let fragment =
+                glsl::translate(wgsl, naga::ShaderStage::Fragment, fragment, Dialect::Gles)?;
+            self.link(&vertex.text, &fragment.text)
+        };
+        let gbuffer = program(&gbuffer_wgsl, "geometry_vertex", "gbuffer_main")?;
+        let lighting = program(&lighting_wgsl, "full_screen", "lighting_resolve_main")?;
+        let formats: Vec<(u32, u32)> = options
+            .gbuffer
+            .target_formats()
+            .iter()
+            .map(|format| match format {
+                wgpu::TextureFormat::R32Uint => (glow::R32UI, 4),
+                wgpu::TextureFormat::Rg32Uint => (glow::RG32UI, 8),
+                _ => (glow::RGBA32UI, 16),
+            })
+            .collect();
+        // SAFETY: objects of the current context.
+        unsafe {
+            let (first, mut gbuffer_targets, depth) =
+                self.framebuffer(&formats, width, height, true)?;
+            for (index, target) in gbuffer_targets.iter_mut().enumerate() {
+                target.name = format!("gbuffer{index}");
+            }
+            let (second, mut output, _) =
+                self.framebuffer(&[(glow::RGBA8, 4)], width, height, false)?;
+            output[0].name = "output".into();
+            Ok(Plan {
+                path: Path::TwoPass,
+                width,
+                height,
+                programs: vec![("gbuffer", gbuffer), ("lighting and resolve", lighting)],
+                writes: vec![vec![true; formats.len()], vec![true]],
+                framebuffers: vec![first, second],
+                targets: vec![gbuffer_targets, output],
+                depth: depth.into_iter().collect(),
+            })
+        }
+    }
+
+    /// A fused program: `vertex` of the WGSL translated, and a fragment shader of the GLES
+    /// preamble, the layout's include as generated, the output, the renderer's translated
+    /// declarations and `main`.
+    fn fused_program(
+        &self,
+        wgsl: &str,
+        include: &str,
+        interface: &includes::Interface,
+        vertex: &str,
+        main: &str,
+    ) -> Result<glow::Program, String> {
+        let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
+        let stages = glsl::translate(
+            wgsl,
+            naga::ShaderStage::Fragment,
+            "translation_entry",
+            Dialect::Gles,
+        )?;
+        let extensions: String = interface
+            .include
+            .shader_extensions()
+            .iter()
+            .map(|extension| format!("#extension {extension} : require\n"))
+            .collect();
+        let fragment = format!(
+            "#version 320 es\n{extensions}precision highp float;\nprecision highp int;\n\n{include}\n{}\n{main}",
+            glsl::declarations(&stages.text, include),
+        );
+        self.link(&vertex.text, &fragment)
+    }
+
+    /// Compiles and links a program; the error holds the driver's log and the numbered source.
+    fn link(&self, vertex: &str, fragment: &str) -> Result<glow::Program, String> {
+        // SAFETY: GL objects of the current context, deleted on every path.
+        unsafe {
+            let gl = &self.gles.gl;
+            let program = gl.create_program()?;
+            let mut shaders = Vec::new();
+            for (stage, source) in [(glow::VERTEX_SHADER, vertex), (glow::FRAGMENT_SHADER, fragment)] {
+                let shader = gl.create_shader(stage)?;
+                gl.shader_source(shader, source);
+                gl.compile_shader(shader);
+                if !gl.get_shader_compile_status(shader) {
+                    let log = gl.get_shader_info_log(shader);
+                    gl.delete_shader(shader);
+                    shaders.into_iter().for_each(|shader| gl.delete_shader(shader));
+                    gl.delete_program(program);
+                    return Err(format!("{log}\n{}", numbered(source)));
+                }
+                gl.attach_shader(program, shader);
+                shaders.push(shader);
+            }
+            gl.link_program(program);
+            shaders.into_iter().for_each(|shader| gl.delete_shader(shader));
+            if !gl.get_program_link_status(program) {
+                let log = gl.get_program_info_log(program);
+                gl.delete_program(program);
+                return Err(format!("link: {log}\n{}", numbered(fragment)));
+            }
+            Ok(program)
+        }
+    }
+
+    /// A framebuffer of colour attachments (internal format, bytes per pixel) and a 32-bit
+    /// float depth: renderbuffers where nothing samples them, textures where `sampled`.
+    ///
+    /// # Safety
+    /// The context must be current.
+    unsafe fn framebuffer(
+        &self,
+        formats: &[(u32, u32)],
+        width: i32,
+        height: i32,
+        sampled: bool,
+    ) -> Result<(glow::Framebuffer, Vec<Target>, Option<Target>), String> {
+        let gl = &self.gles.gl;
+        let framebuffer = gl.create_framebuffer()?;
+        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(framebuffer));
+        let make = |format: u32, attachment: u32, name: String, bytes_per_pixel: u32| {
+            let mut target = Target {
+                name,
+                renderbuffer: None,
+                texture: None,
+                format,
+                bytes_per_pixel,
+            };
+            if sampled {
+                let texture = gl.create_texture()?;
+                gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+                gl.tex_storage_2d(glow::TEXTURE_2D, 1, format, width, height);
+                for filter in [glow::TEXTURE_MIN_FILTER, glow::TEXTURE_MAG_FILTER] {
+                    gl.tex_parameter_i32(glow::TEXTURE_2D, filter, glow::NEAREST as i32);
+                }
+                gl.framebuffer_texture_2d(glow::FRAMEBUFFER, attachment, glow::TEXTURE_2D, Some(texture), 0);
+                target.texture = Some(texture);
+            } else {
+                let renderbuffer = gl.create_renderbuffer()?;
+                gl.bind_renderbuffer(glow::RENDERBUFFER, Some(renderbuffer));
+                gl.renderbuffer_storage(glow::RENDERBUFFER, format, width, height);
+                gl.framebuffer_renderbuffer(glow::FRAMEBUFFER, attachment, glow::RENDERBUFFER, Some(renderbuffer));
+                target.renderbuffer = Some(renderbuffer);
+            }
+            Ok::<Target, String>(target)
+        };
+        let mut colours = Vec::new();
+        for (index, &(format, bytes)) in formats.iter().enumerate() {
+            colours.push(make(format, glow::COLOR_ATTACHMENT0 + index as u32, String::new(), bytes)?);
+        }
+        let depth = make(glow::DEPTH_COMPONENT32F, glow::DEPTH_ATTACHMENT, "depth".into(), 4)?;
+        let buffers: Vec<u32> = (0..formats.len() as u32)
+            .map(|index| glow::COLOR_ATTACHMENT0 + index)
+            .collect();
+        gl.draw_buffers(&buffers);
+        let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
+        self.gles.check("creating a framebuffer")?;
+        if status != glow::FRAMEBUFFER_COMPLETE {
+            return Err(format!(
+                "the driver cannot render to attachments of formats {:#x?} with a 32-bit float \
+                 depth (framebuffer status {status:#x})",
+                formats.iter().map(|(format, _)| *format).collect::<Vec<_>>()
+            ));
+        }
+        Ok((framebuffer, colours, Some(depth)))
+    }
+
+    /// Draws a frame of the plan, recording its calls.
+    fn draw(&self, plan: &Plan, recording: &mut Recording) -> Result<(), String> {
+        // SAFETY: objects of the current context, made by `plan`.
+        unsafe {
+            let gl = &self.gles.gl;
+            gl.viewport(0, 0, plan.width, plan.height);
+            gl.enable(glow::DEPTH_TEST);
+            let index = |name: &str| {
+                plan.programs
+                    .iter()
+                    .position(|(program, _)| *program == name)
+                    .expect("the plan has the program")
+            };
+            let program = |name: &str| plan.programs[index(name)].1;
+            let draw = |recording: &mut Recording, name: &str, mode: Draw| {
+                gl.use_program(Some(program(name)));
+                for (buffer, &writes) in plan.writes[index(name)].iter().enumerate() {
+                    gl.color_mask_draw_buffer(buffer as u32, writes, writes, writes, writes);
+                }
+                recording.push(Call::Draw {
+                    program: name.to_string(),
+                });
+                match mode {
+                    Draw::Mesh => {
+                        gl.bind_vertex_array(Some(self.mesh));
+                        gl.draw_elements(glow::TRIANGLES, self.index_count, glow::UNSIGNED_INT, 0);
+                    }
+                    Draw::Fullscreen => gl.draw_arrays(glow::TRIANGLES, 0, 3),
+                    Draw::Volume(volume) => {
+                        // The vertex stage reads the volume from the buffer of indices, at its
+                        // offset; the fragment stage from `volume_index`.
+                        gl.bind_vertex_array(Some(self.volumes));
+                        gl.bind_buffer(glow::ARRAY_BUFFER, Some(self.volume_indices));
+                        gl.vertex_attrib_pointer_i32(0, 1, glow::UNSIGNED_INT, 4, 4 * volume as i32);
+                        let location = gl.get_uniform_location(program(name), "volume_index");
+                        gl.uniform_1_u32(location.as_ref(), volume as u32);
+                        gl.draw_arrays_instanced(glow::TRIANGLES, 0, 6, 1);
+                    }
+                }
+            };
+            self.begin(plan, 0, recording);
+            gl.depth_mask(true);
+            gl.depth_func(glow::LESS);
+            draw(recording, if plan.path.is_fused() { "geometry" } else { "gbuffer" }, Draw::Mesh);
+            if plan.path.is_fused() {
+                // Everything after the geometry is drawn over the surfaces only (GREATER than
+                // their depth) or the sky only (EQUAL to the cleared far plane).
+                gl.depth_mask(false);
+                gl.depth_func(glow::GREATER);
+                for decal in 0..DECALS.len() {
+                    draw(recording, "decal", Draw::Volume(POINT_LIGHT_COUNT + decal));
+                }
+                draw(recording, "sun and environment", Draw::Fullscreen);
+                for light in 0..POINT_LIGHT_COUNT {
+                    draw(recording, "point light", Draw::Volume(light));
+                }
+                draw(recording, "resolve", Draw::Fullscreen);
+                gl.depth_func(glow::EQUAL);
+                draw(recording, "sky", Draw::Fullscreen);
+                // The G-buffer and depth die here: on a tiler they are never written out.
+                let gbuffer = &plan.targets[0][..plan.targets[0].len() - 1];
+                let mut attachments: Vec<u32> = (0..gbuffer.len() as u32)
+                    .map(|index| glow::COLOR_ATTACHMENT0 + index)
+                    .collect();
+                attachments.push(glow::DEPTH_ATTACHMENT);
+                gl.invalidate_framebuffer(glow::FRAMEBUFFER, &attachments);
+                let mut names: Vec<String> = gbuffer.iter().map(|target| target.name.clone()).collect();
+                names.push("depth".into());
+                recording.push(Call::Invalidate(names));
+                self.end(plan, 0, recording);
+            } else {
+                self.end(plan, 0, recording);
+                self.begin(plan, 1, recording);
+                gl.disable(glow::DEPTH_TEST);
+                for (index, target) in plan.targets[0].iter().enumerate() {
+                    gl.active_texture(glow::TEXTURE0 + GBUFFER_UNIT + index as u32);
+                    gl.bind_texture(glow::TEXTURE_2D, target.texture);
+                    recording.push(Call::Sample(attachment(target)));
+                }
+                gl.active_texture(glow::TEXTURE0 + DEPTH_UNIT);
+                gl.bind_texture(glow::TEXTURE_2D, plan.depth[0].texture);
+                recording.push(Call::Sample(attachment(&plan.depth[0])));
+                gl.active_texture(glow::TEXTURE0);
+                draw(recording, "lighting and resolve", Draw::Fullscreen);
+                self.end(plan, 1, recording);
+            }
+            self.gles.check("drawing the frame")
+        }
+    }
+
+    /// Binds framebuffer `index` and clears it (every attachment starts cleared: nothing is
+    /// loaded): the G-buffer of the two-pass path to all ones (its sky marker), the rest to 0,
+    /// depth to the far plane.
+    ///
+    /// # Safety
+    /// The context must be current.
+    unsafe fn begin(&self, plan: &Plan, index: usize, recording: &mut Recording) {
+        let gl = &self.gles.gl;
+        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(plan.framebuffers[index]));
+        // Clears honour the colour masks: every attachment is written here.
+        for buffer in 0..plan.targets[index].len() as u32 {
+            gl.color_mask_draw_buffer(buffer, true, true, true, true);
+        }
+        let mut attachments = Vec::new();
+        for (location, target) in plan.targets[index].iter().enumerate() {
+            let integer = matches!(target.format, glow::RGBA32UI | glow::RG32UI | glow::R32UI | glow::RGBA8UI | glow::RGB10_A2UI);
+            let signed = matches!(target.format, glow::RGBA8I);
+            let sky_marker = plan.path == Path::TwoPass && target.name.starts_with("gbuffer");
+            if integer {
+                let value = if sky_marker { u32::MAX } else { 0 };
+                gl.clear_buffer_u32_slice(glow::COLOR, location as u32, &[value; 4]);
+            } else if signed {
+                gl.clear_buffer_i32_slice(glow::COLOR, location as u32, &[0; 4]);
+            } else {
+                gl.clear_buffer_f32_slice(glow::COLOR, location as u32, &[0.0; 4]);
+            }
+            attachments.push((attachment(target), Load::Clear));
+        }
+        if index == 0 {
+            gl.depth_mask(true);
+            gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+            attachments.push((attachment(&plan.depth[0]), Load::Clear));
+        }
+        recording.push(Call::BeginPass { attachments });
+    }
+
+    /// Ends framebuffer `index`'s pass in the recording: what was not invalidated is stored.
+    fn end(&self, plan: &Plan, index: usize, recording: &mut Recording) {
+        let invalidated = recording.invalidated().iter().map(|name| name.to_string()).collect::<Vec<_>>();
+        let mut stored: Vec<String> = plan.targets[index]
+            .iter()
+            .map(|target| target.name.clone())
+            .filter(|name| !invalidated.contains(name))
+            .collect();
+        if index == 0 && !invalidated.iter().any(|name| name == "depth") {
+            stored.push("depth".into());
+        }
+        recording.push(Call::EndPass { stored });
+    }
+
+    /// Reads the output attachment back.
+    fn read_output(&self, plan: &Plan, recording: &mut Recording) -> Result<Vec<[u8; 4]>, String> {
+        let last = plan.targets.len() - 1;
+        let location = plan.targets[last]
+            .iter()
+            .position(|target| target.name == "output")
+            .expect("the plan has an output");
+        let mut pixels = vec![[0u8; 4]; (plan.width * plan.height) as usize];
+        // SAFETY: the slice holds width x height RGBA8 pixels; the pack alignment is 1.
+        unsafe {
+            let gl = &self.gles.gl;
+            gl.bind_framebuffer(glow::READ_FRAMEBUFFER, Some(plan.framebuffers[last]));
+            gl.read_buffer(glow::COLOR_ATTACHMENT0 + location as u32);
+            gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
+            gl.read_pixels(
+                0,
+                0,
+                plan.width,
+                plan.height,
+                glow::RGBA,
+                glow::UNSIGNED_BYTE,
+                glow::PixelPackData::Slice(Some(bytemuck::cast_slice_mut(&mut pixels))),
+            );
+        }
+        recording.push(Call::ReadBack("output".into()));
+        self.gles.check("reading the frame back")?;
+        Ok(pixels)
+    }
+
+    fn delete(&self, plan: Plan) {
+        // SAFETY: objects of the current context, not used again.
+        unsafe {
+            let gl = &self.gles.gl;
+            for (_, program) in plan.programs {
+                gl.delete_program(program);
+            }
+            for framebuffer in plan.framebuffers {
+                gl.delete_framebuffer(framebuffer);
+            }
+            for target in plan.targets.into_iter().flatten().chain(plan.depth) {
+                delete_target(gl, target);
+            }
+        }
+    }
+}
+
+/// What a draw covers.
+#[derive(Clone, Copy)]
+enum Draw {
+    Mesh,
+    Fullscreen,
+    /// A volume's screen rectangle: point light `n` below POINT_LIGHT_COUNT, then the decals.
+    Volume(usize),
+}
+
+/// The geometry fragment's inputs, as naga names the vertex shader's outputs.
+const GEOMETRY_INPUTS: &str = "layout(location = 0) smooth in highp vec3 _vs2fs_location0;\nlayout(location = 1) smooth in highp vec3 _vs2fs_location1;\nlayout(location = 2) flat in highp uint _vs2fs_location2;\n";
+
+fn attachment(target: &Target) -> Attachment {
+    Attachment {
+        name: target.name.clone(),
+        bytes_per_pixel: target.bytes_per_pixel,
+    }
+}
+
+/// # Safety
+/// The context must be current and the target its own.
+unsafe fn delete_target(gl: &glow::Context, target: Target) {
+    if let Some(texture) = target.texture {
+        gl.delete_texture(texture);
+    }
+    if let Some(renderbuffer) = target.renderbuffer {
+        gl.delete_renderbuffer(renderbuffer);
+    }
+}
+
+/// A buffer bound to `target` holding `bytes`.
+///
+/// # Safety
+/// The context must be current.
+unsafe fn buffer(gl: &glow::Context, target: u32, bytes: &[u8]) -> Result<glow::Buffer, String> {
+    let buffer = gl.create_buffer()?;
+    gl.bind_buffer(target, Some(buffer));
+    gl.buffer_data_u8_slice(target, bytes, glow::STATIC_DRAW);
+    Ok(buffer)
+}
+
+/// A texture of `mips` on `unit`, in `format` with texels of type `ty`.
+///
+/// # Safety
+/// The context must be current.
+unsafe fn upload(
+    gl: &glow::Context,
+    unit: u32,
+    format: u32,
+    ty: u32,
+    mips: &[Texels],
+) -> Result<glow::Texture, String> {
+    let texture = gl.create_texture()?;
+    gl.active_texture(glow::TEXTURE0 + unit);
+    gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+    gl.tex_storage_2d(glow::TEXTURE_2D, mips.len() as i32, format, mips[0].width as i32, mips[0].height as i32);
+    gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
+    for (level, mip) in mips.iter().enumerate() {
+        gl.tex_sub_image_2d(
+            glow::TEXTURE_2D,
+            level as i32,
+            0,
+            0,
+            mip.width as i32,
+            mip.height as i32,
+            glow::RGBA,
+            ty,
+            glow::PixelUnpackData::Slice(Some(&mip.bytes)),
+        );
+    }
+    gl.active_texture(glow::TEXTURE0);
+    Ok(texture)
+}

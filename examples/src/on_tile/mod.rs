@@ -1,0 +1,272 @@
+//! The technique the library exists for: the G-buffer kept in tile memory and consumed there.
+//! One render pass draws the whole frame:
+//!
+//! 1. the mesh writes the G-buffer (depth-tested);
+//! 2. four decals paint base colour and roughness in place: each reads the G-buffer texel,
+//!    modifies it and writes it back (programmable blending);
+//! 3. a fullscreen draw over the surfaces replaces the light accumulation with the image-based
+//!    light and the sun;
+//! 4. 32 point lights, drawn as light volumes (screen rectangles around their reach), add into
+//!    the light accumulation the same way;
+//! 5. the resolve tone-maps the light accumulation (or draws the sky) into the one attachment
+//!    that is stored.
+//!
+//! The G-buffer attachments are invalidated (GLES) or never stored (Vulkan `DONT_CARE`), so on
+//! a tiler they never reach memory. Beside them, each backend has a two-pass path that stores
+//! the G-buffer to textures and samples it, as the wgpu renderer does.
+//!
+//! GLES 3.2 (EGL surfaceless, `glow`) reads the G-buffer by EXT_shader_framebuffer_fetch;
+//! Vulkan (`ash`) by subpass inputs. The maths is the renderer's WGSL (`crate::shaders`, the
+//! shading library, the layout's generated WGSL) translated by naga; only the entry points
+//! that fetch are written here, in GLSL, around the layout's generated include.
+
+pub mod gles;
+pub mod glsl;
+pub mod recording;
+pub mod vulkan;
+
+use crate::gbuffers::{GBuffer, SeedLayout};
+use crate::renderer::Options;
+use crate::scene;
+use crate::shaders::{self, library, INPUTS_WGSL};
+
+/// Which API draws the frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    /// The wgpu renderer (`crate::renderer`): the G-buffer through memory.
+    Wgpu,
+    /// GLES 3.2 through EGL surfaceless.
+    Gles,
+    /// Vulkan through `ash`.
+    Vulkan,
+}
+
+/// How a backend carries the G-buffer from the geometry to the lighting.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Path {
+    /// GLES: framebuffer fetch over one attachment per field in its own format (the driver
+    /// converts, as Arm's example does).
+    FetchNative,
+    /// GLES: framebuffer fetch over the packed words in `RGBA32UI` attachments.
+    FetchPacked,
+    /// Vulkan: one render pass, the packed words in transient `RGBA32UI` attachments read as
+    /// input attachments.
+    Subpass,
+    /// GLES or Vulkan: the G-buffer stored to textures and sampled by a second pass.
+    TwoPass,
+}
+
+impl Backend {
+    /// The command-line name.
+    pub fn flag(self) -> &'static str {
+        match self {
+            Backend::Wgpu => "wgpu",
+            Backend::Gles => "gles",
+            Backend::Vulkan => "vulkan",
+        }
+    }
+
+    /// The paths the backend offers, the default first.
+    pub fn paths(self) -> &'static [Path] {
+        match self {
+            Backend::Wgpu => &[],
+            Backend::Gles => &[Path::FetchNative, Path::FetchPacked, Path::TwoPass],
+            Backend::Vulkan => &[Path::Subpass, Path::TwoPass],
+        }
+    }
+}
+
+impl Path {
+    /// The command-line name.
+    pub fn flag(self) -> &'static str {
+        match self {
+            Path::FetchNative => "fetch-native",
+            Path::FetchPacked => "fetch-packed",
+            Path::Subpass => "subpass",
+            Path::TwoPass => "two-pass",
+        }
+    }
+
+    /// Whether the G-buffer stays in the render pass (the fused paths).
+    pub fn is_fused(self) -> bool {
+        self != Path::TwoPass
+    }
+}
+
+/// What an on-tile frame is drawn with: the renderer's options, the path, and whether the
+/// G-buffer is stored for inspection (a debug switch: the frame then draws the geometry only,
+/// so that every backend's words can be compared with wgpu's).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TileOptions {
+    /// Layout, forms and size.
+    pub options: Options,
+    /// How the G-buffer travels.
+    pub path: Path,
+}
+
+/// The seed layout of `options`, if it can be kept on tile (the error says why not).
+pub fn tile_layout(options: &Options) -> Result<SeedLayout, String> {
+    match &options.gbuffer {
+        GBuffer::Packed(layout) => layout.on_tile_wgsl().map(|_| *layout),
+        other => Err(format!(
+            "the on-tile paths render the seed layouts mobile-metallic and future-metallic, not `{}`",
+            other.name()
+        )),
+    }
+}
+
+/// Vertex shaders of the fused paths, in WGSL: the mesh (`geometry_vertex`), a fullscreen
+/// triangle over the surfaces (`surfaces_vertex`: just in front of the far plane, drawn with a
+/// GREATER depth test) or over the sky (`sky_vertex`: on the far plane, EQUAL), and a volume's
+/// screen rectangle (`volume_vertex`: point light `volume` below POINT_LIGHT_COUNT, else decal
+/// `volume - POINT_LIGHT_COUNT`), drawn over the surfaces.
+pub const VERTEX_WGSL: &str = "
+// Fullscreen draws over the surfaces sit here in depth; the farthest surface is well in front.
+const SURFACES_DEPTH: f32 = 0.99999;
+
+fn fullscreen_corner(vertex: u32) -> vec2<f32> {
+    return vec2<f32>(f32((vertex << 1u) & 2u), f32(vertex & 2u)) * 2.0 - vec2<f32>(1.0);
+}
+
+@vertex
+fn surfaces_vertex(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32> {
+    return vec4<f32>(fullscreen_corner(vertex), SURFACES_DEPTH, 1.0);
+}
+
+@vertex
+fn sky_vertex(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32> {
+    return vec4<f32>(fullscreen_corner(vertex), 1.0, 1.0);
+}
+
+// The screen rectangle around volume `volume`'s box (the whole screen when it reaches behind
+// the near plane), as two triangles: vertex 0..6. No varying carries the volume on: the
+// fragment stage is told it by the host (llvmpipe's framebuffer fetch of 8- and 10-bit
+// attachments goes wrong in a draw whose fragment shader has inputs).
+@vertex
+fn volume_vertex(@builtin(vertex_index) vertex: u32, @location(0) volume: u32) -> @builtin(position) vec4<f32> {
+    var centre: vec3<f32>;
+    var half_size: vec3<f32>;
+    if volume < POINT_LIGHT_COUNT {
+        var positions = POINT_LIGHT_POSITIONS;
+        centre = positions[volume];
+        half_size = vec3<f32>(POINT_LIGHT_RADIUS);
+    } else {
+        var centres = DECAL_CENTRES;
+        var half_sizes = DECAL_HALF_SIZES;
+        centre = centres[volume - POINT_LIGHT_COUNT];
+        half_size = half_sizes[volume - POINT_LIGHT_COUNT];
+    }
+    var low = vec2<f32>(1.0);
+    var high = vec2<f32>(-1.0);
+    var behind = false;
+    for (var corner = 0u; corner < 8u; corner++) {
+        let sign = vec3<f32>(f32(corner & 1u), f32((corner >> 1u) & 1u), f32((corner >> 2u) & 1u)) * 2.0 - vec3<f32>(1.0);
+        let clip = clip_position(centre + sign * half_size, VIEWPORT, CLIP_Y_SIGN);
+        behind = behind || clip.w <= CAMERA_NEAR;
+        let ndc = clip.xy / max(clip.w, 1e-6);
+        low = min(low, ndc);
+        high = max(high, ndc);
+    }
+    if behind {
+        low = vec2<f32>(-1.0);
+        high = vec2<f32>(1.0);
+    }
+    // Two triangles: (low, low) (high, low) (high, high), (low, low) (high, high) (low, high).
+    var corners = array<vec2<f32>, 6>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0));
+    let position = mix(clamp(low, vec2<f32>(-1.0), vec2<f32>(1.0)), clamp(high, vec2<f32>(-1.0), vec2<f32>(1.0)), corners[vertex]);
+    return vec4<f32>(position, SURFACES_DEPTH, 1.0);
+}
+";
+
+/// The fragment stages' functions, in WGSL, over the layout's texel `T`: what the hand-written
+/// entry points call between reading the G-buffer and writing it.
+fn stages_wgsl(texel: &str) -> String {
+    format!(
+        "
+// The texel a fragment of the mesh writes: the surface before the decals.
+fn geometry_texel(object: u32, position: vec3<f32>, normal: vec3<f32>) -> {texel} {{
+    return encode_texel(surface_at(object, position, normal));
+}}
+
+// How strongly decal `decal` paints the texel at `pixel` (0 outside its box).
+fn decal_weight_at(texel: {texel}, pixel: vec2<f32>, decal: u32) -> f32 {{
+    return decal_weight(decal, texel_position(texel, camera_ray(pixel, VIEWPORT)));
+}}
+
+// The light accumulation replaced by the image-based light (over the static light) and the sun.
+fn sun_and_environment_texel(texel: {texel}, pixel: vec2<f32>) -> {texel} {{
+    let shading = decode_texel(texel);
+    let view = -camera_ray(pixel, VIEWPORT);
+    return with_light(texel, environment_light(shading, view) + sun_light(shading, view));
+}}
+
+// Whether point light `index` reaches the texel's surface.
+fn point_light_reaches(texel: {texel}, pixel: vec2<f32>, index: u32) -> bool {{
+    var positions = POINT_LIGHT_POSITIONS;
+    let position = texel_position(texel, camera_ray(pixel, VIEWPORT));
+    return distance(positions[index], position) < POINT_LIGHT_RADIUS;
+}}
+
+// Point light `index` added into the light accumulation.
+fn point_light_texel(texel: {texel}, pixel: vec2<f32>, index: u32) -> {texel} {{
+    let shading = decode_texel(texel);
+    let direction = camera_ray(pixel, VIEWPORT);
+    let light = point_light(shading, -direction, texel_position(texel, direction), index);
+    return with_light(texel, shading.light + light);
+}}
+
+// The displayed colour of a surface: its light accumulation, tone-mapped.
+fn resolve_colour(texel: {texel}) -> vec4<f32> {{
+    return display_colour(decode_texel(texel).light);
+}}
+
+// The displayed colour of the sky at `pixel`.
+fn sky_colour(pixel: vec2<f32>) -> vec4<f32> {{
+    return display_colour(sky(camera_ray(pixel, VIEWPORT)));
+}}
+
+// Calls every stage, so that the translation keeps them all (naga writes what an entry point
+// reaches); the hand-written entry points replace it.
+@fragment
+fn translation_entry(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
+    var texel = geometry_texel(0u, position.xyz, position.xyz);
+    texel = paint_texel(texel, 0u, decal_weight_at(texel, position.xy, 0u));
+    texel = sun_and_environment_texel(texel, position.xy);
+    if point_light_reaches(texel, position.xy, 0u) {{
+        texel = point_light_texel(texel, position.xy, 0u);
+    }}
+    return resolve_colour(texel) + sky_colour(position.xy);
+}}
+"
+    )
+}
+
+/// The WGSL the fused paths translate: the library, the scene, the inputs, the layout and its
+/// on-tile functions, the lighting, the vertex shaders and the stages. `y_sign` is the
+/// backend's clip-space y (both GL and Vulkan render with -1).
+pub fn fused_wgsl(options: &Options, layout: SeedLayout, y_sign: f32) -> String {
+    let on_tile = layout
+        .on_tile_wgsl()
+        .expect("tile_layout checked the layout");
+    format!(
+        "{}\n{}\n{}\n{INPUTS_WGSL}\n{}\n{}\n{}\n{on_tile}\n{}\n{}\n{VERTEX_WGSL}\n{}",
+        library(&shaders::MODULES),
+        shaders::frame_wgsl(options, y_sign),
+        shaders::geometry_wgsl(options),
+        layout.wgsl(),
+        layout.encode_wgsl(),
+        layout.decode_wgsl(),
+        shaders::lighting_functions_wgsl(options),
+        shaders::display_wgsl(),
+        stages_wgsl(&layout.layout().name),
+    )
+}
+
+/// Checks that the scene the fused paths draw has what they draw.
+pub fn check_scene(options: &Options) -> Result<(), String> {
+    let features = options.gbuffer.features();
+    if features != scene::reference_features() {
+        return Err("the on-tile paths draw the reference scene".into());
+    }
+    Ok(())
+}
