@@ -12,7 +12,7 @@ use gbuffer_validator::cost::Cost;
 use crate::gbuffers::{GBuffer, SeedLayout};
 use crate::image::compare;
 use crate::reference;
-use crate::renderer::{lighting_pass_wgsl, Options, Renderer};
+use crate::renderer::{lighting_pass_wgsl, Options, Positions, Renderer};
 
 /// The presets, in the report's order.
 pub const PRESETS: [&str; 4] = [
@@ -46,7 +46,7 @@ pub struct PresetRow {
 
 /// The static cost of a configuration's lighting pass.
 pub fn lighting_cost(options: &Options) -> Result<Cost, String> {
-    gbuffer_validator::cost::measure(&lighting_pass_wgsl(options), "lighting_main")
+    gbuffer_validator::cost::measure(&lighting_pass_wgsl(options, Positions::DepthBuffer).expect("any layout"), "lighting_main")
 }
 
 /// The lighting pass of the seed layout Listing 2.2 with every term of the reference scene:

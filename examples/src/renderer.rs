@@ -458,20 +458,25 @@ fn gbuffer_main(input: GeometryVarying) -> {output_type} {{
     )
 }
 
-/// What the lighting pass of a seed or classic layout shares: the library, the scene, the
-/// inputs, the depth buffer and `surface_position`.
-fn lighting_prelude(options: &Options) -> String {
-    format!(
-        "{}\n{}\n{}\n{SURFACE_WGSL}\n{INPUTS_WGSL}\n{}\n{}\n{FULL_SCREEN_WGSL}
-@group(0) @binding(4) var depth_buffer: texture_depth_2d;
+/// Where the lighting pass finds the position of the surface at a pixel, for the point lights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Positions {
+    /// From the depth buffer, sampled (`surface_position(pixel, direction)`): any layout.
+    DepthBuffer,
+    /// From the texel's depth or position (`texel_position(texel, direction)`): the layouts
+    /// the on-tile paths keep (GLSL cannot load from a depth texture).
+    Texel,
+}
 
-// Where the surface at `pixel` lies: the depth buffer's depth along the camera ray.
-fn surface_position(pixel: vec2<i32>, direction: vec3<f32>) -> vec3<f32> {{
-    let depth = textureLoad(depth_buffer, pixel, 0);
-    let view_depth = CAMERA_NEAR / (1.0 - depth * (CAMERA_FAR - CAMERA_NEAR) / CAMERA_FAR);
-    return SCENE_EYE + direction * (view_depth / dot(direction, normalize(SCENE_TARGET - SCENE_EYE)));
-}}
-",
+/// What the lighting pass of a seed or classic layout shares: the library, the scene, the
+/// inputs, and with positions from the depth buffer, the buffer and `surface_position`.
+fn lighting_prelude(options: &Options, positions: Positions) -> String {
+    let depth_buffer = match positions {
+        Positions::Texel => "",
+        Positions::DepthBuffer => DEPTH_BUFFER_WGSL,
+    };
+    format!(
+        "{}\n{}\n{}\n{SURFACE_WGSL}\n{INPUTS_WGSL}\n{}\n{}\n{FULL_SCREEN_WGSL}\n{depth_buffer}",
         library(&shaders::MODULES),
         shaders::frame_wgsl(options, 1.0),
         scene::scene_wgsl(options.gbuffer.features()),
@@ -480,17 +485,34 @@ fn surface_position(pixel: vec2<i32>, direction: vec3<f32>) -> vec3<f32> {{
     )
 }
 
-/// The lighting pass's WGSL for a configuration (entry point `lighting_main`).
-pub fn lighting_pass_wgsl(options: &Options) -> String {
+/// The depth buffer, and the position it gives the surface at a pixel.
+const DEPTH_BUFFER_WGSL: &str = "
+@group(0) @binding(4) var depth_buffer: texture_depth_2d;
+
+// Where the surface at `pixel` lies: the depth buffer's depth along the camera ray.
+fn surface_position(pixel: vec2<i32>, direction: vec3<f32>) -> vec3<f32> {
+    let depth = textureLoad(depth_buffer, pixel, 0);
+    let view_depth = CAMERA_NEAR / (1.0 - depth * (CAMERA_FAR - CAMERA_NEAR) / CAMERA_FAR);
+    return SCENE_EYE + direction * (view_depth / dot(direction, normalize(SCENE_TARGET - SCENE_EYE)));
+}
+";
+
+/// The lighting pass's WGSL for a configuration: `lighting_main` (radiance) and
+/// `lighting_resolve_main` (tone-mapped), reading positions from `positions`.
+pub fn lighting_pass_wgsl(options: &Options, positions: Positions) -> Result<String, String> {
     let (bindings, read) = match &options.gbuffer {
-        GBuffer::Solved(solution) => return solved_lighting_wgsl(solution, options),
+        GBuffer::Solved(solution) => return Ok(solved_lighting_wgsl(solution, options)),
         GBuffer::Packed(layout) => {
             let model = layout.layout();
             let (bindings, targets) = read_packed_targets(&model);
             let snake = model.snake_name();
+            let texel_positions = match positions {
+                Positions::Texel => layout.on_tile_wgsl()?,
+                Positions::DepthBuffer => "",
+            };
             (
-                format!("{}\n{}\n{bindings}", layout.wgsl(), layout.decode_wgsl()),
-                format!("let targets = {targets};\n    if targets.first.x == 0xffffffffu {{\n        return sky(direction);\n    }}\n    let shading = decode_texel(unpack_{snake}_targets(targets));"),
+                format!("{}\n{}\n{texel_positions}\n{bindings}", layout.wgsl(), layout.decode_wgsl()),
+                format!("let targets = {targets};\n    if targets.first.x == 0xffffffffu {{\n        return sky(direction);\n    }}\n    let texel = unpack_{snake}_targets(targets);\n    let shading = decode_texel(texel);"),
             )
         }
         GBuffer::Classic => (
@@ -498,7 +520,7 @@ pub fn lighting_pass_wgsl(options: &Options) -> String {
             "let light = textureLoad(gbuffer_light, pixel, 0);\n    if light.a == 0.0 {\n        return sky(direction);\n    }\n    let normal_roughness = textureLoad(gbuffer_normal, pixel, 0);\n    let colour = textureLoad(gbuffer_colour, pixel, 0);\n    let colours = metallic_workflow(colour.rgb, colour.a, DIELECTRIC_F0);\n    let shading = Shading(unorm_to_normal(normal_roughness.xyz), normal_roughness.w, colours.diffuse, colours.f0, light.rgb);".to_string(),
         ),
     };
-    format!(
+    Ok(format!(
         "{}\n{bindings}
 // The radiance the camera sees at a pixel.
 fn pixel_radiance(position: vec4<f32>) -> vec3<f32> {{
@@ -508,7 +530,7 @@ fn pixel_radiance(position: vec4<f32>) -> vec3<f32> {{
     let view = -direction;
     var radiance = environment_light(shading, view) + sun_light(shading, view);
     if SCENE_POINT_LIGHTS {{
-        let surface = surface_position(pixel, direction);
+        let surface = {position};
         for (var index = 0u; index < POINT_LIGHT_COUNT; index++) {{
             radiance += point_light(shading, view, surface, index);
         }}
@@ -527,8 +549,12 @@ fn lighting_resolve_main(@builtin(position) position: vec4<f32>) -> @location(0)
     return display_colour(pixel_radiance(position));
 }}
 ",
-        lighting_prelude(options),
-    )
+        lighting_prelude(options, positions),
+        position = match positions {
+            Positions::DepthBuffer => "surface_position(pixel, direction)",
+            Positions::Texel => "texel_position(texel, direction)",
+        },
+    ))
 }
 
 /// The G-buffer pass's `encode_texel` for a solved layout: the surface's values for the
@@ -733,7 +759,8 @@ impl Passes {
             &options.gbuffer.target_formats(),
             true,
         );
-        let lighting_source = lighting_pass_wgsl(options);
+        let lighting_source = lighting_pass_wgsl(options, Positions::DepthBuffer)
+            .expect("positions from the depth buffer suit every layout");
         let lighting_bindings_used = shaders::used_bindings(&lighting_source, "lighting_main");
         let lighting = pipeline(
             "lighting",

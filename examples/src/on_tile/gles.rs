@@ -27,8 +27,7 @@ const FETCH: &str = "GL_EXT_shader_framebuffer_fetch";
 const ENVIRONMENT_UNIT: u32 = 1;
 const LUT_UNIT: u32 = 2;
 const LIGHT_MAP_UNIT: u32 = 5;
-/// The two-pass lighting reads the depth buffer at unit 4 and the G-buffer from unit 10 on.
-const DEPTH_UNIT: u32 = 4;
+/// The two-pass lighting reads the G-buffer from unit 10 on.
 const GBUFFER_UNIT: u32 = 10;
 
 /// A GLES 3.2 context with the inputs and the mesh uploaded.
@@ -391,7 +390,8 @@ impl GlesRenderer {
     /// framebuffers; the second samples the first's G-buffer and depth.
     fn two_pass_plan(&self, options: &Options, (width, height): (i32, i32)) -> Result<Plan, String> {
         let gbuffer_wgsl = crate::renderer::gbuffer_wgsl(options, -1.0);
-        let lighting_wgsl = crate::renderer::lighting_pass_wgsl(options);
+        let lighting_wgsl =
+            crate::renderer::lighting_pass_wgsl(options, crate::renderer::Positions::Texel)?;
         let program = |wgsl: &str, vertex: &str, fragment: &str| -> Result<glow::Program, String> {
             let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
             let fragment =
@@ -629,6 +629,9 @@ impl GlesRenderer {
                 recording.push(Call::Invalidate(names));
                 self.end(plan, 0, recording);
             } else {
+                // The lighting reads positions from the G-buffer: depth is not kept.
+                gl.invalidate_framebuffer(glow::FRAMEBUFFER, &[glow::DEPTH_ATTACHMENT]);
+                recording.push(Call::Invalidate(vec!["depth".into()]));
                 self.end(plan, 0, recording);
                 self.begin(plan, 1, recording);
                 gl.disable(glow::DEPTH_TEST);
@@ -637,9 +640,6 @@ impl GlesRenderer {
                     gl.bind_texture(glow::TEXTURE_2D, target.texture);
                     recording.push(Call::Sample(attachment(target)));
                 }
-                gl.active_texture(glow::TEXTURE0 + DEPTH_UNIT);
-                gl.bind_texture(glow::TEXTURE_2D, plan.depth[0].texture);
-                recording.push(Call::Sample(attachment(&plan.depth[0])));
                 gl.active_texture(glow::TEXTURE0);
                 draw(recording, "lighting and resolve", Draw::Fullscreen);
                 self.end(plan, 1, recording);
