@@ -71,7 +71,13 @@ fn parse_backend(arguments: &Arguments) -> Result<(Backend, Option<Path>), Strin
                 arguments.backend
             )
         })?;
-    let names = |paths: &[Path]| paths.iter().map(|path| path.flag()).collect::<Vec<_>>().join(", ");
+    let names = |paths: &[Path]| {
+        paths
+            .iter()
+            .map(|path| path.flag())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     let path = match (&arguments.path, backend.paths()) {
         (None, paths) => paths.first().copied(),
         (Some(name), []) => {
@@ -196,7 +202,8 @@ fn main() -> ExitCode {
             options.gbuffer.name(),
             options.gbuffer.bytes_per_pixel(),
             backend.flag(),
-            path.map(|path| format!(", path {}", path.flag())).unwrap_or_default()
+            path.map(|path| format!(", path {}", path.flag()))
+                .unwrap_or_default()
         );
         let frame = render(backend, path, &options, &progress)?;
         write_png(&arguments.out, &frame)

@@ -174,7 +174,10 @@ fn paint_texel(t: FutureMetallic, decal: u32, weight: f32) -> FutureMetallic {
                 &["light_accumulation_rg", "light_accumulation_b_normal_x"],
                 &["roughness_metallic", "albedo_or_reflectance"],
             ),
-            _ => (&["light_accumulation"], &["normals_roughness", "albedo_metallic"]),
+            _ => (
+                &["light_accumulation"],
+                &["normals_roughness", "albedo_metallic"],
+            ),
         }
     }
 

@@ -46,7 +46,10 @@ pub struct PresetRow {
 
 /// The static cost of a configuration's lighting pass.
 pub fn lighting_cost(options: &Options) -> Result<Cost, String> {
-    gbuffer_validator::cost::measure(&lighting_pass_wgsl(options, Positions::DepthBuffer).expect("any layout"), "lighting_main")
+    gbuffer_validator::cost::measure(
+        &lighting_pass_wgsl(options, Positions::DepthBuffer).expect("any layout"),
+        "lighting_main",
+    )
 }
 
 /// The lighting pass of the seed layout Listing 2.2 with every term of the reference scene:

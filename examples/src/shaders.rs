@@ -58,6 +58,9 @@ fn geometry_vertex(@location(0) position: vec3<f32>, @location(1) normal: vec3<f
     )
 }
 
+/// The binding of the inputs' sampler (GLSL combines it with each texture).
+pub const SAMPLER_BINDING: u32 = 3;
+
 /// The host functions over the baked inputs that the scene and the lighting read, at group 0:
 /// the environment (1), the LUT (2), the sampler (3), the light map (5).
 pub const INPUTS_WGSL: &str = "

@@ -21,19 +21,32 @@ pub enum AttachmentMemory {
     DeviceLocal,
 }
 
-/// An object to destroy when the test is done with it.
-enum Object {
+/// An object to destroy when the test is done with it ([`Vulkan::track`]).
+pub enum Object {
+    /// Device memory.
     Memory(vk::DeviceMemory),
+    /// An image.
     Image(vk::Image),
+    /// An image view.
     ImageView(vk::ImageView),
+    /// A buffer.
     Buffer(vk::Buffer),
+    /// A shader module.
     ShaderModule(vk::ShaderModule),
+    /// A render pass.
     RenderPass(vk::RenderPass),
+    /// A framebuffer.
     Framebuffer(vk::Framebuffer),
+    /// A descriptor set layout.
     DescriptorSetLayout(vk::DescriptorSetLayout),
+    /// A descriptor pool.
     DescriptorPool(vk::DescriptorPool),
+    /// A pipeline layout.
     PipelineLayout(vk::PipelineLayout),
+    /// A pipeline.
     Pipeline(vk::Pipeline),
+    /// A sampler.
+    Sampler(vk::Sampler),
 }
 
 /// A logical device with one graphics queue.
@@ -53,7 +66,7 @@ pub struct Vulkan {
     _entry: ash::Entry,
 }
 
-/// A host-visible, coherent storage buffer of `u32` words.
+/// A host-visible, coherent buffer of `u32` words (a storage buffer, or any usage).
 pub struct StorageBuffer {
     /// The buffer, to bind.
     pub buffer: vk::Buffer,
@@ -195,6 +208,22 @@ impl Vulkan {
         self.created.borrow_mut().push(object);
     }
 
+    /// Destroys `object` with the device's other objects, at [`Vulkan::release`]: for
+    /// objects a caller creates with [`Vulkan::device`] itself.
+    pub fn track(&self, object: Object) {
+        self.record(object);
+    }
+
+    /// Whether the device offers a lazily allocated memory type (on a tiler, memory that an
+    /// attachment living only in tile memory never touches).
+    pub fn has_lazily_allocated_memory(&self) -> bool {
+        self.memory_types.iter().any(|memory| {
+            memory
+                .property_flags
+                .contains(vk::MemoryPropertyFlags::LAZILY_ALLOCATED)
+        })
+    }
+
     /// Whether the device can use `format` as a colour attachment (and so as an input
     /// attachment) in optimal tiling.
     pub fn renders_to(&self, format: vk::Format) -> bool {
@@ -242,6 +271,22 @@ impl Vulkan {
         width: u32,
         height: u32,
     ) -> Result<(vk::ImageView, AttachmentMemory), String> {
+        let usage = vk::ImageUsageFlags::COLOR_ATTACHMENT
+            | vk::ImageUsageFlags::INPUT_ATTACHMENT
+            | vk::ImageUsageFlags::TRANSIENT_ATTACHMENT;
+        let (_, view, memory) = self.image(format, (width, height, 1), usage)?;
+        Ok((view, memory))
+    }
+
+    /// A `width` x `height` image of `mips` levels in `format` for `usage`, and a view of
+    /// them all. A `TRANSIENT_ATTACHMENT` image takes lazily allocated memory where the device
+    /// offers it (which memory it got is returned), any other device-local memory.
+    pub fn image(
+        &self,
+        format: vk::Format,
+        (width, height, mips): (u32, u32, u32),
+        usage: vk::ImageUsageFlags,
+    ) -> Result<(vk::Image, vk::ImageView, AttachmentMemory), String> {
         let info = vk::ImageCreateInfo::default()
             .image_type(vk::ImageType::TYPE_2D)
             .format(format)
@@ -250,29 +295,35 @@ impl Vulkan {
                 height,
                 depth: 1,
             })
-            .mip_levels(1)
+            .mip_levels(mips)
             .array_layers(1)
             .samples(vk::SampleCountFlags::TYPE_1)
             .tiling(vk::ImageTiling::OPTIMAL)
-            .usage(
-                vk::ImageUsageFlags::COLOR_ATTACHMENT
-                    | vk::ImageUsageFlags::INPUT_ATTACHMENT
-                    | vk::ImageUsageFlags::TRANSIENT_ATTACHMENT,
-            )
+            .usage(usage)
             .sharing_mode(vk::SharingMode::EXCLUSIVE)
             .initial_layout(vk::ImageLayout::UNDEFINED);
-        // SAFETY: a valid 2D colour image; the memory is bound once, at offset 0.
+        let aspect = if usage.contains(vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT) {
+            vk::ImageAspectFlags::DEPTH
+        } else {
+            vk::ImageAspectFlags::COLOR
+        };
+        // SAFETY: a valid 2D image; the memory is bound once, at offset 0.
         unsafe {
             let image = self
                 .device
                 .create_image(&info, None)
-                .map_err(|error| format!("vkCreateImage({format:?}): {error}"))?;
+                .map_err(|error| format!("vkCreateImage({format:?}, {usage:?}): {error}"))?;
             self.record(Object::Image(image));
             let requirements = self.device.get_image_memory_requirements(image);
-            let lazily = self.memory_type(
-                requirements.memory_type_bits,
-                vk::MemoryPropertyFlags::LAZILY_ALLOCATED,
-            );
+            let lazily = usage
+                .contains(vk::ImageUsageFlags::TRANSIENT_ATTACHMENT)
+                .then(|| {
+                    self.memory_type(
+                        requirements.memory_type_bits,
+                        vk::MemoryPropertyFlags::LAZILY_ALLOCATED,
+                    )
+                })
+                .flatten();
             let (type_index, kind) = match lazily {
                 Some(index) => (index, AttachmentMemory::LazilyAllocated),
                 None => (
@@ -280,7 +331,7 @@ impl Vulkan {
                         requirements.memory_type_bits,
                         vk::MemoryPropertyFlags::DEVICE_LOCAL,
                     )
-                    .ok_or("no device-local memory type for an attachment")?,
+                    .ok_or("no device-local memory type for an image")?,
                     AttachmentMemory::DeviceLocal,
                 ),
             };
@@ -296,9 +347,9 @@ impl Vulkan {
                         .view_type(vk::ImageViewType::TYPE_2D)
                         .format(format)
                         .subresource_range(vk::ImageSubresourceRange {
-                            aspect_mask: vk::ImageAspectFlags::COLOR,
+                            aspect_mask: aspect,
                             base_mip_level: 0,
-                            level_count: 1,
+                            level_count: mips,
                             base_array_layer: 0,
                             layer_count: 1,
                         }),
@@ -306,15 +357,24 @@ impl Vulkan {
                 )
                 .map_err(|error| format!("vkCreateImageView: {error}"))?;
             self.record(Object::ImageView(view));
-            Ok((view, kind))
+            Ok((image, view, kind))
         }
     }
 
     /// A storage buffer of `words` words that the host reads and writes directly.
     pub fn storage_buffer(&self, words: usize) -> Result<StorageBuffer, String> {
+        self.host_buffer(words, vk::BufferUsageFlags::STORAGE_BUFFER)
+    }
+
+    /// A buffer of `words` words for `usage` that the host reads and writes directly.
+    pub fn host_buffer(
+        &self,
+        words: usize,
+        usage: vk::BufferUsageFlags,
+    ) -> Result<StorageBuffer, String> {
         let info = vk::BufferCreateInfo::default()
             .size((words.max(1) * 4) as u64)
-            .usage(vk::BufferUsageFlags::STORAGE_BUFFER)
+            .usage(usage)
             .sharing_mode(vk::SharingMode::EXCLUSIVE);
         // SAFETY: a valid buffer; the memory is bound once, at offset 0.
         unsafe {
@@ -329,7 +389,7 @@ impl Vulkan {
                     requirements.memory_type_bits,
                     vk::MemoryPropertyFlags::HOST_VISIBLE | vk::MemoryPropertyFlags::HOST_COHERENT,
                 )
-                .ok_or("no host-visible, coherent memory type for a storage buffer")?;
+                .ok_or("no host-visible, coherent memory type for a buffer")?;
             let memory = self.allocate(requirements, type_index)?;
             self.device
                 .bind_buffer_memory(buffer, memory, 0)
@@ -767,6 +827,7 @@ impl Vulkan {
                     Object::DescriptorPool(pool) => device.destroy_descriptor_pool(pool, None),
                     Object::PipelineLayout(layout) => device.destroy_pipeline_layout(layout, None),
                     Object::Pipeline(pipeline) => device.destroy_pipeline(pipeline, None),
+                    Object::Sampler(sampler) => device.destroy_sampler(sampler, None),
                 }
             }
         }

@@ -75,9 +75,21 @@ impl GlesRenderer {
         // SAFETY: objects of the current context; the slices outlive the uploads.
         unsafe {
             let gl = &gles.gl;
-            upload(gl, ENVIRONMENT_UNIT, glow::RGBA8, glow::UNSIGNED_BYTE, &inputs.environment)?;
+            upload(
+                gl,
+                ENVIRONMENT_UNIT,
+                glow::RGBA8,
+                glow::UNSIGNED_BYTE,
+                &inputs.environment,
+            )?;
             upload(gl, LUT_UNIT, glow::RGBA16F, glow::HALF_FLOAT, &[inputs.lut])?;
-            upload(gl, LIGHT_MAP_UNIT, glow::RGBA8, glow::UNSIGNED_BYTE, &[inputs.light_map])?;
+            upload(
+                gl,
+                LIGHT_MAP_UNIT,
+                glow::RGBA8,
+                glow::UNSIGNED_BYTE,
+                &[inputs.light_map],
+            )?;
             // One sampler for the inputs, as wgpu's: trilinear, u repeating (around the sky).
             let sampler = gl.create_sampler()?;
             for (name, value) in [
@@ -103,7 +115,11 @@ impl GlesRenderer {
             gl.vertex_attrib_pointer_f32(1, 3, glow::FLOAT, false, stride, 12);
             gl.enable_vertex_attrib_array(2);
             gl.vertex_attrib_pointer_i32(2, 1, glow::UNSIGNED_INT, stride, 24);
-            buffer(gl, glow::ELEMENT_ARRAY_BUFFER, bytemuck::cast_slice(&mesh.indices))?;
+            buffer(
+                gl,
+                glow::ELEMENT_ARRAY_BUFFER,
+                bytemuck::cast_slice(&mesh.indices),
+            )?;
             // Volumes read their index from an instanced attribute: a buffer of 0, 1, 2, ...,
             // whose offset picks the volume (GLES has no base instance).
             let volume_count = (POINT_LIGHT_COUNT + DECALS.len()) as u32;
@@ -327,7 +343,11 @@ impl GlesRenderer {
                     .position(|field| field.name == *name)
                     .expect("the on-tile fields are the layout's");
                 let word = locations[field].0;
-                writes[if kind == Include::FetchPacked { word / 4 } else { word }] = true;
+                writes[if kind == Include::FetchPacked {
+                    word / 4
+                } else {
+                    word
+                }] = true;
             }
             writes
         };
@@ -350,7 +370,11 @@ impl GlesRenderer {
                 Ok(program) => programs.push((name, program)),
                 Err(error) => {
                     // SAFETY: programs of the current context.
-                    unsafe { programs.iter().for_each(|(_, p)| self.gles.gl.delete_program(*p)) };
+                    unsafe {
+                        programs
+                            .iter()
+                            .for_each(|(_, p)| self.gles.gl.delete_program(*p))
+                    };
                     return Err(format!("the {name} program: {error}"));
                 }
             }
@@ -388,7 +412,11 @@ impl GlesRenderer {
 
     /// The two-pass path: wgpu's G-buffer and lighting passes, translated, over two
     /// framebuffers; the second samples the first's G-buffer and depth.
-    fn two_pass_plan(&self, options: &Options, (width, height): (i32, i32)) -> Result<Plan, String> {
+    fn two_pass_plan(
+        &self,
+        options: &Options,
+        (width, height): (i32, i32),
+    ) -> Result<Plan, String> {
         let gbuffer_wgsl = crate::renderer::gbuffer_wgsl(options, -1.0);
         let lighting_wgsl =
             crate::renderer::lighting_pass_wgsl(options, crate::renderer::Positions::Texel)?;
@@ -471,14 +499,19 @@ impl GlesRenderer {
             let gl = &self.gles.gl;
             let program = gl.create_program()?;
             let mut shaders = Vec::new();
-            for (stage, source) in [(glow::VERTEX_SHADER, vertex), (glow::FRAGMENT_SHADER, fragment)] {
+            for (stage, source) in [
+                (glow::VERTEX_SHADER, vertex),
+                (glow::FRAGMENT_SHADER, fragment),
+            ] {
                 let shader = gl.create_shader(stage)?;
                 gl.shader_source(shader, source);
                 gl.compile_shader(shader);
                 if !gl.get_shader_compile_status(shader) {
                     let log = gl.get_shader_info_log(shader);
                     gl.delete_shader(shader);
-                    shaders.into_iter().for_each(|shader| gl.delete_shader(shader));
+                    shaders
+                        .into_iter()
+                        .for_each(|shader| gl.delete_shader(shader));
                     gl.delete_program(program);
                     return Err(format!("{log}\n{}", numbered(source)));
                 }
@@ -486,7 +519,9 @@ impl GlesRenderer {
                 shaders.push(shader);
             }
             gl.link_program(program);
-            shaders.into_iter().for_each(|shader| gl.delete_shader(shader));
+            shaders
+                .into_iter()
+                .for_each(|shader| gl.delete_shader(shader));
             if !gl.get_program_link_status(program) {
                 let log = gl.get_program_info_log(program);
                 gl.delete_program(program);
@@ -526,22 +561,43 @@ impl GlesRenderer {
                 for filter in [glow::TEXTURE_MIN_FILTER, glow::TEXTURE_MAG_FILTER] {
                     gl.tex_parameter_i32(glow::TEXTURE_2D, filter, glow::NEAREST as i32);
                 }
-                gl.framebuffer_texture_2d(glow::FRAMEBUFFER, attachment, glow::TEXTURE_2D, Some(texture), 0);
+                gl.framebuffer_texture_2d(
+                    glow::FRAMEBUFFER,
+                    attachment,
+                    glow::TEXTURE_2D,
+                    Some(texture),
+                    0,
+                );
                 target.texture = Some(texture);
             } else {
                 let renderbuffer = gl.create_renderbuffer()?;
                 gl.bind_renderbuffer(glow::RENDERBUFFER, Some(renderbuffer));
                 gl.renderbuffer_storage(glow::RENDERBUFFER, format, width, height);
-                gl.framebuffer_renderbuffer(glow::FRAMEBUFFER, attachment, glow::RENDERBUFFER, Some(renderbuffer));
+                gl.framebuffer_renderbuffer(
+                    glow::FRAMEBUFFER,
+                    attachment,
+                    glow::RENDERBUFFER,
+                    Some(renderbuffer),
+                );
                 target.renderbuffer = Some(renderbuffer);
             }
             Ok::<Target, String>(target)
         };
         let mut colours = Vec::new();
         for (index, &(format, bytes)) in formats.iter().enumerate() {
-            colours.push(make(format, glow::COLOR_ATTACHMENT0 + index as u32, String::new(), bytes)?);
+            colours.push(make(
+                format,
+                glow::COLOR_ATTACHMENT0 + index as u32,
+                String::new(),
+                bytes,
+            )?);
         }
-        let depth = make(glow::DEPTH_COMPONENT32F, glow::DEPTH_ATTACHMENT, "depth".into(), 4)?;
+        let depth = make(
+            glow::DEPTH_COMPONENT32F,
+            glow::DEPTH_ATTACHMENT,
+            "depth".into(),
+            4,
+        )?;
         let buffers: Vec<u32> = (0..formats.len() as u32)
             .map(|index| glow::COLOR_ATTACHMENT0 + index)
             .collect();
@@ -552,7 +608,10 @@ impl GlesRenderer {
             return Err(format!(
                 "the driver cannot render to attachments of formats {:#x?} with a 32-bit float \
                  depth (framebuffer status {status:#x})",
-                formats.iter().map(|(format, _)| *format).collect::<Vec<_>>()
+                formats
+                    .iter()
+                    .map(|(format, _)| *format)
+                    .collect::<Vec<_>>()
             ));
         }
         Ok((framebuffer, colours, Some(depth)))
@@ -591,7 +650,13 @@ impl GlesRenderer {
                         // offset; the fragment stage from `volume_index`.
                         gl.bind_vertex_array(Some(self.volumes));
                         gl.bind_buffer(glow::ARRAY_BUFFER, Some(self.volume_indices));
-                        gl.vertex_attrib_pointer_i32(0, 1, glow::UNSIGNED_INT, 4, 4 * volume as i32);
+                        gl.vertex_attrib_pointer_i32(
+                            0,
+                            1,
+                            glow::UNSIGNED_INT,
+                            4,
+                            4 * volume as i32,
+                        );
                         let location = gl.get_uniform_location(program(name), "volume_index");
                         gl.uniform_1_u32(location.as_ref(), volume as u32);
                         gl.draw_arrays_instanced(glow::TRIANGLES, 0, 6, 1);
@@ -601,7 +666,15 @@ impl GlesRenderer {
             self.begin(plan, 0, recording);
             gl.depth_mask(true);
             gl.depth_func(glow::LESS);
-            draw(recording, if plan.path.is_fused() { "geometry" } else { "gbuffer" }, Draw::Mesh);
+            draw(
+                recording,
+                if plan.path.is_fused() {
+                    "geometry"
+                } else {
+                    "gbuffer"
+                },
+                Draw::Mesh,
+            );
             if plan.path.is_fused() {
                 // Everything after the geometry is drawn over the surfaces only (GREATER than
                 // their depth) or the sky only (EQUAL to the cleared far plane).
@@ -624,7 +697,8 @@ impl GlesRenderer {
                     .collect();
                 attachments.push(glow::DEPTH_ATTACHMENT);
                 gl.invalidate_framebuffer(glow::FRAMEBUFFER, &attachments);
-                let mut names: Vec<String> = gbuffer.iter().map(|target| target.name.clone()).collect();
+                let mut names: Vec<String> =
+                    gbuffer.iter().map(|target| target.name.clone()).collect();
                 names.push("depth".into());
                 recording.push(Call::Invalidate(names));
                 self.end(plan, 0, recording);
@@ -663,7 +737,10 @@ impl GlesRenderer {
         }
         let mut attachments = Vec::new();
         for (location, target) in plan.targets[index].iter().enumerate() {
-            let integer = matches!(target.format, glow::RGBA32UI | glow::RG32UI | glow::R32UI | glow::RGBA8UI | glow::RGB10_A2UI);
+            let integer = matches!(
+                target.format,
+                glow::RGBA32UI | glow::RG32UI | glow::R32UI | glow::RGBA8UI | glow::RGB10_A2UI
+            );
             let signed = matches!(target.format, glow::RGBA8I);
             let sky_marker = plan.path == Path::TwoPass && target.name.starts_with("gbuffer");
             if integer {
@@ -686,7 +763,11 @@ impl GlesRenderer {
 
     /// Ends framebuffer `index`'s pass in the recording: what was not invalidated is stored.
     fn end(&self, plan: &Plan, index: usize, recording: &mut Recording) {
-        let invalidated = recording.invalidated().iter().map(|name| name.to_string()).collect::<Vec<_>>();
+        let invalidated = recording
+            .invalidated()
+            .iter()
+            .map(|name| name.to_string())
+            .collect::<Vec<_>>();
         let mut stored: Vec<String> = plan.targets[index]
             .iter()
             .map(|target| target.name.clone())
@@ -799,7 +880,13 @@ unsafe fn upload(
     let texture = gl.create_texture()?;
     gl.active_texture(glow::TEXTURE0 + unit);
     gl.bind_texture(glow::TEXTURE_2D, Some(texture));
-    gl.tex_storage_2d(glow::TEXTURE_2D, mips.len() as i32, format, mips[0].width as i32, mips[0].height as i32);
+    gl.tex_storage_2d(
+        glow::TEXTURE_2D,
+        mips.len() as i32,
+        format,
+        mips[0].width as i32,
+        mips[0].height as i32,
+    );
     gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
     for (level, mip) in mips.iter().enumerate() {
         gl.tex_sub_image_2d(

@@ -141,14 +141,21 @@ pub fn declarations(translation: &str, include: &str) -> String {
 /// The entry point's own inputs and outputs, which the hand-written `main` declares.
 fn is_entry_point_interface(line: &str) -> bool {
     let line = line.trim_start_matches("layout(location = ");
-    ["smooth in ", "flat in ", "in ", "out ", "smooth out ", "flat out "]
-        .iter()
-        .any(|prefix| {
-            line.starts_with(prefix)
-                || line
-                    .split_once(") ")
-                    .is_some_and(|(_, rest)| rest.starts_with(prefix))
-        })
+    [
+        "smooth in ",
+        "flat in ",
+        "in ",
+        "out ",
+        "smooth out ",
+        "flat out ",
+    ]
+    .iter()
+    .any(|prefix| {
+        line.starts_with(prefix)
+            || line
+                .split_once(") ")
+                .is_some_and(|(_, rest)| rest.starts_with(prefix))
+    })
 }
 
 /// The names the top-level declarations of `glsl` make.
@@ -185,7 +192,10 @@ mod tests {
 
     #[test]
     fn the_names_of_declarations_are_read() {
-        assert_eq!(declared_name("struct MobileMetallic {"), Some("MobileMetallic"));
+        assert_eq!(
+            declared_name("struct MobileMetallic {"),
+            Some("MobileMetallic")
+        );
         assert_eq!(
             declared_name("const highp uint MOBILE_METALLIC_WORDS = 4u;"),
             Some("MOBILE_METALLIC_WORDS")
@@ -199,7 +209,8 @@ mod tests {
 
     #[test]
     fn declarations_leave_out_what_the_include_declares_and_the_entry_point() {
-        let include = "struct Texel {\n    float a;\n};\nfloat decode(uint w) {\n    return 0.0;\n}\n";
+        let include =
+            "struct Texel {\n    float a;\n};\nfloat decode(uint w) {\n    return 0.0;\n}\n";
         let translation = "#version 320 es\nprecision highp float;\nstruct Texel {\n    float a;\n};\nstruct Mine {\n    float b;\n};\nfloat decode(uint w) {\n    return 1.0;\n}\nfloat mine(Texel t) {\n    return t.a;\n}\nlayout(location = 0) out vec4 _fs2p_location0;\nvoid main() {\n    _fs2p_location0 = vec4(0.0);\n}\n";
         assert_eq!(
             declarations(translation, include),

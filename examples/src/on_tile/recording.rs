@@ -119,7 +119,10 @@ impl Recording {
         for call in &self.calls {
             match call {
                 Call::BeginPass { attachments: list } => {
-                    attachments = list.iter().map(|(attachment, _)| attachment.clone()).collect();
+                    attachments = list
+                        .iter()
+                        .map(|(attachment, _)| attachment.clone())
+                        .collect();
                     for (attachment, load) in list {
                         if *load == Load::Load {
                             traffic.loaded += pixels * u64::from(attachment.bytes_per_pixel);
