@@ -54,6 +54,11 @@ struct Arguments {
     /// Image-based light: `lut` (split-sum LUT) or `approx` (EnvBRDFApprox).
     #[arg(long, default_value = "lut")]
     ibl: String,
+    /// Debug: also store the G-buffer as the geometry writes it (before the decals and the
+    /// light) and write its packed words to this file (little-endian u32, the layout's words per
+    /// pixel, row by row): the same for every backend and path, bit for bit.
+    #[arg(long, value_name = "FILE")]
+    store_gbuffer: Option<PathBuf>,
     /// Also render the CPU reference: print PSNR and the largest error, and write
     /// `<out>.reference.png` and `<out>.difference.png` (differences x8).
     #[arg(long)]
@@ -155,21 +160,49 @@ fn parse(arguments: &Arguments) -> Result<Options, String> {
     })
 }
 
-/// The frame, on the chosen backend and path.
+/// The frame, on the chosen backend and path, and with `store_gbuffer` the G-buffer's words
+/// written there.
 fn render(
     backend: Backend,
     path: Option<Path>,
     options: &Options,
+    store_gbuffer: Option<&std::path::Path>,
     progress: &dyn Fn(&str),
 ) -> Result<Frame, String> {
     let tile = |path: Option<Path>| TileOptions {
         options: options.clone(),
         path: path.expect("the on-tile backends have a path"),
     };
+    let store = |words: Vec<u32>| -> Result<(), String> {
+        if let Some(file) = store_gbuffer {
+            std::fs::write(file, bytemuck::cast_slice(&words))
+                .map_err(|error| format!("{}: {error}", file.display()))?;
+            eprintln!("wrote the G-buffer's words to {}", file.display());
+        }
+        Ok(())
+    };
     let (frame, recording) = match backend {
-        Backend::Wgpu => return Renderer::new(progress)?.render(options),
-        Backend::Gles => GlesRenderer::new(progress)?.render(&tile(path))?,
-        Backend::Vulkan => VulkanRenderer::new(progress)?.render(&tile(path))?,
+        Backend::Wgpu => {
+            let renderer = Renderer::new(progress)?;
+            if store_gbuffer.is_some() {
+                store(renderer.gbuffer_words(options)?)?;
+            }
+            return renderer.render(options);
+        }
+        Backend::Gles => {
+            let renderer = GlesRenderer::new(progress)?;
+            if store_gbuffer.is_some() {
+                store(renderer.gbuffer_words(options)?)?;
+            }
+            renderer.render(&tile(path))?
+        }
+        Backend::Vulkan => {
+            let renderer = VulkanRenderer::new(progress)?;
+            if store_gbuffer.is_some() {
+                store(renderer.gbuffer_words(options)?)?;
+            }
+            renderer.render(&tile(path))?
+        }
     };
     let traffic = recording.traffic(options.width, options.height);
     eprintln!(
@@ -205,7 +238,13 @@ fn main() -> ExitCode {
             path.map(|path| format!(", path {}", path.flag()))
                 .unwrap_or_default()
         );
-        let frame = render(backend, path, &options, &progress)?;
+        let frame = render(
+            backend,
+            path,
+            &options,
+            arguments.store_gbuffer.as_deref(),
+            &progress,
+        )?;
         write_png(&arguments.out, &frame)
             .map_err(|error| format!("{}: {error}", arguments.out.display()))?;
         eprintln!("wrote {}", arguments.out.display());

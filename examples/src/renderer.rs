@@ -229,7 +229,11 @@ impl Renderer {
     pub fn render(&self, options: &Options) -> Result<Frame, String> {
         let passes = self.passes(options)?;
         self.queue.submit([passes.encode(self, None)]);
-        let pixels = self.read_back(&passes.output, options.width, options.height)?;
+        let pixels = self
+            .read_texture(&passes.output, options.width, options.height, 4)?
+            .chunks_exact(4)
+            .map(|pixel| [pixel[0], pixel[1], pixel[2], pixel[3]])
+            .collect();
         Ok(Frame {
             width: options.width,
             height: options.height,
@@ -269,6 +273,170 @@ impl Renderer {
         Ok(times)
     }
 
+    /// A render pipeline of `source`'s entry points (vertex, fragment) writing `formats`;
+    /// `geometry` draws the mesh with a depth test, else a fullscreen triangle.
+    fn render_pipeline(
+        &self,
+        label: &str,
+        source: String,
+        (vertex_entry, fragment_entry): (&str, &str),
+        formats: &[wgpu::TextureFormat],
+        geometry: bool,
+    ) -> wgpu::RenderPipeline {
+        let module = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+        let targets: Vec<Option<wgpu::ColorTargetState>> = formats
+            .iter()
+            .map(|format| Some((*format).into()))
+            .collect();
+        let vertex_buffers = [Some(wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &VERTEX_ATTRIBUTES,
+        })];
+        self.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: None,
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(vertex_entry),
+                    compilation_options: Default::default(),
+                    buffers: if geometry { &vertex_buffers } else { &[] },
+                },
+                primitive: Default::default(),
+                depth_stencil: geometry.then_some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(fragment_entry),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+    }
+
+    /// The packed words the G-buffer pass writes before the decals (a debug view, stored to
+    /// compare the backends), `layout.words()` per pixel, row by row.
+    pub fn gbuffer_words(&self, options: &Options) -> Result<Vec<u32>, String> {
+        let layout = options
+            .gbuffer
+            .layout()
+            .ok_or("the classic G-buffer has no packed words")?;
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let formats = options.gbuffer.target_formats();
+        let pipeline = self.render_pipeline(
+            "gbuffer words",
+            gbuffer_wgsl(options, 1.0),
+            ("geometry_vertex", "gbuffer_unpainted_main"),
+            &formats,
+            true,
+        );
+        let texture = |format| {
+            self.device.create_texture(&wgpu::TextureDescriptor {
+                label: None,
+                size: wgpu::Extent3d {
+                    width: options.width,
+                    height: options.height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        };
+        let targets: Vec<wgpu::Texture> = formats.iter().map(|format| texture(*format)).collect();
+        let views: Vec<wgpu::TextureView> = targets
+            .iter()
+            .map(|target| target.create_view(&Default::default()))
+            .collect();
+        let depth = texture(DEPTH_FORMAT).create_view(&Default::default());
+        let bindings = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: shaders::SAMPLER_BINDING,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: wgpu::BindingResource::TextureView(&self.light_map),
+                },
+            ],
+        });
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        {
+            let attachments: Vec<_> = views
+                .iter()
+                .map(|view| {
+                    Some(wgpu::RenderPassColorAttachment {
+                        view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })
+                })
+                .collect();
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("gbuffer words"),
+                color_attachments: &attachments,
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &bindings, &[]);
+            pass.set_vertex_buffer(0, self.vertices.slice(..));
+            pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..self.index_count, 0, 0..1);
+        }
+        self.queue.submit([encoder.finish()]);
+        if let Some(error) = pollster::block_on(scope.pop()) {
+            return Err(format!("wgpu rejected the G-buffer words pass: {error}"));
+        }
+        let per_target: Vec<Vec<u32>> = targets
+            .iter()
+            .zip(&formats)
+            .map(|(target, format)| {
+                let bytes = format.block_copy_size(None).unwrap_or(16);
+                let texels = self.read_texture(target, options.width, options.height, bytes)?;
+                Ok(bytemuck::pod_collect_to_vec(&texels))
+            })
+            .collect::<Result<_, String>>()?;
+        Ok(texels_of(
+            &per_target,
+            (options.width * options.height) as usize,
+            layout.words(),
+        ))
+    }
+
     fn passes(&self, options: &Options) -> Result<Passes, String> {
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let passes = Passes::new(self, options);
@@ -281,13 +449,16 @@ impl Renderer {
         }
     }
 
-    fn read_back(
+    /// The texels of `texture` (`bytes_per_pixel` each), row by row, tightly packed.
+    fn read_texture(
         &self,
         texture: &wgpu::Texture,
         width: u32,
         height: u32,
-    ) -> Result<Vec<[u8; 4]>, String> {
-        let row_bytes = (width * 4).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+        bytes_per_pixel: u32,
+    ) -> Result<Vec<u8>, String> {
+        let row_bytes =
+            (width * bytes_per_pixel).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
         let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: None,
             size: u64::from(row_bytes * height),
@@ -322,13 +493,29 @@ impl Renderer {
             .map_err(|error| error.to_string())?;
         Ok((0..height)
             .flat_map(|row| {
-                view[(row * row_bytes) as usize..][..(width * 4) as usize]
-                    .chunks(4)
-                    .map(|pixel| [pixel[0], pixel[1], pixel[2], pixel[3]])
-                    .collect::<Vec<_>>()
+                view[(row * row_bytes) as usize..][..(width * bytes_per_pixel) as usize].to_vec()
             })
             .collect())
     }
+}
+
+/// Per pixel, the first `words` words of its texels in `targets` (each target's words for all
+/// pixels, row by row), in target order.
+pub fn texels_of(targets: &[Vec<u32>], pixels: usize, words: usize) -> Vec<u32> {
+    let mut texels = Vec::with_capacity(pixels * words);
+    for pixel in 0..pixels {
+        let texel: Vec<u32> = targets
+            .iter()
+            .flat_map(|target| {
+                let per_pixel = target.len() / pixels;
+                target[pixel * per_pixel..(pixel + 1) * per_pixel]
+                    .iter()
+                    .copied()
+            })
+            .collect();
+        texels.extend_from_slice(&texel[..words]);
+    }
+    texels
 }
 
 /// A sampled texture of `mips` (largest first), uploaded.
@@ -449,6 +636,14 @@ pub fn gbuffer_wgsl(options: &Options, y_sign: f32) -> String {
 @fragment
 fn gbuffer_main(input: GeometryVarying) -> {output_type} {{
     let surface = paint_surface(surface_at(input.object, input.position, input.normal));
+    {encode}
+}}
+
+// The G-buffer as the geometry writes it before the decals: the debug view every backend
+// stores, to compare their words.
+@fragment
+fn gbuffer_unpainted_main(input: GeometryVarying) -> {output_type} {{
+    let surface = surface_at(input.object, input.position, input.normal);
     {encode}
 }}
 ",
@@ -706,51 +901,8 @@ impl Passes {
         );
         let output_view = view(&output);
 
-        let pipeline = |label: &str,
-                        source: String,
-                        (vertex_entry, fragment_entry): (&str, &str),
-                        formats: &[wgpu::TextureFormat],
-                        geometry: bool| {
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            });
-            let targets: Vec<Option<wgpu::ColorTargetState>> = formats
-                .iter()
-                .map(|format| Some((*format).into()))
-                .collect();
-            let vertex_buffers = [Some(wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<Vertex>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &VERTEX_ATTRIBUTES,
-            })];
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: None,
-                vertex: wgpu::VertexState {
-                    module: &module,
-                    entry_point: Some(vertex_entry),
-                    compilation_options: Default::default(),
-                    buffers: if geometry { &vertex_buffers } else { &[] },
-                },
-                primitive: Default::default(),
-                depth_stencil: geometry.then_some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::Less),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(fragment_entry),
-                    compilation_options: Default::default(),
-                    targets: &targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+        let pipeline = |label, source, entries, formats: &[wgpu::TextureFormat], geometry| {
+            renderer.render_pipeline(label, source, entries, formats, geometry)
         };
         let gbuffer = pipeline(
             "gbuffer",

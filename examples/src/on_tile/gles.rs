@@ -182,7 +182,7 @@ impl GlesRenderer {
     }
 
     /// The packed words the geometry writes (a debug view: the G-buffer stored, before decals
-    /// and light), one `[u32; 4]` per target per pixel, row by row.
+    /// and light), `layout.words()` per pixel, row by row, whatever the path.
     pub fn gbuffer_words(&self, options: &Options) -> Result<Vec<u32>, String> {
         let layout = tile_layout(options)?;
         let (width, height) = (options.width as i32, options.height as i32);
@@ -201,7 +201,9 @@ impl GlesRenderer {
             let gl = &self.gles.gl;
             let (framebuffer, colours, depth) =
                 self.framebuffer(&vec![(glow::RGBA32UI, 16); targets], width, height, true)?;
+            gl.viewport(0, 0, width, height);
             for index in 0..targets {
+                gl.color_mask_draw_buffer(index as u32, true, true, true, true);
                 gl.clear_buffer_u32_slice(glow::COLOR, index as u32, &[0; 4]);
             }
             gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
@@ -233,17 +235,12 @@ impl GlesRenderer {
             for target in colours.into_iter().chain(depth) {
                 delete_target(gl, target);
             }
-            // Per pixel, its targets' words in order.
-            let pixels = (width * height) as usize;
-            Ok((0..pixels)
-                .flat_map(|pixel| {
-                    (0..targets).flat_map(move |target| {
-                        let start = target * per_target + pixel * 4;
-                        start..start + 4
-                    })
-                })
-                .map(|index| words[index])
-                .collect())
+            let targets: Vec<Vec<u32>> = words.chunks(per_target).map(<[u32]>::to_vec).collect();
+            Ok(crate::renderer::texels_of(
+                &targets,
+                (width * height) as usize,
+                model.words(),
+            ))
         }
     }
 

@@ -77,6 +77,8 @@ struct Plan {
     passes: Vec<Pass>,
     output: vk::Image,
     read_back: StorageBuffer,
+    /// The stored G-buffer images of the debug view, and the buffers they are copied to.
+    gbuffer: Vec<(vk::Image, StorageBuffer)>,
     width: u32,
     height: u32,
 }
@@ -204,7 +206,7 @@ impl VulkanRenderer {
         let options = &tile.options;
         let layout = tile_layout(options)?;
         match tile.path {
-            Path::Subpass => self.subpass_plan(options, layout),
+            Path::Subpass => self.subpass_plan(options, layout, false),
             Path::TwoPass => self.two_pass_plan(options),
             other => Err(format!(
                 "--path {} is GLES's: use --backend gles",
@@ -213,11 +215,31 @@ impl VulkanRenderer {
         }
     }
 
-    /// The subpass path: one render pass, one subpass, six pipelines.
+    /// The packed words the geometry writes (a debug view: the G-buffer stored, before decals
+    /// and light), `layout.words()` per pixel, row by row.
+    pub fn gbuffer_words(&self, options: &Options) -> Result<Vec<u32>, String> {
+        let layout = tile_layout(options)?;
+        let plan = self.subpass_plan(options, layout, true)?;
+        self.submit_frame(&plan, &mut Recording::default())?;
+        let targets = plan
+            .gbuffer
+            .iter()
+            .map(|(_, buffer)| self.vulkan.read_buffer(buffer))
+            .collect::<Result<Vec<_>, String>>()?;
+        Ok(crate::renderer::texels_of(
+            &targets,
+            (plan.width * plan.height) as usize,
+            layout.layout().words(),
+        ))
+    }
+
+    /// The subpass path: one render pass, one subpass, six pipelines. With `store_gbuffer`
+    /// (the debug view) the G-buffer is stored and only the geometry drawn.
     fn subpass_plan(
         &self,
         options: &Options,
         layout: crate::gbuffers::SeedLayout,
+        store_gbuffer: bool,
     ) -> Result<Plan, String> {
         let model = layout.layout();
         let (include, interface) = includes::include(&model, Include::SubpassPacked, 1)
@@ -241,17 +263,29 @@ impl VulkanRenderer {
         }
         let (width, height) = (options.width, options.height);
         let transient = vk::ImageUsageFlags::TRANSIENT_ATTACHMENT;
+        // The debug view stores the G-buffer to copy it out; otherwise it is transient.
+        let kept = if store_gbuffer {
+            vk::ImageUsageFlags::TRANSFER_SRC
+        } else {
+            transient
+        };
         let mut views = Vec::new();
-        let mut memory = Vec::new();
+        let mut gbuffer = Vec::new();
         for _ in 0..targets {
             let usage = vk::ImageUsageFlags::COLOR_ATTACHMENT
                 | vk::ImageUsageFlags::INPUT_ATTACHMENT
-                | transient;
-            let (_, view, kind) = self
+                | kept;
+            let (image, view, _) = self
                 .vulkan
                 .image(PACKED_FORMAT, (width, height, 1), usage)?;
             views.push(view);
-            memory.push(kind);
+            if store_gbuffer {
+                let words = (width * height * 4) as usize;
+                let buffer = self
+                    .vulkan
+                    .host_buffer(words, vk::BufferUsageFlags::TRANSFER_DST)?;
+                gbuffer.push((image, buffer));
+            }
         }
         let (output, output_view, _) = self.vulkan.image(
             OUTPUT_FORMAT,
@@ -268,8 +302,13 @@ impl VulkanRenderer {
 
         // Attachments: the G-buffer targets (cleared, never stored, GENERAL: read and written
         // in the same subpass), the output (stored), depth (never stored).
+        let gbuffer_layout = if store_gbuffer {
+            vk::ImageLayout::TRANSFER_SRC_OPTIMAL
+        } else {
+            vk::ImageLayout::GENERAL
+        };
         let mut descriptions: Vec<vk::AttachmentDescription> = (0..targets)
-            .map(|_| attachment_description(PACKED_FORMAT, false, vk::ImageLayout::GENERAL))
+            .map(|_| attachment_description(PACKED_FORMAT, store_gbuffer, gbuffer_layout))
             .collect();
         descriptions.push(attachment_description(
             OUTPUT_FORMAT,
@@ -406,16 +445,19 @@ impl VulkanRenderer {
             pipeline_stages.push(Stage { name, pipeline });
         }
         let mut draws = vec![(0, Draw::Mesh)];
-        draws.extend(
-            (0..DECALS.len()).map(|decal| (1, Draw::Volume((POINT_LIGHT_COUNT + decal) as u32))),
-        );
-        draws.push((2, Draw::Fullscreen));
-        draws.extend((0..POINT_LIGHT_COUNT).map(|light| (3, Draw::Volume(light as u32))));
-        draws.push((4, Draw::Fullscreen));
-        draws.push((5, Draw::Fullscreen));
+        if !store_gbuffer {
+            draws.extend(
+                (0..DECALS.len())
+                    .map(|decal| (1, Draw::Volume((POINT_LIGHT_COUNT + decal) as u32))),
+            );
+            draws.push((2, Draw::Fullscreen));
+            draws.extend((0..POINT_LIGHT_COUNT).map(|light| (3, Draw::Volume(light as u32))));
+            draws.push((4, Draw::Fullscreen));
+            draws.push((5, Draw::Fullscreen));
+        }
 
         let mut attachments: Vec<(Attachment, bool)> = (0..targets)
-            .map(|index| (named(&format!("gbuffer{index}"), 16), false))
+            .map(|index| (named(&format!("gbuffer{index}"), 16), store_gbuffer))
             .collect();
         attachments.push((named("output", 4), true));
         attachments.push((named("depth", 4), false));
@@ -439,6 +481,7 @@ impl VulkanRenderer {
                 (width * height) as usize,
                 vk::BufferUsageFlags::TRANSFER_DST,
             )?,
+            gbuffer,
             width,
             height,
         })
@@ -624,6 +667,7 @@ impl VulkanRenderer {
                 (width * height) as usize,
                 vk::BufferUsageFlags::TRANSFER_DST,
             )?,
+            gbuffer: Vec::new(),
             width,
             height,
         })
@@ -756,6 +800,21 @@ impl VulkanRenderer {
                             depth: 1,
                         })],
                 );
+                for (image, buffer) in &plan.gbuffer {
+                    device.cmd_copy_image_to_buffer(
+                        commands,
+                        *image,
+                        vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                        buffer.buffer,
+                        &[vk::BufferImageCopy::default()
+                            .image_subresource(color_layers(0))
+                            .image_extent(vk::Extent3D {
+                                width: plan.width,
+                                height: plan.height,
+                                depth: 1,
+                            })],
+                    );
+                }
                 let to_host = vk::MemoryBarrier::default()
                     .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
                     .dst_access_mask(vk::AccessFlags::HOST_READ);
