@@ -34,9 +34,10 @@ pub struct Translation {
 pub fn module(wgsl: &str) -> Result<(naga::Module, naga::valid::ModuleInfo), String> {
     let module = naga::front::wgsl::parse_str(wgsl)
         .map_err(|error| format!("the renderer's WGSL: {}", error.emit_to_string(wgsl)))?;
+    // The exact decode of half-float fields uses `unpack2x16float`, behind this capability.
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default(),
+        naga::valid::Capabilities::default() | naga::valid::Capabilities::SHADER_FLOAT16_IN_FLOAT32,
     )
     .validate(&module)
     .map_err(|error| format!("the renderer's WGSL: {}", error.emit_to_string(wgsl)))?;
@@ -56,7 +57,7 @@ pub fn translate(
     let mut binding_map = glsl::BindingMap::default();
     for (_, global) in module.global_variables.iter() {
         if let Some(binding) = &global.binding {
-            binding_map.insert(binding.clone(), binding.binding as u8);
+            binding_map.insert(*binding, binding.binding as u8);
         }
     }
     let options = glsl::Options {

@@ -417,9 +417,7 @@ impl VulkanRenderer {
             ("resolve", "surfaces_vertex", format!(
                 "void main() {{\n    frame_colour = resolve_colour(load_{snake}());\n}}\n"
             ), Depth::Surfaces, output_only.clone()),
-            ("sky", "sky_vertex", format!(
-                "void main() {{\n    frame_colour = sky_colour(gl_FragCoord.xy);\n}}\n"
-            ), Depth::Sky, output_only),
+            ("sky", "sky_vertex", "void main() {\n    frame_colour = sky_colour(gl_FragCoord.xy);\n}\n".to_string(), Depth::Sky, output_only),
         ];
         let translation = glsl::translate(
             &wgsl,
