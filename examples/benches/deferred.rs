@@ -1,28 +1,70 @@
-//! The renderer's cost per G-buffer configuration: bytes per pixel, external bandwidth per
-//! frame in the bandwidth units of Arm's tile-memory article (1 BU = width x height x 4 bytes
-//! read or written), and the measured GPU frame time (timestamp queries where the adapter has
-//! them, else wall clock around a synchronised submit; median of 20 frames) at 1280x720 and
-//! 1920x1080, packed against classic, on the adapter at hand; then the PSNR and largest error
-//! of every configuration (G-buffer, sun and IBL forms) against the CPU reference. Run with `cargo bench -p examples --bench deferred`.
+//! The renderer's cost: per G-buffer on wgpu, and per path of the on-tile backends (GLES and
+//! Vulkan), the bytes each frame loads and stores, computed from the load and store operations
+//! and formats the frame's passes really used (`on_tile::recording`), in the bandwidth units of
+//! Arm's tile-memory article (1 BU = width x height x 4 bytes), and the median frame time at
+//! 1280x720 and 1920x1080 (wgpu: timestamp queries where the adapter has them; GLES and Vulkan:
+//! wall clock around a synchronised frame). Then every wgpu configuration's PSNR against the
+//! CPU reference. Run with `cargo bench -p gbuffer-render --bench deferred`.
+//!
+//! On a CPU rasteriser (llvmpipe, lavapipe) there is no tile memory: its times are a CPU's,
+//! and the traffic the fused paths save is counted, not felt.
 
 use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
 use gbuffer_render::image::compare;
+use gbuffer_render::on_tile::gles::GlesRenderer;
+use gbuffer_render::on_tile::recording::Recording;
+use gbuffer_render::on_tile::vulkan::VulkanRenderer;
+use gbuffer_render::on_tile::{Path, TileOptions};
 use gbuffer_render::reference;
-use gbuffer_render::renderer::{IblForm, Options, Renderer, SunForm};
+use gbuffer_render::renderer::{Frame, IblForm, Options, Renderer, SunForm};
 
-const FRAMES: usize = 20;
+const FRAMES: usize = 10;
+const SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];
 
-/// External traffic of one frame in BU, as this renderer runs on wgpu: the G-buffer written
-/// and read back (g BU each), the HDR light written and read (2 BU each, Rgba16Float), the
-/// 8-bit output written (1 BU). Fused on tile (pixel local storage, framebuffer fetch or
-/// subpasses) only the output leaves the chip: 1 BU.
-fn bandwidth_units(gbuffer: &GBuffer) -> f64 {
-    let gbuffer_units = f64::from(gbuffer.bytes_per_pixel()) / 4.0;
-    2.0 * gbuffer_units + 2.0 * 2.0 + 1.0
+fn options(gbuffer: GBuffer, (width, height): (u32, u32)) -> Options {
+    Options {
+        gbuffer,
+        sun: SunForm::Ggx,
+        ibl: IblForm::Lut,
+        width,
+        height,
+    }
+}
+
+/// The median of some frame times, in milliseconds, or why there is none.
+fn median_ms(times: Result<Vec<f64>, String>) -> String {
+    match times {
+        Ok(mut times) if !times.is_empty() => {
+            times.sort_by(f64::total_cmp);
+            format!("{:.1}", times[times.len() / 2] * 1e3)
+        }
+        Ok(_) => "n/a".into(),
+        Err(error) => {
+            eprintln!("{error}");
+            "n/a".into()
+        }
+    }
+}
+
+/// One row: the traffic of a recorded frame and the times at both sizes.
+fn row(name: &str, recording: &Recording, times: [String; 2]) {
+    let (width, height) = SIZES[1];
+    let traffic = recording.traffic(width, height);
+    println!(
+        "{:<28} {:>6} {:>11.1} {:>11.1} {:>6.1} {:>12} {:>12}",
+        name,
+        recording.passes(),
+        traffic.loaded as f64 / 1e6,
+        traffic.stored as f64 / 1e6,
+        traffic.bandwidth_units(width, height),
+        times[0],
+        times[1]
+    );
 }
 
 fn main() {
-    let renderer = match Renderer::new(&|message| eprintln!("{message}")) {
+    let progress = |message: &str| eprintln!("{message}");
+    let renderer = match Renderer::new(&progress) {
         Ok(renderer) => renderer,
         Err(error) => {
             eprintln!("deferred bench: {error}");
@@ -35,60 +77,72 @@ fn main() {
         "wall clock around a synchronised submit"
     };
     println!(
-        "adapter: {} ({:?}); frame times from {clock}, median of {FRAMES}",
+        "wgpu adapter: {} ({:?}); frame times from {clock}, median of {FRAMES}",
         renderer.adapter.name, renderer.adapter.backend
     );
+    println!("traffic per frame at 1920x1080 from the passes' load and store operations:");
     println!(
-        "{:<18} {:>9} {:>11} {:>12} {:>10} {:>14} {:>14}",
-        "G-buffer",
-        "bytes/px",
-        "fits 128b",
-        "BU (wgpu)",
-        "BU (tile)",
-        "1280x720 ms",
-        "1920x1080 ms"
+        "{:<28} {:>6} {:>11} {:>11} {:>6} {:>12} {:>12}",
+        "G-buffer / path", "passes", "MB loaded", "MB stored", "BU", "1280x720 ms", "1920x1080 ms"
     );
     let gbuffers = SeedLayout::ALL
         .into_iter()
         .map(GBuffer::Packed)
         .chain([GBuffer::Classic]);
     for gbuffer in gbuffers {
-        let mut times = Vec::new();
-        for (width, height) in [(1280, 720), (1920, 1080)] {
-            let options = Options {
-                gbuffer: gbuffer.clone(),
-                sun: SunForm::Ggx,
-                ibl: IblForm::Lut,
-                width,
-                height,
-            };
-            match renderer.time_frames(&options, FRAMES) {
-                Ok(mut frames) => {
-                    frames.sort_by(f64::total_cmp);
-                    times.push(format!("{:.2}", frames[frames.len() / 2] * 1e3));
-                }
-                Err(error) => {
-                    eprintln!("{}: {error}", gbuffer.name());
-                    times.push("n/a".into());
-                }
-            }
+        let recorded = renderer.render_recorded(&options(gbuffer.clone(), SIZES[1]));
+        let times = SIZES
+            .map(|size| median_ms(renderer.time_frames(&options(gbuffer.clone(), size), FRAMES)));
+        match recorded {
+            Ok((_, recording)) => row(&format!("wgpu {}", gbuffer.name()), &recording, times),
+            Err(error) => eprintln!("{}: {error}", gbuffer.name()),
         }
-        let bytes = gbuffer.bytes_per_pixel();
-        println!(
-            "{:<18} {:>9} {:>11} {:>12.1} {:>10.1} {:>14} {:>14}",
-            gbuffer.name(),
-            bytes,
-            if bytes <= 16 { "yes" } else { "no" },
-            bandwidth_units(&gbuffer),
-            1.0,
-            times[0],
-            times[1]
-        );
     }
 
-    // Every configuration against the CPU reference, at a size the reference renders quickly.
+    // The on-tile backends, for the layouts they keep on tile.
+    for layout in [SeedLayout::MobileMetallic, SeedLayout::FutureMetallic] {
+        let tile = |path, size| TileOptions {
+            options: options(GBuffer::Packed(layout), size),
+            path,
+        };
+        match GlesRenderer::new(&progress) {
+            Ok(gles) => {
+                for path in [Path::TwoPass, Path::FetchPacked, Path::FetchNative] {
+                    let name = format!("gles {} {}", path.flag(), layout.flag());
+                    match gles.render(&tile(path, SIZES[1])) {
+                        Ok((_, recording)) => {
+                            let times = SIZES
+                                .map(|size| median_ms(gles.time_frames(&tile(path, size), FRAMES)));
+                            row(&name, &recording, times);
+                        }
+                        Err(error) => eprintln!("{name}: {error}"),
+                    }
+                }
+            }
+            Err(error) => eprintln!("GLES: {error}"),
+        }
+        match VulkanRenderer::new(&progress) {
+            Ok(vulkan) => {
+                for path in [Path::TwoPass, Path::Subpass] {
+                    let name = format!("vulkan {} {}", path.flag(), layout.flag());
+                    match vulkan.render(&tile(path, SIZES[1])) {
+                        Ok((_, recording)) => {
+                            let times = SIZES.map(|size| {
+                                median_ms(vulkan.time_frames(&tile(path, size), FRAMES))
+                            });
+                            row(&name, &recording, times);
+                        }
+                        Err(error) => eprintln!("{name}: {error}"),
+                    }
+                }
+            }
+            Err(error) => eprintln!("Vulkan: {error}"),
+        }
+    }
+
+    // Every wgpu configuration against the CPU reference, at a size it renders quickly.
     let (width, height) = (320, 180);
-    let reference = reference::render(
+    let reference: Frame = reference::render(
         width,
         height,
         gbuffer_render::scene::reference_features(),
@@ -111,11 +165,9 @@ fn main() {
             (SunForm::Approx, IblForm::Approx),
         ] {
             let options = Options {
-                gbuffer: gbuffer.clone(),
                 sun,
                 ibl,
-                width,
-                height,
+                ..options(gbuffer.clone(), (width, height))
             };
             match renderer.render(&options) {
                 Ok(frame) => {

@@ -187,7 +187,7 @@ fn render(
             if store_gbuffer.is_some() {
                 store(renderer.gbuffer_words(options)?)?;
             }
-            return renderer.render(options);
+            renderer.render_recorded(options)?
         }
         Backend::Gles => {
             let renderer = GlesRenderer::new(progress)?;

@@ -20,13 +20,14 @@ use wgpu::util::DeviceExt;
 use gbuffer::packing::Layout;
 use gbuffer_scenes::lighting::{self, Forms};
 use gbuffer_scenes::quantity::Quantity;
-use gbuffer_scenes::Solution;
+use gbuffer_scenes::{Feature, Solution};
 
 use crate::gbuffers::{GBuffer, SURFACE_WGSL};
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::{Mesh, Vertex};
-use crate::scene;
-use crate::shaders::{self, library, INPUTS_WGSL};
+use crate::on_tile::recording::{Attachment, Call, Load, Recording};
+use crate::scene::{self, POINT_LIGHT_COUNT};
+use crate::shaders::{self, library, INPUTS_WGSL, VOLUME_WGSL};
 
 pub use gbuffer_scenes::lighting::{IblForm, SunForm};
 
@@ -227,18 +228,27 @@ impl Renderer {
 
     /// Renders a frame and reads it back.
     pub fn render(&self, options: &Options) -> Result<Frame, String> {
+        self.render_recorded(options).map(|(frame, _)| frame)
+    }
+
+    /// Renders a frame and reads it back, with the passes it made.
+    pub fn render_recorded(&self, options: &Options) -> Result<(Frame, Recording), String> {
         let passes = self.passes(options)?;
-        self.queue.submit([passes.encode(self, None)]);
+        let mut recording = Recording::default();
+        self.queue
+            .submit([passes.encode(self, None, &mut recording)]);
+        recording.push(Call::ReadBack("output".into()));
         let pixels = self
             .read_texture(&passes.output, options.width, options.height, 4)?
             .chunks_exact(4)
             .map(|pixel| [pixel[0], pixel[1], pixel[2], pixel[3]])
             .collect();
-        Ok(Frame {
+        let frame = Frame {
             width: options.width,
             height: options.height,
             pixels,
-        })
+        };
+        Ok((frame, recording))
     }
 
     /// Whether frame times come from timestamp queries (else wall clock around the submit).
@@ -257,6 +267,7 @@ impl Renderer {
                 self.timestamps
                     .as_ref()
                     .map(|timestamps| &timestamps.query_set),
+                &mut Recording::default(),
             );
             let start = Instant::now();
             self.queue.submit([commands]);
@@ -274,14 +285,15 @@ impl Renderer {
     }
 
     /// A render pipeline of `source`'s entry points (vertex, fragment) writing `formats`;
-    /// `geometry` draws the mesh with a depth test, else a fullscreen triangle.
+    /// `geometry` draws the mesh with a depth test, else vertices without buffers (a
+    /// fullscreen triangle, a light volume); `additive` blends what it writes onto the target.
     fn render_pipeline(
         &self,
         label: &str,
         source: String,
         (vertex_entry, fragment_entry): (&str, &str),
         formats: &[wgpu::TextureFormat],
-        geometry: bool,
+        (geometry, additive): (bool, bool),
     ) -> wgpu::RenderPipeline {
         let module = self
             .device
@@ -289,9 +301,23 @@ impl Renderer {
                 label: Some(label),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
+        let add = wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::One,
+            operation: wgpu::BlendOperation::Add,
+        };
         let targets: Vec<Option<wgpu::ColorTargetState>> = formats
             .iter()
-            .map(|format| Some((*format).into()))
+            .map(|&format| {
+                Some(wgpu::ColorTargetState {
+                    format,
+                    blend: additive.then_some(wgpu::BlendState {
+                        color: add,
+                        alpha: add,
+                    }),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })
+            })
             .collect();
         let vertex_buffers = [Some(wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<Vertex>() as u64,
@@ -342,7 +368,7 @@ impl Renderer {
             gbuffer_wgsl(options, 1.0),
             ("geometry_vertex", "gbuffer_unpainted_main"),
             &formats,
-            true,
+            (true, false),
         );
         let texture = |format| {
             self.device.create_texture(&wgpu::TextureDescriptor {
@@ -555,6 +581,13 @@ fn texture_with_data(
 
 /// The three passes of one configuration, with their targets.
 struct Passes {
+    /// The point lights' volumes: their pipeline and bindings (seed and classic layouts; a
+    /// solved layout's lighting function loops over its lights).
+    point_lights: Option<(wgpu::RenderPipeline, wgpu::BindGroup)>,
+    /// The G-buffer targets as the recording names them, with their bytes per pixel.
+    gbuffer_attachments: Vec<Attachment>,
+    /// What the lighting pass samples of the frame (the G-buffer, the depth buffer).
+    lighting_samples: Vec<Attachment>,
     gbuffer_views: Vec<wgpu::TextureView>,
     gbuffer_clear: Vec<wgpu::Color>,
     depth_view: wgpu::TextureView,
@@ -707,28 +740,36 @@ pub fn lighting_pass_wgsl(options: &Options, positions: Positions) -> Result<Str
             };
             (
                 format!("{}\n{}\n{texel_positions}\n{bindings}", layout.wgsl(), layout.decode_wgsl()),
-                format!("let targets = {targets};\n    if targets.first.x == 0xffffffffu {{\n        return sky(direction);\n    }}\n    let texel = unpack_{snake}_targets(targets);\n    let shading = decode_texel(texel);"),
+                format!("let targets = {targets};\n    if targets.first.x == 0xffffffffu {{\n        SKY\n    }}\n    let texel = unpack_{snake}_targets(targets);\n    let shading = decode_texel(texel);"),
             )
         }
         GBuffer::Classic => (
             "@group(0) @binding(10) var gbuffer_light: texture_2d<f32>;\n@group(0) @binding(11) var gbuffer_normal: texture_2d<f32>;\n@group(0) @binding(12) var gbuffer_colour: texture_2d<f32>;\n".to_string(),
-            "let light = textureLoad(gbuffer_light, pixel, 0);\n    if light.a == 0.0 {\n        return sky(direction);\n    }\n    let normal_roughness = textureLoad(gbuffer_normal, pixel, 0);\n    let colour = textureLoad(gbuffer_colour, pixel, 0);\n    let colours = metallic_workflow(colour.rgb, colour.a, DIELECTRIC_F0);\n    let shading = Shading(unorm_to_normal(normal_roughness.xyz), normal_roughness.w, colours.diffuse, colours.f0, light.rgb);".to_string(),
+            "let light = textureLoad(gbuffer_light, pixel, 0);\n    if light.a == 0.0 {\n        SKY\n    }\n    let normal_roughness = textureLoad(gbuffer_normal, pixel, 0);\n    let colour = textureLoad(gbuffer_colour, pixel, 0);\n    let colours = metallic_workflow(colour.rgb, colour.a, DIELECTRIC_F0);\n    let shading = Shading(unorm_to_normal(normal_roughness.xyz), normal_roughness.w, colours.diffuse, colours.f0, light.rgb);".to_string(),
         ),
     };
+    // The texel at `pixel` as `shading`, and what a sky pixel does instead.
+    let read = |sky: &str| read.replace("SKY", sky);
     Ok(format!(
-        "{}\n{bindings}
-// The radiance the camera sees at a pixel.
+        "{}\n{VOLUME_WGSL}\n{bindings}
+// The image-based light and the sun at a pixel (the sky where there is no surface).
 fn pixel_radiance(position: vec4<f32>) -> vec3<f32> {{
     let pixel = vec2<i32>(position.xy);
     let direction = camera_ray(position.xy, VIEWPORT);
-    {read}
+    {read_radiance}
     let view = -direction;
-    var radiance = environment_light(shading, view) + sun_light(shading, view);
-    if SCENE_POINT_LIGHTS {{
-        let surface = {position};
-        for (var index = 0u; index < POINT_LIGHT_COUNT; index++) {{
-            radiance += point_light(shading, view, surface, index);
-        }}
+    return environment_light(shading, view) + sun_light(shading, view);
+}}
+
+// Every point light at a pixel, one after the other (the on-tile two-pass path's way).
+fn pixel_point_lights(position: vec4<f32>) -> vec3<f32> {{
+    let pixel = vec2<i32>(position.xy);
+    let direction = camera_ray(position.xy, VIEWPORT);
+    {read_dark}
+    let surface = {position};
+    var radiance = vec3<f32>(0.0);
+    for (var index = 0u; index < POINT_LIGHT_COUNT; index++) {{
+        radiance += point_light(shading, -direction, surface, index);
     }}
     return radiance;
 }}
@@ -738,13 +779,44 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
     return vec4<f32>(pixel_radiance(position), 1.0);
 }}
 
+struct LightVolume {{
+    @builtin(position) clip: vec4<f32>,
+    @location(0) @interpolate(flat) light: u32,
+}}
+
+// Point light `light`'s volume: the screen rectangle around its reach (instance `light`).
+@vertex
+fn light_volume_vertex(@builtin(vertex_index) vertex: u32, @builtin(instance_index) light: u32) -> LightVolume {{
+    return LightVolume(vec4<f32>(volume_rectangle(vertex, light), 0.0, 1.0), light);
+}}
+
+// Point light `light` on the surfaces it reaches in its volume, added by blending.
+@fragment
+fn point_light_main(volume: LightVolume) -> @location(0) vec4<f32> {{
+    let pixel = vec2<i32>(volume.clip.xy);
+    let direction = camera_ray(volume.clip.xy, VIEWPORT);
+    {read_discard}
+    let surface = {position};
+    if distance(POINT_LIGHT_POSITIONS[volume.light], surface) >= POINT_LIGHT_RADIUS {{
+        discard;
+    }}
+    return vec4<f32>(point_light(shading, -direction, surface, volume.light), 0.0);
+}}
+
 // Lighting and tone mapping in one pass (the on-tile backends' two-pass path).
 @fragment
 fn lighting_resolve_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
-    return display_colour(pixel_radiance(position));
+    var radiance = pixel_radiance(position);
+    if SCENE_POINT_LIGHTS {{
+        radiance += pixel_point_lights(position);
+    }}
+    return display_colour(radiance);
 }}
 ",
         lighting_prelude(options, positions),
+        read_radiance = read("return sky(direction);"),
+        read_dark = read("return vec3<f32>(0.0);"),
+        read_discard = read("discard;"),
         position = match positions {
             Positions::DepthBuffer => "surface_position(pixel, direction)",
             Positions::Texel => "texel_position(texel, direction)",
@@ -902,7 +974,7 @@ impl Passes {
         let output_view = view(&output);
 
         let pipeline = |label, source, entries, formats: &[wgpu::TextureFormat], geometry| {
-            renderer.render_pipeline(label, source, entries, formats, geometry)
+            renderer.render_pipeline(label, source, entries, formats, (geometry, false))
         };
         let gbuffer = pipeline(
             "gbuffer",
@@ -914,6 +986,21 @@ impl Passes {
         let lighting_source = lighting_pass_wgsl(options, Positions::DepthBuffer)
             .expect("positions from the depth buffer suit every layout");
         let lighting_bindings_used = shaders::used_bindings(&lighting_source, "lighting_main");
+        // Seed and classic layouts draw the point lights as volumes (a solved layout's lighting
+        // function loops over its lights): the pipeline, and the bindings it reads.
+        let point_lights = (options.gbuffer.features().contains(Feature::PointLights)
+            && !matches!(options.gbuffer, GBuffer::Solved(_)))
+        .then(|| {
+            let pipeline = renderer.render_pipeline(
+                "point lights",
+                lighting_source.clone(),
+                ("light_volume_vertex", "point_light_main"),
+                &[HDR_FORMAT],
+                (false, true),
+            );
+            let used = shaders::used_bindings(&lighting_source, "point_light_main");
+            (pipeline, used)
+        });
         let lighting = pipeline(
             "lighting",
             lighting_source,
@@ -952,18 +1039,62 @@ impl Passes {
             entries.push(texture(10 + index as u32, target_view));
         }
         // The pass binds only what its forms and terms read.
+        let all_entries = entries.clone();
         entries.retain(|entry| lighting_bindings_used.contains(&entry.binding));
         let lighting_bindings = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &lighting.get_bind_group_layout(0),
             entries: &entries,
         });
+        // The light volumes read what the lighting pass reads, less what their forms skip.
+        let mut sampled = lighting_bindings_used.clone();
+        let point_lights = point_lights.map(|(pipeline, used)| {
+            sampled.extend(&used);
+            let entries: Vec<wgpu::BindGroupEntry> = all_entries
+                .iter()
+                .filter(|entry| used.contains(&entry.binding))
+                .cloned()
+                .collect();
+            let bindings = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: None,
+                layout: &pipeline.get_bind_group_layout(0),
+                entries: &entries,
+            });
+            (pipeline, bindings)
+        });
         let tonemap_bindings = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &tonemap.get_bind_group_layout(0),
             entries: &[texture(0, &hdr_view)],
         });
+        let gbuffer_attachments: Vec<Attachment> = options
+            .gbuffer
+            .target_formats()
+            .iter()
+            .enumerate()
+            .map(|(index, format)| Attachment {
+                name: format!("gbuffer{index}"),
+                bytes_per_pixel: format.block_copy_size(None).unwrap_or(0),
+            })
+            .collect();
+        let depth_attachment = Attachment {
+            name: "depth".into(),
+            bytes_per_pixel: 4,
+        };
+        sampled.sort_unstable();
+        sampled.dedup();
+        let lighting_samples = sampled
+            .iter()
+            .filter_map(|&binding| match binding {
+                4 => Some(depth_attachment.clone()),
+                10.. => gbuffer_attachments.get(binding as usize - 10).cloned(),
+                _ => None,
+            })
+            .collect();
         Passes {
+            point_lights,
+            gbuffer_attachments,
+            lighting_samples,
             gbuffer_views,
             gbuffer_clear,
             depth_view,
@@ -979,13 +1110,57 @@ impl Passes {
         }
     }
 
-    /// The frame's commands; with a query set, a timestamp at the start of the G-buffer pass
+    /// The frame's commands, and in `recording` the passes they make (every attachment is
+    /// cleared and stored); with a query set, a timestamp at the start of the G-buffer pass
     /// (query 0) and at the end of the tone-mapping pass (query 1).
     fn encode(
         &self,
         renderer: &Renderer,
         timestamps: Option<&wgpu::QuerySet>,
+        recording: &mut Recording,
     ) -> wgpu::CommandBuffer {
+        let named = |name: &str, bytes_per_pixel| Attachment {
+            name: name.into(),
+            bytes_per_pixel,
+        };
+        let mut gbuffer_pass: Vec<Attachment> = self.gbuffer_attachments.clone();
+        gbuffer_pass.push(named("depth", 4));
+        let passes = [
+            (gbuffer_pass, "gbuffer", Vec::new()),
+            (
+                vec![named("hdr", 8)],
+                "lighting",
+                self.lighting_samples.clone(),
+            ),
+            (vec![named("output", 4)], "tonemap", vec![named("hdr", 8)]),
+        ];
+        for (attachments, program, samples) in passes {
+            recording.push(Call::BeginPass {
+                attachments: attachments
+                    .iter()
+                    .map(|attachment| (attachment.clone(), Load::Clear))
+                    .collect(),
+            });
+            for sample in samples {
+                recording.push(Call::Sample(sample));
+            }
+            recording.push(Call::Draw {
+                program: program.into(),
+            });
+            if program == "lighting" && self.point_lights.is_some() {
+                for _ in 0..POINT_LIGHT_COUNT {
+                    recording.push(Call::Draw {
+                        program: "point light".into(),
+                    });
+                }
+            }
+            recording.push(Call::EndPass {
+                stored: attachments
+                    .into_iter()
+                    .map(|attachment| attachment.name)
+                    .collect(),
+            });
+        }
         let mut encoder = renderer.device.create_command_encoder(&Default::default());
         fn attachment(
             view: &wgpu::TextureView,
@@ -1038,8 +1213,8 @@ impl Passes {
         }
         let fullscreen = |encoder: &mut wgpu::CommandEncoder,
                           view: &wgpu::TextureView,
-                          pipeline: &wgpu::RenderPipeline,
-                          bindings: &wgpu::BindGroup,
+                          (pipeline, bindings): (&wgpu::RenderPipeline, &wgpu::BindGroup),
+                          volumes: Option<&(wgpu::RenderPipeline, wgpu::BindGroup)>,
                           timestamp_writes| {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: None,
@@ -1052,19 +1227,26 @@ impl Passes {
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, bindings, &[]);
             pass.draw(0..3, 0..1);
+            if let Some((pipeline, bindings)) = volumes {
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, bindings, &[]);
+                for light in 0..POINT_LIGHT_COUNT as u32 {
+                    pass.draw(0..6, light..light + 1);
+                }
+            }
         };
         fullscreen(
             &mut encoder,
             &self.hdr_view,
-            &self.lighting,
-            &self.lighting_bindings,
+            (&self.lighting, &self.lighting_bindings),
+            self.point_lights.as_ref(),
             None,
         );
         fullscreen(
             &mut encoder,
             &self.output_view,
-            &self.tonemap,
-            &self.tonemap_bindings,
+            (&self.tonemap, &self.tonemap_bindings),
+            None,
             at(None, Some(1)),
         );
         encoder.finish()

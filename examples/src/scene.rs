@@ -447,21 +447,17 @@ fn clip_position(position: vec3<f32>, size: vec2<f32>, y_sign: f32) -> vec4<f32>
 
 // How strongly decal `decal` paints `point`: 1 inside its box, fading out over the outer 30%.
 fn decal_weight(decal: u32, point: vec3<f32>) -> f32 {{
-    var centres = DECAL_CENTRES;
-    var half_sizes = DECAL_HALF_SIZES;
-    let fade = vec3<f32>(1.0) - smoothstep(vec3<f32>(0.7), vec3<f32>(1.0), abs(point - centres[decal]) / half_sizes[decal]);
+    let fade = vec3<f32>(1.0) - smoothstep(vec3<f32>(0.7), vec3<f32>(1.0), abs(point - DECAL_CENTRES[decal]) / DECAL_HALF_SIZES[decal]);
     return fade.x * fade.y * fade.z;
 }}
 
 // Decal `decal`'s paint over a base colour and roughness, by `weight`.
 fn paint_base_colour(base_colour: vec3<f32>, decal: u32, weight: f32) -> vec3<f32> {{
-    var colours = DECAL_COLOURS;
-    return mix(base_colour, colours[decal], weight);
+    return mix(base_colour, DECAL_COLOURS[decal], weight);
 }}
 
 fn paint_roughness(roughness: f32, decal: u32, weight: f32) -> f32 {{
-    var roughness_values = DECAL_ROUGHNESS;
-    return roughness + (roughness_values[decal] - roughness) * weight;
+    return roughness + (DECAL_ROUGHNESS[decal] - roughness) * weight;
 }}
 
 fn sky(direction: vec3<f32>) -> vec3<f32> {{
@@ -544,8 +540,7 @@ fn surface_at(object: u32, point: vec3<f32>, interpolated_normal: vec3<f32>) -> 
     if object < GROUND_OBJECT {
         let row = object / SCENE_COLUMNS;
         let column = object % SCENE_COLUMNS;
-        var materials = ROW_MATERIALS;
-        let material = materials[row];
+        let material = ROW_MATERIALS[row];
         surface.normal = normalize(interpolated_normal);
         surface.roughness = f32(column) / f32(SCENE_COLUMNS - 1u);
         surface.base_colour = material.rgb;

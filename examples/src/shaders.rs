@@ -58,6 +58,43 @@ fn geometry_vertex(@location(0) position: vec3<f32>, @location(1) normal: vec3<f
     )
 }
 
+/// `fn volume_rectangle(vertex: u32, volume: u32) -> vec2<f32>`: corner `vertex` (0..6, two
+/// triangles) of the screen rectangle, in normalised device coordinates, around volume
+/// `volume`'s box: point light `volume` (its reach) below POINT_LIGHT_COUNT, else decal
+/// `volume - POINT_LIGHT_COUNT`; the whole screen when the box reaches behind the near plane.
+/// Light volumes keep the cost of a light to the pixels it can reach.
+pub const VOLUME_WGSL: &str = "
+fn volume_rectangle(vertex: u32, volume: u32) -> vec2<f32> {
+    var centre: vec3<f32>;
+    var half_size: vec3<f32>;
+    if volume < POINT_LIGHT_COUNT {
+        centre = POINT_LIGHT_POSITIONS[volume];
+        half_size = vec3<f32>(POINT_LIGHT_RADIUS);
+    } else {
+        centre = DECAL_CENTRES[volume - POINT_LIGHT_COUNT];
+        half_size = DECAL_HALF_SIZES[volume - POINT_LIGHT_COUNT];
+    }
+    var low = vec2<f32>(1.0);
+    var high = vec2<f32>(-1.0);
+    var behind = false;
+    for (var corner = 0u; corner < 8u; corner++) {
+        let sign = vec3<f32>(f32(corner & 1u), f32((corner >> 1u) & 1u), f32((corner >> 2u) & 1u)) * 2.0 - vec3<f32>(1.0);
+        let clip = clip_position(centre + sign * half_size, VIEWPORT, CLIP_Y_SIGN);
+        behind = behind || clip.w <= CAMERA_NEAR;
+        let ndc = clip.xy / max(clip.w, 1e-6);
+        low = min(low, ndc);
+        high = max(high, ndc);
+    }
+    if behind {
+        low = vec2<f32>(-1.0);
+        high = vec2<f32>(1.0);
+    }
+    // (low, low) (high, low) (high, high), (low, low) (high, high) (low, high).
+    var corners = array<vec2<f32>, 6>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0));
+    return mix(clamp(low, vec2<f32>(-1.0), vec2<f32>(1.0)), clamp(high, vec2<f32>(-1.0), vec2<f32>(1.0)), corners[vertex]);
+}
+";
+
 /// The binding of the inputs' sampler (GLSL combines it with each texture).
 pub const SAMPLER_BINDING: u32 = 3;
 
@@ -125,12 +162,13 @@ fn sun_light(shading: Shading, view: vec3<f32>) -> vec3<f32> {{
 
 // Point light `index` at a surface at `position`, windowed to 0 at POINT_LIGHT_RADIUS.
 fn point_light(shading: Shading, view: vec3<f32>, position: vec3<f32>, index: u32) -> vec3<f32> {{
-    var positions = POINT_LIGHT_POSITIONS;
-    var colours = POINT_LIGHT_COLOURS;
-    let to_light = positions[index] - position;
+    let to_light = POINT_LIGHT_POSITIONS[index] - position;
     let distance = length(to_light);
+    if distance >= POINT_LIGHT_RADIUS {{
+        return vec3<f32>(0.0); // the falloff's window is 0 from here on
+    }}
     let falloff = point_light_falloff(distance, POINT_LIGHT_RADIUS);
-    return direct_light(shading, view, to_light / max(distance, 1e-4), colours[index] * falloff);
+    return direct_light(shading, view, to_light / max(distance, 1e-4), POINT_LIGHT_COLOURS[index] * falloff);
 }}
 
 "

@@ -28,7 +28,7 @@ pub mod vulkan;
 use crate::gbuffers::{GBuffer, SeedLayout};
 use crate::renderer::Options;
 use crate::scene;
-use crate::shaders::{self, library, INPUTS_WGSL};
+use crate::shaders::{self, library, INPUTS_WGSL, VOLUME_WGSL};
 
 /// Which API draws the frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -138,43 +138,12 @@ fn sky_vertex(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32
     return vec4<f32>(fullscreen_corner(vertex), 1.0, 1.0);
 }
 
-// The screen rectangle around volume `volume`'s box (the whole screen when it reaches behind
-// the near plane), as two triangles: vertex 0..6. No varying carries the volume on: the
-// fragment stage is told it by the host (llvmpipe's framebuffer fetch of 8- and 10-bit
-// attachments goes wrong in a draw whose fragment shader has inputs).
+// Volume `volume`'s screen rectangle (`volume_rectangle`), over the surfaces. No varying
+// carries the volume on: the fragment stage is told it by the host (llvmpipe's framebuffer
+// fetch of 8- and 10-bit attachments goes wrong in a draw whose fragment shader has inputs).
 @vertex
 fn volume_vertex(@builtin(vertex_index) vertex: u32, @location(0) volume: u32) -> @builtin(position) vec4<f32> {
-    var centre: vec3<f32>;
-    var half_size: vec3<f32>;
-    if volume < POINT_LIGHT_COUNT {
-        var positions = POINT_LIGHT_POSITIONS;
-        centre = positions[volume];
-        half_size = vec3<f32>(POINT_LIGHT_RADIUS);
-    } else {
-        var centres = DECAL_CENTRES;
-        var half_sizes = DECAL_HALF_SIZES;
-        centre = centres[volume - POINT_LIGHT_COUNT];
-        half_size = half_sizes[volume - POINT_LIGHT_COUNT];
-    }
-    var low = vec2<f32>(1.0);
-    var high = vec2<f32>(-1.0);
-    var behind = false;
-    for (var corner = 0u; corner < 8u; corner++) {
-        let sign = vec3<f32>(f32(corner & 1u), f32((corner >> 1u) & 1u), f32((corner >> 2u) & 1u)) * 2.0 - vec3<f32>(1.0);
-        let clip = clip_position(centre + sign * half_size, VIEWPORT, CLIP_Y_SIGN);
-        behind = behind || clip.w <= CAMERA_NEAR;
-        let ndc = clip.xy / max(clip.w, 1e-6);
-        low = min(low, ndc);
-        high = max(high, ndc);
-    }
-    if behind {
-        low = vec2<f32>(-1.0);
-        high = vec2<f32>(1.0);
-    }
-    // Two triangles: (low, low) (high, low) (high, high), (low, low) (high, high) (low, high).
-    var corners = array<vec2<f32>, 6>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0));
-    let position = mix(clamp(low, vec2<f32>(-1.0), vec2<f32>(1.0)), clamp(high, vec2<f32>(-1.0), vec2<f32>(1.0)), corners[vertex]);
-    return vec4<f32>(position, SURFACES_DEPTH, 1.0);
+    return vec4<f32>(volume_rectangle(vertex, volume), SURFACES_DEPTH, 1.0);
 }
 ";
 
@@ -202,9 +171,8 @@ fn sun_and_environment_texel(texel: {texel}, pixel: vec2<f32>) -> {texel} {{
 
 // Whether point light `index` reaches the texel's surface.
 fn point_light_reaches(texel: {texel}, pixel: vec2<f32>, index: u32) -> bool {{
-    var positions = POINT_LIGHT_POSITIONS;
     let position = texel_position(texel, camera_ray(pixel, VIEWPORT));
-    return distance(positions[index], position) < POINT_LIGHT_RADIUS;
+    return distance(POINT_LIGHT_POSITIONS[index], position) < POINT_LIGHT_RADIUS;
 }}
 
 // Point light `index` added into the light accumulation.
@@ -249,7 +217,7 @@ pub fn fused_wgsl(options: &Options, layout: SeedLayout, y_sign: f32) -> String 
         .on_tile_wgsl()
         .expect("tile_layout checked the layout");
     format!(
-        "{}\n{}\n{}\n{INPUTS_WGSL}\n{}\n{}\n{}\n{on_tile}\n{}\n{}\n{VERTEX_WGSL}\n{}",
+        "{}\n{}\n{}\n{INPUTS_WGSL}\n{}\n{}\n{}\n{on_tile}\n{}\n{}\n{VOLUME_WGSL}\n{VERTEX_WGSL}\n{}",
         library(&shaders::MODULES),
         shaders::frame_wgsl(options, y_sign),
         shaders::geometry_wgsl(options),
