@@ -12,6 +12,7 @@ use gbuffer_render::on_tile::{Path, TileOptions};
 use gbuffer_render::reference;
 use gbuffer_render::renderer::{Frame, IblForm, Options, Renderer, SunForm};
 use gbuffer_render::scene::{reference_features, DECALS, POINT_LIGHT_COUNT};
+use gbuffer_testkit::gles::skip_without_driver;
 
 const WIDTH: u32 = 320;
 const HEIGHT: u32 = 180;
@@ -35,25 +36,33 @@ fn tile(layout: SeedLayout, path: Path) -> TileOptions {
 
 fn quiet(_: &str) {}
 
-fn gles() -> GlesRenderer {
-    GlesRenderer::new(&quiet).unwrap_or_else(|error| panic!("GLES: {error}"))
+/// A GLES renderer, or none (the test skips) without a driver, except under CI.
+fn gles() -> Option<GlesRenderer> {
+    GlesRenderer::new(&quiet)
+        .map_err(|error| skip_without_driver("the GLES on-tile renderer", &error))
+        .ok()
 }
 
-fn vulkan() -> VulkanRenderer {
-    VulkanRenderer::new(&quiet).unwrap_or_else(|error| panic!("Vulkan: {error}"))
+/// A Vulkan renderer, or none (the test skips) without a driver, except under CI.
+fn vulkan() -> Option<VulkanRenderer> {
+    VulkanRenderer::new(&quiet)
+        .map_err(|error| skip_without_driver("the Vulkan on-tile renderer", &error))
+        .ok()
 }
 
-/// Every path of both backends, with the frame and the calls of one frame.
+/// Every path of both backends, with the frame and the calls of one frame (none without the
+/// drivers).
 fn every_path(layout: SeedLayout) -> Vec<(String, Frame, Recording)> {
     let mut frames = Vec::new();
-    let gles = gles();
+    let (Some(gles), Some(vulkan)) = (gles(), vulkan()) else {
+        return frames;
+    };
     for path in [Path::FetchNative, Path::FetchPacked, Path::TwoPass] {
         let (frame, recording) = gles
             .render(&tile(layout, path))
             .unwrap_or_else(|error| panic!("gles {}: {error}", path.flag()));
         frames.push((format!("gles {}", path.flag()), frame, recording));
     }
-    let vulkan = vulkan();
     for path in [Path::Subpass, Path::TwoPass] {
         let (frame, recording) = vulkan
             .render(&tile(layout, path))
@@ -141,11 +150,14 @@ fn the_fused_paths_keep_the_gbuffer_in_one_pass_and_store_only_the_output() {
 #[test]
 fn a_256_bit_layout_renders_on_the_packed_paths() {
     let layout = SeedLayout::FutureMetallic;
+    let (Some(gles), Some(vulkan)) = (gles(), vulkan()) else {
+        return;
+    };
     let reference = reference::render(WIDTH, HEIGHT, reference_features(), &|_| {});
-    let (gles_frame, _) = gles()
+    let (gles_frame, _) = gles
         .render(&tile(layout, Path::FetchPacked))
         .unwrap_or_else(|error| panic!("{error}"));
-    let (vulkan_frame, recording) = vulkan()
+    let (vulkan_frame, recording) = vulkan
         .render(&tile(layout, Path::Subpass))
         .unwrap_or_else(|error| panic!("{error}"));
     assert_eq!(recording.stored(), ["output"]);
@@ -159,13 +171,16 @@ fn a_256_bit_layout_renders_on_the_packed_paths() {
 #[test]
 fn the_gbuffer_words_agree_across_backends() {
     let options = options(SeedLayout::MobileMetallic);
+    let (Some(gles), Some(vulkan)) = (gles(), vulkan()) else {
+        return;
+    };
     let wgpu = Renderer::new(&quiet)
         .and_then(|renderer| renderer.gbuffer_words(&options))
         .unwrap_or_else(|error| panic!("wgpu: {error}"));
-    let vulkan = vulkan()
+    let vulkan = vulkan
         .gbuffer_words(&options)
         .unwrap_or_else(|error| panic!("vulkan: {error}"));
-    let gles = gles()
+    let gles = gles
         .gbuffer_words(&options)
         .unwrap_or_else(|error| panic!("gles: {error}"));
     assert_eq!(wgpu.len(), (WIDTH * HEIGHT * 4) as usize);
@@ -212,7 +227,9 @@ fn the_gbuffer_words_agree_across_backends() {
 
 #[test]
 fn configurations_the_paths_cannot_draw_are_named() {
-    let gles = gles();
+    let (Some(gles), Some(vulkan)) = (gles(), vulkan()) else {
+        return;
+    };
     let error = |result: Result<(Frame, Recording), String>| result.expect_err("an error");
     let specular = error(gles.render(&tile(SeedLayout::SpecularWorkflow, Path::FetchPacked)));
     assert!(
@@ -229,6 +246,6 @@ fn configurations_the_paths_cannot_draw_are_named() {
     );
     let wrong_api = error(gles.render(&tile(SeedLayout::MobileMetallic, Path::Subpass)));
     assert!(wrong_api.contains("Vulkan"), "{wrong_api}");
-    let wrong_api = error(vulkan().render(&tile(SeedLayout::MobileMetallic, Path::FetchNative)));
+    let wrong_api = error(vulkan.render(&tile(SeedLayout::MobileMetallic, Path::FetchNative)));
     assert!(wrong_api.contains("GLES"), "{wrong_api}");
 }
