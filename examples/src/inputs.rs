@@ -114,31 +114,13 @@ fn equirectangular_direction(u: f64, v: f64) -> DVec3 {
 /// `Rgba8Unorm` texels of a `width` x `height` texture whose texel (x, y) holds
 /// `texel(x, y)` (four values in [0, 1]), rows computed on the machine's threads.
 fn rows(width: u32, height: u32, texel: impl Fn(u32, u32) -> [f32; 4] + Sync) -> Vec<u8> {
-    let threads = std::thread::available_parallelism().map_or(2, |count| count.get()) as u32;
-    let mut rows: Vec<(u32, Vec<u8>)> = std::thread::scope(|scope| {
-        let workers: Vec<_> = (0..threads)
-            .map(|thread| {
-                let texel = &texel;
-                scope.spawn(move || {
-                    (thread..height)
-                        .step_by(threads as usize)
-                        .map(|y| {
-                            let row = (0..width)
-                                .flat_map(|x| {
-                                    texel(x, y).map(|value| unorm_from_f32(value, 8) as u8)
-                                })
-                                .collect();
-                            (y, row)
-                        })
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        workers
-            .into_iter()
-            .flat_map(|worker| worker.join().expect("a baking thread panicked"))
-            .collect()
-    });
-    rows.sort_by_key(|(y, _)| *y);
-    rows.into_iter().flat_map(|(_, row)| row).collect()
+    crate::parallel::rows(
+        height,
+        |y| {
+            (0..width)
+                .flat_map(|x| texel(x, y).map(|value| unorm_from_f32(value, 8) as u8))
+                .collect()
+        },
+        |_| {},
+    )
 }

@@ -123,40 +123,23 @@ pub fn render(
     progress: &(dyn Fn(f64) + Sync),
 ) -> Frame {
     let mesh = &Mesh::scene();
-    let threads = std::thread::available_parallelism().map_or(2, |count| count.get()) as u32;
-    let done = std::sync::atomic::AtomicU32::new(0);
-    let mut rows: Vec<(u32, Vec<[u8; 4]>)> = std::thread::scope(|scope| {
-        let workers: Vec<_> = (0..threads)
-            .map(|thread| {
-                let done = &done;
-                scope.spawn(move || {
-                    (thread..height)
-                        .step_by(threads as usize)
-                        .map(|y| {
-                            let row = (0..width)
-                                .map(|x| display(radiance(mesh, (x, y), (width, height), features)))
-                                .collect();
-                            let finished =
-                                done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-                            if finished % (height / 10).max(1) == 0 {
-                                progress(f64::from(finished) / f64::from(height));
-                            }
-                            (y, row)
-                        })
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        workers
-            .into_iter()
-            .flat_map(|worker| worker.join().expect("a reference thread panicked"))
-            .collect()
-    });
-    rows.sort_by_key(|(y, _)| *y);
+    let pixels = crate::parallel::rows(
+        height,
+        |y| {
+            (0..width)
+                .map(|x| display(radiance(mesh, (x, y), (width, height), features)))
+                .collect()
+        },
+        |finished| {
+            if finished % (height / 10).max(1) == 0 {
+                progress(f64::from(finished) / f64::from(height));
+            }
+        },
+    );
     Frame {
         width,
         height,
-        pixels: rows.into_iter().flat_map(|(_, row)| row).collect(),
+        pixels,
     }
 }
 

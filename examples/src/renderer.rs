@@ -147,16 +147,25 @@ impl Renderer {
     /// Opens an adapter (any wgpu finds, software ones included) and prepares the inputs,
     /// reporting progress.
     pub fn new(progress: &dyn Fn(&str)) -> Result<Renderer, String> {
-        let instance =
-            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let options = wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             force_fallback_adapter: false,
             compatible_surface: None,
             apply_limit_buckets: false,
         };
-        let adapter = pollster::block_on(instance.request_adapter(&options))
-            .map_err(|error| format!("no GPU adapter ({error}); on a machine without a GPU install Mesa's software drivers (apt-get install -y mesa-vulkan-drivers libegl1)"))?;
+        let request = |backends| {
+            let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+            descriptor.backends = backends;
+            pollster::block_on(wgpu::Instance::new(descriptor).request_adapter(&options))
+        };
+        // The primary backends first, GL only where none offers an adapter (WGPU_BACKEND
+        // chooses): wgpu's GL backend opens the process's EGL display and terminates it when
+        // dropped, which would end the on-tile GLES renderer's context on the same display.
+        let adapter = match wgpu::Backends::from_env() {
+            Some(backends) => request(backends),
+            None => request(wgpu::Backends::PRIMARY).or_else(|_| request(wgpu::Backends::all())),
+        }
+        .map_err(|error| format!("no GPU adapter ({error}); on a machine without a GPU install Mesa's software drivers (apt-get install -y mesa-vulkan-drivers libegl1)"))?;
         let info = adapter.get_info();
         let timestamp_feature = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
         let descriptor = wgpu::DeviceDescriptor {

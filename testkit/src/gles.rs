@@ -93,6 +93,14 @@ impl Gles {
         })
     }
 
+    /// Makes the context current on this thread again: other GL users (wgpu's GL backend
+    /// among them) may have made theirs current since.
+    pub fn make_current(&self) -> Result<(), String> {
+        self.egl
+            .make_current(self.display, None, None, Some(self.context))
+            .map_err(|error| format!("eglMakeCurrent (surfaceless): {error}"))
+    }
+
     /// The renderer and version strings, for test output.
     pub fn describe(&self) -> String {
         // SAFETY: plain queries on the current context.

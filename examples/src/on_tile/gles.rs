@@ -148,6 +148,7 @@ impl GlesRenderer {
 
     /// Renders a frame and reads it back, with the calls it made.
     pub fn render(&self, tile: &TileOptions) -> Result<(Frame, Recording), String> {
+        self.gles.make_current()?;
         let plan = self.plan(tile)?;
         let mut recording = Recording::default();
         let result = self.draw(&plan, &mut recording).and_then(|()| {
@@ -165,6 +166,7 @@ impl GlesRenderer {
     /// Times `frames` frames (after one that warms up): seconds each, by the wall clock around
     /// the draws and `glFinish` (llvmpipe has no timer queries).
     pub fn time_frames(&self, tile: &TileOptions, frames: usize) -> Result<Vec<f64>, String> {
+        self.gles.make_current()?;
         let plan = self.plan(tile)?;
         let mut times = Vec::with_capacity(frames);
         let result = (0..=frames).try_for_each(|_| {
@@ -184,6 +186,7 @@ impl GlesRenderer {
     /// The packed words the geometry writes (a debug view: the G-buffer stored, before decals
     /// and light), `layout.words()` per pixel, row by row, whatever the path.
     pub fn gbuffer_words(&self, options: &Options) -> Result<Vec<u32>, String> {
+        self.gles.make_current()?;
         let layout = tile_layout(options)?;
         let (width, height) = (options.width as i32, options.height as i32);
         let model = layout.layout();
