@@ -141,11 +141,6 @@ impl GlesRenderer {
         }
     }
 
-    /// The driver, for messages.
-    pub fn describe(&self) -> String {
-        self.gles.describe()
-    }
-
     /// Renders a frame and reads it back, with the calls it made.
     pub fn render(&self, tile: &TileOptions) -> Result<(Frame, Recording), String> {
         self.gles.make_current()?;

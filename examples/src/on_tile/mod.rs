@@ -27,7 +27,6 @@ pub mod vulkan;
 
 use crate::gbuffers::{GBuffer, SeedLayout};
 use crate::renderer::Options;
-use crate::scene;
 use crate::shaders::{self, library, INPUTS_WGSL, VOLUME_WGSL};
 
 /// Which API draws the frame.
@@ -93,9 +92,7 @@ impl Path {
     }
 }
 
-/// What an on-tile frame is drawn with: the renderer's options, the path, and whether the
-/// G-buffer is stored for inspection (a debug switch: the frame then draws the geometry only,
-/// so that every backend's words can be compared with wgpu's).
+/// What an on-tile frame is drawn with: the renderer's options and the path.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TileOptions {
     /// Layout, forms and size.
@@ -228,13 +225,4 @@ pub fn fused_wgsl(options: &Options, layout: SeedLayout, y_sign: f32) -> String 
         shaders::display_wgsl(),
         stages_wgsl(&layout.layout().name),
     )
-}
-
-/// Checks that the scene the fused paths draw has what they draw.
-pub fn check_scene(options: &Options) -> Result<(), String> {
-    let features = options.gbuffer.features();
-    if features != scene::reference_features() {
-        return Err("the on-tile paths draw the reference scene".into());
-    }
-    Ok(())
 }

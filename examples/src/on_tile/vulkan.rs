@@ -160,11 +160,6 @@ impl VulkanRenderer {
         Ok(renderer)
     }
 
-    /// The device, for messages.
-    pub fn describe(&self) -> &str {
-        self.vulkan.describe()
-    }
-
     /// Renders a frame and reads it back, with the calls it made.
     pub fn render(&self, tile: &TileOptions) -> Result<(Frame, Recording), String> {
         let plan = self.plan(tile)?;
