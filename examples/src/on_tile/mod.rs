@@ -135,9 +135,8 @@ fn sky_vertex(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32
     return vec4<f32>(fullscreen_corner(vertex), 1.0, 1.0);
 }
 
-// Volume `volume`'s screen rectangle (`volume_rectangle`), over the surfaces. No varying
-// carries the volume on: the fragment stage is told it by the host (llvmpipe's framebuffer
-// fetch of 8- and 10-bit attachments goes wrong in a draw whose fragment shader has inputs).
+// Volume `volume`'s screen rectangle (`volume_rectangle`), over the surfaces. The fragment
+// stage reads the volume from the host (a uniform on GLES, a push constant on Vulkan).
 @vertex
 fn volume_vertex(@builtin(vertex_index) vertex: u32, @location(0) volume: u32) -> @builtin(position) vec4<f32> {
     return vec4<f32>(volume_rectangle(vertex, volume), SURFACES_DEPTH, 1.0);

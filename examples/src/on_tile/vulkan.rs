@@ -89,6 +89,11 @@ impl VulkanRenderer {
     pub fn new(progress: &dyn Fn(&str)) -> Result<VulkanRenderer, String> {
         let vulkan = Vulkan::new()?;
         progress(&format!("Vulkan: {}", vulkan.describe()));
+        progress(if vulkan.has_lazily_allocated_memory() {
+            "transient attachments take lazily allocated memory"
+        } else {
+            "the device offers no lazily allocated memory: transient attachments take device-local memory"
+        });
         progress("baking the split-sum LUT, the light map and the prefiltered sky...");
         let inputs = Inputs::bake();
         let mesh = Mesh::scene();
