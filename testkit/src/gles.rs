@@ -131,13 +131,19 @@ impl Gles {
         let vertex = format!(
             "{version}\nvoid main() {{\n    vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);\n}}\n"
         );
+        self.link(&vertex, fragment)
+    }
+
+    /// Compiles and links a program of `vertex` and `fragment`; the error holds the driver's
+    /// log and the numbered source of the shader it concerns.
+    pub fn link(&self, vertex: &str, fragment: &str) -> Result<glow::Program, String> {
         // SAFETY: GL objects of the current context, deleted on every path.
         unsafe {
             let gl = &self.gl;
             let program = gl.create_program()?;
             let mut shaders = Vec::new();
             for (stage, source) in [
-                (glow::VERTEX_SHADER, vertex.as_str()),
+                (glow::VERTEX_SHADER, vertex),
                 (glow::FRAGMENT_SHADER, fragment),
             ] {
                 let shader = gl.create_shader(stage)?;
@@ -146,6 +152,9 @@ impl Gles {
                 if !gl.get_shader_compile_status(shader) {
                     let log = gl.get_shader_info_log(shader);
                     gl.delete_shader(shader);
+                    shaders
+                        .into_iter()
+                        .for_each(|shader| gl.delete_shader(shader));
                     gl.delete_program(program);
                     return Err(format!("{log}\n{}", numbered(source)));
                 }

@@ -11,7 +11,7 @@ use std::time::Instant;
 use glow::HasContext as _;
 
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
-use gbuffer_testkit::gles::{numbered, Gles};
+use gbuffer_testkit::gles::Gles;
 
 use super::glsl::{self, Dialect};
 use super::recording::{Attachment, Call, Load, Recording};
@@ -419,7 +419,7 @@ impl GlesRenderer {
             let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
             let fragment =
                 glsl::translate(wgsl, naga::ShaderStage::Fragment, fragment, Dialect::Gles)?;
-            self.link(&vertex.text, &fragment.text)
+            self.gles.link(&vertex.text, &fragment.text)
         };
         let gbuffer = program(&gbuffer_wgsl, "geometry_vertex", "gbuffer_main")?;
         let lighting = program(&lighting_wgsl, "full_screen", "lighting_resolve_main")?;
@@ -484,46 +484,7 @@ impl GlesRenderer {
             "#version 320 es\n{extensions}precision highp float;\nprecision highp int;\n\n{include}\n{}\n{main}",
             glsl::declarations(&stages.text, include),
         );
-        self.link(&vertex.text, &fragment)
-    }
-
-    /// Compiles and links a program; the error holds the driver's log and the numbered source.
-    fn link(&self, vertex: &str, fragment: &str) -> Result<glow::Program, String> {
-        // SAFETY: GL objects of the current context, deleted on every path.
-        unsafe {
-            let gl = &self.gles.gl;
-            let program = gl.create_program()?;
-            let mut shaders = Vec::new();
-            for (stage, source) in [
-                (glow::VERTEX_SHADER, vertex),
-                (glow::FRAGMENT_SHADER, fragment),
-            ] {
-                let shader = gl.create_shader(stage)?;
-                gl.shader_source(shader, source);
-                gl.compile_shader(shader);
-                if !gl.get_shader_compile_status(shader) {
-                    let log = gl.get_shader_info_log(shader);
-                    gl.delete_shader(shader);
-                    shaders
-                        .into_iter()
-                        .for_each(|shader| gl.delete_shader(shader));
-                    gl.delete_program(program);
-                    return Err(format!("{log}\n{}", numbered(source)));
-                }
-                gl.attach_shader(program, shader);
-                shaders.push(shader);
-            }
-            gl.link_program(program);
-            shaders
-                .into_iter()
-                .for_each(|shader| gl.delete_shader(shader));
-            if !gl.get_program_link_status(program) {
-                let log = gl.get_program_info_log(program);
-                gl.delete_program(program);
-                return Err(format!("link: {log}\n{}", numbered(fragment)));
-            }
-            Ok(program)
-        }
+        self.gles.link(&vertex.text, &fragment)
     }
 
     /// A framebuffer of colour attachments (internal format, bytes per pixel) and a 32-bit
