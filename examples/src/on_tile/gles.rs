@@ -15,7 +15,7 @@ use gbuffer_testkit::gles::Gles;
 
 use super::glsl::{self, Dialect};
 use super::recording::{Attachment, Call, Load, Recording};
-use super::{fused_wgsl, tile_layout, Path, TileOptions};
+use super::{fused_wgsl, tile_layout, Path, Stage, TileOptions};
 use crate::gbuffers::SeedLayout;
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
@@ -189,10 +189,19 @@ impl GlesRenderer {
             .map_err(|error| error.to_string())?;
         let wgsl = fused_wgsl(options, layout, -1.0);
         let snake = model.snake_name();
-        let program = self.fused_program(&wgsl, &include, &interface, "geometry_vertex", &format!(
-            "{}void main() {{\n    store_{snake}(geometry_texel(_vs2fs_location2, _vs2fs_location0, _vs2fs_location1));\n}}\n",
-            GEOMETRY_INPUTS
-        ))?;
+        let texel = includes::translate(&model)
+            .map_err(|error| error.to_string())?
+            .names
+            .layout;
+        let main =
+            Stage::Geometry.fragment_main(&texel, &snake, &format!("    store_{snake}(texel);\n"));
+        let program = self.fused_program(
+            &wgsl,
+            &include,
+            &interface,
+            Stage::Geometry.vertex_entry(),
+            &main,
+        )?;
         let targets = interface.attachments.len();
         // SAFETY: objects of the current context, deleted before returning.
         unsafe {
@@ -303,65 +312,21 @@ impl GlesRenderer {
             "layout(location = {}) inout highp vec4 frame_colour;\n",
             interface.attachments.len()
         );
-        let volume = "uniform highp uint volume_index;\n";
-        let stages: [(&'static str, &str, String); 6] = [
-            ("geometry", "geometry_vertex", format!(
-                "{output}{GEOMETRY_INPUTS}void main() {{\n    store_{snake}(geometry_texel(_vs2fs_location2, _vs2fs_location0, _vs2fs_location1));\n}}\n"
-            )),
-            ("decal", "volume_vertex", format!(
-                "{output}{volume}void main() {{\n    {texel} texel = load_{snake}();\n    uint decal = volume_index - POINT_LIGHT_COUNT;\n    float weight = decal_weight_at(texel, gl_FragCoord.xy, decal);\n    if (weight <= 0.0) {{\n        discard;\n    }}\n    store_{snake}(paint_texel(texel, decal, weight));\n}}\n"
-            )),
-            ("sun and environment", "surfaces_vertex", format!(
-                "{output}void main() {{\n    store_{snake}(sun_and_environment_texel(load_{snake}(), gl_FragCoord.xy));\n}}\n"
-            )),
-            ("point light", "volume_vertex", format!(
-                "{output}{volume}void main() {{\n    {texel} texel = load_{snake}();\n    if (!point_light_reaches(texel, gl_FragCoord.xy, volume_index)) {{\n        discard;\n    }}\n    store_{snake}(point_light_texel(texel, gl_FragCoord.xy, volume_index));\n}}\n"
-            )),
-            ("resolve", "surfaces_vertex", format!(
-                "{output}void main() {{\n    frame_colour = resolve_colour(load_{snake}());\n}}\n"
-            )),
-            ("sky", "sky_vertex", format!(
-                "{output}void main() {{\n    frame_colour = sky_colour(gl_FragCoord.xy);\n}}\n"
-            )),
-        ];
-        // Which attachments each stage writes: the G-buffer's for the geometry, those holding
-        // the painted fields for the decals, the light's for the lighting, the output for the
-        // resolve and the sky.
-        let gbuffer_attachments = interface.attachments.len();
-        let locations = model.field_locations();
-        let attachments_of = |fields: &[&str]| -> Vec<bool> {
-            let mut writes = vec![false; gbuffer_attachments + 1];
-            for name in fields {
-                let field = model
-                    .fields
-                    .iter()
-                    .position(|field| field.name == *name)
-                    .expect("the on-tile fields are the layout's");
-                let word = locations[field].0;
-                writes[if kind == Include::FetchPacked {
-                    word / 4
-                } else {
-                    word
-                }] = true;
-            }
-            writes
-        };
-        let (light_fields, painted_fields) = layout.on_tile_fields();
-        let mut everything = vec![true; gbuffer_attachments + 1];
-        everything[gbuffer_attachments] = false;
-        let mut output_only = vec![false; gbuffer_attachments + 1];
-        output_only[gbuffer_attachments] = true;
-        let writes = vec![
-            everything,
-            attachments_of(painted_fields),
-            attachments_of(light_fields),
-            attachments_of(light_fields),
-            output_only.clone(),
-            output_only,
-        ];
+        // The volume drawn comes in a uniform; each draw writes only what it changes.
+        let declarations = format!("{output}uniform highp uint volume_index;\n");
+        let store = format!("    store_{snake}(texel);\n");
+        let words_per_attachment = if kind == Include::FetchPacked { 4 } else { 1 };
+        let writes = Stage::ALL
+            .map(|stage| stage.writes(layout, interface.attachments.len(), words_per_attachment))
+            .to_vec();
         let mut programs = Vec::new();
-        for (name, vertex, main) in stages {
-            match self.fused_program(&wgsl, &include, &interface, vertex, &main) {
+        for stage in Stage::ALL {
+            let main = format!(
+                "{declarations}{}",
+                stage.fragment_main(&texel, &snake, &store)
+            );
+            let name = stage.name();
+            match self.fused_program(&wgsl, &include, &interface, stage.vertex_entry(), &main) {
                 Ok(program) => programs.push((name, program)),
                 Err(error) => {
                     // SAFETY: programs of the current context.
@@ -637,15 +602,19 @@ impl GlesRenderer {
                 gl.depth_mask(false);
                 gl.depth_func(glow::GREATER);
                 for decal in 0..DECALS.len() {
-                    draw(recording, "decal", Draw::Volume(POINT_LIGHT_COUNT + decal));
+                    draw(
+                        recording,
+                        Stage::Decal.name(),
+                        Draw::Volume(POINT_LIGHT_COUNT + decal),
+                    );
                 }
-                draw(recording, "sun and environment", Draw::Fullscreen);
+                draw(recording, Stage::SunAndEnvironment.name(), Draw::Fullscreen);
                 for light in 0..POINT_LIGHT_COUNT {
-                    draw(recording, "point light", Draw::Volume(light));
+                    draw(recording, Stage::PointLight.name(), Draw::Volume(light));
                 }
-                draw(recording, "resolve", Draw::Fullscreen);
+                draw(recording, Stage::Resolve.name(), Draw::Fullscreen);
                 gl.depth_func(glow::EQUAL);
-                draw(recording, "sky", Draw::Fullscreen);
+                draw(recording, Stage::Sky.name(), Draw::Fullscreen);
                 // The G-buffer and depth die here: on a tiler they are never written out.
                 let gbuffer = &plan.targets[0][..plan.targets[0].len() - 1];
                 let mut attachments: Vec<u32> = (0..gbuffer.len() as u32)
@@ -789,9 +758,6 @@ enum Draw {
     /// A volume's screen rectangle: point light `n` below POINT_LIGHT_COUNT, then the decals.
     Volume(usize),
 }
-
-/// The geometry fragment's inputs, as naga names the vertex shader's outputs.
-const GEOMETRY_INPUTS: &str = "layout(location = 0) smooth in highp vec3 _vs2fs_location0;\nlayout(location = 1) smooth in highp vec3 _vs2fs_location1;\nlayout(location = 2) flat in highp uint _vs2fs_location2;\n";
 
 fn attachment(target: &Target) -> Attachment {
     Attachment {

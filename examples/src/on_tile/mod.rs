@@ -101,6 +101,121 @@ pub struct TileOptions {
     pub path: Path,
 }
 
+/// The draws of a fused frame, in order: the mesh, the decals, the sun and the environment,
+/// the point lights, the resolve of the surfaces and the sky.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// The mesh writes the G-buffer.
+    Geometry,
+    /// A decal volume paints the texels under it.
+    Decal,
+    /// A fullscreen draw replaces the light accumulation with the sun and the environment.
+    SunAndEnvironment,
+    /// A light volume adds its light into the light accumulation.
+    PointLight,
+    /// A fullscreen draw tone-maps the surfaces' light into the output.
+    Resolve,
+    /// A fullscreen draw puts the sky in the output where there is no surface.
+    Sky,
+}
+
+/// The G-buffer pass's fragment inputs, as naga names `geometry_vertex`'s outputs.
+const GEOMETRY_INPUTS: &str = "layout(location = 0) smooth in highp vec3 _vs2fs_location0;\nlayout(location = 1) smooth in highp vec3 _vs2fs_location1;\nlayout(location = 2) flat in highp uint _vs2fs_location2;\n";
+
+impl Stage {
+    /// Every stage, in drawing order.
+    pub const ALL: [Stage; 6] = [
+        Stage::Geometry,
+        Stage::Decal,
+        Stage::SunAndEnvironment,
+        Stage::PointLight,
+        Stage::Resolve,
+        Stage::Sky,
+    ];
+
+    /// Its name in recordings and messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Geometry => "geometry",
+            Stage::Decal => "decal",
+            Stage::SunAndEnvironment => "sun and environment",
+            Stage::PointLight => "point light",
+            Stage::Resolve => "resolve",
+            Stage::Sky => "sky",
+        }
+    }
+
+    /// The vertex entry point of [`VERTEX_WGSL`] (or the scene's) it draws with.
+    pub fn vertex_entry(self) -> &'static str {
+        match self {
+            Stage::Geometry => "geometry_vertex",
+            Stage::Decal | Stage::PointLight => "volume_vertex",
+            Stage::SunAndEnvironment | Stage::Resolve => "surfaces_vertex",
+            Stage::Sky => "sky_vertex",
+        }
+    }
+
+    /// Which colour attachments it writes, the G-buffer's (`words_per_attachment` words each)
+    /// then the output: a draw writes back only what it changes, which spares the attachments
+    /// it does not (and keeps them out of a llvmpipe bug, see the README).
+    pub fn writes(
+        self,
+        layout: SeedLayout,
+        attachments: usize,
+        words_per_attachment: usize,
+    ) -> Vec<bool> {
+        let model = layout.layout();
+        let locations = model.field_locations();
+        let (light_fields, painted_fields) = layout.on_tile_fields();
+        let mut writes = vec![false; attachments + 1];
+        let mut holding = |fields: &[&str]| {
+            for name in fields {
+                let field = model
+                    .fields
+                    .iter()
+                    .position(|field| field.name == *name)
+                    .expect("the on-tile fields are the layout's");
+                writes[locations[field].0 / words_per_attachment] = true;
+            }
+        };
+        match self {
+            Stage::Geometry => writes[..attachments].fill(true),
+            Stage::Decal => holding(painted_fields),
+            Stage::SunAndEnvironment | Stage::PointLight => holding(light_fields),
+            Stage::Resolve | Stage::Sky => writes[attachments] = true,
+        }
+        writes
+    }
+
+    /// The GLSL `main` of its fragment stage, over the layout's include (`load_<snake>()`),
+    /// the translated stage functions and what the backend declares: `frame_colour` (the
+    /// output), `volume_index` (the volume drawn), and `store`, statements writing `texel`.
+    pub fn fragment_main(self, texel: &str, snake: &str, store: &str) -> String {
+        let body = match self {
+            Stage::Geometry => format!(
+                "    {texel} texel = geometry_texel(_vs2fs_location2, _vs2fs_location0, _vs2fs_location1);\n{store}"
+            ),
+            Stage::Decal => format!(
+                "    {texel} texel = load_{snake}();\n    uint decal = volume_index - POINT_LIGHT_COUNT;\n    float weight = decal_weight_at(texel, gl_FragCoord.xy, decal);\n    if (weight <= 0.0) {{\n        discard;\n    }}\n    texel = paint_texel(texel, decal, weight);\n{store}"
+            ),
+            Stage::SunAndEnvironment => format!(
+                "    {texel} texel = sun_and_environment_texel(load_{snake}(), gl_FragCoord.xy);\n{store}"
+            ),
+            Stage::PointLight => format!(
+                "    {texel} texel = load_{snake}();\n    if (!point_light_reaches(texel, gl_FragCoord.xy, volume_index)) {{\n        discard;\n    }}\n    texel = point_light_texel(texel, gl_FragCoord.xy, volume_index);\n{store}"
+            ),
+            Stage::Resolve => format!("    frame_colour = resolve_colour(load_{snake}());\n"),
+            Stage::Sky => "    frame_colour = sky_colour(gl_FragCoord.xy);\n".to_string(),
+        };
+        let inputs = if self == Stage::Geometry {
+            GEOMETRY_INPUTS
+        } else {
+            ""
+        };
+        format!("{inputs}void main() {{\n{body}}}\n")
+    }
+}
+
 /// The seed layout of `options`, if it can be kept on tile (the error says why not).
 pub fn tile_layout(options: &Options) -> Result<SeedLayout, String> {
     match &options.gbuffer {

@@ -18,7 +18,7 @@ use gbuffer_testkit::vulkan::{Object, StorageBuffer, Vulkan};
 
 use super::glsl::{self, Dialect};
 use super::recording::{Attachment, Call, Load, Recording};
-use super::{fused_wgsl, tile_layout, Path, TileOptions};
+use super::{fused_wgsl, tile_layout, Path, Stage, TileOptions};
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::{Mesh, Vertex};
 use crate::renderer::{Frame, Options, Positions};
@@ -52,7 +52,7 @@ enum Draw {
 }
 
 /// A pipeline of a plan and what it is called in the recording.
-struct Stage {
+struct StagePipeline {
     name: &'static str,
     pipeline: vk::Pipeline,
 }
@@ -66,7 +66,7 @@ struct Pass {
     clears: Vec<vk::ClearValue>,
     layout: vk::PipelineLayout,
     sets: Vec<vk::DescriptorSet>,
-    stages: Vec<Stage>,
+    stages: Vec<StagePipeline>,
     draws: Vec<(usize, Draw)>,
     /// Frame textures this pass samples (the two-pass G-buffer), for the recording.
     samples: Vec<Attachment>,
@@ -380,45 +380,8 @@ impl VulkanRenderer {
         let store = includes::store_statements(&model, &names, &interface, |attachment| {
             format!("gbuffer_out{}", attachment.index)
         });
+        // The volume drawn comes as a push constant; each draw writes only what it changes.
         let volume = "layout(push_constant) uniform Volume {\n    uint volume_index;\n};\n";
-        let geometry_inputs = "layout(location = 0) in highp vec3 _vs2fs_location0;\nlayout(location = 1) in highp vec3 _vs2fs_location1;\nlayout(location = 2) flat in highp uint _vs2fs_location2;\n";
-        let (light_fields, painted_fields) = layout.on_tile_fields();
-        let locations = model.field_locations();
-        let writes_of = |fields: &[&str]| -> Vec<bool> {
-            let mut writes = vec![false; targets as usize + 1];
-            for name in fields {
-                let field = model
-                    .fields
-                    .iter()
-                    .position(|field| field.name == *name)
-                    .expect("a field of the layout");
-                writes[locations[field].0 / 4] = true;
-            }
-            writes
-        };
-        let mut gbuffer_only = vec![true; targets as usize + 1];
-        gbuffer_only[targets as usize] = false;
-        let mut output_only = vec![false; targets as usize + 1];
-        output_only[targets as usize] = true;
-        // (name, vertex entry, fragment main, depth test, attachments written)
-        let stages: Vec<(&'static str, &str, String, Depth, Vec<bool>)> = vec![
-            ("geometry", "geometry_vertex", format!(
-                "{geometry_inputs}void main() {{\n    {texel} texel = geometry_texel(_vs2fs_location2, _vs2fs_location0, _vs2fs_location1);\n{store}}}\n"
-            ), Depth::Write, gbuffer_only),
-            ("decal", "volume_vertex", format!(
-                "{volume}void main() {{\n    {texel} texel = load_{snake}();\n    uint decal = volume_index - POINT_LIGHT_COUNT;\n    float weight = decal_weight_at(texel, gl_FragCoord.xy, decal);\n    if (weight <= 0.0) {{\n        discard;\n    }}\n    texel = paint_texel(texel, decal, weight);\n{store}}}\n"
-            ), Depth::Surfaces, writes_of(painted_fields)),
-            ("sun and environment", "surfaces_vertex", format!(
-                "void main() {{\n    {texel} texel = sun_and_environment_texel(load_{snake}(), gl_FragCoord.xy);\n{store}}}\n"
-            ), Depth::Surfaces, writes_of(light_fields)),
-            ("point light", "volume_vertex", format!(
-                "{volume}void main() {{\n    {texel} texel = load_{snake}();\n    if (!point_light_reaches(texel, gl_FragCoord.xy, volume_index)) {{\n        discard;\n    }}\n    texel = point_light_texel(texel, gl_FragCoord.xy, volume_index);\n{store}}}\n"
-            ), Depth::Surfaces, writes_of(light_fields)),
-            ("resolve", "surfaces_vertex", format!(
-                "void main() {{\n    frame_colour = resolve_colour(load_{snake}());\n}}\n"
-            ), Depth::Surfaces, output_only.clone()),
-            ("sky", "sky_vertex", "void main() {\n    frame_colour = sky_colour(gl_FragCoord.xy);\n}\n".to_string(), Depth::Sky, output_only),
-        ];
         let translation = glsl::translate(
             &wgsl,
             naga::ShaderStage::Fragment,
@@ -427,20 +390,32 @@ impl VulkanRenderer {
         )?;
         let declarations = glsl::declarations(&translation.text, &include);
         let mut pipeline_stages = Vec::new();
-        for (name, vertex, main, depth, writes) in stages {
-            let fragment = format!("#version 450\n\n{include}\n{outputs}\n{declarations}\n{main}");
+        for stage in Stage::ALL {
+            let depth = match stage {
+                Stage::Geometry => Depth::Write,
+                Stage::Sky => Depth::Sky,
+                _ => Depth::Surfaces,
+            };
+            let writes = stage.writes(layout, targets as usize, 4);
+            let fragment = format!(
+                "#version 450\n\n{include}\n{outputs}{volume}\n{declarations}\n{}",
+                stage.fragment_main(texel, &snake, &store)
+            );
             let pipeline = self
                 .pipeline(
                     &wgsl,
-                    vertex,
+                    stage.vertex_entry(),
                     &fragment,
                     render_pass,
                     layout_handle,
                     (depth, &writes),
                     (width, height),
                 )
-                .map_err(|error| format!("the {name} pipeline: {error}"))?;
-            pipeline_stages.push(Stage { name, pipeline });
+                .map_err(|error| format!("the {} pipeline: {error}", stage.name()))?;
+            pipeline_stages.push(StagePipeline {
+                name: stage.name(),
+                pipeline,
+            });
         }
         let mut draws = vec![(0, Draw::Mesh)];
         if !store_gbuffer {
@@ -638,7 +613,7 @@ impl VulkanRenderer {
                     clears,
                     layout: first_layout,
                     sets: vec![set],
-                    stages: vec![Stage {
+                    stages: vec![StagePipeline {
                         name: "gbuffer",
                         pipeline: gbuffer,
                     }],
@@ -652,7 +627,7 @@ impl VulkanRenderer {
                     clears: vec![clear_float(0.0)],
                     layout: second_layout,
                     sets: vec![lighting_set],
-                    stages: vec![Stage {
+                    stages: vec![StagePipeline {
                         name: "lighting and resolve",
                         pipeline: lighting,
                     }],
