@@ -96,6 +96,11 @@ impl Gles {
     /// Makes the context current on this thread again: other GL users (wgpu's GL backend
     /// among them) may have made theirs current since.
     pub fn make_current(&self) -> Result<(), String> {
+        // Only when it is not: the display may have been terminated by another context's drop
+        // (EGL does not count initialisations), which a current context outlives.
+        if self.egl.get_current_context() == Some(self.context) {
+            return Ok(());
+        }
         self.egl
             .make_current(self.display, None, None, Some(self.context))
             .map_err(|error| format!("eglMakeCurrent (surfaceless): {error}"))
