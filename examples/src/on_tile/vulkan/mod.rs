@@ -1,0 +1,530 @@
+//! The on-tile renderer on Vulkan (`ash`): the subpass path draws the frame in one render pass
+//! whose G-buffer attachments are `TRANSIENT` (in lazily allocated memory where the device
+//! offers it), read back as input attachments by the later draws of the same subpass (a
+//! feedback loop: `GENERAL` layout, a by-region self-dependency and a barrier between draws)
+//! and never stored (`DONT_CARE`); only the output is stored. The two-pass path stores the
+//! G-buffer to images and samples them in a second render pass, as wgpu does.
+//!
+//! Shaders are naga's GLSL 450 of the renderer's WGSL compiled by glslang; the fragment stages
+//! that read the G-buffer wrap the translation around the layout's generated Vulkan include.
+//! Clip space is y-down in Vulkan: the scene renders with `CLIP_Y_SIGN` -1.
+//!
+//! Here: the renderer, its uploads and the frame's commands; `plans` makes each path's render
+//! passes, `objects` the Vulkan objects they are built of.
+
+use std::time::Instant;
+
+use ash::vk;
+use gbuffer_testkit::vulkan::{Object, StorageBuffer, Vulkan};
+
+mod objects;
+mod plans;
+
+use super::recording::{Attachment, Call, Load, Recording};
+use super::{tile_layout, Path, TileOptions};
+use crate::inputs::{Inputs, Texels};
+use crate::mesh::Mesh;
+use crate::renderer::{Frame, Options};
+use crate::scene::{DECALS, POINT_LIGHT_COUNT};
+
+const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
+const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
+const PACKED_FORMAT: vk::Format = vk::Format::R32G32B32A32_UINT;
+
+/// A Vulkan device with the inputs and the mesh uploaded.
+pub struct VulkanRenderer {
+    vulkan: Vulkan,
+    /// The inputs by binding: environment (1), LUT (2), light map (5).
+    inputs: Vec<(u32, vk::ImageView)>,
+    linear: vk::Sampler,
+    nearest: vk::Sampler,
+    vertices: StorageBuffer,
+    indices: StorageBuffer,
+    index_count: u32,
+    volume_indices: StorageBuffer,
+}
+
+/// One draw of a pipeline.
+#[derive(Clone, Copy)]
+enum Draw {
+    Mesh,
+    Fullscreen,
+    /// A volume's screen rectangle: point light `n` below POINT_LIGHT_COUNT, then the decals.
+    Volume(u32),
+}
+
+/// A pipeline of a plan and what it is called in the recording.
+struct StagePipeline {
+    name: &'static str,
+    pipeline: vk::Pipeline,
+}
+
+/// A render pass of a plan: its framebuffer, attachments (for the recording), clear values,
+/// the descriptor sets its pipelines bind and its draws.
+struct Pass {
+    render_pass: vk::RenderPass,
+    framebuffer: vk::Framebuffer,
+    attachments: Vec<(Attachment, bool)>,
+    clears: Vec<vk::ClearValue>,
+    layout: vk::PipelineLayout,
+    sets: Vec<vk::DescriptorSet>,
+    stages: Vec<StagePipeline>,
+    draws: Vec<(usize, Draw)>,
+    /// Frame textures this pass samples (the two-pass G-buffer), for the recording.
+    samples: Vec<Attachment>,
+}
+
+/// The passes of one configuration, made once and drawn every frame.
+struct Plan {
+    passes: Vec<Pass>,
+    output: vk::Image,
+    read_back: StorageBuffer,
+    /// The stored G-buffer images of the debug view, and the buffers they are copied to.
+    gbuffer: Vec<(vk::Image, StorageBuffer)>,
+    width: u32,
+    height: u32,
+}
+
+impl VulkanRenderer {
+    /// A device (lavapipe here), with the inputs and the mesh uploaded. The error says what is
+    /// missing (the loader, a device).
+    pub fn new(progress: &dyn Fn(&str)) -> Result<VulkanRenderer, String> {
+        let vulkan = Vulkan::new()?;
+        progress(&format!("Vulkan: {}", vulkan.describe()));
+        progress(if vulkan.has_lazily_allocated_memory() {
+            "transient attachments take lazily allocated memory"
+        } else {
+            "the device offers no lazily allocated memory: transient attachments take device-local memory"
+        });
+        progress("baking the split-sum LUT, the light map and the prefiltered sky...");
+        let inputs = Inputs::bake();
+        let mesh = Mesh::scene();
+        let sampler = |filter: vk::Filter, mipmap: vk::SamplerMipmapMode, u| {
+            let info = vk::SamplerCreateInfo::default()
+                .mag_filter(filter)
+                .min_filter(filter)
+                .mipmap_mode(mipmap)
+                .address_mode_u(u)
+                .address_mode_v(vk::SamplerAddressMode::CLAMP_TO_EDGE)
+                .address_mode_w(vk::SamplerAddressMode::CLAMP_TO_EDGE)
+                .max_lod(vk::LOD_CLAMP_NONE);
+            // SAFETY: a valid sampler of the device, destroyed with it.
+            let sampler = unsafe { vulkan.device.create_sampler(&info, None) }
+                .map_err(|error| format!("vkCreateSampler: {error}"))?;
+            vulkan.track(Object::Sampler(sampler));
+            Ok::<vk::Sampler, String>(sampler)
+        };
+        // As wgpu's sampler: trilinear, u repeating (around the sky).
+        let linear = sampler(
+            vk::Filter::LINEAR,
+            vk::SamplerMipmapMode::LINEAR,
+            vk::SamplerAddressMode::REPEAT,
+        )?;
+        let nearest = sampler(
+            vk::Filter::NEAREST,
+            vk::SamplerMipmapMode::NEAREST,
+            vk::SamplerAddressMode::CLAMP_TO_EDGE,
+        )?;
+        let mut renderer = VulkanRenderer {
+            vertices: buffer_of(
+                &vulkan,
+                bytemuck::cast_slice(&mesh.vertices),
+                vk::BufferUsageFlags::VERTEX_BUFFER,
+            )?,
+            indices: buffer_of(
+                &vulkan,
+                bytemuck::cast_slice(&mesh.indices),
+                vk::BufferUsageFlags::INDEX_BUFFER,
+            )?,
+            index_count: mesh.indices.len() as u32,
+            volume_indices: {
+                let indices: Vec<u32> = (0..(POINT_LIGHT_COUNT + DECALS.len()) as u32).collect();
+                buffer_of(
+                    &vulkan,
+                    bytemuck::cast_slice(&indices),
+                    vk::BufferUsageFlags::VERTEX_BUFFER,
+                )?
+            },
+            vulkan,
+            inputs: Vec::new(),
+            linear,
+            nearest,
+        };
+        renderer.inputs = vec![
+            (
+                1,
+                renderer.upload(vk::Format::R8G8B8A8_UNORM, &inputs.environment)?,
+            ),
+            (
+                2,
+                renderer.upload(vk::Format::R16G16B16A16_SFLOAT, &[inputs.lut])?,
+            ),
+            (
+                5,
+                renderer.upload(vk::Format::R8G8B8A8_UNORM, &[inputs.light_map])?,
+            ),
+        ];
+        Ok(renderer)
+    }
+
+    /// Renders a frame and reads it back, with the calls it made.
+    pub fn render(&self, tile: &TileOptions) -> Result<(Frame, Recording), String> {
+        let plan = self.plan(tile)?;
+        let mut recording = Recording::default();
+        self.submit_frame(&plan, &mut recording)?;
+        recording.push(Call::ReadBack("output".into()));
+        let words = self.vulkan.read_buffer(&plan.read_back)?;
+        let pixels = words
+            .iter()
+            .take((plan.width * plan.height) as usize)
+            .map(|word| word.to_le_bytes())
+            .collect();
+        Ok((
+            Frame {
+                width: plan.width,
+                height: plan.height,
+                pixels,
+            },
+            recording,
+        ))
+    }
+
+    /// Times `frames` frames (after one that warms up): seconds each, by the wall clock around
+    /// a submit and its wait.
+    pub fn time_frames(&self, tile: &TileOptions, frames: usize) -> Result<Vec<f64>, String> {
+        let plan = self.plan(tile)?;
+        let mut times = Vec::with_capacity(frames);
+        for _ in 0..=frames {
+            let start = Instant::now();
+            self.submit_frame(&plan, &mut Recording::default())?;
+            times.push(start.elapsed().as_secs_f64());
+        }
+        times.remove(0);
+        Ok(times)
+    }
+
+    /// The checked plan of a configuration.
+    fn plan(&self, tile: &TileOptions) -> Result<Plan, String> {
+        let options = &tile.options;
+        let layout = tile_layout(options)?;
+        match tile.path {
+            Path::Subpass => self.subpass_plan(options, layout, false),
+            Path::TwoPass => self.two_pass_plan(options),
+            other => Err(format!(
+                "--path {} is GLES's: use --backend gles",
+                other.flag()
+            )),
+        }
+    }
+
+    /// The packed words the geometry writes (a debug view: the G-buffer stored, before decals
+    /// and light), `layout.words()` per pixel, row by row.
+    pub fn gbuffer_words(&self, options: &Options) -> Result<Vec<u32>, String> {
+        let layout = tile_layout(options)?;
+        let plan = self.subpass_plan(options, layout, true)?;
+        self.submit_frame(&plan, &mut Recording::default())?;
+        let targets = plan
+            .gbuffer
+            .iter()
+            .map(|(_, buffer)| self.vulkan.read_buffer(buffer))
+            .collect::<Result<Vec<_>, String>>()?;
+        Ok(crate::renderer::texels_of(
+            &targets,
+            (plan.width * plan.height) as usize,
+            layout.layout().words(),
+        ))
+    }
+
+    /// Records and submits a frame of the plan, and copies the output to the read-back
+    /// buffer; waits until it is done.
+    fn submit_frame(&self, plan: &Plan, recording: &mut Recording) -> Result<(), String> {
+        let extent = vk::Extent2D {
+            width: plan.width,
+            height: plan.height,
+        };
+        self.vulkan.submit_and_wait(|device, commands| {
+            // SAFETY: the plan's objects are alive; the commands are recorded in order.
+            unsafe {
+                for pass in &plan.passes {
+                    recording.push(Call::BeginPass {
+                        attachments: pass
+                            .attachments
+                            .iter()
+                            .map(|(attachment, _)| (attachment.clone(), Load::Clear))
+                            .collect(),
+                    });
+                    for sample in &pass.samples {
+                        recording.push(Call::Sample(sample.clone()));
+                    }
+                    device.cmd_begin_render_pass(
+                        commands,
+                        &vk::RenderPassBeginInfo::default()
+                            .render_pass(pass.render_pass)
+                            .framebuffer(pass.framebuffer)
+                            .render_area(vk::Rect2D {
+                                offset: vk::Offset2D::default(),
+                                extent,
+                            })
+                            .clear_values(&pass.clears),
+                        vk::SubpassContents::INLINE,
+                    );
+                    device.cmd_bind_descriptor_sets(
+                        commands,
+                        vk::PipelineBindPoint::GRAPHICS,
+                        pass.layout,
+                        0,
+                        &pass.sets,
+                        &[],
+                    );
+                    let mut previous: Option<usize> = None;
+                    for &(stage, draw) in &pass.draws {
+                        if previous.is_some() && plan.passes.len() == 1 {
+                            // The next draw reads what this one wrote (the self-dependency).
+                            let barrier = vk::MemoryBarrier::default()
+                                .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
+                                .dst_access_mask(vk::AccessFlags::INPUT_ATTACHMENT_READ);
+                            device.cmd_pipeline_barrier(
+                                commands,
+                                vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT,
+                                vk::PipelineStageFlags::FRAGMENT_SHADER,
+                                vk::DependencyFlags::BY_REGION,
+                                &[barrier],
+                                &[],
+                                &[],
+                            );
+                        }
+                        if previous != Some(stage) {
+                            device.cmd_bind_pipeline(
+                                commands,
+                                vk::PipelineBindPoint::GRAPHICS,
+                                pass.stages[stage].pipeline,
+                            );
+                        }
+                        previous = Some(stage);
+                        recording.push(Call::Draw {
+                            program: pass.stages[stage].name.to_string(),
+                        });
+                        match draw {
+                            Draw::Mesh => {
+                                device.cmd_bind_vertex_buffers(
+                                    commands,
+                                    0,
+                                    &[self.vertices.buffer],
+                                    &[0],
+                                );
+                                device.cmd_bind_index_buffer(
+                                    commands,
+                                    self.indices.buffer,
+                                    0,
+                                    vk::IndexType::UINT32,
+                                );
+                                device.cmd_draw_indexed(commands, self.index_count, 1, 0, 0, 0);
+                            }
+                            Draw::Fullscreen => device.cmd_draw(commands, 3, 1, 0, 0),
+                            Draw::Volume(volume) => {
+                                device.cmd_bind_vertex_buffers(
+                                    commands,
+                                    0,
+                                    &[self.volume_indices.buffer],
+                                    &[4 * u64::from(volume)],
+                                );
+                                device.cmd_push_constants(
+                                    commands,
+                                    pass.layout,
+                                    vk::ShaderStageFlags::FRAGMENT,
+                                    0,
+                                    &volume.to_le_bytes(),
+                                );
+                                device.cmd_draw(commands, 6, 1, 0, 0);
+                            }
+                        }
+                    }
+                    device.cmd_end_render_pass(commands);
+                    recording.push(Call::EndPass {
+                        stored: pass
+                            .attachments
+                            .iter()
+                            .filter(|(_, stored)| *stored)
+                            .map(|(attachment, _)| attachment.name.clone())
+                            .collect(),
+                    });
+                }
+                device.cmd_copy_image_to_buffer(
+                    commands,
+                    plan.output,
+                    vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                    plan.read_back.buffer,
+                    &[vk::BufferImageCopy::default()
+                        .image_subresource(color_layers(0))
+                        .image_extent(vk::Extent3D {
+                            width: plan.width,
+                            height: plan.height,
+                            depth: 1,
+                        })],
+                );
+                for (image, buffer) in &plan.gbuffer {
+                    device.cmd_copy_image_to_buffer(
+                        commands,
+                        *image,
+                        vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                        buffer.buffer,
+                        &[vk::BufferImageCopy::default()
+                            .image_subresource(color_layers(0))
+                            .image_extent(vk::Extent3D {
+                                width: plan.width,
+                                height: plan.height,
+                                depth: 1,
+                            })],
+                    );
+                }
+                let to_host = vk::MemoryBarrier::default()
+                    .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+                    .dst_access_mask(vk::AccessFlags::HOST_READ);
+                device.cmd_pipeline_barrier(
+                    commands,
+                    vk::PipelineStageFlags::TRANSFER,
+                    vk::PipelineStageFlags::HOST,
+                    vk::DependencyFlags::empty(),
+                    &[to_host],
+                    &[],
+                    &[],
+                );
+            }
+        })
+    }
+
+    /// An image of `mips` uploaded through a staging buffer, left for sampling.
+    fn upload(&self, format: vk::Format, mips: &[Texels]) -> Result<vk::ImageView, String> {
+        let usage = vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST;
+        let (image, view, _) = self.vulkan.image(
+            format,
+            (mips[0].width, mips[0].height, mips.len() as u32),
+            usage,
+        )?;
+        let bytes: Vec<u8> = mips
+            .iter()
+            .flat_map(|mip| mip.bytes.iter().copied())
+            .collect();
+        let staging = buffer_of(&self.vulkan, &bytes, vk::BufferUsageFlags::TRANSFER_SRC)?;
+        let range = vk::ImageSubresourceRange {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            base_mip_level: 0,
+            level_count: mips.len() as u32,
+            base_array_layer: 0,
+            layer_count: 1,
+        };
+        self.vulkan.submit_and_wait(|device, commands| {
+            // SAFETY: the image and the staging buffer are alive; each copy is within both.
+            unsafe {
+                let to_transfer = vk::ImageMemoryBarrier::default()
+                    .dst_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+                    .old_layout(vk::ImageLayout::UNDEFINED)
+                    .new_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
+                    .image(image)
+                    .subresource_range(range);
+                device.cmd_pipeline_barrier(
+                    commands,
+                    vk::PipelineStageFlags::TOP_OF_PIPE,
+                    vk::PipelineStageFlags::TRANSFER,
+                    vk::DependencyFlags::empty(),
+                    &[],
+                    &[],
+                    &[to_transfer],
+                );
+                let mut offset = 0;
+                let copies: Vec<vk::BufferImageCopy> = mips
+                    .iter()
+                    .enumerate()
+                    .map(|(level, mip)| {
+                        let copy = vk::BufferImageCopy::default()
+                            .buffer_offset(offset)
+                            .image_subresource(color_layers(level as u32))
+                            .image_extent(vk::Extent3D {
+                                width: mip.width,
+                                height: mip.height,
+                                depth: 1,
+                            });
+                        offset += mip.bytes.len() as u64;
+                        copy
+                    })
+                    .collect();
+                device.cmd_copy_buffer_to_image(
+                    commands,
+                    staging.buffer,
+                    image,
+                    vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                    &copies,
+                );
+                let to_sampling = vk::ImageMemoryBarrier::default()
+                    .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+                    .dst_access_mask(vk::AccessFlags::SHADER_READ)
+                    .old_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
+                    .new_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)
+                    .image(image)
+                    .subresource_range(range);
+                device.cmd_pipeline_barrier(
+                    commands,
+                    vk::PipelineStageFlags::TRANSFER,
+                    vk::PipelineStageFlags::FRAGMENT_SHADER,
+                    vk::DependencyFlags::empty(),
+                    &[],
+                    &[],
+                    &[to_sampling],
+                );
+            }
+        })?;
+        Ok(view)
+    }
+}
+
+fn color_layers(mip_level: u32) -> vk::ImageSubresourceLayers {
+    vk::ImageSubresourceLayers {
+        aspect_mask: vk::ImageAspectFlags::COLOR,
+        mip_level,
+        base_array_layer: 0,
+        layer_count: 1,
+    }
+}
+
+fn clear_uint(value: u32) -> vk::ClearValue {
+    vk::ClearValue {
+        color: vk::ClearColorValue { uint32: [value; 4] },
+    }
+}
+
+fn clear_float(value: f32) -> vk::ClearValue {
+    vk::ClearValue {
+        color: vk::ClearColorValue {
+            float32: [value; 4],
+        },
+    }
+}
+
+fn clear_depth() -> vk::ClearValue {
+    vk::ClearValue {
+        depth_stencil: vk::ClearDepthStencilValue {
+            depth: 1.0,
+            stencil: 0,
+        },
+    }
+}
+
+fn named(name: &str, bytes_per_pixel: u32) -> Attachment {
+    Attachment {
+        name: name.to_string(),
+        bytes_per_pixel,
+    }
+}
+
+/// A host-visible buffer for `usage` holding `bytes` (padded to whole words).
+fn buffer_of(
+    vulkan: &Vulkan,
+    bytes: &[u8],
+    usage: vk::BufferUsageFlags,
+) -> Result<StorageBuffer, String> {
+    let mut words = vec![0u32; bytes.len().div_ceil(4)];
+    bytemuck::cast_slice_mut::<u32, u8>(&mut words)[..bytes.len()].copy_from_slice(bytes);
+    let buffer = vulkan.host_buffer(words.len(), usage)?;
+    vulkan.write_buffer(&buffer, &words)?;
+    Ok(buffer)
+}

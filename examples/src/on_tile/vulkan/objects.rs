@@ -1,0 +1,370 @@
+//! The Vulkan objects the plans are made of: render passes, framebuffers, descriptor sets,
+//! pipeline layouts and pipelines (naga's GLSL 450 compiled by glslang).
+
+use ash::vk;
+use gbuffer_testkit::tools::glslang;
+use gbuffer_testkit::vulkan::Object;
+
+use super::VulkanRenderer;
+use crate::mesh::Vertex;
+use crate::on_tile::glsl::{self, Dialect};
+use crate::shaders::SAMPLER_BINDING;
+
+impl VulkanRenderer {
+    pub(super) fn render_pass(
+        &self,
+        attachments: &[vk::AttachmentDescription],
+        subpasses: &[vk::SubpassDescription],
+        dependencies: &[vk::SubpassDependency],
+    ) -> Result<vk::RenderPass, String> {
+        // SAFETY: the descriptions reference only `attachments`.
+        let render_pass = unsafe {
+            self.vulkan.device.create_render_pass(
+                &vk::RenderPassCreateInfo::default()
+                    .attachments(attachments)
+                    .subpasses(subpasses)
+                    .dependencies(dependencies),
+                None,
+            )
+        }
+        .map_err(|error| format!("vkCreateRenderPass: {error}"))?;
+        self.vulkan.track(Object::RenderPass(render_pass));
+        Ok(render_pass)
+    }
+
+    pub(super) fn framebuffer(
+        &self,
+        render_pass: vk::RenderPass,
+        views: &[vk::ImageView],
+        width: u32,
+        height: u32,
+    ) -> Result<vk::Framebuffer, String> {
+        self.vulkan.framebuffer(render_pass, views, width, height)
+    }
+
+    /// A descriptor set (and its layout) of combined image samplers at `bindings`: the inputs
+    /// (linear sampler) and `frame_textures` (nearest), for the fragment stage.
+    pub(super) fn sampled_set(
+        &self,
+        bindings: &[u32],
+        frame_textures: &[(u32, vk::ImageView)],
+    ) -> Result<(vk::DescriptorSetLayout, vk::DescriptorSet), String> {
+        let mut resources = Vec::new();
+        // GLSL combines the sampler with each texture.
+        for &binding in bindings
+            .iter()
+            .filter(|&&binding| binding != SAMPLER_BINDING)
+        {
+            if let Some((_, view)) = self.inputs.iter().find(|(input, _)| *input == binding) {
+                resources.push((binding, *view, self.linear));
+            } else if let Some((_, view)) = frame_textures
+                .iter()
+                .find(|(texture, _)| *texture == binding)
+            {
+                resources.push((binding, *view, self.nearest));
+            } else {
+                return Err(format!(
+                    "the shader samples binding {binding}, which this renderer does not bind"
+                ));
+            }
+        }
+        self.descriptor_set(
+            &resources
+                .iter()
+                .map(|&(binding, view, sampler)| {
+                    (
+                        binding,
+                        vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
+                        view,
+                        sampler,
+                        vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+                    )
+                })
+                .collect::<Vec<_>>(),
+        )
+    }
+
+    /// A descriptor set (and its layout) of the input attachments `views` at bindings 0, 1...
+    pub(super) fn input_attachment_set(
+        &self,
+        views: &[vk::ImageView],
+    ) -> Result<(vk::DescriptorSetLayout, vk::DescriptorSet), String> {
+        self.descriptor_set(
+            &views
+                .iter()
+                .enumerate()
+                .map(|(index, &view)| {
+                    (
+                        index as u32,
+                        vk::DescriptorType::INPUT_ATTACHMENT,
+                        view,
+                        vk::Sampler::null(),
+                        vk::ImageLayout::GENERAL,
+                    )
+                })
+                .collect::<Vec<_>>(),
+        )
+    }
+
+    #[allow(clippy::type_complexity)]
+    pub(super) fn descriptor_set(
+        &self,
+        resources: &[(
+            u32,
+            vk::DescriptorType,
+            vk::ImageView,
+            vk::Sampler,
+            vk::ImageLayout,
+        )],
+    ) -> Result<(vk::DescriptorSetLayout, vk::DescriptorSet), String> {
+        let device = &self.vulkan.device;
+        let bindings: Vec<vk::DescriptorSetLayoutBinding> = resources
+            .iter()
+            .map(|&(binding, kind, ..)| {
+                vk::DescriptorSetLayoutBinding::default()
+                    .binding(binding)
+                    .descriptor_type(kind)
+                    .descriptor_count(1)
+                    .stage_flags(vk::ShaderStageFlags::FRAGMENT)
+            })
+            .collect();
+        let sizes: Vec<vk::DescriptorPoolSize> = resources
+            .iter()
+            .map(|&(_, kind, ..)| vk::DescriptorPoolSize {
+                ty: kind,
+                descriptor_count: 1,
+            })
+            .collect();
+        // SAFETY: the layout, pool and set are created, written and tracked here.
+        unsafe {
+            let layout = device
+                .create_descriptor_set_layout(
+                    &vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings),
+                    None,
+                )
+                .map_err(|error| format!("vkCreateDescriptorSetLayout: {error}"))?;
+            self.vulkan.track(Object::DescriptorSetLayout(layout));
+            let mut pool_info = vk::DescriptorPoolCreateInfo::default().max_sets(1);
+            if !sizes.is_empty() {
+                pool_info = pool_info.pool_sizes(&sizes);
+            }
+            let pool = device
+                .create_descriptor_pool(&pool_info, None)
+                .map_err(|error| format!("vkCreateDescriptorPool: {error}"))?;
+            self.vulkan.track(Object::DescriptorPool(pool));
+            let layouts = [layout];
+            let set = device
+                .allocate_descriptor_sets(
+                    &vk::DescriptorSetAllocateInfo::default()
+                        .descriptor_pool(pool)
+                        .set_layouts(&layouts),
+                )
+                .map_err(|error| format!("vkAllocateDescriptorSets: {error}"))?[0];
+            let images: Vec<[vk::DescriptorImageInfo; 1]> = resources
+                .iter()
+                .map(|&(_, _, view, sampler, layout)| {
+                    [vk::DescriptorImageInfo {
+                        sampler,
+                        image_view: view,
+                        image_layout: layout,
+                    }]
+                })
+                .collect();
+            let writes: Vec<vk::WriteDescriptorSet> = resources
+                .iter()
+                .zip(&images)
+                .map(|(&(binding, kind, ..), image)| {
+                    vk::WriteDescriptorSet::default()
+                        .dst_set(set)
+                        .dst_binding(binding)
+                        .descriptor_type(kind)
+                        .image_info(image)
+                })
+                .collect();
+            device.update_descriptor_sets(&writes, &[]);
+            Ok((layout, set))
+        }
+    }
+
+    pub(super) fn pipeline_layout(
+        &self,
+        sets: &[vk::DescriptorSetLayout],
+        push_constant: bool,
+    ) -> Result<vk::PipelineLayout, String> {
+        let ranges = [vk::PushConstantRange {
+            stage_flags: vk::ShaderStageFlags::FRAGMENT,
+            offset: 0,
+            size: 4,
+        }];
+        let mut info = vk::PipelineLayoutCreateInfo::default().set_layouts(sets);
+        if push_constant {
+            info = info.push_constant_ranges(&ranges);
+        }
+        // SAFETY: the set layouts are alive.
+        let layout = unsafe { self.vulkan.device.create_pipeline_layout(&info, None) }
+            .map_err(|error| format!("vkCreatePipelineLayout: {error}"))?;
+        self.vulkan.track(Object::PipelineLayout(layout));
+        Ok(layout)
+    }
+
+    /// A pipeline: `vertex` of the WGSL translated and `fragment` (GLSL 450), compiled by
+    /// glslang, with the vertex input its vertex stage takes, a depth test, and colour writes
+    /// to the attachments `writes` marks.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn pipeline(
+        &self,
+        wgsl: &str,
+        vertex: &str,
+        fragment: &str,
+        render_pass: vk::RenderPass,
+        layout: vk::PipelineLayout,
+        (depth, writes): (Depth, &[bool]),
+        (width, height): (u32, u32),
+    ) -> Result<vk::Pipeline, String> {
+        let vertex_glsl =
+            glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Vulkan)?;
+        let vertex_module =
+            self.vulkan
+                .shader_module(&glslang(&vertex_glsl.text, "vert", true)?)?;
+        let fragment_module = self
+            .vulkan
+            .shader_module(&glslang(fragment, "frag", true)?)?;
+        let entry = c"main";
+        let stages = [
+            vk::PipelineShaderStageCreateInfo::default()
+                .stage(vk::ShaderStageFlags::VERTEX)
+                .module(vertex_module)
+                .name(entry),
+            vk::PipelineShaderStageCreateInfo::default()
+                .stage(vk::ShaderStageFlags::FRAGMENT)
+                .module(fragment_module)
+                .name(entry),
+        ];
+        let (bindings, attributes): (Vec<_>, Vec<_>) = match vertex {
+            "geometry_vertex" => (
+                vec![vk::VertexInputBindingDescription {
+                    binding: 0,
+                    stride: std::mem::size_of::<Vertex>() as u32,
+                    input_rate: vk::VertexInputRate::VERTEX,
+                }],
+                vec![
+                    vk::VertexInputAttributeDescription {
+                        location: 0,
+                        binding: 0,
+                        format: vk::Format::R32G32B32_SFLOAT,
+                        offset: 0,
+                    },
+                    vk::VertexInputAttributeDescription {
+                        location: 1,
+                        binding: 0,
+                        format: vk::Format::R32G32B32_SFLOAT,
+                        offset: 12,
+                    },
+                    vk::VertexInputAttributeDescription {
+                        location: 2,
+                        binding: 0,
+                        format: vk::Format::R32_UINT,
+                        offset: 24,
+                    },
+                ],
+            ),
+            "volume_vertex" => (
+                vec![vk::VertexInputBindingDescription {
+                    binding: 0,
+                    stride: 4,
+                    input_rate: vk::VertexInputRate::INSTANCE,
+                }],
+                vec![vk::VertexInputAttributeDescription {
+                    location: 0,
+                    binding: 0,
+                    format: vk::Format::R32_UINT,
+                    offset: 0,
+                }],
+            ),
+            _ => (Vec::new(), Vec::new()),
+        };
+        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
+            .vertex_binding_descriptions(&bindings)
+            .vertex_attribute_descriptions(&attributes);
+        let assembly = vk::PipelineInputAssemblyStateCreateInfo::default()
+            .topology(vk::PrimitiveTopology::TRIANGLE_LIST);
+        let viewports = [vk::Viewport {
+            x: 0.0,
+            y: 0.0,
+            width: width as f32,
+            height: height as f32,
+            min_depth: 0.0,
+            max_depth: 1.0,
+        }];
+        let scissors = [vk::Rect2D {
+            offset: vk::Offset2D::default(),
+            extent: vk::Extent2D { width, height },
+        }];
+        let viewport = vk::PipelineViewportStateCreateInfo::default()
+            .viewports(&viewports)
+            .scissors(&scissors);
+        let rasterisation = vk::PipelineRasterizationStateCreateInfo::default()
+            .polygon_mode(vk::PolygonMode::FILL)
+            .cull_mode(vk::CullModeFlags::NONE)
+            .line_width(1.0);
+        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
+            .rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let (test, write, compare) = match depth {
+            Depth::None => (false, false, vk::CompareOp::ALWAYS),
+            Depth::Write => (true, true, vk::CompareOp::LESS),
+            Depth::Surfaces => (true, false, vk::CompareOp::GREATER),
+            Depth::Sky => (true, false, vk::CompareOp::EQUAL),
+        };
+        let depth_state = vk::PipelineDepthStencilStateCreateInfo::default()
+            .depth_test_enable(test)
+            .depth_write_enable(write)
+            .depth_compare_op(compare);
+        let blends: Vec<vk::PipelineColorBlendAttachmentState> = writes
+            .iter()
+            .map(|&writes| {
+                vk::PipelineColorBlendAttachmentState::default().color_write_mask(if writes {
+                    vk::ColorComponentFlags::RGBA
+                } else {
+                    vk::ColorComponentFlags::empty()
+                })
+            })
+            .collect();
+        let blend = vk::PipelineColorBlendStateCreateInfo::default().attachments(&blends);
+        let mut info = vk::GraphicsPipelineCreateInfo::default()
+            .stages(&stages)
+            .vertex_input_state(&vertex_input)
+            .input_assembly_state(&assembly)
+            .viewport_state(&viewport)
+            .rasterization_state(&rasterisation)
+            .multisample_state(&multisample)
+            .color_blend_state(&blend)
+            .layout(layout)
+            .render_pass(render_pass)
+            .subpass(0);
+        if depth != Depth::None {
+            info = info.depth_stencil_state(&depth_state);
+        }
+        // SAFETY: every state the pipeline needs is given; the objects it names are alive.
+        let pipeline = unsafe {
+            self.vulkan
+                .device
+                .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
+        }
+        .map_err(|(_, error)| format!("vkCreateGraphicsPipelines: {error}"))?[0];
+        self.vulkan.track(Object::Pipeline(pipeline));
+        Ok(pipeline)
+    }
+}
+
+/// How a pipeline tests depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Depth {
+    /// No depth attachment.
+    None,
+    /// The mesh: LESS, written.
+    Write,
+    /// Fullscreen and volume draws over the surfaces: GREATER than their depth.
+    Surfaces,
+    /// The sky: EQUAL to the cleared far plane.
+    Sky,
+}

@@ -1,0 +1,464 @@
+//! The two plans of the Vulkan backend: the subpass path's one render pass, and the two-pass
+//! path's two.
+
+use ash::vk;
+use gbuffer_codegen::emit::glsl::{self as includes, Include};
+
+use super::objects::Depth;
+use super::{
+    clear_depth, clear_float, clear_uint, named, Draw, Pass, Plan, StagePipeline, VulkanRenderer,
+    DEPTH_FORMAT, OUTPUT_FORMAT, PACKED_FORMAT,
+};
+use crate::on_tile::glsl::{self, Dialect};
+use crate::on_tile::recording::Attachment;
+use crate::on_tile::{fused_wgsl, Stage};
+use crate::renderer::{Options, Positions};
+use crate::scene::{DECALS, POINT_LIGHT_COUNT};
+use crate::shaders::used_bindings;
+
+impl VulkanRenderer {
+    /// The subpass path: one render pass, one subpass, six pipelines. With `store_gbuffer`
+    /// (the debug view) the G-buffer is stored and only the geometry drawn.
+    pub(super) fn subpass_plan(
+        &self,
+        options: &Options,
+        layout: crate::gbuffers::SeedLayout,
+        store_gbuffer: bool,
+    ) -> Result<Plan, String> {
+        let model = layout.layout();
+        let (include, interface) = includes::include(&model, Include::SubpassPacked, 1)
+            .map_err(|error| error.to_string())?;
+        let targets = interface.attachments.len() as u32;
+        let limits = &self.vulkan.limits;
+        if targets + 1 > limits.max_color_attachments
+            || targets + 1 > limits.max_fragment_output_attachments
+            || targets > limits.max_per_stage_descriptor_input_attachments
+        {
+            return Err(format!(
+                "layout `{}` on --path subpass needs {} colour attachments and {targets} input \
+                 attachments, but the device offers maxColorAttachments = {}, \
+                 maxFragmentOutputAttachments = {} and maxPerStageDescriptorInputAttachments = {}",
+                layout.flag(),
+                targets + 1,
+                limits.max_color_attachments,
+                limits.max_fragment_output_attachments,
+                limits.max_per_stage_descriptor_input_attachments
+            ));
+        }
+        let (width, height) = (options.width, options.height);
+        let transient = vk::ImageUsageFlags::TRANSIENT_ATTACHMENT;
+        // The debug view stores the G-buffer to copy it out; otherwise it is transient.
+        let kept = if store_gbuffer {
+            vk::ImageUsageFlags::TRANSFER_SRC
+        } else {
+            transient
+        };
+        let mut views = Vec::new();
+        let mut gbuffer = Vec::new();
+        for _ in 0..targets {
+            let usage = vk::ImageUsageFlags::COLOR_ATTACHMENT
+                | vk::ImageUsageFlags::INPUT_ATTACHMENT
+                | kept;
+            let (image, view, _) = self
+                .vulkan
+                .image(PACKED_FORMAT, (width, height, 1), usage)?;
+            views.push(view);
+            if store_gbuffer {
+                let words = (width * height * 4) as usize;
+                let buffer = self
+                    .vulkan
+                    .host_buffer(words, vk::BufferUsageFlags::TRANSFER_DST)?;
+                gbuffer.push((image, buffer));
+            }
+        }
+        let (output, output_view, _) = self.vulkan.image(
+            OUTPUT_FORMAT,
+            (width, height, 1),
+            vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
+        )?;
+        views.push(output_view);
+        let (_, depth_view, _) = self.vulkan.image(
+            DEPTH_FORMAT,
+            (width, height, 1),
+            vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | transient,
+        )?;
+        views.push(depth_view);
+
+        // Attachments: the G-buffer targets (cleared, never stored, GENERAL: read and written
+        // in the same subpass), the output (stored), depth (never stored).
+        let gbuffer_layout = if store_gbuffer {
+            vk::ImageLayout::TRANSFER_SRC_OPTIMAL
+        } else {
+            vk::ImageLayout::GENERAL
+        };
+        let mut descriptions: Vec<vk::AttachmentDescription> = (0..targets)
+            .map(|_| attachment_description(PACKED_FORMAT, store_gbuffer, gbuffer_layout))
+            .collect();
+        descriptions.push(attachment_description(
+            OUTPUT_FORMAT,
+            true,
+            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+        ));
+        descriptions.push(attachment_description(
+            DEPTH_FORMAT,
+            false,
+            vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+        ));
+        let reference = |attachment, layout| vk::AttachmentReference { attachment, layout };
+        let mut colours: Vec<_> = (0..targets)
+            .map(|index| reference(index, vk::ImageLayout::GENERAL))
+            .collect();
+        colours.push(reference(
+            targets,
+            vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+        ));
+        let inputs: Vec<_> = (0..targets)
+            .map(|index| reference(index, vk::ImageLayout::GENERAL))
+            .collect();
+        let depth = reference(
+            targets + 1,
+            vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+        );
+        let subpass = [vk::SubpassDescription::default()
+            .pipeline_bind_point(vk::PipelineBindPoint::GRAPHICS)
+            .color_attachments(&colours)
+            .input_attachments(&inputs)
+            .depth_stencil_attachment(&depth)];
+        let dependencies = [
+            // Within the subpass: a draw reads, by region, what the draws before it wrote.
+            vk::SubpassDependency::default()
+                .src_subpass(0)
+                .dst_subpass(0)
+                .src_stage_mask(vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT)
+                .dst_stage_mask(vk::PipelineStageFlags::FRAGMENT_SHADER)
+                .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
+                .dst_access_mask(vk::AccessFlags::INPUT_ATTACHMENT_READ)
+                .dependency_flags(vk::DependencyFlags::BY_REGION),
+            output_to_transfer(),
+        ];
+        let render_pass = self.render_pass(&descriptions, &subpass, &dependencies)?;
+        let framebuffer = self.framebuffer(render_pass, &views, width, height)?;
+
+        // Descriptors: the inputs the stages sample in set 0, the G-buffer inputs in set 1,
+        // the volume index as a push constant.
+        let wgsl = fused_wgsl(options, layout, -1.0);
+        let sampled = used_bindings(&wgsl, "translation_entry");
+        let (set0_layout, set0) = self.sampled_set(&sampled, &[])?;
+        let input_views: Vec<vk::ImageView> = views[..targets as usize].to_vec();
+        let (set1_layout, set1) = self.input_attachment_set(&input_views)?;
+        let layout_handle = self.pipeline_layout(&[set0_layout, set1_layout], true)?;
+
+        let snake = model.snake_name();
+        let names = includes::translate(&model)
+            .map_err(|error| error.to_string())?
+            .names;
+        let texel = &names.layout;
+        let outputs: String = (0..targets)
+            .map(|index| {
+                format!("layout(location = {index}) out highp uvec4 gbuffer_out{index};\n")
+            })
+            .chain([format!(
+                "layout(location = {targets}) out highp vec4 frame_colour;\n"
+            )])
+            .collect();
+        let store = includes::store_statements(&model, &names, &interface, |attachment| {
+            format!("gbuffer_out{}", attachment.index)
+        });
+        // The volume drawn comes as a push constant; each draw writes only what it changes.
+        let volume = "layout(push_constant) uniform Volume {\n    uint volume_index;\n};\n";
+        let translation = glsl::translate(
+            &wgsl,
+            naga::ShaderStage::Fragment,
+            "translation_entry",
+            Dialect::Vulkan,
+        )?;
+        let declarations = glsl::declarations(&translation.text, &include);
+        let mut pipeline_stages = Vec::new();
+        for stage in Stage::ALL {
+            let depth = match stage {
+                Stage::Geometry => Depth::Write,
+                Stage::Sky => Depth::Sky,
+                _ => Depth::Surfaces,
+            };
+            let writes = stage.writes(layout, targets as usize, 4);
+            let fragment = format!(
+                "#version 450\n\n{include}\n{outputs}{volume}\n{declarations}\n{}",
+                stage.fragment_main(texel, &snake, &store)
+            );
+            let pipeline = self
+                .pipeline(
+                    &wgsl,
+                    stage.vertex_entry(),
+                    &fragment,
+                    render_pass,
+                    layout_handle,
+                    (depth, &writes),
+                    (width, height),
+                )
+                .map_err(|error| format!("the {} pipeline: {error}", stage.name()))?;
+            pipeline_stages.push(StagePipeline {
+                name: stage.name(),
+                pipeline,
+            });
+        }
+        let mut draws = vec![(0, Draw::Mesh)];
+        if !store_gbuffer {
+            draws.extend(
+                (0..DECALS.len())
+                    .map(|decal| (1, Draw::Volume((POINT_LIGHT_COUNT + decal) as u32))),
+            );
+            draws.push((2, Draw::Fullscreen));
+            draws.extend((0..POINT_LIGHT_COUNT).map(|light| (3, Draw::Volume(light as u32))));
+            draws.push((4, Draw::Fullscreen));
+            draws.push((5, Draw::Fullscreen));
+        }
+
+        let mut attachments: Vec<(Attachment, bool)> = (0..targets)
+            .map(|index| (named(&format!("gbuffer{index}"), 16), store_gbuffer))
+            .collect();
+        attachments.push((named("output", 4), true));
+        attachments.push((named("depth", 4), false));
+        let mut clears = vec![clear_uint(0); targets as usize];
+        clears.push(clear_float(0.0));
+        clears.push(clear_depth());
+        Ok(Plan {
+            passes: vec![Pass {
+                render_pass,
+                framebuffer,
+                attachments,
+                clears,
+                layout: layout_handle,
+                sets: vec![set0, set1],
+                stages: pipeline_stages,
+                draws,
+                samples: Vec::new(),
+            }],
+            output,
+            read_back: self.vulkan.host_buffer(
+                (width * height) as usize,
+                vk::BufferUsageFlags::TRANSFER_DST,
+            )?,
+            gbuffer,
+            width,
+            height,
+        })
+    }
+
+    /// The two-pass path: wgpu's G-buffer pass into stored images, then its lighting pass
+    /// (with the tone mapping) sampling them.
+    pub(super) fn two_pass_plan(&self, options: &Options) -> Result<Plan, String> {
+        let (width, height) = (options.width, options.height);
+        let formats: Vec<(vk::Format, u32)> = options
+            .gbuffer
+            .target_formats()
+            .iter()
+            .map(|format| match format {
+                wgpu::TextureFormat::R32Uint => (vk::Format::R32_UINT, 4),
+                wgpu::TextureFormat::Rg32Uint => (vk::Format::R32G32_UINT, 8),
+                _ => (PACKED_FORMAT, 16),
+            })
+            .collect();
+        let mut gbuffer_views = Vec::new();
+        for &(format, _) in &formats {
+            let usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::SAMPLED;
+            gbuffer_views.push(self.vulkan.image(format, (width, height, 1), usage)?.1);
+        }
+        let (_, depth_view, _) = self.vulkan.image(
+            DEPTH_FORMAT,
+            (width, height, 1),
+            vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT
+                | vk::ImageUsageFlags::TRANSIENT_ATTACHMENT,
+        )?;
+        let (output, output_view, _) = self.vulkan.image(
+            OUTPUT_FORMAT,
+            (width, height, 1),
+            vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
+        )?;
+
+        // Pass 1: the G-buffer, stored for the second pass to sample.
+        let mut descriptions: Vec<_> = formats
+            .iter()
+            .map(|&(format, _)| {
+                attachment_description(format, true, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)
+            })
+            .collect();
+        descriptions.push(attachment_description(
+            DEPTH_FORMAT,
+            false,
+            vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+        ));
+        let count = formats.len() as u32;
+        let colours: Vec<_> = (0..count)
+            .map(|attachment| vk::AttachmentReference {
+                attachment,
+                layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+            })
+            .collect();
+        let depth = vk::AttachmentReference {
+            attachment: count,
+            layout: vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+        };
+        let subpass = [vk::SubpassDescription::default()
+            .pipeline_bind_point(vk::PipelineBindPoint::GRAPHICS)
+            .color_attachments(&colours)
+            .depth_stencil_attachment(&depth)];
+        let to_sampling = [vk::SubpassDependency::default()
+            .src_subpass(0)
+            .dst_subpass(vk::SUBPASS_EXTERNAL)
+            .src_stage_mask(vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT)
+            .dst_stage_mask(vk::PipelineStageFlags::FRAGMENT_SHADER)
+            .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
+            .dst_access_mask(vk::AccessFlags::SHADER_READ)];
+        let first_pass = self.render_pass(&descriptions, &subpass, &to_sampling)?;
+        let mut views = gbuffer_views.clone();
+        views.push(depth_view);
+        let first_framebuffer = self.framebuffer(first_pass, &views, width, height)?;
+        let gbuffer_wgsl = crate::renderer::gbuffer_wgsl(options, -1.0);
+        let (set_layout, set) =
+            self.sampled_set(&used_bindings(&gbuffer_wgsl, "gbuffer_main"), &[])?;
+        let first_layout = self.pipeline_layout(&[set_layout], false)?;
+        let gbuffer_fragment = glsl::translate(
+            &gbuffer_wgsl,
+            naga::ShaderStage::Fragment,
+            "gbuffer_main",
+            Dialect::Vulkan,
+        )?;
+        let gbuffer = self.pipeline(
+            &gbuffer_wgsl,
+            "geometry_vertex",
+            &gbuffer_fragment.text,
+            first_pass,
+            first_layout,
+            (Depth::Write, &vec![true; formats.len()]),
+            (width, height),
+        )?;
+
+        // Pass 2: lighting and tone mapping into the output.
+        let output_description = [attachment_description(
+            OUTPUT_FORMAT,
+            true,
+            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+        )];
+        let output_reference = [vk::AttachmentReference {
+            attachment: 0,
+            layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL,
+        }];
+        let subpass = [vk::SubpassDescription::default()
+            .pipeline_bind_point(vk::PipelineBindPoint::GRAPHICS)
+            .color_attachments(&output_reference)];
+        let second_pass =
+            self.render_pass(&output_description, &subpass, &[output_to_transfer()])?;
+        let second_framebuffer = self.framebuffer(second_pass, &[output_view], width, height)?;
+        let lighting_wgsl = crate::renderer::lighting_pass_wgsl(options, Positions::Texel)?;
+        let gbuffer_bindings: Vec<(u32, vk::ImageView)> = gbuffer_views
+            .iter()
+            .enumerate()
+            .map(|(index, view)| (10 + index as u32, *view))
+            .collect();
+        let (lighting_set_layout, lighting_set) = self.sampled_set(
+            &used_bindings(&lighting_wgsl, "lighting_resolve_main"),
+            &gbuffer_bindings,
+        )?;
+        let second_layout = self.pipeline_layout(&[lighting_set_layout], false)?;
+        let lighting_fragment = glsl::translate(
+            &lighting_wgsl,
+            naga::ShaderStage::Fragment,
+            "lighting_resolve_main",
+            Dialect::Vulkan,
+        )?;
+        let lighting = self.pipeline(
+            &lighting_wgsl,
+            "full_screen",
+            &lighting_fragment.text,
+            second_pass,
+            second_layout,
+            (Depth::None, &[true]),
+            (width, height),
+        )?;
+
+        let mut first_attachments: Vec<(Attachment, bool)> = formats
+            .iter()
+            .enumerate()
+            .map(|(index, &(_, bytes))| (named(&format!("gbuffer{index}"), bytes), true))
+            .collect();
+        first_attachments.push((named("depth", 4), false));
+        let samples = first_attachments[..formats.len()]
+            .iter()
+            .map(|(attachment, _)| attachment.clone())
+            .collect();
+        let mut clears = vec![clear_uint(u32::MAX); formats.len()];
+        clears.push(clear_depth());
+        Ok(Plan {
+            passes: vec![
+                Pass {
+                    render_pass: first_pass,
+                    framebuffer: first_framebuffer,
+                    attachments: first_attachments,
+                    clears,
+                    layout: first_layout,
+                    sets: vec![set],
+                    stages: vec![StagePipeline {
+                        name: "gbuffer",
+                        pipeline: gbuffer,
+                    }],
+                    draws: vec![(0, Draw::Mesh)],
+                    samples: Vec::new(),
+                },
+                Pass {
+                    render_pass: second_pass,
+                    framebuffer: second_framebuffer,
+                    attachments: vec![(named("output", 4), true)],
+                    clears: vec![clear_float(0.0)],
+                    layout: second_layout,
+                    sets: vec![lighting_set],
+                    stages: vec![StagePipeline {
+                        name: "lighting and resolve",
+                        pipeline: lighting,
+                    }],
+                    draws: vec![(0, Draw::Fullscreen)],
+                    samples,
+                },
+            ],
+            output,
+            read_back: self.vulkan.host_buffer(
+                (width * height) as usize,
+                vk::BufferUsageFlags::TRANSFER_DST,
+            )?,
+            gbuffer: Vec::new(),
+            width,
+            height,
+        })
+    }
+}
+
+/// An attachment cleared at the start of the render pass, stored at its end or not.
+fn attachment_description(
+    format: vk::Format,
+    stored: bool,
+    final_layout: vk::ImageLayout,
+) -> vk::AttachmentDescription {
+    vk::AttachmentDescription::default()
+        .format(format)
+        .samples(vk::SampleCountFlags::TYPE_1)
+        .load_op(vk::AttachmentLoadOp::CLEAR)
+        .store_op(if stored {
+            vk::AttachmentStoreOp::STORE
+        } else {
+            vk::AttachmentStoreOp::DONT_CARE
+        })
+        .stencil_load_op(vk::AttachmentLoadOp::DONT_CARE)
+        .stencil_store_op(vk::AttachmentStoreOp::DONT_CARE)
+        .initial_layout(vk::ImageLayout::UNDEFINED)
+        .final_layout(final_layout)
+}
+
+/// The output, written in the pass, then copied out.
+fn output_to_transfer() -> vk::SubpassDependency {
+    vk::SubpassDependency::default()
+        .src_subpass(0)
+        .dst_subpass(vk::SUBPASS_EXTERNAL)
+        .src_stage_mask(vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT)
+        .dst_stage_mask(vk::PipelineStageFlags::TRANSFER)
+        .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
+        .dst_access_mask(vk::AccessFlags::TRANSFER_READ)
+}
