@@ -1,0 +1,302 @@
+//! The GLES backend's plans: the fused paths' one framebuffer and six programs (after the
+//! checks that name what the driver lacks), the two-pass path's two, and the framebuffers and
+//! programs they are made of.
+
+use glow::HasContext as _;
+
+use gbuffer_codegen::emit::glsl::{self as includes, Include};
+
+use super::{GlesRenderer, Plan, Target, FETCH};
+use crate::gbuffers::SeedLayout;
+use crate::on_tile::glsl::{self, Dialect};
+use crate::on_tile::{fused_wgsl, tile_layout, Path, Stage, TileOptions};
+use crate::renderer::Options;
+
+impl GlesRenderer {
+    /// The programs and framebuffers of a configuration, after checking what it needs.
+    pub(super) fn plan(&self, tile: &TileOptions) -> Result<Plan, String> {
+        let options = &tile.options;
+        let layout = tile_layout(options)?;
+        let (width, height) = (options.width as i32, options.height as i32);
+        match tile.path {
+            Path::FetchNative | Path::FetchPacked => {
+                if !self.gles.has_extension(FETCH) {
+                    return Err(format!(
+                        "the GLES driver ({}) lacks {FETCH}, which --path {} needs",
+                        self.gles.describe(),
+                        tile.path.flag()
+                    ));
+                }
+                self.fused_plan(options, layout, tile.path, (width, height))
+            }
+            Path::TwoPass => self.two_pass_plan(options, (width, height)),
+            Path::Subpass => Err("--path subpass is Vulkan's: use --backend vulkan".into()),
+        }
+    }
+
+    /// The fused paths: one framebuffer of the G-buffer, the output and depth, six programs.
+    pub(super) fn fused_plan(
+        &self,
+        options: &Options,
+        layout: SeedLayout,
+        path: Path,
+        (width, height): (i32, i32),
+    ) -> Result<Plan, String> {
+        let model = layout.layout();
+        let kind = if path == Path::FetchPacked {
+            Include::FetchPacked
+        } else {
+            Include::FetchNative
+        };
+        let (include, interface) =
+            includes::include(&model, kind, 0).map_err(|error| error.to_string())?;
+        let colour_attachments = interface.attachments.len() as i32 + 1;
+        let draw_buffers = self.gles.limit(glow::MAX_DRAW_BUFFERS);
+        let attachments_limit = self.gles.limit(glow::MAX_COLOR_ATTACHMENTS);
+        if colour_attachments > draw_buffers.min(attachments_limit) {
+            return Err(format!(
+                "layout `{}` on --path {} needs {} colour attachments ({} for the G-buffer and \
+                 the output), but the driver offers GL_MAX_DRAW_BUFFERS = {draw_buffers} and \
+                 GL_MAX_COLOR_ATTACHMENTS = {attachments_limit}",
+                layout.flag(),
+                path.flag(),
+                colour_attachments,
+                interface.attachments.len()
+            ));
+        }
+        let wgsl = fused_wgsl(options, layout, -1.0);
+        let snake = model.snake_name();
+        let texel = includes::translate(&model)
+            .map_err(|error| error.to_string())?
+            .names
+            .layout;
+        let output = format!(
+            "layout(location = {}) inout highp vec4 frame_colour;\n",
+            interface.attachments.len()
+        );
+        // The volume drawn comes in a uniform; each draw writes only what it changes.
+        let declarations = format!("{output}uniform highp uint volume_index;\n");
+        let store = format!("    store_{snake}(texel);\n");
+        let words_per_attachment = if kind == Include::FetchPacked { 4 } else { 1 };
+        let writes = Stage::ALL
+            .map(|stage| stage.writes(layout, interface.attachments.len(), words_per_attachment))
+            .to_vec();
+        let mut programs = Vec::new();
+        for stage in Stage::ALL {
+            let main = format!(
+                "{declarations}{}",
+                stage.fragment_main(&texel, &snake, &store)
+            );
+            let name = stage.name();
+            match self.fused_program(&wgsl, &include, &interface, stage.vertex_entry(), &main) {
+                Ok(program) => programs.push((name, program)),
+                Err(error) => {
+                    // SAFETY: programs of the current context.
+                    unsafe {
+                        programs
+                            .iter()
+                            .for_each(|(_, p)| self.gles.gl.delete_program(*p))
+                    };
+                    return Err(format!("the {name} program: {error}"));
+                }
+            }
+        }
+        let formats: Vec<(u32, u32)> = interface
+            .attachments
+            .iter()
+            .map(|attachment| {
+                let bytes = if kind == Include::FetchPacked { 16 } else { 4 };
+                (attachment.format.gl_internal_format, bytes)
+            })
+            .chain([(glow::RGBA8, 4)])
+            .collect();
+        // SAFETY: objects of the current context.
+        let (framebuffer, mut colours, depth) =
+            unsafe { self.framebuffer(&formats, width, height, false)? };
+        for (index, target) in colours.iter_mut().enumerate() {
+            target.name = if index < interface.attachments.len() {
+                format!("gbuffer{index}")
+            } else {
+                "output".into()
+            };
+        }
+        Ok(Plan {
+            path,
+            width,
+            height,
+            programs,
+            writes,
+            framebuffers: vec![framebuffer],
+            targets: vec![colours],
+            depth: depth.into_iter().collect(),
+        })
+    }
+
+    /// The two-pass path: wgpu's G-buffer and lighting passes, translated, over two
+    /// framebuffers; the second samples the first's G-buffer and depth.
+    pub(super) fn two_pass_plan(
+        &self,
+        options: &Options,
+        (width, height): (i32, i32),
+    ) -> Result<Plan, String> {
+        let gbuffer_wgsl = crate::renderer::gbuffer_wgsl(options, -1.0);
+        let lighting_wgsl =
+            crate::renderer::lighting_pass_wgsl(options, crate::renderer::Positions::Texel)?;
+        let program = |wgsl: &str, vertex: &str, fragment: &str| -> Result<glow::Program, String> {
+            let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
+            let fragment =
+                glsl::translate(wgsl, naga::ShaderStage::Fragment, fragment, Dialect::Gles)?;
+            self.gles.link(&vertex.text, &fragment.text)
+        };
+        let gbuffer = program(&gbuffer_wgsl, "geometry_vertex", "gbuffer_main")?;
+        let lighting = program(&lighting_wgsl, "full_screen", "lighting_resolve_main")?;
+        let formats: Vec<(u32, u32)> = options
+            .gbuffer
+            .target_formats()
+            .iter()
+            .map(|format| match format {
+                wgpu::TextureFormat::R32Uint => (glow::R32UI, 4),
+                wgpu::TextureFormat::Rg32Uint => (glow::RG32UI, 8),
+                _ => (glow::RGBA32UI, 16),
+            })
+            .collect();
+        // SAFETY: objects of the current context.
+        unsafe {
+            let (first, mut gbuffer_targets, depth) =
+                self.framebuffer(&formats, width, height, true)?;
+            for (index, target) in gbuffer_targets.iter_mut().enumerate() {
+                target.name = format!("gbuffer{index}");
+            }
+            let (second, mut output, _) =
+                self.framebuffer(&[(glow::RGBA8, 4)], width, height, false)?;
+            output[0].name = "output".into();
+            Ok(Plan {
+                path: Path::TwoPass,
+                width,
+                height,
+                programs: vec![("gbuffer", gbuffer), ("lighting and resolve", lighting)],
+                writes: vec![vec![true; formats.len()], vec![true]],
+                framebuffers: vec![first, second],
+                targets: vec![gbuffer_targets, output],
+                depth: depth.into_iter().collect(),
+            })
+        }
+    }
+
+    /// A fused program: `vertex` of the WGSL translated, and a fragment shader of the GLES
+    /// preamble, the layout's include as generated, the output, the renderer's translated
+    /// declarations and `main`.
+    pub(super) fn fused_program(
+        &self,
+        wgsl: &str,
+        include: &str,
+        interface: &includes::Interface,
+        vertex: &str,
+        main: &str,
+    ) -> Result<glow::Program, String> {
+        let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
+        let stages = glsl::translate(
+            wgsl,
+            naga::ShaderStage::Fragment,
+            "translation_entry",
+            Dialect::Gles,
+        )?;
+        let extensions: String = interface
+            .include
+            .shader_extensions()
+            .iter()
+            .map(|extension| format!("#extension {extension} : require\n"))
+            .collect();
+        let fragment = format!(
+            "#version 320 es\n{extensions}precision highp float;\nprecision highp int;\n\n{include}\n{}\n{main}",
+            glsl::declarations(&stages.text, include),
+        );
+        self.gles.link(&vertex.text, &fragment)
+    }
+
+    /// A framebuffer of colour attachments (internal format, bytes per pixel) and a 32-bit
+    /// float depth: renderbuffers where nothing samples them, textures where `sampled`.
+    ///
+    /// # Safety
+    /// The context must be current.
+    pub(super) unsafe fn framebuffer(
+        &self,
+        formats: &[(u32, u32)],
+        width: i32,
+        height: i32,
+        sampled: bool,
+    ) -> Result<(glow::Framebuffer, Vec<Target>, Option<Target>), String> {
+        let gl = &self.gles.gl;
+        let framebuffer = gl.create_framebuffer()?;
+        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(framebuffer));
+        let make = |format: u32, attachment: u32, name: String, bytes_per_pixel: u32| {
+            let mut target = Target {
+                name,
+                renderbuffer: None,
+                texture: None,
+                format,
+                bytes_per_pixel,
+            };
+            if sampled {
+                let texture = gl.create_texture()?;
+                gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+                gl.tex_storage_2d(glow::TEXTURE_2D, 1, format, width, height);
+                for filter in [glow::TEXTURE_MIN_FILTER, glow::TEXTURE_MAG_FILTER] {
+                    gl.tex_parameter_i32(glow::TEXTURE_2D, filter, glow::NEAREST as i32);
+                }
+                gl.framebuffer_texture_2d(
+                    glow::FRAMEBUFFER,
+                    attachment,
+                    glow::TEXTURE_2D,
+                    Some(texture),
+                    0,
+                );
+                target.texture = Some(texture);
+            } else {
+                let renderbuffer = gl.create_renderbuffer()?;
+                gl.bind_renderbuffer(glow::RENDERBUFFER, Some(renderbuffer));
+                gl.renderbuffer_storage(glow::RENDERBUFFER, format, width, height);
+                gl.framebuffer_renderbuffer(
+                    glow::FRAMEBUFFER,
+                    attachment,
+                    glow::RENDERBUFFER,
+                    Some(renderbuffer),
+                );
+                target.renderbuffer = Some(renderbuffer);
+            }
+            Ok::<Target, String>(target)
+        };
+        let mut colours = Vec::new();
+        for (index, &(format, bytes)) in formats.iter().enumerate() {
+            colours.push(make(
+                format,
+                glow::COLOR_ATTACHMENT0 + index as u32,
+                String::new(),
+                bytes,
+            )?);
+        }
+        let depth = make(
+            glow::DEPTH_COMPONENT32F,
+            glow::DEPTH_ATTACHMENT,
+            "depth".into(),
+            4,
+        )?;
+        let buffers: Vec<u32> = (0..formats.len() as u32)
+            .map(|index| glow::COLOR_ATTACHMENT0 + index)
+            .collect();
+        gl.draw_buffers(&buffers);
+        let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
+        self.gles.check("creating a framebuffer")?;
+        if status != glow::FRAMEBUFFER_COMPLETE {
+            return Err(format!(
+                "the driver cannot render to attachments of formats {:#x?} with a 32-bit float \
+                 depth (framebuffer status {status:#x})",
+                formats
+                    .iter()
+                    .map(|(format, _)| *format)
+                    .collect::<Vec<_>>()
+            ));
+        }
+        Ok((framebuffer, colours, Some(depth)))
+    }
+}
