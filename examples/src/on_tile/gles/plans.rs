@@ -55,7 +55,7 @@ impl GlesRenderer {
         let attachments_limit = self.gles.limit(glow::MAX_COLOR_ATTACHMENTS);
         if colour_attachments > draw_buffers.min(attachments_limit) {
             return Err(format!(
-                "layout `{}` on --path {} needs {} colour attachments ({} for the G-buffer and \
+                "layout `{}` on --path {} needs {} colour attachments ({} for the G-buffer, 1 for \
                  the output), but the driver offers GL_MAX_DRAW_BUFFERS = {draw_buffers} and \
                  GL_MAX_COLOR_ATTACHMENTS = {attachments_limit}",
                 layout.flag(),
