@@ -69,36 +69,6 @@ pub fn workspace() -> std::path::PathBuf {
         .to_path_buf()
 }
 
-/// The `gbuffer` command, built once per test binary in the test's profile: `cargo test` does
-/// not build another package's binary, and an old one would test old code.
-pub fn gbuffer_binary() -> &'static std::path::Path {
-    static BINARY: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
-    BINARY.get_or_init(|| {
-        let mut build = std::process::Command::new(env!("CARGO"));
-        build.current_dir(workspace()).args([
-            "build",
-            "--quiet",
-            "-p",
-            "gbuffer-cli",
-            "--bin",
-            "gbuffer",
-        ]);
-        let profile = if cfg!(debug_assertions) {
-            "debug"
-        } else {
-            build.arg("--release");
-            "release"
-        };
-        assert!(
-            build.status().expect("running cargo").success(),
-            "building `gbuffer` failed"
-        );
-        let target = std::env::var_os("CARGO_TARGET_DIR")
-            .map_or_else(|| workspace().join("target"), std::path::PathBuf::from);
-        target.join(profile).join("gbuffer")
-    })
-}
-
 /// Exact and fast conversions side by side: each field chooses its own, the layout's are
 /// exact. rgba8 appears in both.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]

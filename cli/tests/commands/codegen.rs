@@ -1,13 +1,11 @@
 //! `gbuffer codegen`: good layouts give every output, bad ones a `file:line:col` error
 //! and exit status 1, usage errors exit status 2.
 
+use crate::{gbuffer, workspace};
 use assert_cmd::Command;
-use gbuffer_testkit::{gbuffer_binary, workspace};
 
 fn codegen() -> Command {
-    let mut command = Command::new(gbuffer_binary());
-    command.current_dir(workspace()).arg("codegen");
-    command
+    gbuffer("codegen")
 }
 
 #[test]

@@ -1,14 +1,12 @@
 //! `gbuffer validate`: user shaders with their includes resolved, problems placed in
 //! their file with a caret, JSON output, and exit statuses 0, 1 and 2.
 
+use crate::{gbuffer, workspace};
 use assert_cmd::Command;
-use gbuffer_testkit::{gbuffer_binary, workspace};
 use std::path::{Path, PathBuf};
 
 fn validate() -> Command {
-    let mut command = Command::new(gbuffer_binary());
-    command.current_dir(workspace()).arg("validate");
-    command
+    gbuffer("validate")
 }
 
 fn write(folder: &Path, name: &str, text: &str) -> PathBuf {

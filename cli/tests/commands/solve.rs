@@ -2,13 +2,11 @@
 //! scene's WGSL; a bad scene is an error at its `file:line:col` with exit status 1, a missing
 //! file exit status 2.
 
+use crate::{gbuffer, workspace};
 use assert_cmd::Command;
-use gbuffer_testkit::{gbuffer_binary, workspace};
 
 fn solve() -> Command {
-    let mut command = Command::new(gbuffer_binary());
-    command.current_dir(workspace()).arg("solve");
-    command
+    gbuffer("solve")
 }
 
 #[test]

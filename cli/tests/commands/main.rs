@@ -1,0 +1,24 @@
+//! The `gbuffer` command as users run it: each subcommand's outputs, its errors placed at
+//! `file:line:col`, and its exit statuses. Cargo builds the binary for these tests.
+
+mod codegen;
+mod solve;
+mod validate;
+
+use assert_cmd::Command;
+use std::path::{Path, PathBuf};
+
+/// The workspace's root folder, where the fixtures live and the commands run.
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("cli/ is in the workspace")
+        .to_path_buf()
+}
+
+/// `gbuffer <subcommand>`, run from the workspace's root.
+fn gbuffer(subcommand: &str) -> Command {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_gbuffer"));
+    command.current_dir(workspace()).arg(subcommand);
+    command
+}
