@@ -1,7 +1,7 @@
 //! `gbuffer validate`: user shaders with their includes resolved, problems placed in
 //! their file with a caret, JSON output, and exit statuses 0, 1 and 2.
 
-use crate::{gbuffer, workspace};
+use crate::gbuffer;
 use assert_cmd::Command;
 use std::path::{Path, PathBuf};
 
