@@ -1,7 +1,7 @@
 //! `gbuffer codegen`: good layouts give every output, bad ones a `file:line:col` error
 //! and exit status 1, usage errors exit status 2.
 
-use crate::{gbuffer, workspace};
+use crate::{gbuffer, workspace, Run};
 use assert_cmd::Command;
 
 fn codegen() -> Command {
@@ -18,12 +18,7 @@ fn writes_every_output_for_the_seed_layouts_and_rewrites_nothing_unchanged() {
         .arg(layouts.join("future_specular.toml"))
         .arg("--out")
         .arg(out.path());
-    let output = command.output().unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    command.succeed();
     for name in [
         "mobile_metallic.wgsl",
         "mobile_metallic.pls_inout.glsl",
@@ -45,9 +40,7 @@ fn writes_every_output_for_the_seed_layouts_and_rewrites_nothing_unchanged() {
         .arg(layouts.join("mobile_metallic.toml"))
         .arg("--out")
         .arg(out.path())
-        .output()
-        .unwrap();
-    assert!(second.status.success());
+        .succeed();
     let stdout = String::from_utf8_lossy(&second.stdout);
     assert!(
         stdout
@@ -68,13 +61,11 @@ fn writes_every_output_for_the_seed_layouts_and_rewrites_nothing_unchanged() {
 fn output_switches_choose_what_is_written() {
     let out = tempfile::tempdir().unwrap();
     let layout = workspace().join("codegen/layouts/arm_tile_block.toml");
-    let output = codegen()
+    codegen()
         .arg(&layout)
         .args(["--wgsl", "--report", "--out"])
         .arg(out.path())
-        .output()
-        .unwrap();
-    assert!(output.status.success());
+        .succeed();
     let mut names: Vec<String> = std::fs::read_dir(out.path())
         .unwrap()
         .map(|entry| entry.unwrap().file_name().into_string().unwrap())
@@ -156,29 +147,15 @@ fn bad_layout_files_name_the_file_line_and_column_and_exit_1() {
 fn usage_errors_exit_2() {
     let layout = workspace().join("codegen/layouts/mobile_metallic.toml");
     // No --out.
-    assert_eq!(
-        codegen().arg(&layout).output().unwrap().status.code(),
-        Some(2)
-    );
+    assert_eq!(codegen().arg(&layout).exit_code(), Some(2));
     // No layout.
-    assert_eq!(
-        codegen()
-            .args(["--out", "/tmp"])
-            .output()
-            .unwrap()
-            .status
-            .code(),
-        Some(2)
-    );
+    assert_eq!(codegen().args(["--out", "/tmp"]).exit_code(), Some(2));
     // An unknown switch.
     assert_eq!(
         codegen()
             .arg(&layout)
             .args(["--out", "/tmp", "--hlsl"])
-            .output()
-            .unwrap()
-            .status
-            .code(),
+            .exit_code(),
         Some(2)
     );
     // A layout file that does not exist.
@@ -193,8 +170,7 @@ fn usage_errors_exit_2() {
 
 #[test]
 fn help_describes_the_command() {
-    let output = codegen().arg("--help").output().unwrap();
-    assert!(output.status.success());
+    let output = codegen().arg("--help").succeed();
     let help = String::from_utf8_lossy(&output.stdout);
     for expected in [
         "--out",

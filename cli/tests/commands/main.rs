@@ -7,6 +7,7 @@ mod validate;
 
 use assert_cmd::Command;
 use std::path::{Path, PathBuf};
+use std::process::Output;
 
 /// The workspace's root folder, where the fixtures live and the commands run.
 fn workspace() -> PathBuf {
@@ -21,4 +22,28 @@ fn gbuffer(subcommand: &str) -> Command {
     let mut command = Command::new(env!("CARGO_BIN_EXE_gbuffer"));
     command.current_dir(workspace()).arg(subcommand);
     command
+}
+
+/// Running a command for what a test checks.
+trait Run {
+    /// Its output, failing the test with its standard error unless it succeeded.
+    fn succeed(&mut self) -> Output;
+    /// Its exit status's code.
+    fn exit_code(&mut self) -> Option<i32>;
+}
+
+impl Run for Command {
+    fn succeed(&mut self) -> Output {
+        let output = self.output().expect("running gbuffer");
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        output
+    }
+
+    fn exit_code(&mut self) -> Option<i32> {
+        self.output().expect("running gbuffer").status.code()
+    }
 }

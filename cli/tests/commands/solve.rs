@@ -2,7 +2,7 @@
 //! scene's WGSL; a bad scene is an error at its `file:line:col` with exit status 1, a missing
 //! file exit status 2.
 
-use crate::{gbuffer, workspace};
+use crate::{gbuffer, workspace, Run};
 use assert_cmd::Command;
 
 fn solve() -> Command {
@@ -17,13 +17,7 @@ fn writes_every_output_and_places_errors() {
         .arg(&preset)
         .arg("--out")
         .arg(folder.path())
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+        .succeed();
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(
         stdout.contains("MobileMetallicScene: 96 of 128 bits"),

@@ -1,7 +1,7 @@
 //! `gbuffer validate`: user shaders with their includes resolved, problems placed in
 //! their file with a caret, JSON output, and exit statuses 0, 1 and 2.
 
-use crate::gbuffer;
+use crate::{gbuffer, Run};
 use assert_cmd::Command;
 use std::path::{Path, PathBuf};
 
@@ -19,13 +19,7 @@ fn write(folder: &Path, name: &str, text: &str) -> PathBuf {
 fn a_shader_using_the_library_and_a_layout_file_is_valid_everywhere() {
     let output = validate()
         .arg("validator/examples/shaders/lighting.wgsl")
-        .output()
-        .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+        .succeed();
     assert_eq!(
         String::from_utf8_lossy(&output.stdout),
         "validator/examples/shaders/lighting.wgsl: valid\n"
@@ -146,23 +140,7 @@ fn problems_in_an_included_wgsl_file_name_that_file() {
 
 #[test]
 fn usage_errors_exit_2() {
-    assert_eq!(validate().output().unwrap().status.code(), Some(2));
-    assert_eq!(
-        validate()
-            .arg("no/such/shader.wgsl")
-            .output()
-            .unwrap()
-            .status
-            .code(),
-        Some(2)
-    );
-    assert_eq!(
-        validate()
-            .args(["--hlsl", "a.wgsl"])
-            .output()
-            .unwrap()
-            .status
-            .code(),
-        Some(2)
-    );
+    assert_eq!(validate().exit_code(), Some(2));
+    assert_eq!(validate().arg("no/such/shader.wgsl").exit_code(), Some(2));
+    assert_eq!(validate().args(["--hlsl", "a.wgsl"]).exit_code(), Some(2));
 }
