@@ -147,23 +147,18 @@ fn bad_layout_files_name_the_file_line_and_column_and_exit_1() {
 fn usage_errors_exit_2() {
     let layout = workspace().join("codegen/layouts/mobile_metallic.toml");
     // No --out.
-    assert_eq!(codegen().arg(&layout).exit_code(), Some(2));
+    codegen().arg(&layout).fails_with(2);
     // No layout.
-    assert_eq!(codegen().args(["--out", "/tmp"]).exit_code(), Some(2));
+    codegen().args(["--out", "/tmp"]).fails_with(2);
     // An unknown switch.
-    assert_eq!(
-        codegen()
-            .arg(&layout)
-            .args(["--out", "/tmp", "--hlsl"])
-            .exit_code(),
-        Some(2)
-    );
+    codegen()
+        .arg(&layout)
+        .args(["--out", "/tmp", "--hlsl"])
+        .fails_with(2);
     // A layout file that does not exist.
     let output = codegen()
         .args(["/no/such/layout.toml", "--out", "/tmp"])
-        .output()
-        .unwrap();
-    assert_eq!(output.status.code(), Some(2));
+        .fails_with(2);
     assert!(String::from_utf8_lossy(&output.stderr)
         .contains("/no/such/layout.toml: cannot read the layout file"));
 }

@@ -28,8 +28,8 @@ fn gbuffer(subcommand: &str) -> Command {
 trait Run {
     /// Its output, failing the test with its standard error unless it succeeded.
     fn succeed(&mut self) -> Output;
-    /// Its exit status's code.
-    fn exit_code(&mut self) -> Option<i32>;
+    /// Its output, failing the test with its standard error unless it exited with `code`.
+    fn fails_with(&mut self, code: i32) -> Output;
 }
 
 impl Run for Command {
@@ -43,7 +43,14 @@ impl Run for Command {
         output
     }
 
-    fn exit_code(&mut self) -> Option<i32> {
-        self.output().expect("running gbuffer").status.code()
+    fn fails_with(&mut self, code: i32) -> Output {
+        let output = self.output().expect("running gbuffer");
+        assert_eq!(
+            output.status.code(),
+            Some(code),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        output
     }
 }

@@ -50,13 +50,8 @@ fn writes_every_output_and_places_errors() {
         text.replace("normal_degrees = 0.5", "normal_degrees = -1"),
     )
     .unwrap();
-    let output = solve().arg(&broken).output().unwrap();
-    assert_eq!(output.status.code(), Some(1));
+    let output = solve().arg(&broken).fails_with(1);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("broken.toml:15:18: error"), "{stderr}");
-    let missing = solve()
-        .arg(folder.path().join("none.toml"))
-        .output()
-        .unwrap();
-    assert_eq!(missing.status.code(), Some(2));
+    solve().arg(folder.path().join("none.toml")).fails_with(2);
 }

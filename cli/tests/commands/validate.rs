@@ -30,9 +30,7 @@ fn a_shader_using_the_library_and_a_layout_file_is_valid_everywhere() {
 fn an_invalid_shader_is_reported_at_its_line_with_a_caret() {
     let output = validate()
         .arg("validator/examples/shaders/broken.wgsl")
-        .output()
-        .unwrap();
-    assert_eq!(output.status.code(), Some(1));
+        .fails_with(1);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(
         stderr.starts_with("validator/examples/shaders/broken.wgsl:6:13: error: "),
@@ -56,9 +54,7 @@ fn json_output_lists_every_file() {
             "validator/examples/shaders/lighting.wgsl",
             "validator/examples/shaders/broken.wgsl",
         ])
-        .output()
-        .unwrap();
-    assert_eq!(output.status.code(), Some(1));
+        .fails_with(1);
     let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     let files = report["files"].as_array().unwrap();
     assert_eq!(files.len(), 2);
@@ -76,8 +72,7 @@ fn include_problems_are_placed_at_the_include_line() {
         "a.wgsl",
         "fn f() {}\n#include <gbuffer/brdf>\n",
     );
-    let output = validate().arg(&shader).output().unwrap();
-    assert_eq!(output.status.code(), Some(1));
+    let output = validate().arg(&shader).fails_with(1);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(
         stderr.starts_with(&format!(
@@ -94,8 +89,7 @@ fn include_problems_are_placed_at_the_include_line() {
         "name = \"Bad\"\n\n[[fields]]\nname = \"x\"\nformat = \"rgba9\"\ncomponents = 4\n",
     );
     let shader = write(folder.path(), "b.wgsl", "#include \"bad.toml\"\n");
-    let stderr =
-        String::from_utf8_lossy(&validate().arg(&shader).output().unwrap().stderr).to_string();
+    let stderr = String::from_utf8_lossy(&validate().arg(&shader).fails_with(1).stderr).to_string();
     assert!(
         stderr.contains("bad.toml:5:10: error: unknown pixel local storage format `rgba9`"),
         "{stderr}"
@@ -115,8 +109,7 @@ fn problems_in_an_included_wgsl_file_name_that_file() {
         "main.wgsl",
         "#include \"common.wgsl\"\nfn main_helper() -> f32 { return helper(); }\n",
     );
-    let output = validate().arg(&shader).output().unwrap();
-    assert_eq!(output.status.code(), Some(1));
+    let output = validate().arg(&shader).fails_with(1);
     let stderr = String::from_utf8_lossy(&output.stderr);
     // naga places a return-type mismatch at the function it is in, and labels the value.
     assert!(
@@ -140,7 +133,7 @@ fn problems_in_an_included_wgsl_file_name_that_file() {
 
 #[test]
 fn usage_errors_exit_2() {
-    assert_eq!(validate().exit_code(), Some(2));
-    assert_eq!(validate().arg("no/such/shader.wgsl").exit_code(), Some(2));
-    assert_eq!(validate().args(["--hlsl", "a.wgsl"]).exit_code(), Some(2));
+    validate().fails_with(2);
+    validate().arg("no/such/shader.wgsl").fails_with(2);
+    validate().args(["--hlsl", "a.wgsl"]).fails_with(2);
 }
