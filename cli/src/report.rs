@@ -8,7 +8,8 @@ use std::process::ExitCode;
 /// at hand and its Rust mirror's time on the CPU. Prints the table and writes `report.md`,
 /// `report.json` and PNG plots.
 ///
-/// Exit status: 0 on success, 1 when a report file cannot be written.
+/// Exit status: 0 on success, 1 when no adapter or tool is there or a report file cannot be
+/// written.
 #[derive(clap::Args, Debug)]
 pub struct Arguments {
     /// Folder to write the report into (created if missing).

@@ -18,6 +18,7 @@ use std::time::Instant;
 use wgpu::util::DeviceExt;
 
 use gbuffer::packing::Layout;
+use gbuffer_gpu::adapter::{Gpu, Request};
 use gbuffer_scenes::lighting::{self, Forms};
 use gbuffer_scenes::quantity::Quantity;
 use gbuffer_scenes::{Feature, Solution};
@@ -147,35 +148,16 @@ impl Renderer {
     /// Opens an adapter (any wgpu finds, software ones included) and prepares the inputs,
     /// reporting progress.
     pub fn new(progress: &dyn Fn(&str)) -> Result<Renderer, String> {
-        let options = wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            force_fallback_adapter: false,
-            compatible_surface: None,
-            apply_limit_buckets: false,
-        };
-        let request = |backends| {
-            let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-            descriptor.backends = backends;
-            pollster::block_on(wgpu::Instance::new(descriptor).request_adapter(&options))
-        };
-        // The primary backends first, GL only where none offers an adapter (WGPU_BACKEND
-        // chooses): wgpu's GL backend opens the process's EGL display and terminates it when
-        // dropped, which would end the on-tile GLES renderer's context on the same display.
-        let adapter = match wgpu::Backends::from_env() {
-            Some(backends) => request(backends),
-            None => request(wgpu::Backends::PRIMARY).or_else(|_| request(wgpu::Backends::all())),
-        }
-        .map_err(|error| format!("no GPU adapter ({error}); on a machine without a GPU install Mesa's software drivers (apt-get install -y mesa-vulkan-drivers libegl1)"))?;
-        let info = adapter.get_info();
-        let timestamp_feature = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
-        let descriptor = wgpu::DeviceDescriptor {
-            label: Some("deferred"),
-            required_features: timestamp_feature,
-            required_limits: adapter.limits(),
-            ..Default::default()
-        };
-        let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
-            .map_err(|error| error.to_string())?;
+        let Gpu {
+            device,
+            queue,
+            info,
+        } = Gpu::open(&Request {
+            label: "deferred",
+            limits: None,
+            features: wgpu::Features::TIMESTAMP_QUERY,
+        })?;
+        let timestamp_feature = device.features() & wgpu::Features::TIMESTAMP_QUERY;
         progress(&format!("adapter: {} ({:?})", info.name, info.backend));
 
         progress("baking the split-sum LUT, the light map and the prefiltered sky...");

@@ -12,7 +12,7 @@ use gbuffer_render::on_tile::{Path, TileOptions};
 use gbuffer_render::reference;
 use gbuffer_render::renderer::{Frame, IblForm, Options, Renderer, SunForm};
 use gbuffer_render::scene::{reference_features, DECALS, POINT_LIGHT_COUNT};
-use gbuffer_testkit::gles::skip_without_driver;
+use gbuffer_testkit::skip_without_driver;
 
 const WIDTH: u32 = 320;
 const HEIGHT: u32 = 180;

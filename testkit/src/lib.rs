@@ -3,18 +3,50 @@
 
 #![warn(missing_docs)]
 
-pub mod furnace;
-pub mod gles;
-pub mod gpu;
-pub mod harness;
 pub mod layouts;
-pub mod packing_cost;
 pub mod shading_cases;
 pub mod texels;
-pub mod tools;
 pub mod user_shaders;
-pub mod values;
-pub mod vulkan;
+
+use gbuffer_gpu::adapter::{Gpu, Request};
+
+/// The one rule of the GPU tests: where a driver, a library or a tool is missing, a test prints
+/// why and skips, except under `CI=true`, where `.ci/run` installs them all and a skip would
+/// hide a broken set-up, so the test fails. Returns what was opened, or `None` to skip.
+pub fn or_skip<T>(what: &str, opened: Result<T, String>) -> Option<T> {
+    match opened {
+        Ok(opened) => Some(opened),
+        Err(error) => {
+            skip_without_driver(what, &error);
+            None
+        }
+    }
+}
+
+/// Prints why a GPU test skips for want of a driver, or panics under `CI=true` (see
+/// [`or_skip`]).
+pub fn skip_without_driver(what: &str, error: &str) {
+    if std::env::var_os("CI").is_some_and(|value| value == "true") {
+        panic!("{what}: {error} (under CI=true a missing driver is a failure)");
+    }
+    eprintln!("skipped: {what}: {error}");
+}
+
+/// The adapter wgpu prefers, with its full limits, or `None` to skip (see [`or_skip`]).
+pub fn gpu() -> Option<Gpu> {
+    or_skip("a wgpu adapter", Gpu::new())
+}
+
+/// As [`gpu`], with the device's limits lowered to `limits` (where given) and those of
+/// `features` the adapter has.
+pub fn gpu_with(limits: Option<wgpu::Limits>, features: wgpu::Features) -> Option<Gpu> {
+    let request = Request {
+        label: "tests",
+        limits,
+        features,
+    };
+    or_skip("a wgpu adapter", Gpu::open(&request))
+}
 
 use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
 use gbuffer::GBufferLayout;

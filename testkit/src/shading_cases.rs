@@ -6,7 +6,7 @@ use gbuffer::glam::{DVec2, DVec3, DVec4, Vec2, Vec3, Vec4};
 use gbuffer::shading::mirror as m;
 use gbuffer::shading::reference as r;
 
-use crate::values::halton;
+use gbuffer_gpu::values::{fibonacci_sphere, halton};
 
 /// How one argument is sampled.
 #[derive(Clone, Copy, Debug)]
@@ -143,19 +143,6 @@ const RGBM_TEXELS: [[f32; 4]; 6] = [
     [0.1, 0.9, 0.4, 0.75],
     [0.8, 0.8, 0.8, 0.5],
 ];
-
-/// `count` unit vectors spread evenly over the sphere.
-pub fn fibonacci_sphere(count: usize) -> Vec<Vec3> {
-    let golden_angle = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..count)
-        .map(|index| {
-            let z = 1.0 - 2.0 * (index as f64 + 0.5) / count as f64;
-            let radius = (1.0 - z * z).sqrt();
-            let angle = golden_angle * index as f64;
-            DVec3::new(radius * angle.cos(), radius * angle.sin(), z).as_vec3()
-        })
-        .collect()
-}
 
 /// The function's values as f32 bits (floats) or raw u32 (integers).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -1124,7 +1111,7 @@ pub fn grid(case: &Case, target: usize) -> Vec<Vec<u32>> {
 }
 
 /// A compute shader that evaluates the case at every point of `inputs` (the flattened
-/// arguments' bits) into `outputs`; bindings as [`crate::gpu::Gpu::run_compute`] expects.
+/// arguments' bits) into `outputs`; bindings as [`gbuffer_gpu::Gpu::run_compute`] expects.
 pub fn compute_harness(case: &Case) -> String {
     let mut wgsl = gbuffer::modules::compose(&[case.module]).expect("the case's module exists");
     let stride: usize = case

@@ -2,10 +2,12 @@
 //! values, and the comparison of what a driver produced with the Rust mirror. The wgpu,
 //! GLES and Vulkan tests share them, so every path is held to the same contract.
 
-use gbuffer::packing::{ChannelEncoding, Encoding, Format, Layout, Member, ScalarKind, Storage};
+use gbuffer::packing::{ChannelEncoding, Encoding, Format, Layout, ScalarKind, Storage};
 
-use crate::harness::{expected_scalars, expected_words, scalars_per_texel};
-use crate::values::{float_edges, sint_edges, uint_edges, Values};
+use gbuffer_gpu::harness::{
+    expected_scalars, expected_words, field_code_errors, scalars_per_texel,
+};
+use gbuffer_gpu::values::{float_edges, sint_edges, uint_edges, Values};
 
 /// How far a decoded scalar may be from the mirror's.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -87,84 +89,6 @@ pub fn slots(layout: &Layout) -> Vec<Slot> {
         }
     }
     slots
-}
-
-/// How far a field in word `have` is from the same field in word `want`, per component, in
-/// codes: the difference of each channel's or component's code, for a whole word and the
-/// per-component encodings; for rgb9e5 and bool, of the whole code. Octahedral and RGBM
-/// fields name some values by two codes (the map's folded border, a multiplier and a channel
-/// that trade a step), so theirs is measured on the decoded values: the angle in units of the
-/// octahedral bound (sqrt(18) half-steps), or each channel's difference in steps of the
-/// coarser multiplier, rounded up.
-pub fn field_code_errors(
-    layout: &Layout,
-    field: usize,
-    member: Member,
-    want: u32,
-    have: u32,
-) -> Vec<u32> {
-    let field = &layout.fields[field];
-    let bit_field = match field.storage {
-        Storage::Word(format) => {
-            return format.channels()[..field.ty.components]
-                .iter()
-                .map(|channel| {
-                    let code = |word: u32| (word >> channel.offset) & channel.mask();
-                    code(want).abs_diff(code(have))
-                })
-                .collect()
-        }
-        Storage::Bits(bit_field) => bit_field,
-    };
-    let code = |word: u32| (word >> member.offset) & mask(member.bits);
-    let (want, have) = (code(want), code(have));
-    let components = field.ty.components;
-    let decoded = |code: u32| {
-        bit_field
-            .decode(code, components)
-            .map(|lane| f64::from(f32::from_bits(lane)))
-    };
-    match bit_field.encoding {
-        Encoding::Rgb9e5 | Encoding::Bool => vec![want.abs_diff(have)],
-        _ if want == have => vec![0],
-        Encoding::Octahedral => {
-            let (a, b) = (decoded(want), decoded(have));
-            let cross = [
-                a[1] * b[2] - a[2] * b[1],
-                a[2] * b[0] - a[0] * b[2],
-                a[0] * b[1] - a[1] * b[0],
-            ];
-            let angle = cross
-                .iter()
-                .map(|c| c * c)
-                .sum::<f64>()
-                .sqrt()
-                .atan2(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-            let bound = 18f64.sqrt() / f64::from(mask(bit_field.bits / 2));
-            vec![(angle / bound - 1e-9).ceil().max(0.0) as u32]
-        }
-        Encoding::Rgbm(range) => {
-            let multiplier = (want >> 24).max(have >> 24);
-            let step = f64::from(multiplier) / 255.0 * f64::from(range.get()) / 255.0;
-            let (a, b) = (decoded(want), decoded(have));
-            (0..3)
-                .map(|channel| {
-                    ((a[channel] - b[channel]).abs() / step - 1e-9)
-                        .ceil()
-                        .max(0.0) as u32
-                })
-                .collect()
-        }
-        _ => {
-            let each = bit_field.component_bits(components);
-            (0..components)
-                .map(|index| {
-                    let part = |code: u32| (code >> (each * index as u32)) & mask(each);
-                    part(want).abs_diff(part(have))
-                })
-                .collect()
-        }
-    }
 }
 
 /// The low `bits` bits set.
@@ -325,7 +249,7 @@ pub fn check_native_words(
     let words = layout.word_contents();
     for (texel, input) in inputs.chunks_exact(scalars).enumerate() {
         let expected = expected_words(layout, input);
-        let lanes = crate::harness::lanes_of_scalars(layout, input);
+        let lanes = gbuffer_gpu::harness::lanes_of_scalars(layout, input);
         for (word, contents) in words.iter().enumerate() {
             let got = stored[texel * words.len() + word];
             if contents.is_bit_fields {

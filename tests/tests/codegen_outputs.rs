@@ -13,8 +13,8 @@ use gbuffer_codegen::emit::glsl::{self, Include, Interface, PlsBlock};
 use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_codegen::layout_file::read_layout_file;
 use gbuffer_codegen::output::{generate, Output};
-use gbuffer_testkit::harness::fragment_harness;
-use gbuffer_testkit::tools::{glslang, spirv_val};
+use gbuffer_gpu::harness::fragment_harness;
+use gbuffer_gpu::tools::{glslang, spirv_val};
 use gbuffer_testkit::user_shaders::{preambles, scalars_of_texel};
 use proptest::prelude::*;
 

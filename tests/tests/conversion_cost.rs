@@ -1,4 +1,4 @@
-//! What the generated conversions cost once compiled (`gbuffer_testkit::packing_cost`: naga,
+//! What the generated conversions cost once compiled (`gbuffer_tradeoff::packing_cost`: naga,
 //! then `spirv-opt -O`, instructions in function bodies). The contract of the issue on packing
 //! cost, per format and for a 4-word layout: exact conversions never branch and cost at most 3x
 //! the fast ones; fast conversions cost at most 1.25x the engines' idiom (WGSL's builtins where
@@ -6,7 +6,7 @@
 
 use gbuffer::packing::{Format, Layout};
 use gbuffer_codegen::emit::wgsl::Conversions;
-use gbuffer_testkit::packing_cost::{builtin_form, cost, harness, layout_cost, one_field, Cost};
+use gbuffer_tradeoff::packing_cost::{builtin_form, cost, harness, layout_cost, one_field, Cost};
 
 fn measured(layout: &Layout, conversions: Conversions) -> Cost {
     layout_cost(layout, conversions).unwrap_or_else(|error| panic!("{}: {error}", layout.name))

@@ -4,8 +4,8 @@
 use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
 use gbuffer::packing::{Layout, ScalarKind, Storage};
 use gbuffer::{seed_layouts, GBufferLayout};
-use gbuffer_testkit::harness::{expected_scalars, expected_words, scalars_per_texel};
-use gbuffer_testkit::values::Values;
+use gbuffer_gpu::harness::{expected_scalars, expected_words, scalars_per_texel};
+use gbuffer_gpu::values::Values;
 use gbuffer_testkit::AllFormats;
 
 const POISONS: [f32; 4] = [f32::NAN, -f32::NAN, f32::INFINITY, f32::NEG_INFINITY];

@@ -17,15 +17,16 @@
 use gbuffer::packing::{Format, Layout, Storage};
 use gbuffer_codegen::emit::glsl::{self, Include, Interface};
 use gbuffer_codegen::emit::wgsl::Conversions;
-use gbuffer_testkit::gles::{skip_without_driver, Framebuffer, Gles};
-use gbuffer_testkit::harness::scalars_per_texel;
+use gbuffer_gpu::gles::{Framebuffer, Gles};
+use gbuffer_gpu::harness::scalars_per_texel;
+use gbuffer_gpu::values::Values;
+use gbuffer_testkit::skip_without_driver;
 use gbuffer_testkit::texels::{
     check_native_words, compare, compare_decoded, inputs, restore_changes, word_from_components,
 };
 use gbuffer_testkit::user_shaders::{
     has_storage_buffers, preambles, scalars_of_texel, texel_from_scalars,
 };
-use gbuffer_testkit::values::Values;
 use proptest::prelude::*;
 
 const WIDTH: i32 = 48;

@@ -4,7 +4,8 @@
 
 use gbuffer::seed_layouts;
 use gbuffer_codegen::emit::glsl::{self, Include};
-use gbuffer_testkit::gles::{skip_without_driver, Gles};
+use gbuffer_gpu::gles::Gles;
+use gbuffer_testkit::skip_without_driver;
 
 /// The README's ```glsl blocks, without the indentation of the list items they sit in.
 fn readme_glsl_blocks() -> Vec<String> {
@@ -76,7 +77,6 @@ fn readme_vulkan_examples_compile_to_spirv() {
         "the G-buffer subpass and the lighting subpass"
     );
     for shader in shaders {
-        gbuffer_testkit::tools::glslang(&shader, "frag", true)
-            .unwrap_or_else(|log| panic!("{log}"));
+        gbuffer_gpu::tools::glslang(&shader, "frag", true).unwrap_or_else(|log| panic!("{log}"));
     }
 }

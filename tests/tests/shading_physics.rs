@@ -133,7 +133,7 @@ fn env_brdf_approx_at_full_roughness_and_normal_view_is_0_4524_f0_minus_0_0024()
 fn octahedral_quantized_error(bits: u32) -> f64 {
     let max_code = f64::from((1u32 << bits) - 1);
     let quantize = |value: f64| ((value * 0.5 + 0.5) * max_code).round() / max_code * 2.0 - 1.0;
-    gbuffer_testkit::shading_cases::fibonacci_sphere(200_000)
+    gbuffer_gpu::values::fibonacci_sphere(200_000)
         .into_iter()
         .map(|direction| {
             let direction = direction.as_dvec3().normalize();
@@ -148,7 +148,7 @@ fn octahedral_quantized_error(bits: u32) -> f64 {
 #[test]
 fn octahedral_round_trip_is_within_its_quantization_bound() {
     // Unquantized, the round trip is exact to rounding.
-    for direction in gbuffer_testkit::shading_cases::fibonacci_sphere(10_000) {
+    for direction in gbuffer_gpu::values::fibonacci_sphere(10_000) {
         let direction = direction.as_dvec3().normalize();
         let back = r::normals::octahedral_decode(r::normals::octahedral_encode(direction));
         assert!((back - direction).length() < 1e-12, "{direction} -> {back}");

@@ -3,9 +3,9 @@
 
 use gbuffer::seed_layouts::{FutureMetallic, MobileMetallic};
 use gbuffer::GBufferLayout;
-use gbuffer_testkit::harness::scalars_per_texel;
+use gbuffer_gpu::harness::scalars_per_texel;
+use gbuffer_gpu::values::Values;
 use gbuffer_testkit::texels::inputs;
-use gbuffer_testkit::values::Values;
 
 /// Texels of `L` from the edge-first test values, through the mirror's own unpack.
 fn texels<L: GBufferLayout + Copy>(count: usize) -> Vec<L> {
@@ -14,7 +14,7 @@ fn texels<L: GBufferLayout + Copy>(count: usize) -> Vec<L> {
     scalars
         .chunks_exact(scalars_per_texel(&layout))
         .map(|texel| {
-            let words = gbuffer_testkit::harness::expected_words(&layout, texel);
+            let words = gbuffer_gpu::harness::expected_words(&layout, texel);
             let Ok(packed) = L::Packed::try_from(words.as_slice()) else {
                 unreachable!("one word per field")
             };

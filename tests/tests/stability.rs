@@ -13,11 +13,10 @@ use gbuffer::glam::{DVec3, Vec3};
 use gbuffer::packing::{Format, ScalarKind};
 use gbuffer::shading::half_precision::{self as h, Half, Half3};
 use gbuffer::shading::mirror as m;
-use gbuffer_testkit::gpu::Gpu;
+use gbuffer_gpu::values::{float_edges, sint_edges, uint_edges};
 use gbuffer_testkit::shading_cases::{
     cases, compute_harness, output_components, Argument, Case, Output,
 };
-use gbuffer_testkit::values::{float_edges, sint_edges, uint_edges};
 
 /// Edge values of an argument's domain, each as its components' bits.
 fn edges(argument: Argument) -> Vec<Vec<u32>> {
@@ -198,19 +197,23 @@ fn check_outputs(
 
 #[test]
 fn every_function_is_finite_and_in_range_at_its_domain_edges_on_cpu_and_adapter() {
-    let gpu = Gpu::new();
+    let Some(gpu) = gbuffer_testkit::gpu() else {
+        return;
+    };
     let mut failures = Vec::new();
     for case in cases() {
         let points = edge_grid(&case, 20_000);
         let components = output_components(&case);
         let inputs: Vec<u32> = points.iter().flatten().copied().collect();
-        let adapter = gpu.run_compute(
-            &compute_harness(&case),
-            "harness_main",
-            &inputs,
-            &[points.len() * components],
-            points.len() as u32,
-        );
+        let adapter = gpu
+            .run_compute(
+                &compute_harness(&case),
+                "harness_main",
+                &inputs,
+                &[points.len() * components],
+                points.len() as u32,
+            )
+            .expect("the adapter runs the harness");
         for (index, point) in points.iter().enumerate() {
             check_outputs(&case, point, &(case.mirror)(point), "CPU", &mut failures);
             check_outputs(
@@ -316,7 +319,9 @@ fn composites_stay_finite_for_any_finite_input_and_their_clamps_are_needed() {
 
 #[test]
 fn composites_stay_finite_on_the_adapter() {
-    let gpu = Gpu::new();
+    let Some(gpu) = gbuffer_testkit::gpu() else {
+        return;
+    };
     let case = cases()
         .into_iter()
         .find(|case| case.name() == "shade_directional_mobile")
@@ -333,13 +338,15 @@ fn composites_stay_finite_on_the_adapter() {
         })
         .collect();
     let inputs: Vec<u32> = points.iter().flatten().copied().collect();
-    let outputs = gpu.run_compute(
-        &compute_harness(&case),
-        "harness_main",
-        &inputs,
-        &[points.len() * 3],
-        points.len() as u32,
-    );
+    let outputs = gpu
+        .run_compute(
+            &compute_harness(&case),
+            "harness_main",
+            &inputs,
+            &[points.len() * 3],
+            points.len() as u32,
+        )
+        .expect("the adapter runs the harness");
     for (index, value) in outputs[0].chunks(3).enumerate() {
         let value = Vec3::from_array([value[0], value[1], value[2]].map(f32::from_bits));
         assert!(
@@ -462,7 +469,11 @@ fn half_precision_forms_stay_finite_on_the_cpu_and_their_clamps_are_needed() {
 
 #[test]
 fn half_precision_forms_run_on_an_f16_adapter_and_agree_with_their_mirror() {
-    let gpu = Gpu::with_limits_and_features(wgpu::Limits::default(), wgpu::Features::SHADER_F16);
+    let Some(gpu) =
+        gbuffer_testkit::gpu_with(Some(wgpu::Limits::default()), wgpu::Features::SHADER_F16)
+    else {
+        return;
+    };
     if !gpu.device.features().contains(wgpu::Features::SHADER_F16) {
         eprintln!(
             "{} has no SHADER_F16: the f16 forms were checked on the CPU only",
@@ -501,13 +512,15 @@ fn half_precision_forms_run_on_an_f16_adapter_and_agree_with_their_mirror() {
         })
         .map(f32::to_bits)
         .collect();
-    let outputs = gpu.run_compute(
-        &shader,
-        "harness_main",
-        &inputs,
-        &[extremes.len() * 3],
-        extremes.len() as u32,
-    );
+    let outputs = gpu
+        .run_compute(
+            &shader,
+            "harness_main",
+            &inputs,
+            &[extremes.len() * 3],
+            extremes.len() as u32,
+        )
+        .expect("the adapter runs the harness");
     for (index, (view, light, roughness, colour)) in extremes.iter().enumerate() {
         let adapter = Vec3::from_array(
             [0, 1, 2].map(|channel| f32::from_bits(outputs[0][index * 3 + channel])),

@@ -20,15 +20,15 @@ use std::collections::BTreeSet;
 use ash::vk;
 use gbuffer::packing::Layout;
 use gbuffer_codegen::emit::glsl::{self, GlslNames, Include, Interface};
-use gbuffer_testkit::gles::skip_without_driver;
-use gbuffer_testkit::harness::scalars_per_texel;
+use gbuffer_gpu::harness::scalars_per_texel;
+use gbuffer_gpu::tools::glslang;
+use gbuffer_gpu::values::Values;
+use gbuffer_gpu::vulkan::{AttachmentMemory, Resource, Subpass, Vulkan};
+use gbuffer_testkit::skip_without_driver;
 use gbuffer_testkit::texels::{
     check_native_words, compare, compare_decoded, inputs, restore_changes, word_from_components,
 };
-use gbuffer_testkit::tools::glslang;
 use gbuffer_testkit::user_shaders::{preambles, scalars_of_texel, texel_from_scalars};
-use gbuffer_testkit::values::Values;
-use gbuffer_testkit::vulkan::{AttachmentMemory, Resource, Subpass, Vulkan};
 use proptest::prelude::*;
 
 const WIDTH: u32 = 48;

@@ -4,7 +4,7 @@
 
 use gbuffer::packing::Layout;
 use gbuffer::{seed_layouts, GBufferLayout};
-use gbuffer_testkit::harness::fragment_harness;
+use gbuffer_gpu::harness::fragment_harness;
 use gbuffer_testkit::AllFormats;
 use gbuffer_validator::{translate, validate_everywhere, validate_wgsl, Backend};
 use proptest::prelude::*;

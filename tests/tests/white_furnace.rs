@@ -4,7 +4,7 @@
 //! `cargo test -p tests --test white_furnace -- --nocapture` prints the energies.
 
 use gbuffer::shading::reference as r;
-use gbuffer_testkit::furnace::{accurate, furnace};
+use gbuffer_tradeoff::furnace::{accurate, furnace};
 use std::f64::consts::PI;
 
 #[test]

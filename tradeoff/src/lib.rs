@@ -13,7 +13,9 @@
 
 #![warn(missing_docs)]
 
+pub mod furnace;
 mod packing;
+pub mod packing_cost;
 mod plot;
 mod rows;
 mod timing;
@@ -22,7 +24,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
-use gbuffer_testkit::gpu::Gpu;
+use gbuffer_gpu::adapter::{Gpu, Request};
 use plot::Plot;
 use rows::Row;
 
@@ -42,16 +44,20 @@ fn compile(row_wgsl: &str) -> Result<(naga::Module, Vec<u32>), String> {
 }
 
 /// Measures every row on the adapter at hand, prints the table and writes `report.md`,
-/// `report.json` and the PNG plots into `folder` (created if missing). The error names the
-/// file that could not be written.
+/// `report.json` and the PNG plots into `folder` (created if missing). The error says what was
+/// missing (an adapter) or names the file that could not be written.
 pub fn run(folder: &Path) -> Result<(), String> {
     std::fs::create_dir_all(folder)
         .map_err(|error| format!("cannot create {}: {error}", folder.display()))?;
-    eprintln!("measuring errors against the f64 references...");
-    let rows = rows::rows();
-    let gpu = Gpu::with_features(wgpu::Features::TIMESTAMP_QUERY);
+    let gpu = Gpu::open(&Request {
+        label: "trade-off study",
+        limits: None,
+        features: wgpu::Features::TIMESTAMP_QUERY,
+    })?;
     let adapter = gpu.describe();
     eprintln!("timing on {adapter}");
+    eprintln!("measuring errors against the f64 references...");
+    let rows = rows::rows();
 
     let (_, baseline_spirv) = compile(timing::BASELINE_ROW).expect("the baseline harness compiles");
     let baseline_instructions = gbuffer_validator::cost::spirv_instructions(&baseline_spirv);
@@ -96,7 +102,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
         });
     }
 
-    let mut packing = packing::measure(&gpu, &baseline_gpu);
+    let mut packing = packing::measure(&gpu, &baseline_gpu)?;
     let inconsistencies = check_consistency(&rows, &mut measured, &mut packing);
     print_table(&rows, &measured, &adapter);
     packing::print(&packing, &gpu);
@@ -496,11 +502,11 @@ fn white_furnace() -> Vec<FurnaceEnergy> {
         .into_iter()
         .map(|roughness| FurnaceEnergy {
             roughness,
-            metal_head_on: gbuffer_testkit::furnace::accurate(roughness, 0.0, 1.0, 1.0),
-            metal_grazing: gbuffer_testkit::furnace::accurate(roughness, 0.0, 1.0, 0.25),
+            metal_head_on: crate::furnace::accurate(roughness, 0.0, 1.0, 1.0),
+            metal_grazing: crate::furnace::accurate(roughness, 0.0, 1.0, 0.25),
             dielectric_max: [0.1, 0.5, 1.0]
                 .into_iter()
-                .map(|n_dot_v| gbuffer_testkit::furnace::accurate(roughness, 1.0, 0.04, n_dot_v))
+                .map(|n_dot_v| crate::furnace::accurate(roughness, 1.0, 0.04, n_dot_v))
                 .fold(0.0, f64::max),
         })
         .collect()

@@ -1,17 +1,15 @@
 //! The packing conversions' trade, per format and mode (exact, fast): SPIR-V instructions after
-//! `spirv-opt -O` and conditional branches (`gbuffer_testkit::packing_cost`), the largest error
+//! `spirv-opt -O` and conditional branches (`crate::packing_cost`), the largest error
 //! in codes and the fraction of channel codes that differ from exact, measured on the adapter
 //! over edge cases and random values in fast conversions' domain, and the adapter's time to
 //! pack and unpack a million texels.
 
 use std::fmt::Write as _;
 
+use crate::packing_cost::{deviation, layout_cost, one_field, Cost, Deviation, CONVERTED_FORMATS};
 use gbuffer::packing::Format;
 use gbuffer_codegen::emit::wgsl::{emit_with, Conversions};
-use gbuffer_testkit::gpu::Gpu;
-use gbuffer_testkit::packing_cost::{
-    deviation, layout_cost, one_field, Cost, Deviation, CONVERTED_FORMATS,
-};
+use gbuffer_gpu::Gpu;
 
 use crate::timing;
 
@@ -61,8 +59,9 @@ fn row_wgsl(format: Format, conversions: Conversions) -> String {
     )
 }
 
-/// Measures both modes of every format fast conversions change.
-pub fn measure(gpu: &Gpu, baseline_gpu: &timing::StageTimes) -> Vec<PackingRow> {
+/// Measures both modes of every format fast conversions change. The error is wgpu's, where it
+/// rejected a harness.
+pub fn measure(gpu: &Gpu, baseline_gpu: &timing::StageTimes) -> Result<Vec<PackingRow>, String> {
     let mut rows = Vec::new();
     for format in CONVERTED_FORMATS {
         for conversions in [Conversions::Exact, Conversions::Fast] {
@@ -72,7 +71,7 @@ pub fn measure(gpu: &Gpu, baseline_gpu: &timing::StageTimes) -> Vec<PackingRow> 
                 .map_err(|error| eprintln!("  no instruction count: {error}"))
                 .ok();
             let wgsl = emit_with(&layout, conversions);
-            let deviation = deviation(gpu, &layout, &wgsl, TEXELS, 91);
+            let deviation = deviation(gpu, &layout, &wgsl, TEXELS, 91)?;
             let times = timing::StageTimes::measure(
                 gpu,
                 &row_wgsl(format, conversions),
@@ -89,7 +88,7 @@ pub fn measure(gpu: &Gpu, baseline_gpu: &timing::StageTimes) -> Vec<PackingRow> 
             });
         }
     }
-    rows
+    Ok(rows)
 }
 
 /// The rows as the consistency check groups them in `stage`: each format's two modes, with

@@ -7,7 +7,7 @@ use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
 use gbuffer::shading::{mirror as m, reference as r};
 use gbuffer::GBufferLayout;
 
-use ::gbuffer_testkit::values::halton;
+use gbuffer_gpu::values::halton;
 
 use crate::plot::Plot;
 
@@ -224,7 +224,7 @@ fn normal_rows() -> Vec<Row> {
             NormalEncoding::Octahedral { bits: 16 },
         ),
     ];
-    let directions = ::gbuffer_testkit::shading_cases::fibonacci_sphere(1 << 16);
+    let directions = gbuffer_gpu::values::fibonacci_sphere(1 << 16);
     encodings
         .into_iter()
         .map(|(name, bits, encoding)| {

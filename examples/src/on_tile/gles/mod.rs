@@ -14,7 +14,7 @@ use std::time::Instant;
 use glow::HasContext as _;
 
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
-use gbuffer_testkit::gles::Gles;
+use gbuffer_gpu::gles::Gles;
 
 mod plans;
 

@@ -15,7 +15,7 @@
 use std::time::Instant;
 
 use ash::vk;
-use gbuffer_testkit::vulkan::{Object, StorageBuffer, Vulkan};
+use gbuffer_gpu::vulkan::{Object, StorageBuffer, Vulkan};
 
 mod objects;
 mod plans;

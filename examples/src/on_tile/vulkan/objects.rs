@@ -2,8 +2,8 @@
 //! pipeline layouts and pipelines (naga's GLSL 450 compiled by glslang).
 
 use ash::vk;
-use gbuffer_testkit::tools::glslang;
-use gbuffer_testkit::vulkan::Object;
+use gbuffer_gpu::tools::glslang;
+use gbuffer_gpu::vulkan::Object;
 
 use super::VulkanRenderer;
 use crate::mesh::Vertex;

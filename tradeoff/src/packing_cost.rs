@@ -8,11 +8,11 @@
 use gbuffer::packing::{Field, FieldType, Format, Layout, ScalarKind, Storage};
 use gbuffer_codegen::emit::wgsl::Conversions;
 
-use crate::gpu::Gpu;
-use crate::harness::{compute_harness, expected_words, run_in_batches, scalars_per_texel};
-use crate::texels::field_code_errors;
-use crate::tools::run;
-use crate::values::{float_edges, Values};
+use gbuffer_gpu::harness::field_code_errors;
+use gbuffer_gpu::harness::{compute_harness, expected_words, run_in_batches, scalars_per_texel};
+use gbuffer_gpu::tools::spirv_opt;
+use gbuffer_gpu::values::{float_edges, Values};
+use gbuffer_gpu::Gpu;
 
 /// SPIR-V opcodes counted.
 const OP_FUNCTION: u32 = 54;
@@ -120,20 +120,7 @@ pub fn builtin_form(format: Format) -> Option<String> {
 /// `spirv-tools`) and counts.
 pub fn cost(wgsl: &str) -> Result<Cost, String> {
     let (_, words) = gbuffer_validator::cost::compile_compacted(wgsl)?;
-    let folder = tempfile::tempdir().map_err(|error| error.to_string())?;
-    let input = folder.path().join("in.spv");
-    let output = folder.path().join("out.spv");
-    std::fs::write(&input, bytemuck::cast_slice::<u32, u8>(&words))
-        .map_err(|error| error.to_string())?;
-    let paths = [input.to_str(), output.to_str()];
-    let [Some(input), Some(output)] = paths else {
-        return Err("a temporary path is not UTF-8".to_string());
-    };
-    let (ok, log) = run("spirv-opt", &["-O", input, "-o", output], "spirv-tools");
-    if !ok {
-        return Err(format!("spirv-opt: {log}"));
-    }
-    let optimised = std::fs::read(output).map_err(|error| error.to_string())?;
+    let optimised = spirv_opt(bytemuck::cast_slice::<u32, u8>(&words))?;
     Ok(count(&optimised))
 }
 
@@ -203,8 +190,14 @@ pub fn in_fast_domain(value: f32) -> bool {
 /// Packs `texels` texels of a layout of float fields on the adapter with `wgsl` (the layout's
 /// WGSL, of either conversions) and compares every channel's code with the exact mirror's.
 /// The inputs are the float edge cases in the fast domain first, then random values from
-/// [`Values::float`] kept to that domain.
-pub fn deviation(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64) -> Deviation {
+/// [`Values::float`] kept to that domain. The error is wgpu's, where it rejected the harness.
+pub fn deviation(
+    gpu: &Gpu,
+    layout: &Layout,
+    wgsl: &str,
+    texels: usize,
+    seed: u64,
+) -> Result<Deviation, String> {
     let harness = compute_harness(layout, wgsl);
     let scalars = scalars_per_texel(layout);
     let words = layout.words();
@@ -253,6 +246,6 @@ pub fn deviation(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u6
                 }
             }
         },
-    );
-    deviation
+    )?;
+    Ok(deviation)
 }

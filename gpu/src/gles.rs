@@ -161,7 +161,7 @@ impl Gles {
                         .into_iter()
                         .for_each(|shader| gl.delete_shader(shader));
                     gl.delete_program(program);
-                    return Err(format!("{log}\n{}", numbered(source)));
+                    return Err(format!("{log}\n{}", crate::tools::numbered(source)));
                 }
                 gl.attach_shader(program, shader);
                 shaders.push(shader);
@@ -173,7 +173,7 @@ impl Gles {
             if !gl.get_program_link_status(program) {
                 let log = gl.get_program_info_log(program);
                 gl.delete_program(program);
-                return Err(format!("link: {log}\n{}", numbered(fragment)));
+                return Err(format!("link: {log}\n{}", crate::tools::numbered(fragment)));
             }
             Ok(program)
         }
@@ -195,24 +195,6 @@ impl Drop for Gles {
         let _ = self.egl.destroy_context(self.display, self.context);
         let _ = self.egl.terminate(self.display);
     }
-}
-
-/// The source with line numbers, as drivers' logs cite them.
-pub fn numbered(source: &str) -> String {
-    source
-        .lines()
-        .enumerate()
-        .map(|(index, line)| format!("{:4} {line}\n", index + 1))
-        .collect()
-}
-
-/// Prints why a GPU test skips for want of a driver, or panics under CI, where `.ci/run`
-/// installs the drivers and a skip would hide a broken set-up.
-pub fn skip_without_driver(what: &str, error: &str) {
-    if std::env::var_os("CI").is_some_and(|value| value == "true") {
-        panic!("{what}: {error} (under CI=true a missing driver is a failure)");
-    }
-    eprintln!("skipped: {what}: {error}");
 }
 
 /// A framebuffer of colour attachments, one texture each, in the given internal formats.

@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use gbuffer::packing::{Layout, ScalarKind};
+use gbuffer::packing::{Encoding, Layout, Member, ScalarKind, Storage};
 
 /// Scalars per texel: the components of all fields.
 pub fn scalars_per_texel(layout: &Layout) -> usize {
@@ -139,15 +139,16 @@ pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
 
 /// Runs a [`compute_harness`] of `layout` over `texels` texels on the adapter, in batches small
 /// enough for the default storage binding size. `inputs(first, count)` gives a batch's scalar
-/// bits; `results(inputs, packed words, unpacked scalar bits)` receives each batch's.
+/// bits; `results(inputs, packed words, unpacked scalar bits)` receives each batch's. The
+/// error is wgpu's, where it rejected the harness.
 pub fn run_in_batches(
-    gpu: &crate::gpu::Gpu,
+    gpu: &crate::Gpu,
     layout: &Layout,
     harness: &str,
     texels: usize,
     mut inputs: impl FnMut(usize, usize) -> Vec<u32>,
     mut results: impl FnMut(&[u32], &[u32], &[u32]),
-) {
+) -> Result<(), String> {
     const BATCH: usize = 1 << 18;
     let (scalars, words) = (scalars_per_texel(layout), layout.words());
     for first in (0..texels).step_by(BATCH) {
@@ -159,9 +160,10 @@ pub fn run_in_batches(
             &batch,
             &[count * words, count * scalars],
             count as u32,
-        );
+        )?;
         results(&batch, &outputs[0], &outputs[1]);
     }
+    Ok(())
 }
 
 /// A fragment shader that uses every generated function (pack, unpack, each `load_`, the
@@ -201,4 +203,87 @@ pub fn fragment_harness(layout: &Layout, wgsl: &str) -> String {
     );
     let _ = writeln!(out, "    return pack_{prefix}_targets(again);\n}}");
     out
+}
+
+/// How far a field in word `have` is from the same field in word `want`, per component, in
+/// codes: the difference of each channel's or component's code, for a whole word and the
+/// per-component encodings; for rgb9e5 and bool, of the whole code. Octahedral and RGBM
+/// fields name some values by two codes (the map's folded border, a multiplier and a channel
+/// that trade a step), so theirs is measured on the decoded values: the angle in units of the
+/// octahedral bound (sqrt(18) half-steps), or each channel's difference in steps of the
+/// coarser multiplier, rounded up.
+pub fn field_code_errors(
+    layout: &Layout,
+    field: usize,
+    member: Member,
+    want: u32,
+    have: u32,
+) -> Vec<u32> {
+    let field = &layout.fields[field];
+    let bit_field = match field.storage {
+        Storage::Word(format) => {
+            return format.channels()[..field.ty.components]
+                .iter()
+                .map(|channel| {
+                    let code = |word: u32| (word >> channel.offset) & channel.mask();
+                    code(want).abs_diff(code(have))
+                })
+                .collect()
+        }
+        Storage::Bits(bit_field) => bit_field,
+    };
+    let code = |word: u32| (word >> member.offset) & mask(member.bits);
+    let (want, have) = (code(want), code(have));
+    let components = field.ty.components;
+    let decoded = |code: u32| {
+        bit_field
+            .decode(code, components)
+            .map(|lane| f64::from(f32::from_bits(lane)))
+    };
+    match bit_field.encoding {
+        Encoding::Rgb9e5 | Encoding::Bool => vec![want.abs_diff(have)],
+        _ if want == have => vec![0],
+        Encoding::Octahedral => {
+            let (a, b) = (decoded(want), decoded(have));
+            let cross = [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ];
+            let angle = cross
+                .iter()
+                .map(|c| c * c)
+                .sum::<f64>()
+                .sqrt()
+                .atan2(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+            let bound = 18f64.sqrt() / f64::from(mask(bit_field.bits / 2));
+            vec![(angle / bound - 1e-9).ceil().max(0.0) as u32]
+        }
+        Encoding::Rgbm(range) => {
+            let multiplier = (want >> 24).max(have >> 24);
+            let step = f64::from(multiplier) / 255.0 * f64::from(range.get()) / 255.0;
+            let (a, b) = (decoded(want), decoded(have));
+            (0..3)
+                .map(|channel| {
+                    ((a[channel] - b[channel]).abs() / step - 1e-9)
+                        .ceil()
+                        .max(0.0) as u32
+                })
+                .collect()
+        }
+        _ => {
+            let each = bit_field.component_bits(components);
+            (0..components)
+                .map(|index| {
+                    let part = |code: u32| (code >> (each * index as u32)) & mask(each);
+                    part(want).abs_diff(part(have))
+                })
+                .collect()
+        }
+    }
+}
+
+/// The low `bits` bits set.
+fn mask(bits: u32) -> u32 {
+    u32::MAX >> (32 - bits)
 }

@@ -1,5 +1,6 @@
-//! A real adapter for the tests: whatever wgpu finds (on CI, Mesa's lavapipe through Vulkan or
-//! llvmpipe through GL). No adapter is a failure that names what was tried, never a skip.
+//! A wgpu device on a real adapter, opened without a window: whatever wgpu finds among the
+//! backends `WGPU_BACKEND` allows (on a machine without a GPU, Mesa's lavapipe through Vulkan or
+//! llvmpipe through GL). Not finding one is an error that names what was tried.
 
 use wgpu::util::DeviceExt;
 
@@ -13,70 +14,82 @@ pub struct Gpu {
     pub info: wgpu::AdapterInfo,
 }
 
+/// What a device is opened with.
+#[derive(Clone, Debug, Default)]
+pub struct Request {
+    /// The device's label, for wgpu's messages.
+    pub label: &'static str,
+    /// Limits to hold the device to (lowered from the adapter's own, so that, say, WebGPU's
+    /// defaults can be enforced on a more capable adapter); `None` takes the adapter's.
+    pub limits: Option<wgpu::Limits>,
+    /// Features wanted: those of them the adapter has are enabled (timestamp queries, say).
+    pub features: wgpu::Features,
+}
+
 impl Gpu {
-    /// Opens the adapter wgpu prefers among the backends `WGPU_BACKEND` allows (all by
-    /// default), with its full limits. Panics, naming the backends and adapters it saw, when
-    /// none can be opened.
-    // Not `Default`: opening an adapter can fail, and a default value should not panic.
-    #[allow(clippy::new_without_default)]
-    pub fn new() -> Gpu {
-        Gpu::open(None, wgpu::Features::empty())
+    /// Opens the adapter wgpu prefers, with its full limits and no optional features.
+    pub fn new() -> Result<Gpu, String> {
+        Gpu::open(&Request {
+            label: "gbuffer",
+            ..Request::default()
+        })
     }
 
-    /// As [`Gpu::new`], with those of `features` the adapter has (e.g. timestamp queries).
-    pub fn with_features(features: wgpu::Features) -> Gpu {
-        Gpu::open(None, features)
-    }
-
-    /// As [`Gpu::new`], but with the adapter's limits lowered to the given ones (so WebGPU's
-    /// default limits can be enforced on a more capable adapter) and with those of `features`
-    /// the adapter has.
-    pub fn with_limits_and_features(limits: wgpu::Limits, features: wgpu::Features) -> Gpu {
-        Gpu::open(Some(limits), features)
-    }
-
-    fn open(limits: Option<wgpu::Limits>, features: wgpu::Features) -> Gpu {
-        let descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-        let backends = descriptor.backends;
-        let instance = wgpu::Instance::new(descriptor);
+    /// Opens the adapter wgpu prefers among the backends `WGPU_BACKEND` allows: the primary
+    /// backends (Vulkan, Metal, DX12) first, GL only where none offers an adapter. wgpu's GL
+    /// backend opens the process's EGL display and terminates it when dropped, which would end
+    /// any other GLES context of the process (the on-tile renderer's, a test's) on that display.
+    /// The error names the backends tried, the adapters seen and how to get one.
+    pub fn open(request: &Request) -> Result<Gpu, String> {
         let options = wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             force_fallback_adapter: false,
             compatible_surface: None,
             apply_limit_buckets: false,
         };
-        let adapter = match pollster::block_on(instance.request_adapter(&options)) {
-            Ok(adapter) => adapter,
-            Err(error) => {
-                let seen: Vec<String> = pollster::block_on(instance.enumerate_adapters(backends))
-                    .iter()
-                    .map(|adapter| format!("{:?}", adapter.get_info()))
-                    .collect();
-                panic!(
-                    "no GPU adapter: wgpu tried the backends {backends:?} and found {seen:?} ({error}). \
-                     The GPU tests need a real adapter; on a machine without a GPU install Mesa's \
-                     software drivers (`apt-get install -y mesa-vulkan-drivers libegl1` gives \
-                     lavapipe and llvmpipe), or choose a backend with WGPU_BACKEND=vulkan|gl."
-                )
-            }
+        let instance = |backends| {
+            let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+            descriptor.backends = backends;
+            wgpu::Instance::new(descriptor)
         };
+        let request_adapter =
+            |backends| pollster::block_on(instance(backends).request_adapter(&options));
+        let chosen = wgpu::Backends::from_env();
+        let adapter = match chosen {
+            Some(backends) => request_adapter(backends),
+            None => request_adapter(wgpu::Backends::PRIMARY)
+                .or_else(|_| request_adapter(wgpu::Backends::all())),
+        };
+        let adapter = adapter.map_err(|error| {
+            let backends = chosen.unwrap_or(wgpu::Backends::all());
+            let seen: Vec<String> =
+                pollster::block_on(instance(backends).enumerate_adapters(backends))
+                    .iter()
+                    .map(|adapter| adapter.get_info().name)
+                    .collect();
+            format!(
+                "no GPU adapter: wgpu tried the backends {backends:?} and found {seen:?} ({error}); \
+                 without a GPU install Mesa's software drivers (apt-get install -y \
+                 mesa-vulkan-drivers libegl1), or choose a backend with WGPU_BACKEND=vulkan|gl"
+            )
+        })?;
         let info = adapter.get_info();
         let descriptor = wgpu::DeviceDescriptor {
-            label: Some("tests"),
-            required_features: features & adapter.features(),
-            required_limits: match limits {
-                Some(limits) => limits.or_worse_values_from(&adapter.limits()),
+            label: Some(request.label),
+            required_features: request.features & adapter.features(),
+            required_limits: match &request.limits {
+                Some(limits) => limits.clone().or_worse_values_from(&adapter.limits()),
                 None => adapter.limits(),
             },
             ..Default::default()
         };
         let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
-            .unwrap_or_else(|error| panic!("could not open a device on {info:?}: {error}"));
-        Gpu {
+            .map_err(|error| format!("could not open a device on {}: {error}", info.name))?;
+        Ok(Gpu {
             device,
             queue,
             info,
-        }
+        })
     }
 
     /// A short description of the adapter for test output.
@@ -89,7 +102,8 @@ impl Gpu {
 
     /// Runs `entry_point` of `wgsl` over `count` invocations (64 per workgroup) with binding 0
     /// the `inputs`, bindings 1.. the outputs of the given lengths in u32s, and the last
-    /// binding a uniform `vec4<u32>(count, 0, 0, 0)`. Returns the outputs.
+    /// binding a uniform `vec4<u32>(count, 0, 0, 0)`. Returns the outputs, or wgpu's message
+    /// where it rejected the shader or the device was lost.
     pub fn run_compute(
         &self,
         wgsl: &str,
@@ -97,7 +111,7 @@ impl Gpu {
         inputs: &[u32],
         output_lengths: &[usize],
         count: u32,
-    ) -> Vec<Vec<u32>> {
+    ) -> Result<Vec<Vec<u32>>, String> {
         let device = &self.device;
         let error_scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -173,25 +187,33 @@ impl Gpu {
             .collect();
         self.queue.submit([encoder.finish()]);
         if let Some(error) = pollster::block_on(error_scope.pop()) {
-            panic!("wgpu rejected the compute shader `{entry_point}`: {error}");
+            return Err(format!(
+                "wgpu rejected the compute shader `{entry_point}`: {error}"
+            ));
         }
         staging.iter().map(|buffer| self.read(buffer)).collect()
     }
 
-    fn read(&self, buffer: &wgpu::Buffer) -> Vec<u32> {
+    /// The words of a mapped-readable buffer.
+    pub fn read(&self, buffer: &wgpu::Buffer) -> Result<Vec<u32>, String> {
         let slice = buffer.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |result| {
-            result.expect("mapping a staging buffer")
+        let (sender, receiver) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |result| {
+            let _ = sender.send(result);
         });
         self.device
             .poll(wgpu::PollType::wait_indefinitely())
-            .expect("waiting for the GPU");
+            .map_err(|error| format!("waiting for the GPU: {error}"))?;
+        receiver
+            .recv()
+            .map_err(|_| "the GPU never answered a buffer mapping".to_string())?
+            .map_err(|error| format!("mapping a staging buffer: {error}"))?;
         let view = slice
             .get_mapped_range()
-            .expect("reading a mapped staging buffer");
+            .map_err(|error| format!("reading a mapped staging buffer: {error}"))?;
         let words = bytemuck::cast_slice(&view).to_vec();
         drop(view);
         buffer.unmap();
-        words
+        Ok(words)
     }
 }

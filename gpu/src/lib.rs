@@ -1,0 +1,15 @@
+//! The GPUs the product runs on, opened without a window: a wgpu device, a GLES 3.2 context
+//! through EGL surfaceless, a Vulkan device through `ash`, and the Khronos command-line tools.
+//! Each is opened by a function returning a `Result` whose error names what was missing (a
+//! driver, a library, a tool) and the package that brings it, so a command can exit with a
+//! one-line reason where a test would fail. The harness shaders and their inputs, which run a
+//! layout's generated code over buffers, serve the trade-off study and the tests alike.
+
+pub mod adapter;
+pub mod gles;
+pub mod harness;
+pub mod tools;
+pub mod values;
+pub mod vulkan;
+
+pub use adapter::Gpu;
