@@ -7,14 +7,12 @@
 use std::sync::Arc;
 
 use gbuffer::packing::Layout;
+use gbuffer::seed_conventions::SeedConvention;
 use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
 use gbuffer::GBufferLayout;
 use gbuffer_scenes::{Features, Solution};
-
-/// Light accumulation stored in unorm channels (rgb10_a2) is scaled by 1 / this.
-pub const LIGHT_SCALE: f32 = 4.0;
 
 /// Where the G-buffer pass writes.
 #[derive(Clone, Debug, PartialEq)]
@@ -87,28 +85,15 @@ impl SeedLayout {
         }
     }
 
-    /// `fn encode_texel(surface: Surface) -> <Name>`: where each surface value goes. Colours in
-    /// 8-bit channels are stored in pseudo-gamma (square root), as the seeds do; the 256-bit
-    /// layouts store them linear in floats; normals in unsigned formats are mapped to [0, 1].
+    /// `fn encode_texel(surface: Surface) -> <Name>`: the layout's convention
+    /// ([`gbuffer::seed_conventions`]).
     pub fn encode_wgsl(self) -> &'static str {
         match self {
-            SeedLayout::MobileMetallic => "fn encode_texel(s: Surface) -> MobileMetallic {
-    return MobileMetallic(scale_hdr_to_unit(s.light, LIGHT_SCALE), s.distance, vec4<f32>(normal_to_unorm(s.normal), s.roughness), vec4<f32>(linear_to_pseudo_gamma(s.base_colour), s.metallic));
-}",
-            SeedLayout::SpecularWorkflow => "fn encode_texel(s: Surface) -> SpecularWorkflow {
-    let colours = metallic_workflow(s.base_colour, s.metallic, DIELECTRIC_F0);
-    return SpecularWorkflow(scale_hdr_to_unit(s.light, LIGHT_SCALE), s.distance, vec4<f32>(normal_to_unorm(s.normal), s.roughness), linear_to_pseudo_gamma(colours.diffuse), linear_to_pseudo_gamma(colours.f0));
-}",
-            SeedLayout::FutureMetallic => "fn encode_texel(s: Surface) -> FutureMetallic {
-    return FutureMetallic(s.position.x, s.position.y, s.position.z, s.light.rg, vec2<f32>(s.light.b, s.normal.x), s.normal.yz, vec2<f32>(s.roughness, s.metallic), s.base_colour);
-}",
-            SeedLayout::FutureSpecular => "fn encode_texel(s: Surface) -> FutureSpecular {
-    let colours = metallic_workflow(s.base_colour, s.metallic, DIELECTRIC_F0);
-    return FutureSpecular(s.position.x, s.position.y, s.position.z, s.light.rg, vec2<f32>(s.light.b, s.roughness), normal_to_unorm(s.normal), colours.diffuse, colours.f0);
-}",
-            SeedLayout::ArmTileBlock => "fn encode_texel(s: Surface) -> ArmTileBlock {
-    return ArmTileBlock(s.light, linear_to_pseudo_gamma(s.base_colour), normal_to_unorm(s.normal), vec2<f32>(s.metallic, s.roughness));
-}",
+            SeedLayout::MobileMetallic => MobileMetallic::ENCODE_WGSL,
+            SeedLayout::SpecularWorkflow => SpecularWorkflow::ENCODE_WGSL,
+            SeedLayout::FutureMetallic => FutureMetallic::ENCODE_WGSL,
+            SeedLayout::FutureSpecular => FutureSpecular::ENCODE_WGSL,
+            SeedLayout::ArmTileBlock => ArmTileBlock::ENCODE_WGSL,
         }
     }
 
@@ -181,28 +166,15 @@ fn paint_texel(t: FutureMetallic, decal: u32, weight: f32) -> FutureMetallic {
         }
     }
 
-    /// `fn decode_texel(t: <Name>) -> Shading`: the inverse of `encode_texel`.
+    /// `fn decode_texel(t: <Name>) -> Shading`: the inverse of `encode_texel`
+    /// ([`gbuffer::seed_conventions`]).
     pub fn decode_wgsl(self) -> &'static str {
         match self {
-            SeedLayout::MobileMetallic => "fn decode_texel(t: MobileMetallic) -> Shading {
-    let colours = metallic_workflow(pseudo_gamma_to_linear(t.albedo_metallic.rgb), t.albedo_metallic.a, DIELECTRIC_F0);
-    return Shading(unorm_to_normal(t.normals_roughness.xyz), t.normals_roughness.w, colours.diffuse, colours.f0, scale_unit_to_hdr(t.light_accumulation, LIGHT_SCALE));
-}",
-            SeedLayout::SpecularWorkflow => "fn decode_texel(t: SpecularWorkflow) -> Shading {
-    return Shading(unorm_to_normal(t.normals_roughness.xyz), t.normals_roughness.w, pseudo_gamma_to_linear(t.base_colour), pseudo_gamma_to_linear(t.specular_colour), scale_unit_to_hdr(t.light_accumulation, LIGHT_SCALE));
-}",
-            SeedLayout::FutureMetallic => "fn decode_texel(t: FutureMetallic) -> Shading {
-    let colours = metallic_workflow(t.albedo_or_reflectance, t.roughness_metallic.y, DIELECTRIC_F0);
-    let normal = normalize(vec3<f32>(t.light_accumulation_b_normal_x.y, t.normal_yz));
-    return Shading(normal, t.roughness_metallic.x, colours.diffuse, colours.f0, vec3<f32>(t.light_accumulation_rg, t.light_accumulation_b_normal_x.x));
-}",
-            SeedLayout::FutureSpecular => "fn decode_texel(t: FutureSpecular) -> Shading {
-    return Shading(unorm_to_normal(t.normal), t.light_accumulation_b_roughness.y, t.albedo, t.reflectance, vec3<f32>(t.light_accumulation_rg, t.light_accumulation_b_roughness.x));
-}",
-            SeedLayout::ArmTileBlock => "fn decode_texel(t: ArmTileBlock) -> Shading {
-    let colours = metallic_workflow(pseudo_gamma_to_linear(t.albedo), t.metallic_roughness.x, DIELECTRIC_F0);
-    return Shading(unorm_to_normal(t.normal), t.metallic_roughness.y, colours.diffuse, colours.f0, t.light);
-}",
+            SeedLayout::MobileMetallic => MobileMetallic::DECODE_WGSL,
+            SeedLayout::SpecularWorkflow => SpecularWorkflow::DECODE_WGSL,
+            SeedLayout::FutureMetallic => FutureMetallic::DECODE_WGSL,
+            SeedLayout::FutureSpecular => FutureSpecular::DECODE_WGSL,
+            SeedLayout::ArmTileBlock => ArmTileBlock::DECODE_WGSL,
         }
     }
 }
@@ -266,27 +238,3 @@ impl GBuffer {
             .sum()
     }
 }
-
-/// The shared WGSL structs of the G-buffer and lighting passes.
-pub const SURFACE_WGSL: &str = "
-// What the G-buffer pass stores of a surface point.
-struct Surface {
-    normal: vec3<f32>,
-    roughness: f32,
-    base_colour: vec3<f32>,
-    metallic: f32,
-    // The static diffuse light it receives, times its diffuse colour (light accumulation).
-    light: vec3<f32>,
-    distance: f32,
-    position: vec3<f32>,
-}
-
-// What the lighting pass reads back.
-struct Shading {
-    normal: vec3<f32>,
-    roughness: f32,
-    diffuse: vec3<f32>,
-    f0: vec3<f32>,
-    light: vec3<f32>,
-}
-";

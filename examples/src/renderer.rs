@@ -23,12 +23,13 @@ use gbuffer_scenes::lighting::{self, Forms};
 use gbuffer_scenes::quantity::Quantity;
 use gbuffer_scenes::{Feature, Solution};
 
-use crate::gbuffers::{GBuffer, SURFACE_WGSL};
+use crate::gbuffers::GBuffer;
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::{Mesh, Vertex};
 use crate::on_tile::recording::{Attachment, Call, Load, Recording};
 use crate::scene::{self, POINT_LIGHT_COUNT};
 use crate::shaders::{self, library, INPUTS_WGSL, VOLUME_WGSL};
+use gbuffer::seed_conventions::SURFACE_WGSL;
 
 pub use gbuffer_scenes::lighting::{IblForm, SunForm};
 

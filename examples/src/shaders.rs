@@ -3,9 +3,9 @@
 //! G-buffer by framebuffer fetch or as subpass inputs. The maths is written once, here and in
 //! the shading library: nothing below is a second copy of it.
 
-use crate::gbuffers::SURFACE_WGSL;
 use crate::renderer::{IblForm, Options, SunForm, EXPOSURE};
 use crate::scene;
+use gbuffer::seed_conventions::SURFACE_WGSL;
 
 /// The library modules (`gbuffer::modules`) composed, for the passes.
 pub fn library(modules: &[&str]) -> String {
@@ -28,10 +28,9 @@ pub const MODULES: [&str; 8] = [
 /// upside down, for GL's bottom-up rows and Vulkan's y-down clip space).
 pub fn frame_wgsl(options: &Options, y_sign: f32) -> String {
     format!(
-        "const VIEWPORT: vec2<f32> = vec2<f32>({:?}, {:?});\nconst CLIP_Y_SIGN: f32 = {y_sign:?};\nconst LIGHT_SCALE: f32 = {:?};\n",
+        "const VIEWPORT: vec2<f32> = vec2<f32>({:?}, {:?});\nconst CLIP_Y_SIGN: f32 = {y_sign:?};\n",
         options.width as f32,
         options.height as f32,
-        crate::gbuffers::LIGHT_SCALE,
     )
 }
 

@@ -67,6 +67,7 @@ extern crate self as gbuffer;
 
 pub mod engine_layouts;
 pub mod modules;
+pub mod seed_conventions;
 pub mod seed_layouts;
 pub mod shading;
 

@@ -3,9 +3,11 @@
 
 use gbuffer::glam::{DVec3, Vec2, Vec3, Vec4};
 use gbuffer::packing::{Field, FieldType, Format, Layout, ScalarKind};
+use gbuffer::seed_conventions::{
+    round_trip, SeedConvention, Shading, Surface, LIGHT_SCALE, SURFACE_WGSL,
+};
 use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
 use gbuffer::shading::{mirror as m, reference as r};
-use gbuffer::GBufferLayout;
 
 use gbuffer_gpu::values::halton;
 
@@ -683,156 +685,33 @@ fn visibility_rows() -> Vec<Row> {
 
 // ---- whole layouts ----
 
-/// A surface to store in a G-buffer and shade.
-#[derive(Clone, Copy)]
-struct Surface {
-    normal: Vec3,
-    roughness: f32,
-    metallic: f32,
-    base_colour: Vec3,
-    /// HDR light already accumulated (light maps, emissive), below 6.
-    light: Vec3,
-}
-
 /// The light the texel shows: the stored light plus a white sun, tone mapped and encoded as
 /// sRGB, in 8-bit steps: what the error of a layout looks like on screen.
-fn displayed(surface: &Surface) -> DVec3 {
+fn displayed(shading: &Shading) -> DVec3 {
     let view = DVec3::new(0.0, 0.6, 0.8);
     let sun = DVec3::new(0.3, -0.4, 0.866).normalize();
-    let base = surface.base_colour.as_dvec3();
-    let metallic = f64::from(surface.metallic);
-    let colours = r::material::metallic_workflow(base, metallic, 0.04);
+    let normal = shading.normal.as_dvec3().normalize();
+    let roughness = f64::from(shading.roughness);
     // The split-sum albedo the diffuse term is scaled by, as a renderer's LUT gives it.
-    let normal = surface.normal.as_dvec3().normalize();
-    let env_brdf = r::environment::integrate_env_brdf(
-        f64::from(surface.roughness).max(0.045),
-        normal.dot(view).max(1e-4),
-        64,
-    );
+    let env_brdf =
+        r::environment::integrate_env_brdf(roughness.max(0.045), normal.dot(view).max(1e-4), 64);
     let shaded = r::shading::shade_directional(
         normal,
         view,
         sun,
         DVec3::splat(3.0),
-        colours.diffuse,
-        colours.f0,
-        f64::from(surface.roughness),
+        shading.diffuse.as_dvec3(),
+        shading.f0.as_dvec3(),
+        roughness,
         env_brdf,
     );
     r::colour::linear_to_srgb(r::tonemap::tonemap_reinhard(
-        shaded + surface.light.as_dvec3(),
+        shaded + shading.light.as_dvec3(),
     )) * 255.0
 }
 
-/// A layout's round trip of a surface: its conventions for what goes where, pack, unpack.
-type LayoutRoundTrip = fn(&Surface) -> Surface;
-
-fn mobile_metallic(surface: &Surface) -> Surface {
-    use gbuffer::seed_layouts::MobileMetallic;
-    let texel = MobileMetallic {
-        light_accumulation: m::hdr::scale_hdr_to_unit(surface.light, 6.0),
-        depth: 0.5,
-        normals_roughness: m::normals::normal_to_unorm(surface.normal).extend(surface.roughness),
-        albedo_metallic: m::colour::linear_to_pseudo_gamma(surface.base_colour)
-            .extend(surface.metallic),
-    };
-    let back = MobileMetallic::unpack(&texel.pack());
-    Surface {
-        normal: m::normals::unorm_to_normal(back.normals_roughness.truncate()),
-        roughness: back.normals_roughness.w,
-        metallic: back.albedo_metallic.w,
-        base_colour: m::colour::pseudo_gamma_to_linear(back.albedo_metallic.truncate()),
-        light: m::hdr::scale_unit_to_hdr(back.light_accumulation, 6.0),
-    }
-}
-
-fn arm_tile_block(surface: &Surface) -> Surface {
-    use gbuffer::seed_layouts::ArmTileBlock;
-    let texel = ArmTileBlock {
-        light: surface.light,
-        albedo: m::colour::linear_to_pseudo_gamma(surface.base_colour),
-        normal: m::normals::normal_to_unorm(surface.normal),
-        metallic_roughness: Vec2::new(surface.metallic, surface.roughness),
-    };
-    let back = ArmTileBlock::unpack(&texel.pack());
-    Surface {
-        normal: m::normals::unorm_to_normal(back.normal),
-        roughness: back.metallic_roughness.y,
-        metallic: back.metallic_roughness.x,
-        base_colour: m::colour::pseudo_gamma_to_linear(back.albedo),
-        light: back.light,
-    }
-}
-
-fn future_metallic(surface: &Surface) -> Surface {
-    use gbuffer::seed_layouts::FutureMetallic;
-    let texel = FutureMetallic {
-        position_x: 1.0,
-        position_y: 2.0,
-        position_z: 3.0,
-        light_accumulation_rg: Vec2::new(surface.light.x, surface.light.y),
-        light_accumulation_b_normal_x: Vec2::new(surface.light.z, surface.normal.x),
-        normal_yz: Vec2::new(surface.normal.y, surface.normal.z),
-        roughness_metallic: Vec2::new(surface.roughness, surface.metallic),
-        albedo_or_reflectance: surface.base_colour,
-    };
-    let back = FutureMetallic::unpack(&texel.pack());
-    Surface {
-        normal: Vec3::new(
-            back.light_accumulation_b_normal_x.y,
-            back.normal_yz.x,
-            back.normal_yz.y,
-        )
-        .normalize(),
-        roughness: back.roughness_metallic.x,
-        metallic: back.roughness_metallic.y,
-        base_colour: back.albedo_or_reflectance,
-        light: Vec3::new(
-            back.light_accumulation_rg.x,
-            back.light_accumulation_rg.y,
-            back.light_accumulation_b_normal_x.x,
-        ),
-    }
-}
-
-fn future_specular(surface: &Surface) -> Surface {
-    use gbuffer::seed_layouts::FutureSpecular;
-    // The specular workflow stores albedo and reflectance; a metal's base colour is its f0.
-    let colours = m::material::metallic_workflow(surface.base_colour, surface.metallic, 0.04);
-    let texel = FutureSpecular {
-        position_x: 1.0,
-        position_y: 2.0,
-        position_z: 3.0,
-        light_accumulation_rg: Vec2::new(surface.light.x, surface.light.y),
-        light_accumulation_b_roughness: Vec2::new(surface.light.z, surface.roughness),
-        normal: m::normals::normal_to_unorm(surface.normal), // r11f_g11f_b10f is unsigned
-        albedo: colours.diffuse,
-        reflectance: colours.f0,
-    };
-    let back = FutureSpecular::unpack(&texel.pack());
-    // Back to the metallic parameters `displayed` shades with: exact for metallic 0 or 1.
-    let metallic = if back.albedo.max_element() == 0.0 && back.reflectance.max_element() > 0.04 {
-        1.0
-    } else {
-        0.0
-    };
-    Surface {
-        normal: m::normals::unorm_to_normal(back.normal),
-        roughness: back.light_accumulation_b_roughness.y,
-        metallic,
-        base_colour: if metallic == 1.0 {
-            back.reflectance
-        } else {
-            back.albedo
-        },
-        light: Vec3::new(
-            back.light_accumulation_rg.x,
-            back.light_accumulation_rg.y,
-            back.light_accumulation_b_roughness.x,
-        ),
-    }
-}
-
+/// The surfaces the layouts store: normals facing the viewer, roughness, metallic 0 or 1, base
+/// colour and stored light below the seed layouts' light scale, spread by Halton sequences.
 fn surfaces() -> Vec<Surface> {
     (1..=1u32 << 14)
         .map(|index| {
@@ -856,82 +735,80 @@ fn surfaces() -> Vec<Surface> {
                     halton(index, 17) as f32,
                     halton(index, 19) as f32,
                     halton(index, 23) as f32,
-                ) * 5.9,
+                ) * LIGHT_SCALE,
+                distance: 0.5,
+                position: Vec3::new(1.0, 2.0, 3.0),
             }
         })
         .collect()
 }
 
+/// A seed layout's row: its name, model, WGSL, bits and the Rust mirror of its convention.
+struct SeedRow {
+    name: &'static str,
+    layout: Layout,
+    wgsl: &'static str,
+    decode_wgsl: &'static str,
+    bits: u32,
+    round_trip: fn(&Surface) -> Shading,
+}
+
+impl SeedRow {
+    fn of<L: SeedConvention>(name: &'static str) -> SeedRow {
+        SeedRow {
+            name,
+            layout: L::layout(),
+            wgsl: L::WGSL,
+            decode_wgsl: L::DECODE_WGSL,
+            bits: L::BITS,
+            round_trip: round_trip::<L>,
+        }
+    }
+}
+
 fn layout_rows() -> Vec<Row> {
     use gbuffer::seed_layouts::{ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic};
-    // Per layout: its round trip on the CPU and the WGSL that decodes an unpacked `texel` into
-    // `normal`, `roughness`, `diffuse`, `f0` and `light`, by the same conventions.
-    let metallic_decode = "let colours = metallic_workflow(base_colour, metallic, DIELECTRIC_F0);\n    let diffuse = colours.diffuse;\n    let f0 = colours.f0;";
-    let layouts: [(&str, Layout, &str, LayoutRoundTrip, u32, String); 4] = [
-        (
-            "Listing 2.2 (MobileMetallic)",
-            MobileMetallic::layout(),
-            MobileMetallic::WGSL,
-            mobile_metallic,
-            MobileMetallic::BITS,
-            format!("let normal = unorm_to_normal(texel.normals_roughness.xyz);\n    let roughness = texel.normals_roughness.w;\n    let metallic = texel.albedo_metallic.a;\n    let base_colour = pseudo_gamma_to_linear(texel.albedo_metallic.rgb);\n    let light = scale_unit_to_hdr(texel.light_accumulation, 6.0);\n    {metallic_decode}"),
-        ),
-        (
-            "Arm tile block (ArmTileBlock)",
-            ArmTileBlock::layout(),
-            ArmTileBlock::WGSL,
-            arm_tile_block,
-            ArmTileBlock::BITS,
-            format!("let normal = unorm_to_normal(texel.normal);\n    let roughness = texel.metallic_roughness.y;\n    let metallic = texel.metallic_roughness.x;\n    let base_colour = pseudo_gamma_to_linear(texel.albedo);\n    let light = texel.light;\n    {metallic_decode}"),
-        ),
-        (
-            "Listing 2.7 (FutureMetallic)",
-            FutureMetallic::layout(),
-            FutureMetallic::WGSL,
-            future_metallic,
-            FutureMetallic::BITS,
-            format!("let normal = normalize(vec3<f32>(texel.light_accumulation_b_normal_x.y, texel.normal_yz));\n    let roughness = texel.roughness_metallic.x;\n    let metallic = texel.roughness_metallic.y;\n    let base_colour = texel.albedo_or_reflectance;\n    let light = vec3<f32>(texel.light_accumulation_rg, texel.light_accumulation_b_normal_x.x);\n    {metallic_decode}"),
-        ),
-        (
-            "Listing 2.8 (FutureSpecular)",
-            FutureSpecular::layout(),
-            FutureSpecular::WGSL,
-            future_specular,
-            FutureSpecular::BITS,
-            "let normal = unorm_to_normal(texel.normal);\n    let roughness = texel.light_accumulation_b_roughness.y;\n    let diffuse = texel.albedo;\n    let f0 = texel.reflectance;\n    let light = vec3<f32>(texel.light_accumulation_rg, texel.light_accumulation_b_roughness.x);".to_string(),
-        ),
+    // Each layout by its own convention (`gbuffer::seed_conventions`), as the renderer stores it.
+    let layouts = [
+        SeedRow::of::<MobileMetallic>("Listing 2.2 (MobileMetallic)"),
+        SeedRow::of::<ArmTileBlock>("Arm tile block (ArmTileBlock)"),
+        SeedRow::of::<FutureMetallic>("Listing 2.7 (FutureMetallic)"),
+        SeedRow::of::<FutureSpecular>("Listing 2.8 (FutureSpecular)"),
     ];
     let surfaces = surfaces();
     layouts
         .into_iter()
-        .map(|(name, layout, layout_wgsl, round_trip, bits, decode)| {
+        .map(|seed| {
+            let round_trip = seed.round_trip;
             let mut errors = Accumulator::default();
             for surface in &surfaces {
-                let difference = displayed(&round_trip(surface)) - displayed(surface);
+                let difference =
+                    displayed(&round_trip(surface)) - displayed(&Shading::of(surface));
                 errors.add(difference.abs().max_element());
             }
-            let prefix = layout.snake_name();
-            let words = layout.words();
+            let prefix = seed.layout.snake_name();
+            let words = seed.layout.words();
             // The words come from the input's bits: the cost measured is unpack, decode, shade.
             let lanes: Vec<String> = (0..words).map(|word| format!("bitcast<u32>(x[{}]) ^ {word}u", word % 4)).collect();
             let body = format!(
-                "{layout_wgsl}\n\
+                "{layout_wgsl}\n{SURFACE_WGSL}\n{decode_wgsl}\n\n\
                  fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n\
-                 \x20   let texel = unpack_{prefix}(array<u32, {words}>({lanes}));\n\
-                 \x20   {decode}\n\
-                 \x20   let shaded = shade_directional(normal, vec3<f32>(0.0, 0.6, 0.8), vec3<f32>(0.3, -0.4, 0.866), vec3<f32>(3.0), diffuse, f0, roughness, vec2<f32>(0.6, 0.1));\n\
-                 \x20   return vec4<f32>(linear_to_srgb(tonemap_reinhard(shaded + light)), x.w);\n\
+                 \x20   let s = decode_texel(unpack_{prefix}(array<u32, {words}>({lanes})));\n\
+                 \x20   let shaded = shade_directional(s.normal, vec3<f32>(0.0, 0.6, 0.8), vec3<f32>(0.3, -0.4, 0.866), vec3<f32>(3.0), s.diffuse, s.f0, s.roughness, vec2<f32>(0.6, 0.1));\n\
+                 \x20   return vec4<f32>(linear_to_srgb(tonemap_reinhard(shaded + s.light)), x.w);\n\
                  }}\n",
+                layout_wgsl = seed.wgsl,
+                decode_wgsl = seed.decode_wgsl,
                 lanes = lanes.join(", "),
             );
             Row {
                 family: "whole layout",
-                name: name.to_string(),
-                bits: Some(bits),
-                domain: "16384 surfaces (normals facing the viewer, roughness, metallic 0/1, base colour, stored light < 6), sun and stored light, Reinhard, sRGB".into(),
+                name: seed.name.to_string(),
+                bits: Some(seed.bits),
+                domain: format!("16384 surfaces (normals facing the viewer, roughness, metallic 0/1, base colour, stored light < {LIGHT_SCALE}), sun and stored light, Reinhard, sRGB"),
                 unit: "8-bit sRGB steps",
                 errors: errors.finish(),
-                wgsl: wgsl(&["shading", "material", "colour", "tonemap", "normals", "hdr"], &body),
+                wgsl: wgsl(&["shading", "material", "colour", "tonemap", "normals", "hdr", "constants"], &body),
                 lut_size: None,
                 cpu: Box::new(move |x| {
                     let surface = Surface {
@@ -940,11 +817,11 @@ fn layout_rows() -> Vec<Row> {
                         metallic: x.z,
                         base_colour: Vec3::splat(x.y),
                         light: Vec3::splat(x.x),
+                        ..Surface::default()
                     };
-                    let back = round_trip(&surface);
-                    let colours = m::material::metallic_workflow(back.base_colour, back.metallic, 0.04);
-                    let shaded = m::shading::shade_directional(back.normal, Vec3::new(0.0, 0.6, 0.8), Vec3::new(0.3, -0.4, 0.866), Vec3::splat(3.0), colours.diffuse, colours.f0, back.roughness, Vec2::new(0.6, 0.1));
-                    m::colour::linear_to_srgb(m::tonemap::tonemap_reinhard(shaded + back.light)).extend(x.w)
+                    let s = round_trip(&surface);
+                    let shaded = m::shading::shade_directional(s.normal, Vec3::new(0.0, 0.6, 0.8), Vec3::new(0.3, -0.4, 0.866), Vec3::splat(3.0), s.diffuse, s.f0, s.roughness, Vec2::new(0.6, 0.1));
+                    m::colour::linear_to_srgb(m::tonemap::tonemap_reinhard(shaded + s.light)).extend(x.w)
                 }),
                 plot: None,
             }
