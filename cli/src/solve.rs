@@ -14,8 +14,8 @@ use std::process::ExitCode;
 
 use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_codegen::output::{generate, write_if_changed, Output};
-use gbuffer_scenes::file::{read_and_solve, SceneFileError};
-use gbuffer_scenes::lighting::{lighting_wgsl, Forms};
+use gbuffer_solver::file::{read_and_solve, SceneFileError};
+use gbuffer_solver::lighting::{lighting_wgsl, Forms};
 
 /// Solves scene descriptions (TOML): the smallest G-buffer layout that meets their precision,
 /// and a lighting shader with only the terms they use.
@@ -76,7 +76,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
         };
         files.push(gbuffer_codegen::output::GeneratedFile {
             name: format!("{snake}.scene.wgsl"),
-            contents: gbuffer_scenes::texel::texel_wgsl(&solution),
+            contents: gbuffer_solver::texel::texel_wgsl(&solution),
         });
         files.push(gbuffer_codegen::output::GeneratedFile {
             name: format!("{snake}.lighting.wgsl"),

@@ -108,12 +108,12 @@ const BAD_LAYOUTS: [(&str, &str, &str); 28] = [
 
 #[test]
 fn bad_layout_files_name_the_file_line_and_column_and_exit_1() {
-    let folder = workspace().join("tests/bad_layouts");
+    let folder = workspace().join("integration-tests/bad_layouts");
     let on_disk = std::fs::read_dir(&folder).unwrap().count();
     assert_eq!(
         on_disk,
         BAD_LAYOUTS.len(),
-        "every file in tests/bad_layouts has an expected message"
+        "every file in integration-tests/bad_layouts has an expected message"
     );
     for (name, position, message) in BAD_LAYOUTS {
         let path = folder.join(format!("{name}.toml"));

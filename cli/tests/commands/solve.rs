@@ -12,7 +12,7 @@ fn solve() -> Command {
 #[test]
 fn writes_every_output_and_places_errors() {
     let folder = tempfile::tempdir().unwrap();
-    let preset = workspace().join("examples/scenes/mobile-metallic.toml");
+    let preset = workspace().join("solver/scenes/mobile-metallic.toml");
     let output = solve()
         .arg(&preset)
         .arg("--out")

@@ -1,0 +1,227 @@
+//! Deferred shading on tile memory: declare a G-buffer once, get everything that must agree
+//! with it.
+//!
+//! ```
+//! use gbuffer::{GBufferLayout, glam::{Vec3, Vec4}};
+//!
+//! #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+//! #[gbuffer(budget = 128)] // bits of tile memory; default 128; a positive multiple of 32
+//! struct MobileMetallic {
+//!     #[pls(rgb10_a2)] light_accumulation: Vec3, // alpha unused: 30 of 32 bits used
+//!     #[pls(r32f)]     depth: f32,
+//!     #[pls(rgba8)]    normals_roughness: Vec4,
+//!     #[pls(rgba8)]    albedo_metallic: Vec4,
+//! }
+//!
+//! assert_eq!((MobileMetallic::BITS, MobileMetallic::USED_BITS), (128, 126));
+//! let texel = MobileMetallic {
+//!     light_accumulation: Vec3::new(0.25, 0.5, 1.0),
+//!     depth: 0.75,
+//!     normals_roughness: Vec4::new(0.5, 0.5, 1.0, 0.3),
+//!     albedo_metallic: Vec4::new(1.0, 0.8, 0.2, 1.0),
+//! };
+//! let words: [u32; 4] = texel.pack(); // the same bits as the WGSL `pack_mobile_metallic`
+//! assert_eq!(MobileMetallic::unpack(&words).depth, 0.75);
+//! assert!(MobileMetallic::WGSL.contains("fn unpack_mobile_metallic(w: array<u32, 4>) -> MobileMetallic"));
+//! ```
+//!
+//! A `#[pls(...)]` field is one 32-bit word of a format of EXT_shader_pixel_local_storage:
+//! `r11f_g11f_b10f`, `r32f`, `rg16f`, `rgb10_a2` (or `rgb10a2`), `rgba8`, `rg16`, `rgba8i`,
+//! `rg16i`, `rgb10_a2ui`, `rgba8ui`, `rg16ui`, `r32ui`. It holds `f32` or `Vec2`..`Vec4` in
+//! float and unorm formats, `u32` or `UVec2`..`UVec4` in `ui` formats, `i32` or
+//! `IVec2`..`IVec4` in `i` formats; channels it does not fill are zero padding.
+//!
+//! A `#[bits(N, encoding)]` field is N bits of a shared `r32ui` word: consecutive bit fields
+//! fill a word from its least significant bit up, and one that does not fit starts the next.
+//! The encodings are `unorm`, `snorm`, `uint`, `sint`, `bool`, `half`, `rgb9e5`, `octahedral`
+//! and `rgbm(range)` ([`packing::Encoding`]); [`engine_layouts`] declares Bevy's and HDRP's
+//! G-buffers with them:
+//!
+//! ```
+//! use gbuffer::{GBufferLayout, glam::{Vec3, Vec4}};
+//!
+//! #[derive(GBufferLayout)]
+//! #[gbuffer(budget = 64)]
+//! struct Small {
+//!     #[bits(24, octahedral)] normal: Vec3,   // word 0, bits 0-23
+//!     #[bits(8, unorm)]       roughness: f32, // word 0, bits 24-31
+//!     #[pls(rgba8)]           albedo: Vec4,   // word 1
+//! }
+//!
+//! let words = Small { normal: Vec3::Z, roughness: 1.0, albedo: Vec4::ONE }.pack();
+//! assert_eq!(words, [0xff80_0800, 0xffff_ffff]);
+//! ```
+//!
+//! `#[gbuffer(conversions = fast)]` makes the WGSL use what engines write (the pack builtins
+//! for rgba8, rg16 and rg16f, f32 rounding for rgb10_a2, cut halves for r11f_g11f_b10f): fewer
+//! instructions, the adapter's rounding (one code at most from the Rust mirror). One field can
+//! choose for itself: `#[pls(rgba8, conversions = fast)]`. The default, `exact`, is
+//! bit-identical everywhere.
+//!
+//! A layout over its budget does not compile, and the error lists every field's bits.
+
+#![warn(missing_docs)]
+
+// The derive's expansion names `::gbuffer`; this lets the seed layouts below use it too.
+extern crate self as gbuffer;
+
+pub mod engine_layouts;
+pub mod modules;
+pub mod seed_conventions;
+pub mod seed_layouts;
+pub mod shading;
+
+pub use gbuffer_macros::GBufferLayout;
+pub use glam;
+#[cfg(feature = "wgpu")]
+pub use targets::{GBufferTargets, GBufferTextures, LimitError};
+/// The wgpu this crate's helpers are written against (feature `wgpu`): use it, and versions
+/// never clash.
+#[cfg(feature = "wgpu")]
+pub use wgpu;
+
+#[cfg(feature = "build")]
+pub mod build;
+#[cfg(feature = "wgpu")]
+pub mod targets;
+
+/// The layout model and the bit-exact conversions that derived code calls.
+pub mod packing {
+    pub use gbuffer_core::convert::Scalar;
+    pub use gbuffer_core::report::Report;
+    pub use gbuffer_core::{
+        BitField, Channel, ChannelEncoding, Conversions, Encoding, Field, FieldType, Format,
+        Layout, Member, RgbmRange, ScalarKind, Storage, Word,
+    };
+}
+
+/// A pixel local storage G-buffer layout. Derive it with `#[derive(GBufferLayout)]`.
+///
+/// A `#[pls(format)]` field takes the next word of [`Self::Packed`]; consecutive
+/// `#[bits(N, encoding)]` fields share `r32ui` words from the least significant bit up, a
+/// field that does not fit starting the next word. Inside a word the channels r, g, b, a sit
+/// from the least significant bit up, so the words load unchanged into `Rgba32Uint` render
+/// targets.
+pub trait GBufferLayout: Sized {
+    /// Bits the layout occupies: 32 per word.
+    const BITS: u32;
+    /// Bits of the channels and bit fields the fields use (the rest is zero padding).
+    const USED_BITS: u32;
+    /// The tile memory budget the layout was checked against.
+    const BUDGET: u32;
+    /// Number of 32-bit words.
+    const WORDS: usize;
+    /// `[u32; WORDS]`.
+    type Packed: Copy + AsRef<[u32]> + AsMut<[u32]> + for<'a> TryFrom<&'a [u32]>;
+    /// The WGSL: the struct, `pack_<snake>`, `unpack_<snake>`, `load_<snake>_<field>` and the
+    /// `Rgba32Uint` target helpers. Valid on its own and beside other layouts' WGSL.
+    const WGSL: &'static str;
+
+    /// Packs the texel, bit for bit as the WGSL `pack_<snake>` does with exact conversions
+    /// (the default). Under `conversions = fast` the mirror stays exact and the WGSL's
+    /// channels are within one code of it on finite values within f16's range.
+    fn pack(&self) -> Self::Packed;
+    /// Unpacks a texel: floats and integers exactly, unorm as the correctly rounded quotient.
+    fn unpack(words: &Self::Packed) -> Self;
+    /// The layout's description: fields, formats, types and budget.
+    fn layout() -> packing::Layout;
+
+    /// Packs `texels` into `packed`, texel i into `packed[i]`, each as [`Self::pack`] packs
+    /// it: a whole G-buffer at once, for uploads and readbacks (`bytemuck::cast_slice` turns
+    /// the packed texels into the bytes of `Rgba32Uint` targets). Branch-free per texel, so the
+    /// compiler vectorises the loop; on x86-64 CPUs with AVX2 (checked at run time) it runs a
+    /// copy compiled for AVX2, whose per-lane shifts the conversions need.
+    ///
+    /// # Panics
+    ///
+    /// When the slices' lengths differ.
+    fn pack_slice(texels: &[Self], packed: &mut [Self::Packed]) {
+        check_slice_lengths("pack_slice", texels.len(), packed.len());
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2, checked just above.
+            unsafe { slices::pack_with_avx2(texels, packed) };
+            return;
+        }
+        slices::pack(texels, packed);
+    }
+
+    /// Unpacks `packed` into `texels`, texel i from `packed[i]`, each as [`Self::unpack`]
+    /// unpacks it; with AVX2 where the CPU has it, as [`Self::pack_slice`].
+    ///
+    /// # Panics
+    ///
+    /// When the slices' lengths differ.
+    fn unpack_slice(packed: &[Self::Packed], texels: &mut [Self]) {
+        check_slice_lengths("unpack_slice", texels.len(), packed.len());
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2, checked just above.
+            unsafe { slices::unpack_with_avx2(packed, texels) };
+            return;
+        }
+        slices::unpack(packed, texels);
+    }
+
+    /// The bit report: per field the format, bits and used bits; the total against the
+    /// budget; and the WebGPU cost of the same fields as separate render targets.
+    fn report() -> packing::Report {
+        packing::Report::new(&Self::layout())
+    }
+
+    /// [`Self::WGSL`] as a naga_oil composable module, importable as `gbuffer::<snake>`
+    /// (`#import gbuffer::mobile_metallic::{MobileMetallic, unpack_mobile_metallic}`).
+    fn composable_wgsl() -> String {
+        format!(
+            "#define_import_path gbuffer::{}\n\n{}",
+            Self::layout().snake_name(),
+            Self::WGSL
+        )
+    }
+}
+
+/// Panics, naming the call and the lengths, unless they agree.
+fn check_slice_lengths(call: &str, texels: usize, packed: usize) {
+    assert_eq!(
+        texels, packed,
+        "{call}: {texels} texels and {packed} packed texels; the lengths must agree"
+    );
+}
+
+/// The loops behind [`GBufferLayout::pack_slice`] and [`GBufferLayout::unpack_slice`], and
+/// their copies compiled for AVX2.
+mod slices {
+    use super::GBufferLayout;
+
+    #[inline(always)]
+    pub fn pack<L: GBufferLayout>(texels: &[L], packed: &mut [L::Packed]) {
+        for (texel, out) in texels.iter().zip(packed) {
+            *out = texel.pack();
+        }
+    }
+
+    #[inline(always)]
+    pub fn unpack<L: GBufferLayout>(packed: &[L::Packed], texels: &mut [L]) {
+        for (words, texel) in packed.iter().zip(texels) {
+            *texel = L::unpack(words);
+        }
+    }
+
+    /// # Safety
+    ///
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn pack_with_avx2<L: GBufferLayout>(texels: &[L], packed: &mut [L::Packed]) {
+        pack(texels, packed);
+    }
+
+    /// # Safety
+    ///
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn unpack_with_avx2<L: GBufferLayout>(packed: &[L::Packed], texels: &mut [L]) {
+        unpack(packed, texels);
+    }
+}

@@ -1,0 +1,278 @@
+//! The reference deferred renderer, headless: renders the scene with a chosen G-buffer layout,
+//! lighting forms, backend and path to a PNG, and optionally compares it with the CPU reference.
+//!
+//! `cargo run --release --example deferred -- --layout mobile-metallic --size 1280x720 --out frame.png`
+//! `cargo run --release --example deferred -- --backend gles --path fetch-native --reference`
+//! `cargo run --release --example deferred -- --backend vulkan --path subpass --reference`
+//! `cargo run --release --example deferred -- --scene solver/scenes/dielectric-only.toml --reference`
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::image::{compare, difference, write_png};
+use gbuffer_render::on_tile::gles::GlesRenderer;
+use gbuffer_render::on_tile::vulkan::VulkanRenderer;
+use gbuffer_render::on_tile::{Backend, Path, TileOptions};
+use gbuffer_render::reference;
+use gbuffer_render::renderer::{Frame, IblForm, Options, Renderer, SunForm};
+
+/// Renders the reference scene (spheres across roughness and metallic on a gold-and-stone
+/// ground, a sun, image-based light and a light map) through a packed G-buffer layout and
+/// full PBS lighting on wgpu, and writes it as a PNG.
+#[derive(Parser, Debug)]
+#[command(name = "deferred", about, long_about)]
+struct Arguments {
+    /// The G-buffer: a seed layout (mobile-metallic, specular-workflow, future-metallic,
+    /// future-specular, arm-tile-block), packed into Rgba32Uint targets, or `classic`
+    /// (separate Rgba16Float and Rgba8 targets, as without this library).
+    #[arg(long, default_value = "mobile-metallic", conflicts_with = "scene")]
+    layout: String,
+    /// A scene description (TOML, see `gbuffer_solver::file`): renders the scene it describes through
+    /// the layout solved for it and a lighting pass with only its terms.
+    #[arg(long, value_name = "SCENE.toml")]
+    scene: Option<PathBuf>,
+    /// The API: `wgpu` (the G-buffer through memory), `gles` (GLES 3.2 through EGL
+    /// surfaceless) or `vulkan`.
+    #[arg(long, default_value = "wgpu")]
+    backend: String,
+    /// How the G-buffer travels: for gles `fetch-native` (default), `fetch-packed` or
+    /// `two-pass`; for vulkan `subpass` (default) or `two-pass`. The fused paths keep it in the
+    /// render pass and never store it.
+    #[arg(long)]
+    path: Option<String>,
+    /// Frame size, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1280x720")]
+    size: String,
+    /// Where to write the PNG.
+    #[arg(long, default_value = "frame.png")]
+    out: PathBuf,
+    /// Sun: `ggx` (GGX, correlated Smith, Schlick) or `approx` (D_Approx with EnvBRDFApprox).
+    #[arg(long, default_value = "ggx")]
+    sun: String,
+    /// Image-based light: `lut` (split-sum LUT) or `approx` (EnvBRDFApprox).
+    #[arg(long, default_value = "lut")]
+    ibl: String,
+    /// Debug: also store the G-buffer as the geometry writes it (before the decals and the
+    /// light) and write its packed words to this file (little-endian u32, the layout's words per
+    /// pixel, row by row): the same for every backend and path, bit for bit.
+    #[arg(long, value_name = "FILE")]
+    store_gbuffer: Option<PathBuf>,
+    /// Also render the CPU reference: print PSNR and the largest error, and write
+    /// `<out>.reference.png` and `<out>.difference.png` (differences x8).
+    #[arg(long)]
+    reference: bool,
+}
+
+/// The backend and path named on the command line (the backend's default path if none).
+fn parse_backend(arguments: &Arguments) -> Result<(Backend, Option<Path>), String> {
+    let backend = [Backend::Wgpu, Backend::Gles, Backend::Vulkan]
+        .into_iter()
+        .find(|backend| backend.flag() == arguments.backend)
+        .ok_or_else(|| {
+            format!(
+                "unknown backend `{}`: use wgpu, gles or vulkan",
+                arguments.backend
+            )
+        })?;
+    let names = |paths: &[Path]| {
+        paths
+            .iter()
+            .map(|path| path.flag())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let path = match (&arguments.path, backend.paths()) {
+        (None, paths) => paths.first().copied(),
+        (Some(name), []) => {
+            return Err(format!(
+                "--path {name}: the wgpu backend has one path (the G-buffer through memory); \
+                 the on-tile paths are --backend gles or vulkan"
+            ))
+        }
+        (Some(name), paths) => Some(
+            paths
+                .iter()
+                .copied()
+                .find(|path| path.flag() == name)
+                .ok_or_else(|| {
+                    format!(
+                        "unknown path `{name}` for --backend {}: use {}",
+                        backend.flag(),
+                        names(paths)
+                    )
+                })?,
+        ),
+    };
+    Ok((backend, path))
+}
+
+fn parse(arguments: &Arguments) -> Result<Options, String> {
+    let gbuffer = match &arguments.scene {
+        Some(path) => {
+            let solution =
+                gbuffer_solver::file::read_and_solve(path).map_err(|error| error.to_string())?;
+            eprintln!("{solution}");
+            Some(GBuffer::Solved(std::sync::Arc::new(solution)))
+        }
+        None => GBuffer::from_flag(&arguments.layout),
+    };
+    let gbuffer = gbuffer.ok_or_else(|| {
+        let names: Vec<&str> = SeedLayout::ALL
+            .iter()
+            .map(|layout| layout.flag())
+            .chain(["classic"])
+            .collect();
+        format!(
+            "unknown layout `{}`: use one of {}",
+            arguments.layout,
+            names.join(", ")
+        )
+    })?;
+    let (width, height) = arguments
+        .size
+        .split_once('x')
+        .and_then(|(width, height)| Some((width.parse::<u32>().ok()?, height.parse::<u32>().ok()?)))
+        .filter(|&(width, height)| width > 0 && height > 0 && width <= 8192 && height <= 8192)
+        .ok_or_else(|| {
+            format!(
+                "bad size `{}`: write WIDTHxHEIGHT, e.g. 1280x720 (at most 8192 each)",
+                arguments.size
+            )
+        })?;
+    let sun = match arguments.sun.as_str() {
+        "ggx" => SunForm::Ggx,
+        "approx" => SunForm::Approx,
+        other => return Err(format!("unknown sun form `{other}`: use ggx or approx")),
+    };
+    let ibl = match arguments.ibl.as_str() {
+        "lut" => IblForm::Lut,
+        "approx" => IblForm::Approx,
+        other => return Err(format!("unknown IBL form `{other}`: use lut or approx")),
+    };
+    Ok(Options {
+        gbuffer,
+        sun,
+        ibl,
+        width,
+        height,
+    })
+}
+
+/// The frame, on the chosen backend and path, and with `store_gbuffer` the G-buffer's words
+/// written there.
+fn render(
+    backend: Backend,
+    path: Option<Path>,
+    options: &Options,
+    store_gbuffer: Option<&std::path::Path>,
+    progress: &dyn Fn(&str),
+) -> Result<Frame, String> {
+    let tile = |path: Option<Path>| TileOptions {
+        options: options.clone(),
+        path: path.expect("the on-tile backends have a path"),
+    };
+    let store = |words: Vec<u32>| -> Result<(), String> {
+        if let Some(file) = store_gbuffer {
+            std::fs::write(file, bytemuck::cast_slice(&words))
+                .map_err(|error| format!("{}: {error}", file.display()))?;
+            eprintln!("wrote the G-buffer's words to {}", file.display());
+        }
+        Ok(())
+    };
+    let (frame, recording) = match backend {
+        Backend::Wgpu => {
+            let renderer = Renderer::new(progress)?;
+            if store_gbuffer.is_some() {
+                store(renderer.gbuffer_words(options)?)?;
+            }
+            renderer.render_recorded(options)?
+        }
+        Backend::Gles => {
+            let renderer = GlesRenderer::new(progress)?;
+            if store_gbuffer.is_some() {
+                store(renderer.gbuffer_words(options)?)?;
+            }
+            renderer.render(&tile(path))?
+        }
+        Backend::Vulkan => {
+            let renderer = VulkanRenderer::new(progress)?;
+            if store_gbuffer.is_some() {
+                store(renderer.gbuffer_words(options)?)?;
+            }
+            renderer.render(&tile(path))?
+        }
+    };
+    let traffic = recording.traffic(options.width, options.height);
+    eprintln!(
+        "{} passes; stored: {}; {:.1} MB loaded, {:.1} MB stored ({:.1} BU)",
+        recording.passes(),
+        recording.stored().join(", "),
+        traffic.loaded as f64 / 1e6,
+        traffic.stored as f64 / 1e6,
+        traffic.bandwidth_units(options.width, options.height)
+    );
+    Ok(frame)
+}
+
+fn main() -> ExitCode {
+    let arguments = Arguments::parse();
+    let parsed = parse(&arguments).and_then(|options| Ok((options, parse_backend(&arguments)?)));
+    let (options, (backend, path)) = match parsed {
+        Ok(parsed) => parsed,
+        Err(message) => {
+            eprintln!("deferred: {message}");
+            return ExitCode::from(2);
+        }
+    };
+    let progress = |message: &str| eprintln!("{message}");
+    let run = || -> Result<(), String> {
+        eprintln!(
+            "rendering {}x{} with {} ({} bytes per pixel) on {}{}...",
+            options.width,
+            options.height,
+            options.gbuffer.name(),
+            options.gbuffer.bytes_per_pixel(),
+            backend.flag(),
+            path.map(|path| format!(", path {}", path.flag()))
+                .unwrap_or_default()
+        );
+        let frame = render(
+            backend,
+            path,
+            &options,
+            arguments.store_gbuffer.as_deref(),
+            &progress,
+        )?;
+        write_png(&arguments.out, &frame)
+            .map_err(|error| format!("{}: {error}", arguments.out.display()))?;
+        eprintln!("wrote {}", arguments.out.display());
+        if arguments.reference {
+            eprintln!("rendering the CPU reference...");
+            let reference = reference::render(
+                options.width,
+                options.height,
+                options.gbuffer.features(),
+                &|done| eprintln!("  reference {:.0}%", done * 100.0),
+            );
+            let comparison = compare(&frame, &reference);
+            println!(
+                "PSNR {:.2} dB, largest error {} steps (against the CPU reference)",
+                comparison.psnr, comparison.max_error
+            );
+            let with_suffix = |suffix: &str| arguments.out.with_extension(format!("{suffix}.png"));
+            write_png(&with_suffix("reference"), &reference).map_err(|error| error.to_string())?;
+            write_png(&with_suffix("difference"), &difference(&frame, &reference))
+                .map_err(|error| error.to_string())?;
+        }
+        Ok(())
+    };
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("deferred: {message}");
+            ExitCode::from(1)
+        }
+    }
+}
