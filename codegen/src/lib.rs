@@ -12,8 +12,6 @@
 //!
 //! The model's modules are re-exported here, so that the emitters' users name one crate.
 
-#![warn(missing_docs)]
-
 #[cfg(feature = "tools")]
 mod builder;
 pub mod emit;

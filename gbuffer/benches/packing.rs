@@ -6,6 +6,9 @@
 //! texels (elements) per second, and a table of each layout's rates and their shares of
 //! memcpy's closes the run; run with `cargo bench -p gbuffer --bench packing`.
 
+// criterion_group! defines a public function it cannot document.
+#![allow(missing_docs)]
+
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -60,8 +60,6 @@
 //!
 //! A layout over its budget does not compile, and the error lists every field's bits.
 
-#![warn(missing_docs)]
-
 // The derive's expansion names `::gbuffer`; this lets the seed layouts below use it too.
 extern crate self as gbuffer;
 

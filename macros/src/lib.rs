@@ -10,8 +10,6 @@
 //! Every problem becomes a `syn::Error` at its span, and all of them are reported together.
 //! The derive never panics.
 
-#![warn(missing_docs)]
-
 mod parse;
 
 use proc_macro::TokenStream;

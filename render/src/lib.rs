@@ -2,8 +2,6 @@
 //! on wgpu (`renderer`) and kept on tile on GLES and Vulkan (`on_tile`), beside a CPU reference
 //! renderer of the same triangles (`reference`).
 
-#![warn(missing_docs)]
-
 pub mod gbuffers;
 pub mod image;
 pub mod inputs;

@@ -12,8 +12,6 @@
 //! - [`lighting`]: a lighting shader with only the terms the scene uses;
 //! - [`file`](mod@file): scene descriptions in TOML, with file:line:column errors.
 
-#![warn(missing_docs)]
-
 pub mod description;
 pub mod encoding;
 pub mod file;

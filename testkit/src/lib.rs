@@ -1,8 +1,6 @@
 //! Shared pieces of the cross-crate tests: a layout with every format, test values with the
 //! hard cases, WGSL harnesses around generated code, and a GPU runner.
 
-#![warn(missing_docs)]
-
 pub mod layouts;
 pub mod shading_cases;
 pub mod texels;

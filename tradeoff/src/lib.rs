@@ -11,8 +11,6 @@
 //! CPU. The packing conversions get their own table: per format, exact and
 //! fast, their instructions, branches, error in codes and time per million texels.
 
-#![warn(missing_docs)]
-
 pub mod furnace;
 mod packing;
 pub mod packing_cost;

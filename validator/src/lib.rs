@@ -4,8 +4,6 @@
 //! The stages mirror naga's own: parse (front), validate, translate (back). Each problem is a
 //! [`Problem`] that names the stage and, where the source has one, the line and column.
 
-#![warn(missing_docs)]
-
 pub mod cost;
 pub mod diagnostic;
 pub mod include;
