@@ -5,7 +5,7 @@
 use gbuffer::seed_layouts;
 use gbuffer_codegen::emit::glsl::{self, Include};
 use gbuffer_gpu::gles::Gles;
-use gbuffer_testkit::skip_without_driver;
+use gbuffer_testkit::or_skip;
 
 /// The README's ```glsl blocks, without the indentation of the list items they sit in.
 fn readme_glsl_blocks() -> Vec<String> {
@@ -56,12 +56,8 @@ fn with_include(include: Include, file: &str) -> Vec<String> {
 #[test]
 fn readme_fetch_example_compiles_on_gles() {
     let shaders = with_include(Include::FetchPacked, "mobile_metallic.fetch.glsl");
-    let gles = match Gles::new() {
-        Ok(gles) => gles,
-        Err(error) => {
-            skip_without_driver("GLES 3.2 through EGL", &error);
-            return;
-        }
+    let Some(gles) = or_skip("GLES 3.2 through EGL", Gles::new()) else {
+        return;
     };
     for shader in shaders {
         gles.program(&shader).unwrap_or_else(|log| panic!("{log}"));

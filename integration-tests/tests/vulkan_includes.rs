@@ -24,7 +24,7 @@ use gbuffer_gpu::harness::scalars_per_texel;
 use gbuffer_gpu::tools::glslang;
 use gbuffer_gpu::values::Values;
 use gbuffer_gpu::vulkan::{AttachmentMemory, Resource, Subpass, Vulkan};
-use gbuffer_testkit::skip_without_driver;
+use gbuffer_testkit::or_skip;
 use gbuffer_testkit::texels::{
     check_native_words, compare, compare_decoded, inputs, restore_changes, word_from_components,
 };
@@ -43,13 +43,7 @@ void main() {
 ";
 
 fn vulkan() -> Option<Vulkan> {
-    match Vulkan::new() {
-        Ok(vulkan) => Some(vulkan),
-        Err(error) => {
-            skip_without_driver("Vulkan", &error);
-            None
-        }
-    }
+    or_skip("Vulkan", Vulkan::new())
 }
 
 /// Where each texel's results sit in the output buffer: what subpass 1 read from G-buffer A

@@ -12,7 +12,7 @@ use gbuffer_render::on_tile::{Path, TileOptions};
 use gbuffer_render::reference;
 use gbuffer_render::renderer::{Frame, IblForm, Options, Renderer, SunForm};
 use gbuffer_render::scene::{reference_features, DECALS, POINT_LIGHT_COUNT};
-use gbuffer_testkit::skip_without_driver;
+use gbuffer_testkit::or_skip;
 
 const WIDTH: u32 = 320;
 const HEIGHT: u32 = 180;
@@ -38,16 +38,17 @@ fn quiet(_: &str) {}
 
 /// A GLES renderer, or none (the test skips) without a driver, except under CI.
 fn gles() -> Option<GlesRenderer> {
-    GlesRenderer::new(&quiet)
-        .map_err(|error| skip_without_driver("the GLES on-tile renderer", &error))
-        .ok()
+    or_skip("the GLES on-tile renderer", GlesRenderer::new(&quiet))
 }
 
 /// A Vulkan renderer, or none (the test skips) without a driver, except under CI.
 fn vulkan() -> Option<VulkanRenderer> {
-    VulkanRenderer::new(&quiet)
-        .map_err(|error| skip_without_driver("the Vulkan on-tile renderer", &error))
-        .ok()
+    or_skip("the Vulkan on-tile renderer", VulkanRenderer::new(&quiet))
+}
+
+/// The wgpu renderer, or none (the test skips) without an adapter, except under CI.
+fn wgpu() -> Option<Renderer> {
+    or_skip("the wgpu renderer", Renderer::new(&quiet))
 }
 
 /// Every path of both backends, with the frame and the calls of one frame (none without the
@@ -76,8 +77,11 @@ fn every_path(layout: SeedLayout) -> Vec<(String, Frame, Recording)> {
 fn every_path_renders_the_scene_close_to_the_reference_and_to_wgpu() {
     let layout = SeedLayout::MobileMetallic;
     let reference = reference::render(WIDTH, HEIGHT, reference_features(), &|_| {});
-    let wgpu = Renderer::new(&quiet)
-        .and_then(|renderer| renderer.render(&options(layout)))
+    let Some(wgpu) = wgpu() else {
+        return;
+    };
+    let wgpu = wgpu
+        .render(&options(layout))
         .unwrap_or_else(|error| panic!("wgpu: {error}"));
     let mut failures = Vec::new();
     for (name, frame, _) in every_path(layout) {
@@ -174,8 +178,11 @@ fn the_gbuffer_words_agree_across_backends() {
     let (Some(gles), Some(vulkan)) = (gles(), vulkan()) else {
         return;
     };
-    let wgpu = Renderer::new(&quiet)
-        .and_then(|renderer| renderer.gbuffer_words(&options))
+    let Some(wgpu) = wgpu() else {
+        return;
+    };
+    let wgpu = wgpu
+        .gbuffer_words(&options)
         .unwrap_or_else(|error| panic!("wgpu: {error}"));
     let vulkan = vulkan
         .gbuffer_words(&options)
