@@ -95,7 +95,8 @@ impl Channel {
     }
 }
 
-/// A pixel local storage format. Every format is exactly one 32-bit word.
+/// A pixel local storage format. Every format is exactly one 32-bit word. Its facts are one
+/// row of the format table ([`Format::row`]), in the variants' order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Format {
     /// Three unsigned floats: 11, 11 and 10 bits (6, 6 and 5 of mantissa).
@@ -124,17 +125,80 @@ pub enum Format {
     R32ui,
 }
 
+/// A render-target format as each API names and costs it: what the report, the wgpu helpers,
+/// the GLSL includes' interfaces and the renderer's GLES and Vulkan backends read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TargetFormat {
+    /// The GLSL type a shader declares it with: `vec4`, `uvec4` or `ivec4`, whatever the
+    /// channel count (framebuffer fetch and `subpassLoad` read four components; channels the
+    /// format lacks read as 0, alpha as 1, and are dropped on write).
+    pub glsl_type: &'static str,
+    /// WebGPU's name and byte cost.
+    pub webgpu: WebGpuTarget,
+    /// GL's sized internal format.
+    pub gl: GlFormat,
+    /// Vulkan's format.
+    pub vulkan: VulkanFormat,
+}
+
+/// A WebGPU texture format as a render target.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WebGpuTarget {
+    /// The WebGPU name, e.g. `rgb10a2unorm`.
+    pub name: &'static str,
+    /// The "render target pixel byte cost" of the WebGPU spec (what wgpu counts).
+    pub byte_cost: u32,
+    /// The "render target component alignment": the running total is rounded up to it first.
+    pub alignment: u32,
+    /// The wgpu feature a render target of this format needs, if core WebGPU cannot render
+    /// to it: `RG11B10UFLOAT_RENDERABLE` (WebGPU's "rg11b10ufloat-renderable") and
+    /// `TEXTURE_FORMAT_16BIT_NORM` (a native-only feature).
+    pub feature: Option<&'static str>,
+}
+
+/// A GL sized internal format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GlFormat {
+    /// Its value, e.g. `0x8059` (`GL_RGB10_A2`).
+    pub internal_format: u32,
+    /// Its name, e.g. `GL_RGB10_A2`.
+    pub name: &'static str,
+    /// The extension a GLES 3.2 host needs to render to it, if any (`GL_EXT_texture_norm16`
+    /// for the 16-bit unorm formats; the float formats are renderable in core GLES 3.2).
+    pub host_extension: Option<&'static str>,
+}
+
+/// A `VkFormat`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VulkanFormat {
+    /// Its value, e.g. `64` (`VK_FORMAT_A2B10G10R10_UNORM_PACK32`).
+    pub format: i32,
+    /// Its name.
+    pub name: &'static str,
+}
+
+/// One row of the format table: everything the project knows of a pixel local storage format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FormatRow {
+    /// The layout qualifier of EXT_shader_pixel_local_storage, e.g. `rgb10_a2`.
+    pub qualifier: &'static str,
+    /// The channels, from the least significant bit up.
+    pub channels: &'static [Channel],
+    /// How the channels are stored, for comments and reports.
+    pub summary: &'static str,
+    /// The render-target format that stores the channels in the same bits (so the driver's
+    /// conversions are the extension's), with its WebGPU, GL and Vulkan names. rgba8unorm,
+    /// rgb10a2unorm and rg11b10ufloat cost 8 bytes in WebGPU although they hold 4: the spec
+    /// charges them for the wider formats implementations may use to blend them.
+    pub target: TargetFormat,
+}
+
 use ChannelEncoding::{Float32, Half, Sint, Uint, Unorm, UnsignedFloat};
 
 const R11F_G11F_B10F: [Channel; 3] = [
     Channel::new('r', 0, 11, UnsignedFloat { mantissa_bits: 6 }),
     Channel::new('g', 11, 11, UnsignedFloat { mantissa_bits: 6 }),
     Channel::new('b', 22, 10, UnsignedFloat { mantissa_bits: 5 }),
-];
-const R32F: [Channel; 1] = [Channel::new('r', 0, 32, Float32)];
-const RG16F: [Channel; 2] = [
-    Channel::new('r', 0, 16, Half),
-    Channel::new('g', 16, 16, Half),
 ];
 const fn rgb10_a2(encoding: ChannelEncoding) -> [Channel; 4] {
     [
@@ -158,15 +222,116 @@ const fn rg16(encoding: ChannelEncoding) -> [Channel; 2] {
         Channel::new('g', 16, 16, encoding),
     ]
 }
-const RGB10_A2: [Channel; 4] = rgb10_a2(Unorm);
-const RGBA8: [Channel; 4] = rgba8(Unorm);
-const RG16: [Channel; 2] = rg16(Unorm);
-const RGBA8I: [Channel; 4] = rgba8(Sint);
-const RG16I: [Channel; 2] = rg16(Sint);
-const RGB10_A2UI: [Channel; 4] = rgb10_a2(Uint);
-const RGBA8UI: [Channel; 4] = rgba8(Uint);
-const RG16UI: [Channel; 2] = rg16(Uint);
-const R32UI: [Channel; 1] = [Channel::new('r', 0, 32, Uint)];
+const fn r32(encoding: ChannelEncoding) -> [Channel; 1] {
+    [Channel::new('r', 0, 32, encoding)]
+}
+
+/// A row's target: its GLSL type, then WebGPU (name, byte cost, alignment, feature), GL
+/// (internal format, name) and Vulkan (format, name).
+#[allow(clippy::too_many_arguments)]
+const fn target(
+    glsl_type: &'static str,
+    (webgpu, byte_cost, alignment, feature): (&'static str, u32, u32, Option<&'static str>),
+    (internal_format, gl_name): (u32, &'static str),
+    (vulkan_format, vulkan_name): (i32, &'static str),
+) -> TargetFormat {
+    TargetFormat {
+        glsl_type,
+        webgpu: WebGpuTarget {
+            name: webgpu,
+            byte_cost,
+            alignment,
+            feature,
+        },
+        gl: GlFormat {
+            internal_format,
+            name: gl_name,
+            host_extension: None,
+        },
+        vulkan: VulkanFormat {
+            format: vulkan_format,
+            name: vulkan_name,
+        },
+    }
+}
+
+const UNORM: &str = "unsigned normalized";
+const SIGNED_INTEGERS: &str = "signed integers";
+const UNSIGNED_INTEGERS: &str = "unsigned integers";
+
+/// The format table, in the order of [`Format`]'s variants (the extension's table).
+#[rustfmt::skip] // one format a row
+const ROWS: [FormatRow; 12] = [
+    FormatRow { qualifier: "r11f_g11f_b10f", channels: &R11F_G11F_B10F, summary: "unsigned floats (5-bit exponent; 6, 6, 5-bit mantissas)",
+        target: target("vec4", ("rg11b10ufloat", 8, 4, Some("RG11B10UFLOAT_RENDERABLE")), (0x8C3A, "GL_R11F_G11F_B10F"), (122, "VK_FORMAT_B10G11R11_UFLOAT_PACK32")) },
+    FormatRow { qualifier: "r32f", channels: &r32(Float32), summary: "IEEE binary32",
+        target: target("vec4", ("r32float", 4, 4, None), (0x822E, "GL_R32F"), (100, "VK_FORMAT_R32_SFLOAT")) },
+    FormatRow { qualifier: "rg16f", channels: &rg16(Half), summary: "IEEE binary16",
+        target: target("vec4", ("rg16float", 4, 2, None), (0x822F, "GL_RG16F"), (83, "VK_FORMAT_R16G16_SFLOAT")) },
+    FormatRow { qualifier: "rgb10_a2", channels: &rgb10_a2(Unorm), summary: UNORM,
+        target: target("vec4", ("rgb10a2unorm", 8, 4, None), (0x8059, "GL_RGB10_A2"), (64, "VK_FORMAT_A2B10G10R10_UNORM_PACK32")) },
+    FormatRow { qualifier: "rgba8", channels: &rgba8(Unorm), summary: UNORM,
+        target: target("vec4", ("rgba8unorm", 8, 1, None), (0x8058, "GL_RGBA8"), (37, "VK_FORMAT_R8G8B8A8_UNORM")) },
+    FormatRow { qualifier: "rg16", channels: &rg16(Unorm), summary: UNORM,
+        target: norm16(target("vec4", ("rg16unorm", 4, 2, Some("TEXTURE_FORMAT_16BIT_NORM")), (0x822C, "GL_RG16_EXT"), (77, "VK_FORMAT_R16G16_UNORM"))) },
+    FormatRow { qualifier: "rgba8i", channels: &rgba8(Sint), summary: SIGNED_INTEGERS,
+        target: target("ivec4", ("rgba8sint", 4, 1, None), (0x8D8E, "GL_RGBA8I"), (42, "VK_FORMAT_R8G8B8A8_SINT")) },
+    FormatRow { qualifier: "rg16i", channels: &rg16(Sint), summary: SIGNED_INTEGERS,
+        target: target("ivec4", ("rg16sint", 4, 2, None), (0x8239, "GL_RG16I"), (82, "VK_FORMAT_R16G16_SINT")) },
+    FormatRow { qualifier: "rgb10_a2ui", channels: &rgb10_a2(Uint), summary: UNSIGNED_INTEGERS,
+        target: target("uvec4", ("rgb10a2uint", 8, 4, None), (0x906F, "GL_RGB10_A2UI"), (68, "VK_FORMAT_A2B10G10R10_UINT_PACK32")) },
+    FormatRow { qualifier: "rgba8ui", channels: &rgba8(Uint), summary: UNSIGNED_INTEGERS,
+        target: target("uvec4", ("rgba8uint", 4, 1, None), (0x8D7C, "GL_RGBA8UI"), (41, "VK_FORMAT_R8G8B8A8_UINT")) },
+    FormatRow { qualifier: "rg16ui", channels: &rg16(Uint), summary: UNSIGNED_INTEGERS,
+        target: target("uvec4", ("rg16uint", 4, 2, None), (0x823A, "GL_RG16UI"), (81, "VK_FORMAT_R16G16_UINT")) },
+    FormatRow { qualifier: "r32ui", channels: &r32(Uint), summary: UNSIGNED_INTEGERS,
+        target: target("uvec4", ("r32uint", 4, 4, None), (0x8236, "GL_R32UI"), (98, "VK_FORMAT_R32_UINT")) },
+];
+
+/// GLES renders to the 16-bit unorm formats only with `GL_EXT_texture_norm16`.
+const fn norm16(mut target: TargetFormat) -> TargetFormat {
+    target.gl.host_extension = Some("GL_EXT_texture_norm16");
+    target
+}
+
+/// The render targets a layout's packed words go to: `Rgba32Uint` for every four words, and a
+/// narrower one for the last one or two (three take `Rgba32Uint`: there is no three-channel
+/// format).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PackedTarget {
+    /// One word: `r32uint`.
+    OneWord,
+    /// Two words: `rg32uint`.
+    TwoWords,
+    /// Three or four words: `rgba32uint`.
+    FourWords,
+}
+
+#[rustfmt::skip] // one format a row
+const PACKED_TARGETS: [TargetFormat; 3] = [
+    target("uvec4", ("r32uint", 4, 4, None), (0x8236, "GL_R32UI"), (98, "VK_FORMAT_R32_UINT")),
+    target("uvec4", ("rg32uint", 8, 4, None), (0x823C, "GL_RG32UI"), (101, "VK_FORMAT_R32G32_UINT")),
+    target("uvec4", ("rgba32uint", 16, 4, None), (0x8D70, "GL_RGBA32UI"), (107, "VK_FORMAT_R32G32B32A32_UINT")),
+];
+
+impl PackedTarget {
+    /// The targets of `words` packed words, in order.
+    pub fn for_words(words: usize) -> Vec<PackedTarget> {
+        let mut targets = vec![PackedTarget::FourWords; words / 4];
+        match words % 4 {
+            0 => {}
+            1 => targets.push(PackedTarget::OneWord),
+            2 => targets.push(PackedTarget::TwoWords),
+            _ => targets.push(PackedTarget::FourWords),
+        }
+        targets
+    }
+
+    /// Its row of the table.
+    pub const fn target(self) -> &'static TargetFormat {
+        &PACKED_TARGETS[self as usize]
+    }
+}
 
 impl Format {
     /// Every format, in the order of the extension's table.
@@ -185,22 +350,20 @@ impl Format {
         Format::R32ui,
     ];
 
+    /// Its row of the format table.
+    #[inline(always)]
+    pub const fn row(self) -> &'static FormatRow {
+        &ROWS[self as usize]
+    }
+
+    /// The render-target format that stores its channels in the same bits.
+    pub const fn target(self) -> &'static TargetFormat {
+        &self.row().target
+    }
+
     /// The layout qualifier of EXT_shader_pixel_local_storage, e.g. `rgb10_a2`.
     pub fn name(self) -> &'static str {
-        match self {
-            Format::R11fG11fB10f => "r11f_g11f_b10f",
-            Format::R32f => "r32f",
-            Format::Rg16f => "rg16f",
-            Format::Rgb10A2 => "rgb10_a2",
-            Format::Rgba8 => "rgba8",
-            Format::Rg16 => "rg16",
-            Format::Rgba8i => "rgba8i",
-            Format::Rg16i => "rg16i",
-            Format::Rgb10A2ui => "rgb10_a2ui",
-            Format::Rgba8ui => "rgba8ui",
-            Format::Rg16ui => "rg16ui",
-            Format::R32ui => "r32ui",
-        }
+        self.row().qualifier
     }
 
     /// Parses a layout qualifier. Also accepts `rgb10a2` and `rgb10a2ui`, the spelling of
@@ -231,20 +394,7 @@ impl Format {
     /// The channels, from the least significant bit up.
     #[inline(always)]
     pub fn channels(self) -> &'static [Channel] {
-        match self {
-            Format::R11fG11fB10f => &R11F_G11F_B10F,
-            Format::R32f => &R32F,
-            Format::Rg16f => &RG16F,
-            Format::Rgb10A2 => &RGB10_A2,
-            Format::Rgba8 => &RGBA8,
-            Format::Rg16 => &RG16,
-            Format::Rgba8i => &RGBA8I,
-            Format::Rg16i => &RG16I,
-            Format::Rgb10A2ui => &RGB10_A2UI,
-            Format::Rgba8ui => &RGBA8UI,
-            Format::Rg16ui => &RG16UI,
-            Format::R32ui => &R32UI,
-        }
+        self.row().channels
     }
 
     /// The scalar type a shader reads from this format.
@@ -267,16 +417,7 @@ impl Format {
 
     /// A short description of how the channels are stored, for comments and reports.
     pub fn encoding_summary(self) -> &'static str {
-        match self {
-            Format::R11fG11fB10f => "unsigned floats (5-bit exponent; 6, 6, 5-bit mantissas)",
-            Format::R32f => "IEEE binary32",
-            Format::Rg16f => "IEEE binary16",
-            Format::Rgb10A2 | Format::Rgba8 | Format::Rg16 => "unsigned normalized",
-            Format::Rgba8i | Format::Rg16i => "signed integers",
-            Format::Rgb10A2ui | Format::Rgba8ui | Format::Rg16ui | Format::R32ui => {
-                "unsigned integers"
-            }
-        }
+        self.row().summary
     }
 }
 
@@ -326,6 +467,37 @@ mod tests {
                 "{format} does not fill 32 bits"
             );
         }
+    }
+
+    /// The table is indexed by variant: each row must describe its own format. GL names its
+    /// formats as the extension does (`GL_` and the qualifier, `_EXT` for the one from an
+    /// extension); WebGPU ends its names with the scalar kind.
+    #[test]
+    fn every_row_describes_its_own_format() {
+        for format in Format::ALL {
+            let target = format.target();
+            let gl = target.gl.name.trim_end_matches("_EXT").to_ascii_lowercase();
+            assert_eq!(gl, format!("gl_{}", format.name()), "{format}");
+            let kind = match format.scalar_kind() {
+                ScalarKind::Uint => "uint",
+                ScalarKind::Sint => "sint",
+                _ if format.name().ends_with('f') => "float",
+                _ => "unorm",
+            };
+            assert!(target.webgpu.name.ends_with(kind), "{format}");
+        }
+    }
+
+    #[test]
+    fn packed_words_take_wide_targets_and_a_narrow_last_one() {
+        assert_eq!(
+            PackedTarget::for_words(6),
+            [PackedTarget::FourWords, PackedTarget::TwoWords]
+        );
+        assert_eq!(PackedTarget::for_words(3), [PackedTarget::FourWords]);
+        assert_eq!(PackedTarget::OneWord.target().webgpu.name, "r32uint");
+        assert_eq!(PackedTarget::TwoWords.target().webgpu.name, "rg32uint");
+        assert_eq!(PackedTarget::FourWords.target().webgpu.name, "rgba32uint");
     }
 
     #[test]

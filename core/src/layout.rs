@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 
 use crate::encoding::{BitField, Encoding};
-use crate::format::{Format, ScalarKind};
+use crate::format::{Format, PackedTarget, ScalarKind};
 use crate::naming;
 
 /// The type of a field: a scalar or a vector of 2 to 4 components.
@@ -422,31 +422,26 @@ impl Layout {
         self.words().div_ceil(4)
     }
 
-    /// The WebGPU formats of the packed render targets: `rgba32uint` for every four words, the
-    /// last as narrow as the words it holds (`r32uint` for one, `rg32uint` for two; three take
-    /// `rgba32uint`, as there is no three-channel one).
+    /// The packed render targets: `rgba32uint` for every four words, the last as narrow as the
+    /// words it holds ([`PackedTarget::for_words`]).
+    pub fn packed_targets(&self) -> Vec<PackedTarget> {
+        PackedTarget::for_words(self.words())
+    }
+
+    /// The WebGPU names of the packed render targets, e.g. `["rgba32uint", "r32uint"]`.
     pub fn packed_target_formats(&self) -> Vec<&'static str> {
-        let words = self.words();
-        let mut formats = vec!["rgba32uint"; words / 4];
-        match words % 4 {
-            0 => {}
-            1 => formats.push("r32uint"),
-            2 => formats.push("rg32uint"),
-            _ => formats.push("rgba32uint"),
-        }
-        formats
+        self.packed_targets()
+            .into_iter()
+            .map(|target| target.target().webgpu.name)
+            .collect()
     }
 
     /// Bytes per sample of the packed render targets, as WebGPU counts them against
     /// `maxColorAttachmentBytesPerSample`: 4 per 32-bit channel.
     pub fn packed_target_bytes(&self) -> u32 {
-        self.packed_target_formats()
-            .iter()
-            .map(|format| match *format {
-                "r32uint" => 4,
-                "rg32uint" => 8,
-                _ => 16,
-            })
+        self.packed_targets()
+            .into_iter()
+            .map(|target| target.target().webgpu.byte_cost)
             .sum()
     }
 

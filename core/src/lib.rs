@@ -21,7 +21,10 @@ pub mod naming;
 pub mod report;
 
 pub use encoding::{BitField, Encoding, RgbmRange};
-pub use format::{Channel, ChannelEncoding, Format, ScalarKind};
+pub use format::{
+    Channel, ChannelEncoding, Format, FormatRow, GlFormat, PackedTarget, ScalarKind, TargetFormat,
+    VulkanFormat, WebGpuTarget,
+};
 pub use layout::{
     Conversions, Diagnostic, Field, FieldType, Layout, Member, Storage, Subject, Word,
     DEFAULT_BUDGET,

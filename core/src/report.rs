@@ -4,54 +4,13 @@
 
 use std::fmt;
 
-use crate::format::Format;
+use crate::format::WebGpuTarget;
 use crate::layout::Layout;
 
 /// WebGPU's default `maxColorAttachmentBytesPerSample`.
 pub const WEBGPU_BYTES_PER_SAMPLE_LIMIT: u32 = 32;
 /// WebGPU's default `maxColorAttachments`.
 pub const WEBGPU_COLOR_ATTACHMENT_LIMIT: usize = 8;
-
-/// The WebGPU texture format a field would use as its own render target.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct WebGpuTarget {
-    /// The WebGPU name, e.g. `rgb10a2unorm`.
-    pub name: &'static str,
-    /// The "render target pixel byte cost" of the WebGPU spec (what wgpu counts).
-    pub byte_cost: u32,
-    /// The "render target component alignment": the running total is rounded up to it first.
-    pub alignment: u32,
-    /// The wgpu feature a render target of this format needs, if core WebGPU cannot render
-    /// to it: `RG11B10UFLOAT_RENDERABLE` (WebGPU's "rg11b10ufloat-renderable") and
-    /// `TEXTURE_FORMAT_16BIT_NORM` (a native-only feature).
-    pub feature: Option<&'static str>,
-}
-
-/// The WebGPU render-target format closest to a pixel local storage format. rgba8unorm,
-/// rgb10a2unorm and rg11b10ufloat cost 8 bytes although they hold 4: the spec charges them
-/// for the wider formats implementations may use to blend them.
-pub fn webgpu_target(format: Format) -> WebGpuTarget {
-    let (name, byte_cost, alignment, feature) = match format {
-        Format::R11fG11fB10f => ("rg11b10ufloat", 8, 4, Some("RG11B10UFLOAT_RENDERABLE")),
-        Format::R32f => ("r32float", 4, 4, None),
-        Format::Rg16f => ("rg16float", 4, 2, None),
-        Format::Rgb10A2 => ("rgb10a2unorm", 8, 4, None),
-        Format::Rgba8 => ("rgba8unorm", 8, 1, None),
-        Format::Rg16 => ("rg16unorm", 4, 2, Some("TEXTURE_FORMAT_16BIT_NORM")),
-        Format::Rgba8i => ("rgba8sint", 4, 1, None),
-        Format::Rg16i => ("rg16sint", 4, 2, None),
-        Format::Rgb10A2ui => ("rgb10a2uint", 8, 4, None),
-        Format::Rgba8ui => ("rgba8uint", 4, 1, None),
-        Format::Rg16ui => ("rg16uint", 4, 2, None),
-        Format::R32ui => ("r32uint", 4, 4, None),
-    };
-    WebGpuTarget {
-        name,
-        byte_cost,
-        alignment,
-        feature,
-    }
-}
 
 /// The bytes per sample of a list of render targets, as WebGPU validates it: for each target
 /// in order, round the total up to its alignment, then add its cost.
@@ -90,7 +49,7 @@ impl Report {
             self.layout
                 .word_contents()
                 .iter()
-                .map(|word| webgpu_target(word.format)),
+                .map(|word| word.format.target().webgpu),
         )
     }
 
@@ -194,7 +153,7 @@ impl fmt::Display for Report {
             .unwrap_or(0)
             .max(width);
         for (word, names) in words.iter().zip(&word_names) {
-            let target = webgpu_target(word.format);
+            let target = word.format.target().webgpu;
             let note = match target.feature {
                 Some(feature) => format!("  (renderable only with the {feature} feature)"),
                 None => String::new(),
@@ -232,26 +191,27 @@ impl fmt::Display for Report {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::format::Format;
     use crate::layout::{Field, FieldType, Storage};
 
     #[test]
     fn separate_targets_follow_webgpu_alignment_rules() {
-        let rg16f = webgpu_target(Format::Rg16f);
-        let rgba8 = webgpu_target(Format::Rgba8);
-        let r32f = webgpu_target(Format::R32f);
+        let rg16f = Format::Rg16f.target().webgpu;
+        let rgba8 = Format::Rgba8.target().webgpu;
+        let r32f = Format::R32f.target().webgpu;
         // rgba8unorm (8, align 1) then r32float (4, align 4): 8 is aligned, 12.
         assert_eq!(bytes_per_sample([rgba8, r32f]), 12);
         // rg16float (4) then rgba8uint (4, align 1) then r32float: 4 + 4 = 8, aligned, 12.
         assert_eq!(
-            bytes_per_sample([rg16f, webgpu_target(Format::Rgba8ui), r32f]),
+            bytes_per_sample([rg16f, Format::Rgba8ui.target().webgpu, r32f]),
             12
         );
         // rgba8sint (4, align 1) then rg16float (align 2) then rg11b10ufloat (8, align 4).
         assert_eq!(
             bytes_per_sample([
-                webgpu_target(Format::Rgba8i),
+                Format::Rgba8i.target().webgpu,
                 rg16f,
-                webgpu_target(Format::R11fG11fB10f)
+                Format::R11fG11fB10f.target().webgpu
             ]),
             16
         );

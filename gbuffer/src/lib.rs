@@ -89,7 +89,8 @@ pub mod packing {
     pub use gbuffer_core::report::Report;
     pub use gbuffer_core::{
         BitField, Channel, ChannelEncoding, Conversions, Encoding, Field, FieldType, Format,
-        Layout, Member, RgbmRange, ScalarKind, Storage, Word,
+        FormatRow, GlFormat, Layout, Member, PackedTarget, RgbmRange, ScalarKind, Storage,
+        TargetFormat, VulkanFormat, WebGpuTarget, Word,
     };
 }
 

@@ -44,6 +44,7 @@ use wgpu::{
     TextureView, TextureViewDimension,
 };
 
+use crate::packing::PackedTarget;
 use crate::GBufferLayout;
 
 /// Words per `Rgba32Uint` target.
@@ -59,15 +60,17 @@ pub const MAX_PACKED_TARGETS: usize = 16;
 ///
 /// [`packing::Layout::packed_target_formats`]: crate::packing::Layout::packed_target_formats
 pub const fn packed_target_formats(words: usize) -> &'static [TextureFormat] {
-    const WIDE: TextureFormat = TextureFormat::Rgba32Uint;
+    const WIDE: TextureFormat = texture_format(PackedTarget::FourWords);
     const fn ending(last: TextureFormat) -> [TextureFormat; MAX_PACKED_TARGETS] {
         let mut formats = [WIDE; MAX_PACKED_TARGETS];
         formats[MAX_PACKED_TARGETS - 1] = last;
         formats
     }
     const ENDING_WIDE: [TextureFormat; MAX_PACKED_TARGETS] = ending(WIDE);
-    const ENDING_ONE: [TextureFormat; MAX_PACKED_TARGETS] = ending(TextureFormat::R32Uint);
-    const ENDING_TWO: [TextureFormat; MAX_PACKED_TARGETS] = ending(TextureFormat::Rg32Uint);
+    const ENDING_ONE: [TextureFormat; MAX_PACKED_TARGETS] =
+        ending(texture_format(PackedTarget::OneWord));
+    const ENDING_TWO: [TextureFormat; MAX_PACKED_TARGETS] =
+        ending(texture_format(PackedTarget::TwoWords));
     let targets = words.div_ceil(WORDS_PER_TARGET);
     assert!(
         targets <= MAX_PACKED_TARGETS,
@@ -79,6 +82,16 @@ pub const fn packed_target_formats(words: usize) -> &'static [TextureFormat] {
         _ => &ENDING_WIDE,
     };
     formats.split_at(MAX_PACKED_TARGETS - targets).1
+}
+
+/// The wgpu format of a packed target of the format table: the one place the table's packed
+/// targets become wgpu's enum.
+pub const fn texture_format(target: PackedTarget) -> TextureFormat {
+    match target {
+        PackedTarget::OneWord => TextureFormat::R32Uint,
+        PackedTarget::TwoWords => TextureFormat::Rg32Uint,
+        PackedTarget::FourWords => TextureFormat::Rgba32Uint,
+    }
 }
 
 /// A layout's render targets: one texture and its view per target format.

@@ -200,7 +200,7 @@ fn check(
     let formats: Vec<u32> = interface
         .attachments
         .iter()
-        .map(|attachment| attachment.format.gl_internal_format)
+        .map(|attachment| attachment.format.gl.internal_format)
         .collect();
     gles.uint_texture(&inputs, WIDTH * scalars as i32, HEIGHT)
         .unwrap();

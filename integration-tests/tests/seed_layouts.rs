@@ -6,7 +6,6 @@ use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
 use gbuffer::GBufferLayout;
-use gbuffer_codegen::report::webgpu_target;
 use gbuffer_gpu::Gpu;
 
 #[test]
@@ -150,7 +149,7 @@ fn report_cost_matches_wgpu_validation() {
         // The formats' features, by the name the report prints.
         let renderable = formats
             .iter()
-            .all(|&format| match webgpu_target(format).feature {
+            .all(|&format| match format.target().webgpu.feature {
                 Some("RG11B10UFLOAT_RENDERABLE") => {
                     features.contains(wgpu::Features::RG11B10UFLOAT_RENDERABLE)
                 }

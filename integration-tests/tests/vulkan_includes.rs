@@ -230,7 +230,7 @@ fn check(
     let formats: Vec<vk::Format> = interface
         .attachments
         .iter()
-        .map(|attachment| vk::Format::from_raw(attachment.format.vulkan_format))
+        .map(|attachment| vk::Format::from_raw(attachment.format.vulkan.format))
         .collect();
     if count > most {
         eprintln!(

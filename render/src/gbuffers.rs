@@ -6,7 +6,7 @@
 
 use std::sync::Arc;
 
-use gbuffer::packing::Layout;
+use gbuffer::packing::{Layout, PackedTarget};
 use gbuffer::seed_conventions::SeedConvention;
 use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
@@ -216,6 +216,13 @@ impl GBuffer {
             GBuffer::Solved(solution) => solution.scene.features,
             _ => crate::scene::reference_features(),
         }
+    }
+
+    /// The packed render targets of a packed G-buffer; the error says that `classic` has none.
+    pub fn packed_targets(&self) -> Result<Vec<PackedTarget>, String> {
+        self.layout()
+            .map(|layout| layout.packed_targets())
+            .ok_or_else(|| format!("`{}` is not a packed G-buffer", self.name()))
     }
 
     /// The render targets of the G-buffer pass.

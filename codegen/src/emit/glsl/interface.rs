@@ -3,7 +3,7 @@
 //! and the lowest GLSL ES version it compiles under. Host code reads these instead of
 //! repeating them, and each include's header comment says the same.
 
-use crate::format::Format;
+use crate::format::{PackedTarget, TargetFormat};
 use crate::layout::Layout;
 
 /// An include of the GLSL family, by how the G-buffer reaches the shader.
@@ -87,105 +87,17 @@ pub struct Attachment {
     pub name: String,
     /// Its `location` (fetch) or `input_attachment_index` and `binding` (Vulkan).
     pub index: u32,
-    /// Its format in GL and Vulkan terms.
-    pub format: AttachmentFormat,
+    /// Its format in GL and Vulkan terms: a row of the format table.
+    pub format: &'static TargetFormat,
 }
 
-/// The format of an attachment in both APIs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct AttachmentFormat {
-    /// GL's sized internal format, e.g. `0x8059` (`GL_RGB10_A2`).
-    pub gl_internal_format: u32,
-    /// Its name, e.g. `GL_RGB10_A2`.
-    pub gl_name: &'static str,
-    /// The `VkFormat` value, e.g. `64` (`VK_FORMAT_A2B10G10R10_UNORM_PACK32`).
-    pub vulkan_format: i32,
-    /// Its name, e.g. `VK_FORMAT_A2B10G10R10_UNORM_PACK32`.
-    pub vulkan_name: &'static str,
-    /// The GLSL type the include declares it with: `vec4`, `uvec4` or `ivec4`, whatever the
-    /// format's channel count (fetch and `subpassLoad` read four components; channels the
-    /// format lacks read as 0, alpha as 1, and are dropped on write).
-    pub glsl_type: &'static str,
-    /// The extension a GLES 3.2 host needs to render to it, if any (`GL_EXT_texture_norm16`
-    /// for the 16-bit unorm formats; the float formats are renderable in core GLES 3.2).
-    pub gl_host_extension: Option<&'static str>,
-}
-
-impl AttachmentFormat {
-    /// `RGBA32UI`: four packed words.
-    pub const PACKED: AttachmentFormat = AttachmentFormat {
-        gl_internal_format: 0x8D70,
-        gl_name: "GL_RGBA32UI",
-        vulkan_format: 107,
-        vulkan_name: "VK_FORMAT_R32G32B32A32_UINT",
-        glsl_type: "uvec4",
-        gl_host_extension: None,
-    };
-
-    /// The attachment format that stores a pixel local storage format's channels in the same
-    /// bits, so the driver's conversions are the extension's.
-    pub const fn native(format: Format) -> AttachmentFormat {
-        const fn of(
-            gl_internal_format: u32,
-            gl_name: &'static str,
-            vulkan_format: i32,
-            vulkan_name: &'static str,
-            glsl_type: &'static str,
-        ) -> AttachmentFormat {
-            AttachmentFormat {
-                gl_internal_format,
-                gl_name,
-                vulkan_format,
-                vulkan_name,
-                glsl_type,
-                gl_host_extension: None,
-            }
-        }
-        match format {
-            Format::R11fG11fB10f => of(
-                0x8C3A,
-                "GL_R11F_G11F_B10F",
-                122,
-                "VK_FORMAT_B10G11R11_UFLOAT_PACK32",
-                "vec4",
-            ),
-            Format::R32f => of(0x822E, "GL_R32F", 100, "VK_FORMAT_R32_SFLOAT", "vec4"),
-            Format::Rg16f => of(0x822F, "GL_RG16F", 83, "VK_FORMAT_R16G16_SFLOAT", "vec4"),
-            Format::Rgb10A2 => of(
-                0x8059,
-                "GL_RGB10_A2",
-                64,
-                "VK_FORMAT_A2B10G10R10_UNORM_PACK32",
-                "vec4",
-            ),
-            Format::Rgba8 => of(0x8058, "GL_RGBA8", 37, "VK_FORMAT_R8G8B8A8_UNORM", "vec4"),
-            Format::Rg16 => AttachmentFormat {
-                gl_host_extension: Some("GL_EXT_texture_norm16"),
-                ..of(0x822C, "GL_RG16_EXT", 77, "VK_FORMAT_R16G16_UNORM", "vec4")
-            },
-            Format::Rgba8i => of(0x8D8E, "GL_RGBA8I", 42, "VK_FORMAT_R8G8B8A8_SINT", "ivec4"),
-            Format::Rg16i => of(0x8239, "GL_RG16I", 82, "VK_FORMAT_R16G16_SINT", "ivec4"),
-            Format::Rgb10A2ui => of(
-                0x906F,
-                "GL_RGB10_A2UI",
-                68,
-                "VK_FORMAT_A2B10G10R10_UINT_PACK32",
-                "uvec4",
-            ),
-            Format::Rgba8ui => of(0x8D7C, "GL_RGBA8UI", 41, "VK_FORMAT_R8G8B8A8_UINT", "uvec4"),
-            Format::Rg16ui => of(0x823A, "GL_RG16UI", 81, "VK_FORMAT_R16G16_UINT", "uvec4"),
-            Format::R32ui => of(0x8236, "GL_R32UI", 98, "VK_FORMAT_R32_UINT", "uvec4"),
-        }
-    }
-
-    /// The GLSL type of a subpass input over this attachment: `subpassInput`, `usubpassInput`
-    /// or `isubpassInput`.
-    pub fn subpass_input_type(self) -> &'static str {
-        match self.glsl_type.as_bytes()[0] {
-            b'u' => "usubpassInput",
-            b'i' => "isubpassInput",
-            _ => "subpassInput",
-        }
+/// The GLSL type of a subpass input over an attachment of `format`: `subpassInput`,
+/// `usubpassInput` or `isubpassInput`.
+pub fn subpass_input_type(format: &TargetFormat) -> &'static str {
+    match format.glsl_type.as_bytes()[0] {
+        b'u' => "usubpassInput",
+        b'i' => "isubpassInput",
+        _ => "subpassInput",
     }
 }
 
@@ -210,7 +122,7 @@ impl Interface {
                 .map(|target| Attachment {
                     name: format!("{prefix}_target{target}"),
                     index: target as u32,
-                    format: AttachmentFormat::PACKED,
+                    format: PackedTarget::FourWords.target(),
                 })
                 .collect(),
             Include::FetchNative | Include::SubpassNative => layout
@@ -220,7 +132,7 @@ impl Interface {
                 .map(|(index, word)| Attachment {
                     name: format!("{prefix}_{}_attachment", super::word_name(word, names)),
                     index: index as u32,
-                    format: AttachmentFormat::native(word.format),
+                    format: word.format.target(),
                 })
                 .collect(),
         };
@@ -239,7 +151,7 @@ impl Interface {
         let mut extensions: Vec<&'static str> = self
             .attachments
             .iter()
-            .filter_map(|attachment| attachment.format.gl_host_extension)
+            .filter_map(|attachment| attachment.format.gl.host_extension)
             .collect();
         extensions.sort_unstable();
         extensions.dedup();

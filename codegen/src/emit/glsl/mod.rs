@@ -23,7 +23,7 @@ mod translate;
 
 use std::fmt::Write as _;
 
-pub use interface::{Attachment, AttachmentFormat, Include, Interface};
+pub use interface::{subpass_input_type, Attachment, Include, Interface};
 pub use translate::{translate, translate_with, with_explicit_precision, GlslNames, Translation};
 
 use crate::convert::max_code;
@@ -245,8 +245,8 @@ fn write_header(out: &mut String, title: &str, interface: &Interface) {
                 },
                 attachment.index,
                 attachment.name,
-                attachment.format.gl_name,
-                attachment.format.vulkan_name
+                attachment.format.gl.name,
+                attachment.format.vulkan.name
             );
         }
     }
@@ -424,7 +424,7 @@ fn attachments(
         let declaration = if include.is_vulkan() {
             format!(
                 "layout(input_attachment_index = {index}, set = {set}, binding = {index}) uniform highp {} {};",
-                attachment.format.subpass_input_type(),
+                subpass_input_type(attachment.format),
                 attachment.name,
                 index = attachment.index
             )

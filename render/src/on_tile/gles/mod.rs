@@ -206,11 +206,18 @@ impl GlesRenderer {
             &main,
         )?;
         let targets = interface.attachments.len();
+        let formats: Vec<(u32, u32)> = interface
+            .attachments
+            .iter()
+            .map(|attachment| {
+                let format = attachment.format;
+                (format.gl.internal_format, format.webgpu.byte_cost)
+            })
+            .collect();
         // SAFETY: objects of the current context, deleted before returning.
         unsafe {
             let gl = &self.gles.gl;
-            let (framebuffer, colours, depth) =
-                self.framebuffer(&vec![(glow::RGBA32UI, 16); targets], width, height, true)?;
+            let (framebuffer, colours, depth) = self.framebuffer(&formats, width, height, true)?;
             gl.viewport(0, 0, width, height);
             for index in 0..targets {
                 gl.color_mask_draw_buffer(index as u32, true, true, true, true);

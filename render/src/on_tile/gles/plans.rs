@@ -106,7 +106,7 @@ impl GlesRenderer {
             .iter()
             .map(|attachment| {
                 let bytes = if kind == Include::FetchPacked { 16 } else { 4 };
-                (attachment.format.gl_internal_format, bytes)
+                (attachment.format.gl.internal_format, bytes)
             })
             .chain([(glow::RGBA8, 4)])
             .collect();
@@ -152,12 +152,11 @@ impl GlesRenderer {
         let lighting = program(&lighting_wgsl, "full_screen", "lighting_resolve_main")?;
         let formats: Vec<(u32, u32)> = options
             .gbuffer
-            .target_formats()
-            .iter()
-            .map(|format| match format {
-                wgpu::TextureFormat::R32Uint => (glow::R32UI, 4),
-                wgpu::TextureFormat::Rg32Uint => (glow::RG32UI, 8),
-                _ => (glow::RGBA32UI, 16),
+            .packed_targets()?
+            .into_iter()
+            .map(|target| {
+                let target = target.target();
+                (target.gl.internal_format, target.webgpu.byte_cost)
             })
             .collect();
         // SAFETY: objects of the current context.

@@ -15,6 +15,7 @@
 use std::time::Instant;
 
 use ash::vk;
+use gbuffer::packing::PackedTarget;
 use gbuffer_gpu::vulkan::{Object, StorageBuffer, Vulkan};
 
 mod objects;
@@ -29,7 +30,9 @@ use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 
 const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;
-const PACKED_FORMAT: vk::Format = vk::Format::R32G32B32A32_UINT;
+/// The fused paths' packed attachments: four words each, as the includes declare them.
+const PACKED_FORMAT: vk::Format =
+    vk::Format::from_raw(PackedTarget::FourWords.target().vulkan.format);
 
 /// A Vulkan device with the inputs and the mesh uploaded.
 pub struct VulkanRenderer {

@@ -250,12 +250,12 @@ impl VulkanRenderer {
         let (width, height) = (options.width, options.height);
         let formats: Vec<(vk::Format, u32)> = options
             .gbuffer
-            .target_formats()
-            .iter()
-            .map(|format| match format {
-                wgpu::TextureFormat::R32Uint => (vk::Format::R32_UINT, 4),
-                wgpu::TextureFormat::Rg32Uint => (vk::Format::R32G32_UINT, 8),
-                _ => (PACKED_FORMAT, 16),
+            .packed_targets()?
+            .into_iter()
+            .map(|target| {
+                let target = target.target();
+                let format = vk::Format::from_raw(target.vulkan.format);
+                (format, target.webgpu.byte_cost)
             })
             .collect();
         let mut gbuffer_views = Vec::new();
