@@ -11,6 +11,7 @@ pub mod include;
 use std::fmt;
 use std::path::Path;
 
+use gbuffer_codegen::emit::glsl::naga_glsl;
 use naga::back::{glsl, hlsl, msl, spv};
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
@@ -211,22 +212,13 @@ pub fn translate(validated: &Validated, backend: Backend) -> Result<String, Prob
                     version: glsl::Version::new_gles(version),
                     ..glsl::Options::default()
                 };
-                let pipeline = glsl::PipelineOptions {
-                    shader_stage: entry_point.stage,
-                    entry_point: entry_point.name.clone(),
-                    multiview: None,
-                };
-                let mut text = String::new();
-                glsl::Writer::new(
-                    &mut text,
-                    module,
-                    info,
+                let (text, _) = naga_glsl::write(
+                    (module, info),
+                    entry_point.stage,
+                    &entry_point.name,
                     &options,
-                    &pipeline,
-                    naga::proc::BoundsCheckPolicies::default(),
                 )
-                .and_then(|mut writer| writer.write())
-                .map_err(|error| problem(format!("entry point `{}`: {error}", entry_point.name)))?;
+                .map_err(problem)?;
                 all.push_str(&text);
             }
             Ok(all)

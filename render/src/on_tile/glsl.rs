@@ -9,6 +9,7 @@
 
 use std::collections::HashSet;
 
+use gbuffer_codegen::emit::glsl::naga_glsl;
 use naga::back::glsl;
 
 /// Which GLSL a translation is for.
@@ -32,16 +33,8 @@ pub struct Translation {
 
 /// Parses and validates WGSL, naming the problem with the source when it does not.
 pub fn module(wgsl: &str) -> Result<(naga::Module, naga::valid::ModuleInfo), String> {
-    let module = naga::front::wgsl::parse_str(wgsl)
-        .map_err(|error| format!("the renderer's WGSL: {}", error.emit_to_string(wgsl)))?;
-    // The exact decode of half-float fields uses `unpack2x16float`, behind this capability.
-    let info = naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default() | naga::valid::Capabilities::SHADER_FLOAT16_IN_FLOAT32,
-    )
-    .validate(&module)
-    .map_err(|error| format!("the renderer's WGSL: {}", error.emit_to_string(wgsl)))?;
-    Ok((module, info))
+    naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES)
+        .map_err(|error| format!("the renderer's WGSL: {error}"))
 }
 
 /// naga's GLSL of entry point `entry` (of `stage`) in `wgsl`. Clip space is left as the WGSL
@@ -69,22 +62,7 @@ pub fn translate(
         binding_map,
         ..glsl::Options::default()
     };
-    let pipeline = glsl::PipelineOptions {
-        shader_stage: stage,
-        entry_point: entry.to_string(),
-        multiview: None,
-    };
-    let mut text = String::new();
-    let reflection = glsl::Writer::new(
-        &mut text,
-        &module,
-        &info,
-        &options,
-        &pipeline,
-        naga::proc::BoundsCheckPolicies::default(),
-    )
-    .and_then(|mut writer| writer.write())
-    .map_err(|error| format!("naga cannot translate `{entry}` to GLSL: {error}"))?;
+    let (mut text, reflection) = naga_glsl::write((&module, &info), stage, entry, &options)?;
     let mut samplers: Vec<(String, u32)> = reflection
         .texture_mapping
         .iter()

@@ -19,6 +19,7 @@
 //! a `_`); the hand-written parts read those names back and use them too.
 
 mod interface;
+pub mod naga_glsl;
 mod translate;
 
 use std::fmt::Write as _;

@@ -150,41 +150,25 @@ fn naga_glsl(layout: &Layout, conversions: Conversions) -> Result<String, Transl
 
 /// naga's whole GLSL ES shader for `wgsl` plus an empty fragment entry point.
 fn naga_glsl_of(mut wgsl: String) -> Result<String, TranslationError> {
+    use super::naga_glsl::GENERATED_CODE_CAPABILITIES;
     use naga::back::glsl;
 
     wgsl.push_str(&format!(
         "\n@fragment\nfn {ENTRY_POINT}() -> @location(0) vec4<f32> {{\n    return vec4<f32>(0.0);\n}}\n"
     ));
-    let module = naga::front::wgsl::parse_str(&wgsl)
-        .map_err(|error| TranslationError(error.emit_to_string(&wgsl)))?;
-    // The exact decode of rg16f and r11f_g11f_b10f uses `unpack2x16float` (GLSL ES 3.00 has
-    // `unpackHalf2x16`), which naga gates behind this capability.
-    let info = naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::default() | naga::valid::Capabilities::SHADER_FLOAT16_IN_FLOAT32,
-    )
-    .validate(&module)
-    .map_err(|error| TranslationError(error.emit_to_string(&wgsl)))?;
+    let (module, info) =
+        super::naga_glsl::validate(&wgsl, GENERATED_CODE_CAPABILITIES).map_err(TranslationError)?;
     let options = glsl::Options {
         version: glsl::Version::new_gles(TRANSLATION_VERSION),
         ..glsl::Options::default()
     };
-    let pipeline = glsl::PipelineOptions {
-        shader_stage: naga::ShaderStage::Fragment,
-        entry_point: ENTRY_POINT.to_string(),
-        multiview: None,
-    };
-    let mut text = String::new();
-    glsl::Writer::new(
-        &mut text,
-        &module,
-        &info,
+    let (text, _) = super::naga_glsl::write(
+        (&module, &info),
+        naga::ShaderStage::Fragment,
+        ENTRY_POINT,
         &options,
-        &pipeline,
-        naga::proc::BoundsCheckPolicies::default(),
     )
-    .and_then(|mut writer| writer.write())
-    .map_err(|error| TranslationError(error.to_string()))?;
+    .map_err(TranslationError)?;
     Ok(text)
 }
 

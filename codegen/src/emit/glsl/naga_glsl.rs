@@ -1,0 +1,51 @@
+//! The one way WGSL becomes GLSL here: naga parses and validates the WGSL with the capabilities
+//! generated code needs, and its GLSL writer translates one entry point. The includes' emitter,
+//! the validator's portability check and the renderer's on-tile backends all call it, so they
+//! translate alike.
+
+use naga::back::glsl;
+use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
+
+/// The naga capabilities the generated WGSL needs beyond the defaults: the exact decode of
+/// half-float words calls `unpack2x16float`, which naga gates behind
+/// `SHADER_FLOAT16_IN_FLOAT32` (wgpu grants it on every adapter but Mesa's without
+/// shader-f16).
+pub const GENERATED_CODE_CAPABILITIES: Capabilities = Capabilities::SHADER_FLOAT16_IN_FLOAT32;
+
+/// Parses and validates `wgsl` with the default capabilities and `extra`; the error is naga's
+/// message with the source.
+pub fn validate(wgsl: &str, extra: Capabilities) -> Result<(naga::Module, ModuleInfo), String> {
+    let module = naga::front::wgsl::parse_str(wgsl).map_err(|error| error.emit_to_string(wgsl))?;
+    let info = Validator::new(ValidationFlags::all(), Capabilities::default() | extra)
+        .validate(&module)
+        .map_err(|error| error.emit_to_string(wgsl))?;
+    Ok((module, info))
+}
+
+/// naga's GLSL of entry point `entry` (of `stage`) of a validated module, and the reflection
+/// that says which uniform samples which texture. `options` says the version, the writer's
+/// flags (naga's default adjusts clip space to GL's) and the bindings.
+pub fn write(
+    (module, info): (&naga::Module, &ModuleInfo),
+    stage: naga::ShaderStage,
+    entry: &str,
+    options: &glsl::Options,
+) -> Result<(String, glsl::ReflectionInfo), String> {
+    let pipeline = glsl::PipelineOptions {
+        shader_stage: stage,
+        entry_point: entry.to_string(),
+        multiview: None,
+    };
+    let mut text = String::new();
+    let reflection = glsl::Writer::new(
+        &mut text,
+        module,
+        info,
+        options,
+        &pipeline,
+        naga::proc::BoundsCheckPolicies::default(),
+    )
+    .and_then(|mut writer| writer.write())
+    .map_err(|error| format!("naga cannot translate `{entry}` to GLSL: {error}"))?;
+    Ok((text, reflection))
+}
