@@ -133,9 +133,7 @@ impl Gles {
     /// the driver's log and the numbered source.
     pub fn program(&self, fragment: &str) -> Result<glow::Program, String> {
         let version = fragment.lines().next().unwrap_or("#version 300 es");
-        let vertex = format!(
-            "{version}\nvoid main() {{\n    vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);\n}}\n"
-        );
+        let vertex = crate::fullscreen::fullscreen_vertex_glsl(version, false);
         self.link(&vertex, fragment)
     }
 

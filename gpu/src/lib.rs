@@ -6,6 +6,7 @@
 //! layout's generated code over buffers, serve the trade-off study and the tests alike.
 
 pub mod adapter;
+pub mod fullscreen;
 pub mod gles;
 pub mod harness;
 pub mod tools;

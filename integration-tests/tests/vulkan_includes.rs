@@ -20,6 +20,7 @@ use std::collections::BTreeSet;
 use ash::vk;
 use gbuffer::packing::Layout;
 use gbuffer_codegen::emit::glsl::{self, GlslNames, Include, Interface};
+use gbuffer_gpu::fullscreen::fullscreen_vertex_glsl;
 use gbuffer_gpu::harness::scalars_per_texel;
 use gbuffer_gpu::tools::glslang;
 use gbuffer_gpu::values::Values;
@@ -33,14 +34,6 @@ use proptest::prelude::*;
 
 const WIDTH: u32 = 48;
 const HEIGHT: u32 = 48;
-
-/// A fullscreen triangle from the vertex index.
-const VERTEX_SHADER: &str = "#version 450
-void main() {
-    vec2 corner = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
-    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-}
-";
 
 fn vulkan() -> Option<Vulkan> {
     or_skip("Vulkan", Vulkan::new())
@@ -252,7 +245,8 @@ fn check(
         preamble.replace('\n', " ")
     );
     let shaders = user_shaders(layout, include, preamble);
-    let vertex = module(vulkan, VERTEX_SHADER, "vert", "the vertex shader");
+    let vertex_shader = fullscreen_vertex_glsl("#version 450", true);
+    let vertex = module(vulkan, &vertex_shader, "vert", "the vertex shader");
     let store = module(vulkan, &shaders.store, "frag", &what);
     let reload = module(vulkan, &shaders.reload, "frag", &what);
     let verify = module(vulkan, &shaders.verify, "frag", &what);

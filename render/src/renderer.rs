@@ -19,6 +19,7 @@ use wgpu::util::DeviceExt;
 
 use gbuffer::packing::Layout;
 use gbuffer_gpu::adapter::{Gpu, Request};
+use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 use gbuffer_solver::lighting::{self, Forms};
 use gbuffer_solver::quantity::Quantity;
 use gbuffer_solver::{Feature, Solution};
@@ -135,15 +136,6 @@ impl Timestamps {
             * 1e-9)
     }
 }
-
-/// WGSL of the full-screen triangle every pass draws.
-const FULL_SCREEN_WGSL: &str = "
-@vertex
-fn full_screen(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
-    let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
-    return vec4<f32>(corner * 2.0 - vec2<f32>(1.0), 0.0, 1.0);
-}
-";
 
 impl Renderer {
     /// Opens an adapter (any wgpu finds, software ones included) and prepares the inputs,
@@ -696,7 +688,7 @@ fn lighting_prelude(options: &Options, positions: Positions) -> String {
         Positions::DepthBuffer => DEPTH_BUFFER_WGSL,
     };
     format!(
-        "{}\n{}\n{}\n{SURFACE_WGSL}\n{INPUTS_WGSL}\n{}\n{}\n{FULL_SCREEN_WGSL}\n{depth_buffer}",
+        "{}\n{}\n{}\n{SURFACE_WGSL}\n{INPUTS_WGSL}\n{}\n{}\n{FULLSCREEN_WGSL}\n{depth_buffer}",
         library(&shaders::MODULES),
         shaders::frame_wgsl(options, 1.0),
         scene::scene_wgsl(options.gbuffer.features()),
@@ -866,7 +858,7 @@ fn solved_lighting_wgsl(solution: &Solution, options: &Options) -> String {
         "vec3<f32>(0.0)" // without point lights nothing reads it
     };
     format!(
-        "{}\n{}\n{}\n{FULL_SCREEN_WGSL}\n{INPUTS_WGSL}\n{}\n{target_bindings}
+        "{}\n{}\n{}\n{FULLSCREEN_WGSL}\n{INPUTS_WGSL}\n{}\n{target_bindings}
 {}
 @fragment
 fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
@@ -894,7 +886,7 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
 
 fn tonemap_wgsl() -> String {
     format!(
-        "{}\n{FULL_SCREEN_WGSL}\n{}
+        "{}\n{FULLSCREEN_WGSL}\n{}
 @group(0) @binding(0) var hdr: texture_2d<f32>;
 
 @fragment

@@ -10,6 +10,7 @@
 use std::time::Instant;
 
 use gbuffer::glam::Vec4;
+use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 use gbuffer_gpu::Gpu;
 
 /// Invocations per dispatch, and the evaluations per invocation a calibration starts from.
@@ -190,11 +191,7 @@ fn fragment_harness_with_chain(row_wgsl: &str, chain: u32) -> String {
         "{row_wgsl}\n\
          @group(0) @binding(2) var lut_texture: texture_2d<f32>;\n\
          @group(0) @binding(3) var lut_sampler: sampler;\n\n\
-         @vertex\n\
-         fn bench_vertex(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {{\n\
-         \x20   let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));\n\
-         \x20   return vec4<f32>(corner * 2.0 - vec2<f32>(1.0), 0.0, 1.0);\n\
-         }}\n\n\
+         {FULLSCREEN_WGSL}\n\
          @fragment\n\
          fn bench_fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{\n\
          \x20   var x = fract(vec4<f32>(position.x * 0.000521, position.y * 0.000927, (position.x + position.y) * 0.00037, 0.5));\n\
@@ -312,7 +309,7 @@ pub fn gpu_time(
                     layout: Some(&pipeline_layout),
                     vertex: wgpu::VertexState {
                         module: &module,
-                        entry_point: Some("bench_vertex"),
+                        entry_point: Some("full_screen"),
                         compilation_options: Default::default(),
                         buffers: &[],
                     },

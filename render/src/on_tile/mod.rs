@@ -25,6 +25,8 @@ pub mod glsl;
 pub mod recording;
 pub mod vulkan;
 
+use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
+
 use crate::gbuffers::{GBuffer, SeedLayout};
 use crate::renderer::Options;
 use crate::shaders::{self, library, INPUTS_WGSL, VOLUME_WGSL};
@@ -236,10 +238,6 @@ pub const VERTEX_WGSL: &str = "
 // Fullscreen draws over the surfaces sit here in depth; the farthest surface is well in front.
 const SURFACES_DEPTH: f32 = 0.99999;
 
-fn fullscreen_corner(vertex: u32) -> vec2<f32> {
-    return vec2<f32>(f32((vertex << 1u) & 2u), f32(vertex & 2u)) * 2.0 - vec2<f32>(1.0);
-}
-
 @vertex
 fn surfaces_vertex(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32> {
     return vec4<f32>(fullscreen_corner(vertex), SURFACES_DEPTH, 1.0);
@@ -328,7 +326,7 @@ pub fn fused_wgsl(options: &Options, layout: SeedLayout, y_sign: f32) -> String 
         .on_tile_wgsl()
         .expect("tile_layout checked the layout");
     format!(
-        "{}\n{}\n{}\n{INPUTS_WGSL}\n{}\n{}\n{}\n{on_tile}\n{}\n{}\n{VOLUME_WGSL}\n{VERTEX_WGSL}\n{}",
+        "{}\n{}\n{}\n{INPUTS_WGSL}\n{}\n{}\n{}\n{on_tile}\n{}\n{}\n{VOLUME_WGSL}\n{FULLSCREEN_WGSL}\n{VERTEX_WGSL}\n{}",
         library(&shaders::MODULES),
         shaders::frame_wgsl(options, y_sign),
         shaders::geometry_wgsl(options),
