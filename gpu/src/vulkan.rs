@@ -511,13 +511,23 @@ impl Vulkan {
                     .dependency_flags(vk::DependencyFlags::BY_REGION)
             })
             .collect();
-        // SAFETY: every reference names an attachment of `formats`.
+        self.render_pass_of(&attachments, &descriptions, &dependencies)
+    }
+
+    /// A render pass of these attachments, subpasses and dependencies, as they are written.
+    pub fn render_pass_of(
+        &self,
+        attachments: &[vk::AttachmentDescription],
+        subpasses: &[vk::SubpassDescription],
+        dependencies: &[vk::SubpassDependency],
+    ) -> Result<vk::RenderPass, String> {
+        // SAFETY: the caller's descriptions reference only `attachments`.
         let render_pass = unsafe {
             self.device.create_render_pass(
                 &vk::RenderPassCreateInfo::default()
-                    .attachments(&attachments)
-                    .subpasses(&descriptions)
-                    .dependencies(&dependencies),
+                    .attachments(attachments)
+                    .subpasses(subpasses)
+                    .dependencies(dependencies),
                 None,
             )
         }
@@ -656,19 +666,27 @@ impl Vulkan {
         }
     }
 
-    /// A pipeline layout of `set_layouts` (set i is `set_layouts[i]`).
+    /// A pipeline layout of `set_layouts` (set i is `set_layouts[i]`) and, where given, a
+    /// push-constant range of that many bytes for the fragment stage.
     pub fn pipeline_layout(
         &self,
         set_layouts: &[vk::DescriptorSetLayout],
+        fragment_push_constant_bytes: Option<u32>,
     ) -> Result<vk::PipelineLayout, String> {
+        let ranges: Vec<vk::PushConstantRange> = fragment_push_constant_bytes
+            .into_iter()
+            .map(|size| vk::PushConstantRange {
+                stage_flags: vk::ShaderStageFlags::FRAGMENT,
+                offset: 0,
+                size,
+            })
+            .collect();
+        let info = vk::PipelineLayoutCreateInfo::default()
+            .set_layouts(set_layouts)
+            .push_constant_ranges(&ranges);
         // SAFETY: valid set layouts.
-        let layout = unsafe {
-            self.device.create_pipeline_layout(
-                &vk::PipelineLayoutCreateInfo::default().set_layouts(set_layouts),
-                None,
-            )
-        }
-        .map_err(|error| format!("vkCreatePipelineLayout: {error}"))?;
+        let layout = unsafe { self.device.create_pipeline_layout(&info, None) }
+            .map_err(|error| format!("vkCreatePipelineLayout: {error}"))?;
         self.record(Object::PipelineLayout(layout));
         Ok(layout)
     }

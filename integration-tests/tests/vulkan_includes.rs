@@ -298,7 +298,8 @@ fn check(
             vulkan.descriptor_set_layout(&vec![vk::DescriptorType::INPUT_ATTACHMENT; count])?;
         let buffers_set_layout =
             vulkan.descriptor_set_layout(&[vk::DescriptorType::STORAGE_BUFFER; 2])?;
-        let pipeline_layout = vulkan.pipeline_layout(&[gbuffer_set_layout, buffers_set_layout])?;
+        let pipeline_layout =
+            vulkan.pipeline_layout(&[gbuffer_set_layout, buffers_set_layout], None)?;
         let input_attachments = |views: &[vk::ImageView]| -> Vec<Resource> {
             views
                 .iter()

@@ -11,37 +11,6 @@ use crate::on_tile::glsl::{self, Dialect};
 use crate::shaders::SAMPLER_BINDING;
 
 impl VulkanRenderer {
-    pub(super) fn render_pass(
-        &self,
-        attachments: &[vk::AttachmentDescription],
-        subpasses: &[vk::SubpassDescription],
-        dependencies: &[vk::SubpassDependency],
-    ) -> Result<vk::RenderPass, String> {
-        // SAFETY: the descriptions reference only `attachments`.
-        let render_pass = unsafe {
-            self.vulkan.device.create_render_pass(
-                &vk::RenderPassCreateInfo::default()
-                    .attachments(attachments)
-                    .subpasses(subpasses)
-                    .dependencies(dependencies),
-                None,
-            )
-        }
-        .map_err(|error| format!("vkCreateRenderPass: {error}"))?;
-        self.vulkan.track(Object::RenderPass(render_pass));
-        Ok(render_pass)
-    }
-
-    pub(super) fn framebuffer(
-        &self,
-        render_pass: vk::RenderPass,
-        views: &[vk::ImageView],
-        width: u32,
-        height: u32,
-    ) -> Result<vk::Framebuffer, String> {
-        self.vulkan.framebuffer(render_pass, views, width, height)
-    }
-
     /// A descriptor set (and its layout) of combined image samplers at `bindings`: the inputs
     /// (linear sampler) and `frame_textures` (nearest), for the fragment stage.
     pub(super) fn sampled_set(
@@ -184,27 +153,6 @@ impl VulkanRenderer {
             device.update_descriptor_sets(&writes, &[]);
             Ok((layout, set))
         }
-    }
-
-    pub(super) fn pipeline_layout(
-        &self,
-        sets: &[vk::DescriptorSetLayout],
-        push_constant: bool,
-    ) -> Result<vk::PipelineLayout, String> {
-        let ranges = [vk::PushConstantRange {
-            stage_flags: vk::ShaderStageFlags::FRAGMENT,
-            offset: 0,
-            size: 4,
-        }];
-        let mut info = vk::PipelineLayoutCreateInfo::default().set_layouts(sets);
-        if push_constant {
-            info = info.push_constant_ranges(&ranges);
-        }
-        // SAFETY: the set layouts are alive.
-        let layout = unsafe { self.vulkan.device.create_pipeline_layout(&info, None) }
-            .map_err(|error| format!("vkCreatePipelineLayout: {error}"))?;
-        self.vulkan.track(Object::PipelineLayout(layout));
-        Ok(layout)
     }
 
     /// A pipeline: `vertex` of the WGSL translated and `fragment` (GLSL 450), compiled by

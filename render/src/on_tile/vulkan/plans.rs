@@ -136,8 +136,12 @@ impl VulkanRenderer {
                 .dependency_flags(vk::DependencyFlags::BY_REGION),
             output_to_transfer(),
         ];
-        let render_pass = self.render_pass(&descriptions, &subpass, &dependencies)?;
-        let framebuffer = self.framebuffer(render_pass, &views, width, height)?;
+        let render_pass = self
+            .vulkan
+            .render_pass_of(&descriptions, &subpass, &dependencies)?;
+        let framebuffer = self
+            .vulkan
+            .framebuffer(render_pass, &views, width, height)?;
 
         // Descriptors: the inputs the stages sample in set 0, the G-buffer inputs in set 1,
         // the volume index as a push constant.
@@ -146,7 +150,9 @@ impl VulkanRenderer {
         let (set0_layout, set0) = self.sampled_set(&sampled, &[])?;
         let input_views: Vec<vk::ImageView> = views[..targets as usize].to_vec();
         let (set1_layout, set1) = self.input_attachment_set(&input_views)?;
-        let layout_handle = self.pipeline_layout(&[set0_layout, set1_layout], true)?;
+        let layout_handle = self
+            .vulkan
+            .pipeline_layout(&[set0_layout, set1_layout], Some(4))?;
 
         let snake = model.snake_name();
         let names = includes::translate(&model)
@@ -309,14 +315,16 @@ impl VulkanRenderer {
             .dst_stage_mask(vk::PipelineStageFlags::FRAGMENT_SHADER)
             .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
             .dst_access_mask(vk::AccessFlags::SHADER_READ)];
-        let first_pass = self.render_pass(&descriptions, &subpass, &to_sampling)?;
+        let first_pass = self
+            .vulkan
+            .render_pass_of(&descriptions, &subpass, &to_sampling)?;
         let mut views = gbuffer_views.clone();
         views.push(depth_view);
-        let first_framebuffer = self.framebuffer(first_pass, &views, width, height)?;
+        let first_framebuffer = self.vulkan.framebuffer(first_pass, &views, width, height)?;
         let gbuffer_wgsl = crate::renderer::gbuffer_wgsl(options, -1.0);
         let (set_layout, set) =
             self.sampled_set(&used_bindings(&gbuffer_wgsl, "gbuffer_main"), &[])?;
-        let first_layout = self.pipeline_layout(&[set_layout], false)?;
+        let first_layout = self.vulkan.pipeline_layout(&[set_layout], None)?;
         let gbuffer_fragment = glsl::translate(
             &gbuffer_wgsl,
             naga::ShaderStage::Fragment,
@@ -347,8 +355,11 @@ impl VulkanRenderer {
             .pipeline_bind_point(vk::PipelineBindPoint::GRAPHICS)
             .color_attachments(&output_reference)];
         let second_pass =
-            self.render_pass(&output_description, &subpass, &[output_to_transfer()])?;
-        let second_framebuffer = self.framebuffer(second_pass, &[output_view], width, height)?;
+            self.vulkan
+                .render_pass_of(&output_description, &subpass, &[output_to_transfer()])?;
+        let second_framebuffer =
+            self.vulkan
+                .framebuffer(second_pass, &[output_view], width, height)?;
         let lighting_wgsl = crate::renderer::lighting_pass_wgsl(options, Positions::Texel)?;
         let gbuffer_bindings: Vec<(u32, vk::ImageView)> = gbuffer_views
             .iter()
@@ -359,7 +370,7 @@ impl VulkanRenderer {
             &used_bindings(&lighting_wgsl, "lighting_resolve_main"),
             &gbuffer_bindings,
         )?;
-        let second_layout = self.pipeline_layout(&[lighting_set_layout], false)?;
+        let second_layout = self.vulkan.pipeline_layout(&[lighting_set_layout], None)?;
         let lighting_fragment = glsl::translate(
             &lighting_wgsl,
             naga::ShaderStage::Fragment,
