@@ -10,13 +10,13 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::gbuffers::{GBuffer, LayoutArgument};
 use gbuffer_render::image::{compare, difference, write_png};
 use gbuffer_render::on_tile::gles::GlesRenderer;
 use gbuffer_render::on_tile::vulkan::VulkanRenderer;
 use gbuffer_render::on_tile::{Backend, Path, TileOptions};
 use gbuffer_render::reference;
-use gbuffer_render::renderer::{Frame, IblForm, Options, Renderer, SunForm};
+use gbuffer_render::renderer::{parse_size, Frame, IblForm, Options, Renderer, SunForm};
 
 /// Renders the reference scene (spheres across roughness and metallic on a gold-and-stone
 /// ground, a sun, image-based light and a light map) through a packed G-buffer layout and
@@ -27,33 +27,38 @@ struct Arguments {
     /// The G-buffer: a seed layout (mobile-metallic, specular-workflow, future-metallic,
     /// future-specular, arm-tile-block), packed into Rgba32Uint targets, or `classic`
     /// (separate Rgba16Float and Rgba8 targets, as without this library).
-    #[arg(long, default_value = "mobile-metallic", conflicts_with = "scene")]
-    layout: String,
+    #[arg(
+        long,
+        value_enum,
+        default_value = "mobile-metallic",
+        conflicts_with = "scene"
+    )]
+    layout: LayoutArgument,
     /// A scene description (TOML, see `gbuffer_solver::file`): renders the scene it describes through
     /// the layout solved for it and a lighting pass with only its terms.
     #[arg(long, value_name = "SCENE.toml")]
     scene: Option<PathBuf>,
     /// The API: `wgpu` (the G-buffer through memory), `gles` (GLES 3.2 through EGL
     /// surfaceless) or `vulkan`.
-    #[arg(long, default_value = "wgpu")]
-    backend: String,
+    #[arg(long, value_enum, default_value = "wgpu")]
+    backend: Backend,
     /// How the G-buffer travels: for gles `fetch-native` (default), `fetch-packed` or
     /// `two-pass`; for vulkan `subpass` (default) or `two-pass`. The fused paths keep it in the
     /// render pass and never store it.
-    #[arg(long)]
-    path: Option<String>,
-    /// Frame size, WIDTHxHEIGHT.
-    #[arg(long, default_value = "1280x720")]
-    size: String,
+    #[arg(long, value_enum)]
+    path: Option<Path>,
+    /// Frame size, WIDTHxHEIGHT (at most 8192 each).
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    size: (u32, u32),
     /// Where to write the PNG.
     #[arg(long, default_value = "frame.png")]
     out: PathBuf,
     /// Sun: `ggx` (GGX, correlated Smith, Schlick) or `approx` (D_Approx with EnvBRDFApprox).
-    #[arg(long, default_value = "ggx")]
-    sun: String,
+    #[arg(long, value_enum, default_value = "ggx")]
+    sun: SunForm,
     /// Image-based light: `lut` (split-sum LUT) or `approx` (EnvBRDFApprox).
-    #[arg(long, default_value = "lut")]
-    ibl: String,
+    #[arg(long, value_enum, default_value = "lut")]
+    ibl: IblForm,
     /// Debug: also store the G-buffer as the geometry writes it (before the decals and the
     /// light) and write its packed words to this file (little-endian u32, the layout's words per
     /// pixel, row by row): the same for every backend and path, bit for bit.
@@ -65,47 +70,26 @@ struct Arguments {
     reference: bool,
 }
 
-/// The backend and path named on the command line (the backend's default path if none).
-fn parse_backend(arguments: &Arguments) -> Result<(Backend, Option<Path>), String> {
-    let backend = [Backend::Wgpu, Backend::Gles, Backend::Vulkan]
-        .into_iter()
-        .find(|backend| backend.flag() == arguments.backend)
-        .ok_or_else(|| {
-            format!(
-                "unknown backend `{}`: use wgpu, gles or vulkan",
-                arguments.backend
-            )
-        })?;
-    let names = |paths: &[Path]| {
-        paths
-            .iter()
-            .map(|path| path.flag())
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let path = match (&arguments.path, backend.paths()) {
-        (None, paths) => paths.first().copied(),
-        (Some(name), []) => {
-            return Err(format!(
-                "--path {name}: the wgpu backend has one path (the G-buffer through memory); \
-                 the on-tile paths are --backend gles or vulkan"
+/// The path named on the command line, checked against the backend (its default if none).
+fn backend_path(backend: Backend, path: Option<Path>) -> Result<Option<Path>, String> {
+    match (path, backend.paths()) {
+        (None, paths) => Ok(paths.first().copied()),
+        (Some(path), []) => Err(format!(
+            "--path {}: the wgpu backend has one path (the G-buffer through memory); \
+             the on-tile paths are --backend gles or vulkan",
+            path.flag()
+        )),
+        (Some(path), paths) if paths.contains(&path) => Ok(Some(path)),
+        (Some(path), paths) => {
+            let names: Vec<String> = paths.iter().map(|path| path.flag()).collect();
+            Err(format!(
+                "--path {} is not a path of --backend {}: use {}",
+                path.flag(),
+                backend.flag(),
+                names.join(", ")
             ))
         }
-        (Some(name), paths) => Some(
-            paths
-                .iter()
-                .copied()
-                .find(|path| path.flag() == name)
-                .ok_or_else(|| {
-                    format!(
-                        "unknown path `{name}` for --backend {}: use {}",
-                        backend.flag(),
-                        names(paths)
-                    )
-                })?,
-        ),
-    };
-    Ok((backend, path))
+    }
 }
 
 fn parse(arguments: &Arguments) -> Result<Options, String> {
@@ -114,47 +98,15 @@ fn parse(arguments: &Arguments) -> Result<Options, String> {
             let solution =
                 gbuffer_solver::file::read_and_solve(path).map_err(|error| error.to_string())?;
             eprintln!("{solution}");
-            Some(GBuffer::Solved(std::sync::Arc::new(solution)))
+            GBuffer::Solved(std::sync::Arc::new(solution))
         }
-        None => GBuffer::from_flag(&arguments.layout),
+        None => arguments.layout.into(),
     };
-    let gbuffer = gbuffer.ok_or_else(|| {
-        let names: Vec<&str> = SeedLayout::ALL
-            .iter()
-            .map(|layout| layout.flag())
-            .chain(["classic"])
-            .collect();
-        format!(
-            "unknown layout `{}`: use one of {}",
-            arguments.layout,
-            names.join(", ")
-        )
-    })?;
-    let (width, height) = arguments
-        .size
-        .split_once('x')
-        .and_then(|(width, height)| Some((width.parse::<u32>().ok()?, height.parse::<u32>().ok()?)))
-        .filter(|&(width, height)| width > 0 && height > 0 && width <= 8192 && height <= 8192)
-        .ok_or_else(|| {
-            format!(
-                "bad size `{}`: write WIDTHxHEIGHT, e.g. 1280x720 (at most 8192 each)",
-                arguments.size
-            )
-        })?;
-    let sun = match arguments.sun.as_str() {
-        "ggx" => SunForm::Ggx,
-        "approx" => SunForm::Approx,
-        other => return Err(format!("unknown sun form `{other}`: use ggx or approx")),
-    };
-    let ibl = match arguments.ibl.as_str() {
-        "lut" => IblForm::Lut,
-        "approx" => IblForm::Approx,
-        other => return Err(format!("unknown IBL form `{other}`: use lut or approx")),
-    };
+    let (width, height) = arguments.size;
     Ok(Options {
         gbuffer,
-        sun,
-        ibl,
+        sun: arguments.sun,
+        ibl: arguments.ibl,
         width,
         height,
     })
@@ -218,12 +170,19 @@ fn render(
 
 fn main() -> ExitCode {
     let arguments = Arguments::parse();
-    let parsed = parse(&arguments).and_then(|options| Ok((options, parse_backend(&arguments)?)));
-    let (options, (backend, path)) = match parsed {
-        Ok(parsed) => parsed,
+    let backend = arguments.backend;
+    let path = match backend_path(backend, arguments.path) {
+        Ok(path) => path,
         Err(message) => {
             eprintln!("deferred: {message}");
-            return ExitCode::from(2);
+            return ExitCode::from(2); // a usage error, as clap's own
+        }
+    };
+    let options = match parse(&arguments) {
+        Ok(options) => options,
+        Err(message) => {
+            eprintln!("deferred: {message}");
+            return ExitCode::FAILURE; // a bad scene file
         }
     };
     let progress = |message: &str| eprintln!("{message}");

@@ -11,15 +11,15 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use gbuffer_render::presets::{lighting_cost, measure_preset, unspecialised_options, PRESETS};
-use gbuffer_render::renderer::Renderer;
+use gbuffer_render::renderer::{parse_size, Renderer};
 use gbuffer_solver::lighting::{terms, Forms};
 
 #[derive(Parser, Debug)]
 #[command(name = "scene_presets", about)]
 struct Arguments {
     /// Frame size for the error, WIDTHxHEIGHT (the CPU reference takes a while at large sizes).
-    #[arg(long, default_value = "320x180")]
-    size: String,
+    #[arg(long, default_value = "320x180", value_parser = parse_size)]
+    size: (u32, u32),
     /// The mobile forms (D_Approx, EnvBRDFApprox) instead of GGX and the split-sum LUT.
     #[arg(long)]
     mobile: bool,
@@ -27,18 +27,7 @@ struct Arguments {
 
 fn main() -> ExitCode {
     let arguments = Arguments::parse();
-    let Some((width, height)) = arguments
-        .size
-        .split_once('x')
-        .and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)))
-        .filter(|&(w, h)| (1..=4096).contains(&w) && (1..=4096).contains(&h))
-    else {
-        eprintln!(
-            "scene_presets: bad size `{}`: write WIDTHxHEIGHT",
-            arguments.size
-        );
-        return ExitCode::from(2);
-    };
+    let (width, height) = arguments.size;
     let forms = if arguments.mobile {
         Forms::MOBILE
     } else {
@@ -64,7 +53,7 @@ fn run(forms: Forms, width: u32, height: u32) -> Result<(), String> {
     let _ = writeln!(table, "|---|---|---|---|---|---|---|---|---|");
     let _ = writeln!(
         table,
-        "| unspecialised (Listing 2.2, every term) | MobileMetallic | 128 (128) | 0 | image-based light, light accumulation, sun | {} | {} | see `cargo bench -p examples` | |",
+        "| unspecialised (Listing 2.2, every term) | MobileMetallic | 128 (128) | 0 | image-based light, light accumulation, sun | {} | {} | see `cargo bench -p gbuffer-render` | |",
         baseline.expressions, baseline.spirv_instructions
     );
     let mut details = String::new();

@@ -27,7 +27,7 @@ pub enum GBuffer {
     Solved(Arc<Solution>),
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 /// The seed layouts the renderer can use.
 pub enum SeedLayout {
     /// GPU Pro 7 Listing 2.2.
@@ -53,14 +53,8 @@ impl SeedLayout {
     ];
 
     /// The command-line name, e.g. `mobile-metallic`.
-    pub fn flag(self) -> &'static str {
-        match self {
-            SeedLayout::MobileMetallic => "mobile-metallic",
-            SeedLayout::SpecularWorkflow => "specular-workflow",
-            SeedLayout::FutureMetallic => "future-metallic",
-            SeedLayout::FutureSpecular => "future-specular",
-            SeedLayout::ArmTileBlock => "arm-tile-block",
-        }
+    pub fn flag(self) -> String {
+        crate::flag(&self)
     }
 
     /// Its layout.
@@ -179,26 +173,53 @@ fn paint_texel(t: FutureMetallic, decal: u32, weight: f32) -> FutureMetallic {
     }
 }
 
+/// What `--layout` names: a seed layout or `classic` (the unpacked native targets).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LayoutArgument {
+    /// A seed layout, packed.
+    Seed(SeedLayout),
+    /// The classic unpacked targets.
+    Classic,
+}
+
+impl clap::ValueEnum for LayoutArgument {
+    fn value_variants<'a>() -> &'a [Self] {
+        &[
+            LayoutArgument::Seed(SeedLayout::MobileMetallic),
+            LayoutArgument::Seed(SeedLayout::SpecularWorkflow),
+            LayoutArgument::Seed(SeedLayout::FutureMetallic),
+            LayoutArgument::Seed(SeedLayout::FutureSpecular),
+            LayoutArgument::Seed(SeedLayout::ArmTileBlock),
+            LayoutArgument::Classic,
+        ]
+    }
+
+    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
+        match self {
+            LayoutArgument::Seed(layout) => layout.to_possible_value(),
+            LayoutArgument::Classic => Some(clap::builder::PossibleValue::new("classic")),
+        }
+    }
+}
+
+impl From<LayoutArgument> for GBuffer {
+    fn from(argument: LayoutArgument) -> GBuffer {
+        match argument {
+            LayoutArgument::Seed(layout) => GBuffer::Packed(layout),
+            LayoutArgument::Classic => GBuffer::Classic,
+        }
+    }
+}
+
 impl GBuffer {
     /// The name in messages: a seed layout's command-line name, `classic`, or a solved
     /// layout's name.
     pub fn name(&self) -> String {
         match self {
-            GBuffer::Packed(layout) => layout.flag().to_string(),
+            GBuffer::Packed(layout) => layout.flag(),
             GBuffer::Classic => "classic".to_string(),
             GBuffer::Solved(solution) => solution.layout.name.clone(),
         }
-    }
-
-    /// A seed layout or `classic`, by command-line name.
-    pub fn from_flag(flag: &str) -> Option<GBuffer> {
-        if flag == "classic" {
-            return Some(GBuffer::Classic);
-        }
-        SeedLayout::ALL
-            .into_iter()
-            .find(|layout| layout.flag() == flag)
-            .map(GBuffer::Packed)
     }
 
     /// The packed layout, if the G-buffer is packed.

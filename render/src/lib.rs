@@ -13,3 +13,12 @@ pub mod reference;
 pub mod renderer;
 pub mod scene;
 pub mod shaders;
+
+/// The command-line name of a value of the renderer's options, as clap's `ValueEnum` derives
+/// it (kebab case: `mobile-metallic`, `two-pass`): the one spelling of every flag.
+pub fn flag(value: &impl clap::ValueEnum) -> String {
+    value
+        .to_possible_value()
+        .map(|possible| possible.get_name().to_string())
+        .unwrap_or_default()
+}

@@ -34,6 +34,16 @@ use gbuffer::seed_conventions::SURFACE_WGSL;
 
 pub use gbuffer_solver::lighting::{IblForm, SunForm};
 
+/// A frame size from the command line: `WIDTHxHEIGHT`, each between 1 and 8192.
+pub fn parse_size(size: &str) -> Result<(u32, u32), String> {
+    size.split_once('x')
+        .and_then(|(width, height)| Some((width.parse::<u32>().ok()?, height.parse::<u32>().ok()?)))
+        .filter(|&(width, height)| (1..=8192).contains(&width) && (1..=8192).contains(&height))
+        .ok_or_else(|| {
+            format!("bad size `{size}`: write WIDTHxHEIGHT, e.g. 1280x720 (at most 8192 each)")
+        })
+}
+
 /// One configuration of the renderer. A solved G-buffer brings its scene description: the
 /// scene shows its features, and the lighting pass is generated for them.
 #[derive(Clone, Debug, PartialEq)]

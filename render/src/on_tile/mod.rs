@@ -32,7 +32,7 @@ use crate::renderer::Options;
 use crate::shaders::{self, library, INPUTS_WGSL, VOLUME_WGSL};
 
 /// Which API draws the frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Backend {
     /// The wgpu renderer (`crate::renderer`): the G-buffer through memory.
     Wgpu,
@@ -43,7 +43,7 @@ pub enum Backend {
 }
 
 /// How a backend carries the G-buffer from the geometry to the lighting.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Path {
     /// GLES: framebuffer fetch over one attachment per field in its own format (the driver
     /// converts, as Arm's example does).
@@ -59,12 +59,8 @@ pub enum Path {
 
 impl Backend {
     /// The command-line name.
-    pub fn flag(self) -> &'static str {
-        match self {
-            Backend::Wgpu => "wgpu",
-            Backend::Gles => "gles",
-            Backend::Vulkan => "vulkan",
-        }
+    pub fn flag(self) -> String {
+        crate::flag(&self)
     }
 
     /// The paths the backend offers, the default first.
@@ -79,13 +75,8 @@ impl Backend {
 
 impl Path {
     /// The command-line name.
-    pub fn flag(self) -> &'static str {
-        match self {
-            Path::FetchNative => "fetch-native",
-            Path::FetchPacked => "fetch-packed",
-            Path::Subpass => "subpass",
-            Path::TwoPass => "two-pass",
-        }
+    pub fn flag(self) -> String {
+        crate::flag(&self)
     }
 
     /// Whether the G-buffer stays in the render pass (the fused paths).
