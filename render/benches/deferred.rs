@@ -1,6 +1,6 @@
 //! The renderer's cost: per G-buffer on wgpu, and per path of the on-tile backends (GLES and
 //! Vulkan), the bytes each frame loads and stores, computed from the load and store operations
-//! and formats the frame's passes really used (`on_tile::recording`), in the bandwidth units of
+//! and formats the frame's passes really used (`gbuffer_render::recording`), in the bandwidth units of
 //! Arm's tile-memory article (1 BU = width x height x 4 bytes), and the median frame time at
 //! 1280x720 and 1920x1080 (wgpu: timestamp queries where the adapter has them; GLES and Vulkan:
 //! wall clock around a synchronised frame). Then every wgpu configuration's PSNR against the
@@ -10,13 +10,14 @@
 //! and the traffic the fused paths save is counted, not felt.
 
 use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::compare;
-use gbuffer_render::on_tile::gles::GlesRenderer;
-use gbuffer_render::on_tile::recording::Recording;
-use gbuffer_render::on_tile::vulkan::VulkanRenderer;
 use gbuffer_render::on_tile::{Path, TileOptions};
+use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
+use gbuffer_render::recording::Recording;
 use gbuffer_render::reference;
-use gbuffer_render::renderer::{Frame, IblForm, Options, Renderer, SunForm};
+use gbuffer_render::vulkan::VulkanRenderer;
+use gbuffer_render::wgpu::Renderer;
 
 const FRAMES: usize = 10;
 const SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];

@@ -11,12 +11,13 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use gbuffer_render::gbuffers::{GBuffer, LayoutArgument};
+use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::{compare, difference, write_png};
-use gbuffer_render::on_tile::gles::GlesRenderer;
-use gbuffer_render::on_tile::vulkan::VulkanRenderer;
 use gbuffer_render::on_tile::{Backend, Path, TileOptions};
+use gbuffer_render::options::{parse_size, Frame, IblForm, Options, SunForm};
 use gbuffer_render::reference;
-use gbuffer_render::renderer::{parse_size, Frame, IblForm, Options, Renderer, SunForm};
+use gbuffer_render::vulkan::VulkanRenderer;
+use gbuffer_render::wgpu::Renderer;
 
 /// Renders the reference scene (spheres across roughness and metallic on a gold-and-stone
 /// ground, a sun, image-based light and a light map) through a packed G-buffer layout and

@@ -10,8 +10,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
+use gbuffer_render::options::parse_size;
 use gbuffer_render::presets::{lighting_cost, measure_preset, unspecialised_options, PRESETS};
-use gbuffer_render::renderer::{parse_size, Renderer};
+use gbuffer_render::wgpu::Renderer;
 use gbuffer_solver::lighting::{terms, Forms};
 
 #[derive(Parser, Debug)]

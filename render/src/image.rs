@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use crate::renderer::Frame;
+use crate::options::Frame;
 
 /// Writes an sRGB frame as an 8-bit RGBA PNG.
 pub fn write_png(path: &Path, frame: &Frame) -> std::io::Result<()> {

@@ -11,8 +11,10 @@ use gbuffer_validator::cost::Cost;
 
 use crate::gbuffers::{GBuffer, SeedLayout};
 use crate::image::compare;
+use crate::options::Options;
 use crate::reference;
-use crate::renderer::{lighting_pass_wgsl, Options, Positions, Renderer};
+use crate::shaders::{lighting_pass_wgsl, Positions};
+use crate::wgpu::Renderer;
 
 /// The presets, in the report's order.
 pub const PRESETS: [&str; 4] = [

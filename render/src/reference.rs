@@ -8,7 +8,7 @@ use gbuffer_solver::{Feature, Features};
 
 use crate::inputs::PREFILTER_SAMPLES;
 use crate::mesh::Mesh;
-use crate::renderer::{Frame, EXPOSURE};
+use crate::options::{Frame, EXPOSURE};
 use crate::scene::{self, sky, trace};
 
 /// The GGX lobe of `roughness` around `normal` (n = v = r) integrated over the sky with the

@@ -3,9 +3,16 @@
 //! G-buffer by framebuffer fetch or as subpass inputs. The maths is written once, here and in
 //! the shading library: nothing below is a second copy of it.
 
-use crate::renderer::{IblForm, Options, SunForm, EXPOSURE};
-use crate::scene;
+use gbuffer::packing::Layout;
 use gbuffer::seed_conventions::SURFACE_WGSL;
+use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
+use gbuffer_solver::lighting::{self, Forms};
+use gbuffer_solver::quantity::Quantity;
+use gbuffer_solver::Solution;
+
+use crate::gbuffers::GBuffer;
+use crate::options::{IblForm, Options, SunForm, EXPOSURE};
+use crate::scene::{self};
 
 /// The library modules (`gbuffer::modules`) composed, for the passes.
 pub fn library(modules: &[&str]) -> String {
@@ -212,4 +219,319 @@ pub fn used_bindings(wgsl: &str, entry_point: &str) -> Vec<u32> {
         .filter(|binding| binding.group == 0)
         .map(|binding| binding.binding)
         .collect()
+}
+
+/// The G-buffer pass's last statement for a packed layout and the type it returns:
+/// `<Name>Targets`. Sky pixels keep the clear value, all ones in every word.
+fn write_packed_targets(layout: &Layout) -> (String, String) {
+    let (name, snake) = (&layout.name, layout.snake_name());
+    (
+        format!("return pack_{snake}_targets(encode_texel(surface));"),
+        format!("{name}Targets"),
+    )
+}
+
+/// The lighting pass's bindings of a packed layout's targets (10, 11, ...) and the expression
+/// that loads them at `pixel` as a `<Name>Targets`.
+fn read_packed_targets(layout: &Layout) -> (String, String) {
+    let bindings = (0..layout.targets())
+        .map(|target| {
+            format!(
+                "@group(0) @binding({}) var gbuffer{target}: texture_2d<u32>;\n",
+                10 + target
+            )
+        })
+        .collect();
+    let loads: Vec<String> = (0..layout.targets())
+        .map(|target| format!("textureLoad(gbuffer{target}, pixel, 0)"))
+        .collect();
+    (
+        bindings,
+        format!("{}Targets({})", layout.name, loads.join(", ")),
+    )
+}
+
+/// The G-buffer pass's WGSL for a configuration: `geometry_vertex`, and `gbuffer_main`, which
+/// writes the surface with the decals painted over it. `y_sign` is the backend's clip-space y
+/// (wgpu 1, GL and Vulkan -1).
+pub fn gbuffer_wgsl(options: &Options, y_sign: f32) -> String {
+    let (layout_wgsl, encode, output_type) = match &options.gbuffer {
+        GBuffer::Packed(layout) => {
+            let (encode, output_type) = write_packed_targets(&layout.layout());
+            (
+                format!("{}\n{}", layout.wgsl(), layout.encode_wgsl()),
+                encode,
+                output_type,
+            )
+        }
+        GBuffer::Solved(solution) => {
+            let (encode, output_type) = write_packed_targets(&solution.layout);
+            (
+                format!(
+                    "{}\n{}",
+                    gbuffer_solver::texel::texel_wgsl(solution),
+                    solved_encode_wgsl(solution)
+                ),
+                encode,
+                output_type,
+            )
+        }
+        GBuffer::Classic => (
+            "struct ClassicTargets {\n    @location(0) light: vec4<f32>,\n    @location(1) normal_roughness: vec4<f32>,\n    @location(2) base_colour_metallic: vec4<f32>,\n}\n".to_string(),
+            "return ClassicTargets(vec4<f32>(surface.light, 1.0), vec4<f32>(normal_to_unorm(surface.normal), surface.roughness), vec4<f32>(surface.base_colour, surface.metallic));".to_string(),
+            "ClassicTargets".to_string(),
+        ),
+    };
+    format!(
+        "{}\n{}\n{}\n{INPUTS_WGSL}\n{layout_wgsl}
+
+@fragment
+fn gbuffer_main(input: GeometryVarying) -> {output_type} {{
+    let surface = paint_surface(surface_at(input.object, input.position, input.normal));
+    {encode}
+}}
+
+// The G-buffer as the geometry writes it before the decals: the debug view every backend
+// stores, to compare their words.
+@fragment
+fn gbuffer_unpainted_main(input: GeometryVarying) -> {output_type} {{
+    let surface = surface_at(input.object, input.position, input.normal);
+    {encode}
+}}
+",
+        library(&MODULES),
+        frame_wgsl(options, y_sign),
+        geometry_wgsl(options),
+    )
+}
+
+/// Where the lighting pass finds the position of the surface at a pixel, for the point lights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Positions {
+    /// From the depth buffer, sampled (`surface_position(pixel, direction)`): any layout.
+    DepthBuffer,
+    /// From the texel's depth or position (`texel_position(texel, direction)`): the layouts
+    /// the on-tile paths keep (GLSL cannot load from a depth texture).
+    Texel,
+}
+
+/// What the lighting pass of a seed or classic layout shares: the library, the scene, the
+/// inputs, and with positions from the depth buffer, the buffer and `surface_position`.
+fn lighting_prelude(options: &Options, positions: Positions) -> String {
+    let depth_buffer = match positions {
+        Positions::Texel => "",
+        Positions::DepthBuffer => DEPTH_BUFFER_WGSL,
+    };
+    format!(
+        "{}\n{}\n{}\n{SURFACE_WGSL}\n{INPUTS_WGSL}\n{}\n{}\n{FULLSCREEN_WGSL}\n{depth_buffer}",
+        library(&MODULES),
+        frame_wgsl(options, 1.0),
+        scene::scene_wgsl(options.gbuffer.features()),
+        lighting_functions_wgsl(options),
+        display_wgsl(),
+    )
+}
+
+/// The depth buffer, and the position it gives the surface at a pixel.
+const DEPTH_BUFFER_WGSL: &str = "
+@group(0) @binding(4) var depth_buffer: texture_depth_2d;
+
+// Where the surface at `pixel` lies: the depth buffer's depth along the camera ray.
+fn surface_position(pixel: vec2<i32>, direction: vec3<f32>) -> vec3<f32> {
+    let depth = textureLoad(depth_buffer, pixel, 0);
+    let view_depth = CAMERA_NEAR / (1.0 - depth * (CAMERA_FAR - CAMERA_NEAR) / CAMERA_FAR);
+    return SCENE_EYE + direction * (view_depth / dot(direction, normalize(SCENE_TARGET - SCENE_EYE)));
+}
+";
+
+/// The lighting pass's WGSL for a configuration: `lighting_main` (radiance) and
+/// `lighting_resolve_main` (tone-mapped), reading positions from `positions`.
+pub fn lighting_pass_wgsl(options: &Options, positions: Positions) -> Result<String, String> {
+    let (bindings, read) = match &options.gbuffer {
+        GBuffer::Solved(solution) => return Ok(solved_lighting_wgsl(solution, options)),
+        GBuffer::Packed(layout) => {
+            let model = layout.layout();
+            let (bindings, targets) = read_packed_targets(&model);
+            let snake = model.snake_name();
+            let texel_positions = match positions {
+                Positions::Texel => layout.on_tile_wgsl()?,
+                Positions::DepthBuffer => "",
+            };
+            (
+                format!("{}\n{}\n{texel_positions}\n{bindings}", layout.wgsl(), layout.decode_wgsl()),
+                format!("let targets = {targets};\n    if targets.first.x == 0xffffffffu {{\n        SKY\n    }}\n    let texel = unpack_{snake}_targets(targets);\n    let shading = decode_texel(texel);"),
+            )
+        }
+        GBuffer::Classic => (
+            "@group(0) @binding(10) var gbuffer_light: texture_2d<f32>;\n@group(0) @binding(11) var gbuffer_normal: texture_2d<f32>;\n@group(0) @binding(12) var gbuffer_colour: texture_2d<f32>;\n".to_string(),
+            "let light = textureLoad(gbuffer_light, pixel, 0);\n    if light.a == 0.0 {\n        SKY\n    }\n    let normal_roughness = textureLoad(gbuffer_normal, pixel, 0);\n    let colour = textureLoad(gbuffer_colour, pixel, 0);\n    let colours = metallic_workflow(colour.rgb, colour.a, DIELECTRIC_F0);\n    let shading = Shading(unorm_to_normal(normal_roughness.xyz), normal_roughness.w, colours.diffuse, colours.f0, light.rgb);".to_string(),
+        ),
+    };
+    // The texel at `pixel` as `shading`, and what a sky pixel does instead.
+    let read = |sky: &str| read.replace("SKY", sky);
+    Ok(format!(
+        "{}\n{VOLUME_WGSL}\n{bindings}
+// The image-based light and the sun at a pixel (the sky where there is no surface).
+fn pixel_radiance(position: vec4<f32>) -> vec3<f32> {{
+    let pixel = vec2<i32>(position.xy);
+    let direction = camera_ray(position.xy, VIEWPORT);
+    {read_radiance}
+    let view = -direction;
+    return environment_light(shading, view) + sun_light(shading, view);
+}}
+
+// Every point light at a pixel, one after the other (the on-tile two-pass path's way).
+fn pixel_point_lights(position: vec4<f32>) -> vec3<f32> {{
+    let pixel = vec2<i32>(position.xy);
+    let direction = camera_ray(position.xy, VIEWPORT);
+    {read_dark}
+    let surface = {position};
+    var radiance = vec3<f32>(0.0);
+    for (var index = 0u; index < POINT_LIGHT_COUNT; index++) {{
+        radiance += point_light(shading, -direction, surface, index);
+    }}
+    return radiance;
+}}
+
+@fragment
+fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
+    return vec4<f32>(pixel_radiance(position), 1.0);
+}}
+
+struct LightVolume {{
+    @builtin(position) clip: vec4<f32>,
+    @location(0) @interpolate(flat) light: u32,
+}}
+
+// Point light `light`'s volume: the screen rectangle around its reach (instance `light`).
+@vertex
+fn light_volume_vertex(@builtin(vertex_index) vertex: u32, @builtin(instance_index) light: u32) -> LightVolume {{
+    return LightVolume(vec4<f32>(volume_rectangle(vertex, light), 0.0, 1.0), light);
+}}
+
+// Point light `light` on the surfaces it reaches in its volume, added by blending.
+@fragment
+fn point_light_main(volume: LightVolume) -> @location(0) vec4<f32> {{
+    let pixel = vec2<i32>(volume.clip.xy);
+    let direction = camera_ray(volume.clip.xy, VIEWPORT);
+    {read_discard}
+    let surface = {position};
+    if distance(POINT_LIGHT_POSITIONS[volume.light], surface) >= POINT_LIGHT_RADIUS {{
+        discard;
+    }}
+    return vec4<f32>(point_light(shading, -direction, surface, volume.light), 0.0);
+}}
+
+// Lighting and tone mapping in one pass (the on-tile backends' two-pass path).
+@fragment
+fn lighting_resolve_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
+    var radiance = pixel_radiance(position);
+    if SCENE_POINT_LIGHTS {{
+        radiance += pixel_point_lights(position);
+    }}
+    return display_colour(radiance);
+}}
+",
+        lighting_prelude(options, positions),
+        read_radiance = read("return sky(direction);"),
+        read_dark = read("return vec3<f32>(0.0);"),
+        read_discard = read("discard;"),
+        position = match positions {
+            Positions::DepthBuffer => "surface_position(pixel, direction)",
+            Positions::Texel => "texel_position(texel, direction)",
+        },
+    ))
+}
+
+/// The G-buffer pass's `encode_texel` for a solved layout: the surface's values for the
+/// quantities the layout stores.
+fn solved_encode_wgsl(solution: &Solution) -> String {
+    let mut members = String::new();
+    for placement in &solution.placements {
+        let value = match placement.quantity {
+            Quantity::Light => "surface.light",
+            Quantity::Depth => "surface.distance",
+            Quantity::Normal => "surface.normal",
+            Quantity::Roughness => "surface.roughness",
+            Quantity::BaseColour => "surface.base_colour",
+            Quantity::Metallic => "surface.metallic",
+            // The scene's dielectrics all reflect 0.04: UE4's default specular.
+            Quantity::Specular => "0.5",
+            Quantity::Albedo => "colours.diffuse",
+            Quantity::SpecularColour => "colours.f0",
+        };
+        members.push_str(&format!(
+            "    values.{} = {value};\n",
+            placement.quantity.name()
+        ));
+    }
+    format!(
+        "fn encode_texel(surface: Surface) -> {name} {{
+    let colours = metallic_workflow(surface.base_colour, surface.metallic, DIELECTRIC_F0);
+    var values: {values};
+{members}    return encode_{snake}(values);
+}}",
+        name = solution.layout.name,
+        values = solution.values_type(),
+        snake = solution.layout.snake_name(),
+    )
+}
+
+/// The lighting pass of a solved layout: decode, then the lighting function generated for the
+/// scene (`gbuffer_solver::lighting`), with only the host inputs its terms read.
+pub fn solved_lighting_wgsl(solution: &Solution, options: &Options) -> String {
+    let forms = Forms {
+        sun: options.sun,
+        ibl: options.ibl,
+    };
+    let layout = &solution.layout;
+    let snake = layout.snake_name();
+    let (target_bindings, targets) = read_packed_targets(layout);
+    let position = if solution.placement(Quantity::Depth).is_some() {
+        "SCENE_EYE + direction * values.depth"
+    } else {
+        "vec3<f32>(0.0)" // without point lights nothing reads it
+    };
+    format!(
+        "{}\n{}\n{}\n{FULLSCREEN_WGSL}\n{INPUTS_WGSL}\n{}\n{target_bindings}
+{}
+@fragment
+fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
+    let pixel = vec2<i32>(position.xy);
+    let direction = camera_ray(position.xy, VIEWPORT);
+    let targets = {targets};
+    // The G-buffer pass marks sky pixels with all ones in the first word (the first target
+    // may be narrower than four words).
+    if targets.first.x == 0xffffffffu {{
+        return vec4<f32>(sky(direction), 1.0);
+    }}
+    let values = decode_{snake}(unpack_{snake}_targets(targets));
+    let surface_position = {position};
+    return vec4<f32>({shade}(values, -direction, surface_position), 1.0);
+}}
+",
+        library(&MODULES),
+        frame_wgsl(options, 1.0),
+        scene::scene_wgsl(solution.scene.features),
+        gbuffer_solver::texel::texel_wgsl(solution),
+        lighting::lighting_wgsl(solution, forms),
+        shade = lighting::lighting_function_name(solution),
+    )
+}
+
+/// The tone-mapping pass: `full_screen` and `tonemap_main`, which exposes, tone maps and
+/// encodes the lit HDR target for display.
+pub fn tonemap_wgsl() -> String {
+    format!(
+        "{}\n{FULLSCREEN_WGSL}\n{}
+@group(0) @binding(0) var hdr: texture_2d<f32>;
+
+@fragment
+fn tonemap_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
+    return display_colour(textureLoad(hdr, vec2<i32>(position.xy), 0).rgb);
+}}
+",
+        library(&["tonemap", "colour"]),
+        display_wgsl(),
+    )
 }

@@ -3,8 +3,9 @@
 
 use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
 use gbuffer_render::image::{compare, is_blank, write_png};
+use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_render::reference;
-use gbuffer_render::renderer::{IblForm, Options, Renderer, SunForm};
+use gbuffer_render::wgpu::Renderer;
 
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 90;

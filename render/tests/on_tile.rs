@@ -4,14 +4,15 @@
 //! only the output; the G-buffer's words agree across backends; bad configurations are named.
 
 use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::{compare, is_blank};
-use gbuffer_render::on_tile::gles::GlesRenderer;
-use gbuffer_render::on_tile::recording::{Call, Recording};
-use gbuffer_render::on_tile::vulkan::VulkanRenderer;
 use gbuffer_render::on_tile::{Path, TileOptions};
+use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
+use gbuffer_render::recording::{Call, Recording};
 use gbuffer_render::reference;
-use gbuffer_render::renderer::{Frame, IblForm, Options, Renderer, SunForm};
 use gbuffer_render::scene::{reference_features, DECALS, POINT_LIGHT_COUNT};
+use gbuffer_render::vulkan::VulkanRenderer;
+use gbuffer_render::wgpu::Renderer;
 use gbuffer_testkit::or_skip;
 
 const WIDTH: u32 = 320;

@@ -2,7 +2,7 @@
 //! specialised lighting pass, close to the full model, and the specialisations cost less.
 
 use gbuffer_render::presets::{measure_preset, PRESETS};
-use gbuffer_render::renderer::Renderer;
+use gbuffer_render::wgpu::Renderer;
 use gbuffer_solver::lighting::Forms;
 
 #[test]

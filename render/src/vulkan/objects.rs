@@ -6,8 +6,8 @@ use gbuffer_gpu::tools::glslang;
 use gbuffer_gpu::vulkan::Object;
 
 use super::VulkanRenderer;
+use crate::glsl::{self, Dialect};
 use crate::mesh::Vertex;
-use crate::on_tile::glsl::{self, Dialect};
 use crate::shaders::SAMPLER_BINDING;
 
 impl VulkanRenderer {

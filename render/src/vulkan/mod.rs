@@ -21,11 +21,11 @@ use gbuffer_gpu::vulkan::{Object, StorageBuffer, Vulkan};
 mod objects;
 mod plans;
 
-use super::recording::{Attachment, Call, Load, Recording};
-use super::{tile_layout, Path, TileOptions};
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::renderer::{Frame, Options};
+use crate::on_tile::{tile_layout, Path, TileOptions};
+use crate::options::{Frame, Options};
+use crate::recording::{Attachment, Call, Load, Recording};
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 
 const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
@@ -231,7 +231,7 @@ impl VulkanRenderer {
             .iter()
             .map(|(_, buffer)| self.vulkan.read_buffer(buffer))
             .collect::<Result<Vec<_>, String>>()?;
-        Ok(crate::renderer::texels_of(
+        Ok(crate::wgpu::texels_of(
             &targets,
             (plan.width * plan.height) as usize,
             layout.layout().words(),

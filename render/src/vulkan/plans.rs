@@ -9,12 +9,13 @@ use super::{
     clear_depth, clear_float, clear_uint, named, Draw, Pass, Plan, StagePipeline, VulkanRenderer,
     DEPTH_FORMAT, OUTPUT_FORMAT, PACKED_FORMAT,
 };
-use crate::on_tile::glsl::{self, Dialect};
-use crate::on_tile::recording::Attachment;
+use crate::glsl::{self, Dialect};
 use crate::on_tile::{fused_wgsl, Stage};
-use crate::renderer::{Options, Positions};
+use crate::options::Options;
+use crate::recording::Attachment;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::used_bindings;
+use crate::shaders::Positions;
 
 impl VulkanRenderer {
     /// The subpass path: one render pass, one subpass, six pipelines. With `store_gbuffer`
@@ -321,7 +322,7 @@ impl VulkanRenderer {
         let mut views = gbuffer_views.clone();
         views.push(depth_view);
         let first_framebuffer = self.vulkan.framebuffer(first_pass, &views, width, height)?;
-        let gbuffer_wgsl = crate::renderer::gbuffer_wgsl(options, -1.0);
+        let gbuffer_wgsl = crate::shaders::gbuffer_wgsl(options, -1.0);
         let (set_layout, set) =
             self.sampled_set(&used_bindings(&gbuffer_wgsl, "gbuffer_main"), &[])?;
         let first_layout = self.vulkan.pipeline_layout(&[set_layout], None)?;
@@ -360,7 +361,7 @@ impl VulkanRenderer {
         let second_framebuffer =
             self.vulkan
                 .framebuffer(second_pass, &[output_view], width, height)?;
-        let lighting_wgsl = crate::renderer::lighting_pass_wgsl(options, Positions::Texel)?;
+        let lighting_wgsl = crate::shaders::lighting_pass_wgsl(options, Positions::Texel)?;
         let gbuffer_bindings: Vec<(u32, vk::ImageView)> = gbuffer_views
             .iter()
             .enumerate()

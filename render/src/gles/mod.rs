@@ -18,11 +18,11 @@ use gbuffer_gpu::gles::Gles;
 
 mod plans;
 
-use super::recording::{Attachment, Call, Load, Recording};
-use super::{fused_wgsl, tile_layout, Path, Stage, TileOptions};
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::renderer::{Frame, Options};
+use crate::on_tile::{fused_wgsl, tile_layout, Path, Stage, TileOptions};
+use crate::options::{Frame, Options};
+use crate::recording::{Attachment, Call, Load, Recording};
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 
 const FETCH: &str = "GL_EXT_shader_framebuffer_fetch";
@@ -253,7 +253,7 @@ impl GlesRenderer {
                 delete_target(gl, target);
             }
             let targets: Vec<Vec<u32>> = words.chunks(per_target).map(<[u32]>::to_vec).collect();
-            Ok(crate::renderer::texels_of(
+            Ok(crate::wgpu::texels_of(
                 &targets,
                 (width * height) as usize,
                 model.words(),

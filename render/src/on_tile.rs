@@ -20,21 +20,16 @@
 //! shading library, the layout's generated WGSL) translated by naga; only the entry points
 //! that fetch are written here, in GLSL, around the layout's generated include.
 
-pub mod gles;
-pub mod glsl;
-pub mod recording;
-pub mod vulkan;
-
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 
 use crate::gbuffers::{GBuffer, SeedLayout};
-use crate::renderer::Options;
+use crate::options::Options;
 use crate::shaders::{self, library, INPUTS_WGSL, VOLUME_WGSL};
 
 /// Which API draws the frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Backend {
-    /// The wgpu renderer (`crate::renderer`): the G-buffer through memory.
+    /// The wgpu renderer (`crate::wgpu`): the G-buffer through memory.
     Wgpu,
     /// GLES 3.2 through EGL surfaceless.
     Gles,

@@ -8,9 +8,9 @@ use gbuffer_codegen::emit::glsl::{self as includes, Include};
 
 use super::{GlesRenderer, Plan, Target, FETCH};
 use crate::gbuffers::SeedLayout;
-use crate::on_tile::glsl::{self, Dialect};
+use crate::glsl::{self, Dialect};
 use crate::on_tile::{fused_wgsl, tile_layout, Path, Stage, TileOptions};
-use crate::renderer::Options;
+use crate::options::Options;
 
 impl GlesRenderer {
     /// The programs and framebuffers of a configuration, after checking what it needs.
@@ -139,9 +139,9 @@ impl GlesRenderer {
         options: &Options,
         (width, height): (i32, i32),
     ) -> Result<Plan, String> {
-        let gbuffer_wgsl = crate::renderer::gbuffer_wgsl(options, -1.0);
+        let gbuffer_wgsl = crate::shaders::gbuffer_wgsl(options, -1.0);
         let lighting_wgsl =
-            crate::renderer::lighting_pass_wgsl(options, crate::renderer::Positions::Texel)?;
+            crate::shaders::lighting_pass_wgsl(options, crate::shaders::Positions::Texel)?;
         let program = |wgsl: &str, vertex: &str, fragment: &str| -> Result<glow::Program, String> {
             let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
             let fragment =

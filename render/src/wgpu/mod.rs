@@ -1,0 +1,381 @@
+//! The reference deferred renderer on wgpu, headless: the G-buffer round trip through memory,
+//! as a renderer without framebuffer fetch has to do it.
+//!
+//! 0. once: the inputs are baked on the CPU (`inputs`) and uploaded, with the scene's mesh;
+//! 1. the G-buffer pass rasterises the mesh with a depth test and writes the chosen layout
+//!    (packed `Rgba32Uint` targets, or the classic native targets): the surface, the decals
+//!    painted over it in the same fragment, its light accumulation holding the static light;
+//! 2. the lighting pass unpacks with the generated WGSL and shades with the shading library:
+//!    the image-based light, the sun, and the point lights in a loop at the position the depth
+//!    buffer gives;
+//! 3. the tone-mapping pass writes sRGB.
+//!
+//! The GLES and Vulkan backends (`crate::gles`, `crate::vulkan`) draw the same frame, and on
+//! their fused paths keep the G-buffer in the render pass.
+
+mod passes;
+mod textures;
+mod timestamps;
+
+use std::time::Instant;
+
+use wgpu::util::DeviceExt;
+
+use gbuffer_gpu::adapter::{Gpu, Request};
+
+use crate::inputs::Inputs;
+use crate::mesh::{Mesh, Vertex};
+use crate::options::{Frame, Options};
+use crate::recording::{Call, Recording};
+use crate::shaders::gbuffer_wgsl;
+use crate::shaders::{self};
+
+use passes::{Passes, VERTEX_ATTRIBUTES};
+use textures::texture_with_data;
+use timestamps::Timestamps;
+
+pub use textures::texels_of;
+
+const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// The GPU side: device, the baked inputs and the scene's mesh.
+pub struct Renderer {
+    /// The device it renders with.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// The adapter it runs on.
+    pub adapter: wgpu::AdapterInfo,
+    environment: wgpu::TextureView,
+    lut: wgpu::TextureView,
+    light_map: wgpu::TextureView,
+    sampler: wgpu::Sampler,
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+    timestamps: Option<Timestamps>,
+}
+
+impl Renderer {
+    /// Opens an adapter (any wgpu finds, software ones included) and prepares the inputs,
+    /// reporting progress.
+    pub fn new(progress: &dyn Fn(&str)) -> Result<Renderer, String> {
+        let Gpu {
+            device,
+            queue,
+            info,
+        } = Gpu::open(&Request {
+            label: "deferred",
+            limits: None,
+            features: wgpu::Features::TIMESTAMP_QUERY,
+        })?;
+        let timestamp_feature = device.features() & wgpu::Features::TIMESTAMP_QUERY;
+        progress(&format!("adapter: {} ({:?})", info.name, info.backend));
+
+        progress("baking the split-sum LUT, the light map and the prefiltered sky...");
+        let inputs = Inputs::bake();
+        let lut = texture_with_data(
+            &device,
+            &queue,
+            "lut",
+            wgpu::TextureFormat::Rgba16Float,
+            &[inputs.lut],
+        );
+        let light_map = texture_with_data(
+            &device,
+            &queue,
+            "light map",
+            wgpu::TextureFormat::Rgba8Unorm,
+            &[inputs.light_map],
+        );
+        let environment = texture_with_data(
+            &device,
+            &queue,
+            "environment",
+            wgpu::TextureFormat::Rgba8Unorm,
+            &inputs.environment,
+        );
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            address_mode_u: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
+        });
+        let mesh = Mesh::scene();
+        let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("vertices"),
+            contents: bytemuck::cast_slice(&mesh.vertices),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        let indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("indices"),
+            contents: bytemuck::cast_slice(&mesh.indices),
+            usage: wgpu::BufferUsages::INDEX,
+        });
+        let timestamps = (!timestamp_feature.is_empty()).then(|| Timestamps::new(&device));
+        Ok(Renderer {
+            device,
+            queue,
+            adapter: info,
+            environment,
+            lut,
+            light_map,
+            sampler,
+            vertices,
+            indices,
+            index_count: mesh.indices.len() as u32,
+            timestamps,
+        })
+    }
+
+    /// Renders a frame and reads it back.
+    pub fn render(&self, options: &Options) -> Result<Frame, String> {
+        self.render_recorded(options).map(|(frame, _)| frame)
+    }
+
+    /// Renders a frame and reads it back, with the passes it made.
+    pub fn render_recorded(&self, options: &Options) -> Result<(Frame, Recording), String> {
+        let passes = self.passes(options)?;
+        let mut recording = Recording::default();
+        self.queue
+            .submit([passes.encode(self, None, &mut recording)]);
+        recording.push(Call::ReadBack("output".into()));
+        let pixels = self
+            .read_texture(&passes.output, options.width, options.height, 4)?
+            .chunks_exact(4)
+            .map(|pixel| [pixel[0], pixel[1], pixel[2], pixel[3]])
+            .collect();
+        let frame = Frame {
+            width: options.width,
+            height: options.height,
+            pixels,
+        };
+        Ok((frame, recording))
+    }
+
+    /// Whether frame times come from timestamp queries (else wall clock around the submit).
+    pub fn has_timestamps(&self) -> bool {
+        self.timestamps.is_some()
+    }
+
+    /// Times `frames` frames, each submitted and waited for: seconds per frame, from timestamp
+    /// queries where the adapter has them, else from the wall clock around the submit.
+    pub fn time_frames(&self, options: &Options, frames: usize) -> Result<Vec<f64>, String> {
+        let passes = self.passes(options)?;
+        let mut times = Vec::with_capacity(frames);
+        for _ in 0..=frames {
+            let commands = passes.encode(
+                self,
+                self.timestamps
+                    .as_ref()
+                    .map(|timestamps| &timestamps.query_set),
+                &mut Recording::default(),
+            );
+            let start = Instant::now();
+            self.queue.submit([commands]);
+            self.device
+                .poll(wgpu::PollType::wait_indefinitely())
+                .map_err(|error| error.to_string())?;
+            let wall_clock = start.elapsed().as_secs_f64();
+            times.push(match &self.timestamps {
+                Some(timestamps) => timestamps.read(self)?,
+                None => wall_clock,
+            });
+        }
+        times.remove(0); // the first frame warms caches and compiles lazily
+        Ok(times)
+    }
+
+    /// A render pipeline of `source`'s entry points (vertex, fragment) writing `formats`;
+    /// `geometry` draws the mesh with a depth test, else vertices without buffers (a
+    /// fullscreen triangle, a light volume); `additive` blends what it writes onto the target.
+    fn render_pipeline(
+        &self,
+        label: &str,
+        source: String,
+        (vertex_entry, fragment_entry): (&str, &str),
+        formats: &[wgpu::TextureFormat],
+        (geometry, additive): (bool, bool),
+    ) -> wgpu::RenderPipeline {
+        let module = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+        let add = wgpu::BlendComponent {
+            src_factor: wgpu::BlendFactor::One,
+            dst_factor: wgpu::BlendFactor::One,
+            operation: wgpu::BlendOperation::Add,
+        };
+        let targets: Vec<Option<wgpu::ColorTargetState>> = formats
+            .iter()
+            .map(|&format| {
+                Some(wgpu::ColorTargetState {
+                    format,
+                    blend: additive.then_some(wgpu::BlendState {
+                        color: add,
+                        alpha: add,
+                    }),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })
+            })
+            .collect();
+        let vertex_buffers = [Some(wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &VERTEX_ATTRIBUTES,
+        })];
+        self.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: None,
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(vertex_entry),
+                    compilation_options: Default::default(),
+                    buffers: if geometry { &vertex_buffers } else { &[] },
+                },
+                primitive: Default::default(),
+                depth_stencil: geometry.then_some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(fragment_entry),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+    }
+
+    /// The packed words the G-buffer pass writes before the decals (a debug view, stored to
+    /// compare the backends), `layout.words()` per pixel, row by row.
+    pub fn gbuffer_words(&self, options: &Options) -> Result<Vec<u32>, String> {
+        let layout = options
+            .gbuffer
+            .layout()
+            .ok_or("the classic G-buffer has no packed words")?;
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let formats = options.gbuffer.target_formats();
+        let pipeline = self.render_pipeline(
+            "gbuffer words",
+            gbuffer_wgsl(options, 1.0),
+            ("geometry_vertex", "gbuffer_unpainted_main"),
+            &formats,
+            (true, false),
+        );
+        let texture = |format| {
+            self.device.create_texture(&wgpu::TextureDescriptor {
+                label: None,
+                size: wgpu::Extent3d {
+                    width: options.width,
+                    height: options.height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                view_formats: &[],
+            })
+        };
+        let targets: Vec<wgpu::Texture> = formats.iter().map(|format| texture(*format)).collect();
+        let views: Vec<wgpu::TextureView> = targets
+            .iter()
+            .map(|target| target.create_view(&Default::default()))
+            .collect();
+        let depth = texture(DEPTH_FORMAT).create_view(&Default::default());
+        let bindings = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: shaders::SAMPLER_BINDING,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 5,
+                    resource: wgpu::BindingResource::TextureView(&self.light_map),
+                },
+            ],
+        });
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        {
+            let attachments: Vec<_> = views
+                .iter()
+                .map(|view| {
+                    Some(wgpu::RenderPassColorAttachment {
+                        view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })
+                })
+                .collect();
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("gbuffer words"),
+                color_attachments: &attachments,
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, &bindings, &[]);
+            pass.set_vertex_buffer(0, self.vertices.slice(..));
+            pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..self.index_count, 0, 0..1);
+        }
+        self.queue.submit([encoder.finish()]);
+        if let Some(error) = pollster::block_on(scope.pop()) {
+            return Err(format!("wgpu rejected the G-buffer words pass: {error}"));
+        }
+        let per_target: Vec<Vec<u32>> = targets
+            .iter()
+            .zip(&formats)
+            .map(|(target, format)| {
+                let bytes = format.block_copy_size(None).unwrap_or(16);
+                let texels = self.read_texture(target, options.width, options.height, bytes)?;
+                Ok(bytemuck::pod_collect_to_vec(&texels))
+            })
+            .collect::<Result<_, String>>()?;
+        Ok(texels_of(
+            &per_target,
+            (options.width * options.height) as usize,
+            layout.words(),
+        ))
+    }
+
+    fn passes(&self, options: &Options) -> Result<Passes, String> {
+        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let passes = Passes::new(self, options);
+        match pollster::block_on(scope.pop()) {
+            Some(error) => Err(format!(
+                "wgpu rejected the passes for {}: {error}",
+                options.gbuffer.name()
+            )),
+            None => Ok(passes),
+        }
+    }
+}
