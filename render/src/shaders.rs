@@ -347,48 +347,69 @@ fn surface_position(pixel: vec2<i32>, direction: vec3<f32>) -> vec3<f32> {
 /// The lighting pass's WGSL for a configuration: `lighting_main` (radiance) and
 /// `lighting_resolve_main` (tone-mapped), reading positions from `positions`.
 pub fn lighting_pass_wgsl(options: &Options, positions: Positions) -> Result<String, String> {
-    let (bindings, read) = match &options.gbuffer {
+    // `sample_gbuffer(pixel)`: whether a surface is there, and what the lighting reads of it.
+    let (bindings, sample) = match &options.gbuffer {
         GBuffer::Solved(solution) => return Ok(solved_lighting_wgsl(solution, options)),
         GBuffer::Packed(layout) => {
             let model = layout.layout();
             let (bindings, targets) = read_packed_targets(&model);
-            let snake = model.snake_name();
+            let (name, snake) = (&model.name, model.snake_name());
             let texel_positions = match positions {
                 Positions::Texel => layout.on_tile_wgsl()?,
                 Positions::DepthBuffer => "",
             };
             (
                 format!("{}\n{}\n{texel_positions}\n{bindings}", layout.wgsl(), layout.decode_wgsl()),
-                format!("let targets = {targets};\n    if targets.first.x == 0xffffffffu {{\n        SKY\n    }}\n    let texel = unpack_{snake}_targets(targets);\n    let shading = decode_texel(texel);"),
+                format!(
+                    "struct GBufferSample {{\n    surface: bool,\n    texel: {name},\n    shading: Shading,\n}}\n\n\
+                     // Sky pixels keep the G-buffer's clear value, all ones.\n\
+                     fn sample_gbuffer(pixel: vec2<i32>) -> GBufferSample {{\n    \
+                     let targets = {targets};\n    \
+                     let texel = unpack_{snake}_targets(targets);\n    \
+                     return GBufferSample(targets.first.x != 0xffffffffu, texel, decode_texel(texel));\n}}\n"
+                ),
             )
         }
         GBuffer::Classic => (
             "@group(0) @binding(10) var gbuffer_light: texture_2d<f32>;\n@group(0) @binding(11) var gbuffer_normal: texture_2d<f32>;\n@group(0) @binding(12) var gbuffer_colour: texture_2d<f32>;\n".to_string(),
-            "let light = textureLoad(gbuffer_light, pixel, 0);\n    if light.a == 0.0 {\n        SKY\n    }\n    let normal_roughness = textureLoad(gbuffer_normal, pixel, 0);\n    let colour = textureLoad(gbuffer_colour, pixel, 0);\n    let colours = metallic_workflow(colour.rgb, colour.a, DIELECTRIC_F0);\n    let shading = Shading(unorm_to_normal(normal_roughness.xyz), normal_roughness.w, colours.diffuse, colours.f0, light.rgb);".to_string(),
+            "struct GBufferSample {\n    surface: bool,\n    shading: Shading,\n}\n\n\
+             // Sky pixels keep the light target's clear alpha, 0.\n\
+             fn sample_gbuffer(pixel: vec2<i32>) -> GBufferSample {\n    \
+             let light = textureLoad(gbuffer_light, pixel, 0);\n    \
+             let normal_roughness = textureLoad(gbuffer_normal, pixel, 0);\n    \
+             let colour = textureLoad(gbuffer_colour, pixel, 0);\n    \
+             let colours = metallic_workflow(colour.rgb, colour.a, DIELECTRIC_F0);\n    \
+             let shading = Shading(unorm_to_normal(normal_roughness.xyz), normal_roughness.w, colours.diffuse, colours.f0, light.rgb);\n    \
+             return GBufferSample(light.a != 0.0, shading);\n}\n".to_string(),
         ),
     };
-    // The texel at `pixel` as `shading`, and what a sky pixel does instead.
-    let read = |sky: &str| read.replace("SKY", sky);
     Ok(format!(
         "{}\n{VOLUME_WGSL}\n{bindings}
+{sample}
 // The image-based light and the sun at a pixel (the sky where there is no surface).
 fn pixel_radiance(position: vec4<f32>) -> vec3<f32> {{
     let pixel = vec2<i32>(position.xy);
     let direction = camera_ray(position.xy, VIEWPORT);
-    {read_radiance}
+    let sample = sample_gbuffer(pixel);
+    if !sample.surface {{
+        return sky(direction);
+    }}
     let view = -direction;
-    return environment_light(shading, view) + sun_light(shading, view);
+    return environment_light(sample.shading, view) + sun_light(sample.shading, view);
 }}
 
 // Every point light at a pixel, one after the other (the on-tile two-pass path's way).
 fn pixel_point_lights(position: vec4<f32>) -> vec3<f32> {{
     let pixel = vec2<i32>(position.xy);
     let direction = camera_ray(position.xy, VIEWPORT);
-    {read_dark}
+    let sample = sample_gbuffer(pixel);
+    if !sample.surface {{
+        return vec3<f32>(0.0);
+    }}
     let surface = {position};
     var radiance = vec3<f32>(0.0);
     for (var index = 0u; index < POINT_LIGHT_COUNT; index++) {{
-        radiance += point_light(shading, -direction, surface, index);
+        radiance += point_light(sample.shading, -direction, surface, index);
     }}
     return radiance;
 }}
@@ -414,12 +435,15 @@ fn light_volume_vertex(@builtin(vertex_index) vertex: u32, @builtin(instance_ind
 fn point_light_main(volume: LightVolume) -> @location(0) vec4<f32> {{
     let pixel = vec2<i32>(volume.clip.xy);
     let direction = camera_ray(volume.clip.xy, VIEWPORT);
-    {read_discard}
+    let sample = sample_gbuffer(pixel);
+    if !sample.surface {{
+        discard;
+    }}
     let surface = {position};
     if distance(POINT_LIGHT_POSITIONS[volume.light], surface) >= POINT_LIGHT_RADIUS {{
         discard;
     }}
-    return vec4<f32>(point_light(shading, -direction, surface, volume.light), 0.0);
+    return vec4<f32>(point_light(sample.shading, -direction, surface, volume.light), 0.0);
 }}
 
 // Lighting and tone mapping in one pass (the on-tile backends' two-pass path).
@@ -433,12 +457,9 @@ fn lighting_resolve_main(@builtin(position) position: vec4<f32>) -> @location(0)
 }}
 ",
         lighting_prelude(options, positions),
-        read_radiance = read("return sky(direction);"),
-        read_dark = read("return vec3<f32>(0.0);"),
-        read_discard = read("discard;"),
         position = match positions {
             Positions::DepthBuffer => "surface_position(pixel, direction)",
-            Positions::Texel => "texel_position(texel, direction)",
+            Positions::Texel => "texel_position(sample.texel, direction)",
         },
     ))
 }
