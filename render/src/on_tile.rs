@@ -220,27 +220,7 @@ pub fn tile_layout(options: &Options) -> Result<SeedLayout, String> {
 /// GREATER depth test) or over the sky (`sky_vertex`: on the far plane, EQUAL), and a volume's
 /// screen rectangle (`volume_vertex`: point light `volume` below POINT_LIGHT_COUNT, else decal
 /// `volume - POINT_LIGHT_COUNT`), drawn over the surfaces.
-pub const VERTEX_WGSL: &str = "
-// Fullscreen draws over the surfaces sit here in depth; the farthest surface is well in front.
-const SURFACES_DEPTH: f32 = 0.99999;
-
-@vertex
-fn surfaces_vertex(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32> {
-    return vec4<f32>(fullscreen_corner(vertex), SURFACES_DEPTH, 1.0);
-}
-
-@vertex
-fn sky_vertex(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32> {
-    return vec4<f32>(fullscreen_corner(vertex), 1.0, 1.0);
-}
-
-// Volume `volume`'s screen rectangle (`volume_rectangle`), over the surfaces. The fragment
-// stage reads the volume from the host (a uniform on GLES, a push constant on Vulkan).
-@vertex
-fn volume_vertex(@builtin(vertex_index) vertex: u32, @location(0) volume: u32) -> @builtin(position) vec4<f32> {
-    return vec4<f32>(volume_rectangle(vertex, volume), SURFACES_DEPTH, 1.0);
-}
-";
+pub const VERTEX_WGSL: &str = include_str!("../wgsl/fused_vertices.wgsl");
 
 /// The fragment stages' functions, in WGSL, over the layout's texel `T`: what the hand-written
 /// entry points call between reading the G-buffer and writing it.

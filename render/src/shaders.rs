@@ -69,70 +69,14 @@ fn geometry_vertex(@location(0) position: vec3<f32>, @location(1) normal: vec3<f
 /// `volume`'s box: point light `volume` (its reach) below POINT_LIGHT_COUNT, else decal
 /// `volume - POINT_LIGHT_COUNT`; the whole screen when the box reaches behind the near plane.
 /// Light volumes keep the cost of a light to the pixels it can reach.
-pub const VOLUME_WGSL: &str = "
-fn volume_rectangle(vertex: u32, volume: u32) -> vec2<f32> {
-    var centre: vec3<f32>;
-    var half_size: vec3<f32>;
-    if volume < POINT_LIGHT_COUNT {
-        centre = POINT_LIGHT_POSITIONS[volume];
-        half_size = vec3<f32>(POINT_LIGHT_RADIUS);
-    } else {
-        centre = DECAL_CENTRES[volume - POINT_LIGHT_COUNT];
-        half_size = DECAL_HALF_SIZES[volume - POINT_LIGHT_COUNT];
-    }
-    var low = vec2<f32>(1.0);
-    var high = vec2<f32>(-1.0);
-    var behind = false;
-    for (var corner = 0u; corner < 8u; corner++) {
-        let sign = vec3<f32>(f32(corner & 1u), f32((corner >> 1u) & 1u), f32((corner >> 2u) & 1u)) * 2.0 - vec3<f32>(1.0);
-        let clip = clip_position(centre + sign * half_size, VIEWPORT, CLIP_Y_SIGN);
-        behind = behind || clip.w <= CAMERA_NEAR;
-        let ndc = clip.xy / max(clip.w, 1e-6);
-        low = min(low, ndc);
-        high = max(high, ndc);
-    }
-    if behind {
-        low = vec2<f32>(-1.0);
-        high = vec2<f32>(1.0);
-    }
-    // (low, low) (high, low) (high, high), (low, low) (high, high) (low, high).
-    var corners = array<vec2<f32>, 6>(vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0));
-    return mix(clamp(low, vec2<f32>(-1.0), vec2<f32>(1.0)), clamp(high, vec2<f32>(-1.0), vec2<f32>(1.0)), corners[vertex]);
-}
-";
+pub const VOLUME_WGSL: &str = include_str!("../wgsl/volume.wgsl");
 
 /// The binding of the inputs' sampler (GLSL combines it with each texture).
 pub const SAMPLER_BINDING: u32 = 3;
 
 /// The host functions over the baked inputs that the scene and the lighting read, at group 0:
 /// the environment (1), the LUT (2), the sampler (3), the light map (5).
-pub const INPUTS_WGSL: &str = "
-@group(0) @binding(1) var environment: texture_2d<f32>;
-@group(0) @binding(2) var lut: texture_2d<f32>;
-@group(0) @binding(3) var linear_sampler: sampler;
-@group(0) @binding(5) var light_map: texture_2d<f32>;
-
-// Direction to equirectangular coordinates (u around the vertical, v from the zenith).
-fn equirectangular(direction: vec3<f32>) -> vec2<f32> {
-    return vec2<f32>(atan2(direction.x, direction.z) * 0.15915494 + 0.5, acos(clamp(direction.y, -1.0, 1.0)) * 0.31830988);
-}
-
-// The prefiltered sky towards `direction` for `roughness` (its mip, Listing 2.6).
-fn environment_radiance(direction: vec3<f32>, roughness: f32) -> vec3<f32> {
-    let mip = ibl_mip_level(roughness, ENVIRONMENT_MIPS);
-    return rgbm_decode(textureSampleLevel(environment, linear_sampler, equirectangular(direction), mip), ENVIRONMENT_RANGE);
-}
-
-// The split-sum LUT: scale and bias of f0.
-fn env_brdf_lut(n_dot_v: f32, roughness: f32) -> vec2<f32> {
-    return textureSampleLevel(lut, linear_sampler, vec2<f32>(n_dot_v, roughness), 0.0).xy;
-}
-
-// The light map's static diffuse irradiance at `uv` (RGBM squared, Listing 2.5).
-fn light_map_irradiance(uv: vec2<f32>) -> vec3<f32> {
-    return rgbm_squared_decode(textureSampleLevel(light_map, linear_sampler, uv, 0.0), LIGHT_MAP_RANGE);
-}
-";
+pub const INPUTS_WGSL: &str = include_str!("../wgsl/inputs.wgsl");
 
 /// The lighting of a decoded texel, in the chosen forms: `environment_light` (the image-based
 /// light over the light accumulation), `sun_light` and `point_light` (light `index` at a world
@@ -333,16 +277,7 @@ fn lighting_prelude(options: &Options, positions: Positions) -> String {
 }
 
 /// The depth buffer, and the position it gives the surface at a pixel.
-const DEPTH_BUFFER_WGSL: &str = "
-@group(0) @binding(4) var depth_buffer: texture_depth_2d;
-
-// Where the surface at `pixel` lies: the depth buffer's depth along the camera ray.
-fn surface_position(pixel: vec2<i32>, direction: vec3<f32>) -> vec3<f32> {
-    let depth = textureLoad(depth_buffer, pixel, 0);
-    let view_depth = CAMERA_NEAR / (1.0 - depth * (CAMERA_FAR - CAMERA_NEAR) / CAMERA_FAR);
-    return SCENE_EYE + direction * (view_depth / dot(direction, normalize(SCENE_TARGET - SCENE_EYE)));
-}
-";
+const DEPTH_BUFFER_WGSL: &str = include_str!("../wgsl/depth_buffer.wgsl");
 
 /// The lighting pass's WGSL for a configuration: `lighting_main` (radiance) and
 /// `lighting_resolve_main` (tone-mapped), reading positions from `positions`.
