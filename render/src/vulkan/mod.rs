@@ -419,20 +419,20 @@ impl VulkanRenderer {
         self.vulkan.submit_and_wait(|device, commands| {
             // SAFETY: the image and the staging buffer are alive; each copy is within both.
             unsafe {
-                let to_transfer = vk::ImageMemoryBarrier::default()
-                    .dst_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-                    .old_layout(vk::ImageLayout::UNDEFINED)
-                    .new_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
-                    .image(image)
-                    .subresource_range(range);
-                device.cmd_pipeline_barrier(
+                let transition = Transition { image, range };
+                transition.record(
+                    device,
                     commands,
-                    vk::PipelineStageFlags::TOP_OF_PIPE,
-                    vk::PipelineStageFlags::TRANSFER,
-                    vk::DependencyFlags::empty(),
-                    &[],
-                    &[],
-                    &[to_transfer],
+                    (
+                        vk::ImageLayout::UNDEFINED,
+                        vk::AccessFlags::empty(),
+                        vk::PipelineStageFlags::TOP_OF_PIPE,
+                    ),
+                    (
+                        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                        vk::AccessFlags::TRANSFER_WRITE,
+                        vk::PipelineStageFlags::TRANSFER,
+                    ),
                 );
                 let mut offset = 0;
                 let copies: Vec<vk::BufferImageCopy> = mips
@@ -458,25 +458,67 @@ impl VulkanRenderer {
                     vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                     &copies,
                 );
-                let to_sampling = vk::ImageMemoryBarrier::default()
-                    .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-                    .dst_access_mask(vk::AccessFlags::SHADER_READ)
-                    .old_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
-                    .new_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)
-                    .image(image)
-                    .subresource_range(range);
-                device.cmd_pipeline_barrier(
+                transition.record(
+                    device,
                     commands,
-                    vk::PipelineStageFlags::TRANSFER,
-                    vk::PipelineStageFlags::FRAGMENT_SHADER,
-                    vk::DependencyFlags::empty(),
-                    &[],
-                    &[],
-                    &[to_sampling],
+                    (
+                        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                        vk::AccessFlags::TRANSFER_WRITE,
+                        vk::PipelineStageFlags::TRANSFER,
+                    ),
+                    (
+                        vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+                        vk::AccessFlags::SHADER_READ,
+                        vk::PipelineStageFlags::FRAGMENT_SHADER,
+                    ),
                 );
             }
         })?;
         Ok(view)
+    }
+}
+
+/// An image's layout change, as one barrier: from (layout, what wrote it, where) to (layout,
+/// what reads it, where).
+struct Transition {
+    image: vk::Image,
+    range: vk::ImageSubresourceRange,
+}
+
+type Access = (vk::ImageLayout, vk::AccessFlags, vk::PipelineStageFlags);
+
+impl Transition {
+    /// Records the barrier.
+    ///
+    /// # Safety
+    ///
+    /// `commands` is recording and the image is alive.
+    unsafe fn record(
+        &self,
+        device: &ash::Device,
+        commands: vk::CommandBuffer,
+        (old_layout, src_access, src_stage): Access,
+        (new_layout, dst_access, dst_stage): Access,
+    ) {
+        let barrier = vk::ImageMemoryBarrier::default()
+            .src_access_mask(src_access)
+            .dst_access_mask(dst_access)
+            .old_layout(old_layout)
+            .new_layout(new_layout)
+            .image(self.image)
+            .subresource_range(self.range);
+        // SAFETY: as the caller promises.
+        unsafe {
+            device.cmd_pipeline_barrier(
+                commands,
+                src_stage,
+                dst_stage,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &[barrier],
+            );
+        }
     }
 }
 
