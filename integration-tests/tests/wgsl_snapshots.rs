@@ -1,16 +1,10 @@
 //! The generated WGSL is part of the product: these snapshots make every change to it a
 //! reviewed diff. Update with `INSTA_UPDATE=always cargo test -p gbuffer-integration-tests --test wgsl_snapshots`
-//! (or `cargo insta review`).
+//! (or `cargo insta review`). The seed and engine layouts' WGSL is snapshotted once, as the
+//! layout files' output (`codegen_outputs`), which a test there holds equal to the derive's.
 
-use gbuffer::{seed_layouts, GBufferLayout};
+use gbuffer::GBufferLayout;
 use gbuffer_testkit::{AllFormats, FastFormats, MixedConversions};
-
-#[test]
-fn seed_layout_wgsl() {
-    for (layout, wgsl) in seed_layouts::all() {
-        insta::assert_snapshot!(layout.snake_name(), wgsl);
-    }
-}
 
 #[test]
 fn all_formats_wgsl() {
