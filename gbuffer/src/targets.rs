@@ -44,7 +44,7 @@ use wgpu::{
     TextureView, TextureViewDimension,
 };
 
-use crate::packing::PackedTarget;
+use crate::packing::{Layout, PackedTarget};
 use crate::GBufferLayout;
 
 /// Words per `Rgba32Uint` target.
@@ -166,34 +166,7 @@ pub trait GBufferTargets: GBufferLayout {
         height: u32,
         usage: TextureUsages,
     ) -> GBufferTextures {
-        let name = Self::layout().name;
-        let textures: Vec<Texture> = Self::TARGET_FORMATS
-            .iter()
-            .enumerate()
-            .map(|(index, &format)| {
-                device.create_texture(&TextureDescriptor {
-                    label: Some(&format!("{name} target {index}")),
-                    size: Extent3d {
-                        width,
-                        height,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: TextureDimension::D2,
-                    format,
-                    usage: usage
-                        | TextureUsages::RENDER_ATTACHMENT
-                        | TextureUsages::TEXTURE_BINDING,
-                    view_formats: &[],
-                })
-            })
-            .collect();
-        let views = textures
-            .iter()
-            .map(|texture| texture.create_view(&Default::default()))
-            .collect();
-        GBufferTextures { textures, views }
+        create_targets(device, &Self::layout(), width, height, usage)
     }
 
     /// Bind group layout entries for the targets as unfiltered `texture_2d<u32>`s at bindings
@@ -222,15 +195,7 @@ pub trait GBufferTargets: GBufferLayout {
         first_binding: u32,
         targets: &GBufferTextures,
     ) -> Vec<BindGroupEntry<'_>> {
-        targets
-            .views
-            .iter()
-            .enumerate()
-            .map(|(index, view)| BindGroupEntry {
-                binding: first_binding + index as u32,
-                resource: BindingResource::TextureView(view),
-            })
-            .collect()
+        bind_group_entries(first_binding, targets)
     }
 
     /// A bind group of the targets alone, for a layout made from
@@ -249,30 +214,11 @@ pub trait GBufferTargets: GBufferLayout {
     }
 
     /// The lighting pass's WGSL for the targets, to put after [`GBufferLayout::WGSL`]: one
-    /// `texture_2d<u32>` per target (`<snake>_target<t>`, in `group`, from `first_binding`) and
+    /// `texture_2d<u32>` per target (`<snake>_target<t>`, in `group`, from `first_binding`),
+    /// `load_<snake>_targets(pixel: vec2<u32>) -> <Name>Targets`, the words as stored, and
     /// `read_<snake>_targets(pixel: vec2<u32>) -> <Name>`, which loads and unpacks a texel.
     fn lighting_wgsl(group: u32, first_binding: u32) -> String {
-        let layout = Self::layout();
-        let prefix = layout.snake_name();
-        let name = &layout.name;
-        let mut out =
-            format!("// The G-buffer targets of layout `{name}`, read by the lighting pass.\n");
-        let mut loads = Vec::new();
-        for index in 0..Self::TARGET_FORMATS.len() {
-            let binding = first_binding + index as u32;
-            out.push_str(&format!(
-                "@group({group}) @binding({binding}) var {prefix}_target{index}: texture_2d<u32>;\n"
-            ));
-            loads.push(format!("textureLoad({prefix}_target{index}, pixel, 0)"));
-        }
-        out.push_str(&format!(
-            "\n// The texel at `pixel`, unpacked (channels a narrow target lacks read as 0 or 1\n\
-             // and lie past the layout's words).\n\
-             fn read_{prefix}_targets(pixel: vec2<u32>) -> {name} {{\n    \
-             return unpack_{prefix}_targets({name}Targets({}));\n}}\n",
-            loads.join(", ")
-        ));
-        out
+        lighting_wgsl(&Self::layout(), group, first_binding)
     }
 
     /// Bytes per sample of the targets, as wgpu counts them against
@@ -315,3 +261,84 @@ pub trait GBufferTargets: GBufferLayout {
 }
 
 impl<T: GBufferLayout> GBufferTargets for T {}
+
+// The helpers for a layout known at run time (a solved or loaded one, as a renderer that
+// switches layouts holds them): what the trait's methods call with `Self::layout()`.
+
+/// [`GBufferTargets::create_targets`] for `layout`.
+pub fn create_targets(
+    device: &Device,
+    layout: &Layout,
+    width: u32,
+    height: u32,
+    usage: TextureUsages,
+) -> GBufferTextures {
+    let textures: Vec<Texture> = packed_target_formats(layout.words())
+        .iter()
+        .enumerate()
+        .map(|(index, &format)| {
+            device.create_texture(&TextureDescriptor {
+                label: Some(&format!("{} target {index}", layout.name)),
+                size: Extent3d {
+                    width,
+                    height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: TextureDimension::D2,
+                format,
+                usage: usage | TextureUsages::RENDER_ATTACHMENT | TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            })
+        })
+        .collect();
+    let views = textures
+        .iter()
+        .map(|texture| texture.create_view(&Default::default()))
+        .collect();
+    GBufferTextures { textures, views }
+}
+
+/// [`GBufferTargets::bind_group_entries`]: the targets' views from `first_binding` on.
+pub fn bind_group_entries(
+    first_binding: u32,
+    targets: &GBufferTextures,
+) -> Vec<BindGroupEntry<'_>> {
+    targets
+        .views
+        .iter()
+        .enumerate()
+        .map(|(index, view)| BindGroupEntry {
+            binding: first_binding + index as u32,
+            resource: BindingResource::TextureView(view),
+        })
+        .collect()
+}
+
+/// [`GBufferTargets::lighting_wgsl`] for `layout`.
+pub fn lighting_wgsl(layout: &Layout, group: u32, first_binding: u32) -> String {
+    let prefix = layout.snake_name();
+    let name = &layout.name;
+    let mut out =
+        format!("// The G-buffer targets of layout `{name}`, read by the lighting pass.\n");
+    let mut loads = Vec::new();
+    for index in 0..packed_target_formats(layout.words()).len() {
+        let binding = first_binding + index as u32;
+        out.push_str(&format!(
+            "@group({group}) @binding({binding}) var {prefix}_target{index}: texture_2d<u32>;\n"
+        ));
+        loads.push(format!("textureLoad({prefix}_target{index}, pixel, 0)"));
+    }
+    out.push_str(&format!(
+        "\n// The words at `pixel` as stored (channels a narrow target lacks read as 0 or 1 and lie\n\
+         // past the layout's words).\n\
+         fn load_{prefix}_targets(pixel: vec2<u32>) -> {name}Targets {{\n    \
+         return {name}Targets({});\n}}\n\n\
+         // The texel at `pixel`, unpacked.\n\
+         fn read_{prefix}_targets(pixel: vec2<u32>) -> {name} {{\n    \
+         return unpack_{prefix}_targets(load_{prefix}_targets(pixel));\n}}\n",
+        loads.join(", ")
+    ));
+    out
+}

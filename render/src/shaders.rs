@@ -175,23 +175,16 @@ fn write_packed_targets(layout: &Layout) -> (String, String) {
     )
 }
 
-/// The lighting pass's bindings of a packed layout's targets (10, 11, ...) and the expression
-/// that loads them at `pixel` as a `<Name>Targets`.
+/// The first binding of the G-buffer's targets in the lighting pass's group 0.
+pub const GBUFFER_FIRST_BINDING: u32 = 10;
+
+/// The lighting pass's bindings of a packed layout's targets, as the library's wgpu helpers
+/// declare them (`gbuffer::targets::lighting_wgsl`), and the expression that loads them at
+/// `pixel` as a `<Name>Targets`.
 fn read_packed_targets(layout: &Layout) -> (String, String) {
-    let bindings = (0..layout.targets())
-        .map(|target| {
-            format!(
-                "@group(0) @binding({}) var gbuffer{target}: texture_2d<u32>;\n",
-                10 + target
-            )
-        })
-        .collect();
-    let loads: Vec<String> = (0..layout.targets())
-        .map(|target| format!("textureLoad(gbuffer{target}, pixel, 0)"))
-        .collect();
     (
-        bindings,
-        format!("{}Targets({})", layout.name, loads.join(", ")),
+        gbuffer::targets::lighting_wgsl(layout, 0, GBUFFER_FIRST_BINDING),
+        format!("load_{}_targets(vec2<u32>(pixel))", layout.snake_name()),
     )
 }
 

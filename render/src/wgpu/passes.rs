@@ -8,8 +8,9 @@ use crate::gbuffers::GBuffer;
 use crate::options::Options;
 use crate::recording::{Attachment, Call, Load, Recording};
 use crate::scene::POINT_LIGHT_COUNT;
-use crate::shaders::{self};
-use crate::shaders::{gbuffer_wgsl, lighting_pass_wgsl, tonemap_wgsl, Positions};
+use crate::shaders::{
+    self, gbuffer_wgsl, lighting_pass_wgsl, tonemap_wgsl, Positions, GBUFFER_FIRST_BINDING,
+};
 
 use super::{Renderer, DEPTH_FORMAT, HDR_FORMAT};
 
@@ -66,12 +67,25 @@ impl Passes {
         let read_back_usage =
             wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
         let view = |texture: &wgpu::Texture| texture.create_view(&Default::default());
-        let gbuffer_views: Vec<wgpu::TextureView> = options
-            .gbuffer
-            .target_formats()
-            .into_iter()
-            .map(|format| view(&target("gbuffer", format, read_back_usage)))
-            .collect();
+        let gbuffer_views: Vec<wgpu::TextureView> = match options.gbuffer.layout() {
+            // A packed layout's targets, as the library's wgpu helpers make them.
+            Some(layout) => {
+                gbuffer::targets::create_targets(
+                    device,
+                    &layout,
+                    options.width,
+                    options.height,
+                    wgpu::TextureUsages::empty(),
+                )
+                .views
+            }
+            None => options
+                .gbuffer
+                .target_formats()
+                .into_iter()
+                .map(|format| view(&target("gbuffer", format, read_back_usage)))
+                .collect(),
+        };
         // Sky pixels keep the clear value: all ones in the packed words, zero alpha in the
         // classic light target; the lighting pass draws the sky there.
         let all_ones = f64::from(u32::MAX);
@@ -157,7 +171,7 @@ impl Passes {
             texture(4, &depth_view),
         ];
         for (index, target_view) in gbuffer_views.iter().enumerate() {
-            entries.push(texture(10 + index as u32, target_view));
+            entries.push(texture(GBUFFER_FIRST_BINDING + index as u32, target_view));
         }
         // The pass binds only what its forms and terms read.
         let all_entries = entries.clone();
