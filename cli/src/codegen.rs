@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use gbuffer_codegen::layout_file::{read_layout_file, LayoutFileError};
+use gbuffer_codegen::layout_file::{read_layout_file, FileError};
 use gbuffer_codegen::output::{generate, write_if_changed, Output, WriteOutcome};
 
 /// Turns G-buffer layout files (TOML) into shader includes: WGSL, GLSL ES pixel local storage
@@ -78,7 +78,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
     for path in &arguments.layouts {
         match read_layout_file(path) {
             Ok(layout) => layouts.push(layout),
-            Err(error @ LayoutFileError::Io { .. }) => {
+            Err(error @ FileError::Io { .. }) => {
                 eprintln!("gbuffer codegen: {error}");
                 status = Some(USAGE);
             }

@@ -13,8 +13,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_codegen::layout_file::FileError;
 use gbuffer_codegen::output::{generate, write_if_changed, Output};
-use gbuffer_solver::file::{read_and_solve, SceneFileError};
+use gbuffer_solver::file::read_and_solve;
 use gbuffer_solver::lighting::{lighting_wgsl, Forms};
 
 /// Solves scene descriptions (TOML): the smallest G-buffer layout that meets their precision,
@@ -51,7 +52,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
     for path in &arguments.scenes {
         let solution = match read_and_solve(path) {
             Ok(solution) => solution,
-            Err(error @ SceneFileError::Io { .. }) => {
+            Err(error @ FileError::Io { .. }) => {
                 eprintln!("gbuffer solve: {error}");
                 return ExitCode::from(2);
             }

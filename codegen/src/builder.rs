@@ -18,7 +18,7 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use crate::layout_file::{read_layout_file, LayoutFileError};
+use crate::layout_file::{read_layout_file, FileError};
 use crate::output::{generate, write_if_changed, Output};
 
 /// Generates the includes of layout files from a build script.
@@ -39,7 +39,7 @@ impl Default for Builder {
 #[derive(Debug)]
 pub enum BuildError {
     /// A layout file was unreadable or invalid.
-    Layout(LayoutFileError),
+    Layout(FileError),
     /// No output folder: neither `out_dir` nor the `OUT_DIR` variable cargo sets.
     NoOutDir,
     /// Writing an output failed.

@@ -167,11 +167,13 @@ impl fmt::Display for FileDiagnostic {
     }
 }
 
-/// Why a layout file could not be read.
+/// Why a TOML file of this project (a layout file, a scene file) could not be used.
 #[derive(Debug)]
-pub enum LayoutFileError {
+pub enum FileError {
     /// The file could not be read at all.
     Io {
+        /// What the file is, e.g. `layout file`.
+        kind: &'static str,
         /// The file that could not be read.
         path: PathBuf,
         /// Why.
@@ -181,15 +183,30 @@ pub enum LayoutFileError {
     Invalid(Vec<FileDiagnostic>),
 }
 
-impl fmt::Display for LayoutFileError {
+impl FileError {
+    /// Reads `path`, a file of `kind` (`layout file`, `scene file`), and hands its text and path
+    /// to `parse`, whose diagnostics make the error.
+    pub fn read<T>(
+        path: &Path,
+        kind: &'static str,
+        parse: impl FnOnce(&str, &Path) -> Result<T, Vec<FileDiagnostic>>,
+    ) -> Result<T, FileError> {
+        let source = std::fs::read_to_string(path).map_err(|error| FileError::Io {
+            kind,
+            path: path.to_path_buf(),
+            error,
+        })?;
+        parse(&source, path).map_err(FileError::Invalid)
+    }
+}
+
+impl fmt::Display for FileError {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            LayoutFileError::Io { path, error } => write!(
-                out,
-                "{}: cannot read the layout file: {error}",
-                path.display()
-            ),
-            LayoutFileError::Invalid(diagnostics) => {
+            FileError::Io { kind, path, error } => {
+                write!(out, "{}: cannot read the {kind}: {error}", path.display())
+            }
+            FileError::Invalid(diagnostics) => {
                 let texts: Vec<String> = diagnostics.iter().map(ToString::to_string).collect();
                 write!(out, "{}", texts.join("\n\n"))
             }
@@ -197,15 +214,11 @@ impl fmt::Display for LayoutFileError {
     }
 }
 
-impl std::error::Error for LayoutFileError {}
+impl std::error::Error for FileError {}
 
 /// Reads and checks a layout file.
-pub fn read_layout_file(path: &Path) -> Result<LayoutFile, LayoutFileError> {
-    let source = std::fs::read_to_string(path).map_err(|error| LayoutFileError::Io {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    parse_layout(&source, path).map_err(LayoutFileError::Invalid)
+pub fn read_layout_file(path: &Path) -> Result<LayoutFile, FileError> {
+    FileError::read(path, "layout file", parse_layout)
 }
 
 /// Parses and checks layout-file text; `path` names it in diagnostics.

@@ -25,11 +25,10 @@
 //! [`FileDiagnostic`] at the file, line and column of the key or value it is about.
 
 use std::collections::BTreeMap;
-use std::fmt;
 use std::ops::Range;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use gbuffer_codegen::layout_file::FileDiagnostic;
+use gbuffer_codegen::layout_file::{FileDiagnostic, FileError};
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -59,38 +58,6 @@ struct PrecisionEntry {
     hdr_relative: Option<Spanned<f64>>,
 }
 
-/// Why a scene file could not be used.
-#[derive(Debug)]
-pub enum SceneFileError {
-    /// The file could not be read.
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// Why.
-        error: std::io::Error,
-    },
-    /// Its problems, in file order.
-    Invalid(Vec<FileDiagnostic>),
-}
-
-impl fmt::Display for SceneFileError {
-    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            SceneFileError::Io { path, error } => write!(
-                out,
-                "{}: cannot read the scene file: {error}",
-                path.display()
-            ),
-            SceneFileError::Invalid(diagnostics) => {
-                let texts: Vec<String> = diagnostics.iter().map(ToString::to_string).collect();
-                write!(out, "{}", texts.join("\n\n"))
-            }
-        }
-    }
-}
-
-impl std::error::Error for SceneFileError {}
-
 /// A parsed scene file: the description and where each setting was written.
 struct Parsed {
     scene: SceneDescription,
@@ -109,12 +76,8 @@ impl Parsed {
 }
 
 /// Reads a scene file and solves it.
-pub fn read_and_solve(path: &Path) -> Result<Solution, SceneFileError> {
-    let source = std::fs::read_to_string(path).map_err(|error| SceneFileError::Io {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    parse_and_solve(&source, path).map_err(SceneFileError::Invalid)
+pub fn read_and_solve(path: &Path) -> Result<Solution, FileError> {
+    FileError::read(path, "scene file", parse_and_solve)
 }
 
 /// Parses and checks scene-file text; `path` names it in diagnostics.

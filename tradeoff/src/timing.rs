@@ -552,7 +552,7 @@ pub fn gpu_time(
     // times something else, and the wall clock is used. Should the median fall short of the
     // target by the clock used (a first run can be the slowest), the chain grows again and
     // they are run again.
-    let (clock, mut times) = loop {
+    let (clock, times) = loop {
         let runs: Vec<(f64, Option<f64>)> = (0..GPU_RUNS)
             .map(|_| run(&pipeline))
             .collect::<Result<_, _>>()?;
