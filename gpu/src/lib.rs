@@ -9,6 +9,7 @@ pub mod adapter;
 pub mod fullscreen;
 pub mod gles;
 pub mod harness;
+pub mod timestamps;
 pub mod tools;
 pub mod values;
 pub mod vulkan;

@@ -11,6 +11,7 @@ use std::time::Instant;
 
 use gbuffer::glam::Vec4;
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
+use gbuffer_gpu::timestamps::Timestamps;
 use gbuffer_gpu::Gpu;
 
 /// Invocations per dispatch, and the evaluations per invocation a calibration starts from.
@@ -460,7 +461,7 @@ pub fn gpu_time(
     let timestamps = device
         .features()
         .contains(wgpu::Features::TIMESTAMP_QUERY)
-        .then(|| Timestamps::new(device));
+        .then(|| Timestamps::new(device, "bench timestamps"));
     let compute_timestamps =
         timestamps
             .as_ref()
@@ -522,7 +523,7 @@ pub fn gpu_time(
         let wall = start.elapsed().as_secs_f64();
         let stamped = timestamps
             .as_ref()
-            .map(|timestamps| timestamps.seconds(gpu))
+            .map(|timestamps| timestamps.seconds(&gpu.device, &gpu.queue))
             .transpose()?;
         Ok((wall, stamped))
     };
@@ -579,61 +580,6 @@ pub fn gpu_time(
         Stage::Fragment => FRAGMENT_WIDTH * FRAGMENT_HEIGHT,
     };
     Ok(GpuTime::of_runs(stage, clock, times, chain, invocations))
-}
-
-/// The timestamp queries of a pass's start and end, and the buffers that read them back.
-struct Timestamps {
-    query_set: wgpu::QuerySet,
-    resolved: wgpu::Buffer,
-    readback: wgpu::Buffer,
-}
-
-impl Timestamps {
-    /// For a device with `TIMESTAMP_QUERY`.
-    fn new(device: &wgpu::Device) -> Timestamps {
-        let buffer = |usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: None,
-                size: 16,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
-        Timestamps {
-            query_set: device.create_query_set(&wgpu::QuerySetDescriptor {
-                label: Some("bench timestamps"),
-                ty: wgpu::QueryType::Timestamp,
-                count: 2,
-            }),
-            resolved: buffer(wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC),
-            readback: buffer(wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST),
-        }
-    }
-
-    /// Records the copy of the two timestamps to where [`Timestamps::seconds`] reads them.
-    fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
-        encoder.resolve_query_set(&self.query_set, 0..2, &self.resolved, 0);
-        encoder.copy_buffer_to_buffer(&self.resolved, 0, &self.readback, 0, 16);
-    }
-
-    /// The seconds between the two timestamps of the last submitted, finished run.
-    fn seconds(&self, gpu: &Gpu) -> Result<f64, String> {
-        let slice = self.readback.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |_| {});
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|error| error.to_string())?;
-        let ticks: [u64; 2] = {
-            let bytes = slice
-                .get_mapped_range()
-                .map_err(|error| format!("reading the timestamps: {error:?}"))?;
-            [0, 8].map(|at| u64::from_le_bytes(bytes[at..at + 8].try_into().expect("8 bytes")))
-        };
-        self.readback.unmap();
-        let nanoseconds =
-            ticks[1].saturating_sub(ticks[0]) as f64 * f64::from(gpu.queue.get_timestamp_period());
-        Ok(nanoseconds * 1e-9)
-    }
 }
 
 /// A timing harness's pipeline, of either stage.

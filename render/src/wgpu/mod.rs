@@ -15,7 +15,6 @@
 
 mod passes;
 mod textures;
-mod timestamps;
 
 use std::time::Instant;
 
@@ -30,9 +29,9 @@ use crate::recording::{Call, Recording};
 use crate::shaders::gbuffer_wgsl;
 use crate::shaders::{self};
 
+use gbuffer_gpu::timestamps::Timestamps;
 use passes::{Passes, VERTEX_ATTRIBUTES};
 use textures::texture_with_data;
-use timestamps::Timestamps;
 
 pub use textures::texels_of;
 
@@ -114,7 +113,7 @@ impl Renderer {
             contents: bytemuck::cast_slice(&mesh.indices),
             usage: wgpu::BufferUsages::INDEX,
         });
-        let timestamps = (!timestamp_feature.is_empty()).then(|| Timestamps::new(&device));
+        let timestamps = (!timestamp_feature.is_empty()).then(|| Timestamps::new(&device, "frame"));
         Ok(Renderer {
             device,
             queue,
@@ -180,7 +179,12 @@ impl Renderer {
                 .map_err(|error| error.to_string())?;
             let wall_clock = start.elapsed().as_secs_f64();
             times.push(match &self.timestamps {
-                Some(timestamps) => timestamps.read(self)?,
+                Some(timestamps) => {
+                    let mut encoder = self.device.create_command_encoder(&Default::default());
+                    timestamps.resolve(&mut encoder);
+                    self.queue.submit([encoder.finish()]);
+                    timestamps.seconds(&self.device, &self.queue)?
+                }
                 None => wall_clock,
             });
         }
