@@ -1,7 +1,7 @@
 //! The reference deferred renderer: a packed G-buffer pass, full PBS lighting and tone mapping,
 //! on three backends side by side: [`wgpu`] (the G-buffer through memory), [`gles`] and
 //! [`vulkan`] (the G-buffer kept on tile by their fused paths, [`on_tile`]), beside a CPU
-//! reference renderer of the same triangles ([`reference`]).
+//! reference renderer of the same triangles ([`reference`](mod@reference)).
 //!
 //! What the backends share: the [`options`] of a frame, the [`scene`] and its [`mesh`], the
 //! [`inputs`] baked once, the G-buffers ([`gbuffers`]), the WGSL of every pass ([`shaders`],
