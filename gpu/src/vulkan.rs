@@ -11,6 +11,30 @@ use std::ffi::CStr;
 
 use ash::vk;
 
+/// What a graphics pipeline is made of, for [`Vulkan::graphics_pipeline`].
+pub struct GraphicsPipeline<'a> {
+    /// The render pass it draws in.
+    pub render_pass: vk::RenderPass,
+    /// Its subpass there.
+    pub subpass: u32,
+    /// Its layout.
+    pub layout: vk::PipelineLayout,
+    /// The vertex and fragment modules (entry points `main`).
+    pub shaders: (vk::ShaderModule, vk::ShaderModule),
+    /// The vertex buffers' bindings and attributes (none for a fullscreen triangle).
+    pub vertex_input: (
+        &'a [vk::VertexInputBindingDescription],
+        &'a [vk::VertexInputAttributeDescription],
+    ),
+    /// The depth test, if the render pass has a depth attachment: whether it writes, and its
+    /// comparison.
+    pub depth: Option<(bool, vk::CompareOp)>,
+    /// Per colour attachment, whether the pipeline writes it.
+    pub colour_writes: &'a [bool],
+    /// The viewport's width and height.
+    pub size: (u32, u32),
+}
+
 /// Where a transient attachment's memory came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AttachmentMemory {
@@ -703,8 +727,27 @@ impl Vulkan {
         vertex: vk::ShaderModule,
         fragment: vk::ShaderModule,
         colour_attachments: usize,
-        (width, height): (u32, u32),
+        size: (u32, u32),
     ) -> Result<vk::Pipeline, String> {
+        self.graphics_pipeline(&GraphicsPipeline {
+            render_pass,
+            subpass,
+            layout,
+            shaders: (vertex, fragment),
+            vertex_input: (&[], &[]),
+            depth: None,
+            colour_writes: &vec![true; colour_attachments],
+            size,
+        })
+    }
+
+    /// A graphics pipeline as `description` says: triangle lists, no culling, no blending, one
+    /// sample, a viewport and scissor of its size.
+    pub fn graphics_pipeline(
+        &self,
+        description: &GraphicsPipeline,
+    ) -> Result<vk::Pipeline, String> {
+        let (vertex, fragment) = description.shaders;
         let stages = [
             vk::PipelineShaderStageCreateInfo::default()
                 .stage(vk::ShaderStageFlags::VERTEX)
@@ -715,9 +758,13 @@ impl Vulkan {
                 .module(fragment)
                 .name(c"main"),
         ];
-        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default();
+        let (bindings, attributes) = description.vertex_input;
+        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
+            .vertex_binding_descriptions(bindings)
+            .vertex_attribute_descriptions(attributes);
         let input_assembly = vk::PipelineInputAssemblyStateCreateInfo::default()
             .topology(vk::PrimitiveTopology::TRIANGLE_LIST);
+        let (width, height) = description.size;
         let viewports = [vk::Viewport {
             x: 0.0,
             y: 0.0,
@@ -740,14 +787,26 @@ impl Vulkan {
             .line_width(1.0);
         let multisample = vk::PipelineMultisampleStateCreateInfo::default()
             .rasterization_samples(vk::SampleCountFlags::TYPE_1);
-        let blend_attachments = vec![
-            vk::PipelineColorBlendAttachmentState::default()
-                .color_write_mask(vk::ColorComponentFlags::RGBA);
-            colour_attachments
-        ];
+        let blend_attachments: Vec<vk::PipelineColorBlendAttachmentState> = description
+            .colour_writes
+            .iter()
+            .map(|&writes| {
+                vk::PipelineColorBlendAttachmentState::default().color_write_mask(if writes {
+                    vk::ColorComponentFlags::RGBA
+                } else {
+                    vk::ColorComponentFlags::empty()
+                })
+            })
+            .collect();
         let blend =
             vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
-        let info = vk::GraphicsPipelineCreateInfo::default()
+        let depth_state = description.depth.map(|(write, compare)| {
+            vk::PipelineDepthStencilStateCreateInfo::default()
+                .depth_test_enable(true)
+                .depth_write_enable(write)
+                .depth_compare_op(compare)
+        });
+        let mut info = vk::GraphicsPipelineCreateInfo::default()
             .stages(&stages)
             .vertex_input_state(&vertex_input)
             .input_assembly_state(&input_assembly)
@@ -755,9 +814,12 @@ impl Vulkan {
             .rasterization_state(&rasterization)
             .multisample_state(&multisample)
             .color_blend_state(&blend)
-            .layout(layout)
-            .render_pass(render_pass)
-            .subpass(subpass);
+            .layout(description.layout)
+            .render_pass(description.render_pass)
+            .subpass(description.subpass);
+        if let Some(depth_state) = &depth_state {
+            info = info.depth_stencil_state(depth_state);
+        }
         // SAFETY: the stages, layout and render pass are alive and agree with each other.
         let pipeline = unsafe {
             self.device

@@ -3,7 +3,7 @@
 
 use ash::vk;
 use gbuffer_gpu::tools::glslang;
-use gbuffer_gpu::vulkan::Object;
+use gbuffer_gpu::vulkan::{GraphicsPipeline, Object};
 
 use super::VulkanRenderer;
 use crate::glsl::{self, Dialect};
@@ -177,17 +177,6 @@ impl VulkanRenderer {
         let fragment_module = self
             .vulkan
             .shader_module(&glslang(fragment, "frag", true)?)?;
-        let entry = c"main";
-        let stages = [
-            vk::PipelineShaderStageCreateInfo::default()
-                .stage(vk::ShaderStageFlags::VERTEX)
-                .module(vertex_module)
-                .name(entry),
-            vk::PipelineShaderStageCreateInfo::default()
-                .stage(vk::ShaderStageFlags::FRAGMENT)
-                .module(fragment_module)
-                .name(entry),
-        ];
         let (bindings, attributes): (Vec<_>, Vec<_>) = match vertex {
             "geometry_vertex" => (
                 vec![vk::VertexInputBindingDescription {
@@ -231,76 +220,22 @@ impl VulkanRenderer {
             ),
             _ => (Vec::new(), Vec::new()),
         };
-        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
-            .vertex_binding_descriptions(&bindings)
-            .vertex_attribute_descriptions(&attributes);
-        let assembly = vk::PipelineInputAssemblyStateCreateInfo::default()
-            .topology(vk::PrimitiveTopology::TRIANGLE_LIST);
-        let viewports = [vk::Viewport {
-            x: 0.0,
-            y: 0.0,
-            width: width as f32,
-            height: height as f32,
-            min_depth: 0.0,
-            max_depth: 1.0,
-        }];
-        let scissors = [vk::Rect2D {
-            offset: vk::Offset2D::default(),
-            extent: vk::Extent2D { width, height },
-        }];
-        let viewport = vk::PipelineViewportStateCreateInfo::default()
-            .viewports(&viewports)
-            .scissors(&scissors);
-        let rasterisation = vk::PipelineRasterizationStateCreateInfo::default()
-            .polygon_mode(vk::PolygonMode::FILL)
-            .cull_mode(vk::CullModeFlags::NONE)
-            .line_width(1.0);
-        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
-            .rasterization_samples(vk::SampleCountFlags::TYPE_1);
-        let (test, write, compare) = match depth {
-            Depth::None => (false, false, vk::CompareOp::ALWAYS),
-            Depth::Write => (true, true, vk::CompareOp::LESS),
-            Depth::Surfaces => (true, false, vk::CompareOp::GREATER),
-            Depth::Sky => (true, false, vk::CompareOp::EQUAL),
+        let depth = match depth {
+            Depth::None => None,
+            Depth::Write => Some((true, vk::CompareOp::LESS)),
+            Depth::Surfaces => Some((false, vk::CompareOp::GREATER)),
+            Depth::Sky => Some((false, vk::CompareOp::EQUAL)),
         };
-        let depth_state = vk::PipelineDepthStencilStateCreateInfo::default()
-            .depth_test_enable(test)
-            .depth_write_enable(write)
-            .depth_compare_op(compare);
-        let blends: Vec<vk::PipelineColorBlendAttachmentState> = writes
-            .iter()
-            .map(|&writes| {
-                vk::PipelineColorBlendAttachmentState::default().color_write_mask(if writes {
-                    vk::ColorComponentFlags::RGBA
-                } else {
-                    vk::ColorComponentFlags::empty()
-                })
-            })
-            .collect();
-        let blend = vk::PipelineColorBlendStateCreateInfo::default().attachments(&blends);
-        let mut info = vk::GraphicsPipelineCreateInfo::default()
-            .stages(&stages)
-            .vertex_input_state(&vertex_input)
-            .input_assembly_state(&assembly)
-            .viewport_state(&viewport)
-            .rasterization_state(&rasterisation)
-            .multisample_state(&multisample)
-            .color_blend_state(&blend)
-            .layout(layout)
-            .render_pass(render_pass)
-            .subpass(0);
-        if depth != Depth::None {
-            info = info.depth_stencil_state(&depth_state);
-        }
-        // SAFETY: every state the pipeline needs is given; the objects it names are alive.
-        let pipeline = unsafe {
-            self.vulkan
-                .device
-                .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
-        }
-        .map_err(|(_, error)| format!("vkCreateGraphicsPipelines: {error}"))?[0];
-        self.vulkan.track(Object::Pipeline(pipeline));
-        Ok(pipeline)
+        self.vulkan.graphics_pipeline(&GraphicsPipeline {
+            render_pass,
+            subpass: 0,
+            layout,
+            shaders: (vertex_module, fragment_module),
+            vertex_input: (&bindings, &attributes),
+            depth,
+            colour_writes: writes,
+            size: (width, height),
+        })
     }
 }
 
