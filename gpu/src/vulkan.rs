@@ -11,6 +11,35 @@ use std::ffi::CStr;
 
 use ash::vk;
 
+/// Records a global memory barrier: what `from` (access, stage) wrote is visible to `to`.
+///
+/// # Safety
+///
+/// `commands` is a command buffer of `device` being recorded.
+pub unsafe fn memory_barrier(
+    device: &ash::Device,
+    commands: vk::CommandBuffer,
+    (src_access, src_stage): (vk::AccessFlags, vk::PipelineStageFlags),
+    (dst_access, dst_stage): (vk::AccessFlags, vk::PipelineStageFlags),
+    dependency: vk::DependencyFlags,
+) {
+    let barrier = vk::MemoryBarrier::default()
+        .src_access_mask(src_access)
+        .dst_access_mask(dst_access);
+    // SAFETY: as the caller promises.
+    unsafe {
+        device.cmd_pipeline_barrier(
+            commands,
+            src_stage,
+            dst_stage,
+            dependency,
+            &[barrier],
+            &[],
+            &[],
+        );
+    }
+}
+
 /// What a graphics pipeline is made of, for [`Vulkan::graphics_pipeline`].
 pub struct GraphicsPipeline<'a> {
     /// The render pass it draws in.
@@ -855,17 +884,15 @@ impl Vulkan {
                 )
                 .map_err(|error| format!("vkBeginCommandBuffer: {error}"))?;
             record(&self.device, command_buffer);
-            let to_host = vk::MemoryBarrier::default()
-                .src_access_mask(vk::AccessFlags::SHADER_WRITE)
-                .dst_access_mask(vk::AccessFlags::HOST_READ);
-            self.device.cmd_pipeline_barrier(
+            memory_barrier(
+                &self.device,
                 command_buffer,
-                vk::PipelineStageFlags::FRAGMENT_SHADER,
-                vk::PipelineStageFlags::HOST,
+                (
+                    vk::AccessFlags::SHADER_WRITE,
+                    vk::PipelineStageFlags::FRAGMENT_SHADER,
+                ),
+                (vk::AccessFlags::HOST_READ, vk::PipelineStageFlags::HOST),
                 vk::DependencyFlags::empty(),
-                &[to_host],
-                &[],
-                &[],
             );
             self.device
                 .end_command_buffer(command_buffer)

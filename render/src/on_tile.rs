@@ -204,6 +204,14 @@ impl Stage {
     }
 }
 
+/// The GLSL name naga gives the layout's texel struct, which the hand-written entry points
+/// declare their texels with.
+pub fn texel_struct_name(layout: &gbuffer::packing::Layout) -> Result<String, String> {
+    gbuffer_codegen::emit::glsl::translate(layout)
+        .map(|translation| translation.names.layout)
+        .map_err(|error| error.to_string())
+}
+
 /// The seed layout of `options`, if it can be kept on tile (the error says why not).
 pub fn tile_layout(options: &Options) -> Result<SeedLayout, String> {
     match &options.gbuffer {

@@ -20,7 +20,7 @@ mod plans;
 
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::on_tile::{fused_wgsl, tile_layout, Path, Stage, TileOptions};
+use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage, TileOptions};
 use crate::options::{Frame, Options};
 use crate::recording::{Attachment, Call, Load, Recording};
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
@@ -192,10 +192,7 @@ impl GlesRenderer {
             .map_err(|error| error.to_string())?;
         let wgsl = fused_wgsl(options, layout, -1.0);
         let snake = model.snake_name();
-        let texel = includes::translate(&model)
-            .map_err(|error| error.to_string())?
-            .names
-            .layout;
+        let texel = texel_struct_name(&model)?;
         let main =
             Stage::Geometry.fragment_main(&texel, &snake, &format!("    store_{snake}(texel);\n"));
         let program = self.fused_program(

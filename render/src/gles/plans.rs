@@ -9,7 +9,7 @@ use gbuffer_codegen::emit::glsl::{self as includes, Include};
 use super::{GlesRenderer, Plan, Target, FETCH};
 use crate::gbuffers::SeedLayout;
 use crate::glsl::{self, Dialect};
-use crate::on_tile::{fused_wgsl, tile_layout, Path, Stage, TileOptions};
+use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage, TileOptions};
 use crate::options::Options;
 
 impl GlesRenderer {
@@ -66,10 +66,7 @@ impl GlesRenderer {
         }
         let wgsl = fused_wgsl(options, layout, -1.0);
         let snake = model.snake_name();
-        let texel = includes::translate(&model)
-            .map_err(|error| error.to_string())?
-            .names
-            .layout;
+        let texel = texel_struct_name(&model)?;
         let output = format!(
             "layout(location = {}) inout highp vec4 frame_colour;\n",
             interface.attachments.len()

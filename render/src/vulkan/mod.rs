@@ -16,7 +16,7 @@ use std::time::Instant;
 
 use ash::vk;
 use gbuffer::packing::PackedTarget;
-use gbuffer_gpu::vulkan::{Object, StorageBuffer, Vulkan};
+use gbuffer_gpu::vulkan::{memory_barrier, Object, StorageBuffer, Vulkan};
 
 mod objects;
 mod plans;
@@ -283,17 +283,18 @@ impl VulkanRenderer {
                     for &(stage, draw) in &pass.draws {
                         if previous.is_some() && plan.passes.len() == 1 {
                             // The next draw reads what this one wrote (the self-dependency).
-                            let barrier = vk::MemoryBarrier::default()
-                                .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
-                                .dst_access_mask(vk::AccessFlags::INPUT_ATTACHMENT_READ);
-                            device.cmd_pipeline_barrier(
+                            memory_barrier(
+                                device,
                                 commands,
-                                vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT,
-                                vk::PipelineStageFlags::FRAGMENT_SHADER,
+                                (
+                                    vk::AccessFlags::COLOR_ATTACHMENT_WRITE,
+                                    vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT,
+                                ),
+                                (
+                                    vk::AccessFlags::INPUT_ATTACHMENT_READ,
+                                    vk::PipelineStageFlags::FRAGMENT_SHADER,
+                                ),
                                 vk::DependencyFlags::BY_REGION,
-                                &[barrier],
-                                &[],
-                                &[],
                             );
                         }
                         if previous != Some(stage) {
@@ -380,17 +381,15 @@ impl VulkanRenderer {
                             })],
                     );
                 }
-                let to_host = vk::MemoryBarrier::default()
-                    .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
-                    .dst_access_mask(vk::AccessFlags::HOST_READ);
-                device.cmd_pipeline_barrier(
+                memory_barrier(
+                    device,
                     commands,
-                    vk::PipelineStageFlags::TRANSFER,
-                    vk::PipelineStageFlags::HOST,
+                    (
+                        vk::AccessFlags::TRANSFER_WRITE,
+                        vk::PipelineStageFlags::TRANSFER,
+                    ),
+                    (vk::AccessFlags::HOST_READ, vk::PipelineStageFlags::HOST),
                     vk::DependencyFlags::empty(),
-                    &[to_host],
-                    &[],
-                    &[],
                 );
             }
         })
