@@ -144,21 +144,26 @@ pub fn validate_wgsl(source: &str) -> Result<Validated, Problem> {
                 notes.push(handles.describe(&inner.to_string()));
                 cause = inner.source();
             }
+            let labels: Vec<Label> = error
+                .spans()
+                .filter_map(|(span, text)| {
+                    Some(Label {
+                        span: span.to_range()?,
+                        text: handles.describe(text),
+                    })
+                })
+                .collect();
+            let innermost = innermost_label(&labels)
+                .map(|index| line_and_column(source, labels[index].span.start));
             Problem {
                 stage: Stage::Validate,
-                location: error
-                    .location(source)
-                    .map(|at| (at.line_number, at.line_position)),
+                location: innermost.or_else(|| {
+                    error
+                        .location(source)
+                        .map(|at| (at.line_number, at.line_position))
+                }),
                 message: handles.describe(&error.as_inner().to_string()),
-                labels: error
-                    .spans()
-                    .filter_map(|(span, text)| {
-                        Some(Label {
-                            span: span.to_range()?,
-                            text: handles.describe(text),
-                        })
-                    })
-                    .collect(),
+                labels,
                 notes,
                 detail: error.emit_to_string(source),
             }
@@ -224,6 +229,24 @@ pub fn translate(validated: &Validated, backend: Backend) -> Result<String, Prob
             Ok(all)
         }
     }
+}
+
+/// The 1-based line and column (in bytes, as naga counts them) of byte `offset` of `source`.
+fn line_and_column(source: &str, offset: usize) -> (u32, u32) {
+    let before = &source[..offset.min(source.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = offset - before.rfind('\n').map_or(0, |newline| newline + 1) + 1;
+    (line as u32, column as u32)
+}
+
+/// The index of the label with the narrowest span (the last of equals): naga labels a problem
+/// from the outside in, a function before the expression in it.
+fn innermost_label(labels: &[Label]) -> Option<usize> {
+    labels
+        .iter()
+        .enumerate()
+        .min_by_key(|(index, label)| (label.span.len(), std::cmp::Reverse(*index)))
+        .map(|(index, _)| index)
 }
 
 /// A problem in a shader file, placed in the file (or module) it comes from.
@@ -328,7 +351,11 @@ pub fn check_file(path: &Path, portability: bool) -> Vec<FileProblem> {
             .iter()
             .filter_map(|label| place_label(&resolved, label))
             .collect();
-        let (origin, location) = match labels.first() {
+        // The problem sits at the most specific place naga gives: its innermost label (the
+        // expression rather than the function around it); the others stay as context.
+        let innermost = innermost_label(&problem.labels)
+            .and_then(|index| place_label(&resolved, &problem.labels[index]));
+        let (origin, location) = match innermost.as_ref().or(labels.first()) {
             Some(label) => (label.origin.clone(), Some((label.line, label.column))),
             None => {
                 let combined = problem

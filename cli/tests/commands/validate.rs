@@ -64,6 +64,34 @@ fn json_output_lists_every_file() {
     assert_eq!(files[1]["problems"][0]["stage"], "validate");
 }
 
+/// naga labels a return-type error with the function first and the returned expression
+/// second; the problem sits at the expression, in the text and in `--json`, the function kept as
+/// context.
+#[test]
+fn a_wrong_return_is_placed_at_the_returned_expression() {
+    let folder = tempfile::tempdir().unwrap();
+    let shader = write(
+        folder.path(),
+        "return.wgsl",
+        "fn offset(y: vec2<f32>) -> f32 {\n    let unused = 1.0;\n    return y + vec2<f32>(1.0);\n}\n",
+    );
+    let output = validate().arg(&shader).fails_with(1);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.starts_with(&format!("{}:3:12: error: ", shader.display())),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("1 | fn offset"),
+        "the function stays as context: {stderr}"
+    );
+    let output = validate().arg("--json").arg(&shader).fails_with(1);
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let problem = &report["files"][0]["problems"][0];
+    assert_eq!(problem["line"], 3, "{problem}");
+    assert_eq!(problem["column"], 12, "{problem}");
+}
+
 #[test]
 fn include_problems_are_placed_at_the_include_line() {
     let folder = tempfile::tempdir().unwrap();
@@ -111,10 +139,11 @@ fn problems_in_an_included_wgsl_file_name_that_file() {
     );
     let output = validate().arg(&shader).fails_with(1);
     let stderr = String::from_utf8_lossy(&output.stderr);
-    // naga places a return-type mismatch at the function it is in, and labels the value.
+    // naga labels a return-type mismatch at the function and the value: the problem sits at
+    // the value, in the included file.
     assert!(
         stderr.starts_with(&format!(
-            "{}:1:1: error: Function `helper` is invalid",
+            "{}:2:12: error: Function `helper` is invalid",
             folder.path().join("common.wgsl").display()
         )),
         "{stderr}"
