@@ -6,7 +6,7 @@ use gbuffer::packing::Layout;
 use gbuffer::{seed_layouts, GBufferLayout};
 use gbuffer_gpu::harness::fragment_harness;
 use gbuffer_testkit::AllFormats;
-use gbuffer_validator::{translate, validate_everywhere, validate_wgsl, Backend};
+use gbuffer_validator::{translate, validate_everywhere, validate_generated, Backend};
 use proptest::prelude::*;
 
 fn fixtures() -> Vec<(Layout, &'static str)> {
@@ -19,7 +19,7 @@ fn fixtures() -> Vec<(Layout, &'static str)> {
 #[test]
 fn fixture_wgsl_is_valid_alone() {
     for (layout, wgsl) in fixtures() {
-        if let Err(problem) = validate_wgsl(wgsl) {
+        if let Err(problem) = validate_generated(wgsl) {
             panic!("{}: {problem}\n{wgsl}", layout.name);
         }
     }
@@ -42,7 +42,7 @@ fn layouts_compose_in_one_module() {
         .map(|(_, wgsl)| wgsl)
         .collect::<Vec<_>>()
         .join("\n\n");
-    validate_wgsl(&all).unwrap_or_else(|problem| panic!("{problem}"));
+    validate_generated(&all).unwrap_or_else(|problem| panic!("{problem}"));
 }
 
 /// Exact conversions call no builtin whose rounding is the adapter's, nor one that some

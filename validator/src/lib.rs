@@ -12,6 +12,7 @@ use std::fmt;
 use std::path::Path;
 
 use gbuffer_codegen::emit::glsl::naga_glsl;
+pub use gbuffer_codegen::emit::glsl::naga_glsl::GENERATED_CODE_CAPABILITIES;
 use naga::back::{glsl, hlsl, msl, spv};
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
@@ -104,8 +105,24 @@ impl fmt::Display for Problem {
 
 impl std::error::Error for Problem {}
 
-/// Parses and validates WGSL.
+/// Parses and validates WGSL, a user's shader: f16 arithmetic (`enable f16`) and the f16 pack
+/// builtins are optional in WebGPU (wgpu's SHADER_F16 feature and SHADER_F16_IN_F32 downlevel
+/// flag), accepted here, and named by the shaders that need them.
 pub fn validate_wgsl(source: &str) -> Result<Validated, Problem> {
+    validate_with(
+        source,
+        Capabilities::SHADER_FLOAT16 | GENERATED_CODE_CAPABILITIES,
+    )
+}
+
+/// Parses and validates generated WGSL with exactly the capabilities its header names and no
+/// more ([`GENERATED_CODE_CAPABILITIES`]): what a naga user needs for it.
+pub fn validate_generated(source: &str) -> Result<Validated, Problem> {
+    validate_with(source, GENERATED_CODE_CAPABILITIES)
+}
+
+/// Parses and validates WGSL with the default capabilities and `extra`.
+fn validate_with(source: &str, extra: Capabilities) -> Result<Validated, Problem> {
     let module = naga::front::wgsl::parse_str(source).map_err(|error| Problem {
         stage: Stage::Parse,
         location: error
@@ -124,13 +141,7 @@ pub fn validate_wgsl(source: &str) -> Result<Validated, Problem> {
         notes: error.notes().map(str::to_string).collect(),
         detail: error.emit_to_string(source),
     })?;
-    // f16 arithmetic (`enable f16`) and the f16 pack builtins are optional in WebGPU (wgpu's
-    // SHADER_F16 feature and SHADER_F16_IN_F32 downlevel flag): accepted here, and named by
-    // the shaders that need them.
-    let capabilities = Capabilities::default()
-        | Capabilities::SHADER_FLOAT16
-        | Capabilities::SHADER_FLOAT16_IN_FLOAT32;
-    let info = Validator::new(ValidationFlags::all(), capabilities)
+    let info = Validator::new(ValidationFlags::all(), Capabilities::default() | extra)
         .validate(&module)
         .map_err(|error| {
             let handles = Handles {
