@@ -273,10 +273,10 @@ fn check_pls_blocks(layout: &Layout) -> Result<(), String> {
             .map_err(|error| format!("{} {block:?}: {error}\n{text}", layout.name))?;
         let words = layout.word_contents();
         assert_eq!(members.len(), words.len());
-        for ((_, ty, name), word) in members.iter().zip(&words) {
+        let word_names = glsl::word_names(&words, &names);
+        for (((_, ty, name), word), word_name) in members.iter().zip(&words).zip(word_names) {
             assert_eq!(
-                *name,
-                glsl::word_name(word, &names),
+                *name, word_name,
                 "a member is named as its field is in the functions (bit words, as their fields)"
             );
             assert_eq!(Some(ty.as_str()), extension_type(word.format.name()));

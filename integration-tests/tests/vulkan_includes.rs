@@ -464,6 +464,49 @@ fn subpass_includes_round_trip_bit_exactly_on_vulkan_under_every_preamble() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// Bit-field words whose joined names meet: `albedo_1` alone in one word, and `albedo_`, which
+/// naga names `albedo_1`, in another, both joined to `albedo_1_bits`. Each word needs its own
+/// attachment (the random layouts below found the redefinition this once was).
+#[test]
+fn bit_field_words_whose_names_meet_get_their_own_attachments() {
+    use gbuffer::packing::{BitField, Encoding, Field, FieldType, Format, ScalarKind, Storage};
+    let Some(vulkan) = vulkan() else {
+        return;
+    };
+    let float = FieldType::new(ScalarKind::Float, 1);
+    let field = |name: &str, storage| Field {
+        name: name.into(),
+        storage,
+        ty: float,
+        conversions: None,
+    };
+    let one_bit = Storage::Bits(BitField {
+        bits: 1,
+        encoding: Encoding::Unorm,
+    });
+    let layout = Layout {
+        name: "MeetingNames".into(),
+        budget: 128,
+        fields: vec![
+            field("albedo", Storage::Word(Format::R11fG11fB10f)),
+            field("albedo_1", one_bit),
+            field("field_2", Storage::Word(Format::R11fG11fB10f)),
+            field("albedo_", one_bit),
+        ],
+    };
+    let preamble = &preambles(Include::SubpassNative)[0];
+    let mut failures = Vec::new();
+    check(
+        &vulkan,
+        &layout,
+        Include::SubpassNative,
+        preamble,
+        11,
+        &mut failures,
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 24, failure_persistence: None, ..ProptestConfig::default() })]
 

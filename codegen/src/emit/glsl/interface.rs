@@ -125,16 +125,19 @@ impl Interface {
                     format: PackedTarget::FourWords.target(),
                 })
                 .collect(),
-            Include::FetchNative | Include::SubpassNative => layout
-                .word_contents()
-                .iter()
-                .enumerate()
-                .map(|(index, word)| Attachment {
-                    name: format!("{prefix}_{}_attachment", super::word_name(word, names)),
-                    index: index as u32,
-                    format: word.format.target(),
-                })
-                .collect(),
+            Include::FetchNative | Include::SubpassNative => {
+                let words = layout.word_contents();
+                words
+                    .iter()
+                    .zip(super::word_names(&words, names))
+                    .enumerate()
+                    .map(|(index, (word, name))| Attachment {
+                        name: format!("{prefix}_{name}_attachment"),
+                        index: index as u32,
+                        format: word.format.target(),
+                    })
+                    .collect()
+            }
         };
         Interface {
             include,

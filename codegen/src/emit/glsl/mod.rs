@@ -100,19 +100,39 @@ fn declared_type(ty: FieldType) -> String {
     }
 }
 
-/// What a word is called in GLSL (its PLS member, its native attachment): its field's name,
-/// or its bit fields' names joined, ending in `_bits`.
-pub fn word_name(word: &Word, names: &GlslNames) -> String {
-    if !word.is_bit_fields {
-        return names.fields[word.members[0].field].clone();
-    }
-    // naga's names may end in `_` (`field_0_`): trimmed, so that no `__` appears.
-    let fields: Vec<&str> = word
-        .members
+/// What each word is called in GLSL (its PLS member, its native attachment): a whole word its
+/// field's name, a word of bit fields its fields' names joined, ending in `_bits`. Joined names
+/// can meet another word's (fields `a_1` and `a_`, trimmed, both give `a_1_bits`; a field may be
+/// called `a_bits`): such a word is called `<joined>_word<index>_bits` instead, so every name is
+/// declared once.
+pub fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
+    let whole: Vec<&str> = words
         .iter()
-        .map(|member| names.fields[member.field].trim_end_matches('_'))
+        .filter(|word| !word.is_bit_fields)
+        .map(|word| names.fields[word.members[0].field].as_str())
         .collect();
-    format!("{}_bits", fields.join("_"))
+    let mut taken: Vec<String> = Vec::new();
+    for (index, word) in words.iter().enumerate() {
+        if !word.is_bit_fields {
+            taken.push(names.fields[word.members[0].field].clone());
+            continue;
+        }
+        // naga's names may end in `_` (`field_0_`): trimmed, so that no `__` appears.
+        let fields: Vec<&str> = word
+            .members
+            .iter()
+            .map(|member| names.fields[member.field].trim_end_matches('_'))
+            .collect();
+        let joined = fields.join("_");
+        let name = format!("{joined}_bits");
+        let clashes = whole.contains(&name.as_str()) || taken.contains(&name);
+        taken.push(if clashes {
+            format!("{joined}_word{index}_bits")
+        } else {
+            name
+        });
+    }
+    taken
 }
 
 /// `(word >> offset) & mask` in GLSL: a bit field's code out of its word.
@@ -289,8 +309,7 @@ fn pixel_local_storage(
         names.layout
     );
     let words = layout.word_contents();
-    for word in &words {
-        let name = word_name(word, names);
+    for (word, name) in words.iter().zip(word_names(&words, names)) {
         if word.is_bit_fields {
             let fields: Vec<String> = word
                 .members
@@ -346,8 +365,11 @@ fn write_pls_bit_field_accessors(
         "\n// The bit fields' conversions, translated by naga from the layout's WGSL.\n"
     );
     out.push_str(functions);
-    for word in words.iter().filter(|word| word.is_bit_fields) {
-        let name = word_name(word, names);
+    for (word, name) in words
+        .iter()
+        .zip(word_names(words, names))
+        .filter(|(word, _)| word.is_bit_fields)
+    {
         if block != PlsBlock::Out {
             for member in &word.members {
                 let field = &layout.fields[member.field];
