@@ -228,7 +228,6 @@ const fn r32(encoding: ChannelEncoding) -> [Channel; 1] {
 
 /// A row's target: its GLSL type, then WebGPU (name, byte cost, alignment, feature), GL
 /// (internal format, name) and Vulkan (format, name).
-#[allow(clippy::too_many_arguments)]
 const fn target(
     glsl_type: &'static str,
     (webgpu, byte_cost, alignment, feature): (&'static str, u32, u32, Option<&'static str>),

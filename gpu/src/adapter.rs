@@ -195,7 +195,7 @@ impl Gpu {
     }
 
     /// The words of a mapped-readable buffer.
-    pub fn read(&self, buffer: &wgpu::Buffer) -> Result<Vec<u32>, String> {
+    fn read(&self, buffer: &wgpu::Buffer) -> Result<Vec<u32>, String> {
         let slice = buffer.slice(..);
         let (sender, receiver) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |result| {

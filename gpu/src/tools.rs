@@ -7,7 +7,7 @@ use std::process::Command;
 
 /// Runs `tool` with `arguments`: whether it succeeded and what it printed, or, where the tool
 /// cannot be run, an error naming the Debian `package` to install.
-pub fn run(tool: &str, arguments: &[&str], package: &str) -> Result<(bool, String), String> {
+fn run(tool: &str, arguments: &[&str], package: &str) -> Result<(bool, String), String> {
     let output = Command::new(tool).args(arguments).output().map_err(|error| {
         format!("cannot run `{tool}` ({error}): install Debian's `{package}` (apt-get install -y {package})")
     })?;

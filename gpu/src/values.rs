@@ -2,6 +2,7 @@
 //! generator that mixes them with random bits and values in the formats' ranges, and
 //! low-discrepancy spreads (Halton points, Fibonacci directions) over shading domains.
 
+use gbuffer::glam::{DVec3, Vec3};
 use gbuffer::packing::ScalarKind;
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
@@ -171,14 +172,14 @@ pub fn halton(mut index: u32, base: u32) -> f64 {
 }
 
 /// `count` unit vectors spread evenly over the sphere.
-pub fn fibonacci_sphere(count: usize) -> Vec<gbuffer::glam::Vec3> {
+pub fn fibonacci_sphere(count: usize) -> Vec<Vec3> {
     let golden_angle = std::f64::consts::PI * (3.0 - 5f64.sqrt());
     (0..count)
         .map(|index| {
             let z = 1.0 - 2.0 * (index as f64 + 0.5) / count as f64;
             let radius = (1.0 - z * z).sqrt();
             let angle = golden_angle * index as f64;
-            gbuffer::glam::DVec3::new(radius * angle.cos(), radius * angle.sin(), z).as_vec3()
+            DVec3::new(radius * angle.cos(), radius * angle.sin(), z).as_vec3()
         })
         .collect()
 }

@@ -40,6 +40,53 @@ pub unsafe fn memory_barrier(
     }
 }
 
+/// An image's layout change, as one barrier: from (layout, what wrote it, where) to (layout,
+/// what reads it, where).
+pub struct ImageTransition {
+    /// The image.
+    pub image: vk::Image,
+    /// The part of it that changes layout.
+    pub range: vk::ImageSubresourceRange,
+}
+
+/// An image's layout, with the access and the stage on that side of a barrier.
+pub type ImageAccess = (vk::ImageLayout, vk::AccessFlags, vk::PipelineStageFlags);
+
+impl ImageTransition {
+    /// Records the barrier.
+    ///
+    /// # Safety
+    ///
+    /// `commands` is recording and the image is alive.
+    pub unsafe fn record(
+        &self,
+        device: &ash::Device,
+        commands: vk::CommandBuffer,
+        (old_layout, src_access, src_stage): ImageAccess,
+        (new_layout, dst_access, dst_stage): ImageAccess,
+    ) {
+        let barrier = vk::ImageMemoryBarrier::default()
+            .src_access_mask(src_access)
+            .dst_access_mask(dst_access)
+            .old_layout(old_layout)
+            .new_layout(new_layout)
+            .image(self.image)
+            .subresource_range(self.range);
+        // SAFETY: as the caller promises.
+        unsafe {
+            device.cmd_pipeline_barrier(
+                commands,
+                src_stage,
+                dst_stage,
+                vk::DependencyFlags::empty(),
+                &[],
+                &[],
+                &[barrier],
+            );
+        }
+    }
+}
+
 /// What a graphics pipeline is made of, for [`Vulkan::graphics_pipeline`].
 pub struct GraphicsPipeline<'a> {
     /// The render pass it draws in.

@@ -16,7 +16,7 @@ use std::time::Instant;
 
 use ash::vk;
 use gbuffer::packing::PackedTarget;
-use gbuffer_gpu::vulkan::{memory_barrier, Object, StorageBuffer, Vulkan};
+use gbuffer_gpu::vulkan::{memory_barrier, ImageTransition, Object, StorageBuffer, Vulkan};
 
 mod objects;
 mod plans;
@@ -418,7 +418,7 @@ impl VulkanRenderer {
         self.vulkan.submit_and_wait(|device, commands| {
             // SAFETY: the image and the staging buffer are alive; each copy is within both.
             unsafe {
-                let transition = Transition { image, range };
+                let transition = ImageTransition { image, range };
                 transition.record(
                     device,
                     commands,
@@ -474,50 +474,6 @@ impl VulkanRenderer {
             }
         })?;
         Ok(view)
-    }
-}
-
-/// An image's layout change, as one barrier: from (layout, what wrote it, where) to (layout,
-/// what reads it, where).
-struct Transition {
-    image: vk::Image,
-    range: vk::ImageSubresourceRange,
-}
-
-type Access = (vk::ImageLayout, vk::AccessFlags, vk::PipelineStageFlags);
-
-impl Transition {
-    /// Records the barrier.
-    ///
-    /// # Safety
-    ///
-    /// `commands` is recording and the image is alive.
-    unsafe fn record(
-        &self,
-        device: &ash::Device,
-        commands: vk::CommandBuffer,
-        (old_layout, src_access, src_stage): Access,
-        (new_layout, dst_access, dst_stage): Access,
-    ) {
-        let barrier = vk::ImageMemoryBarrier::default()
-            .src_access_mask(src_access)
-            .dst_access_mask(dst_access)
-            .old_layout(old_layout)
-            .new_layout(new_layout)
-            .image(self.image)
-            .subresource_range(self.range);
-        // SAFETY: as the caller promises.
-        unsafe {
-            device.cmd_pipeline_barrier(
-                commands,
-                src_stage,
-                dst_stage,
-                vk::DependencyFlags::empty(),
-                &[],
-                &[],
-                &[barrier],
-            );
-        }
     }
 }
 
