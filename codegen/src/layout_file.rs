@@ -49,9 +49,9 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::encoding::{BitField, Encoding};
 use crate::format::{Format, ScalarKind};
 use crate::layout::{Conversions, Field, FieldType, Layout, Storage, Subject, DEFAULT_BUDGET};
+use crate::{BitField, Encoding};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -429,7 +429,7 @@ fn storage_of(
                 Err(message) => {
                     // A known encoding with a range it cannot take (or rgbm's bad range):
                     // the range is wrong; otherwise the encoding is.
-                    let known = Encoding::NAMES.contains(&encoding.get_ref().as_str());
+                    let known = Encoding::names().contains(&encoding.get_ref().as_str());
                     let span = match &field.range {
                         Some(range) if known => range.span(),
                         _ => encoding.span(),
@@ -461,7 +461,7 @@ fn storage_of(
                 bits.span(),
                 format!(
                     "field `{name}` has `bits` but no `encoding`: add one of {}",
-                    Encoding::NAMES.join(", ")
+                    Encoding::names().join(", ")
                 ),
             );
             (None, Some(bits.span()))
@@ -618,7 +618,7 @@ components = 4
         };
         let mut layout = Layout {
             name: "Written".into(),
-            budget: 128,
+            budget: 192,
             fields: vec![
                 field("colour", Storage::Word(Format::Rgba8), "Vec3"),
                 field(
@@ -629,8 +629,11 @@ components = 4
                 field("normal", bits(20, Encoding::Octahedral), "Vec3"),
                 field("flag", bits(1, Encoding::Bool), "bool"),
                 field("id", bits(11, Encoding::Sint), "i32"),
+                field("luminance", bits(10, Encoding::LogLuminance), "f32"),
+                field("tint", bits(30, Encoding::UnsignedFloat), "Vec3"),
             ],
         };
+        assert_eq!(layout.check(), Vec::new());
         layout.fields[0].conversions = Some(Conversions::Exact);
         for conversions in [Conversions::Exact, Conversions::Fast] {
             let text = to_toml(&layout, conversions);

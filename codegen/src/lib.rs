@@ -23,8 +23,8 @@ pub mod output;
 #[cfg(feature = "tools")]
 pub use builder::{BuildError, Builder};
 
-pub use gbuffer_core::{convert, encoding, format, layout, naming, report};
+pub use gbuffer_core::{bit_field, codecs, convert, format, layout, naming, report};
 pub use gbuffer_core::{
-    BitField, Channel, ChannelEncoding, Conversions, Diagnostic, Encoding, Field, FieldType,
-    Format, Layout, Member, Report, RgbmRange, ScalarKind, Storage, Subject, Word, DEFAULT_BUDGET,
+    BitField, Channel, Codec, Conversions, Diagnostic, Encoding, Field, FieldType, Format, Layout,
+    LightStorage, Member, Report, RgbmRange, ScalarKind, Storage, Subject, Word, DEFAULT_BUDGET,
 };

@@ -6,6 +6,8 @@
 
 use std::fmt;
 
+use crate::codecs::Encoding;
+
 /// What a shader sees when it reads a channel: the scalar type of the field that stores it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ScalarKind {
@@ -31,26 +33,6 @@ impl ScalarKind {
     }
 }
 
-/// How the bits of one channel encode its value.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ChannelEncoding {
-    /// Unsigned normalized: the code `c` of `n` bits means `c / (2^n - 1)`.
-    Unorm,
-    /// IEEE-754 binary32, stored bit for bit.
-    Float32,
-    /// IEEE-754 binary16, sign kept.
-    Half,
-    /// An unsigned float with a 5-bit exponent (bias 15), as in `r11f_g11f_b10f`.
-    UnsignedFloat {
-        /// Bits of mantissa: 6 for the 11-bit channels, 5 for the 10-bit one.
-        mantissa_bits: u32,
-    },
-    /// Unsigned integer.
-    Uint,
-    /// Two's-complement signed integer.
-    Sint,
-}
-
 /// One channel of a format: where its bits sit in the word and what they mean.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Channel {
@@ -60,12 +42,12 @@ pub struct Channel {
     pub offset: u32,
     /// Its width in bits.
     pub bits: u32,
-    /// How its bits encode its value.
-    pub encoding: ChannelEncoding,
+    /// Its codec (a per-component one: unorm, half, float32, unsigned_float, uint or sint).
+    pub encoding: Encoding,
 }
 
 impl Channel {
-    const fn new(name: char, offset: u32, bits: u32, encoding: ChannelEncoding) -> Self {
+    const fn new(name: char, offset: u32, bits: u32, encoding: Encoding) -> Self {
         Channel {
             name,
             offset,
@@ -193,14 +175,14 @@ pub struct FormatRow {
     pub target: TargetFormat,
 }
 
-use ChannelEncoding::{Float32, Half, Sint, Uint, Unorm, UnsignedFloat};
+use Encoding::{Float32, Half, Sint, Uint, Unorm, UnsignedFloat};
 
 const R11F_G11F_B10F: [Channel; 3] = [
-    Channel::new('r', 0, 11, UnsignedFloat { mantissa_bits: 6 }),
-    Channel::new('g', 11, 11, UnsignedFloat { mantissa_bits: 6 }),
-    Channel::new('b', 22, 10, UnsignedFloat { mantissa_bits: 5 }),
+    Channel::new('r', 0, 11, UnsignedFloat),
+    Channel::new('g', 11, 11, UnsignedFloat),
+    Channel::new('b', 22, 10, UnsignedFloat),
 ];
-const fn rgb10_a2(encoding: ChannelEncoding) -> [Channel; 4] {
+const fn rgb10_a2(encoding: Encoding) -> [Channel; 4] {
     [
         Channel::new('r', 0, 10, encoding),
         Channel::new('g', 10, 10, encoding),
@@ -208,7 +190,7 @@ const fn rgb10_a2(encoding: ChannelEncoding) -> [Channel; 4] {
         Channel::new('a', 30, 2, encoding),
     ]
 }
-const fn rgba8(encoding: ChannelEncoding) -> [Channel; 4] {
+const fn rgba8(encoding: Encoding) -> [Channel; 4] {
     [
         Channel::new('r', 0, 8, encoding),
         Channel::new('g', 8, 8, encoding),
@@ -216,13 +198,13 @@ const fn rgba8(encoding: ChannelEncoding) -> [Channel; 4] {
         Channel::new('a', 24, 8, encoding),
     ]
 }
-const fn rg16(encoding: ChannelEncoding) -> [Channel; 2] {
+const fn rg16(encoding: Encoding) -> [Channel; 2] {
     [
         Channel::new('r', 0, 16, encoding),
         Channel::new('g', 16, 16, encoding),
     ]
 }
-const fn r32(encoding: ChannelEncoding) -> [Channel; 1] {
+const fn r32(encoding: Encoding) -> [Channel; 1] {
     [Channel::new('r', 0, 32, encoding)]
 }
 
@@ -398,11 +380,7 @@ impl Format {
 
     /// The scalar type a shader reads from this format.
     pub fn scalar_kind(self) -> ScalarKind {
-        match self.channels()[0].encoding {
-            Unorm | Float32 | Half | UnsignedFloat { .. } => ScalarKind::Float,
-            Uint => ScalarKind::Uint,
-            Sint => ScalarKind::Sint,
-        }
+        self.channels()[0].encoding.scalar_kind()
     }
 
     /// The bits of the first `components` channels: what a field of that many components uses.

@@ -5,7 +5,8 @@
 
 use std::fmt::Write as _;
 
-use crate::encoding::{BitField, Encoding};
+use crate::bit_field::BitField;
+use crate::codecs::Encoding;
 use crate::format::{Format, PackedTarget, ScalarKind};
 use crate::naming;
 
@@ -407,7 +408,7 @@ impl Layout {
                 let mut lanes = match field.storage {
                     Storage::Word(format) => decode_word(format, field.ty.scalar, words[word]),
                     Storage::Bits(bit_field) => bit_field.decode(
-                        (words[word] >> member.offset) & crate::convert::max_code(member.bits),
+                        (words[word] >> member.offset) & crate::codecs::max_code(member.bits),
                         field.ty.components,
                     ),
                 };
@@ -659,7 +660,7 @@ mod tests {
 
     #[test]
     fn bit_fields_fill_words_from_the_low_bit_and_never_straddle() {
-        use crate::encoding::Encoding;
+        use crate::codecs::Encoding;
         let bits = |name: &str, bits, encoding, ty: &str| Field {
             name: name.into(),
             storage: Storage::Bits(BitField { bits, encoding }),

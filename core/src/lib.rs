@@ -5,25 +5,31 @@
 //! and Rust; the derived `pack`/`unpack` call the conversions here. The model, bottom up:
 //!
 //! - [`format`](mod@format): the twelve pixel local storage formats and their channels;
-//! - [`encoding`](mod@encoding): bit fields and their encodings;
+//! - [`codecs`]: how values become bits, one file per codec (the mirror, the WGSL and the
+//!   tests), and [`Encoding`], the list that names them;
+//! - [`bit_field`]: fields of a few bits sharing an `r32ui` word, each encoded by a codec;
 //! - [`layout`]: fields, types, the words they fill, the bit budget and its checks;
 //! - [`naming`]: the identifiers the emitters derive from the layout's names;
-//! - [`convert`]: the bit-exact conversions (the CPU side of the generated WGSL);
+//! - [`convert`]: a whole word's channels through their codecs (the CPU side of the generated
+//!   WGSL);
 //! - [`report`]: the bit report and the WebGPU render-target cost.
 //!
 //! It depends on nothing: a user's runtime links no proc-macro2, quote or syn.
 
+pub mod bit_field;
+pub mod codecs;
 pub mod convert;
-pub mod encoding;
 pub mod format;
 pub mod layout;
 pub mod naming;
 pub mod report;
 
-pub use encoding::{BitField, Encoding, RgbmRange};
+pub use bit_field::BitField;
+pub use codecs::rgbm::RgbmRange;
+pub use codecs::{Codec, Encoding, LightStorage};
 pub use format::{
-    Channel, ChannelEncoding, Format, FormatRow, GlFormat, PackedTarget, ScalarKind, TargetFormat,
-    VulkanFormat, WebGpuTarget,
+    Channel, Format, FormatRow, GlFormat, PackedTarget, ScalarKind, TargetFormat, VulkanFormat,
+    WebGpuTarget,
 };
 pub use layout::{
     Conversions, Diagnostic, Field, FieldType, Layout, Member, Storage, Subject, Word,

@@ -85,12 +85,13 @@ pub mod targets;
 
 /// The layout model and the bit-exact conversions that derived code calls.
 pub mod packing {
+    pub use gbuffer_core::codecs;
     pub use gbuffer_core::convert::Scalar;
     pub use gbuffer_core::report::Report;
     pub use gbuffer_core::{
-        BitField, Channel, ChannelEncoding, Conversions, Encoding, Field, FieldType, Format,
-        FormatRow, GlFormat, Layout, Member, PackedTarget, RgbmRange, ScalarKind, Storage,
-        TargetFormat, VulkanFormat, WebGpuTarget, Word,
+        BitField, Channel, Codec, Conversions, Encoding, Field, FieldType, Format, FormatRow,
+        GlFormat, Layout, Member, PackedTarget, RgbmRange, ScalarKind, Storage, TargetFormat,
+        VulkanFormat, WebGpuTarget, Word,
     };
 }
 

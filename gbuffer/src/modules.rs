@@ -18,41 +18,99 @@
 //! that already uses WESL can still import these files as they are.
 
 use std::fmt;
+use std::sync::LazyLock;
+
+use gbuffer_core::codecs::wgsl::Lanes;
+use gbuffer_core::codecs::{octahedral, rgb9e5, rgbm};
+
+/// The prefix of the codec functions the library's modules call (`shading_library_...`), as a
+/// layout's prefix names its own copies.
+pub const CODEC_PREFIX: &str = "shading_library";
 
 /// One WGSL module of the library.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Module {
     /// The module's name, as `#include <gbuffer/NAME>` names it.
     pub name: &'static str,
-    /// Its WGSL.
-    pub source: &'static str,
+    /// Its WGSL: its file, then the WGSL of the codecs its header names (`// codecs:`).
+    pub source: String,
 }
 
-macro_rules! modules {
-    ($($name:literal),* $(,)?) => {
-        [$(Module { name: $name, source: include_str!(concat!("../wgsl/", $name, ".wgsl")) }),*]
-    };
+/// The library's files, dependencies before the modules that need them.
+const FILES: [(&str, &str); 11] = [
+    ("constants", include_str!("../wgsl/constants.wgsl")),
+    ("colour", include_str!("../wgsl/colour.wgsl")),
+    ("hdr", include_str!("../wgsl/hdr.wgsl")),
+    ("microfacet", include_str!("../wgsl/microfacet.wgsl")),
+    ("mobile", include_str!("../wgsl/mobile.wgsl")),
+    ("environment", include_str!("../wgsl/environment.wgsl")),
+    ("material", include_str!("../wgsl/material.wgsl")),
+    ("normals", include_str!("../wgsl/normals.wgsl")),
+    ("tonemap", include_str!("../wgsl/tonemap.wgsl")),
+    ("shading", include_str!("../wgsl/shading.wgsl")),
+    ("mobile_half", include_str!("../wgsl/mobile_half.wgsl")),
+];
+
+/// The WGSL of a codec a module names, its functions prefixed with [`CODEC_PREFIX`]: the
+/// library stores colours and normals with the layouts' own codecs, never a second copy.
+fn codec_functions(codec: &str) -> Vec<String> {
+    match codec {
+        "rgb9e5" => rgb9e5::wgsl_functions(CODEC_PREFIX),
+        "rgbm" => rgbm::wgsl_functions(CODEC_PREFIX),
+        "octahedral" => [octahedral::WGSL_FOLD, octahedral::WGSL_UNFOLD]
+            .map(|text| Lanes(1).fill(text, CODEC_PREFIX))
+            .to_vec(),
+        other => panic!("a shading module names codec `{other}`, which it has no WGSL for"),
+    }
 }
+
+/// The names on a header line such as `// requires: a, b`.
+fn header_list<'a>(source: &'a str, key: &str) -> Vec<&'a str> {
+    source
+        .lines()
+        .filter(|line| !line.starts_with("enable "))
+        .take_while(|line| line.starts_with("//"))
+        .find_map(|line| line.strip_prefix(key))
+        .map(|names| {
+            names
+                .split(',')
+                .map(str::trim)
+                .filter(|name| !name.is_empty())
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+static MODULES: LazyLock<Vec<Module>> = LazyLock::new(|| {
+    FILES
+        .iter()
+        .map(|&(name, file)| {
+            let mut source = file.to_string();
+            let mut written = Vec::new();
+            for codec in header_list(file, "// codecs:") {
+                for function in codec_functions(codec) {
+                    if !written.contains(&function) {
+                        source.push('\n');
+                        source.push_str(function.trim_end());
+                        source.push('\n');
+                        written.push(function);
+                    }
+                }
+            }
+            Module { name, source }
+        })
+        .collect()
+});
 
 /// Every module, dependencies before the modules that need them.
-pub const MODULES: [Module; 11] = modules![
-    "constants",
-    "colour",
-    "hdr",
-    "microfacet",
-    "mobile",
-    "environment",
-    "material",
-    "normals",
-    "tonemap",
-    "shading",
-    "mobile_half",
-];
+pub fn modules() -> &'static [Module] {
+    &MODULES
+}
 
 impl Module {
     /// The module by name.
-    pub fn named(name: &str) -> Option<Module> {
-        MODULES.into_iter().find(|module| module.name == name)
+    pub fn named(name: &str) -> Option<&'static Module> {
+        modules().iter().find(|module| module.name == name)
     }
 
     /// The source under a one-line banner naming the module, without its `enable`
@@ -71,7 +129,7 @@ impl Module {
     }
 
     /// The `enable` directives the module needs, e.g. `enable f16;`.
-    pub fn directives(&self) -> Vec<&'static str> {
+    pub fn directives(&self) -> Vec<&str> {
         self.source
             .lines()
             .filter(|line| line.starts_with("enable "))
@@ -79,20 +137,8 @@ impl Module {
     }
 
     /// The names on the header's `// requires:` line.
-    pub fn requires(&self) -> Vec<&'static str> {
-        self.source
-            .lines()
-            .filter(|line| !line.starts_with("enable "))
-            .take_while(|line| line.starts_with("//"))
-            .find_map(|line| line.strip_prefix("// requires:"))
-            .map(|names| {
-                names
-                    .split(',')
-                    .map(str::trim)
-                    .filter(|name| !name.is_empty())
-                    .collect()
-            })
-            .unwrap_or_default()
+    pub fn requires(&self) -> Vec<&str> {
+        header_list(&self.source, "// requires:")
     }
 }
 
@@ -114,7 +160,7 @@ impl fmt::Display for ComposeError {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ComposeError::UnknownModule { name, required_by } => {
-                let known: Vec<&str> = MODULES.iter().map(|module| module.name).collect();
+                let known: Vec<&str> = modules().iter().map(|module| module.name).collect();
                 match required_by {
                     Some(module) => {
                         write!(out, "module `{module}` requires unknown module `{name}`")?
@@ -151,7 +197,7 @@ pub fn compose(names: &[&str]) -> Result<String, ComposeError> {
             }
         }
     }
-    let bodies: Vec<String> = modules.iter().map(Module::with_banner).collect();
+    let bodies: Vec<String> = modules.iter().map(|module| module.with_banner()).collect();
     let mut source = directives
         .iter()
         .map(|line| format!("{line}\n"))
@@ -161,8 +207,8 @@ pub fn compose(names: &[&str]) -> Result<String, ComposeError> {
 }
 
 /// The named modules and everything they require, dependencies first, each once.
-pub fn dependency_order(names: &[&str]) -> Result<Vec<Module>, ComposeError> {
-    let mut ordered: Vec<Module> = Vec::new();
+pub fn dependency_order(names: &[&str]) -> Result<Vec<&'static Module>, ComposeError> {
+    let mut ordered: Vec<&'static Module> = Vec::new();
     let mut visiting: Vec<&'static str> = Vec::new();
     for name in names {
         let unknown = || ComposeError::UnknownModule {
@@ -180,8 +226,8 @@ pub fn dependency_order(names: &[&str]) -> Result<Vec<Module>, ComposeError> {
 
 /// Depth-first: a module's requirements, then the module.
 fn visit(
-    module: Module,
-    ordered: &mut Vec<Module>,
+    module: &'static Module,
+    ordered: &mut Vec<&'static Module>,
     visiting: &mut Vec<&'static str>,
 ) -> Result<(), ComposeError> {
     if ordered.contains(&module) {
@@ -233,9 +279,9 @@ mod tests {
 
     #[test]
     fn every_requirement_names_a_module_listed_before_it() {
-        for (index, module) in MODULES.iter().enumerate() {
+        for (index, module) in modules().iter().enumerate() {
             for required in module.requires() {
-                let position = MODULES.iter().position(|other| other.name == required);
+                let position = modules().iter().position(|other| other.name == required);
                 assert!(
                     position.is_some_and(|position| position < index),
                     "{} requires {required}",

@@ -1,5 +1,6 @@
 // normals: tangent-space normal maps and the encodings a G-buffer stores normals in.
 // requires:
+// codecs: octahedral
 
 // The z of a unit tangent-space normal from its x and y (two-channel normal maps). Domain
 // |xy| <= 1; outside it z is clamped to 0 rather than NaN.
@@ -14,29 +15,16 @@ fn tangent_to_world(tangent_normal: vec3<f32>, normal: vec3<f32>, tangent: vec4<
     return normalize(tangent.xyz * tangent_normal.x + bitangent * tangent_normal.y + normal * tangent_normal.z);
 }
 
-// +1 or -1 per component, +1 for zero (the octahedral fold must not lose the zero's side).
-fn sign_not_zero(value: vec2<f32>) -> vec2<f32> {
-    return select(vec2<f32>(-1.0), vec2<f32>(1.0), value >= vec2<f32>(0.0));
-}
-
-// Octahedral encode (Cigolle et al. 2014): unit vector to [-1, 1]^2, the lower hemisphere
-// folded over the diagonals. Domain: non-zero vectors (the L1 norm divides).
+// Octahedral encode (Cigolle et al. 2014): a unit vector to [-1, 1]^2, the lower hemisphere
+// folded over the diagonals; the octahedral codec's map (gbuffer-core's codecs/octahedral.rs),
+// before its quantisation. Domain: non-zero vectors (the L1 norm divides).
 fn octahedral_encode(normal: vec3<f32>) -> vec2<f32> {
-    let projected = normal.xy / (abs(normal.x) + abs(normal.y) + abs(normal.z));
-    if normal.z >= 0.0 {
-        return projected;
-    }
-    return (vec2<f32>(1.0) - abs(projected.yx)) * sign_not_zero(projected);
+    return shading_library_octahedral_fold(normal);
 }
 
-// Octahedral decode (Cigolle et al. 2014): [-1, 1]^2 to a unit vector.
+// Octahedral decode (Cigolle et al. 2014): [-1, 1]^2 to a unit vector, the codec's inverse map.
 fn octahedral_decode(encoded: vec2<f32>) -> vec3<f32> {
-    let z = 1.0 - abs(encoded.x) - abs(encoded.y);
-    var xy = encoded;
-    if z < 0.0 {
-        xy = (vec2<f32>(1.0) - abs(encoded.yx)) * sign_not_zero(encoded);
-    }
-    return normalize(vec3<f32>(xy, z));
+    return shading_library_octahedral_unfold(encoded);
 }
 
 // The naive mapping of a normal's [-1, 1] components to [0, 1] for unorm storage.

@@ -10,7 +10,7 @@
 //! for any finite input, and each clamp is shown to be needed.
 
 use gbuffer::glam::{DVec3, Vec3};
-use gbuffer::packing::{Format, ScalarKind};
+use gbuffer::packing::{Encoding, Format, ScalarKind};
 use gbuffer::shading::half_precision::{self as h, Half, Half3};
 use gbuffer::shading::mirror as m;
 use gbuffer_gpu::values::{float_edges, sint_edges, uint_edges};
@@ -365,10 +365,11 @@ fn packing_gives_finite_output_in_the_formats_range_for_finite_input() {
                     let decoded = format.decode::<f32>(format.encode([value; 4]));
                     for (decoded, channel) in decoded.iter().zip(format.channels()) {
                         let largest = match channel.encoding {
-                            gbuffer::packing::ChannelEncoding::Float32 => f32::MAX,
-                            gbuffer::packing::ChannelEncoding::Half => 65504.0,
-                            gbuffer::packing::ChannelEncoding::UnsignedFloat { mantissa_bits } => {
-                                if mantissa_bits == 6 {
+                            Encoding::Float32 => f32::MAX,
+                            Encoding::Half => 65504.0,
+                            // 11 bits: 6 of mantissa; 10 bits: 5.
+                            Encoding::UnsignedFloat => {
+                                if channel.bits == 11 {
                                     65024.0
                                 } else {
                                     64512.0

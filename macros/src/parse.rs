@@ -387,7 +387,7 @@ fn parse_bits_attribute(
                 errors,
                 syn::Error::new_spanned(
                     attribute,
-                    format!("expected `#[bits(<bits>, <encoding>)]`, e.g. `#[bits(4, unorm)]` or `#[bits(32, rgbm(8.0))]`, with an encoding among: {}", Encoding::NAMES.join(", ")),
+                    format!("expected `#[bits(<bits>, <encoding>)]`, e.g. `#[bits(4, unorm)]` or `#[bits(32, rgbm(8.0))]`, with an encoding among: {}", Encoding::names().join(", ")),
                 ),
             );
             return None;
@@ -409,7 +409,7 @@ fn parse_bits_attribute(
             Err(message) => {
                 let span = match range {
                     Some((_, span))
-                        if Encoding::NAMES.contains(&encoding_ident.to_string().as_str()) =>
+                        if Encoding::names().contains(&encoding_ident.to_string().as_str()) =>
                     {
                         span
                     }

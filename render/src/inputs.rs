@@ -10,7 +10,8 @@
 use gbuffer::glam::DVec3;
 use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
 use gbuffer::shading::mirror as m;
-use gbuffer_codegen::convert::{half_from_f32, unorm_from_f32};
+use gbuffer_codegen::codecs::half::half_from_f32;
+use gbuffer_codegen::codecs::unorm::unorm_from_f32;
 
 use crate::reference::prefiltered_sky;
 use crate::scene::{self, ENVIRONMENT_MIPS, ENVIRONMENT_RANGE, LIGHT_MAP_EXTENT, LIGHT_MAP_RANGE};

@@ -4,7 +4,7 @@
 //! each stored quantity needs and its bit budget. From it:
 //!
 //! - [`quantity`]: what the G-buffer must store, and for which features;
-//! - [`encoding`]: the ways to store each quantity, their storage and predicted error;
+//! - [`representation`]: the ways to store each quantity, their storage and predicted error;
 //! - [`solver`]: the smallest layout that meets the precision within the budget, an ordinary
 //!   [`gbuffer_codegen::Layout`] (the same WGSL, Rust mirror and report as a hand-written one), or
 //!   the requirement that cannot be met;
@@ -13,10 +13,10 @@
 //! - [`file`](mod@file): scene descriptions in TOML, with file:line:column errors.
 
 pub mod description;
-pub mod encoding;
 pub mod file;
 pub mod lighting;
 pub mod quantity;
+pub mod representation;
 pub mod solver;
 mod summary;
 pub mod texel;

@@ -4,7 +4,7 @@
 //! Each stored quantity becomes one field: a whole word of a format (depth in `r32f`, light in
 //! `r11f_g11f_b10f`, a colour alone in `rgba8`) or a bit field (octahedral normals, rgb9e5 and
 //! RGBM light, unorm colours and scalars, half scalars). For each quantity the candidates are
-//! the encodings that meet its precision (of each family the narrowest, and the wider ones a
+//! the representations that meet its precision (of each family the narrowest, and the wider ones a
 //! format stores natively); the solver tries every combination, packs the bit fields into
 //! `r32ui` words by an exhaustive bin packing, and keeps the combination with, in this order:
 //! the fewest words, the fewest `r32ui` words (bit fields cost shader instructions where
@@ -19,8 +19,8 @@ use std::fmt;
 use gbuffer_codegen::{Conversions, Field, Layout, Storage};
 
 use crate::description::{DescriptionError, Feature, SceneDescription, Setting};
-use crate::encoding::Encoding;
 use crate::quantity::{stored_quantities, Kind, Quantity, Stored};
+use crate::representation::Representation;
 
 /// How the solution stores one quantity.
 #[derive(Clone, Debug, PartialEq)]
@@ -28,14 +28,14 @@ pub struct Placement {
     /// The quantity stored.
     pub quantity: Quantity,
     /// How it is encoded.
-    pub encoding: Encoding,
+    pub representation: Representation,
     /// The features that read it.
     pub needed_by: Vec<Feature>,
-    /// The error bound of the encoding, in the unit of the quantity's kind.
+    /// The error bound of the representation, in the unit of the quantity's kind.
     pub predicted_error: f64,
     /// What the scene allows, in the same unit.
     pub allowed_error: f64,
-    /// The layout fields that store it, one per [`Encoding::pieces`].
+    /// The layout fields that store it, one per [`Representation::pieces`].
     pub fields: Vec<usize>,
 }
 
@@ -93,7 +93,7 @@ pub enum SolveError {
     Description(Vec<DescriptionError>),
     /// No feature needs the G-buffer to store anything.
     NothingStored,
-    /// A requirement no encoding meets, or that cannot be met within the budget.
+    /// A requirement no representation meets, or that cannot be met within the budget.
     Unmet {
         /// The setting that cannot be met.
         setting: Setting,
@@ -148,29 +148,31 @@ pub fn solve(scene: &SceneDescription) -> Result<Solution, SolveError> {
     }
 }
 
-/// The encodings of a quantity that meet the scene's precision: of each family, the narrowest
+/// The representations of a quantity that meet the scene's precision: of each family, the narrowest
 /// and the wider native widths.
-fn candidates_meeting(quantity: Quantity, scene: &SceneDescription) -> Vec<Encoding> {
-    let meeting: Vec<Encoding> = Encoding::catalogue(quantity, &scene.precision)
+fn candidates_meeting(quantity: Quantity, scene: &SceneDescription) -> Vec<Representation> {
+    let meeting: Vec<Representation> = Representation::catalogue(quantity, &scene.precision)
         .into_iter()
-        .filter(|encoding| encoding.meets(quantity, &scene.precision))
+        .filter(|representation| representation.meets(quantity, &scene.precision))
         .collect();
     prune(meeting)
 }
 
 /// Keeps, of each family of widths, the narrowest: a wider bit field takes more of its word
-/// and is no cheaper to convert. Whole-word encodings all stay.
-fn prune(encodings: Vec<Encoding>) -> Vec<Encoding> {
-    let mut kept: Vec<Encoding> = Vec::new();
-    for encoding in encodings {
-        let widened = matches!(
-            encoding,
-            Encoding::Octahedral { .. } | Encoding::Unorm { .. }
-        ) && kept
-            .iter()
-            .any(|other| std::mem::discriminant(other) == std::mem::discriminant(&encoding));
+/// and is no cheaper to convert. Whole-word representations all stay.
+fn prune(representations: Vec<Representation>) -> Vec<Representation> {
+    let mut kept: Vec<Representation> = Vec::new();
+    for representation in representations {
+        let family = |representation: &Representation| match representation {
+            Representation::Octahedral { .. } => Some((0, None)),
+            Representation::Unorm { .. } => Some((1, None)),
+            Representation::Light { encoding, .. } => Some((2, Some(*encoding))),
+            _ => None,
+        };
+        let widened = family(&representation)
+            .is_some_and(|mine| kept.iter().any(|other| family(other) == Some(mine)));
         if !widened {
-            kept.push(encoding);
+            kept.push(representation);
         }
     }
     kept
@@ -179,7 +181,7 @@ fn prune(encodings: Vec<Encoding>) -> Vec<Encoding> {
 /// One combination's layout: the pieces in each word, and its score.
 #[derive(Clone, Debug)]
 struct Candidate {
-    encodings: Vec<Encoding>,
+    representations: Vec<Representation>,
     /// Per word, the pieces it holds as (quantity index, piece index): one for a whole word.
     words: Vec<Vec<(usize, usize)>>,
     custom_words: usize,
@@ -190,7 +192,7 @@ struct Candidate {
 /// Tries every combination of candidates; the best whose words fit `budget` (any, without one).
 fn search(
     stored: &[Stored],
-    candidates: &[Vec<Encoding>],
+    candidates: &[Vec<Representation>],
     scene: &SceneDescription,
     packer: &mut Packer,
     budget: Option<u32>,
@@ -198,12 +200,12 @@ fn search(
     let mut choice = vec![0usize; candidates.len()];
     let mut best: Option<Candidate> = None;
     loop {
-        let encodings: Vec<Encoding> = choice
+        let representations: Vec<Representation> = choice
             .iter()
             .zip(candidates)
             .map(|(&index, list)| list[index])
             .collect();
-        let candidate = arrange(stored, encodings, scene, packer);
+        let candidate = arrange(stored, representations, scene, packer);
         let fits = budget.is_none_or(|bits| 32 * candidate.words.len() as u32 <= bits);
         if fits && best.as_ref().is_none_or(|best| better(&candidate, best)) {
             best = Some(candidate);
@@ -235,14 +237,18 @@ fn better(candidate: &Candidate, best: &Candidate) -> bool {
 /// into as few `r32ui` words as hold them.
 fn arrange(
     stored: &[Stored],
-    encodings: Vec<Encoding>,
+    representations: Vec<Representation>,
     scene: &SceneDescription,
     packer: &mut Packer,
 ) -> Candidate {
     let mut words = Vec::new();
     let mut bit_fields = Vec::new();
-    for (index, (entry, encoding)) in stored.iter().zip(&encodings).enumerate() {
-        for (part, piece) in encoding.pieces(entry.quantity).into_iter().enumerate() {
+    for (index, (entry, representation)) in stored.iter().zip(&representations).enumerate() {
+        for (part, piece) in representation
+            .pieces(entry.quantity)
+            .into_iter()
+            .enumerate()
+        {
             match piece.storage {
                 Storage::Word(_) => words.push(vec![(index, part)]),
                 Storage::Bits(field) => bit_fields.push(((index, part), field.bits)),
@@ -259,18 +265,18 @@ fn arrange(
     words.sort_by_key(|word| word.iter().min().copied());
     let slack = stored
         .iter()
-        .zip(&encodings)
-        .map(|(entry, encoding)| {
-            let allowed = Encoding::allowed_error(entry.quantity.kind(), &scene.precision);
+        .zip(&representations)
+        .map(|(entry, representation)| {
+            let allowed = Representation::allowed_error(entry.quantity.kind(), &scene.precision);
             if allowed.is_finite() {
-                encoding.predicted_error(entry.quantity, &scene.precision) / allowed
+                representation.predicted_error(entry.quantity, &scene.precision) / allowed
             } else {
                 0.0
             }
         })
         .sum();
     Candidate {
-        encodings,
+        representations,
         words,
         custom_words,
         slack,
@@ -335,7 +341,7 @@ fn build(scene: &SceneDescription, stored: &[Stored], best: Candidate) -> Soluti
     let mut fields_of: Vec<Vec<(usize, usize)>> = vec![Vec::new(); stored.len()];
     for &(quantity, part) in best.words.iter().flatten() {
         let entry = &stored[quantity];
-        let piece = best.encodings[quantity].pieces(entry.quantity)[part];
+        let piece = best.representations[quantity].pieces(entry.quantity)[part];
         fields_of[quantity].push((part, fields.len()));
         let name = entry.quantity.name();
         fields.push(Field {
@@ -351,16 +357,19 @@ fn build(scene: &SceneDescription, stored: &[Stored], best: Candidate) -> Soluti
     }
     let placements = stored
         .iter()
-        .zip(&best.encodings)
+        .zip(&best.representations)
         .zip(fields_of)
-        .map(|((entry, &encoding), mut pieces)| {
+        .map(|((entry, &representation), mut pieces)| {
             pieces.sort_unstable();
             Placement {
                 quantity: entry.quantity,
-                encoding,
+                representation,
                 needed_by: entry.needed_by.clone(),
-                predicted_error: encoding.predicted_error(entry.quantity, &scene.precision),
-                allowed_error: Encoding::allowed_error(entry.quantity.kind(), &scene.precision),
+                predicted_error: representation.predicted_error(entry.quantity, &scene.precision),
+                allowed_error: Representation::allowed_error(
+                    entry.quantity.kind(),
+                    &scene.precision,
+                ),
                 fields: pieces.into_iter().map(|(_, field)| field).collect(),
             }
         })
@@ -388,44 +397,49 @@ fn setting_of(quantity: Quantity) -> Setting {
     }
 }
 
-/// The error for a quantity no encoding can store precisely enough.
+/// The error for a quantity no representation can store precisely enough.
 fn unreachable_requirement(quantity: Quantity, scene: &SceneDescription) -> SolveError {
     let precision = &scene.precision;
-    let catalogue = Encoding::catalogue(quantity, precision);
+    let catalogue = Representation::catalogue(quantity, precision);
     let best = catalogue
         .into_iter()
-        .filter(|encoding| quantity.kind() != Kind::Hdr || encoding.hdr_max() >= precision.hdr_max)
+        .filter(|representation| {
+            quantity.kind() != Kind::Hdr || representation.hdr_max() >= precision.hdr_max
+        })
         .min_by(|a, b| {
             a.predicted_error(quantity, precision)
                 .total_cmp(&b.predicted_error(quantity, precision))
         });
     let setting = setting_of(quantity);
-    let best = best.map_or(String::new(), |encoding| {
+    let best = best.map_or(String::new(), |representation| {
         format!(
-            "; the most precise encoding, {encoding}, is within {}",
-            describe_error(quantity, encoding.predicted_error(quantity, precision))
+            "; the most precise representation, {representation}, is within {}",
+            describe_error(
+                quantity,
+                representation.predicted_error(quantity, precision)
+            )
         )
     });
     SolveError::Unmet {
         setting,
         message: format!(
-            "{} needs {} but no encoding of {} is that precise{best}",
+            "{} needs {} but no representation of {} is that precise{best}",
             setting.key(),
             describe_error(
                 quantity,
-                Encoding::allowed_error(quantity.kind(), precision)
+                Representation::allowed_error(quantity.kind(), precision)
             ),
             quantity.name(),
         ),
     }
 }
 
-/// The error when the precise enough encodings do not fit the budget: names the precision
+/// The error when the precise enough representations do not fit the budget: names the precision
 /// setting that, relaxed alone, would fit, else the budget.
 fn over_budget(
     scene: &SceneDescription,
     stored: &[Stored],
-    candidates: &[Vec<Encoding>],
+    candidates: &[Vec<Representation>],
     packer: &mut Packer,
 ) -> SolveError {
     let smallest = search(stored, candidates, scene, packer, None)
@@ -436,7 +450,7 @@ fn over_budget(
         .map(|(entry, list)| {
             let bits = list
                 .iter()
-                .map(|encoding| encoding.bits(entry.quantity))
+                .map(|representation| representation.bits(entry.quantity))
                 .min()
                 .unwrap_or(0);
             format!("{} {bits}", entry.quantity.name())
@@ -447,10 +461,10 @@ fn over_budget(
             continue;
         }
         let mut relaxed = candidates.to_vec();
-        relaxed[index] = prune(Encoding::catalogue(entry.quantity, &scene.precision));
+        relaxed[index] = prune(Representation::catalogue(entry.quantity, &scene.precision));
         if let Some(fitting) = search(stored, &relaxed, scene, packer, Some(scene.budget)) {
             let setting = setting_of(entry.quantity);
-            let loosest = fitting.encodings[index];
+            let loosest = fitting.representations[index];
             return SolveError::Unmet {
                 setting,
                 message: format!(
@@ -521,8 +535,8 @@ mod tests {
     fn pruning_keeps_the_narrowest_bit_field_and_every_word() {
         let kept = prune(
             (5..=16)
-                .map(|bits| Encoding::Unorm { bits })
-                .chain([Encoding::UnormWord {
+                .map(|bits| Representation::Unorm { bits })
+                .chain([Representation::UnormWord {
                     format: gbuffer_codegen::Format::Rgba8,
                 }])
                 .collect(),
@@ -530,8 +544,8 @@ mod tests {
         assert_eq!(
             kept,
             [
-                Encoding::Unorm { bits: 5 },
-                Encoding::UnormWord {
+                Representation::Unorm { bits: 5 },
+                Representation::UnormWord {
                     format: gbuffer_codegen::Format::Rgba8
                 }
             ]

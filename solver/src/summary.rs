@@ -1,4 +1,4 @@
-//! A solution in words: the layout's words and each quantity's encoding, predicted error and
+//! A solution in words: the layout's words and each quantity's representation, predicted error and
 //! allowance, as `gbuffer solve` prints it.
 
 use std::fmt;
@@ -32,7 +32,7 @@ impl fmt::Display for Solution {
         writeln!(
             out,
             "  {:<16} {:<36} {:<34} {:<34} needed by",
-            "quantity", "encoding", "predicted error", "allowed"
+            "quantity", "representation", "predicted error", "allowed"
         )?;
         for placement in &self.placements {
             let needed_by: Vec<&str> = placement.needed_by.iter().map(|f| f.name()).collect();
@@ -46,7 +46,7 @@ impl fmt::Display for Solution {
                 out,
                 "  {:<16} {:<36} {:<34} {:<34} {} (in {})",
                 placement.quantity.name(),
-                placement.encoding.to_string(),
+                placement.representation.to_string(),
                 describe_error(placement.quantity, placement.predicted_error),
                 if placement.allowed_error.is_finite() {
                     describe_error(placement.quantity, placement.allowed_error)

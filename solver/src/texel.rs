@@ -2,8 +2,8 @@
 //! member per stored quantity, `encode_<name>` (values to the layout's struct, which the
 //! layout's own `pack_<name>` turns into words) and `decode_<name>` (the inverse).
 //!
-//! Every quantity is one field of the layout and every encoding is the layout's own (a format,
-//! or a bit field's encoding in the generated WGSL), so these only move values between the two
+//! Every quantity is one field of the layout and every representation is the layout's own (a format,
+//! or a bit field's representation in the generated WGSL), so these only move values between the two
 //! structs: the scene's code stores nothing itself.
 
 use std::fmt::Write as _;
@@ -41,7 +41,7 @@ pub fn texel_wgsl(solution: &Solution) -> String {
             out,
             "    // {}: {} ({}), within {}.",
             placement.quantity.name(),
-            placement.encoding,
+            placement.representation,
             storage.join(" and "),
             describe_error(placement.quantity, placement.predicted_error)
         );
@@ -58,7 +58,7 @@ pub fn texel_wgsl(solution: &Solution) -> String {
     let mut fields = vec![String::new(); layout.fields.len()];
     for placement in &solution.placements {
         let quantity = placement.quantity;
-        let pieces = placement.encoding.pieces(quantity);
+        let pieces = placement.representation.pieces(quantity);
         for (piece, &field) in pieces.iter().zip(&placement.fields) {
             let count = piece.ty.components;
             fields[field] = if count == quantity.components() {

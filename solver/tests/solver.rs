@@ -3,8 +3,8 @@
 //! ones, and WGSL that naga accepts.
 
 use gbuffer::glam::Vec3;
-use gbuffer_solver::encoding::Encoding;
 use gbuffer_solver::quantity::{Kind, Quantity};
+use gbuffer_solver::representation::Representation;
 use gbuffer_solver::texel::texel_wgsl;
 use gbuffer_solver::{
     solve, Feature, Features, MaterialModel, Precision, SceneDescription, Setting, SolveError,
@@ -65,12 +65,16 @@ fn samples(quantity: Quantity, precision: &Precision) -> Vec<Vec3> {
         .collect()
 }
 
-/// The largest error of an encoding's CPU round trip, in the quantity's unit.
-fn measured_error(quantity: Quantity, encoding: Encoding, precision: &Precision) -> f64 {
+/// The largest error of an representation's CPU round trip, in the quantity's unit.
+fn measured_error(
+    quantity: Quantity,
+    representation: Representation,
+    precision: &Precision,
+) -> f64 {
     samples(quantity, precision)
         .into_iter()
         .map(|value| {
-            let back = encoding.round_trip(quantity, value);
+            let back = representation.round_trip(quantity, value);
             match quantity.kind() {
                 Kind::Direction => {
                     // In f64: acos of an f32 dot product near 1 would add 0.02 degrees.
@@ -136,9 +140,9 @@ fn random_scenes_are_solved_within_budget_and_precision_or_refused_with_a_reason
 
 #[test]
 fn a_requirement_met_by_some_layout_is_always_met() {
-    // Satisfiable by construction: a random encoding per quantity, laid out one quantity per
+    // Satisfiable by construction: a random representation per quantity, laid out one quantity per
     // word (an upper bound on what the solver needs), and precision set to exactly what those
-    // encodings achieve.
+    // representations achieve.
     let mut random = SmallRng::seed_from_u64(11);
     for index in 0..200 {
         let mut scene = random_scene(&mut random, index);
@@ -149,10 +153,10 @@ fn a_requirement_met_by_some_layout_is_always_met() {
         }
         let mut words = 0;
         for entry in &stored {
-            let catalogue = Encoding::catalogue(entry.quantity, &scene.precision);
-            let encoding = catalogue[random.random_range(0..catalogue.len())];
-            words += encoding.bits(entry.quantity).div_ceil(32);
-            let error = encoding.predicted_error(entry.quantity, &scene.precision);
+            let catalogue = Representation::catalogue(entry.quantity, &scene.precision);
+            let representation = catalogue[random.random_range(0..catalogue.len())];
+            words += representation.bits(entry.quantity).div_ceil(32);
+            let error = representation.predicted_error(entry.quantity, &scene.precision);
             let precision = &mut scene.precision;
             match entry.quantity.kind() {
                 Kind::Direction => precision.normal_degrees = error,
@@ -164,7 +168,7 @@ fn a_requirement_met_by_some_layout_is_always_met() {
                 }
                 Kind::Hdr => {
                     precision.hdr_relative = error;
-                    precision.hdr_max = precision.hdr_max.min(encoding.hdr_max());
+                    precision.hdr_max = precision.hdr_max.min(representation.hdr_max());
                 }
                 Kind::Distance => {}
             }
@@ -200,12 +204,15 @@ fn the_unmet_requirement_is_named() {
         }
         other => panic!("{other:?}"),
     }
-    // Past binary16's range only the scaled encodings reach, and they are too coarse.
+    // Past binary16's range only the scaled representations reach, and they are too coarse.
     let bright = SceneDescription::new("Bright").hdr(1e6, 0.01, 0.01);
     match solve(&bright) {
         Err(SolveError::Unmet { setting, message }) => {
             assert_eq!(setting, Setting::HdrRelative);
-            assert!(message.contains("the most precise encoding"), "{message}");
+            assert!(
+                message.contains("the most precise representation"),
+                "{message}"
+            );
         }
         other => panic!("{other:?}"),
     }
@@ -259,19 +266,19 @@ fn predicted_errors_bound_the_measured_round_trips() {
         Quantity::BaseColour,
         Quantity::Roughness,
     ] {
-        for encoding in Encoding::catalogue(quantity, &precision) {
-            let predicted = encoding.predicted_error(quantity, &precision);
-            let measured = measured_error(quantity, encoding, &precision);
+        for representation in Representation::catalogue(quantity, &precision) {
+            let predicted = representation.predicted_error(quantity, &precision);
+            let measured = measured_error(quantity, representation, &precision);
             // f32 arithmetic adds about 1e-7 to the exact bounds.
             assert!(
                 measured <= predicted * 1.0001 + 1e-6,
-                "{quantity:?} {encoding}: measured {measured} > predicted {predicted}"
+                "{quantity:?} {representation}: measured {measured} > predicted {predicted}"
             );
             // And the bounds are not vacuous.
             if predicted > 1e-3 && predicted < 0.5 {
                 assert!(
                     measured > predicted / 8.0,
-                    "{quantity:?} {encoding}: measured {measured} far below predicted {predicted}"
+                    "{quantity:?} {representation}: measured {measured} far below predicted {predicted}"
                 );
             }
         }
@@ -294,9 +301,9 @@ fn solved_layouts_are_layouts_of_the_vocabulary_written_out_and_read_back() {
             gbuffer_codegen::layout_file::parse_layout(&text, std::path::Path::new("solved.toml"))
                 .unwrap_or_else(|errors| panic!("{text}\n{errors:?}"));
         assert_eq!(file.layout, solution.layout, "{text}");
-        // Each quantity is one field, or one per piece, as its encoding stores it.
+        // Each quantity is one field, or one per piece, as its representation stores it.
         for placement in &solution.placements {
-            let pieces = placement.encoding.pieces(placement.quantity);
+            let pieces = placement.representation.pieces(placement.quantity);
             assert_eq!(pieces.len(), placement.fields.len());
             let mut components = 0;
             for (piece, &field) in pieces.iter().zip(&placement.fields) {

@@ -144,7 +144,7 @@ pub struct FastFormats {
 /// largest, odd ones, vectors), beside whole words.
 #[allow(missing_docs)] // each field's name says its encoding and width
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 704)]
+#[gbuffer(budget = 1024)]
 pub struct EveryEncoding {
     #[bits(1, unorm)]
     pub unorm_1: f32,
@@ -204,6 +204,20 @@ pub struct EveryEncoding {
     pub rgbm_6: Vec3,
     #[bits(32, rgbm(51.5))]
     pub rgbm_51_5: Vec3,
+    #[bits(32, float32)]
+    pub float32: f32,
+    #[bits(6, unsigned_float)]
+    pub unsigned_float_6: f32,
+    #[bits(15, unsigned_float)]
+    pub unsigned_float_15: f32,
+    #[bits(30, unsigned_float)]
+    pub unsigned_float_3x10: Vec3,
+    #[bits(6, log_luminance)]
+    pub log_luminance_6: f32,
+    #[bits(24, log_luminance)]
+    pub log_luminance_24: f32,
+    #[bits(30, log_luminance)]
+    pub log_luminance_3x10: Vec3,
     #[pls(rgba8)]
     pub whole_word: Vec4,
     #[bits(3, unorm)]

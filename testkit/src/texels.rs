@@ -2,7 +2,8 @@
 //! values, and the comparison of what a driver produced with the Rust mirror. The wgpu,
 //! GLES and Vulkan tests share them, so every path is held to the same contract.
 
-use gbuffer::packing::{ChannelEncoding, Encoding, Format, Layout, ScalarKind, Storage};
+use gbuffer::packing::codecs::unsigned_float::EXPONENT_BITS;
+use gbuffer::packing::{Channel, Encoding, Format, Layout, ScalarKind, Storage};
 
 use gbuffer_gpu::harness::{
     expected_scalars, expected_words, field_code_errors, scalars_per_texel,
@@ -62,12 +63,12 @@ pub fn slots(layout: &Layout) -> Vec<Slot> {
                             name: format!("{}.{}", field.name, channel.name),
                             kind: field.ty.scalar,
                             tolerance: match channel.encoding {
-                                ChannelEncoding::Unorm => Tolerance::Ulps(2),
+                                Encoding::Unorm => Tolerance::Ulps(2),
                                 _ => Tolerance::Exact,
                             },
                             small_float: matches!(
                                 channel.encoding,
-                                ChannelEncoding::Half | ChannelEncoding::UnsignedFloat { .. }
+                                Encoding::Half | Encoding::UnsignedFloat
                             ),
                         }),
                 );
@@ -221,11 +222,12 @@ pub fn compare_decoded(
 
 /// Whether the driver's word for a channel may be compared with the mirror's: a finite input
 /// within the range the channel represents (where GL defines the conversion).
-fn defined_input(value: f32, encoding: ChannelEncoding) -> bool {
-    match encoding {
-        ChannelEncoding::Unorm => (0.0..=1.0).contains(&value),
-        ChannelEncoding::Half => value.is_finite() && value.abs() <= 65504.0,
-        ChannelEncoding::UnsignedFloat { mantissa_bits } => {
+fn defined_input(value: f32, channel: Channel) -> bool {
+    match channel.encoding {
+        Encoding::Unorm => (0.0..=1.0).contains(&value),
+        Encoding::Half => value.is_finite() && value.abs() <= 65504.0,
+        Encoding::UnsignedFloat => {
+            let mantissa_bits = channel.bits - EXPONENT_BITS;
             let largest = f32::from_bits(
                 ((15 + 127) << 23) | (((1 << mantissa_bits) - 1) << (23 - mantissa_bits)),
             );
@@ -270,8 +272,7 @@ pub fn check_native_words(
             for (index, channel) in contents.format.channels().iter().enumerate() {
                 // Channels past the field's components are padding: zero on both sides.
                 let value = (index < field.ty.components).then(|| f32::from_bits(values[index]));
-                let defined =
-                    !float || value.is_none_or(|value| defined_input(value, channel.encoding));
+                let defined = !float || value.is_none_or(|value| defined_input(value, *channel));
                 let code = |bits: u32| (bits >> channel.offset) & channel.mask();
                 let distance = code(expected[word]).abs_diff(code(got));
                 if defined && distance > u32::from(float) && failures.len() < 24 {
@@ -301,12 +302,12 @@ pub fn word_from_components(format: Format, components: &[u32]) -> u32 {
         .fold(0, |word, (channel, &bits)| {
             let value = f32::from_bits(bits);
             let code = match channel.encoding {
-                ChannelEncoding::Unorm => (value * channel.mask() as f32).round() as u32,
-                ChannelEncoding::Half => small_float_bits(value, 10, true),
-                ChannelEncoding::UnsignedFloat { mantissa_bits } => {
-                    small_float_bits(value, mantissa_bits, false)
+                Encoding::Unorm => (value * channel.mask() as f32).round() as u32,
+                Encoding::Half => small_float_bits(value, 10, true),
+                Encoding::UnsignedFloat => {
+                    small_float_bits(value, channel.bits - EXPONENT_BITS, false)
                 }
-                ChannelEncoding::Float32 | ChannelEncoding::Uint | ChannelEncoding::Sint => bits,
+                _ => bits,
             };
             word | ((code & channel.mask()) << channel.offset)
         })

@@ -2,7 +2,8 @@
 //! f64 reference over a stated domain, the WGSL that costs and times it, and its CPU mirror.
 
 use gbuffer::glam::{DVec3, Vec2, Vec3, Vec4};
-use gbuffer::packing::{Field, FieldType, Format, Layout, ScalarKind};
+use gbuffer::packing::codecs::unorm;
+use gbuffer::packing::{BitField, Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
 use gbuffer::seed_conventions::{
     round_trip, SeedConvention, Shading, Surface, LIGHT_SCALE, SURFACE_WGSL,
 };
@@ -71,9 +72,6 @@ const PRELUDE: &str = "
 fn quantize3(value: vec3<f32>, max_code: f32) -> vec3<f32> {
     return round(clamp(value, vec3<f32>(0.0), vec3<f32>(1.0)) * max_code) / max_code;
 }
-fn quantize2(value: vec2<f32>, max_code: f32) -> vec2<f32> {
-    return round(clamp(value, vec2<f32>(0.0), vec2<f32>(1.0)) * max_code) / max_code;
-}
 fn quantize4(value: vec4<f32>, max_code: f32) -> vec4<f32> {
     return round(clamp(value, vec4<f32>(0.0), vec4<f32>(1.0)) * max_code) / max_code;
 }
@@ -86,10 +84,7 @@ fn wgsl(modules: &[&str], body: &str) -> String {
 
 /// CPU storage in an n-bit unorm channel, with the exact conversions.
 fn quantize(value: f32, bits: u32) -> f32 {
-    gbuffer_codegen::convert::f32_from_unorm(
-        gbuffer_codegen::convert::unorm_from_f32(value, bits),
-        bits,
-    )
+    unorm::f32_from_unorm(unorm::unorm_from_f32(value, bits), bits)
 }
 
 fn quantize3(value: Vec3, bits: u32) -> Vec3 {
@@ -170,26 +165,40 @@ fn transfer_rows() -> Vec<Row> {
 
 // ---- normal storage ----
 
-/// How a normal is stored: the naive xyz mapping or octahedral, at a bit width per channel.
+/// How a normal is stored: the naive xyz mapping in unorm channels, or the octahedral codec
+/// in a bit field of two coordinates.
 #[derive(Clone, Copy)]
-enum NormalEncoding {
+enum NormalStorage {
     Xyz { bits: u32 },
     Octahedral { bits: u32 },
 }
 
-impl NormalEncoding {
+impl NormalStorage {
+    /// The octahedral bit field (the xyz mapping is the shading library's, in unorm channels).
+    fn bit_field(bits: u32) -> BitField {
+        BitField {
+            bits: 2 * bits,
+            encoding: Encoding::Octahedral,
+        }
+    }
+
     fn round_trip(self, normal: Vec3) -> Vec3 {
         match self {
-            NormalEncoding::Xyz { bits } => {
+            NormalStorage::Xyz { bits } => {
                 m::normals::unorm_to_normal(quantize3(m::normals::normal_to_unorm(normal), bits))
             }
-            NormalEncoding::Octahedral { bits } => {
-                let encoded = m::normals::octahedral_encode(normal) * 0.5 + Vec2::splat(0.5);
-                let stored = Vec2::new(quantize(encoded.x, bits), quantize(encoded.y, bits));
-                m::normals::octahedral_decode(stored * 2.0 - Vec2::ONE)
+            NormalStorage::Octahedral { bits } => {
+                bit_field_round_trip(NormalStorage::bit_field(bits), normal)
             }
         }
     }
+}
+
+/// A `Vec3` through a bit field's codec, there and back: the Rust mirror of the layouts.
+fn bit_field_round_trip(field: BitField, value: Vec3) -> Vec3 {
+    let lanes = value.extend(0.0).to_array().map(f32::to_bits);
+    let back = field.decode(field.encode(lanes, 3), 3);
+    Vec3::from_array([back[0], back[1], back[2]].map(f32::from_bits))
 }
 
 /// The direction of equirectangular pixel (column, row) of a width x height map.
@@ -207,23 +216,23 @@ fn equirectangular_direction(column: usize, row: usize, width: usize, height: us
 
 fn normal_rows() -> Vec<Row> {
     let encodings = [
-        ("xyz in rgba8", 24, NormalEncoding::Xyz { bits: 8 }),
-        ("xyz in rgb10_a2", 30, NormalEncoding::Xyz { bits: 10 }),
-        ("octahedral 2x8", 16, NormalEncoding::Octahedral { bits: 8 }),
+        ("xyz in rgba8", 24, NormalStorage::Xyz { bits: 8 }),
+        ("xyz in rgb10_a2", 30, NormalStorage::Xyz { bits: 10 }),
+        ("octahedral 2x8", 16, NormalStorage::Octahedral { bits: 8 }),
         (
             "octahedral 2x10",
             20,
-            NormalEncoding::Octahedral { bits: 10 },
+            NormalStorage::Octahedral { bits: 10 },
         ),
         (
             "octahedral 2x12",
             24,
-            NormalEncoding::Octahedral { bits: 12 },
+            NormalStorage::Octahedral { bits: 12 },
         ),
         (
             "octahedral 2x16",
             32,
-            NormalEncoding::Octahedral { bits: 16 },
+            NormalStorage::Octahedral { bits: 16 },
         ),
     ];
     let directions = gbuffer_gpu::values::fibonacci_sphere(1 << 16);
@@ -242,15 +251,18 @@ fn normal_rows() -> Vec<Row> {
                     angle_degrees(exact, encoding.round_trip(exact.as_vec3()).as_dvec3())
                 })
                 .collect();
-            let store = match encoding {
-                NormalEncoding::Xyz { bits } => format!("unorm_to_normal(quantize3(normal_to_unorm(normal), {}.0))", (1u32 << bits) - 1),
-                NormalEncoding::Octahedral { bits } => format!(
-                    "octahedral_decode(quantize2(octahedral_encode(normal) * 0.5 + vec2<f32>(0.5), {}.0) * 2.0 - vec2<f32>(1.0))",
-                    (1u32 << bits) - 1
+            let (store, helpers) = match encoding {
+                NormalStorage::Xyz { bits } => (
+                    format!("unorm_to_normal(quantize3(normal_to_unorm(normal), {}.0))", (1u32 << bits) - 1),
+                    String::new(),
                 ),
+                NormalStorage::Octahedral { bits } => {
+                    let layout = one_field_layout("NormalOctahedral", Storage::Bits(NormalStorage::bit_field(bits)), 3);
+                    ("normal_octahedral_round_trip(normal)".to_string(), layout_round_trip_wgsl(&layout))
+                }
             };
             let body = format!(
-                "fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    let normal = normalize(x.xyz * 2.0 - vec3<f32>(0.999));\n    return vec4<f32>({store} * 0.5 + vec3<f32>(0.5), x.w);\n}}\n"
+                "{helpers}\nfn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    let normal = normalize(x.xyz * 2.0 - vec3<f32>(0.999));\n    return vec4<f32>({store} * 0.5 + vec3<f32>(0.5), x.w);\n}}\n"
             );
             Row {
                 family: "normal storage",
@@ -273,16 +285,16 @@ fn normal_rows() -> Vec<Row> {
 
 // ---- HDR storage ----
 
-/// A one-word-per-field layout used to time a format's generated packing code.
-fn single_format_layout(name: &str, fields: &[(&str, Format, usize)]) -> Layout {
+/// A layout of floats, one field a storage, whose generated code the rows time.
+fn storage_layout(name: &str, fields: &[(&str, Storage, usize)]) -> Layout {
     Layout {
         name: name.to_string(),
         budget: 32 * fields.len() as u32,
         fields: fields
             .iter()
-            .map(|&(field, format, components)| Field {
+            .map(|&(field, storage, components)| Field {
                 name: field.to_string(),
-                storage: gbuffer_codegen::Storage::Word(format),
+                storage,
                 ty: FieldType::new(ScalarKind::Float, components),
                 conversions: None,
             })
@@ -290,9 +302,25 @@ fn single_format_layout(name: &str, fields: &[(&str, Format, usize)]) -> Layout 
     }
 }
 
+/// A layout of one float field, `value`.
+fn one_field_layout(name: &str, storage: Storage, components: usize) -> Layout {
+    storage_layout(name, &[("value", storage, components)])
+}
+
+/// The generated WGSL of a one-field layout and `fn <snake>_round_trip(value: T) -> T`, the
+/// field packed and unpacked by it.
+fn layout_round_trip_wgsl(layout: &Layout) -> String {
+    let (snake, name) = (layout.snake_name(), &layout.name);
+    let ty = layout.fields[0].ty.wgsl();
+    format!(
+        "{}\nfn {snake}_round_trip(value: {ty}) -> {ty} {{\n    return unpack_{snake}(pack_{snake}({name}(value))).value;\n}}\n",
+        gbuffer_codegen::emit::wgsl::emit(layout)
+    )
+}
+
 /// An HDR storage row: its CPU round trip, and the WGSL that does the same to `colour` (an
 /// expression, and the functions it calls beyond the library's).
-struct HdrEncoding {
+struct HdrStorage {
     name: &'static str,
     bits: u32,
     round_trip: Box<dyn Fn(Vec3) -> Vec3>,
@@ -304,11 +332,18 @@ struct HdrEncoding {
 fn hdr_rows() -> Vec<Row> {
     const RANGE: f32 = 6.0;
     // The packed float formats run through the generated layout code: pack, then unpack.
-    let r11f = single_format_layout("HdrR11f", &[("colour", Format::R11fG11fB10f, 3)]);
-    let rg16f = single_format_layout(
+    let r11f = one_field_layout("HdrR11f", Storage::Word(Format::R11fG11fB10f), 3);
+    let rg16f = storage_layout(
         "HdrRg16f",
-        &[("red_green", Format::Rg16f, 2), ("blue", Format::Rg16f, 1)],
+        &[
+            ("red_green", Storage::Word(Format::Rg16f), 2),
+            ("blue", Storage::Word(Format::Rg16f), 1),
+        ],
     );
+    let log_luminance = BitField {
+        bits: 30,
+        encoding: Encoding::LogLuminance,
+    };
     let rg16f_helpers = format!(
         "{}\nfn rg16f_round_trip(colour: vec3<f32>) -> vec3<f32> {{\n    let texel = unpack_hdr_rg16f(pack_hdr_rg16f(HdrRg16f(colour.rg, colour.b)));\n    return vec3<f32>(texel.red_green, texel.blue);\n}}\n",
         gbuffer_codegen::emit::wgsl::emit(&rg16f)
@@ -328,7 +363,7 @@ fn hdr_rows() -> Vec<Row> {
         })
     };
     let encodings = vec![
-        HdrEncoding {
+        HdrStorage {
             name: "scaled rgb10_a2 (range 6)",
             bits: 30,
             round_trip: Box::new(|c| {
@@ -338,18 +373,18 @@ fn hdr_rows() -> Vec<Row> {
             expression: "scale_unit_to_hdr(quantize3(scale_hdr_to_unit(colour, 6.0), 1023.0), 6.0)",
             modules: &["hdr"],
         },
-        HdrEncoding {
+        HdrStorage {
             name: "r11f_g11f_b10f",
             bits: 32,
             round_trip: Box::new(|c| {
                 let word = Format::R11fG11fB10f.encode(c.extend(0.0).to_array());
                 Vec3::from_slice(&Format::R11fG11fB10f.decode::<f32>(word)[..3])
             }),
-            helpers: gbuffer_codegen::emit::wgsl::emit(&r11f),
-            expression: "unpack_hdr_r11f(pack_hdr_r11f(HdrR11f(colour))).colour",
+            helpers: layout_round_trip_wgsl(&r11f),
+            expression: "hdr_r11f_round_trip(colour)",
             modules: &[],
         },
-        HdrEncoding {
+        HdrStorage {
             name: "rg16f x 2 (r, g | b)",
             bits: 48,
             round_trip: Box::new(|c| {
@@ -362,7 +397,7 @@ fn hdr_rows() -> Vec<Row> {
             expression: "rg16f_round_trip(colour)",
             modules: &[],
         },
-        HdrEncoding {
+        HdrStorage {
             name: "RGBM in rgba8 (range 6)",
             bits: 32,
             round_trip: rgbm_round_trip(m::hdr::rgbm_encode, m::hdr::rgbm_decode),
@@ -370,7 +405,7 @@ fn hdr_rows() -> Vec<Row> {
             expression: "rgbm_decode(quantize4(rgbm_encode(colour, 6.0), 255.0), 6.0)",
             modules: &["hdr"],
         },
-        HdrEncoding {
+        HdrStorage {
             name: "RGBM squared in rgba8 (range 6)",
             bits: 32,
             round_trip: rgbm_round_trip(m::hdr::rgbm_squared_encode, m::hdr::rgbm_squared_decode),
@@ -379,13 +414,25 @@ fn hdr_rows() -> Vec<Row> {
                 "rgbm_squared_decode(quantize4(rgbm_squared_encode(colour, 6.0), 255.0), 6.0)",
             modules: &["hdr"],
         },
-        HdrEncoding {
+        HdrStorage {
             name: "rgb9e5",
             bits: 32,
-            round_trip: Box::new(|c| m::rgb9e5::rgb9e5_decode(m::rgb9e5::rgb9e5_encode(c))),
+            round_trip: Box::new(|c| m::hdr::rgb9e5_decode(m::hdr::rgb9e5_encode(c))),
             helpers: String::new(),
             expression: "rgb9e5_decode(rgb9e5_encode(colour))",
             modules: &["hdr"],
+        },
+        HdrStorage {
+            name: "log luminance 3 x 10 bits",
+            bits: 30,
+            round_trip: Box::new(move |c| bit_field_round_trip(log_luminance, c)),
+            helpers: layout_round_trip_wgsl(&one_field_layout(
+                "HdrLogLuminance",
+                Storage::Bits(log_luminance),
+                3,
+            )),
+            expression: "hdr_log_luminance_round_trip(colour)",
+            modules: &[],
         },
     ];
     // Channels log-uniform over [2^-6, 6]: every format here holds that range.
@@ -399,7 +446,7 @@ fn hdr_rows() -> Vec<Row> {
         .collect();
     encodings
         .into_iter()
-        .map(|HdrEncoding { name, bits, round_trip, helpers, expression, modules }| {
+        .map(|HdrStorage { name, bits, round_trip, helpers, expression, modules }| {
             let mut errors = Accumulator::default();
             for &colour in &colours {
                 let decoded = round_trip(colour);

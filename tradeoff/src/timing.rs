@@ -402,7 +402,7 @@ pub fn gpu_time(
         .flat_map(|index| {
             let [scale, bias] = lut.get(index).copied().unwrap_or([0.0, 0.0]);
             [scale, bias, 0.0, 1.0]
-                .map(|value| gbuffer_codegen::convert::half_from_f32(value) as u16)
+                .map(|value| gbuffer_codegen::codecs::half::half_from_f32(value) as u16)
         })
         .collect();
     let texture = device.create_texture_with_data(

@@ -10,9 +10,9 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::encoding::{BitField, Encoding};
 use crate::format::ScalarKind;
 use crate::layout::{Field, FieldType, Layout, Storage};
+use crate::{BitField, Encoding};
 
 /// The path of the `gbuffer` crate when the user names no other: `::gbuffer`.
 pub fn default_crate_path() -> TokenStream {
@@ -146,7 +146,7 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
             Storage::Bits(bit_field) => {
                 let bit_field = bit_field_tokens(bit_field, &packing);
                 let offset = Literal::u32_unsuffixed(member.offset);
-                let mask = Literal::u32_unsuffixed(crate::convert::max_code(member.bits));
+                let mask = Literal::u32_unsuffixed(crate::codecs::max_code(member.bits));
                 let components = Literal::usize_unsuffixed(field.ty.components);
                 let lanes = quote!(#bit_field.decode((#words_parameter[#word] >> #offset) & #mask, #components));
                 let scalar = |index: usize| match field.ty.scalar {

@@ -20,9 +20,53 @@ pub mod mirror {
     type Float = f32;
     include!("functions/mod.rs");
 
-    /// Shared-exponent rgb9e5: integer-exact, so the f32 form is its own reference.
-    pub mod rgb9e5 {
-        include!("rgb9e5.rs");
+    /// The functions the WGSL takes from the layouts' codecs (`gbuffer_core::codecs`): their
+    /// mirrors are the codecs' own.
+    mod codec_forms {
+        /// `hdr`'s codec functions.
+        pub mod hdr {
+            use gbuffer_core::codecs::{rgb9e5, rgbm};
+            use glam::{Vec3, Vec4};
+
+            /// RGBM encode for an rgba8 target: the RGBM codec's exact encode, its codes over
+            /// 255.
+            pub fn rgbm_encode(linear: Vec3, range: f32) -> Vec4 {
+                let word = rgbm::rgbm_from_f32(linear.to_array(), range);
+                Vec4::from_array(rgbm::unit_from_word(word))
+            }
+
+            /// RGBM decode of four unorm values: the RGBM codec's.
+            pub fn rgbm_decode(rgbm: Vec4, range: f32) -> Vec3 {
+                Vec3::from_array(rgbm::rgbm_decode(rgbm.to_array(), range))
+            }
+
+            /// Shared-exponent encode: the rgb9e5 codec (integer-exact, so the f32 form is its
+            /// own reference; `gbuffer_core`'s tests hold it against the extension's text).
+            pub fn rgb9e5_encode(linear: Vec3) -> u32 {
+                rgb9e5::rgb9e5_from_f32(linear.to_array())
+            }
+
+            /// Shared-exponent decode: the rgb9e5 codec.
+            pub fn rgb9e5_decode(packed: u32) -> Vec3 {
+                Vec3::from_array(rgb9e5::f32_from_rgb9e5(packed))
+            }
+        }
+
+        /// `normals`' codec functions.
+        pub mod normals {
+            use gbuffer_core::codecs::octahedral;
+            use glam::{Vec2, Vec3};
+
+            /// Octahedral encode: the octahedral codec's map.
+            pub fn octahedral_encode(normal: Vec3) -> Vec2 {
+                Vec2::from_array(octahedral::octahedral_fold(normal.to_array()))
+            }
+
+            /// Octahedral decode: the octahedral codec's inverse map.
+            pub fn octahedral_decode(encoded: Vec2) -> Vec3 {
+                Vec3::from_array(octahedral::octahedral_unfold(encoded.to_array()))
+            }
+        }
     }
 }
 
@@ -32,6 +76,12 @@ pub mod reference {
     use glam::{BVec3, DVec2 as Vec2, DVec3 as Vec3, DVec4 as Vec4};
     type Float = f64;
     include!("functions/mod.rs");
+
+    /// The textbook forms of the functions the WGSL takes from the codecs, in f64: what the
+    /// codecs are measured against.
+    mod codec_forms {
+        include!("codec_references.rs");
+    }
 }
 
 pub mod env_brdf_lut;

@@ -27,7 +27,7 @@ use std::fmt::Write as _;
 pub use interface::{subpass_input_type, Attachment, Include, Interface};
 pub use translate::{translate, translate_with, with_explicit_precision, GlslNames, Translation};
 
-use crate::convert::max_code;
+use crate::codecs::max_code;
 use crate::emit::wgsl::Conversions;
 use crate::format::{Format, ScalarKind};
 use crate::layout::{FieldType, Layout, Member, Word};

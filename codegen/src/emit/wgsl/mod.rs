@@ -20,8 +20,9 @@ mod bit_fields;
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 
-use crate::convert::max_code;
-use crate::format::{Channel, ChannelEncoding, Format, ScalarKind};
+use crate::codecs::wgsl::Lanes;
+use crate::codecs::{half, max_code, small_float, unorm, unsigned_float, Encoding};
+use crate::format::{Channel, Format, ScalarKind};
 use crate::layout::{Field, Layout, Member, Storage};
 
 pub use crate::layout::Conversions;
@@ -467,52 +468,6 @@ pub(crate) fn function_name(prefix: &str, verb: &str, format: Format, suffix: &s
     format!("{prefix}_{verb}_{}{suffix}_word", format.name())
 }
 
-/// The lanes a format's helpers work on: a scalar for one channel, a vector for several, so
-/// that one instruction converts every channel of a word.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-struct Lanes(usize);
-
-impl Lanes {
-    /// The lane count's name in helper names: `f32`, `f32x2`, `f32x3`, `f32x4` (no helper name
-    /// may end in a digit, which naga_oil refuses).
-    fn name(self) -> String {
-        match self.0 {
-            1 => "f32".to_string(),
-            n => format!("f32x{n}"),
-        }
-    }
-
-    /// The WGSL type with `scalar` in every lane.
-    fn of(self, scalar: &str) -> String {
-        match self.0 {
-            1 => scalar.to_string(),
-            n => format!("vec{n}<{scalar}>"),
-        }
-    }
-
-    /// A literal with one value per lane, e.g. `vec4<u32>(0u, 8u, 16u, 24u)`; a splat when the
-    /// values agree.
-    fn literal(self, scalar: &str, values: &[String]) -> String {
-        if self.0 == 1 {
-            values[0].clone()
-        } else if values.iter().all(|value| *value == values[0]) {
-            format!("{}({})", self.of(scalar), values[0])
-        } else {
-            format!("{}({})", self.of(scalar), values.join(", "))
-        }
-    }
-
-    /// `template` with its placeholders filled for these lanes.
-    fn fill(self, template: &str, prefix: &str) -> String {
-        template
-            .replace("PREFIX", prefix)
-            .replace("LANES", &self.name())
-            .replace("SINTS", &self.of("i32"))
-            .replace("FLOATS", &self.of("f32"))
-            .replace("UINTS", &self.of("u32"))
-    }
-}
-
 /// A literal with one `u32` per channel of `format`.
 fn per_channel(format: Format, value: impl Fn(&Channel) -> u32) -> String {
     channel_literal(format, "u32", |channel| format!("{}u", value(channel)))
@@ -577,9 +532,9 @@ fn write_format_helpers(
             layout_description.join(", ")
         );
         let template = match (conversions.is_exact_for(format), format) {
-            (false, Format::Rgb10A2) => Some(FAST_RGB10_A2),
-            (false, Format::Rgba8) => Some(FAST_RGBA8_ARITHMETIC),
-            (false, Format::R11fG11fB10f) => Some(FAST_R11F_G11F_B10F),
+            (false, Format::Rgb10A2) => Some(unorm::WGSL_FAST_RGB10_A2),
+            (false, Format::Rgba8) => Some(unorm::WGSL_FAST_RGBA8_ARITHMETIC),
+            (false, Format::R11fG11fB10f) => Some(unsigned_float::WGSL_FAST_R11F_G11F_B10F),
             _ => None,
         };
         match template {
@@ -607,10 +562,10 @@ fn encode_body(prefix: &str, format: Format) -> String {
     let lanes = Lanes(channels.len());
     let first = channels[0];
     let codes = match first.encoding {
-        ChannelEncoding::Float32 => "bitcast<u32>(c)".to_string(),
-        ChannelEncoding::Uint if first.bits == 32 => "c".to_string(),
-        ChannelEncoding::Uint => format!("min(c, {})", per_channel(format, |c| max_code(c.bits))),
-        ChannelEncoding::Sint => {
+        Encoding::Float32 => "bitcast<u32>(c)".to_string(),
+        Encoding::Uint if first.bits == 32 => "c".to_string(),
+        Encoding::Uint => format!("min(c, {})", per_channel(format, |c| max_code(c.bits))),
+        Encoding::Sint => {
             let bound = |value: i64| {
                 Lanes(channels.len()).literal("i32", &vec![value.to_string(); channels.len()])
             };
@@ -627,17 +582,18 @@ fn encode_body(prefix: &str, format: Format) -> String {
                 per_channel(format, |c| c.mask())
             )
         }
-        ChannelEncoding::Unorm => format!(
+        Encoding::Unorm => format!(
             "{prefix}_{}_to_unorm(c, {}, {}, {})",
             lanes.name(),
             per_channel(format, |c| c.bits),
             per_channel(format, |c| max_code(c.bits)),
             per_channel(format, |c| 150 - c.bits)
         ),
-        ChannelEncoding::Half => format!("{prefix}_{}_to_half(c)", lanes.name()),
-        ChannelEncoding::UnsignedFloat { .. } => {
+        Encoding::Half => format!("{prefix}_{}_to_half(c)", lanes.name()),
+        Encoding::UnsignedFloat => {
             format!("{prefix}_{}_to_unsigned_float(c)", lanes.name())
         }
+        other => unreachable!("a format's channels use per-component codecs, not {other}"),
     };
     if channels.len() == 1 {
         return format!("    return {codes};\n");
@@ -664,11 +620,11 @@ fn decode_body(format: Format) -> String {
         per_channel(format, |c| c.mask())
     );
     let value = match channels[0].encoding {
-        ChannelEncoding::Float32 => "bitcast<f32>(word)".to_string(),
-        ChannelEncoding::Uint if channels.len() == 1 => "word".to_string(),
-        ChannelEncoding::Uint => codes,
+        Encoding::Float32 => "bitcast<f32>(word)".to_string(),
+        Encoding::Uint if channels.len() == 1 => "word".to_string(),
+        Encoding::Uint => codes,
         // Move each channel's top bit to bit 31, then shift back arithmetically.
-        ChannelEncoding::Sint => format!(
+        Encoding::Sint => format!(
             "bitcast<{}>({}(word) << {}) >> {}",
             lanes.of("i32"),
             lanes.of("u32"),
@@ -677,7 +633,7 @@ fn decode_body(format: Format) -> String {
         ),
         // The reciprocal is correctly rounded; the product stays within 1 ulp of the exact
         // quotient and the largest code decodes to exactly 1.0.
-        ChannelEncoding::Unorm => {
+        Encoding::Unorm => {
             let reciprocals: Vec<String> = channels
                 .iter()
                 .map(|c| format!("{:?}", 1.0f32 / max_code(c.bits) as f32))
@@ -690,14 +646,11 @@ fn decode_body(format: Format) -> String {
         }
         // Every binary16 value is a binary32 value, and `unpack2x16float` is defined as that
         // conversion: exact, on an adapter that keeps half denormals as WGSL asks.
-        ChannelEncoding::Half => "unpack2x16float(word)".to_string(),
+        Encoding::Half => "unpack2x16float(word)".to_string(),
         // The codes are halves without their sign and low mantissa bits: widened back into
         // halves, they decode exactly as rg16f does.
-        ChannelEncoding::UnsignedFloat { .. } => {
-            return "    let red_green = unpack2x16float(((word & 0x7ffu) << 4u) | ((word & 0x3ff800u) << 9u));\n    \
-                    return vec3<f32>(red_green, unpack2x16float((word >> 17u) & 0x7fe0u).x);\n"
-                .to_string()
-        }
+        Encoding::UnsignedFloat => return unsigned_float::WGSL_DECODE_R11F_G11F_B10F.to_string(),
+        other => unreachable!("a format's channels use per-component codecs, not {other}"),
     };
     format!("    return {value};\n")
 }
@@ -705,7 +658,7 @@ fn decode_body(format: Format) -> String {
 /// The mantissa bits of a small-float channel (half or unsigned float).
 fn mantissa_bits(channel: &Channel) -> u32 {
     match channel.encoding {
-        ChannelEncoding::UnsignedFloat { mantissa_bits } => mantissa_bits,
+        Encoding::UnsignedFloat => channel.bits - unsigned_float::EXPONENT_BITS,
         _ => 10,
     }
 }
@@ -758,20 +711,22 @@ fn write_conversion_helpers(out: &mut String, layout: &Layout, conversions: Conv
         .collect();
     let mut helpers: Vec<String> = exact
         .iter()
-        .filter(|format| format.channels()[0].encoding == ChannelEncoding::Unorm)
+        .filter(|format| format.channels()[0].encoding == Encoding::Unorm)
         .map(|format| Lanes(format.channels().len()))
         .collect::<BTreeSet<Lanes>>()
         .into_iter()
-        .map(|lanes| lanes.fill(UNORM_FROM_F32, &prefix))
+        .map(|lanes| lanes.fill(unorm::WGSL_ENCODE, &prefix))
         .collect();
     for format in exact {
         let (name, wrapper) = match format.channels()[0].encoding {
-            ChannelEncoding::Half => ("unsigned_half", HALF),
-            ChannelEncoding::UnsignedFloat { .. } => ("unsigned_float", UNSIGNED_FLOAT),
+            Encoding::Half => ("unsigned_half", half::WGSL_ENCODE),
+            Encoding::UnsignedFloat => ("unsigned_float", unsigned_float::WGSL_ENCODE),
             _ => continue,
         };
         let mantissas: Vec<u32> = format.channels().iter().map(mantissa_bits).collect();
-        helpers.extend(small_float_helpers(&prefix, name, wrapper, &mantissas));
+        helpers.extend(small_float::wgsl_helpers(
+            &prefix, name, wrapper, &mantissas,
+        ));
     }
     for field in &layout.fields {
         if let Storage::Bits(bit_field) = field.storage {
@@ -790,208 +745,3 @@ fn write_conversion_helpers(out: &mut String, layout: &Layout, conversions: Conv
         }
     }
 }
-
-/// The helpers that round f32s to small floats of the given mantissa widths (one lane each)
-/// and `wrapper`, which calls them, with their constants written out.
-fn small_float_helpers(prefix: &str, name: &str, wrapper: &str, mantissas: &[u32]) -> Vec<String> {
-    let lanes = Lanes(mantissas.len());
-    let literal = |scalar: &str, write: &dyn Fn(u32) -> String| {
-        let values: Vec<String> = mantissas.iter().map(|&bits| write(bits)).collect();
-        lanes.literal(scalar, &values)
-    };
-    let distinct: BTreeSet<u32> = mantissas.iter().copied().collect();
-    let distinct: Vec<String> = distinct.iter().map(u32::to_string).collect();
-    let constants = [
-        ("MANTISSA_BITS", distinct.join(" or ")),
-        (
-            "ROUNDING_AND_REBIAS",
-            literal("u32", &|bits| {
-                let shift = 23 - bits;
-                format!(
-                    "{:#x}u",
-                    ((1u32 << (shift - 1)) - 1).wrapping_sub(113 << 23)
-                )
-            }),
-        ),
-        ("SHIFT", literal("u32", &|bits| format!("{}u", 23 - bits))),
-        (
-            "DENORMAL_SCALE",
-            literal("f32", &|bits| format!("{:?}", ((14 + bits) as f32).exp2())),
-        ),
-        (
-            "MAX_CODE",
-            literal("u32", &|bits| format!("{}u", (31 << bits) - 1)),
-        ),
-        (
-            "SMALLEST_NORMAL",
-            literal("u32", &|bits| format!("{}u", 1 << bits)),
-        ),
-        ("NAME", name.to_string()),
-    ];
-    [SMALL_FLOAT_FROM_MAGNITUDE, wrapper]
-        .iter()
-        .map(|template| {
-            let mut helper = lanes.fill(template, prefix);
-            for (placeholder, value) in &constants {
-                helper = helper.replace(placeholder, value);
-            }
-            helper
-        })
-        .collect()
-}
-
-const FAST_RGB10_A2: &str = "\
-// Fast conversions: the codes are rounded in f32 arithmetic, one code from the exact ones at
-// most (where the product lies within f32's rounding of a half-integer); the decode is exact.
-fn ENCODE(c: vec4<f32>) -> u32 {
-    let scale = vec4<f32>(1023.0, 1023.0, 1023.0, 3.0);
-    let codes = vec4<u32>(clamp(c, vec4<f32>(0.0), vec4<f32>(1.0)) * scale + vec4<f32>(0.5));
-    return codes.x | (codes.y << 10u) | (codes.z << 20u) | (codes.w << 30u);
-}
-
-";
-
-const FAST_RGBA8_ARITHMETIC: &str = "\
-// Fast conversions for GLSL ES 3.00, which has no packUnorm4x8: rounded in f32 arithmetic like
-// the builtin (one code from the exact ones at most); the decode is the exact one.
-fn ENCODE(c: vec4<f32>) -> u32 {
-    let codes = vec4<u32>(clamp(c, vec4<f32>(0.0), vec4<f32>(1.0)) * 255.0 + vec4<f32>(0.5));
-    let placed = codes << vec4<u32>(0u, 8u, 16u, 24u);
-    return placed.x | placed.y | placed.z | placed.w;
-}
-
-";
-
-const FAST_R11F_G11F_B10F: &str = "\
-// Fast conversions, the engines' idiom: the adapter converts to half floats with
-// `pack2x16float`, whose mantissas are cut to 6 and 5 bits (one code under the exact rounding
-// at most; the adapter may flush values under 2^-14 to zero and turn values past 65504 into
-// infinity). The decode is the exact one.
-fn ENCODE(c: vec3<f32>) -> u32 {
-    let positive = max(c, vec3<f32>(0.0));
-    let red_green = pack2x16float(positive.xy);
-    let blue = pack2x16float(vec2<f32>(positive.z, 0.0));
-    return ((red_green >> 4u) & 0x7ffu) | ((red_green >> 9u) & 0x3ff800u) | ((blue & 0x7fe0u) << 17u);
-}
-
-";
-
-const UNORM_FROM_F32: &str = "\
-// Unsigned normalized encode, per lane: floor(0.5 + max_code * clamp(value, 0, 1)), exact, in
-// integer arithmetic on the float's bits (a GPU compiler may reassociate float arithmetic, so
-// exactness cannot rest on it). With value = significand * 2^-(shift + bits) and max_code =
-// 2^bits - 1, the code is (significand - significand / 2^bits + 2^(shift - 1)) >> shift, and
-// rounding significand / 2^bits up changes no result. NaN and negatives give 0 (as unsigned
-// integers their bits lie above infinity's), values from 1.0 up give max_code; past a shift of
-// 26 every code is 0, as it is at 26. No branch, so the fragments of a tile never diverge, and
-// no `select` on integer vectors, which GLSL ES 3.00 cannot express (a multiply by 0 or 1).
-// shift_bias is 150 - bits (passed in: an optimiser does not fold vector constants).
-fn PREFIX_LANES_to_unorm(value: FLOATS, bits: UINTS, max_code: UINTS, shift_bias: UINTS) -> UINTS {
-    let value_bits = bitcast<UINTS>(value);
-    let clamped = min(value_bits, UINTS(0x3f800000u)) * UINTS(value_bits <= UINTS(0x7f800000u));
-    let significand = (clamped & UINTS(0x7fffffu)) | UINTS(0x800000u);
-    let shift = min(shift_bias - (clamped >> UINTS(23u)), UINTS(26u));
-    let scaled = significand - ((significand + max_code) >> bits);
-    return (scaled + ((UINTS(1u) << shift) >> UINTS(1u))) >> shift;
-}
-
-";
-
-const SNORM_FROM_F32: &str = "\
-// Signed normalized encode, per lane: GL's round(clamp(value, -1, 1) * (2^(bits - 1) - 1)),
-// halves away from zero, exact: the magnitude's unorm code at bits - 1 bits (NaN's is 0),
-// negated in the bits-bit two's complement for a set sign bit (a multiply-free negation, as
-// GLSL ES 3.00 has no `select` on integer vectors). magnitude_* are to_unorm's parameters
-// at bits - 1 bits; mask is 2^bits - 1.
-fn PREFIX_LANES_to_snorm(value: FLOATS, magnitude_bits: UINTS, magnitude_max: UINTS, shift_bias: UINTS, mask: UINTS) -> UINTS {
-    let value_bits = bitcast<UINTS>(value);
-    let magnitude = bitcast<FLOATS>(value_bits & UINTS(0x7fffffffu));
-    let code = PREFIX_LANES_to_unorm(magnitude, magnitude_bits, magnitude_max, shift_bias);
-    let negative = value_bits >> UINTS(31u);
-    return ((code ^ (UINTS(0u) - negative)) + negative) & mask;
-}
-
-// Signed normalized decode: max(code / (2^(bits - 1) - 1), -1), the code sign-extended by
-// moving its top bit to bit 31 and shifting back arithmetically (up is 32 - bits).
-fn PREFIX_LANES_from_snorm(code: UINTS, up: UINTS, reciprocal: FLOATS) -> FLOATS {
-    let signed = bitcast<SINTS>(code << up) >> up;
-    return max(FLOATS(signed) * reciprocal, FLOATS(-1.0));
-}
-
-";
-
-const RGB9E5_MANTISSA: &str = "\
-// floor(value * 2^(24 - exponent) + 0.5) for non-negative f32 bits; past a shift of 25 the
-// result is 0, as it is at 25 (the shift is never negative: no channel exceeds the largest).
-fn PREFIX_LANES_rgb9e5_mantissa(bits: UINTS, exponent: UINTS) -> UINTS {
-    let significand = (bits & UINTS(0x7fffffu)) | UINTS(0x800000u);
-    let shift = min(UINTS(126u) + exponent - (bits >> UINTS(23u)), UINTS(25u));
-    return (significand + ((UINTS(1u) << shift) >> UINTS(1u))) >> shift;
-}
-
-";
-
-const RGB9E5: &str = "\
-// Shared-exponent rgb9e5 (EXT_texture_shared_exponent), its algorithm evaluated exactly: the
-// channels clamped to [0, 65408] (NaN to 0; as unsigned integers, NaN and negatives lie above
-// infinity's bits), the exponent max(-16, floor(log2(largest))) + 16 read from the exponent
-// field, one more where the largest channel's mantissa rounds up to 512, and each mantissa
-// floor(channel / 2^(exponent - 24) + 0.5) by shifting the significand with half its last
-// place added. Red in bits 0-8, green 9-17, blue 18-26, the exponent 27-31.
-fn PREFIX_f32x3_to_rgb9e5(value: vec3<f32>) -> u32 {
-    let bits = bitcast<vec3<u32>>(value);
-    let clamped = min(bits, vec3<u32>(0x477f8000u)) * vec3<u32>(bits <= vec3<u32>(0x7f800000u));
-    let largest = max(clamped.x, max(clamped.y, clamped.z));
-    let rough_exponent = max(largest >> 23u, 111u) - 111u;
-    let exponent = rough_exponent + u32(PREFIX_f32_rgb9e5_mantissa(largest, rough_exponent) == 512u);
-    let mantissas = PREFIX_f32x3_rgb9e5_mantissa(clamped, vec3<u32>(exponent)) << vec3<u32>(0u, 9u, 18u);
-    return mantissas.x | mantissas.y | mantissas.z | (exponent << 27u);
-}
-
-// Decodes rgb9e5, exactly: each mantissa times 2^(exponent - 24).
-fn PREFIX_f32x3_from_rgb9e5(word: u32) -> vec3<f32> {
-    let scale = bitcast<f32>(((word >> 27u) + 103u) << 23u);
-    return vec3<f32>((vec3<u32>(word) >> vec3<u32>(0u, 9u, 18u)) & vec3<u32>(0x1ffu)) * scale;
-}
-
-";
-
-/// Rounds non-negative f32s (bits) to small floats; the placeholders are per-lane literals.
-const SMALL_FLOAT_FROM_MAGNITUDE: &str = "\
-// Rounds non-negative f32s, given as bits, to floats with a 5-bit exponent (bias 15) and
-// MANTISSA_BITS bits of mantissa: to nearest even, denormals kept, saturating at the largest finite
-// code (never infinity); the caller maps NaN. Normal results round the f32 bits in integer
-// arithmetic, rebiasing the exponent in the same add (a carry moves into the exponent, as it
-// should). Denormal results scale the value by a power of two, exactly, and `round` it (to
-// nearest even). No step depends on how the adapter rounds. Each path gives at least the code
-// where the other applies (under 2^-14 the rebias wraps around; from 2^-14 up the scaled value
-// is at least the code, saturating in the conversion), so `min` picks the right one.
-fn PREFIX_LANES_round_to_NAME(magnitude: UINTS) -> UINTS {
-    let odd = (magnitude >> SHIFT) & UINTS(1u);
-    let normal = ((magnitude + ROUNDING_AND_REBIAS + odd) >> SHIFT) + SMALLEST_NORMAL;
-    let denormal = UINTS(round(bitcast<FLOATS>(magnitude) * DENORMAL_SCALE));
-    return min(min(normal, denormal), MAX_CODE);
-}
-
-";
-
-const HALF: &str = "\
-// IEEE binary16 from f32, sign kept, saturating at +-65504; NaN gives 0.
-fn PREFIX_LANES_to_half(value: FLOATS) -> UINTS {
-    let bits = bitcast<UINTS>(value);
-    let magnitude = bits & UINTS(0x7fffffffu);
-    let signed = PREFIX_LANES_round_to_unsigned_half(magnitude) | ((bits >> UINTS(16u)) & UINTS(0x8000u));
-    return signed * UINTS(magnitude <= UINTS(0x7f800000u));
-}
-
-";
-
-const UNSIGNED_FLOAT: &str = "\
-// The unsigned floats of r11f_g11f_b10f; negatives and NaN give 0 (as unsigned integers, both
-// lie above the bits of infinity).
-fn PREFIX_LANES_to_unsigned_float(value: FLOATS) -> UINTS {
-    let bits = bitcast<UINTS>(value);
-    return PREFIX_LANES_round_to_unsigned_float(bits) * UINTS(bits <= UINTS(0x7f800000u));
-}
-
-";

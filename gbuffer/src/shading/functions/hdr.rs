@@ -1,17 +1,7 @@
-// Mirrors hdr.wgsl (rgb9e5 lives in `mirror::rgb9e5`: it is integer-exact).
+// Mirrors hdr.wgsl. RGBM and rgb9e5 are the codecs' (`codec_forms`): in the mirror the
+// codecs' own Rust, in the reference their textbook forms.
 
-/// RGBM encode (Karis 2009), the multiplier rounded up to its 8-bit step.
-pub fn rgbm_encode(linear: Vec3, range: Float) -> Vec4 {
-    let largest = linear.x.max(linear.y).max(linear.z);
-    let multiplier = ((largest / range).clamp(0.0, 1.0) * 255.0).ceil() / 255.0;
-    let scale = if multiplier > 0.0 { 1.0 / (multiplier * range) } else { 0.0 };
-    (linear * scale).clamp(Vec3::ZERO, Vec3::ONE).extend(multiplier)
-}
-
-/// RGBM decode (Karis 2009).
-pub fn rgbm_decode(rgbm: Vec4, range: Float) -> Vec3 {
-    rgbm.truncate() * (rgbm.w * range)
-}
+pub use super::codec_forms::hdr::*;
 
 /// RGBM of the square root (the encode side of GPU Pro 7, Listing 2.5).
 pub fn rgbm_squared_encode(linear: Vec3, range: Float) -> Vec4 {

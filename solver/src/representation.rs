@@ -1,4 +1,4 @@
-//! How a quantity becomes bits: the encodings the solver chooses from, each a storage of the
+//! How a quantity becomes bits: the representations the solver chooses from, each a storage of the
 //! layout vocabulary (a whole word of a format, or a bit field), the error each is predicted to
 //! make, and its round trip through the layout's own mirror (to measure that error).
 //!
@@ -11,7 +11,7 @@ use std::fmt;
 
 use gbuffer::glam::Vec3;
 use gbuffer_codegen::{
-    convert, BitField, Encoding as BitEncoding, FieldType, Format, RgbmRange, ScalarKind, Storage,
+    codecs, BitField, Encoding, FieldType, Format, LightStorage, RgbmRange, ScalarKind, Storage,
 };
 
 use crate::description::Precision;
@@ -20,7 +20,7 @@ use crate::quantity::{Kind, Quantity};
 /// One way to store a quantity: one field of the layout, or for light in halves two (a
 /// quantity's components may span fields; each field's conversions are the layout's own).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Encoding {
+pub enum Representation {
     /// A 32-bit float (`r32f`): depth.
     Float32,
     /// Light in `r11f_g11f_b10f`: per-channel unsigned floats, 6, 6 and 5-bit mantissas.
@@ -51,6 +51,25 @@ pub enum Encoding {
         /// The format.
         format: Format,
     },
+    /// Light as a bit field of any codec that offers light storage
+    /// ([`Codec::light_storage`](gbuffer_codegen::Codec::light_storage)), `each` bits per
+    /// component: a codec added to the list is in the catalogue by itself.
+    Light {
+        /// The codec.
+        encoding: Encoding,
+        /// Bits per component.
+        each: u32,
+    },
+}
+
+/// What `encoding` guarantees for light at `each` bits per component.
+fn light_storage(encoding: Encoding, each: u32, floor: f64) -> LightStorage {
+    encoding
+        .codec()
+        .light_storage(floor)
+        .into_iter()
+        .find(|storage| storage.each == each)
+        .expect("the catalogue offers the widths the codec offers")
 }
 
 /// The largest value of a binary16 and of the two formats with a 5-bit exponent.
@@ -72,7 +91,7 @@ pub struct Piece {
     pub first_component: usize,
 }
 
-impl Encoding {
+impl Representation {
     /// The fields that store `quantity` this way.
     pub fn pieces(self, quantity: Quantity) -> Vec<Piece> {
         let components = quantity.components();
@@ -86,35 +105,38 @@ impl Encoding {
             }]
         };
         match self {
-            Encoding::Float32 => whole(Storage::Word(Format::R32f)),
-            Encoding::PackedFloat => whole(Storage::Word(Format::R11fG11fB10f)),
-            Encoding::SharedExponent => whole(bits(32, BitEncoding::Rgb9e5)),
-            Encoding::Rgbm { range } => whole(bits(
+            Representation::Float32 => whole(Storage::Word(Format::R32f)),
+            Representation::PackedFloat => whole(Storage::Word(Format::R11fG11fB10f)),
+            Representation::SharedExponent => whole(bits(32, Encoding::Rgb9e5)),
+            Representation::Rgbm { range } => whole(bits(
                 32,
-                BitEncoding::Rgbm(
+                Encoding::Rgbm(
                     RgbmRange::new(range as f32).expect("the catalogue offers valid ranges only"),
                 ),
             )),
-            Encoding::Half if components == 3 => vec![
+            Representation::Half if components == 3 => vec![
                 Piece {
                     suffix: "rg",
-                    storage: bits(32, BitEncoding::Half),
+                    storage: bits(32, Encoding::Half),
                     ty: FieldType::new(ScalarKind::Float, 2),
                     first_component: 0,
                 },
                 Piece {
                     suffix: "b",
-                    storage: bits(16, BitEncoding::Half),
+                    storage: bits(16, Encoding::Half),
                     ty: FieldType::new(ScalarKind::Float, 1),
                     first_component: 2,
                 },
             ],
-            Encoding::Half => whole(bits(16, BitEncoding::Half)),
-            Encoding::Octahedral { bits: each } => whole(bits(2 * each, BitEncoding::Octahedral)),
-            Encoding::Unorm { bits: each } => {
-                whole(bits(each * components as u32, BitEncoding::Unorm))
+            Representation::Half => whole(bits(16, Encoding::Half)),
+            Representation::Octahedral { bits: each } => {
+                whole(bits(2 * each, Encoding::Octahedral))
             }
-            Encoding::UnormWord { format } => whole(Storage::Word(format)),
+            Representation::Unorm { bits: each } => {
+                whole(bits(each * components as u32, Encoding::Unorm))
+            }
+            Representation::UnormWord { format } => whole(Storage::Word(format)),
+            Representation::Light { encoding, each } => whole(bits(3 * each, encoding)),
         }
     }
 
@@ -129,41 +151,45 @@ impl Encoding {
             .sum()
     }
 
-    /// The largest light value it stores without clipping (light encodings only).
+    /// The largest light value it stores without clipping (light representations only).
     pub fn hdr_max(self) -> f64 {
         match self {
-            Encoding::PackedFloat => PACKED_FLOAT_MAX,
-            Encoding::SharedExponent => SHARED_EXPONENT_MAX,
-            Encoding::Half => HALF_MAX,
-            Encoding::Rgbm { range } => range,
+            Representation::PackedFloat => PACKED_FLOAT_MAX,
+            Representation::SharedExponent => SHARED_EXPONENT_MAX,
+            Representation::Half => HALF_MAX,
+            Representation::Rgbm { range } => range,
+            Representation::Light { encoding, each } => light_storage(encoding, each, 1.0).largest,
             _ => f64::INFINITY,
         }
     }
 
     /// The bound on its error for light, normals, colours and unorm scalars.
     fn bound(self, precision: &Precision) -> f64 {
-        let step = |bits: u32| 1.0 / f64::from(convert::max_code(bits));
+        let step = |bits: u32| 1.0 / f64::from(codecs::max_code(bits));
         let floor = precision.hdr_min;
         match self {
             // A 24-bit significand rounded to nearest.
-            Encoding::Float32 => 0.5f64.powi(24),
+            Representation::Float32 => 0.5f64.powi(24),
             // Half an ulp of the 5-bit mantissa, or half the b10f denormal step 2^-19.
-            Encoding::PackedFloat => 0.5f64.powi(6).max(0.5f64.powi(20) / floor),
+            Representation::PackedFloat => 0.5f64.powi(6).max(0.5f64.powi(20) / floor),
             // Half a step of the brightest channel's mantissa (>= 256 of 512), or half the
             // smallest step 2^-24.
-            Encoding::SharedExponent => 0.5f64.powi(9).max(0.5f64.powi(25) / floor),
+            Representation::SharedExponent => 0.5f64.powi(9).max(0.5f64.powi(25) / floor),
             // Channel error <= half a code times m range, with m range < brightest + range /
             // 255; and the fixed point's 2^-22 range.
-            Encoding::Rgbm { range } => {
+            Representation::Rgbm { range } => {
                 0.5 / 255.0 * (1.0 + range / (255.0 * floor)) + range * 0.5f64.powi(21) / floor
             }
             // Light: half an ulp of a 10-bit mantissa, or half the denormal step 2^-24.
-            Encoding::Half => 0.5f64.powi(11).max(0.5f64.powi(25) / floor),
+            Representation::Half => 0.5f64.powi(11).max(0.5f64.powi(25) / floor),
             // Proven in integration-tests/tests/shading_physics.rs and `convert`'s tests: sqrt(18)
             // half-steps of a coordinate.
-            Encoding::Octahedral { bits } => (18f64.sqrt() * step(bits)).to_degrees(),
-            Encoding::Unorm { bits } => 0.5 * step(bits),
-            Encoding::UnormWord { format } => 0.5 * step(format.channels()[0].bits),
+            Representation::Octahedral { bits } => (18f64.sqrt() * step(bits)).to_degrees(),
+            Representation::Unorm { bits } => 0.5 * step(bits),
+            Representation::UnormWord { format } => 0.5 * step(format.channels()[0].bits),
+            Representation::Light { encoding, each } => {
+                light_storage(encoding, each, floor).relative_error
+            }
         }
     }
 
@@ -182,7 +208,7 @@ impl Encoding {
     /// Whether it meets the scene's precision for `quantity`.
     pub fn meets(self, quantity: Quantity, precision: &Precision) -> bool {
         let error = self.predicted_error(quantity, precision);
-        error <= Encoding::allowed_error(quantity.kind(), precision)
+        error <= Representation::allowed_error(quantity.kind(), precision)
             && (quantity.kind() != Kind::Hdr || self.hdr_max() >= precision.hdr_max)
     }
 
@@ -191,40 +217,57 @@ impl Encoding {
     pub fn predicted_error(self, quantity: Quantity, precision: &Precision) -> f64 {
         match (self, quantity.kind()) {
             // A scalar in [0, 1]: half the ulp of [0.5, 1).
-            (Encoding::Half, Kind::Scalar) => 0.5f64.powi(12),
+            (Representation::Half, Kind::Scalar) => 0.5f64.powi(12),
             _ => self.bound(precision),
         }
     }
 
-    /// Every encoding of a quantity the solver considers, before precision: for each family
-    /// the widths from 1 bit up to what one word holds. The light encodings clip at the
+    /// Every representation of a quantity the solver considers, before precision: for each family
+    /// the widths from 1 bit up to what one word holds. The light representations clip at the
     /// scene's `hdr_max` (RGBM takes it as its range where the exact encoding can hold it).
-    pub fn catalogue(quantity: Quantity, precision: &Precision) -> Vec<Encoding> {
+    pub fn catalogue(quantity: Quantity, precision: &Precision) -> Vec<Representation> {
         match quantity.kind() {
             Kind::Hdr => {
                 let mut all = vec![
-                    Encoding::PackedFloat,
-                    Encoding::SharedExponent,
-                    Encoding::Half,
+                    Representation::PackedFloat,
+                    Representation::SharedExponent,
+                    Representation::Half,
                 ];
                 if RgbmRange::new(precision.hdr_max as f32).is_ok() {
-                    all.push(Encoding::Rgbm {
+                    all.push(Representation::Rgbm {
                         range: precision.hdr_max,
                     });
                 }
+                for codec in Encoding::CODECS {
+                    let Ok(encoding) = codec.encoding(None) else {
+                        continue; // a codec that needs a parameter offers none here
+                    };
+                    all.extend(
+                        codec
+                            .light_storage(precision.hdr_min)
+                            .into_iter()
+                            .map(|storage| Representation::Light {
+                                encoding,
+                                each: storage.each,
+                            }),
+                    );
+                }
                 all
             }
-            Kind::Distance => vec![Encoding::Float32],
-            Kind::Direction => (1..=16).map(|bits| Encoding::Octahedral { bits }).collect(),
+            Kind::Distance => vec![Representation::Float32],
+            Kind::Direction => (1..=16)
+                .map(|bits| Representation::Octahedral { bits })
+                .collect(),
             Kind::Colour => (1..=10)
-                .map(|bits| Encoding::Unorm { bits })
+                .map(|bits| Representation::Unorm { bits })
                 .chain(
-                    [Format::Rgba8, Format::Rgb10A2].map(|format| Encoding::UnormWord { format }),
+                    [Format::Rgba8, Format::Rgb10A2]
+                        .map(|format| Representation::UnormWord { format }),
                 )
                 .collect(),
             Kind::Scalar => (1..=16)
-                .map(|bits| Encoding::Unorm { bits })
-                .chain([Encoding::Half])
+                .map(|bits| Representation::Unorm { bits })
+                .chain([Representation::Half])
                 .collect(),
         }
     }
@@ -255,18 +298,19 @@ impl Encoding {
     }
 }
 
-impl fmt::Display for Encoding {
+impl fmt::Display for Representation {
     /// A short description for reports: "octahedral, 2 x 12 bits".
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            Encoding::Float32 => write!(out, "32-bit float"),
-            Encoding::PackedFloat => write!(out, "r11f_g11f_b10f floats"),
-            Encoding::SharedExponent => write!(out, "rgb9e5 shared exponent"),
-            Encoding::Rgbm { range } => write!(out, "RGBM, 4 x 8 bits, range {range}"),
-            Encoding::Half => write!(out, "binary16"),
-            Encoding::Octahedral { bits } => write!(out, "octahedral, 2 x {bits} bits"),
-            Encoding::Unorm { bits } => write!(out, "unorm, {bits} bits"),
-            Encoding::UnormWord { format } => write!(out, "unorm in a {format} word"),
+            Representation::Float32 => write!(out, "32-bit float"),
+            Representation::PackedFloat => write!(out, "r11f_g11f_b10f floats"),
+            Representation::SharedExponent => write!(out, "rgb9e5 shared exponent"),
+            Representation::Rgbm { range } => write!(out, "RGBM, 4 x 8 bits, range {range}"),
+            Representation::Half => write!(out, "binary16"),
+            Representation::Octahedral { bits } => write!(out, "octahedral, 2 x {bits} bits"),
+            Representation::Unorm { bits } => write!(out, "unorm, {bits} bits"),
+            Representation::UnormWord { format } => write!(out, "unorm in a {format} word"),
+            Representation::Light { encoding, each } => write!(out, "{encoding}, 3 x {each} bits"),
         }
     }
 }
@@ -277,14 +321,23 @@ mod tests {
 
     #[test]
     fn storage_sizes() {
-        assert_eq!(Encoding::Half.bits(Quantity::Roughness), 16);
-        assert_eq!(Encoding::Octahedral { bits: 12 }.bits(Quantity::Normal), 24);
-        assert_eq!(Encoding::Unorm { bits: 8 }.bits(Quantity::BaseColour), 24);
-        assert_eq!(Encoding::Rgbm { range: 8.0 }.bits(Quantity::Light), 32);
-        assert_eq!(Encoding::Half.bits(Quantity::Light), 48);
-        assert_eq!(Encoding::Half.pieces(Quantity::Light).len(), 2);
+        assert_eq!(Representation::Half.bits(Quantity::Roughness), 16);
         assert_eq!(
-            Encoding::UnormWord {
+            Representation::Octahedral { bits: 12 }.bits(Quantity::Normal),
+            24
+        );
+        assert_eq!(
+            Representation::Unorm { bits: 8 }.bits(Quantity::BaseColour),
+            24
+        );
+        assert_eq!(
+            Representation::Rgbm { range: 8.0 }.bits(Quantity::Light),
+            32
+        );
+        assert_eq!(Representation::Half.bits(Quantity::Light), 48);
+        assert_eq!(Representation::Half.pieces(Quantity::Light).len(), 2);
+        assert_eq!(
+            Representation::UnormWord {
                 format: Format::Rgba8
             }
             .pieces(Quantity::BaseColour)[0]
@@ -296,15 +349,40 @@ mod tests {
     #[test]
     fn predictions_match_the_textbook_figures() {
         let precision = Precision::default();
-        let degrees = |encoding: Encoding| encoding.predicted_error(Quantity::Normal, &precision);
-        assert!((degrees(Encoding::Octahedral { bits: 16 }) - 0.00371).abs() < 1e-4);
+        let degrees = |representation: Representation| {
+            representation.predicted_error(Quantity::Normal, &precision)
+        };
+        assert!((degrees(Representation::Octahedral { bits: 16 }) - 0.00371).abs() < 1e-4);
         assert_eq!(
-            Encoding::Unorm { bits: 8 }.predicted_error(Quantity::BaseColour, &precision),
+            Representation::Unorm { bits: 8 }.predicted_error(Quantity::BaseColour, &precision),
             0.5 / 255.0
         );
-        assert!(Encoding::Unorm { bits: 8 }.meets(Quantity::BaseColour, &precision));
-        assert!(!Encoding::Unorm { bits: 7 }.meets(Quantity::BaseColour, &precision));
+        assert!(Representation::Unorm { bits: 8 }.meets(Quantity::BaseColour, &precision));
+        assert!(!Representation::Unorm { bits: 7 }.meets(Quantity::BaseColour, &precision));
         // r11f_g11f_b10f: 1/64 relative meets 2%.
-        assert!(Encoding::PackedFloat.meets(Quantity::Light, &precision));
+        assert!(Representation::PackedFloat.meets(Quantity::Light, &precision));
+    }
+
+    /// A codec that offers light storage is in the catalogue without the solver naming it:
+    /// log luminance at 10 bits a channel (1/64 relative) meets the default 2%.
+    #[test]
+    fn the_codecs_light_storage_is_in_the_catalogue() {
+        let precision = Precision::default();
+        let log_luminance = Representation::Light {
+            encoding: Encoding::LogLuminance,
+            each: 10,
+        };
+        assert!(Representation::catalogue(Quantity::Light, &precision).contains(&log_luminance));
+        assert_eq!(log_luminance.bits(Quantity::Light), 30);
+        assert!(log_luminance.meets(Quantity::Light, &precision));
+        assert_eq!(log_luminance.to_string(), "log_luminance, 3 x 10 bits");
+        // The bound holds through the layout's own mirror.
+        for index in 0..10_000 {
+            let value = 2f32.powf(-6.0 + 9.0 * index as f32 / 10_000.0);
+            let light = Vec3::new(value, value * 0.7, value * 0.2);
+            let back = log_luminance.round_trip(Quantity::Light, light);
+            let error = ((back - light).abs() / light.max_element()).max_element();
+            assert!(f64::from(error) <= 1.0 / 64.0, "{light} -> {back}");
+        }
     }
 }

@@ -1,0 +1,177 @@
+//! IEEE binary16 per component, 16 bits each: round to nearest even, denormals kept, sign
+//! kept, saturating at +-65504 (never infinity); NaN gives 0. The decode is exact. The `rg16f`
+//! format is built from it.
+//!
+//! The exact WGSL rounds with [`small_float`](super::small_float)'s integer algorithm, because
+//! WGSL lets `pack2x16float` round either way; the fast form is `pack2x16float`, the
+//! adapter's rounding (which may flush denormals and overflow to infinity). Both decode with
+//! `unpack2x16float`, which widening makes exact, and which naga validates only with
+//! `Capabilities::SHADER_FLOAT16_IN_FLOAT32`.
+
+use super::small_float::{f32_from_small_float, small_float_from_magnitude};
+use super::wgsl::{BitField, Functions};
+use super::{per_component_mismatch, without_range, Codec, Encoding, F32_INFINITY_BITS};
+use crate::layout::FieldType;
+
+/// f32 to the 16-bit code of an IEEE binary16, sign kept, saturating at +-65504. NaN gives 0.
+#[inline]
+pub fn half_from_f32(value: f32) -> u32 {
+    let value_bits = value.to_bits();
+    let magnitude = value_bits & 0x7fff_ffff;
+    let code = ((value_bits >> 16) & 0x8000) | small_float_from_magnitude(magnitude, 10);
+    // NaN, whatever its sign, gives 0.
+    if magnitude > F32_INFINITY_BITS {
+        0
+    } else {
+        code
+    }
+}
+
+/// Decodes the 16-bit code of an IEEE binary16, exactly.
+#[inline]
+pub fn f32_from_half(code: u32) -> f32 {
+    let magnitude = f32_from_small_float(code & 0x7fff, 10);
+    f32::from_bits(magnitude.to_bits() | ((code & 0x8000) << 16))
+}
+
+/// The exact encode, per lane (`PREFIX_LANES_to_half`): the sign beside the magnitude's
+/// rounding (`PREFIX_LANES_round_to_unsigned_half`, from [`small_float::wgsl_helpers`]).
+///
+/// [`small_float::wgsl_helpers`]: super::small_float::wgsl_helpers
+pub const WGSL_ENCODE: &str = "\
+// IEEE binary16 from f32, sign kept, saturating at +-65504; NaN gives 0.
+fn PREFIX_LANES_to_half(value: FLOATS) -> UINTS {
+    let bits = bitcast<UINTS>(value);
+    let magnitude = bits & UINTS(0x7fffffffu);
+    let signed = PREFIX_LANES_round_to_unsigned_half(magnitude) | ((bits >> UINTS(16u)) & UINTS(0x8000u));
+    return signed * UINTS(magnitude <= UINTS(0x7f800000u));
+}
+
+";
+
+/// The helpers of the exact encode of `lanes` halves.
+pub fn wgsl_helpers(prefix: &str, lanes: usize) -> Vec<String> {
+    super::small_float::wgsl_helpers(prefix, "unsigned_half", WGSL_ENCODE, &vec![10; lanes])
+}
+
+/// The half codec.
+pub struct Half;
+
+impl Codec for Half {
+    fn name(&self) -> &'static str {
+        "half"
+    }
+
+    fn has_fast_form(&self) -> bool {
+        true
+    }
+
+    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
+        without_range(Encoding::Half, range)
+    }
+
+    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
+        per_component_mismatch(encoding, bits, ty, (16, 16))
+    }
+
+    #[inline(always)]
+    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
+        super::join_codes(lanes, components, each, |lane, _| {
+            half_from_f32(f32::from_bits(lane))
+        })
+    }
+
+    #[inline(always)]
+    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
+        super::split_codes(code, components, each, |code, _| {
+            f32_from_half(code).to_bits()
+        })
+    }
+
+    fn wgsl(&self, field: &BitField) -> Functions {
+        let lanes = field.lanes;
+        let scalar = lanes.0 == 1;
+        let encode = match (field.fast, scalar) {
+            (true, true) => "    return pack2x16float(vec2<f32>(value, 0.0));\n".to_string(),
+            (true, false) => "    return pack2x16float(value);\n".to_string(),
+            (false, _) => format!(
+                "    let codes = {}_{}_to_half(value);\n    return {};\n",
+                field.prefix,
+                lanes.name(),
+                field.joined("codes")
+            ),
+        };
+        let decode = match scalar {
+            true => "    return unpack2x16float(code).x;\n",
+            false => "    return unpack2x16float(code);\n",
+        };
+        Functions {
+            encode,
+            decode: decode.to_string(),
+            helpers: match field.fast {
+                true => Vec::new(),
+                false => wgsl_helpers(field.prefix, lanes.0),
+            },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codecs::every_pattern;
+
+    /// On every f32: IEEE's rounding (the half crate's, which overflows to infinity where ours
+    /// saturates at the largest finite value, and keeps NaN where ours stores 0).
+    #[test]
+    fn rounds_every_f32_as_ieee_does() {
+        let failure = every_pattern(0..=u32::MAX, |value_bits| {
+            let value = f32::from_bits(value_bits);
+            let ieee = u32::from(::half::f16::from_f32(value).to_bits());
+            let want = if value.is_nan() {
+                0
+            } else if ieee & 0x7fff == 0x7c00 {
+                (ieee & 0x8000) | 0x7bff
+            } else {
+                ieee
+            };
+            let got = half_from_f32(value);
+            (got != want).then(|| {
+                format!("half of {value:e} ({value_bits:#010x}): {got:#06x}, IEEE {want:#06x}")
+            })
+        });
+        assert_eq!(failure, None);
+    }
+
+    #[test]
+    fn agrees_with_known_codes() {
+        for (value, code) in [
+            (0.0f32, 0x0000),
+            (-0.0, 0x8000),
+            (1.0, 0x3c00),
+            (-2.0, 0xc000),
+            (65504.0, 0x7bff),
+            (65519.0, 0x7bff),
+            (65520.0, 0x7bff), // rounds to 65536, saturates
+            (1e9, 0x7bff),
+            (f32::INFINITY, 0x7bff),
+            (f32::NEG_INFINITY, 0xfbff),
+            (f32::NAN, 0),
+            (-f32::NAN, 0),
+            (5.960_464_5e-8, 0x0001), // smallest denormal
+            (2.980_232_2e-8, 0x0000), // exactly half of it: ties to even
+            (2.980_233e-8, 0x0001),
+            (6.097_555e-5, 0x03ff),   // largest denormal
+            (6.103_515_6e-5, 0x0400), // smallest normal
+        ] {
+            assert_eq!(half_from_f32(value), code, "{value:e}");
+        }
+        for code in 0..0x10000 {
+            let exponent = (code >> 10) & 31;
+            if exponent == 31 {
+                continue;
+            }
+            assert_eq!(half_from_f32(f32_from_half(code)), code, "code {code:#06x}");
+        }
+    }
+}

@@ -1,0 +1,149 @@
+//! Integers: an unsigned integer clamped to `2^n - 1`, or a signed one clamped to `[-2^(n-1),
+//! 2^(n-1) - 1]` and stored as an `n`-bit two's complement, sign-extended back. 1 to 32 bits
+//! per component. The integer formats (`rgba8ui`, `rg16i`, `r32ui`, ...) are built from them.
+
+use super::wgsl::{BitField, Functions};
+use super::{max_code, per_component_mismatch, without_range, Codec, Encoding};
+use crate::format::ScalarKind;
+use crate::layout::FieldType;
+
+/// Clamps an unsigned integer to `bits` bits.
+#[inline]
+pub fn uint_saturate(value: u32, bits: u32) -> u32 {
+    value.min(max_code(bits))
+}
+
+/// Clamps a signed integer to the range of `bits` bits and returns its two's complement code.
+#[inline]
+pub fn sint_saturate(value: i32, bits: u32) -> u32 {
+    let highest = (max_code(bits) >> 1) as i32;
+    (value.clamp(-highest - 1, highest) as u32) & max_code(bits)
+}
+
+/// Sign-extends a `bits`-bit two's complement code.
+#[inline]
+pub fn i32_from_sint(code: u32, bits: u32) -> i32 {
+    ((code << (32 - bits)) as i32) >> (32 - bits)
+}
+
+/// The unsigned integer codec.
+pub struct Uint;
+
+impl Codec for Uint {
+    fn name(&self) -> &'static str {
+        "uint"
+    }
+
+    fn scalar_kind(&self) -> ScalarKind {
+        ScalarKind::Uint
+    }
+
+    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
+        without_range(Encoding::Uint, range)
+    }
+
+    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
+        per_component_mismatch(encoding, bits, ty, (1, 32))
+    }
+
+    #[inline(always)]
+    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
+        super::join_codes(lanes, components, each, uint_saturate)
+    }
+
+    #[inline(always)]
+    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
+        super::split_codes(code, components, each, |code, _| code)
+    }
+
+    fn wgsl(&self, field: &BitField) -> Functions {
+        Functions {
+            encode: format!(
+                "    let codes = min(value, {});\n    return {};\n",
+                field.lanes.splat(max_code(field.each)),
+                field.joined("codes")
+            ),
+            decode: format!("{}    return codes;\n", field.split_codes()),
+            helpers: Vec::new(),
+        }
+    }
+}
+
+/// The signed integer codec.
+pub struct Sint;
+
+impl Codec for Sint {
+    fn name(&self) -> &'static str {
+        "sint"
+    }
+
+    fn scalar_kind(&self) -> ScalarKind {
+        ScalarKind::Sint
+    }
+
+    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
+        without_range(Encoding::Sint, range)
+    }
+
+    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
+        per_component_mismatch(encoding, bits, ty, (1, 32))
+    }
+
+    #[inline(always)]
+    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
+        super::join_codes(lanes, components, each, |lane, each| {
+            sint_saturate(lane as i32, each)
+        })
+    }
+
+    #[inline(always)]
+    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
+        super::split_codes(code, components, each, |code, each| {
+            i32_from_sint(code, each) as u32
+        })
+    }
+
+    fn wgsl(&self, field: &BitField) -> Functions {
+        let lanes = field.lanes;
+        let highest = i64::from(max_code(field.each) >> 1);
+        let bound = |value: i64| lanes.literal("i32", &[value.to_string()]);
+        let to_bits = match lanes.0 {
+            1 => "bitcast<u32>".to_string(),
+            _ => format!("bitcast<{}>", lanes.of("u32")),
+        };
+        Functions {
+            encode: format!(
+                "    let codes = {to_bits}(clamp(value, {}, {})) & {};\n    return {};\n",
+                bound(-highest - 1),
+                bound(highest),
+                lanes.splat(max_code(field.each)),
+                field.joined("codes")
+            ),
+            // The top bit moved to bit 31, then shifted back arithmetically.
+            decode: format!(
+                "{}    return bitcast<{}>(codes << {up}) >> {up};\n",
+                field.split_codes(),
+                lanes.of("i32"),
+                up = lanes.splat(32 - field.each)
+            ),
+            helpers: Vec::new(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn integers_clamp_and_sign_extend() {
+        assert_eq!(sint_saturate(-200, 8), 0x80);
+        assert_eq!(sint_saturate(200, 8), 0x7f);
+        assert_eq!(sint_saturate(-1, 16), 0xffff);
+        assert_eq!(i32_from_sint(0x80, 8), -128);
+        assert_eq!(i32_from_sint(0xffff, 16), -1);
+        assert_eq!(uint_saturate(300, 8), 255);
+        assert_eq!(uint_saturate(7, 2), 3);
+        assert_eq!(uint_saturate(u32::MAX, 32), u32::MAX);
+    }
+}

@@ -1,0 +1,400 @@
+//! Octahedral normals (Cigolle et al. 2014, "A Survey of Efficient Representations for
+//! Independent Unit Vectors"): a unit `vec3` as two coordinates of `n / 2` bits, x in the low
+//! half. The map: `p = n.xy / (|x| + |y| + |z|)`, folded for `z < 0` to `(1 - |p.yx|)
+//! sign_not_zero(p)`, each coordinate mapped to `[0, 1]` and rounded to unorm (half up). The
+//! decode unfolds the lower hemisphere (Stubbe's branch-free form) and normalizes. 2 to 32 bits,
+//! even.
+//!
+//! The exact encode works in integers: the magnitudes are aligned to the largest one's
+//! exponent with 28 bits below its leading one (smaller components lose the bits under that,
+//! and a component 2^31 times smaller than the largest counts as 0), every coordinate is a
+//! ratio of their integer sums, and [`scaled_quotient`] rounds it. NaN components count as 0
+//! and so does the zero vector, which encodes as +z; `-0.0` is not negative. The fast encode is
+//! the map in f32 arithmetic ([`octahedral_fold`]), the adapter's division and rounding.
+//!
+//! The shading library's `octahedral_encode` and `octahedral_decode` (module `normals`) are
+//! this map's two halves, [`WGSL_FOLD`] and [`WGSL_UNFOLD`].
+
+use super::scaled_quotient::scaled_quotient;
+use super::unorm::f32_from_unorm;
+use super::wgsl::{BitField, Functions, Lanes};
+use super::{
+    max_code, significand_and_exponent, vector_lanes, vector_of, without_range, Codec, Encoding,
+    F32_INFINITY_BITS,
+};
+use crate::layout::FieldType;
+
+/// The exact encode at `bits` per coordinate (1 to 16), x in the low bits.
+#[inline(always)]
+pub fn octahedral_from_f32(normal: [f32; 3], bits: u32) -> u32 {
+    let magnitude = normal.map(|value| {
+        let magnitude = value.to_bits() & 0x7fff_ffff;
+        magnitude * u32::from(magnitude <= F32_INFINITY_BITS)
+    });
+    let negative =
+        [0, 1, 2].map(|axis| (normal[axis].to_bits() >> 31) & u32::from(magnitude[axis] != 0));
+    let parts = magnitude.map(significand_and_exponent);
+    let largest = parts[0].1.max(parts[1].1).max(parts[2].1);
+    let [x, y, z] =
+        parts.map(|(significand, exponent)| (significand << 4) >> (largest - exponent).min(31));
+    let sum = x + y + z;
+    // The zero vector is +z.
+    let z = z + u32::from(sum == 0);
+    let sum = x + y + z;
+    // The folded coordinates: |p.y| and |p.x| taken from 1, i.e. (x + z, y + z) over the sum.
+    let lower = negative[2];
+    let (along_x, along_y) = (x + lower * z, y + lower * z);
+    let code = |along: u32, negative: u32| {
+        // (1 +- along / sum) / 2 as numerator over 2 sum, rounded half up.
+        let numerator = if negative == 1 {
+            sum - along
+        } else {
+            sum + along
+        };
+        scaled_quotient(numerator, 2 * sum, sum, bits)
+    };
+    code(along_x, negative[0]) | (code(along_y, negative[1]) << bits)
+}
+
+/// The map's first half in f32 arithmetic, as the fast WGSL computes it: a non-zero vector to
+/// `[-1, 1]^2`, the lower hemisphere folded over the diagonals.
+#[inline]
+pub fn octahedral_fold(normal: [f32; 3]) -> [f32; 2] {
+    let [x, y, z] = normal;
+    let sum = x.abs() + y.abs() + z.abs();
+    let projected = [x / sum, y / sum];
+    let sign_not_zero = projected.map(|value| if value >= 0.0 { 1.0 } else { -1.0 });
+    if z < 0.0 {
+        [
+            (1.0 - projected[1].abs()) * sign_not_zero[0],
+            (1.0 - projected[0].abs()) * sign_not_zero[1],
+        ]
+    } else {
+        projected
+    }
+}
+
+/// The map's second half: `[-1, 1]^2` back to a unit vector, the lower hemisphere unfolded
+/// (Stubbe's branch-free form) and normalized, in f32 arithmetic (an adapter's `normalize` is
+/// within a few ulp of this).
+#[inline]
+pub fn octahedral_unfold(folded: [f32; 2]) -> [f32; 3] {
+    let [x, y] = folded;
+    let z = 1.0 - x.abs() - y.abs();
+    let fold = (-z).max(0.0);
+    let unfold = |value: f32| {
+        if value >= 0.0 {
+            value - fold
+        } else {
+            value + fold
+        }
+    };
+    let (x, y) = (unfold(x), unfold(y));
+    let length = (x * x + y * y + z * z).sqrt();
+    [x / length, y / length, z / length]
+}
+
+/// The decode at `bits` per coordinate: the codes back to `[-1, 1]`, then
+/// [`octahedral_unfold`].
+#[inline]
+pub fn f32_from_octahedral(code: u32, bits: u32) -> [f32; 3] {
+    let coordinate = |code: u32| f32_from_unorm(code & max_code(bits), bits) * 2.0 - 1.0;
+    octahedral_unfold([coordinate(code), coordinate(code >> bits)])
+}
+
+/// The map's first half in f32 arithmetic (`PREFIX_octahedral_fold`): what the fast encode
+/// is made of.
+pub const WGSL_FOLD: &str = "\
+// Octahedral map (Cigolle et al. 2014): a non-zero vector to [-1, 1]^2, p = n.xy / (|x| + |y|
+// + |z|), the lower hemisphere folded over the diagonals to (1 - |p.yx|) * sign_not_zero(p)
+// (+1 for zero, so the fold keeps the zero's side). f32 arithmetic, no branch; the zero vector
+// divides by zero.
+fn PREFIX_octahedral_fold(normal: vec3<f32>) -> vec2<f32> {
+    let projected = normal.xy / (abs(normal.x) + abs(normal.y) + abs(normal.z));
+    let sign_not_zero = vec2<f32>(projected >= vec2<f32>(0.0)) * 2.0 - vec2<f32>(1.0);
+    return select(projected, (vec2<f32>(1.0) - abs(projected.yx)) * sign_not_zero, normal.z < 0.0);
+}
+
+";
+
+/// The map's second half (`PREFIX_octahedral_unfold`): what the decode is made of.
+pub const WGSL_UNFOLD: &str = "\
+// The octahedral map's inverse: [-1, 1]^2 to a unit vector, the lower hemisphere unfolded
+// (Stubbe's branch-free form), normalized.
+fn PREFIX_octahedral_unfold(folded: vec2<f32>) -> vec3<f32> {
+    let z = 1.0 - abs(folded.x) - abs(folded.y);
+    let fold = max(-z, 0.0);
+    let unfolded = folded - fold * (vec2<f32>(folded >= vec2<f32>(0.0)) * 2.0 - vec2<f32>(1.0));
+    return normalize(vec3<f32>(unfolded, z));
+}
+
+";
+
+/// The exact encode (`PREFIX_octahedral_from_f32x3`).
+const WGSL_EXACT: &str = "\
+// Octahedral encode (Cigolle et al. 2014), exact: p = n.xy / (|x| + |y| + |z|), folded for
+// z < 0 to (1 - |p.yx|) * sign_not_zero(p), mapped to [0, 1] and rounded half up to
+// bits-bit codes, x in the low bits. The magnitudes are aligned to the largest one's exponent
+// with 28 bits below its leading one, each coordinate (1 +- along / sum) / 2 is a ratio of
+// integer sums, and scaled_quotient rounds it. NaN components count as 0, the zero vector
+// encodes as +z, and -0.0 is not negative.
+fn PREFIX_octahedral_from_f32x3(normal: vec3<f32>, bits: u32) -> u32 {
+    let signed = bitcast<vec3<u32>>(normal);
+    let unsigned = signed & vec3<u32>(0x7fffffffu);
+    let magnitude = unsigned * vec3<u32>(unsigned <= vec3<u32>(0x7f800000u));
+    let negative = (signed >> vec3<u32>(31u)) * vec3<u32>(magnitude != vec3<u32>(0u));
+    let exponent_field = magnitude >> vec3<u32>(23u);
+    let significand = (magnitude & vec3<u32>(0x7fffffu)) | (vec3<u32>(exponent_field != vec3<u32>(0u)) << vec3<u32>(23u));
+    let exponent = max(exponent_field, vec3<u32>(1u));
+    let largest = max(exponent.x, max(exponent.y, exponent.z));
+    let aligned = (significand << vec3<u32>(4u)) >> min(vec3<u32>(largest) - exponent, vec3<u32>(31u));
+    let z = aligned.z + u32(aligned.x + aligned.y + aligned.z == 0u);
+    let sum = aligned.x + aligned.y + z;
+    let along = aligned.xy + vec2<u32>(negative.z * z);
+    let numerator = vec2<u32>(sum) + along - vec2<u32>(2u) * along * negative.xy;
+    let codes = PREFIX_f32x2_scaled_quotient(numerator, vec2<u32>(2u * sum), vec2<u32>(sum), bits);
+    return codes.x | (codes.y << bits);
+}
+
+";
+
+/// The fast encode (`PREFIX_octahedral_from_f32x3_fast`).
+const WGSL_FAST: &str = "\
+// Octahedral encode, fast: the map in f32 arithmetic, the adapter's division and rounding: the
+// decoded normal within twice the quantisation bound of the exact one (on the fold's border
+// the other of two twin codes may come out); the zero vector is undefined.
+fn PREFIX_octahedral_from_f32x3_fast(normal: vec3<f32>, bits: u32) -> u32 {
+    let folded = PREFIX_octahedral_fold(normal);
+    let max_code = f32((1u << bits) - 1u);
+    let codes = vec2<u32>(clamp(folded * 0.5 + vec2<f32>(0.5), vec2<f32>(0.0), vec2<f32>(1.0)) * max_code + vec2<f32>(0.5));
+    return codes.x | (codes.y << bits);
+}
+
+";
+
+/// The decode (`PREFIX_f32x3_from_octahedral`).
+const WGSL_DECODE: &str = "\
+// Octahedral decode: the coordinates back to [-1, 1], then the map's inverse.
+fn PREFIX_f32x3_from_octahedral(code: u32, bits: u32, reciprocal: f32) -> vec3<f32> {
+    let codes = (vec2<u32>(code) >> vec2<u32>(0u, bits)) & vec2<u32>((1u << bits) - 1u);
+    return PREFIX_octahedral_unfold(vec2<f32>(codes) * reciprocal * 2.0 - vec2<f32>(1.0));
+}
+
+";
+
+/// The octahedral codec.
+pub struct Octahedral;
+
+impl Codec for Octahedral {
+    fn name(&self) -> &'static str {
+        "octahedral"
+    }
+
+    fn has_fast_form(&self) -> bool {
+        true
+    }
+
+    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
+        without_range(Encoding::Octahedral, range)
+    }
+
+    fn mismatch(&self, _: Encoding, bits: u32, ty: FieldType) -> Option<String> {
+        if ty.components != 3 {
+            return Some(format!(
+                "`octahedral` stores a unit `Vec3`, not `{}`",
+                ty.rust_name()
+            ));
+        }
+        (bits % 2 != 0)
+            .then(|| format!("`octahedral` splits its bits between two coordinates: {bits} is odd"))
+    }
+
+    fn component_bits(&self, bits: u32, _: usize) -> u32 {
+        bits / 2
+    }
+
+    #[inline(always)]
+    fn encode(&self, lanes: [u32; 4], _: usize, each: u32, _: Option<f32>) -> u32 {
+        octahedral_from_f32(vector_of(lanes), each)
+    }
+
+    #[inline(always)]
+    fn decode(&self, code: u32, _: usize, each: u32, _: Option<f32>) -> [u32; 4] {
+        vector_lanes(f32_from_octahedral(code, each))
+    }
+
+    fn wgsl(&self, field: &BitField) -> Functions {
+        let (prefix, each) = (field.prefix, field.each);
+        let fast = if field.fast { "_fast" } else { "" };
+        let encode = match field.fast {
+            true => vec![
+                Lanes(1).fill(WGSL_FOLD, prefix),
+                Lanes(1).fill(WGSL_FAST, prefix),
+            ],
+            false => vec![
+                Lanes(2).fill(super::scaled_quotient::WGSL, prefix),
+                Lanes(1).fill(WGSL_EXACT, prefix),
+            ],
+        };
+        let decode = [WGSL_UNFOLD, WGSL_DECODE].map(|text| Lanes(1).fill(text, prefix));
+        Functions {
+            encode: format!("    return {prefix}_octahedral_from_f32x3{fast}(value, {each}u);\n"),
+            decode: format!(
+                "    return {prefix}_f32x3_from_octahedral(code, {each}u, {:?});\n",
+                1.0 / max_code(each) as f32
+            ),
+            helpers: [encode, decode.to_vec()].concat(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The contract written another way: the magnitudes scaled by a power of two in f64 (exact)
+    /// and floored, the ratios rounded in 128-bit integers, the hemisphere and sign rules
+    /// spelled out.
+    fn octahedral_reference(normal: [f32; 3], bits: u32) -> u32 {
+        let magnitude = normal.map(|value| {
+            if value.is_nan() {
+                0.0
+            } else {
+                f64::from(value.abs())
+            }
+        });
+        let exponent = normal.map(|value| {
+            let field = (value.to_bits() >> 23) & 0xff;
+            if value.is_nan() {
+                1
+            } else {
+                field.max(1)
+            }
+        });
+        let largest = exponent.iter().copied().max().unwrap_or(1) as i32;
+        // Leading bit of the largest at bit 27: scale by 2^(27 - (largest - 127)).
+        let scale = 2f64.powi(27 - (largest - 127));
+        let [x, y, z] = magnitude.map(|value| {
+            if value.is_infinite() {
+                1u128 << 27 // infinity reads as 2^128, the largest exponent
+            } else {
+                (value * scale).floor() as u128
+            }
+        });
+        let z = if x + y + z == 0 { 1 } else { z };
+        let sum = x + y + z;
+        let negative = |value: f32| value < 0.0;
+        let (along_x, along_y) = if negative(normal[2]) {
+            (x + z, y + z)
+        } else {
+            (x, y)
+        };
+        let code = |along: u128, negative: bool| {
+            let numerator = if negative { sum - along } else { sum + along };
+            ((u128::from(max_code(bits)) * numerator + sum) / (2 * sum)) as u32
+        };
+        code(along_x, negative(normal[0])) | (code(along_y, negative(normal[1])) << bits)
+    }
+
+    /// The angle between two vectors in radians, from their cross and dot products (accurate
+    /// for small angles, where `acos` of the dot product is not).
+    fn angle_between(a: [f64; 3], b: [f64; 3]) -> f64 {
+        let cross = [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ];
+        let dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        cross.iter().map(|c| c * c).sum::<f64>().sqrt().atan2(dot)
+    }
+
+    /// Unit vectors at the map's poles, seams and diagonals, with signed zeros, non-unit, tiny,
+    /// infinite and NaN ones.
+    fn edges() -> Vec<[f32; 3]> {
+        let root2 = std::f32::consts::FRAC_1_SQRT_2;
+        let root3 = 1.0 / 3f32.sqrt();
+        let mut edges = vec![
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+            [-0.0, -0.0, -1.0],
+            [0.0, 0.0, -0.0],
+            [0.0, 0.0, 0.0],
+            [f32::NAN, 0.0, 1.0],
+            [f32::NAN, f32::NAN, f32::NAN],
+            [f32::INFINITY, 0.0, 0.0],
+            [f32::INFINITY, f32::NEG_INFINITY, 1.0],
+            [1e-40, -1e-42, 0.0],
+            [3.0, 4.0, -12.0],
+            [1.0, 1e-30, -1e-30],
+        ];
+        for x in [-1.0f32, -0.0, 0.0, 1.0] {
+            for y in [-1.0f32, -0.0, 0.0, 1.0] {
+                for z in [-1.0f32, -0.0, 0.0, 1.0] {
+                    edges.push([x, y, z]);
+                    edges.push([x * root2, y * root2, z]);
+                    edges.push([x * root3, y * root3, z * root3]);
+                    // Just beside the equator (the fold's seam).
+                    edges.push([x * root2, y * root2, z * 1e-7]);
+                }
+            }
+        }
+        edges
+    }
+
+    #[test]
+    fn follows_its_contract_and_the_map() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand::rngs::SmallRng::seed_from_u64(9);
+        let mut vectors = edges();
+        for _ in 0..200_000 {
+            let v = [0; 3].map(|_| rng.random_range(-1.0f32..1.0));
+            vectors.push(v);
+            // Raw bits too: any exponents, signs, NaNs.
+            vectors.push([0; 3].map(|_| f32::from_bits(rng.random())));
+        }
+        for bits in [1, 2, 8, 12, 16] {
+            let mut largest_angle = 0f64;
+            for &v in &vectors {
+                let code = octahedral_from_f32(v, bits);
+                assert_eq!(code, octahedral_reference(v, bits), "{v:?} at {bits} bits");
+                let length = v.iter().map(|c| f64::from(*c).powi(2)).sum::<f64>().sqrt();
+                if !(length.is_finite() && length > 1e-30 && bits >= 8) {
+                    continue;
+                }
+                // The round trip stays within the quantisation bound: sqrt(18) half-steps.
+                let decoded = f32_from_octahedral(code, bits).map(f64::from);
+                largest_angle = largest_angle.max(angle_between(decoded, v.map(f64::from)));
+            }
+            if bits >= 8 {
+                let bound = 18f64.sqrt() / f64::from(max_code(bits)) + 1e-6;
+                assert!(
+                    largest_angle <= bound,
+                    "{bits} bits: {largest_angle} > {bound}"
+                );
+            }
+        }
+        // The poles and the zero vector: +z is the centre, -z the corners.
+        let centre = (1 << 15) | (1 << 31);
+        assert_eq!(octahedral_from_f32([0.0, 0.0, 1.0], 16), centre);
+        assert_eq!(octahedral_from_f32([0.0, 0.0, 0.0], 16), centre);
+        assert_eq!(octahedral_from_f32([0.0, 0.0, -1.0], 16), 0xffff_ffff);
+        assert_eq!(f32_from_octahedral(0xffff_ffff, 16), [0.0, 0.0, -1.0]);
+        assert_eq!(octahedral_from_f32([-0.0, -0.0, -1.0], 16), 0xffff_ffff);
+        assert_eq!(octahedral_from_f32([-1.0, -0.0, -0.0], 16), 0x8000_0000);
+    }
+
+    /// The f32 map and its inverse come back to the direction (away from the zero vector).
+    #[test]
+    fn the_f32_map_inverts() {
+        for v in edges() {
+            let length = v.iter().map(|c| c * c).sum::<f32>().sqrt();
+            if !(length.is_finite() && length > 1e-20) {
+                continue;
+            }
+            let unit = v.map(|c| c / length);
+            let back = octahedral_unfold(octahedral_fold(unit));
+            let angle = angle_between(back.map(f64::from), unit.map(f64::from));
+            assert!(angle < 1e-6, "{v:?}: {back:?}");
+        }
+    }
+}

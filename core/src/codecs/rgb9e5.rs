@@ -1,0 +1,242 @@
+//! Shared-exponent rgb9e5 (EXT_texture_shared_exponent): a `vec3` in 32 bits, three 9-bit
+//! mantissas (red in bits 0-8, green 9-17, blue 18-26) over one 5-bit exponent (27-31, bias
+//! 15). Each channel is clamped to `[0, 65408]` (NaN to 0); the shared exponent is
+//! `max(-16, floor(log2(largest))) + 16`, one more where the largest channel's mantissa rounds
+//! up to 512; each mantissa is `floor(channel / 2^(exponent - 24) + 0.5)`. The extension's
+//! algorithm evaluated exactly, on the floats' bits: `floor(log2)` is the exponent field, and
+//! rounding a value scaled by a power of two is a shift of its significand with half its last
+//! place added. The decode, `mantissa 2^(exponent - 24)`, is exact.
+//!
+//! The shading library's `rgb9e5_encode` and `rgb9e5_decode` (module `hdr`) are this WGSL.
+
+use super::wgsl::{BitField, Functions, Lanes};
+use super::{
+    exact_shape_mismatch, vector_lanes, vector_of, without_range, Codec, Encoding,
+    F32_INFINITY_BITS,
+};
+use crate::layout::FieldType;
+
+/// The largest value rgb9e5 holds, as f32 bits: (511 / 512) 2^16 = 65408.
+const MAX_BITS: u32 = 0x477f_8000;
+
+/// Encodes a colour, exactly (see the module's doc).
+#[inline(always)]
+pub fn rgb9e5_from_f32(rgb: [f32; 3]) -> u32 {
+    // Non-negative floats order like their bits; NaN and negatives lie above infinity's.
+    let clamped = rgb.map(|value| {
+        let bits = value.to_bits();
+        if bits > F32_INFINITY_BITS {
+            0
+        } else {
+            bits.min(MAX_BITS)
+        }
+    });
+    let largest = clamped[0].max(clamped[1]).max(clamped[2]);
+    // Biased exponent 111 is 2^-16: the smallest the shared exponent represents.
+    let exponent = (largest >> 23).max(111) - 111;
+    let exponent = exponent + u32::from(mantissa_at(largest, exponent) == 512);
+    let [red, green, blue] = clamped.map(|bits| mantissa_at(bits, exponent));
+    red | (green << 9) | (blue << 18) | (exponent << 27)
+}
+
+/// `floor(value * 2^(24 - exponent) + 0.5)` for a non-negative f32 given as bits: its
+/// significand shifted right by `150 - e - (24 - exponent)` with rounding; past a shift of 25
+/// the result is 0, as it is at 25 (an f32 denormal shifts by at least that much).
+#[inline(always)]
+fn mantissa_at(bits: u32, exponent: u32) -> u32 {
+    let significand = (bits & 0x7f_ffff) | 0x80_0000;
+    let shift = (126 + exponent).saturating_sub(bits >> 23).min(25);
+    (significand + ((1 << shift) >> 1)) >> shift
+}
+
+/// Decodes rgb9e5, exactly: each mantissa times 2^(exponent - 24).
+#[inline]
+pub fn f32_from_rgb9e5(word: u32) -> [f32; 3] {
+    let scale = f32::from_bits(((word >> 27) + 103) << 23);
+    [0, 9, 18].map(|offset| ((word >> offset) & 0x1ff) as f32 * scale)
+}
+
+/// One mantissa per lane (`PREFIX_LANES_rgb9e5_mantissa`), filled for one and three lanes.
+const WGSL_MANTISSA: &str = "\
+// floor(value * 2^(24 - exponent) + 0.5) for non-negative f32 bits; past a shift of 25 the
+// result is 0, as it is at 25 (the shift is never negative: no channel exceeds the largest).
+fn PREFIX_LANES_rgb9e5_mantissa(bits: UINTS, exponent: UINTS) -> UINTS {
+    let significand = (bits & UINTS(0x7fffffu)) | UINTS(0x800000u);
+    let shift = min(UINTS(126u) + exponent - (bits >> UINTS(23u)), UINTS(25u));
+    return (significand + ((UINTS(1u) << shift) >> UINTS(1u))) >> shift;
+}
+
+";
+
+/// The encode and decode (`PREFIX_f32x3_to_rgb9e5`, `PREFIX_f32x3_from_rgb9e5`).
+const WGSL: &str = "\
+// Shared-exponent rgb9e5 (EXT_texture_shared_exponent), its algorithm evaluated exactly: the
+// channels clamped to [0, 65408] (NaN to 0; as unsigned integers, NaN and negatives lie above
+// infinity's bits), the exponent max(-16, floor(log2(largest))) + 16 read from the exponent
+// field, one more where the largest channel's mantissa rounds up to 512, and each mantissa
+// floor(channel / 2^(exponent - 24) + 0.5) by shifting the significand with half its last
+// place added. Red in bits 0-8, green 9-17, blue 18-26, the exponent 27-31.
+fn PREFIX_f32x3_to_rgb9e5(value: vec3<f32>) -> u32 {
+    let bits = bitcast<vec3<u32>>(value);
+    let clamped = min(bits, vec3<u32>(0x477f8000u)) * vec3<u32>(bits <= vec3<u32>(0x7f800000u));
+    let largest = max(clamped.x, max(clamped.y, clamped.z));
+    let rough_exponent = max(largest >> 23u, 111u) - 111u;
+    let exponent = rough_exponent + u32(PREFIX_f32_rgb9e5_mantissa(largest, rough_exponent) == 512u);
+    let mantissas = PREFIX_f32x3_rgb9e5_mantissa(clamped, vec3<u32>(exponent)) << vec3<u32>(0u, 9u, 18u);
+    return mantissas.x | mantissas.y | mantissas.z | (exponent << 27u);
+}
+
+// Decodes rgb9e5, exactly: each mantissa times 2^(exponent - 24).
+fn PREFIX_f32x3_from_rgb9e5(word: u32) -> vec3<f32> {
+    let scale = bitcast<f32>(((word >> 27u) + 103u) << 23u);
+    return vec3<f32>((vec3<u32>(word) >> vec3<u32>(0u, 9u, 18u)) & vec3<u32>(0x1ffu)) * scale;
+}
+
+";
+
+/// The WGSL functions, their names prefixed with `prefix`.
+pub fn wgsl_functions(prefix: &str) -> Vec<String> {
+    vec![
+        Lanes(1).fill(WGSL_MANTISSA, prefix),
+        Lanes(3).fill(WGSL_MANTISSA, prefix),
+        Lanes(1).fill(WGSL, prefix),
+    ]
+}
+
+/// The rgb9e5 codec.
+pub struct Rgb9e5;
+
+impl Codec for Rgb9e5 {
+    fn name(&self) -> &'static str {
+        "rgb9e5"
+    }
+
+    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
+        without_range(Encoding::Rgb9e5, range)
+    }
+
+    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
+        exact_shape_mismatch(encoding, bits, ty, (32, 3, "a `Vec3`"))
+    }
+
+    #[inline(always)]
+    fn encode(&self, lanes: [u32; 4], _: usize, _: u32, _: Option<f32>) -> u32 {
+        rgb9e5_from_f32(vector_of(lanes))
+    }
+
+    #[inline(always)]
+    fn decode(&self, code: u32, _: usize, _: u32, _: Option<f32>) -> [u32; 4] {
+        vector_lanes(f32_from_rgb9e5(code))
+    }
+
+    fn wgsl(&self, field: &BitField) -> Functions {
+        Functions {
+            encode: format!("    return {}_f32x3_to_rgb9e5(value);\n", field.prefix),
+            decode: format!("    return {}_f32x3_from_rgb9e5(code);\n", field.prefix),
+            helpers: wgsl_functions(field.prefix),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// EXT_texture_shared_exponent's rgb9e5 algorithm as its text writes it, in f64 (every
+    /// step exact for f32 inputs; `floor(log2)` read from the f64's exponent field).
+    fn rgb9e5_reference(rgb: [f32; 3]) -> u32 {
+        let clamped = rgb.map(|value| {
+            let value = f64::from(value);
+            if value.is_nan() {
+                0.0
+            } else {
+                value.clamp(0.0, 65408.0)
+            }
+        });
+        let largest = clamped[0].max(clamped[1]).max(clamped[2]);
+        let floor_log2 = if largest > 0.0 {
+            ((largest.to_bits() >> 52) & 0x7ff) as i32 - 1023
+        } else {
+            i32::MIN
+        };
+        let exponent_p = floor_log2.max(-16) + 16;
+        let mantissa =
+            |value: f64, exponent: i32| (value / 2f64.powi(exponent - 24) + 0.5).floor() as u32;
+        let exponent = if mantissa(largest, exponent_p) == 512 {
+            exponent_p + 1
+        } else {
+            exponent_p
+        };
+        let [red, green, blue] = clamped.map(|value| mantissa(value, exponent));
+        red | (green << 9) | (blue << 18) | ((exponent as u32) << 27)
+    }
+
+    /// Against the extension's algorithm: edge cases, the exponent carry beside every power of
+    /// two, the largest value, and a million random triples.
+    #[test]
+    fn is_the_extensions_algorithm_evaluated_exactly() {
+        let mut cases: Vec<[f32; 3]> = vec![
+            [0.0, 0.0, 0.0],
+            [-0.0, -1.0, f32::NAN],
+            [65408.0, 65408.0, 65408.0],
+            [65409.0, 1e9, f32::INFINITY],
+            [f32::NEG_INFINITY, f32::MIN_POSITIVE, f32::from_bits(1)],
+            [1.0, 0.5, 0.25],
+        ];
+        for exponent in -20..17 {
+            let power = 2f32.powi(exponent);
+            for largest in [
+                power,
+                power * (1.0 - 2f32.powi(-10)),
+                f32::from_bits((power * (1.0 - 2f32.powi(-10))).to_bits() - 1),
+                power * (1.0 - 2f32.powi(-11)),
+                f32::from_bits(power.to_bits() - 1),
+            ] {
+                cases.push([largest, largest / 3.0, largest / 700.0]);
+                cases.push([
+                    largest / 512.0,
+                    largest,
+                    f32::from_bits(largest.to_bits() + 1),
+                ]);
+            }
+        }
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut random = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let bits = (state >> 32) as u32;
+            // Mostly magnitudes rgb9e5 holds, some of anything.
+            if state & 3 == 0 {
+                f32::from_bits(bits)
+            } else {
+                f32::from_bits(0x3000_0000 + bits % 0x1800_0000)
+            }
+        };
+        cases.extend((0..1_000_000).map(|_| [random(), random(), random()]));
+        for rgb in cases {
+            assert_eq!(
+                rgb9e5_from_f32(rgb),
+                rgb9e5_reference(rgb),
+                "{rgb:?}: {:#010x}, reference {:#010x}",
+                rgb9e5_from_f32(rgb),
+                rgb9e5_reference(rgb)
+            );
+        }
+        // Decoding is exact: the mantissa times 2^(exponent - 24).
+        for exponent in 0..32u32 {
+            for mantissa in [0u32, 1, 255, 256, 511] {
+                let word = mantissa | (mantissa << 9) | (mantissa << 18) | (exponent << 27);
+                let expected = (f64::from(mantissa) * 2f64.powi(exponent as i32 - 24)) as f32;
+                assert_eq!(f32_from_rgb9e5(word), [expected; 3]);
+                if mantissa >= 256 {
+                    assert_eq!(
+                        rgb9e5_from_f32([expected; 3]),
+                        word,
+                        "canonical words round-trip"
+                    );
+                }
+            }
+        }
+    }
+}

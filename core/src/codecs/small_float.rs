@@ -1,0 +1,185 @@
+//! The rounding shared by the small floats: an f32 to a float with a 5-bit exponent (bias 15)
+//! and a few mantissa bits, to nearest even, denormals kept, saturating at the largest finite
+//! value (never infinity). [`half`](super::half) (10 mantissa bits and a sign) and
+//! [`unsigned_float`](super::unsigned_float) (`r11f_g11f_b10f`'s 6 and 5 bits, no sign) are
+//! built on it; the decode of both is exact.
+
+use std::collections::BTreeSet;
+
+use super::wgsl::Lanes;
+
+/// The largest finite code of a float with a 5-bit exponent and `mantissa_bits` of mantissa.
+#[inline]
+pub fn small_float_max_code(mantissa_bits: u32) -> u32 {
+    (30 << mantissa_bits) | ((1 << mantissa_bits) - 1)
+}
+
+/// Rounds a non-negative f32, given as its bits with the sign bit clear, to a float with a
+/// 5-bit exponent (bias 15) and `mantissa_bits` of mantissa (1 to 10): round to nearest even,
+/// denormals kept, saturating at the largest finite code. NaN gives 0.
+///
+/// The WGSL's algorithm ([`WGSL_ROUND`]): normal results round the f32 bits in integer
+/// arithmetic, rebiasing the exponent in the same add (a carry moves into the exponent, as it
+/// should); denormal results scale the value by a power of two, exactly, and round it to
+/// nearest even. Each path gives at least the code where the other applies (under 2^-14 the
+/// rebias wraps around; from 2^-14 up the scaled value is at least the code), so the smaller is
+/// the code. NaN scales to NaN, which converts to 0.
+#[inline(always)]
+pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u32 {
+    let shift = 23 - mantissa_bits;
+    let odd = (magnitude_bits >> shift) & 1;
+    let rounding_and_rebias = ((1u32 << (shift - 1)) - 1).wrapping_sub(113 << 23);
+    let normal = (magnitude_bits
+        .wrapping_add(rounding_and_rebias)
+        .wrapping_add(odd)
+        >> shift)
+        + (1 << mantissa_bits);
+    // value * 2^(14 + mantissa_bits), rounded to nearest even by adding and removing 2^23 (the
+    // CPU rounds to nearest even, and a denormal result is under 2^10); larger values stay
+    // large, and the conversion saturates.
+    let scaled = f32::from_bits(magnitude_bits) * f32::from_bits((141 + mantissa_bits) << 23);
+    let denormal = ((scaled + 8_388_608.0) - 8_388_608.0) as u32;
+    normal
+        .min(denormal)
+        .min(small_float_max_code(mantissa_bits))
+}
+
+/// Decodes an unsigned small float code, exactly. Exponent 31 decodes to infinity or NaN as
+/// the format defines (the encoders never produce it).
+#[inline]
+pub fn f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
+    let exponent = code >> mantissa_bits;
+    let mantissa = code & ((1 << mantissa_bits) - 1);
+    if exponent == 0 {
+        // Denormal: mantissa * 2^-(14 + mantissa_bits); the power of two is exact.
+        return mantissa as f32 * f32::from_bits((113 - mantissa_bits) << 23);
+    }
+    let f32_exponent = if exponent == 31 { 255 } else { exponent + 112 };
+    f32::from_bits((f32_exponent << 23) | (mantissa << (23 - mantissa_bits)))
+}
+
+/// The rounding, per lane (`PREFIX_LANES_round_to_NAME`); the other placeholders are per-lane
+/// literals (see [`wgsl_helpers`]).
+pub const WGSL_ROUND: &str = "\
+// Rounds non-negative f32s, given as bits, to floats with a 5-bit exponent (bias 15) and
+// MANTISSA_BITS bits of mantissa: to nearest even, denormals kept, saturating at the largest finite
+// code (never infinity); the caller maps NaN. Normal results round the f32 bits in integer
+// arithmetic, rebiasing the exponent in the same add (a carry moves into the exponent, as it
+// should). Denormal results scale the value by a power of two, exactly, and `round` it (to
+// nearest even). No step depends on how the adapter rounds. Each path gives at least the code
+// where the other applies (under 2^-14 the rebias wraps around; from 2^-14 up the scaled value
+// is at least the code, saturating in the conversion), so `min` picks the right one.
+fn PREFIX_LANES_round_to_NAME(magnitude: UINTS) -> UINTS {
+    let odd = (magnitude >> SHIFT) & UINTS(1u);
+    let normal = ((magnitude + ROUNDING_AND_REBIAS + odd) >> SHIFT) + SMALLEST_NORMAL;
+    let denormal = UINTS(round(bitcast<FLOATS>(magnitude) * DENORMAL_SCALE));
+    return min(min(normal, denormal), MAX_CODE);
+}
+
+";
+
+/// The helpers that round f32s to small floats of the given mantissa widths (one lane each)
+/// and `wrapper`, which calls them, with their constants written out: `NAME` names the pair
+/// (`PREFIX_LANES_round_to_NAME`, and the wrapper's own function).
+pub fn wgsl_helpers(prefix: &str, name: &str, wrapper: &str, mantissas: &[u32]) -> Vec<String> {
+    let lanes = Lanes(mantissas.len());
+    let literal = |scalar: &str, write: &dyn Fn(u32) -> String| {
+        let values: Vec<String> = mantissas.iter().map(|&bits| write(bits)).collect();
+        lanes.literal(scalar, &values)
+    };
+    let distinct: BTreeSet<u32> = mantissas.iter().copied().collect();
+    let distinct: Vec<String> = distinct.iter().map(u32::to_string).collect();
+    let constants = [
+        ("MANTISSA_BITS", distinct.join(" or ")),
+        (
+            "ROUNDING_AND_REBIAS",
+            literal("u32", &|bits| {
+                let shift = 23 - bits;
+                format!(
+                    "{:#x}u",
+                    ((1u32 << (shift - 1)) - 1).wrapping_sub(113 << 23)
+                )
+            }),
+        ),
+        ("SHIFT", literal("u32", &|bits| format!("{}u", 23 - bits))),
+        (
+            "DENORMAL_SCALE",
+            literal("f32", &|bits| format!("{:?}", ((14 + bits) as f32).exp2())),
+        ),
+        (
+            "MAX_CODE",
+            literal("u32", &|bits| format!("{}u", (31 << bits) - 1)),
+        ),
+        (
+            "SMALLEST_NORMAL",
+            literal("u32", &|bits| format!("{}u", 1 << bits)),
+        ),
+        ("NAME", name.to_string()),
+    ];
+    [WGSL_ROUND, wrapper]
+        .iter()
+        .map(|template| {
+            let mut helper = lanes.fill(template, prefix);
+            for (placeholder, value) in &constants {
+                helper = helper.replace(placeholder, value);
+            }
+            helper
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Round to nearest even in f64 arithmetic, the textbook way, for comparison.
+    fn small_float_reference(value: f32, mantissa_bits: u32) -> u32 {
+        let max = f64::from(f32_from_small_float(
+            small_float_max_code(mantissa_bits),
+            mantissa_bits,
+        ));
+        let value = f64::from(value);
+        if value.is_nan() || value <= 0.0 {
+            return 0;
+        }
+        if value >= max {
+            return small_float_max_code(mantissa_bits);
+        }
+        // Quantization step of the binade (or of the denormal range).
+        let exponent = value.log2().floor().max(-14.0);
+        let step = (exponent - f64::from(mantissa_bits)).exp2();
+        let quotient = value / step;
+        let mut rounded = quotient.round();
+        if (quotient - quotient.floor() - 0.5).abs() == 0.0 && rounded % 2.0 != 0.0 {
+            rounded -= 1.0;
+        }
+        // In the binade of 2^exponent the code is (exponent + 14) << mantissa_bits plus the
+        // rounded quotient (which carries into the exponent when it reaches 2^(mantissa + 1)).
+        let code = (((exponent + 14.0) as u32) << mantissa_bits) + rounded as u32;
+        code.min(small_float_max_code(mantissa_bits))
+    }
+
+    #[test]
+    fn rounding_matches_a_textbook_one_on_every_boundary() {
+        for mantissa_bits in [1, 2, 5, 6, 10] {
+            let max = small_float_max_code(mantissa_bits);
+            for code in 0..max {
+                let low = f64::from(f32_from_small_float(code, mantissa_bits));
+                let high = f64::from(f32_from_small_float(code + 1, mantissa_bits));
+                let midpoint = ((low + high) / 2.0) as f32;
+                for value in [
+                    low as f32,
+                    midpoint,
+                    f32::from_bits(midpoint.to_bits() - 1),
+                    f32::from_bits(midpoint.to_bits() + 1),
+                ] {
+                    assert_eq!(
+                        small_float_from_magnitude(value.to_bits(), mantissa_bits),
+                        small_float_reference(value, mantissa_bits),
+                        "{value:e} with {mantissa_bits} mantissa bits"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,175 @@
+//! Signed normalized: a value in `[-1, 1]` as GL's `round(clamp(x, -1, 1) (2^(n-1) - 1))`,
+//! halves away from zero, exact, in an `n`-bit two's complement; decoded as `max(code /
+//! (2^(n-1) - 1), -1)`, so the most negative code reads -1 as the next one does. NaN gives 0.
+//! 2 to 24 bits per component.
+//!
+//! The magnitude is [`unorm`](super::unorm)'s code of `|x|` at `n - 1` bits (the same
+//! formula) and the sign is applied to the code, so the encoding is symmetric about zero.
+
+use super::integer::i32_from_sint;
+use super::unorm::unorm_from_f32;
+use super::wgsl::{BitField, Functions};
+use super::{max_code, per_component_mismatch, without_range, Codec, Encoding};
+use crate::layout::FieldType;
+
+/// Signed normalized encode, GL's formula `round(clamp(value, -1, 1) * (2^(bits - 1) - 1))`
+/// with halves rounded away from zero, exact; the code is the `bits`-bit two's complement. NaN
+/// gives 0. Valid for `bits` from 2 to 24.
+#[inline(always)]
+pub fn snorm_from_f32(value: f32, bits: u32) -> u32 {
+    // NaN's magnitude encodes as 0, whatever its sign.
+    let magnitude = unorm_from_f32(f32::from_bits(value.to_bits() & 0x7fff_ffff), bits - 1);
+    if value.to_bits() >> 31 == 1 {
+        magnitude.wrapping_neg() & max_code(bits)
+    } else {
+        magnitude
+    }
+}
+
+/// Signed normalized decode, GL's formula `max(code / (2^(bits - 1) - 1), -1)`.
+#[inline]
+pub fn f32_from_snorm(code: u32, bits: u32) -> f32 {
+    (i32_from_sint(code, bits) as f32 / (max_code(bits) >> 1) as f32).max(-1.0)
+}
+
+/// The exact encode and the decode, per lane (`PREFIX_LANES_to_snorm`,
+/// `PREFIX_LANES_from_snorm`); the encode calls unorm's.
+pub const WGSL: &str = "\
+// Signed normalized encode, per lane: GL's round(clamp(value, -1, 1) * (2^(bits - 1) - 1)),
+// halves away from zero, exact: the magnitude's unorm code at bits - 1 bits (NaN's is 0),
+// negated in the bits-bit two's complement for a set sign bit (a multiply-free negation, as
+// GLSL ES 3.00 has no `select` on integer vectors). magnitude_* are to_unorm's parameters
+// at bits - 1 bits; mask is 2^bits - 1.
+fn PREFIX_LANES_to_snorm(value: FLOATS, magnitude_bits: UINTS, magnitude_max: UINTS, shift_bias: UINTS, mask: UINTS) -> UINTS {
+    let value_bits = bitcast<UINTS>(value);
+    let magnitude = bitcast<FLOATS>(value_bits & UINTS(0x7fffffffu));
+    let code = PREFIX_LANES_to_unorm(magnitude, magnitude_bits, magnitude_max, shift_bias);
+    let negative = value_bits >> UINTS(31u);
+    return ((code ^ (UINTS(0u) - negative)) + negative) & mask;
+}
+
+// Signed normalized decode: max(code / (2^(bits - 1) - 1), -1), the code sign-extended by
+// moving its top bit to bit 31 and shifting back arithmetically (up is 32 - bits).
+fn PREFIX_LANES_from_snorm(code: UINTS, up: UINTS, reciprocal: FLOATS) -> FLOATS {
+    let signed = bitcast<SINTS>(code << up) >> up;
+    return max(FLOATS(signed) * reciprocal, FLOATS(-1.0));
+}
+
+";
+
+/// The snorm codec.
+pub struct Snorm;
+
+impl Codec for Snorm {
+    fn name(&self) -> &'static str {
+        "snorm"
+    }
+
+    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
+        without_range(Encoding::Snorm, range)
+    }
+
+    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
+        per_component_mismatch(encoding, bits, ty, (2, 24))
+    }
+
+    #[inline(always)]
+    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
+        super::join_codes(lanes, components, each, |lane, each| {
+            snorm_from_f32(f32::from_bits(lane), each)
+        })
+    }
+
+    #[inline(always)]
+    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
+        super::split_codes(code, components, each, |code, each| {
+            f32_from_snorm(code, each).to_bits()
+        })
+    }
+
+    fn wgsl(&self, field: &BitField) -> Functions {
+        let (prefix, lanes, each) = (field.prefix, field.lanes, field.each);
+        let max = max_code(each);
+        Functions {
+            encode: format!(
+                "    let codes = {prefix}_{}_to_snorm(value, {}, {}, {}, {});\n    return {};\n",
+                lanes.name(),
+                lanes.splat(each - 1),
+                lanes.splat(max >> 1),
+                lanes.splat(150 - (each - 1)),
+                lanes.splat(max),
+                field.joined("codes")
+            ),
+            decode: format!(
+                "{}    return {prefix}_{}_from_snorm(codes, {}, {});\n",
+                field.split_codes(),
+                lanes.name(),
+                lanes.splat(32 - each),
+                field.reciprocal(each - 1)
+            ),
+            helpers: vec![
+                lanes.fill(super::unorm::WGSL_ENCODE, prefix),
+                lanes.fill(WGSL, prefix),
+            ],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codecs::every_pattern;
+
+    /// Snorm evaluated plainly, in f64 (exact: the product has at most 48 significant bits),
+    /// halves rounded away from zero.
+    fn snorm_reference(value: f32, bits: u32) -> u32 {
+        if value.is_nan() {
+            return 0;
+        }
+        let scaled = f64::from(value).clamp(-1.0, 1.0) * f64::from(max_code(bits) >> 1);
+        let rounded = (scaled.abs() + 0.5).floor().copysign(scaled) as i32;
+        (rounded as u32) & max_code(bits)
+    }
+
+    #[test]
+    fn the_algorithm_is_exact_for_every_f32() {
+        let failure = every_pattern(0..=u32::MAX, |value_bits| {
+            let value = f32::from_bits(value_bits);
+            [8, 16, 24].iter().find_map(|&bits| {
+                let (got, want) = (snorm_from_f32(value, bits), snorm_reference(value, bits));
+                (got != want).then(|| {
+                    format!("{value:e} ({value_bits:#010x}) as snorm{bits}: {got}, exact {want}")
+                })
+            })
+        });
+        assert_eq!(failure, None);
+    }
+
+    #[test]
+    fn is_symmetric_and_decodes_the_most_negative_code_to_minus_one() {
+        for bits in [2, 4, 8, 12, 16, 24] {
+            let highest = max_code(bits) >> 1;
+            for (value, expected) in [
+                (1.0f32, highest),
+                (-1.0, highest.wrapping_neg() & max_code(bits)),
+                (-0.0, 0),
+                (f32::NAN, 0),
+                (-f32::NAN, 0),
+                (f32::NEG_INFINITY, highest.wrapping_neg() & max_code(bits)),
+            ] {
+                assert_eq!(
+                    snorm_from_f32(value, bits),
+                    expected,
+                    "{value} at {bits} bits"
+                );
+            }
+            assert_eq!(f32_from_snorm(highest + 1, bits), -1.0);
+            assert_eq!(f32_from_snorm(highest, bits), 1.0);
+            for code in [0, 1, highest / 2, highest] {
+                let negative = code.wrapping_neg() & max_code(bits);
+                assert_eq!(f32_from_snorm(negative, bits), -f32_from_snorm(code, bits));
+                assert_eq!(snorm_from_f32(f32_from_snorm(code, bits), bits), code);
+            }
+        }
+    }
+}
