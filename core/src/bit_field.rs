@@ -29,8 +29,8 @@ impl BitField {
             ));
         }
         let codec = encoding.codec();
-        if ty.scalar != codec.scalar_kind() {
-            let wants = match codec.scalar_kind() {
+        if ty.scalar != codec.scalar_kind {
+            let wants = match codec.scalar_kind {
                 ScalarKind::Float => "floats (`f32` or a `Vec`)",
                 ScalarKind::Uint => "unsigned integers (`u32` or a `UVec`)",
                 ScalarKind::Sint => "signed integers (`i32` or an `IVec`)",

@@ -23,7 +23,7 @@ pub trait Scalar: Copy + Default {
     #[inline(always)]
     fn encode(self, channel: Channel) -> u32 {
         let codec = channel.encoding.codec();
-        let lane = self.to_lane(codec.scalar_kind());
+        let lane = self.to_lane(codec.scalar_kind);
         codec.encode([lane, 0, 0, 0], 1, channel.bits, None)
     }
 
@@ -32,7 +32,7 @@ pub trait Scalar: Copy + Default {
     fn decode(code: u32, channel: Channel) -> Self {
         let codec = channel.encoding.codec();
         let lane = codec.decode(code, 1, channel.bits, None)[0];
-        Self::from_lane(lane, codec.scalar_kind())
+        Self::from_lane(lane, codec.scalar_kind)
     }
 }
 

@@ -52,7 +52,7 @@ pub enum Representation {
         format: Format,
     },
     /// Light as a bit field of any codec that offers light storage
-    /// ([`Codec::light_storage`](gbuffer_codegen::Codec::light_storage)), `each` bits per
+    /// ([`Codec::light_storage`](gbuffer_codegen::Codec#structfield.light_storage)), `each` bits per
     /// component: a codec added to the list is in the catalogue by itself.
     Light {
         /// The codec.
@@ -64,9 +64,7 @@ pub enum Representation {
 
 /// What `encoding` guarantees for light at `each` bits per component.
 fn light_storage(encoding: Encoding, each: u32, floor: f64) -> LightStorage {
-    encoding
-        .codec()
-        .light_storage(floor)
+    (encoding.codec().light_storage)(floor)
         .into_iter()
         .find(|storage| storage.each == each)
         .expect("the catalogue offers the widths the codec offers")
@@ -239,18 +237,15 @@ impl Representation {
                     });
                 }
                 for codec in Encoding::CODECS {
-                    let Ok(encoding) = codec.encoding(None) else {
+                    let Ok(encoding) = Encoding::from_name(codec.name, None) else {
                         continue; // a codec that needs a parameter offers none here
                     };
-                    all.extend(
-                        codec
-                            .light_storage(precision.hdr_min)
-                            .into_iter()
-                            .map(|storage| Representation::Light {
-                                encoding,
-                                each: storage.each,
-                            }),
-                    );
+                    all.extend((codec.light_storage)(precision.hdr_min).into_iter().map(
+                        |storage| Representation::Light {
+                            encoding,
+                            each: storage.each,
+                        },
+                    ));
                 }
                 all
             }

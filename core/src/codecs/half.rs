@@ -10,8 +10,7 @@
 
 use super::small_float::{f32_from_small_float, small_float_from_magnitude};
 use super::wgsl::{BitField, Functions};
-use super::{per_component_mismatch, without_range, Codec, Encoding, F32_INFINITY_BITS};
-use crate::layout::FieldType;
+use super::{Codec, F32_INFINITY_BITS};
 
 /// f32 to the 16-bit code of an IEEE binary16, sign kept, saturating at +-65504. NaN gives 0.
 #[inline]
@@ -54,93 +53,66 @@ pub fn wgsl_helpers(prefix: &str, lanes: usize) -> Vec<String> {
     super::small_float::wgsl_helpers(prefix, "unsigned_half", WGSL_ENCODE, &vec![10; lanes])
 }
 
-/// The half codec.
-pub struct Half;
+/// The half codec: 16 bits a component.
+pub const CODEC: Codec = Codec::floats(
+    "half",
+    (16, 16),
+    (
+        |value, _| half_from_f32(value),
+        |code, _| f32_from_half(code),
+    ),
+    wgsl,
+)
+.with_fast_form();
 
-impl Codec for Half {
-    fn name(&self) -> &'static str {
-        "half"
-    }
-
-    fn has_fast_form(&self) -> bool {
-        true
-    }
-
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
-        without_range(Encoding::Half, range)
-    }
-
-    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
-        per_component_mismatch(encoding, bits, ty, (16, 16))
-    }
-
-    #[inline(always)]
-    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
-        super::join_codes(lanes, components, each, |lane, _| {
-            half_from_f32(f32::from_bits(lane))
-        })
-    }
-
-    #[inline(always)]
-    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
-        super::split_codes(code, components, each, |code, _| {
-            f32_from_half(code).to_bits()
-        })
-    }
-
-    fn wgsl(&self, field: &BitField) -> Functions {
-        let lanes = field.lanes;
-        let scalar = lanes.0 == 1;
-        let encode = match (field.fast, scalar) {
-            (true, true) => "    return pack2x16float(vec2<f32>(value, 0.0));\n".to_string(),
-            (true, false) => "    return pack2x16float(value);\n".to_string(),
-            (false, _) => format!(
-                "    let codes = {}_{}_to_half(value);\n    return {};\n",
-                field.prefix,
-                lanes.name(),
-                field.joined("codes")
-            ),
-        };
-        let decode = match scalar {
-            true => "    return unpack2x16float(code).x;\n",
-            false => "    return unpack2x16float(code);\n",
-        };
-        Functions {
-            encode,
-            decode: decode.to_string(),
-            helpers: match field.fast {
-                true => Vec::new(),
-                false => wgsl_helpers(field.prefix, lanes.0),
-            },
-        }
+/// A half bit field's WGSL: the exact encode, or `pack2x16float`; `unpack2x16float`.
+fn wgsl(field: &BitField) -> Functions {
+    let lanes = field.lanes;
+    let scalar = lanes.0 == 1;
+    let encode = match (field.fast, scalar) {
+        (true, true) => "    return pack2x16float(vec2<f32>(value, 0.0));\n".to_string(),
+        (true, false) => "    return pack2x16float(value);\n".to_string(),
+        (false, _) => format!(
+            "    let codes = {}_{}_to_half(value);\n    return {};\n",
+            field.prefix,
+            lanes.name(),
+            field.joined("codes")
+        ),
+    };
+    let decode = match scalar {
+        true => "    return unpack2x16float(code).x;\n",
+        false => "    return unpack2x16float(code);\n",
+    };
+    Functions {
+        encode,
+        decode: decode.to_string(),
+        helpers: match field.fast {
+            true => Vec::new(),
+            false => wgsl_helpers(field.prefix, lanes.0),
+        },
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::codecs::every_pattern;
+    use crate::codecs::assert_every_f32;
 
     /// On every f32: IEEE's rounding (the half crate's, which overflows to infinity where ours
     /// saturates at the largest finite value, and keeps NaN where ours stores 0).
     #[test]
     fn rounds_every_f32_as_ieee_does() {
-        let failure = every_pattern(0..=u32::MAX, |value_bits| {
-            let value = f32::from_bits(value_bits);
+        let ieee = |value: f32, _| {
             let ieee = u32::from(::half::f16::from_f32(value).to_bits());
-            let want = if value.is_nan() {
+            if value.is_nan() {
                 0
             } else if ieee & 0x7fff == 0x7c00 {
                 (ieee & 0x8000) | 0x7bff
             } else {
                 ieee
-            };
-            let got = half_from_f32(value);
-            (got != want).then(|| {
-                format!("half of {value:e} ({value_bits:#010x}): {got:#06x}, IEEE {want:#06x}")
-            })
-        });
-        assert_eq!(failure, None);
+            }
+        };
+        assert_every_f32("half", &[16], |value, _| half_from_f32(value), ieee);
     }
 
     #[test]

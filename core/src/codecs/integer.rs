@@ -3,9 +3,8 @@
 //! per component. The integer formats (`rgba8ui`, `rg16i`, `r32ui`, ...) are built from them.
 
 use super::wgsl::{BitField, Functions};
-use super::{max_code, per_component_mismatch, without_range, Codec, Encoding};
+use super::{max_code, Codec};
 use crate::format::ScalarKind;
-use crate::layout::FieldType;
 
 /// Clamps an unsigned integer to `bits` bits.
 #[inline]
@@ -27,107 +26,64 @@ pub fn i32_from_sint(code: u32, bits: u32) -> i32 {
 }
 
 /// The unsigned integer codec.
-pub struct Uint;
+pub const UINT: Codec = Codec::integers(
+    "uint",
+    ScalarKind::Uint,
+    (1, 32),
+    (uint_saturate, |code, _| code),
+    uint_wgsl,
+);
 
-impl Codec for Uint {
-    fn name(&self) -> &'static str {
-        "uint"
-    }
+/// The signed integer codec: lanes are `i32`s' bits.
+pub const SINT: Codec = Codec::integers(
+    "sint",
+    ScalarKind::Sint,
+    (1, 32),
+    (
+        |lane, each| sint_saturate(lane as i32, each),
+        |code, each| i32_from_sint(code, each) as u32,
+    ),
+    sint_wgsl,
+);
 
-    fn scalar_kind(&self) -> ScalarKind {
-        ScalarKind::Uint
-    }
-
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
-        without_range(Encoding::Uint, range)
-    }
-
-    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
-        per_component_mismatch(encoding, bits, ty, (1, 32))
-    }
-
-    #[inline(always)]
-    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
-        super::join_codes(lanes, components, each, uint_saturate)
-    }
-
-    #[inline(always)]
-    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
-        super::split_codes(code, components, each, |code, _| code)
-    }
-
-    fn wgsl(&self, field: &BitField) -> Functions {
-        Functions {
-            encode: format!(
-                "    let codes = min(value, {});\n    return {};\n",
-                field.lanes.splat(max_code(field.each)),
-                field.joined("codes")
-            ),
-            decode: format!("{}    return codes;\n", field.split_codes()),
-            helpers: Vec::new(),
-        }
+/// An unsigned bit field's WGSL: `min`, and the codes split.
+fn uint_wgsl(field: &BitField) -> Functions {
+    Functions {
+        encode: format!(
+            "    let codes = min(value, {});\n    return {};\n",
+            field.lanes.splat(max_code(field.each)),
+            field.joined("codes")
+        ),
+        decode: format!("{}    return codes;\n", field.split_codes()),
+        helpers: Vec::new(),
     }
 }
 
-/// The signed integer codec.
-pub struct Sint;
-
-impl Codec for Sint {
-    fn name(&self) -> &'static str {
-        "sint"
-    }
-
-    fn scalar_kind(&self) -> ScalarKind {
-        ScalarKind::Sint
-    }
-
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
-        without_range(Encoding::Sint, range)
-    }
-
-    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
-        per_component_mismatch(encoding, bits, ty, (1, 32))
-    }
-
-    #[inline(always)]
-    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
-        super::join_codes(lanes, components, each, |lane, each| {
-            sint_saturate(lane as i32, each)
-        })
-    }
-
-    #[inline(always)]
-    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
-        super::split_codes(code, components, each, |code, each| {
-            i32_from_sint(code, each) as u32
-        })
-    }
-
-    fn wgsl(&self, field: &BitField) -> Functions {
-        let lanes = field.lanes;
-        let highest = i64::from(max_code(field.each) >> 1);
-        let bound = |value: i64| lanes.literal("i32", &[value.to_string()]);
-        let to_bits = match lanes.0 {
-            1 => "bitcast<u32>".to_string(),
-            _ => format!("bitcast<{}>", lanes.of("u32")),
-        };
-        Functions {
-            encode: format!(
-                "    let codes = {to_bits}(clamp(value, {}, {})) & {};\n    return {};\n",
-                bound(-highest - 1),
-                bound(highest),
-                lanes.splat(max_code(field.each)),
-                field.joined("codes")
-            ),
-            // The top bit moved to bit 31, then shifted back arithmetically.
-            decode: format!(
-                "{}    return bitcast<{}>(codes << {up}) >> {up};\n",
-                field.split_codes(),
-                lanes.of("i32"),
-                up = lanes.splat(32 - field.each)
-            ),
-            helpers: Vec::new(),
-        }
+/// A signed bit field's WGSL: `clamp`, and the codes sign-extended.
+fn sint_wgsl(field: &BitField) -> Functions {
+    let lanes = field.lanes;
+    let highest = i64::from(max_code(field.each) >> 1);
+    let bound = |value: i64| lanes.literal("i32", &[value.to_string()]);
+    let to_bits = match lanes.0 {
+        1 => "bitcast<u32>".to_string(),
+        _ => format!("bitcast<{}>", lanes.of("u32")),
+    };
+    Functions {
+        encode: format!(
+            "    let codes = {to_bits}(clamp(value, {}, {})) & {};\n    return {};\n",
+            bound(-highest - 1),
+            bound(highest),
+            lanes.splat(max_code(field.each)),
+            field.joined("codes")
+        ),
+        // The top bit moved to bit 31, then shifted back arithmetically.
+        decode: format!(
+            "{}    return bitcast<{}>(codes << {up}) >> {up};\n",
+            field.split_codes(),
+            lanes.of("i32"),
+            up = lanes.splat(32 - field.each)
+        ),
+        helpers: Vec::new(),
     }
 }
 

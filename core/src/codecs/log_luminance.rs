@@ -11,11 +11,7 @@
 //! codecs' module says a new one is: this file and one line in the list.
 
 use super::wgsl::{BitField, Functions};
-use super::{
-    max_code, per_component_mismatch, without_range, Codec, Encoding, LightStorage,
-    F32_INFINITY_BITS,
-};
-use crate::layout::FieldType;
+use super::{max_code, Codec, LightStorage, F32_INFINITY_BITS};
 
 /// The bits of 2^-16, the bottom of the range (code 1).
 const BOTTOM_BITS: u32 = 111 << 23;
@@ -75,73 +71,52 @@ fn PREFIX_LANES_from_log_luminance(code: UINTS, shift: UINTS) -> FLOATS {
 ";
 
 /// The log luminance codec.
-pub struct LogLuminance;
+pub const CODEC: Codec = Codec::floats(
+    "log_luminance",
+    (6, 24),
+    (log_luminance_from_f32, f32_from_log_luminance),
+    wgsl,
+)
+.with_light_storage(light_storage);
 
-impl Codec for LogLuminance {
-    fn name(&self) -> &'static str {
-        "log_luminance"
+/// A log luminance bit field's WGSL: the per-lane encode and decode.
+fn wgsl(field: &BitField) -> Functions {
+    let (prefix, lanes, each) = (field.prefix, field.lanes, field.each);
+    Functions {
+        encode: format!(
+            "    let codes = {prefix}_{}_to_log_luminance(value, {}, {});\n    return {};\n",
+            lanes.name(),
+            lanes.splat(shift(each)),
+            lanes.splat(max_code(each)),
+            field.joined("codes")
+        ),
+        decode: format!(
+            "{}    return {prefix}_{}_from_log_luminance(codes, {});\n",
+            field.split_codes(),
+            lanes.name(),
+            lanes.splat(shift(each))
+        ),
+        helpers: vec![lanes.fill(WGSL, prefix)],
     }
+}
 
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
-        without_range(Encoding::LogLuminance, range)
-    }
-
-    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
-        per_component_mismatch(encoding, bits, ty, (6, 24))
-    }
-
-    #[inline(always)]
-    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
-        super::join_codes(lanes, components, each, |lane, each| {
-            log_luminance_from_f32(f32::from_bits(lane), each)
+/// Three components of 6 to 10 bits (one word): rounding to the nearest of 2^(n - 5)
+/// steps an octave is within 2^-(n - 4) of the value, relative; values under 2^-16 are
+/// lost, within 2^-16 of the floor.
+fn light_storage(floor: f64) -> Vec<LightStorage> {
+    (6..=10)
+        .map(|each| LightStorage {
+            each,
+            relative_error: 2f64.powi(4 - each as i32).max(2f64.powi(-16) / floor),
+            largest: f64::from(f32_from_log_luminance(max_code(each), each)),
         })
-    }
-
-    #[inline(always)]
-    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
-        super::split_codes(code, components, each, |code, each| {
-            f32_from_log_luminance(code, each).to_bits()
-        })
-    }
-
-    fn wgsl(&self, field: &BitField) -> Functions {
-        let (prefix, lanes, each) = (field.prefix, field.lanes, field.each);
-        Functions {
-            encode: format!(
-                "    let codes = {prefix}_{}_to_log_luminance(value, {}, {});\n    return {};\n",
-                lanes.name(),
-                lanes.splat(shift(each)),
-                lanes.splat(max_code(each)),
-                field.joined("codes")
-            ),
-            decode: format!(
-                "{}    return {prefix}_{}_from_log_luminance(codes, {});\n",
-                field.split_codes(),
-                lanes.name(),
-                lanes.splat(shift(each))
-            ),
-            helpers: vec![lanes.fill(WGSL, prefix)],
-        }
-    }
-
-    /// Three components of 6 to 10 bits (one word): rounding to the nearest of 2^(n - 5)
-    /// steps an octave is within 2^-(n - 4) of the value, relative; values under 2^-16 are
-    /// lost, within 2^-16 of the floor.
-    fn light_storage(&self, floor: f64) -> Vec<LightStorage> {
-        (6..=10)
-            .map(|each| LightStorage {
-                each,
-                relative_error: 2f64.powi(4 - each as i32).max(2f64.powi(-16) / floor),
-                largest: f64::from(f32_from_log_luminance(max_code(each), each)),
-            })
-            .collect()
-    }
+        .collect()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::codecs::every_pattern;
+    use crate::codecs::assert_every_f32;
 
     /// The octave and its fraction of a positive finite f64: `x = (1 + fraction) 2^octave`.
     fn octave_and_fraction(value: f64) -> (i32, f64) {
@@ -173,16 +148,12 @@ mod tests {
 
     #[test]
     fn encodes_every_f32_as_the_contract_says() {
-        let failure = every_pattern(0..=u32::MAX, |value_bits| {
-            let value = f32::from_bits(value_bits);
-            [6, 10, 16, 24].iter().find_map(|&bits| {
-                let (got, want) = (log_luminance_from_f32(value, bits), reference(value, bits));
-                (got != want).then(|| {
-                    format!("{value:e} ({value_bits:#010x}) in {bits} bits: {got}, contract {want}")
-                })
-            })
-        });
-        assert_eq!(failure, None);
+        assert_every_f32(
+            "log luminance",
+            &[6, 10, 16, 24],
+            log_luminance_from_f32,
+            reference,
+        );
     }
 
     /// Every code decodes to its octave and fraction, and back to itself.

@@ -55,57 +55,262 @@ pub(crate) fn significand_and_exponent(bits: u32) -> (u32, u32) {
     )
 }
 
-/// One codec: its name, what it holds, its mirror and its WGSL.
+/// One codec: its name, what it holds, its Rust mirror and its WGSL. Each codec's file builds
+/// its own as a constant (`CODEC`) with the constructors below.
 ///
 /// Values travel as *lanes*: each component's bits in a `u32` (an `f32`'s bits, a `u32`, an
 /// `i32` as `u32`, a `bool` as 0 or 1), up to four. `each` is the width of one component's
-/// code ([`Codec::component_bits`]); `range` is the parameter of codecs that take one
+/// code ([`Codec::component_bits`]); `range` is the parameter of the codecs that take one
 /// (RGBM's largest value).
-pub trait Codec: Sync {
+#[derive(Clone, Copy, Debug)]
+pub struct Codec {
     /// Its name as layout files and the derive spell it: `unorm`, `octahedral`, ...
-    fn name(&self) -> &'static str;
-
+    pub name: &'static str,
     /// The scalar kind of the fields it holds.
-    fn scalar_kind(&self) -> ScalarKind {
-        ScalarKind::Float
-    }
-
+    pub scalar_kind: ScalarKind,
+    /// The types and widths it takes.
+    pub shape: Shape,
     /// Whether fast conversions change its WGSL (float arithmetic and builtins in place of
     /// the exact integer algorithm).
-    fn has_fast_form(&self) -> bool {
-        false
+    pub has_fast_form: bool,
+    /// The Rust mirror.
+    pub conversion: Conversion,
+    /// The WGSL of a bit field: its encode and decode functions' bodies and the helpers they
+    /// call.
+    pub wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
+    /// The bit fields it offers the solver for light (a `vec3` of linear HDR values, one width
+    /// per component each) with their error bounds, given the scene's smallest light value
+    /// that matters; empty where it stores no light this way.
+    pub light_storage: fn(f64) -> Vec<LightStorage>,
+}
+
+/// The types and widths a codec takes.
+#[derive(Clone, Copy, Debug)]
+pub enum Shape {
+    /// A scalar or vector, each component in `low` to `high` bits (a vector splits its bits
+    /// evenly).
+    PerComponent(u32, u32),
+    /// Exactly `components` components in exactly `bits` bits; `what` names them for errors
+    /// (``a `Vec3` ``).
+    Fixed(u32, usize, &'static str),
+    /// A unit `Vec3` as two coordinates sharing an even number of bits.
+    Coordinates,
+}
+
+/// A codec's Rust mirror.
+#[derive(Clone, Copy, Debug)]
+pub enum Conversion {
+    /// Floats, each component on its own: a value to its code of `each` bits, and back.
+    Floats(fn(f32, u32) -> u32, fn(u32, u32) -> f32),
+    /// Integers and bools, each component on its own: a lane to its code, and back.
+    Integers(fn(u32, u32) -> u32, fn(u32, u32) -> u32),
+    /// A `vec3` at once, given `each` and the range: its code, and back.
+    Vector(
+        fn([f32; 3], u32, Option<f32>) -> u32,
+        fn(u32, u32, Option<f32>) -> [f32; 3],
+    ),
+}
+
+/// A float codec's conversions of one component: a value to its code of `each` bits, and back.
+pub type FloatConversions = (fn(f32, u32) -> u32, fn(u32, u32) -> f32);
+
+/// An integer codec's conversions of one component: a lane to its code, and back.
+pub type IntegerConversions = (fn(u32, u32) -> u32, fn(u32, u32) -> u32);
+
+/// A vector codec's conversions: a `vec3` to its code given `each` and the range, and back.
+pub type VectorConversions = (
+    fn([f32; 3], u32, Option<f32>) -> u32,
+    fn(u32, u32, Option<f32>) -> [f32; 3],
+);
+
+/// No light storage.
+fn no_light_storage(_: f64) -> Vec<LightStorage> {
+    Vec::new()
+}
+
+impl Codec {
+    /// A per-component codec of floats, `low` to `high` bits a component.
+    pub const fn floats(
+        name: &'static str,
+        (low, high): (u32, u32),
+        (encode, decode): FloatConversions,
+        wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
+    ) -> Codec {
+        Codec {
+            name,
+            scalar_kind: ScalarKind::Float,
+            shape: Shape::PerComponent(low, high),
+            has_fast_form: false,
+            conversion: Conversion::Floats(encode, decode),
+            wgsl,
+            light_storage: no_light_storage,
+        }
     }
 
-    /// Its [`Encoding`], given the range written after its name (which only RGBM takes).
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String>;
+    /// A per-component codec of integers (or bools) of `scalar_kind`, `low` to `high` bits a
+    /// component.
+    pub const fn integers(
+        name: &'static str,
+        scalar_kind: ScalarKind,
+        widths: (u32, u32),
+        (encode, decode): IntegerConversions,
+        wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
+    ) -> Codec {
+        let floats = Codec::floats(name, widths, (|_, _| 0, |_, _| 0.0), wgsl);
+        Codec {
+            scalar_kind,
+            conversion: Conversion::Integers(encode, decode),
+            ..floats
+        }
+    }
+
+    /// A codec of a whole `Vec3`, of `shape`.
+    pub const fn vector(
+        name: &'static str,
+        shape: Shape,
+        (encode, decode): VectorConversions,
+        wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
+    ) -> Codec {
+        let floats = Codec::floats(name, (0, 0), (|_, _| 0, |_, _| 0.0), wgsl);
+        Codec {
+            shape,
+            conversion: Conversion::Vector(encode, decode),
+            ..floats
+        }
+    }
+
+    /// The codec with another shape.
+    pub const fn with_shape(self, shape: Shape) -> Codec {
+        Codec { shape, ..self }
+    }
+
+    /// The codec with a fast form.
+    pub const fn with_fast_form(self) -> Codec {
+        Codec {
+            has_fast_form: true,
+            ..self
+        }
+    }
+
+    /// The codec offering light storage.
+    pub const fn with_light_storage(self, light_storage: fn(f64) -> Vec<LightStorage>) -> Codec {
+        Codec {
+            light_storage,
+            ..self
+        }
+    }
+
+    /// The bits of one component's code (of one coordinate, for two coordinates).
+    pub fn component_bits(&self, bits: u32, components: usize) -> u32 {
+        match self.shape {
+            Shape::Coordinates => bits / 2,
+            _ => bits / components as u32,
+        }
+    }
 
     /// Why a bit field of `bits` bits (1 to 32) cannot hold `ty` (whose scalar kind is
     /// already [`Codec::scalar_kind`]), if it cannot: one sentence naming `encoding`.
-    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String>;
-
-    /// The bits of one component's code.
-    fn component_bits(&self, bits: u32, components: usize) -> u32 {
-        bits / components as u32
+    pub fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
+        let name = ty.rust_name();
+        match self.shape {
+            Shape::PerComponent(low, high) => {
+                let components = ty.components as u32;
+                if bits % components != 0 {
+                    return Some(format!(
+                        "`{name}` has {components} components, which cannot share {bits} bits \
+                         evenly"
+                    ));
+                }
+                let each = bits / components;
+                let range = match low == high {
+                    true => format!("exactly {low}"),
+                    false => format!("{low} to {high}"),
+                };
+                (!(low..=high).contains(&each)).then(|| {
+                    format!(
+                        "`{encoding}` takes {range} bits per component, not {each} (`{name}` in \
+                         {bits} bits)"
+                    )
+                })
+            }
+            Shape::Fixed(wanted_bits, components, what) => {
+                (bits != wanted_bits || ty.components != components).then(|| {
+                    let plural = if wanted_bits == 1 { "" } else { "s" };
+                    format!(
+                        "`{encoding}` stores {what} in exactly {wanted_bits} bit{plural}, not \
+                         `{name}` in {bits}"
+                    )
+                })
+            }
+            Shape::Coordinates if ty.components != 3 => {
+                Some(format!("`{encoding}` stores a unit `Vec3`, not `{name}`"))
+            }
+            Shape::Coordinates => (bits % 2 != 0).then(|| {
+                format!("`{encoding}` splits its bits between two coordinates: {bits} is odd")
+            }),
+        }
     }
 
     /// The code of a value's first `components` lanes, in the low bits: the Rust mirror.
-    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, range: Option<f32>) -> u32;
+    // Always inlined: derived code calls it with a constant codec, and its dispatch folds
+    // away.
+    #[inline(always)]
+    pub fn encode(&self, lanes: [u32; 4], components: usize, each: u32, range: Option<f32>) -> u32 {
+        match self.conversion {
+            Conversion::Floats(encode, _) => join_codes(lanes, components, each, |lane, each| {
+                encode(f32::from_bits(lane), each)
+            }),
+            Conversion::Integers(encode, _) => join_codes(lanes, components, each, encode),
+            Conversion::Vector(encode, _) => encode(
+                [lanes[0], lanes[1], lanes[2]].map(f32::from_bits),
+                each,
+                range,
+            ),
+        }
+    }
 
     /// The lanes of a code (lanes past the components are 0): the Rust mirror.
-    fn decode(&self, code: u32, components: usize, each: u32, range: Option<f32>) -> [u32; 4];
-
-    /// The WGSL of a bit field: its encode and decode functions' bodies and the helpers they
-    /// call.
-    fn wgsl(&self, field: &wgsl::BitField) -> wgsl::Functions;
-
-    /// The bit fields it offers the solver for light (a `vec3` of linear HDR values, one width
-    /// per component each), with their error bounds; empty where it stores no light this way.
-    /// `floor` is the scene's smallest light value that matters (errors are relative to the
-    /// brightest channel, or to `floor` where that is larger).
-    fn light_storage(&self, floor: f64) -> Vec<LightStorage> {
-        let _ = floor;
-        Vec::new()
+    #[inline(always)]
+    pub fn decode(&self, code: u32, components: usize, each: u32, range: Option<f32>) -> [u32; 4] {
+        match self.conversion {
+            Conversion::Floats(_, decode) => split_codes(code, components, each, |code, each| {
+                decode(code, each).to_bits()
+            }),
+            Conversion::Integers(_, decode) => split_codes(code, components, each, decode),
+            Conversion::Vector(_, decode) => {
+                let [x, y, z] = decode(code, each, range).map(f32::to_bits);
+                [x, y, z, 0]
+            }
+        }
     }
+}
+
+/// Each of the first `components` lanes' code at `each` bits, x in the low bits.
+#[inline(always)]
+fn join_codes(
+    lanes: [u32; 4],
+    components: usize,
+    each: u32,
+    code: impl Fn(u32, u32) -> u32,
+) -> u32 {
+    (0..components).fold(0, |word, index| {
+        word | (code(lanes[index], each) << (each * index as u32))
+    })
+}
+
+/// Each component's code at `each` bits taken out of `code` and decoded by `value`.
+#[inline(always)]
+fn split_codes(
+    code: u32,
+    components: usize,
+    each: u32,
+    value: impl Fn(u32, u32) -> u32,
+) -> [u32; 4] {
+    let mut lanes = [0; 4];
+    for (index, lane) in lanes.iter_mut().enumerate().take(components) {
+        *lane = value((code >> (each * index as u32)) & max_code(each), each);
+    }
+    lanes
 }
 
 /// A light bit field a codec offers the solver: its width and what it guarantees.
@@ -119,105 +324,11 @@ pub struct LightStorage {
     pub largest: f64,
 }
 
-/// `(name, bits)`: the shape of a codec refusing a vector or scalar type: "`unorm` takes 1 to
-/// 23 bits per component, not 24 (`Vec2` in 48 bits)", for the per-component codecs.
-pub(crate) fn per_component_mismatch(
-    encoding: Encoding,
-    bits: u32,
-    ty: FieldType,
-    (low, high): (u32, u32),
-) -> Option<String> {
-    let name = ty.rust_name();
-    let components = ty.components as u32;
-    if bits % components != 0 {
-        return Some(format!(
-            "`{name}` has {components} components, which cannot share {bits} bits evenly"
-        ));
-    }
-    let each = bits / components;
-    (!(low..=high).contains(&each)).then(|| {
-        let range = if low == high {
-            format!("exactly {low}")
-        } else {
-            format!("{low} to {high}")
-        };
-        format!(
-            "`{encoding}` takes {range} bits per component, not {each} (`{name}` in {bits} bits)"
-        )
-    })
-}
-
-/// The refusal of a codec that stores one type in a fixed width: "`rgb9e5` stores a `Vec3` in
-/// exactly 32 bits, not `Vec2` in 32".
-pub(crate) fn exact_shape_mismatch(
-    encoding: Encoding,
-    bits: u32,
-    ty: FieldType,
-    (wanted_bits, components, what): (u32, usize, &str),
-) -> Option<String> {
-    (bits != wanted_bits || ty.components != components).then(|| {
-        format!(
-            "`{encoding}` stores {what} in exactly {wanted_bits} bit{}, not `{}` in {bits}",
-            if wanted_bits == 1 { "" } else { "s" },
-            ty.rust_name()
-        )
-    })
-}
-
-/// The encoding of a codec that takes no range, or why a range was given.
-pub(crate) fn without_range(encoding: Encoding, range: Option<f32>) -> Result<Encoding, String> {
-    match range {
-        Some(_) => Err(format!("only `rgbm` takes a range, not `{encoding}`")),
-        None => Ok(encoding),
-    }
-}
-
-/// Each of the first `components` lanes' code at `each` bits, x in the low bits. Always
-/// inlined with a known `code`: derived code's packing calls it per texel.
-#[inline(always)]
-pub(crate) fn join_codes(
-    lanes: [u32; 4],
-    components: usize,
-    each: u32,
-    code: impl Fn(u32, u32) -> u32,
-) -> u32 {
-    (0..components).fold(0, |word, index| {
-        word | (code(lanes[index], each) << (each * index as u32))
-    })
-}
-
-/// Each component's code at `each` bits taken out of `code` and decoded by `value`.
-#[inline(always)]
-pub(crate) fn split_codes(
-    code: u32,
-    components: usize,
-    each: u32,
-    value: impl Fn(u32, u32) -> u32,
-) -> [u32; 4] {
-    let mut lanes = [0; 4];
-    for (index, lane) in lanes.iter_mut().enumerate().take(components) {
-        *lane = value((code >> (each * index as u32)) & max_code(each), each);
-    }
-    lanes
-}
-
-/// The lanes of a `vec3` value.
-#[inline(always)]
-pub(crate) fn vector_lanes(value: [f32; 3]) -> [u32; 4] {
-    let [x, y, z] = value.map(f32::to_bits);
-    [x, y, z, 0]
-}
-
-/// A `vec3` value from its lanes.
-#[inline(always)]
-pub(crate) fn vector_of(lanes: [u32; 4]) -> [f32; 3] {
-    [lanes[0], lanes[1], lanes[2]].map(f32::from_bits)
-}
-
-/// The list: every codec, as a variant of [`Encoding`] and the unit struct that implements
-/// it. A variant with a parameter names its type (RGBM's range).
+/// The list: every codec, as a variant of [`Encoding`] and the constant its file builds. A
+/// variant with a parameter names its type (RGBM's range), which parses the range written
+/// after the codec's name.
 macro_rules! codecs {
-    ($($(#[$doc:meta])* $variant:ident $(($parameter:ty))? => $codec:expr,)*) => {
+    ($($(#[$doc:meta])* $variant:ident $(($parameter:ty))? => $codec:path,)*) => {
         /// How bits encode a value: one variant per codec of [`crate::codecs`], the list in
         /// its module. A format's channels and a bit field both name one.
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -228,14 +339,26 @@ macro_rules! codecs {
         impl Encoding {
             /// Its codec.
             #[inline(always)]
-            pub fn codec(self) -> &'static dyn Codec {
+            pub fn codec(self) -> &'static Codec {
                 match self {
                     $(Encoding::$variant $((first!(_, $parameter)))? => &$codec,)*
                 }
             }
 
             /// Every codec, in the list's order.
-            pub const CODECS: &'static [&'static dyn Codec] = &[$(&$codec,)*];
+            pub const CODECS: &'static [&'static Codec] = &[$(&$codec,)*];
+
+            /// Parses a codec's name; `range` is what layout files and the derive write after
+            /// it (only a codec with a parameter takes one).
+            pub fn from_name(name: &str, range: Option<f32>) -> Result<Encoding, String> {
+                $(if name == $codec.name {
+                    return construct!($variant, range $(, $parameter)?);
+                })*
+                Err(format!(
+                    "unknown encoding `{name}`: expected one of {}",
+                    Encoding::names().join(", ")
+                ))
+            }
         }
     };
 }
@@ -247,86 +370,99 @@ macro_rules! first {
     };
 }
 
-codecs! {
-    /// Unsigned normalized per component ([`unorm`]).
-    Unorm => unorm::Unorm,
-    /// Signed normalized per component ([`snorm`]).
-    Snorm => snorm::Snorm,
-    /// Unsigned integer per component ([`integer`]).
-    Uint => integer::Uint,
-    /// Signed integer per component, two's complement ([`integer`]).
-    Sint => integer::Sint,
-    /// A `bool` in one bit ([`boolean`]).
-    Bool => boolean::Bool,
-    /// IEEE binary16 per component ([`half`]).
-    Half => half::Half,
-    /// IEEE binary32, bit for bit ([`float32`]).
-    Float32 => float32::Float32,
-    /// An unsigned float with a 5-bit exponent, as in `r11f_g11f_b10f` ([`unsigned_float`]).
-    UnsignedFloat => unsigned_float::UnsignedFloat,
-    /// Shared-exponent `vec3` in 32 bits ([`rgb9e5`]).
-    Rgb9e5 => rgb9e5::Rgb9e5,
-    /// A unit `vec3` as an octahedral map ([`octahedral`]).
-    Octahedral => octahedral::Octahedral,
-    /// A `vec3` in `[0, range]` as RGBM in 32 bits ([`rgbm`]).
-    Rgbm(rgbm::RgbmRange) => rgbm::Rgbm,
-    /// A positive scalar per component as a piecewise-linear logarithm ([`log_luminance`]).
-    LogLuminance => log_luminance::LogLuminance,
+/// An encoding from its variant and the range after its name: none for a codec without a
+/// parameter, the parameter's own parse otherwise.
+macro_rules! construct {
+    ($variant:ident, $range:ident) => {
+        match $range {
+            Some(_) => Err(format!(
+                "only `rgbm` takes a range, not `{}`",
+                Encoding::$variant
+            )),
+            None => Ok(Encoding::$variant),
+        }
+    };
+    ($variant:ident, $range:ident, $parameter:ty) => {
+        <$parameter>::from_range($range).map(Encoding::$variant)
+    };
 }
 
-/// Runs `check` on every bit pattern in `patterns`, split over two threads; the first
-/// failure, if any. The codecs' exhaustive tests take every f32 through it.
+codecs! {
+    /// Unsigned normalized per component ([`unorm`]).
+    Unorm => unorm::CODEC,
+    /// Signed normalized per component ([`snorm`]).
+    Snorm => snorm::CODEC,
+    /// Unsigned integer per component ([`integer`]).
+    Uint => integer::UINT,
+    /// Signed integer per component, two's complement ([`integer`]).
+    Sint => integer::SINT,
+    /// A `bool` in one bit ([`boolean`]).
+    Bool => boolean::CODEC,
+    /// IEEE binary16 per component ([`half`]).
+    Half => half::CODEC,
+    /// IEEE binary32, bit for bit ([`float32`]).
+    Float32 => float32::CODEC,
+    /// An unsigned float with a 5-bit exponent, as in `r11f_g11f_b10f` ([`unsigned_float`]).
+    UnsignedFloat => unsigned_float::CODEC,
+    /// Shared-exponent `vec3` in 32 bits ([`rgb9e5`]).
+    Rgb9e5 => rgb9e5::CODEC,
+    /// A unit `vec3` as an octahedral map ([`octahedral`]).
+    Octahedral => octahedral::CODEC,
+    /// A `vec3` in `[0, range]` as RGBM in 32 bits ([`rgbm`]).
+    Rgbm(rgbm::RgbmRange) => rgbm::CODEC,
+    /// A positive scalar per component as a piecewise-linear logarithm ([`log_luminance`]).
+    LogLuminance => log_luminance::CODEC,
+}
+
+/// Encodes every f32 at each of `widths` with `encode`, and asserts that the code is
+/// `reference`'s; the two halves of the f32s run on two threads. The codecs' exhaustive tests.
 #[cfg(test)]
-pub(crate) fn every_pattern(
-    patterns: std::ops::RangeInclusive<u32>,
-    check: impl Fn(u32) -> Option<String> + Sync,
-) -> Option<String> {
-    let (first, last) = (*patterns.start(), *patterns.end());
-    let middle = first + (last - first) / 2;
-    std::thread::scope(|scope| {
-        let workers: Vec<_> = [first..=middle, middle + 1..=last]
+pub(crate) fn assert_every_f32(
+    name: &str,
+    widths: &[u32],
+    encode: impl Fn(f32, u32) -> u32 + Sync,
+    reference: impl Fn(f32, u32) -> u32 + Sync,
+) {
+    let check = |value_bits: u32| {
+        let value = f32::from_bits(value_bits);
+        widths.iter().find_map(|&bits| {
+            let (got, want) = (encode(value, bits), reference(value, bits));
+            (got != want).then(|| {
+                format!("{value:e} ({value_bits:#010x}) as {name} of {bits} bits: {got:#x}, reference {want:#x}")
+            })
+        })
+    };
+    let failure = std::thread::scope(|scope| {
+        let workers: Vec<_> = [0..=u32::MAX / 2, u32::MAX / 2 + 1..=u32::MAX]
             .into_iter()
-            .map(|half| scope.spawn(|| half.into_iter().find_map(&check)))
+            .map(|half| scope.spawn(|| half.into_iter().find_map(check)))
             .collect();
         workers
             .into_iter()
             .find_map(|worker| worker.join().expect("a worker finishes"))
-    })
+    });
+    assert_eq!(failure, None);
 }
 
 impl Encoding {
     /// Every codec's name as layout files and the derive spell it (rgbm takes a range).
     pub fn names() -> Vec<&'static str> {
-        Encoding::CODECS.iter().map(|codec| codec.name()).collect()
+        Encoding::CODECS.iter().map(|codec| codec.name).collect()
     }
 
     /// The codec's name: `unorm`, `octahedral`, `rgbm`, ...
     pub fn name(self) -> &'static str {
-        self.codec().name()
-    }
-
-    /// Parses a name; `range` is rgbm's (and must be absent for the others).
-    pub fn from_name(name: &str, range: Option<f32>) -> Result<Encoding, String> {
-        let codec = Encoding::CODECS
-            .iter()
-            .find(|codec| codec.name() == name)
-            .ok_or_else(|| {
-                format!(
-                    "unknown encoding `{name}`: expected one of {}",
-                    Encoding::names().join(", ")
-                )
-            })?;
-        codec.encoding(range)
+        self.codec().name
     }
 
     /// The scalar kind of the fields it holds.
     pub fn scalar_kind(self) -> ScalarKind {
-        self.codec().scalar_kind()
+        self.codec().scalar_kind
     }
 
     /// Whether fast conversions change its WGSL.
     pub fn has_fast_form(self) -> bool {
-        self.codec().has_fast_form()
+        self.codec().has_fast_form
     }
 
     /// Its parameter: RGBM's range.

@@ -18,11 +18,7 @@
 use super::scaled_quotient::scaled_quotient;
 use super::unorm::f32_from_unorm;
 use super::wgsl::{BitField, Functions, Lanes};
-use super::{
-    max_code, significand_and_exponent, vector_lanes, vector_of, without_range, Codec, Encoding,
-    F32_INFINITY_BITS,
-};
-use crate::layout::FieldType;
+use super::{max_code, significand_and_exponent, Codec, Shape, F32_INFINITY_BITS};
 
 /// The exact encode at `bits` per coordinate (1 to 16), x in the low bits.
 #[inline(always)]
@@ -182,69 +178,41 @@ fn PREFIX_f32x3_from_octahedral(code: u32, bits: u32, reciprocal: f32) -> vec3<f
 
 ";
 
-/// The octahedral codec.
-pub struct Octahedral;
+/// The octahedral codec: `n / 2` bits a coordinate.
+pub const CODEC: Codec = Codec::vector(
+    "octahedral",
+    Shape::Coordinates,
+    (
+        |normal, each, _| octahedral_from_f32(normal, each),
+        |code, each, _| f32_from_octahedral(code, each),
+    ),
+    wgsl,
+)
+.with_fast_form();
 
-impl Codec for Octahedral {
-    fn name(&self) -> &'static str {
-        "octahedral"
-    }
-
-    fn has_fast_form(&self) -> bool {
-        true
-    }
-
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
-        without_range(Encoding::Octahedral, range)
-    }
-
-    fn mismatch(&self, _: Encoding, bits: u32, ty: FieldType) -> Option<String> {
-        if ty.components != 3 {
-            return Some(format!(
-                "`octahedral` stores a unit `Vec3`, not `{}`",
-                ty.rust_name()
-            ));
-        }
-        (bits % 2 != 0)
-            .then(|| format!("`octahedral` splits its bits between two coordinates: {bits} is odd"))
-    }
-
-    fn component_bits(&self, bits: u32, _: usize) -> u32 {
-        bits / 2
-    }
-
-    #[inline(always)]
-    fn encode(&self, lanes: [u32; 4], _: usize, each: u32, _: Option<f32>) -> u32 {
-        octahedral_from_f32(vector_of(lanes), each)
-    }
-
-    #[inline(always)]
-    fn decode(&self, code: u32, _: usize, each: u32, _: Option<f32>) -> [u32; 4] {
-        vector_lanes(f32_from_octahedral(code, each))
-    }
-
-    fn wgsl(&self, field: &BitField) -> Functions {
-        let (prefix, each) = (field.prefix, field.each);
-        let fast = if field.fast { "_fast" } else { "" };
-        let encode = match field.fast {
-            true => vec![
-                Lanes(1).fill(WGSL_FOLD, prefix),
-                Lanes(1).fill(WGSL_FAST, prefix),
-            ],
-            false => vec![
-                Lanes(2).fill(super::scaled_quotient::WGSL, prefix),
-                Lanes(1).fill(WGSL_EXACT, prefix),
-            ],
-        };
-        let decode = [WGSL_UNFOLD, WGSL_DECODE].map(|text| Lanes(1).fill(text, prefix));
-        Functions {
-            encode: format!("    return {prefix}_octahedral_from_f32x3{fast}(value, {each}u);\n"),
-            decode: format!(
-                "    return {prefix}_f32x3_from_octahedral(code, {each}u, {:?});\n",
-                1.0 / max_code(each) as f32
-            ),
-            helpers: [encode, decode.to_vec()].concat(),
-        }
+/// An octahedral bit field's WGSL: the exact or fast encode, the decode, and the map's halves
+/// they call.
+fn wgsl(field: &BitField) -> Functions {
+    let (prefix, each) = (field.prefix, field.each);
+    let fast = if field.fast { "_fast" } else { "" };
+    let encode = match field.fast {
+        true => vec![
+            Lanes(1).fill(WGSL_FOLD, prefix),
+            Lanes(1).fill(WGSL_FAST, prefix),
+        ],
+        false => vec![
+            Lanes(2).fill(super::scaled_quotient::WGSL, prefix),
+            Lanes(1).fill(WGSL_EXACT, prefix),
+        ],
+    };
+    let decode = [WGSL_UNFOLD, WGSL_DECODE].map(|text| Lanes(1).fill(text, prefix));
+    Functions {
+        encode: format!("    return {prefix}_octahedral_from_f32x3{fast}(value, {each}u);\n"),
+        decode: format!(
+            "    return {prefix}_f32x3_from_octahedral(code, {each}u, {:?});\n",
+            1.0 / max_code(each) as f32
+        ),
+        helpers: [encode, decode.to_vec()].concat(),
     }
 }
 

@@ -10,11 +10,7 @@
 //! The shading library's `rgb9e5_encode` and `rgb9e5_decode` (module `hdr`) are this WGSL.
 
 use super::wgsl::{BitField, Functions, Lanes};
-use super::{
-    exact_shape_mismatch, vector_lanes, vector_of, without_range, Codec, Encoding,
-    F32_INFINITY_BITS,
-};
-use crate::layout::FieldType;
+use super::{Codec, Shape, F32_INFINITY_BITS};
 
 /// The largest value rgb9e5 holds, as f32 bits: (511 / 512) 2^16 = 65408.
 const MAX_BITS: u32 = 0x477f_8000;
@@ -104,37 +100,22 @@ pub fn wgsl_functions(prefix: &str) -> Vec<String> {
 }
 
 /// The rgb9e5 codec.
-pub struct Rgb9e5;
+pub const CODEC: Codec = Codec::vector(
+    "rgb9e5",
+    Shape::Fixed(32, 3, "a `Vec3`"),
+    (
+        |rgb, _, _| rgb9e5_from_f32(rgb),
+        |word, _, _| f32_from_rgb9e5(word),
+    ),
+    wgsl,
+);
 
-impl Codec for Rgb9e5 {
-    fn name(&self) -> &'static str {
-        "rgb9e5"
-    }
-
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
-        without_range(Encoding::Rgb9e5, range)
-    }
-
-    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
-        exact_shape_mismatch(encoding, bits, ty, (32, 3, "a `Vec3`"))
-    }
-
-    #[inline(always)]
-    fn encode(&self, lanes: [u32; 4], _: usize, _: u32, _: Option<f32>) -> u32 {
-        rgb9e5_from_f32(vector_of(lanes))
-    }
-
-    #[inline(always)]
-    fn decode(&self, code: u32, _: usize, _: u32, _: Option<f32>) -> [u32; 4] {
-        vector_lanes(f32_from_rgb9e5(code))
-    }
-
-    fn wgsl(&self, field: &BitField) -> Functions {
-        Functions {
-            encode: format!("    return {}_f32x3_to_rgb9e5(value);\n", field.prefix),
-            decode: format!("    return {}_f32x3_from_rgb9e5(code);\n", field.prefix),
-            helpers: wgsl_functions(field.prefix),
-        }
+/// An rgb9e5 bit field's WGSL: calls of the encode and decode.
+fn wgsl(field: &BitField) -> Functions {
+    Functions {
+        encode: format!("    return {}_f32x3_to_rgb9e5(value);\n", field.prefix),
+        decode: format!("    return {}_f32x3_from_rgb9e5(code);\n", field.prefix),
+        helpers: wgsl_functions(field.prefix),
     }
 }
 

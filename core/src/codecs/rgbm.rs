@@ -15,11 +15,7 @@
 use super::scaled_quotient::scaled_quotient;
 use super::unorm::f32_from_unorm;
 use super::wgsl::{BitField, Functions, Lanes};
-use super::{
-    exact_shape_mismatch, significand_and_exponent, vector_lanes, vector_of, Codec, Encoding,
-    F32_INFINITY_BITS,
-};
-use crate::layout::FieldType;
+use super::{significand_and_exponent, Codec, Shape, F32_INFINITY_BITS};
 
 /// The largest value an RGBM field stores: a positive float with at most 16 significant bits
 /// (6, 8, 16, 51.5, ...), so that the exact encoding holds it without rounding.
@@ -41,6 +37,15 @@ impl RgbmRange {
             ));
         }
         Ok(RgbmRange(range))
+    }
+
+    /// The range written after `rgbm`, which it needs.
+    pub fn from_range(range: Option<f32>) -> Result<RgbmRange, String> {
+        let range = range.ok_or(
+            "`rgbm` needs the largest value it stores: `rgbm(8)` in the derive, `range = 8.0` \
+             in a layout file",
+        )?;
+        RgbmRange::new(range)
     }
 
     /// A range the derive has checked with [`RgbmRange::new`] (derived code builds its bit
@@ -189,58 +194,36 @@ pub fn wgsl_functions(prefix: &str) -> Vec<String> {
     ]
 }
 
-/// The RGBM codec.
-pub struct Rgbm;
+/// The RGBM codec. Its range is the encoding's parameter ([`RgbmRange`], always there).
+pub const CODEC: Codec = Codec::vector(
+    "rgbm",
+    Shape::Fixed(32, 3, "a `Vec3`"),
+    (
+        |rgb, _, range| rgbm_from_f32(rgb, range.unwrap_or(1.0)),
+        |word, _, range| f32_from_rgbm(word, range.unwrap_or(1.0)),
+    ),
+    wgsl,
+)
+.with_fast_form();
 
-impl Codec for Rgbm {
-    fn name(&self) -> &'static str {
-        "rgbm"
-    }
-
-    fn has_fast_form(&self) -> bool {
-        true
-    }
-
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
-        let range = range.ok_or(
-            "`rgbm` needs the largest value it stores: `rgbm(8)` in the derive, `range = 8.0` \
-             in a layout file",
-        )?;
-        RgbmRange::new(range).map(Encoding::Rgbm)
-    }
-
-    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
-        exact_shape_mismatch(encoding, bits, ty, (32, 3, "a `Vec3`"))
-    }
-
-    #[inline(always)]
-    fn encode(&self, lanes: [u32; 4], _: usize, _: u32, range: Option<f32>) -> u32 {
-        rgbm_from_f32(vector_of(lanes), range.unwrap_or(1.0))
-    }
-
-    #[inline(always)]
-    fn decode(&self, code: u32, _: usize, _: u32, range: Option<f32>) -> [u32; 4] {
-        vector_lanes(f32_from_rgbm(code, range.unwrap_or(1.0)))
-    }
-
-    fn wgsl(&self, field: &BitField) -> Functions {
-        let prefix = field.prefix;
-        let range = field.range.unwrap_or(1.0);
-        let helpers = match field.fast {
-            true => vec![
-                Lanes(1).fill(WGSL_FAST, prefix),
-                Lanes(1).fill(WGSL_DECODE, prefix),
-            ],
-            false => wgsl_functions(prefix),
-        };
-        Functions {
-            encode: format!(
-                "    return {prefix}_rgbm_from_f32x3{}(value, {range:?});\n",
-                if field.fast { "_fast" } else { "" },
-            ),
-            decode: format!("    return {prefix}_f32x3_from_rgbm(code, {range:?});\n"),
-            helpers,
-        }
+/// An RGBM bit field's WGSL: the exact or fast encode and the decodes.
+fn wgsl(field: &BitField) -> Functions {
+    let prefix = field.prefix;
+    let range = field.range.unwrap_or(1.0);
+    let helpers = match field.fast {
+        true => vec![
+            Lanes(1).fill(WGSL_FAST, prefix),
+            Lanes(1).fill(WGSL_DECODE, prefix),
+        ],
+        false => wgsl_functions(prefix),
+    };
+    Functions {
+        encode: format!(
+            "    return {prefix}_rgbm_from_f32x3{}(value, {range:?});\n",
+            if field.fast { "_fast" } else { "" },
+        ),
+        decode: format!("    return {prefix}_f32x3_from_rgbm(code, {range:?});\n"),
+        helpers,
     }
 }
 

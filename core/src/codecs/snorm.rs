@@ -9,8 +9,7 @@
 use super::integer::i32_from_sint;
 use super::unorm::unorm_from_f32;
 use super::wgsl::{BitField, Functions};
-use super::{max_code, per_component_mismatch, without_range, Codec, Encoding};
-use crate::layout::FieldType;
+use super::{max_code, Codec};
 
 /// Signed normalized encode, GL's formula `round(clamp(value, -1, 1) * (2^(bits - 1) - 1))`
 /// with halves rounded away from zero, exact; the code is the `bits`-bit two's complement. NaN
@@ -58,67 +57,40 @@ fn PREFIX_LANES_from_snorm(code: UINTS, up: UINTS, reciprocal: FLOATS) -> FLOATS
 ";
 
 /// The snorm codec.
-pub struct Snorm;
+pub const CODEC: Codec = Codec::floats("snorm", (2, 24), (snorm_from_f32, f32_from_snorm), wgsl);
 
-impl Codec for Snorm {
-    fn name(&self) -> &'static str {
-        "snorm"
-    }
-
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
-        without_range(Encoding::Snorm, range)
-    }
-
-    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
-        per_component_mismatch(encoding, bits, ty, (2, 24))
-    }
-
-    #[inline(always)]
-    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
-        super::join_codes(lanes, components, each, |lane, each| {
-            snorm_from_f32(f32::from_bits(lane), each)
-        })
-    }
-
-    #[inline(always)]
-    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
-        super::split_codes(code, components, each, |code, each| {
-            f32_from_snorm(code, each).to_bits()
-        })
-    }
-
-    fn wgsl(&self, field: &BitField) -> Functions {
-        let (prefix, lanes, each) = (field.prefix, field.lanes, field.each);
-        let max = max_code(each);
-        Functions {
-            encode: format!(
-                "    let codes = {prefix}_{}_to_snorm(value, {}, {}, {}, {});\n    return {};\n",
-                lanes.name(),
-                lanes.splat(each - 1),
-                lanes.splat(max >> 1),
-                lanes.splat(150 - (each - 1)),
-                lanes.splat(max),
-                field.joined("codes")
-            ),
-            decode: format!(
-                "{}    return {prefix}_{}_from_snorm(codes, {}, {});\n",
-                field.split_codes(),
-                lanes.name(),
-                lanes.splat(32 - each),
-                field.reciprocal(each - 1)
-            ),
-            helpers: vec![
-                lanes.fill(super::unorm::WGSL_ENCODE, prefix),
-                lanes.fill(WGSL, prefix),
-            ],
-        }
+/// A snorm bit field's WGSL: the exact encode and the decode helpers, per lane.
+fn wgsl(field: &BitField) -> Functions {
+    let (prefix, lanes, each) = (field.prefix, field.lanes, field.each);
+    let max = max_code(each);
+    Functions {
+        encode: format!(
+            "    let codes = {prefix}_{}_to_snorm(value, {}, {}, {}, {});\n    return {};\n",
+            lanes.name(),
+            lanes.splat(each - 1),
+            lanes.splat(max >> 1),
+            lanes.splat(150 - (each - 1)),
+            lanes.splat(max),
+            field.joined("codes")
+        ),
+        decode: format!(
+            "{}    return {prefix}_{}_from_snorm(codes, {}, {});\n",
+            field.split_codes(),
+            lanes.name(),
+            lanes.splat(32 - each),
+            field.reciprocal(each - 1)
+        ),
+        helpers: vec![
+            lanes.fill(super::unorm::WGSL_ENCODE, prefix),
+            lanes.fill(WGSL, prefix),
+        ],
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::codecs::every_pattern;
+    use crate::codecs::assert_every_f32;
 
     /// Snorm evaluated plainly, in f64 (exact: the product has at most 48 significant bits),
     /// halves rounded away from zero.
@@ -133,16 +105,7 @@ mod tests {
 
     #[test]
     fn the_algorithm_is_exact_for_every_f32() {
-        let failure = every_pattern(0..=u32::MAX, |value_bits| {
-            let value = f32::from_bits(value_bits);
-            [8, 16, 24].iter().find_map(|&bits| {
-                let (got, want) = (snorm_from_f32(value, bits), snorm_reference(value, bits));
-                (got != want).then(|| {
-                    format!("{value:e} ({value_bits:#010x}) as snorm{bits}: {got}, exact {want}")
-                })
-            })
-        });
-        assert_eq!(failure, None);
+        assert_every_f32("snorm", &[8, 16, 24], snorm_from_f32, snorm_reference);
     }
 
     #[test]

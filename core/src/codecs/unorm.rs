@@ -8,8 +8,7 @@
 //! code from the exact one at most.
 
 use super::wgsl::{BitField, Functions};
-use super::{max_code, per_component_mismatch, without_range, Codec, Encoding, F32_INFINITY_BITS};
-use crate::layout::FieldType;
+use super::{max_code, Codec, F32_INFINITY_BITS};
 
 /// The bits of 1.0 as f32.
 const F32_ONE_BITS: u32 = 0x3f80_0000;
@@ -101,78 +100,49 @@ pub fn wgsl_decode(field: &BitField) -> String {
 }
 
 /// The unorm codec.
-pub struct Unorm;
+pub const CODEC: Codec =
+    Codec::floats("unorm", (1, 23), (unorm_from_f32, f32_from_unorm), wgsl).with_fast_form();
 
-impl Codec for Unorm {
-    fn name(&self) -> &'static str {
-        "unorm"
-    }
-
-    fn has_fast_form(&self) -> bool {
-        true
-    }
-
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
-        without_range(Encoding::Unorm, range)
-    }
-
-    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
-        per_component_mismatch(encoding, bits, ty, (1, 23))
-    }
-
-    #[inline(always)]
-    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
-        super::join_codes(lanes, components, each, |lane, each| {
-            unorm_from_f32(f32::from_bits(lane), each)
-        })
-    }
-
-    #[inline(always)]
-    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
-        super::split_codes(code, components, each, |code, each| {
-            f32_from_unorm(code, each).to_bits()
-        })
-    }
-
-    fn wgsl(&self, field: &BitField) -> Functions {
-        let (prefix, lanes, each) = (field.prefix, field.lanes, field.each);
-        let max = max_code(each);
-        let encode = if field.fast {
-            format!(
-                "    let codes = {}(clamp(value, {}, {}) * {} + {});\n    return {};\n",
-                lanes.of("u32"),
-                lanes.splat_f32(0.0),
-                lanes.splat_f32(1.0),
-                lanes.splat_f32(max as f32),
-                lanes.splat_f32(0.5),
-                field.joined("codes")
-            )
-        } else {
-            format!(
-                "    let codes = {prefix}_{}_to_unorm(value, {}, {}, {});\n    return {};\n",
-                lanes.name(),
-                lanes.splat(each),
-                lanes.splat(max),
-                lanes.splat(150 - each),
-                field.joined("codes")
-            )
-        };
-        let helpers = match field.fast {
-            true => Vec::new(),
-            false => vec![lanes.fill(WGSL_ENCODE, prefix)],
-        };
-        Functions {
-            encode,
-            decode: wgsl_decode(field),
-            helpers,
-        }
+/// A unorm bit field's WGSL: the exact encode on the float's bits, or the engines' f32
+/// rounding; the decode, each code times its largest code's reciprocal.
+fn wgsl(field: &BitField) -> Functions {
+    let (prefix, lanes, each) = (field.prefix, field.lanes, field.each);
+    let max = max_code(each);
+    let encode = if field.fast {
+        format!(
+            "    let codes = {}(clamp(value, {}, {}) * {} + {});\n    return {};\n",
+            lanes.of("u32"),
+            lanes.splat_f32(0.0),
+            lanes.splat_f32(1.0),
+            lanes.splat_f32(max as f32),
+            lanes.splat_f32(0.5),
+            field.joined("codes")
+        )
+    } else {
+        format!(
+            "    let codes = {prefix}_{}_to_unorm(value, {}, {}, {});\n    return {};\n",
+            lanes.name(),
+            lanes.splat(each),
+            lanes.splat(max),
+            lanes.splat(150 - each),
+            field.joined("codes")
+        )
+    };
+    let helpers = match field.fast {
+        true => Vec::new(),
+        false => vec![lanes.fill(WGSL_ENCODE, prefix)],
+    };
+    Functions {
+        encode,
+        decode: wgsl_decode(field),
+        helpers,
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::codecs::every_pattern;
+    use crate::codecs::assert_every_f32;
 
     /// The unorm formula evaluated plainly, in f64: exact for every f32 (the product has at
     /// most 40 significant bits, and adding one half cannot round up to the next integer: a
@@ -183,16 +153,12 @@ mod tests {
 
     #[test]
     fn the_algorithm_is_exact_for_every_f32() {
-        let failure = every_pattern(0..=u32::MAX, |value_bits| {
-            let value = f32::from_bits(value_bits);
-            [2, 8, 10, 16, 20, 23].iter().find_map(|&bits| {
-                let (got, want) = (unorm_from_f32(value, bits), unorm_reference(value, bits));
-                (got != want).then(|| {
-                    format!("{value:e} ({value_bits:#010x}) as unorm{bits}: {got}, exact {want}")
-                })
-            })
-        });
-        assert_eq!(failure, None);
+        assert_every_f32(
+            "unorm",
+            &[2, 8, 10, 16, 20, 23],
+            unorm_from_f32,
+            unorm_reference,
+        );
     }
 
     #[test]

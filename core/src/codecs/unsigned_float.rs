@@ -10,8 +10,7 @@
 
 use super::small_float::{f32_from_small_float, small_float_from_magnitude};
 use super::wgsl::{BitField, Functions};
-use super::{per_component_mismatch, without_range, Codec, Encoding, F32_INFINITY_BITS};
-use crate::layout::FieldType;
+use super::{Codec, F32_INFINITY_BITS};
 
 /// The exponent's width: the mantissa has the rest of a code's bits.
 pub const EXPONENT_BITS: u32 = 5;
@@ -63,79 +62,61 @@ fn ENCODE(c: vec3<f32>) -> u32 {
 pub const WGSL_DECODE_R11F_G11F_B10F: &str = "    let red_green = unpack2x16float(((word & 0x7ffu) << 4u) | ((word & 0x3ff800u) << 9u));\n    \
      return vec3<f32>(red_green, unpack2x16float((word >> 17u) & 0x7fe0u).x);\n";
 
-/// The unsigned small float codec.
-pub struct UnsignedFloat;
+/// The unsigned small float codec: the mantissa has a code's bits past the exponent.
+pub const CODEC: Codec = Codec::floats(
+    "unsigned_float",
+    (EXPONENT_BITS + 1, EXPONENT_BITS + 10),
+    (
+        |value, each| unsigned_float_from_f32(value, each - EXPONENT_BITS),
+        |code, each| f32_from_small_float(code, each - EXPONENT_BITS),
+    ),
+    wgsl,
+);
 
-impl Codec for UnsignedFloat {
-    fn name(&self) -> &'static str {
-        "unsigned_float"
-    }
-
-    fn encoding(&self, range: Option<f32>) -> Result<Encoding, String> {
-        without_range(Encoding::UnsignedFloat, range)
-    }
-
-    fn mismatch(&self, encoding: Encoding, bits: u32, ty: FieldType) -> Option<String> {
-        per_component_mismatch(encoding, bits, ty, (EXPONENT_BITS + 1, EXPONENT_BITS + 10))
-    }
-
-    #[inline(always)]
-    fn encode(&self, lanes: [u32; 4], components: usize, each: u32, _: Option<f32>) -> u32 {
-        super::join_codes(lanes, components, each, |lane, each| {
-            unsigned_float_from_f32(f32::from_bits(lane), each - EXPONENT_BITS)
-        })
-    }
-
-    #[inline(always)]
-    fn decode(&self, code: u32, components: usize, each: u32, _: Option<f32>) -> [u32; 4] {
-        super::split_codes(code, components, each, |code, each| {
-            f32_from_small_float(code, each - EXPONENT_BITS).to_bits()
-        })
-    }
-
-    fn wgsl(&self, field: &BitField) -> Functions {
-        let lanes = field.lanes;
-        let mantissa = field.each - EXPONENT_BITS;
-        // The helpers' name says the widths, as fields of other widths have their own.
-        let name = format!("e5m{mantissa}_float");
-        let widen = 10 - mantissa;
-        let decode = match lanes.0 {
-            1 => format!("    return unpack2x16float(code << {widen}u).x;\n"),
-            n => {
-                let values: Vec<String> = "xyzw"[..n]
-                    .chars()
-                    .map(|lane| format!("unpack2x16float(codes.{lane} << {widen}u).x"))
-                    .collect();
-                format!(
-                    "{}    return {}({});\n",
-                    field.split_codes(),
-                    lanes.of("f32"),
-                    values.join(", ")
-                )
-            }
-        };
-        Functions {
-            encode: format!(
-                "    let codes = {}_{}_to_{name}(value);\n    return {};\n",
-                field.prefix,
-                lanes.name(),
-                field.joined("codes")
-            ),
-            decode,
-            helpers: super::small_float::wgsl_helpers(
-                field.prefix,
-                &name,
-                WGSL_ENCODE,
-                &vec![mantissa; lanes.0],
-            ),
+/// An unsigned float bit field's WGSL: the exact rounding per lane; each code widened into a
+/// half.
+fn wgsl(field: &BitField) -> Functions {
+    let lanes = field.lanes;
+    let mantissa = field.each - EXPONENT_BITS;
+    // The helpers' name says the widths, as fields of other widths have their own.
+    let name = format!("e5m{mantissa}_float");
+    let widen = 10 - mantissa;
+    let decode = match lanes.0 {
+        1 => format!("    return unpack2x16float(code << {widen}u).x;\n"),
+        n => {
+            let values: Vec<String> = "xyzw"[..n]
+                .chars()
+                .map(|lane| format!("unpack2x16float(codes.{lane} << {widen}u).x"))
+                .collect();
+            format!(
+                "{}    return {}({});\n",
+                field.split_codes(),
+                lanes.of("f32"),
+                values.join(", ")
+            )
         }
+    };
+    Functions {
+        encode: format!(
+            "    let codes = {}_{}_to_{name}(value);\n    return {};\n",
+            field.prefix,
+            lanes.name(),
+            field.joined("codes")
+        ),
+        decode,
+        helpers: super::small_float::wgsl_helpers(
+            field.prefix,
+            &name,
+            WGSL_ENCODE,
+            &vec![mantissa; lanes.0],
+        ),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::codecs::every_pattern;
+    use crate::codecs::assert_every_f32;
     use crate::codecs::small_float::small_float_max_code;
 
     /// Small-float rounding written the branching way, bit by bit: the reference the
@@ -165,21 +146,16 @@ mod tests {
 
     #[test]
     fn rounds_every_f32_as_the_branching_reference_does() {
-        let failure = every_pattern(0..=u32::MAX, |value_bits| {
-            let value = f32::from_bits(value_bits);
-            [6, 5, 2].iter().find_map(|&mantissa_bits| {
-                let got = unsigned_float_from_f32(value, mantissa_bits);
-                let want = if value_bits >> 31 == 1 {
-                    0
-                } else {
-                    small_float_by_branches(value_bits, mantissa_bits)
-                };
-                (got != want).then(|| {
-                    format!("{value:e} with {mantissa_bits} mantissa bits: {got:#x}, reference {want:#x}")
-                })
-            })
-        });
-        assert_eq!(failure, None);
+        let reference = |value: f32, mantissa_bits| match value.is_sign_negative() {
+            true => 0,
+            false => small_float_by_branches(value.to_bits(), mantissa_bits),
+        };
+        assert_every_f32(
+            "unsigned float",
+            &[6, 5, 2],
+            unsigned_float_from_f32,
+            reference,
+        );
     }
 
     /// The WGSL decodes by widening each code into a half (`unpack2x16float`): every code

@@ -79,7 +79,7 @@ pub struct BitField<'a> {
 
 /// A bit field's WGSL: the bodies of `fn encode(value: T) -> u32` (the code in the low bits)
 /// and `fn decode(code: u32) -> T`, and the complete helper functions they call.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Functions {
     /// The encode function's body.
     pub encode: String,
@@ -87,6 +87,17 @@ pub struct Functions {
     pub decode: String,
     /// Helper functions, each a complete text (the emitter writes each distinct text once).
     pub helpers: Vec<String>,
+}
+
+impl Functions {
+    /// Functions whose bodies need no helper.
+    pub fn inline(encode: &str, decode: &str) -> Functions {
+        Functions {
+            encode: encode.to_string(),
+            decode: decode.to_string(),
+            helpers: Vec::new(),
+        }
+    }
 }
 
 impl BitField<'_> {

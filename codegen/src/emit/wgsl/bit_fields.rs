@@ -28,7 +28,7 @@ fn codec_functions(
     conversions: Conversions,
 ) -> wgsl::Functions {
     let components = field.ty.components;
-    bit_field.encoding.codec().wgsl(&wgsl::BitField {
+    (bit_field.encoding.codec().wgsl)(&wgsl::BitField {
         prefix,
         lanes: Lanes(components),
         each: bit_field.component_bits(components),
