@@ -10,17 +10,18 @@ use std::cell::RefCell;
 use std::ffi::CStr;
 
 use ash::vk;
+use ash::Device;
 
 /// Records a global memory barrier: what `from` (access, stage) wrote is visible to `to`.
 ///
 /// # Safety
 ///
 /// `commands` is a command buffer of `device` being recorded.
-pub unsafe fn memory_barrier(
+unsafe fn memory_barrier(
     device: &ash::Device,
     commands: vk::CommandBuffer,
-    (src_access, src_stage): (vk::AccessFlags, vk::PipelineStageFlags),
-    (dst_access, dst_stage): (vk::AccessFlags, vk::PipelineStageFlags),
+    (src_access, src_stage): Access,
+    (dst_access, dst_stage): Access,
     dependency: vk::DependencyFlags,
 ) {
     let barrier = vk::MemoryBarrier::default()
@@ -40,6 +41,63 @@ pub unsafe fn memory_barrier(
     }
 }
 
+/// Makes what `written` (an access and its stage) wrote visible to the host once the commands
+/// are done, before a read back.
+///
+/// # Safety
+///
+/// `commands` is a command buffer of `device` being recorded.
+pub unsafe fn host_read_barrier(
+    device: &ash::Device,
+    commands: vk::CommandBuffer,
+    written: Access,
+) {
+    let host = (vk::AccessFlags::HOST_READ, vk::PipelineStageFlags::HOST);
+    // SAFETY: as the caller promises.
+    unsafe {
+        memory_barrier(
+            device,
+            commands,
+            written,
+            host,
+            vk::DependencyFlags::empty(),
+        )
+    }
+}
+
+/// Makes a draw's colour attachment writes visible to the next draw's input attachment reads
+/// in the same subpass, pixel by pixel (a subpass self-dependency).
+///
+/// # Safety
+///
+/// `commands` is a command buffer of `device` recording a subpass that declares the
+/// self-dependency.
+pub unsafe fn feedback_barrier(device: &ash::Device, commands: vk::CommandBuffer) {
+    let (written, read) = FEEDBACK;
+    // SAFETY: as the caller promises.
+    unsafe {
+        memory_barrier(
+            device,
+            commands,
+            written,
+            read,
+            vk::DependencyFlags::BY_REGION,
+        )
+    }
+}
+
+/// A subpass's colour writes, then the next one's input attachment reads.
+const FEEDBACK: (Access, Access) = (
+    (
+        vk::AccessFlags::COLOR_ATTACHMENT_WRITE,
+        vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT,
+    ),
+    (
+        vk::AccessFlags::INPUT_ATTACHMENT_READ,
+        vk::PipelineStageFlags::FRAGMENT_SHADER,
+    ),
+);
+
 /// An image's layout change, as one barrier: from (layout, what wrote it, where) to (layout,
 /// what reads it, where).
 pub struct ImageTransition {
@@ -49,8 +107,8 @@ pub struct ImageTransition {
     pub range: vk::ImageSubresourceRange,
 }
 
-/// An image's layout, with the access and the stage on that side of a barrier.
-pub type ImageAccess = (vk::ImageLayout, vk::AccessFlags, vk::PipelineStageFlags);
+/// One side of a barrier: what accesses memory, and in which stage.
+pub type Access = (vk::AccessFlags, vk::PipelineStageFlags);
 
 impl ImageTransition {
     /// Records the barrier.
@@ -62,8 +120,8 @@ impl ImageTransition {
         &self,
         device: &ash::Device,
         commands: vk::CommandBuffer,
-        (old_layout, src_access, src_stage): ImageAccess,
-        (new_layout, dst_access, dst_stage): ImageAccess,
+        (old_layout, (src_access, src_stage)): (vk::ImageLayout, Access),
+        (new_layout, (dst_access, dst_stage)): (vk::ImageLayout, Access),
     ) {
         let barrier = vk::ImageMemoryBarrier::default()
             .src_access_mask(src_access)
@@ -121,33 +179,11 @@ pub enum AttachmentMemory {
     DeviceLocal,
 }
 
-/// An object to destroy when the test is done with it ([`Vulkan::track`]).
-pub enum Object {
-    /// Device memory.
-    Memory(vk::DeviceMemory),
-    /// An image.
-    Image(vk::Image),
-    /// An image view.
-    ImageView(vk::ImageView),
-    /// A buffer.
-    Buffer(vk::Buffer),
-    /// A shader module.
-    ShaderModule(vk::ShaderModule),
-    /// A render pass.
-    RenderPass(vk::RenderPass),
-    /// A framebuffer.
-    Framebuffer(vk::Framebuffer),
-    /// A descriptor set layout.
-    DescriptorSetLayout(vk::DescriptorSetLayout),
-    /// A descriptor pool.
-    DescriptorPool(vk::DescriptorPool),
-    /// A pipeline layout.
-    PipelineLayout(vk::PipelineLayout),
-    /// A pipeline.
-    Pipeline(vk::Pipeline),
-    /// A sampler.
-    Sampler(vk::Sampler),
-}
+/// How an object of type `T` is destroyed: `ash::Device`'s `destroy_*` (or `free_memory`).
+type Destroy<T> = unsafe fn(&ash::Device, T, Option<&vk::AllocationCallbacks<'_>>);
+
+/// An object's destruction, kept until [`Vulkan::release`].
+type Created = Box<dyn FnOnce(&ash::Device)>;
 
 /// A logical device with one graphics queue.
 pub struct Vulkan {
@@ -161,7 +197,7 @@ pub struct Vulkan {
     command_pool: vk::CommandPool,
     memory_types: Vec<vk::MemoryType>,
     name: String,
-    created: RefCell<Vec<Object>>,
+    created: RefCell<Vec<Created>>,
     // Dropped last: it holds the loader the other handles' functions come from.
     _entry: ash::Entry,
 }
@@ -304,14 +340,26 @@ impl Vulkan {
         &self.name
     }
 
-    fn record(&self, object: Object) {
-        self.created.borrow_mut().push(object);
+    /// A sampler, destroyed with the device.
+    pub fn sampler(&self, info: &vk::SamplerCreateInfo) -> Result<vk::Sampler, String> {
+        // SAFETY: a valid sampler of the device.
+        let sampler = unsafe { self.device.create_sampler(info, None) };
+        self.created("vkCreateSampler", sampler, Device::destroy_sampler)
     }
 
-    /// Destroys `object` with the device's other objects, at [`Vulkan::release`]: for
-    /// objects a caller creates with [`Vulkan::device`] itself.
-    pub fn track(&self, object: Object) {
-        self.record(object);
+    /// The object a `vkCreate*` call (`call`) made, kept to be destroyed by `destroy` at
+    /// [`Vulkan::release`], or the call's error.
+    fn created<T: Copy + 'static>(
+        &self,
+        call: &str,
+        result: ash::prelude::VkResult<T>,
+        destroy: Destroy<T>,
+    ) -> Result<T, String> {
+        let made = result.map_err(|error| format!("{call}: {error}"))?;
+        // SAFETY: release runs each destruction once, after the device is idle.
+        let destruction: Created = Box::new(move |device| unsafe { destroy(device, made, None) });
+        self.created.borrow_mut().push(destruction);
+        Ok(made)
     }
 
     /// Whether the device offers a lazily allocated memory type (on a tiler, memory that an
@@ -356,10 +404,8 @@ impl Vulkan {
             .allocation_size(requirements.size)
             .memory_type_index(type_index);
         // SAFETY: the type index comes from the requirements' type bits.
-        let memory = unsafe { self.device.allocate_memory(&info, None) }
-            .map_err(|error| format!("vkAllocateMemory: {error}"))?;
-        self.record(Object::Memory(memory));
-        Ok(memory)
+        let memory = unsafe { self.device.allocate_memory(&info, None) };
+        self.created("vkAllocateMemory", memory, Device::free_memory)
     }
 
     /// A `width` x `height` colour attachment in `format` that is also read as an input
@@ -409,11 +455,12 @@ impl Vulkan {
         };
         // SAFETY: a valid 2D image; the memory is bound once, at offset 0.
         unsafe {
-            let image = self
-                .device
-                .create_image(&info, None)
-                .map_err(|error| format!("vkCreateImage({format:?}, {usage:?}): {error}"))?;
-            self.record(Object::Image(image));
+            let image = self.device.create_image(&info, None);
+            let image = self.created(
+                &format!("vkCreateImage({format:?}, {usage:?})"),
+                image,
+                Device::destroy_image,
+            )?;
             let requirements = self.device.get_image_memory_requirements(image);
             let lazily = usage
                 .contains(vk::ImageUsageFlags::TRANSIENT_ATTACHMENT)
@@ -439,24 +486,21 @@ impl Vulkan {
             self.device
                 .bind_image_memory(image, memory, 0)
                 .map_err(|error| format!("vkBindImageMemory: {error}"))?;
-            let view = self
-                .device
-                .create_image_view(
-                    &vk::ImageViewCreateInfo::default()
-                        .image(image)
-                        .view_type(vk::ImageViewType::TYPE_2D)
-                        .format(format)
-                        .subresource_range(vk::ImageSubresourceRange {
-                            aspect_mask: aspect,
-                            base_mip_level: 0,
-                            level_count: mips,
-                            base_array_layer: 0,
-                            layer_count: 1,
-                        }),
-                    None,
-                )
-                .map_err(|error| format!("vkCreateImageView: {error}"))?;
-            self.record(Object::ImageView(view));
+            let view = self.device.create_image_view(
+                &vk::ImageViewCreateInfo::default()
+                    .image(image)
+                    .view_type(vk::ImageViewType::TYPE_2D)
+                    .format(format)
+                    .subresource_range(vk::ImageSubresourceRange {
+                        aspect_mask: aspect,
+                        base_mip_level: 0,
+                        level_count: mips,
+                        base_array_layer: 0,
+                        layer_count: 1,
+                    }),
+                None,
+            );
+            let view = self.created("vkCreateImageView", view, Device::destroy_image_view)?;
             Ok((image, view, kind))
         }
     }
@@ -478,11 +522,8 @@ impl Vulkan {
             .sharing_mode(vk::SharingMode::EXCLUSIVE);
         // SAFETY: a valid buffer; the memory is bound once, at offset 0.
         unsafe {
-            let buffer = self
-                .device
-                .create_buffer(&info, None)
-                .map_err(|error| format!("vkCreateBuffer: {error}"))?;
-            self.record(Object::Buffer(buffer));
+            let buffer = self.device.create_buffer(&info, None);
+            let buffer = self.created("vkCreateBuffer", buffer, Device::destroy_buffer)?;
             let requirements = self.device.get_buffer_memory_requirements(buffer);
             let type_index = self
                 .memory_type(
@@ -547,10 +588,12 @@ impl Vulkan {
         let module = unsafe {
             self.device
                 .create_shader_module(&vk::ShaderModuleCreateInfo::default().code(&code), None)
-        }
-        .map_err(|error| format!("vkCreateShaderModule: {error}"))?;
-        self.record(Object::ShaderModule(module));
-        Ok(module)
+        };
+        self.created(
+            "vkCreateShaderModule",
+            module,
+            Device::destroy_shader_module,
+        )
     }
 
     /// A render pass over `formats` whose subpasses run in order, each reading its inputs
@@ -604,10 +647,10 @@ impl Vulkan {
                 vk::SubpassDependency::default()
                     .src_subpass(next - 1)
                     .dst_subpass(next)
-                    .src_stage_mask(vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT)
-                    .dst_stage_mask(vk::PipelineStageFlags::FRAGMENT_SHADER)
-                    .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
-                    .dst_access_mask(vk::AccessFlags::INPUT_ATTACHMENT_READ)
+                    .src_stage_mask(FEEDBACK.0 .1)
+                    .dst_stage_mask(FEEDBACK.1 .1)
+                    .src_access_mask(FEEDBACK.0 .0)
+                    .dst_access_mask(FEEDBACK.1 .0)
                     .dependency_flags(vk::DependencyFlags::BY_REGION)
             })
             .collect();
@@ -621,19 +664,13 @@ impl Vulkan {
         subpasses: &[vk::SubpassDescription],
         dependencies: &[vk::SubpassDependency],
     ) -> Result<vk::RenderPass, String> {
+        let info = vk::RenderPassCreateInfo::default()
+            .attachments(attachments)
+            .subpasses(subpasses)
+            .dependencies(dependencies);
         // SAFETY: the caller's descriptions reference only `attachments`.
-        let render_pass = unsafe {
-            self.device.create_render_pass(
-                &vk::RenderPassCreateInfo::default()
-                    .attachments(attachments)
-                    .subpasses(subpasses)
-                    .dependencies(dependencies),
-                None,
-            )
-        }
-        .map_err(|error| format!("vkCreateRenderPass: {error}"))?;
-        self.record(Object::RenderPass(render_pass));
-        Ok(render_pass)
+        let made = unsafe { self.device.create_render_pass(&info, None) };
+        self.created("vkCreateRenderPass", made, Device::destroy_render_pass)
     }
 
     /// A framebuffer of `views` for `render_pass`.
@@ -644,21 +681,15 @@ impl Vulkan {
         width: u32,
         height: u32,
     ) -> Result<vk::Framebuffer, String> {
+        let info = vk::FramebufferCreateInfo::default()
+            .render_pass(render_pass)
+            .attachments(views)
+            .width(width)
+            .height(height)
+            .layers(1);
         // SAFETY: the views match the render pass's attachments.
-        let framebuffer = unsafe {
-            self.device.create_framebuffer(
-                &vk::FramebufferCreateInfo::default()
-                    .render_pass(render_pass)
-                    .attachments(views)
-                    .width(width)
-                    .height(height)
-                    .layers(1),
-                None,
-            )
-        }
-        .map_err(|error| format!("vkCreateFramebuffer: {error}"))?;
-        self.record(Object::Framebuffer(framebuffer));
-        Ok(framebuffer)
+        let made = unsafe { self.device.create_framebuffer(&info, None) };
+        self.created("vkCreateFramebuffer", made, Device::destroy_framebuffer)
     }
 
     /// A descriptor set layout of one descriptor per type, at bindings 0, 1, ..., for the
@@ -667,27 +698,33 @@ impl Vulkan {
         &self,
         types: &[vk::DescriptorType],
     ) -> Result<vk::DescriptorSetLayout, String> {
+        self.descriptor_set_layout_at(&in_order(types))
+    }
+
+    /// A descriptor set layout of one descriptor per `(binding, type)`, for the fragment
+    /// stage.
+    pub fn descriptor_set_layout_at(
+        &self,
+        types: &[(u32, vk::DescriptorType)],
+    ) -> Result<vk::DescriptorSetLayout, String> {
         let bindings: Vec<vk::DescriptorSetLayoutBinding> = types
             .iter()
-            .enumerate()
-            .map(|(binding, &descriptor_type)| {
+            .map(|&(binding, descriptor_type)| {
                 vk::DescriptorSetLayoutBinding::default()
-                    .binding(binding as u32)
+                    .binding(binding)
                     .descriptor_type(descriptor_type)
                     .descriptor_count(1)
                     .stage_flags(vk::ShaderStageFlags::FRAGMENT)
             })
             .collect();
+        let info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings);
         // SAFETY: valid bindings.
-        let layout = unsafe {
-            self.device.create_descriptor_set_layout(
-                &vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings),
-                None,
-            )
-        }
-        .map_err(|error| format!("vkCreateDescriptorSetLayout: {error}"))?;
-        self.record(Object::DescriptorSetLayout(layout));
-        Ok(layout)
+        let layout = unsafe { self.device.create_descriptor_set_layout(&info, None) };
+        self.created(
+            "vkCreateDescriptorSetLayout",
+            layout,
+            Device::destroy_descriptor_set_layout,
+        )
     }
 
     /// A descriptor set of `layout` (made by [`Vulkan::descriptor_set_layout`] with the same
@@ -697,25 +734,35 @@ impl Vulkan {
         layout: vk::DescriptorSetLayout,
         resources: &[Resource],
     ) -> Result<vk::DescriptorSet, String> {
+        self.descriptor_set_at(layout, &in_order(resources))
+    }
+
+    /// A descriptor set of `layout` (made by [`Vulkan::descriptor_set_layout_at`] with the
+    /// same bindings and kinds) holding each `(binding, resource)`.
+    pub fn descriptor_set_at(
+        &self,
+        layout: vk::DescriptorSetLayout,
+        resources: &[(u32, Resource)],
+    ) -> Result<vk::DescriptorSet, String> {
         let sizes: Vec<vk::DescriptorPoolSize> = resources
             .iter()
-            .map(|resource| vk::DescriptorPoolSize {
+            .map(|(_, resource)| vk::DescriptorPoolSize {
                 ty: resource.descriptor_type(),
                 descriptor_count: 1,
             })
             .collect();
+        let mut pool_info = vk::DescriptorPoolCreateInfo::default().max_sets(1);
+        if !sizes.is_empty() {
+            pool_info = pool_info.pool_sizes(&sizes);
+        }
         // SAFETY: the pool holds exactly the set's descriptors; the writes match the layout.
         unsafe {
-            let pool = self
-                .device
-                .create_descriptor_pool(
-                    &vk::DescriptorPoolCreateInfo::default()
-                        .max_sets(1)
-                        .pool_sizes(&sizes),
-                    None,
-                )
-                .map_err(|error| format!("vkCreateDescriptorPool: {error}"))?;
-            self.record(Object::DescriptorPool(pool));
+            let pool = self.device.create_descriptor_pool(&pool_info, None);
+            let pool = self.created(
+                "vkCreateDescriptorPool",
+                pool,
+                Device::destroy_descriptor_pool,
+            )?;
             let layouts = [layout];
             let set = self
                 .device
@@ -727,37 +774,23 @@ impl Vulkan {
                 .map_err(|error| format!("vkAllocateDescriptorSets: {error}"))?[0];
             let images: Vec<[vk::DescriptorImageInfo; 1]> = resources
                 .iter()
-                .map(|resource| match resource {
-                    Resource::InputAttachment(view) => [vk::DescriptorImageInfo {
-                        sampler: vk::Sampler::null(),
-                        image_view: *view,
-                        image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-                    }],
-                    Resource::StorageBuffer(_) => [vk::DescriptorImageInfo::default()],
-                })
+                .map(|(_, resource)| [resource.image_info()])
                 .collect();
             let buffers: Vec<[vk::DescriptorBufferInfo; 1]> = resources
                 .iter()
-                .map(|resource| match resource {
-                    Resource::StorageBuffer(buffer) => [vk::DescriptorBufferInfo {
-                        buffer: *buffer,
-                        offset: 0,
-                        range: vk::WHOLE_SIZE,
-                    }],
-                    Resource::InputAttachment(_) => [vk::DescriptorBufferInfo::default()],
-                })
+                .map(|(_, resource)| [resource.buffer_info()])
                 .collect();
             let writes: Vec<vk::WriteDescriptorSet> = resources
                 .iter()
                 .enumerate()
-                .map(|(binding, resource)| {
+                .map(|(index, (binding, resource))| {
                     let write = vk::WriteDescriptorSet::default()
                         .dst_set(set)
-                        .dst_binding(binding as u32)
+                        .dst_binding(*binding)
                         .descriptor_type(resource.descriptor_type());
                     match resource {
-                        Resource::InputAttachment(_) => write.image_info(&images[binding]),
-                        Resource::StorageBuffer(_) => write.buffer_info(&buffers[binding]),
+                        Resource::StorageBuffer(_) => write.buffer_info(&buffers[index]),
+                        _ => write.image_info(&images[index]),
                     }
                 })
                 .collect();
@@ -785,10 +818,12 @@ impl Vulkan {
             .set_layouts(set_layouts)
             .push_constant_ranges(&ranges);
         // SAFETY: valid set layouts.
-        let layout = unsafe { self.device.create_pipeline_layout(&info, None) }
-            .map_err(|error| format!("vkCreatePipelineLayout: {error}"))?;
-        self.record(Object::PipelineLayout(layout));
-        Ok(layout)
+        let layout = unsafe { self.device.create_pipeline_layout(&info, None) };
+        self.created(
+            "vkCreatePipelineLayout",
+            layout,
+            Device::destroy_pipeline_layout,
+        )
     }
 
     /// A pipeline for `subpass` of `render_pass` that draws a fullscreen triangle (`vertex`
@@ -897,13 +932,17 @@ impl Vulkan {
             info = info.depth_stencil_state(depth_state);
         }
         // SAFETY: the stages, layout and render pass are alive and agree with each other.
-        let pipeline = unsafe {
+        let pipelines = unsafe {
             self.device
                 .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)
         }
-        .map_err(|(_, error)| format!("vkCreateGraphicsPipelines: {error}"))?[0];
-        self.record(Object::Pipeline(pipeline));
-        Ok(pipeline)
+        .map_err(|(_, error)| error)
+        .map(|pipelines| pipelines[0]);
+        self.created(
+            "vkCreateGraphicsPipelines",
+            pipelines,
+            Device::destroy_pipeline,
+        )
     }
 
     /// Records commands with `record`, submits them, and waits until the device is idle, with
@@ -931,16 +970,11 @@ impl Vulkan {
                 )
                 .map_err(|error| format!("vkBeginCommandBuffer: {error}"))?;
             record(&self.device, command_buffer);
-            memory_barrier(
-                &self.device,
-                command_buffer,
-                (
-                    vk::AccessFlags::SHADER_WRITE,
-                    vk::PipelineStageFlags::FRAGMENT_SHADER,
-                ),
-                (vk::AccessFlags::HOST_READ, vk::PipelineStageFlags::HOST),
-                vk::DependencyFlags::empty(),
+            let shader_writes = (
+                vk::AccessFlags::SHADER_WRITE,
+                vk::PipelineStageFlags::FRAGMENT_SHADER,
             );
+            host_read_barrier(&self.device, command_buffer, shader_writes);
             self.device
                 .end_command_buffer(command_buffer)
                 .map_err(|error| format!("vkEndCommandBuffer: {error}"))?;
@@ -963,26 +997,8 @@ impl Vulkan {
         // SAFETY: after the wait no submitted work uses the objects; each is destroyed once.
         unsafe {
             let _ = self.device.device_wait_idle();
-            for object in self.created.borrow_mut().drain(..).rev() {
-                let device = &self.device;
-                match object {
-                    Object::Memory(memory) => device.free_memory(memory, None),
-                    Object::Image(image) => device.destroy_image(image, None),
-                    Object::ImageView(view) => device.destroy_image_view(view, None),
-                    Object::Buffer(buffer) => device.destroy_buffer(buffer, None),
-                    Object::ShaderModule(module) => device.destroy_shader_module(module, None),
-                    Object::RenderPass(pass) => device.destroy_render_pass(pass, None),
-                    Object::Framebuffer(framebuffer) => {
-                        device.destroy_framebuffer(framebuffer, None)
-                    }
-                    Object::DescriptorSetLayout(layout) => {
-                        device.destroy_descriptor_set_layout(layout, None)
-                    }
-                    Object::DescriptorPool(pool) => device.destroy_descriptor_pool(pool, None),
-                    Object::PipelineLayout(layout) => device.destroy_pipeline_layout(layout, None),
-                    Object::Pipeline(pipeline) => device.destroy_pipeline(pipeline, None),
-                    Object::Sampler(sampler) => device.destroy_sampler(sampler, None),
-                }
+            for destruction in self.created.borrow_mut().drain(..).rev() {
+                destruction(&self.device);
             }
         }
     }
@@ -1001,18 +1017,68 @@ impl Drop for Vulkan {
 }
 
 /// What a descriptor set binding holds.
+#[derive(Clone, Copy, Debug)]
 pub enum Resource {
-    /// An image view read as an input attachment.
+    /// An image view read as an input attachment, in `SHADER_READ_ONLY_OPTIMAL`.
     InputAttachment(vk::ImageView),
+    /// An image view read as an input attachment by the subpass that also writes it (a
+    /// feedback loop), in `GENERAL`.
+    FeedbackAttachment(vk::ImageView),
+    /// An image view sampled with a sampler, in `SHADER_READ_ONLY_OPTIMAL`.
+    SampledImage(vk::ImageView, vk::Sampler),
     /// A storage buffer.
     StorageBuffer(vk::Buffer),
 }
 
 impl Resource {
-    fn descriptor_type(&self) -> vk::DescriptorType {
+    /// Its descriptor type.
+    pub fn descriptor_type(&self) -> vk::DescriptorType {
         match self {
-            Resource::InputAttachment(_) => vk::DescriptorType::INPUT_ATTACHMENT,
+            Resource::InputAttachment(_) | Resource::FeedbackAttachment(_) => {
+                vk::DescriptorType::INPUT_ATTACHMENT
+            }
+            Resource::SampledImage(..) => vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
             Resource::StorageBuffer(_) => vk::DescriptorType::STORAGE_BUFFER,
         }
     }
+
+    /// Its image, for a write (empty for a buffer).
+    fn image_info(&self) -> vk::DescriptorImageInfo {
+        let (image_view, sampler, image_layout) = match *self {
+            Resource::InputAttachment(view) => (
+                view,
+                vk::Sampler::null(),
+                vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+            ),
+            Resource::FeedbackAttachment(view) => {
+                (view, vk::Sampler::null(), vk::ImageLayout::GENERAL)
+            }
+            Resource::SampledImage(view, sampler) => {
+                (view, sampler, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)
+            }
+            Resource::StorageBuffer(_) => return vk::DescriptorImageInfo::default(),
+        };
+        vk::DescriptorImageInfo {
+            sampler,
+            image_view,
+            image_layout,
+        }
+    }
+
+    /// Its buffer, for a write (empty for an image).
+    fn buffer_info(&self) -> vk::DescriptorBufferInfo {
+        match *self {
+            Resource::StorageBuffer(buffer) => vk::DescriptorBufferInfo {
+                buffer,
+                offset: 0,
+                range: vk::WHOLE_SIZE,
+            },
+            _ => vk::DescriptorBufferInfo::default(),
+        }
+    }
+}
+
+/// Items at bindings 0, 1, ...
+fn in_order<T: Copy>(items: &[T]) -> Vec<(u32, T)> {
+    (0..).zip(items.iter().copied()).collect()
 }

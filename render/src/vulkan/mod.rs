@@ -16,7 +16,9 @@ use std::time::Instant;
 
 use ash::vk;
 use gbuffer::packing::PackedTarget;
-use gbuffer_gpu::vulkan::{memory_barrier, ImageTransition, Object, StorageBuffer, Vulkan};
+use gbuffer_gpu::vulkan::{
+    feedback_barrier, host_read_barrier, ImageTransition, StorageBuffer, Vulkan,
+};
 
 mod objects;
 mod plans;
@@ -111,11 +113,7 @@ impl VulkanRenderer {
                 .address_mode_v(vk::SamplerAddressMode::CLAMP_TO_EDGE)
                 .address_mode_w(vk::SamplerAddressMode::CLAMP_TO_EDGE)
                 .max_lod(vk::LOD_CLAMP_NONE);
-            // SAFETY: a valid sampler of the device, destroyed with it.
-            let sampler = unsafe { vulkan.device.create_sampler(&info, None) }
-                .map_err(|error| format!("vkCreateSampler: {error}"))?;
-            vulkan.track(Object::Sampler(sampler));
-            Ok::<vk::Sampler, String>(sampler)
+            vulkan.sampler(&info)
         };
         // As wgpu's sampler: trilinear, u repeating (around the sky).
         let linear = sampler(
@@ -283,19 +281,7 @@ impl VulkanRenderer {
                     for &(stage, draw) in &pass.draws {
                         if previous.is_some() && plan.passes.len() == 1 {
                             // The next draw reads what this one wrote (the self-dependency).
-                            memory_barrier(
-                                device,
-                                commands,
-                                (
-                                    vk::AccessFlags::COLOR_ATTACHMENT_WRITE,
-                                    vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT,
-                                ),
-                                (
-                                    vk::AccessFlags::INPUT_ATTACHMENT_READ,
-                                    vk::PipelineStageFlags::FRAGMENT_SHADER,
-                                ),
-                                vk::DependencyFlags::BY_REGION,
-                            );
+                            feedback_barrier(device, commands);
                         }
                         if previous != Some(stage) {
                             device.cmd_bind_pipeline(
@@ -353,44 +339,30 @@ impl VulkanRenderer {
                             .collect(),
                     });
                 }
-                device.cmd_copy_image_to_buffer(
-                    commands,
-                    plan.output,
-                    vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                    plan.read_back.buffer,
-                    &[vk::BufferImageCopy::default()
-                        .image_subresource(color_layers(0))
-                        .image_extent(vk::Extent3D {
-                            width: plan.width,
-                            height: plan.height,
-                            depth: 1,
-                        })],
-                );
-                for (image, buffer) in &plan.gbuffer {
+                let whole_image = [vk::BufferImageCopy::default()
+                    .image_subresource(color_layers(0))
+                    .image_extent(vk::Extent3D {
+                        width: plan.width,
+                        height: plan.height,
+                        depth: 1,
+                    })];
+                let source = vk::ImageLayout::TRANSFER_SRC_OPTIMAL;
+                let read_backs = std::iter::once((plan.output, &plan.read_back))
+                    .chain(plan.gbuffer.iter().map(|(image, buffer)| (*image, buffer)));
+                for (image, buffer) in read_backs {
                     device.cmd_copy_image_to_buffer(
                         commands,
-                        *image,
-                        vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                        image,
+                        source,
                         buffer.buffer,
-                        &[vk::BufferImageCopy::default()
-                            .image_subresource(color_layers(0))
-                            .image_extent(vk::Extent3D {
-                                width: plan.width,
-                                height: plan.height,
-                                depth: 1,
-                            })],
+                        &whole_image,
                     );
                 }
-                memory_barrier(
-                    device,
-                    commands,
-                    (
-                        vk::AccessFlags::TRANSFER_WRITE,
-                        vk::PipelineStageFlags::TRANSFER,
-                    ),
-                    (vk::AccessFlags::HOST_READ, vk::PipelineStageFlags::HOST),
-                    vk::DependencyFlags::empty(),
+                let copies = (
+                    vk::AccessFlags::TRANSFER_WRITE,
+                    vk::PipelineStageFlags::TRANSFER,
                 );
+                host_read_barrier(device, commands, copies);
             }
         })
     }
@@ -419,20 +391,19 @@ impl VulkanRenderer {
             // SAFETY: the image and the staging buffer are alive; each copy is within both.
             unsafe {
                 let transition = ImageTransition { image, range };
-                transition.record(
-                    device,
-                    commands,
+                let transfer = (
+                    vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                     (
-                        vk::ImageLayout::UNDEFINED,
-                        vk::AccessFlags::empty(),
-                        vk::PipelineStageFlags::TOP_OF_PIPE,
-                    ),
-                    (
-                        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                         vk::AccessFlags::TRANSFER_WRITE,
                         vk::PipelineStageFlags::TRANSFER,
                     ),
                 );
+                let nothing = (
+                    vk::AccessFlags::empty(),
+                    vk::PipelineStageFlags::TOP_OF_PIPE,
+                );
+                let undefined = (vk::ImageLayout::UNDEFINED, nothing);
+                transition.record(device, commands, undefined, transfer);
                 let mut offset = 0;
                 let copies: Vec<vk::BufferImageCopy> = mips
                     .iter()
@@ -457,20 +428,12 @@ impl VulkanRenderer {
                     vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                     &copies,
                 );
-                transition.record(
-                    device,
-                    commands,
-                    (
-                        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                        vk::AccessFlags::TRANSFER_WRITE,
-                        vk::PipelineStageFlags::TRANSFER,
-                    ),
-                    (
-                        vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-                        vk::AccessFlags::SHADER_READ,
-                        vk::PipelineStageFlags::FRAGMENT_SHADER,
-                    ),
+                let sampling = (
+                    vk::AccessFlags::SHADER_READ,
+                    vk::PipelineStageFlags::FRAGMENT_SHADER,
                 );
+                let read_only = (vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL, sampling);
+                transition.record(device, commands, transfer, read_only);
             }
         })?;
         Ok(view)

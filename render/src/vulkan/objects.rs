@@ -3,12 +3,12 @@
 
 use ash::vk;
 use gbuffer_gpu::tools::glslang;
-use gbuffer_gpu::vulkan::{GraphicsPipeline, Object};
+use gbuffer_gpu::vulkan::{GraphicsPipeline, Resource};
 
 use super::VulkanRenderer;
 use crate::glsl::{self, Dialect};
 use crate::mesh::Vertex;
-use crate::shaders::SAMPLER_BINDING;
+use crate::shaders::{used_bindings, SAMPLER_BINDING};
 
 impl VulkanRenderer {
     /// A descriptor set (and its layout) of combined image samplers at `bindings`: the inputs
@@ -37,122 +37,57 @@ impl VulkanRenderer {
                 ));
             }
         }
-        self.descriptor_set(
-            &resources
-                .iter()
-                .map(|&(binding, view, sampler)| {
-                    (
-                        binding,
-                        vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
-                        view,
-                        sampler,
-                        vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
-                    )
-                })
-                .collect::<Vec<_>>(),
-        )
+        let resources: Vec<(u32, Resource)> = resources
+            .iter()
+            .map(|&(binding, view, sampler)| (binding, Resource::SampledImage(view, sampler)))
+            .collect();
+        self.descriptor_set(&resources)
     }
 
     /// A descriptor set (and its layout) of the input attachments `views` at bindings 0, 1...
+    /// (each also written by the subpass that reads it: `GENERAL`).
     pub(super) fn input_attachment_set(
         &self,
         views: &[vk::ImageView],
     ) -> Result<(vk::DescriptorSetLayout, vk::DescriptorSet), String> {
-        self.descriptor_set(
-            &views
-                .iter()
-                .enumerate()
-                .map(|(index, &view)| {
-                    (
-                        index as u32,
-                        vk::DescriptorType::INPUT_ATTACHMENT,
-                        view,
-                        vk::Sampler::null(),
-                        vk::ImageLayout::GENERAL,
-                    )
-                })
-                .collect::<Vec<_>>(),
-        )
+        let resources: Vec<(u32, Resource)> = (0..)
+            .zip(views.iter().map(|&view| Resource::FeedbackAttachment(view)))
+            .collect();
+        self.descriptor_set(&resources)
     }
 
-    #[allow(clippy::type_complexity)]
-    pub(super) fn descriptor_set(
+    /// A descriptor set and its layout holding `resources` at their bindings.
+    fn descriptor_set(
         &self,
-        resources: &[(
-            u32,
-            vk::DescriptorType,
-            vk::ImageView,
-            vk::Sampler,
-            vk::ImageLayout,
-        )],
+        resources: &[(u32, Resource)],
     ) -> Result<(vk::DescriptorSetLayout, vk::DescriptorSet), String> {
-        let device = &self.vulkan.device;
-        let bindings: Vec<vk::DescriptorSetLayoutBinding> = resources
+        let types: Vec<(u32, vk::DescriptorType)> = resources
             .iter()
-            .map(|&(binding, kind, ..)| {
-                vk::DescriptorSetLayoutBinding::default()
-                    .binding(binding)
-                    .descriptor_type(kind)
-                    .descriptor_count(1)
-                    .stage_flags(vk::ShaderStageFlags::FRAGMENT)
-            })
+            .map(|(binding, resource)| (*binding, resource.descriptor_type()))
             .collect();
-        let sizes: Vec<vk::DescriptorPoolSize> = resources
-            .iter()
-            .map(|&(_, kind, ..)| vk::DescriptorPoolSize {
-                ty: kind,
-                descriptor_count: 1,
-            })
-            .collect();
-        // SAFETY: the layout, pool and set are created, written and tracked here.
-        unsafe {
-            let layout = device
-                .create_descriptor_set_layout(
-                    &vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings),
-                    None,
-                )
-                .map_err(|error| format!("vkCreateDescriptorSetLayout: {error}"))?;
-            self.vulkan.track(Object::DescriptorSetLayout(layout));
-            let mut pool_info = vk::DescriptorPoolCreateInfo::default().max_sets(1);
-            if !sizes.is_empty() {
-                pool_info = pool_info.pool_sizes(&sizes);
-            }
-            let pool = device
-                .create_descriptor_pool(&pool_info, None)
-                .map_err(|error| format!("vkCreateDescriptorPool: {error}"))?;
-            self.vulkan.track(Object::DescriptorPool(pool));
-            let layouts = [layout];
-            let set = device
-                .allocate_descriptor_sets(
-                    &vk::DescriptorSetAllocateInfo::default()
-                        .descriptor_pool(pool)
-                        .set_layouts(&layouts),
-                )
-                .map_err(|error| format!("vkAllocateDescriptorSets: {error}"))?[0];
-            let images: Vec<[vk::DescriptorImageInfo; 1]> = resources
-                .iter()
-                .map(|&(_, _, view, sampler, layout)| {
-                    [vk::DescriptorImageInfo {
-                        sampler,
-                        image_view: view,
-                        image_layout: layout,
-                    }]
-                })
-                .collect();
-            let writes: Vec<vk::WriteDescriptorSet> = resources
-                .iter()
-                .zip(&images)
-                .map(|(&(binding, kind, ..), image)| {
-                    vk::WriteDescriptorSet::default()
-                        .dst_set(set)
-                        .dst_binding(binding)
-                        .descriptor_type(kind)
-                        .image_info(image)
-                })
-                .collect();
-            device.update_descriptor_sets(&writes, &[]);
-            Ok((layout, set))
-        }
+        let layout = self.vulkan.descriptor_set_layout_at(&types)?;
+        Ok((layout, self.vulkan.descriptor_set_at(layout, resources)?))
+    }
+
+    /// A pass's pipeline over sampled resources: the WGSL's `fragment` entry point translated,
+    /// the descriptor set of what it samples (the inputs, and `frame_textures` at their
+    /// bindings) and its pipeline layout; the pipeline, the layout and the set.
+    pub(super) fn sampling_pipeline(
+        &self,
+        wgsl: &str,
+        (vertex, fragment): (&str, &str),
+        frame_textures: &[(u32, vk::ImageView)],
+        render_pass: vk::RenderPass,
+        writes: (Depth, &[bool]),
+        size: (u32, u32),
+    ) -> Result<(vk::Pipeline, vk::PipelineLayout, vk::DescriptorSet), String> {
+        let bindings = used_bindings(wgsl, fragment);
+        let (set_layout, set) = self.sampled_set(&bindings, frame_textures)?;
+        let layout = self.vulkan.pipeline_layout(&[set_layout], None)?;
+        let glsl = glsl::translate(wgsl, naga::ShaderStage::Fragment, fragment, Dialect::Vulkan)?;
+        let pipeline =
+            self.pipeline(wgsl, vertex, &glsl.text, render_pass, layout, writes, size)?;
+        Ok((pipeline, layout, set))
     }
 
     /// A pipeline: `vertex` of the WGSL translated and `fragment` (GLSL 450), compiled by

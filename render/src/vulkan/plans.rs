@@ -323,21 +323,11 @@ impl VulkanRenderer {
         views.push(depth_view);
         let first_framebuffer = self.vulkan.framebuffer(first_pass, &views, width, height)?;
         let gbuffer_wgsl = crate::shaders::gbuffer_wgsl(options, -1.0);
-        let (set_layout, set) =
-            self.sampled_set(&used_bindings(&gbuffer_wgsl, "gbuffer_main"), &[])?;
-        let first_layout = self.vulkan.pipeline_layout(&[set_layout], None)?;
-        let gbuffer_fragment = glsl::translate(
+        let (gbuffer, first_layout, set) = self.sampling_pipeline(
             &gbuffer_wgsl,
-            naga::ShaderStage::Fragment,
-            "gbuffer_main",
-            Dialect::Vulkan,
-        )?;
-        let gbuffer = self.pipeline(
-            &gbuffer_wgsl,
-            "geometry_vertex",
-            &gbuffer_fragment.text,
+            ("geometry_vertex", "gbuffer_main"),
+            &[],
             first_pass,
-            first_layout,
             (Depth::Write, &vec![true; formats.len()]),
             (width, height),
         )?;
@@ -367,23 +357,11 @@ impl VulkanRenderer {
             .enumerate()
             .map(|(index, view)| (10 + index as u32, *view))
             .collect();
-        let (lighting_set_layout, lighting_set) = self.sampled_set(
-            &used_bindings(&lighting_wgsl, "lighting_resolve_main"),
+        let (lighting, second_layout, lighting_set) = self.sampling_pipeline(
+            &lighting_wgsl,
+            ("full_screen", "lighting_resolve_main"),
             &gbuffer_bindings,
-        )?;
-        let second_layout = self.vulkan.pipeline_layout(&[lighting_set_layout], None)?;
-        let lighting_fragment = glsl::translate(
-            &lighting_wgsl,
-            naga::ShaderStage::Fragment,
-            "lighting_resolve_main",
-            Dialect::Vulkan,
-        )?;
-        let lighting = self.pipeline(
-            &lighting_wgsl,
-            "full_screen",
-            &lighting_fragment.text,
             second_pass,
-            second_layout,
             (Depth::None, &[true]),
             (width, height),
         )?;
