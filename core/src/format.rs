@@ -177,35 +177,31 @@ pub struct FormatRow {
 
 use Encoding::{Float32, Half, Sint, Uint, Unorm, UnsignedFloat};
 
-const R11F_G11F_B10F: [Channel; 3] = [
-    Channel::new('r', 0, 11, UnsignedFloat),
-    Channel::new('g', 11, 11, UnsignedFloat),
-    Channel::new('b', 22, 10, UnsignedFloat),
-];
+/// Channels r, g, b, a of these widths from the least significant bit up, each of `encoding`.
+const fn channels<const N: usize>(widths: [u32; N], encoding: Encoding) -> [Channel; N] {
+    let mut channels = [Channel::new('r', 0, 0, encoding); N];
+    let (mut index, mut offset) = (0, 0);
+    while index < N {
+        let name = [b'r', b'g', b'b', b'a'][index] as char;
+        channels[index] = Channel::new(name, offset, widths[index], encoding);
+        offset += widths[index];
+        index += 1;
+    }
+    channels
+}
+
+const R11F_G11F_B10F: [Channel; 3] = channels([11, 11, 10], UnsignedFloat);
 const fn rgb10_a2(encoding: Encoding) -> [Channel; 4] {
-    [
-        Channel::new('r', 0, 10, encoding),
-        Channel::new('g', 10, 10, encoding),
-        Channel::new('b', 20, 10, encoding),
-        Channel::new('a', 30, 2, encoding),
-    ]
+    channels([10, 10, 10, 2], encoding)
 }
 const fn rgba8(encoding: Encoding) -> [Channel; 4] {
-    [
-        Channel::new('r', 0, 8, encoding),
-        Channel::new('g', 8, 8, encoding),
-        Channel::new('b', 16, 8, encoding),
-        Channel::new('a', 24, 8, encoding),
-    ]
+    channels([8; 4], encoding)
 }
 const fn rg16(encoding: Encoding) -> [Channel; 2] {
-    [
-        Channel::new('r', 0, 16, encoding),
-        Channel::new('g', 16, 16, encoding),
-    ]
+    channels([16; 2], encoding)
 }
 const fn r32(encoding: Encoding) -> [Channel; 1] {
-    [Channel::new('r', 0, 32, encoding)]
+    channels([32], encoding)
 }
 
 /// A row's target: its GLSL type, then WebGPU (name, byte cost, alignment, feature), GL

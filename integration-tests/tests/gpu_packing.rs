@@ -16,7 +16,6 @@ fn generated_wgsl_matches_the_rust_mirror_bit_for_bit_on_the_adapter() {
     let Some(gpu) = gbuffer_testkit::gpu() else {
         return;
     };
-    eprintln!("adapter: {}", gpu.describe());
     let mut failures = Vec::new();
     failures.extend(check_layout(
         &gpu,

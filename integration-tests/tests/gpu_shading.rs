@@ -12,7 +12,6 @@ fn wgsl_functions_match_their_rust_mirrors_on_the_adapter() {
     let Some(gpu) = gbuffer_testkit::gpu() else {
         return;
     };
-    eprintln!("adapter: {}", gpu.describe());
     let mut failures = Vec::new();
     for case in cases() {
         let points = grid(&case, POINTS_PER_FUNCTION);

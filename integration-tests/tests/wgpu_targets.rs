@@ -348,7 +348,6 @@ fn targets_made_by_the_helpers_round_trip_bit_exactly_on_the_adapter() {
     let Some(gpu) = gbuffer_testkit::gpu() else {
         return;
     };
-    eprintln!("adapter: {}", gpu.describe());
     let mut failures = Vec::new();
     check_round_trip::<MobileMetallic>(&gpu, 1, &mut failures);
     check_round_trip::<SpecularWorkflow>(&gpu, 2, &mut failures);

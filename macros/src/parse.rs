@@ -287,23 +287,10 @@ fn parse_storage_attribute(
         let format: syn::Ident = input.parse()?;
         Ok((format, parse_conversions_option(input, "pls")?))
     });
-    let (format_ident, conversions) = match arguments {
-        Ok(arguments) => arguments,
-        Err(error) if error.to_string().starts_with("unknown") => {
-            combine(errors, error);
-            return None;
-        }
-        Err(_) => {
-            combine(
-                errors,
-                syn::Error::new_spanned(
-                    first,
-                    format!("expected `#[pls(<format>)]` or `#[pls(<format>, conversions = fast)]` with a format among: {}", format_list()),
-                ),
-            );
-            return None;
-        }
+    let usage = || {
+        format!("expected `#[pls(<format>)]` or `#[pls(<format>, conversions = fast)]` with a format among: {}", format_list())
     };
+    let (format_ident, conversions) = arguments_or_usage(arguments, errors, first, usage)?;
     let format_name = format_ident.to_string();
     match Format::from_name(&format_name) {
         Some(format) => Some((Storage::Word(format), format_ident.span(), conversions)),
@@ -373,26 +360,11 @@ fn parse_bits_attribute(
         let conversions = parse_conversions_option(input, "bits")?;
         Ok((width, encoding, range, conversions))
     });
-    let (width, encoding_ident, range, conversions) = match parsed {
-        Ok(parsed) => parsed,
-        Err(error)
-            if error.to_string().starts_with("unknown")
-                || error.to_string().starts_with("a range") =>
-        {
-            combine(errors, error);
-            return None;
-        }
-        Err(_) => {
-            combine(
-                errors,
-                syn::Error::new_spanned(
-                    attribute,
-                    format!("expected `#[bits(<bits>, <encoding>)]`, e.g. `#[bits(4, unorm)]` or `#[bits(32, rgbm(8.0))]`, with an encoding among: {}", Encoding::names().join(", ")),
-                ),
-            );
-            return None;
-        }
+    let usage = || {
+        format!("expected `#[bits(<bits>, <encoding>)]`, e.g. `#[bits(4, unorm)]` or `#[bits(32, rgbm(8.0))]`, with an encoding among: {}", Encoding::names().join(", "))
     };
+    let (width, encoding_ident, range, conversions) =
+        arguments_or_usage(parsed, errors, attribute, usage)?;
     let bits = match width.base10_parse::<u32>() {
         Ok(bits) => bits,
         Err(_) => {
@@ -454,4 +426,28 @@ fn parse_field_type(ty: &syn::Type, errors: &mut Option<syn::Error>) -> Option<F
         );
     }
     recognised
+}
+
+/// An attribute's parsed arguments; or, where they did not parse, `None` with the error added
+/// to `errors`: the parser's own where it names the problem (an unknown option, a bad range),
+/// otherwise `usage` at the whole attribute.
+fn arguments_or_usage<T>(
+    parsed: syn::Result<T>,
+    errors: &mut Option<syn::Error>,
+    attribute: &syn::Attribute,
+    usage: impl Fn() -> String,
+) -> Option<T> {
+    match parsed {
+        Ok(arguments) => Some(arguments),
+        Err(error) => {
+            let message = error.to_string();
+            let named = message.starts_with("unknown") || message.starts_with("a range");
+            let error = match named {
+                true => error,
+                false => syn::Error::new_spanned(attribute, usage()),
+            };
+            combine(errors, error);
+            None
+        }
+    }
 }

@@ -87,31 +87,28 @@ pub struct Decal {
 /// The scene's decals: two patches of paint on the ground (one across the gold/stone edge),
 /// one band across the ceramic row, one across the copper row.
 pub const DECALS: [Decal; 4] = [
-    Decal {
-        centre: [-1.6, 0.0, -1.4],
-        half_size: [0.9, 0.3, 0.6],
-        base_colour: [0.05, 0.35, 0.6],
-        roughness: 0.15,
-    },
-    Decal {
-        centre: [1.3, 0.0, -1.7],
-        half_size: [0.8, 0.3, 0.5],
-        base_colour: [0.9, 0.9, 0.9],
-        roughness: 0.9,
-    },
-    Decal {
-        centre: [-0.8, 1.92, -0.2],
-        half_size: [0.7, 0.08, 0.5],
-        base_colour: [0.7, 0.05, 0.05],
-        roughness: 0.5,
-    },
-    Decal {
-        centre: [1.2, 2.67, -0.2],
-        half_size: [0.6, 0.25, 0.5],
-        base_colour: [0.1, 0.1, 0.1],
-        roughness: 0.05,
-    },
+    Decal::new([-1.6, 0.0, -1.4], [0.9, 0.3, 0.6], [0.05, 0.35, 0.6], 0.15),
+    Decal::new([1.3, 0.0, -1.7], [0.8, 0.3, 0.5], [0.9, 0.9, 0.9], 0.9),
+    Decal::new([-0.8, 1.92, -0.2], [0.7, 0.08, 0.5], [0.7, 0.05, 0.05], 0.5),
+    Decal::new([1.2, 2.67, -0.2], [0.6, 0.25, 0.5], [0.1, 0.1, 0.1], 0.05),
 ];
+
+impl Decal {
+    /// A decal: its box's centre and half-extents, and its paint's colour and roughness.
+    const fn new(
+        centre: [f64; 3],
+        half_size: [f64; 3],
+        base_colour: [f64; 3],
+        roughness: f64,
+    ) -> Decal {
+        Decal {
+            centre,
+            half_size,
+            base_colour,
+            roughness,
+        }
+    }
+}
 
 /// How strongly decal `decal` paints the point: 1 inside, fading to 0 over the outer 30% of
 /// each half-extent (a smooth edge, so a one-pixel difference in where a surface lies

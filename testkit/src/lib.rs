@@ -30,9 +30,12 @@ pub fn skip_without_driver(what: &str, error: &str) {
     eprintln!("skipped: {what}: {error}");
 }
 
-/// The adapter wgpu prefers, with its full limits, or `None` to skip (see [`or_skip`]).
+/// The adapter wgpu prefers, with its full limits (its name printed), or `None` to skip (see
+/// [`or_skip`]).
 pub fn gpu() -> Option<Gpu> {
-    or_skip("a wgpu adapter", Gpu::new())
+    let gpu = or_skip("a wgpu adapter", Gpu::new())?;
+    eprintln!("adapter: {}", gpu.describe());
+    Some(gpu)
 }
 
 /// As [`gpu`], with the device's limits lowered to `limits` (where given) and those of

@@ -64,6 +64,12 @@ struct StagePipeline {
     pipeline: vk::Pipeline,
 }
 
+impl StagePipeline {
+    fn named(name: &'static str, pipeline: vk::Pipeline) -> StagePipeline {
+        StagePipeline { name, pipeline }
+    }
+}
+
 /// A render pass of a plan: its framebuffer, attachments (for the recording), clear values,
 /// the descriptor sets its pipelines bind and its draws.
 struct Pass {

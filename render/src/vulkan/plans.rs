@@ -387,10 +387,7 @@ impl VulkanRenderer {
                     clears,
                     layout: first_layout,
                     sets: vec![set],
-                    stages: vec![StagePipeline {
-                        name: "gbuffer",
-                        pipeline: gbuffer,
-                    }],
+                    stages: vec![StagePipeline::named("gbuffer", gbuffer)],
                     draws: vec![(0, Draw::Mesh)],
                     samples: Vec::new(),
                 },
@@ -401,10 +398,7 @@ impl VulkanRenderer {
                     clears: vec![clear_float(0.0)],
                     layout: second_layout,
                     sets: vec![lighting_set],
-                    stages: vec![StagePipeline {
-                        name: "lighting and resolve",
-                        pipeline: lighting,
-                    }],
+                    stages: vec![StagePipeline::named("lighting and resolve", lighting)],
                     draws: vec![(0, Draw::Fullscreen)],
                     samples,
                 },

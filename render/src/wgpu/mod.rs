@@ -74,23 +74,15 @@ impl Renderer {
 
         progress("baking the split-sum LUT, the light map and the prefiltered sky...");
         let inputs = Inputs::bake();
-        let lut = texture_with_data(
-            &device,
-            &queue,
-            "lut",
-            wgpu::TextureFormat::Rgba16Float,
-            &[inputs.lut],
-        );
-        let light_map = texture_with_data(
-            &device,
-            &queue,
+        let upload =
+            |label, format, mips: &[_]| texture_with_data(&device, &queue, label, format, mips);
+        let lut = upload("lut", wgpu::TextureFormat::Rgba16Float, &[inputs.lut]);
+        let light_map = upload(
             "light map",
             wgpu::TextureFormat::Rgba8Unorm,
             &[inputs.light_map],
         );
-        let environment = texture_with_data(
-            &device,
-            &queue,
+        let environment = upload(
             "environment",
             wgpu::TextureFormat::Rgba8Unorm,
             &inputs.environment,
