@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use gbuffer_render::gbuffers::{GBuffer, LayoutArgument};
+use gbuffer_render::gbuffers::{GBuffer, LayoutArgument, SeedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::{compare, difference, write_png};
 use gbuffer_render::on_tile::{Backend, Path, TileOptions};
@@ -26,8 +26,9 @@ use gbuffer_render::wgpu::Renderer;
 #[command(name = "deferred", about, long_about)]
 struct Arguments {
     /// The G-buffer: a seed layout (mobile-metallic, specular-workflow, future-metallic,
-    /// future-specular, arm-tile-block), packed into Rgba32Uint targets, or `classic`
-    /// (separate Rgba16Float and Rgba8 targets, as without this library).
+    /// future-specular, arm-tile-block), packed into Rgba32Uint targets; `lossless` (every
+    /// quantity an f32, twelve r32f words); or `classic` (separate Rgba16Float and Rgba8
+    /// targets, as without this library).
     #[arg(
         long,
         value_enum,
@@ -65,8 +66,12 @@ struct Arguments {
     /// pixel, row by row): the same for every backend and path, bit for bit.
     #[arg(long, value_name = "FILE")]
     store_gbuffer: Option<PathBuf>,
-    /// Also render the CPU reference: print PSNR and the largest error, and write
-    /// `<out>.reference.png` and `<out>.difference.png` (differences x8).
+    /// Also render the scene through the lossless G-buffer (every quantity an f32, on wgpu)
+    /// and the CPU reference, and print two lines: the frame's PSNR and largest error against
+    /// the lossless frame (what the layout costs the picture), and the lossless frame's against
+    /// the CPU reference (the renderer's own floor). Writes `<out>.lossless.png`,
+    /// `<out>.reference.png` and their differences, `<out>.lossless-difference.png` and
+    /// `<out>.reference-difference.png` (differences x8).
     #[arg(long)]
     reference: bool,
 }
@@ -209,6 +214,14 @@ fn main() -> ExitCode {
             .map_err(|error| format!("{}: {error}", arguments.out.display()))?;
         eprintln!("wrote {}", arguments.out.display());
         if arguments.reference {
+            // The same scene through the lossless G-buffer, on wgpu (the fused paths cannot
+            // keep its twelve words on tile): what the layout alone costs the picture.
+            let lossless_options = Options {
+                gbuffer: GBuffer::Packed(SeedLayout::Lossless),
+                ..options.clone()
+            };
+            eprintln!("rendering through the lossless G-buffer...");
+            let lossless = render(Backend::Wgpu, None, &lossless_options, None, &progress)?;
             eprintln!("rendering the CPU reference...");
             let reference = reference::render(
                 options.width,
@@ -216,15 +229,24 @@ fn main() -> ExitCode {
                 options.gbuffer.features(),
                 &|done| eprintln!("  reference {:.0}%", done * 100.0),
             );
-            let comparison = compare(&frame, &reference);
-            println!(
-                "PSNR {:.2} dB, largest error {} steps (against the CPU reference)",
-                comparison.psnr, comparison.max_error
-            );
             let with_suffix = |suffix: &str| arguments.out.with_extension(format!("{suffix}.png"));
-            write_png(&with_suffix("reference"), &reference).map_err(|error| error.to_string())?;
-            write_png(&with_suffix("difference"), &difference(&frame, &reference))
+            let comparisons = [
+                ("the lossless G-buffer", &frame, &lossless, "lossless"),
+                ("the CPU reference", &lossless, &reference, "reference"),
+            ];
+            for (against, frame, yardstick, name) in comparisons {
+                let comparison = compare(frame, yardstick);
+                println!(
+                    "PSNR {:.2} dB, largest error {} steps (against {against})",
+                    comparison.psnr, comparison.max_error
+                );
+                write_png(&with_suffix(name), yardstick).map_err(|error| error.to_string())?;
+                write_png(
+                    &with_suffix(&format!("{name}-difference")),
+                    &difference(frame, yardstick),
+                )
                 .map_err(|error| error.to_string())?;
+            }
         }
         Ok(())
     };

@@ -14,6 +14,8 @@ use gbuffer::seed_layouts::{
 use gbuffer::GBufferLayout;
 use gbuffer_solver::{Features, Solution};
 
+use crate::lossless::Lossless;
+
 /// Where the G-buffer pass writes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum GBuffer {
@@ -40,6 +42,9 @@ pub enum SeedLayout {
     FutureSpecular,
     /// Arm's pixel local storage block.
     ArmTileBlock,
+    /// Not a seed layout: every quantity as an f32 ([`crate::lossless`]), what a layout's
+    /// frame is held against. Not in [`SeedLayout::ALL`].
+    Lossless,
 }
 
 impl SeedLayout {
@@ -65,6 +70,7 @@ impl SeedLayout {
             SeedLayout::FutureMetallic => FutureMetallic::layout(),
             SeedLayout::FutureSpecular => FutureSpecular::layout(),
             SeedLayout::ArmTileBlock => ArmTileBlock::layout(),
+            SeedLayout::Lossless => Lossless::layout(),
         }
     }
 
@@ -76,6 +82,7 @@ impl SeedLayout {
             SeedLayout::FutureMetallic => FutureMetallic::WGSL,
             SeedLayout::FutureSpecular => FutureSpecular::WGSL,
             SeedLayout::ArmTileBlock => ArmTileBlock::WGSL,
+            SeedLayout::Lossless => Lossless::WGSL,
         }
     }
 
@@ -88,6 +95,7 @@ impl SeedLayout {
             SeedLayout::FutureMetallic => FutureMetallic::ENCODE_WGSL,
             SeedLayout::FutureSpecular => FutureSpecular::ENCODE_WGSL,
             SeedLayout::ArmTileBlock => ArmTileBlock::ENCODE_WGSL,
+            SeedLayout::Lossless => Lossless::ENCODE_WGSL,
         }
     }
 
@@ -142,6 +150,11 @@ fn paint_texel(t: FutureMetallic, decal: u32, weight: f32) -> FutureMetallic {
                  lights read on tile; keep mobile-metallic or future-metallic on tile",
                 self.flag()
             )),
+            SeedLayout::Lossless => Err(
+                "the lossless G-buffer's twelve words are more than the fused paths keep on \
+                 tile: it renders on --backend wgpu"
+                    .to_string(),
+            ),
         }
     }
 
@@ -169,6 +182,7 @@ fn paint_texel(t: FutureMetallic, decal: u32, weight: f32) -> FutureMetallic {
             SeedLayout::FutureMetallic => FutureMetallic::DECODE_WGSL,
             SeedLayout::FutureSpecular => FutureSpecular::DECODE_WGSL,
             SeedLayout::ArmTileBlock => ArmTileBlock::DECODE_WGSL,
+            SeedLayout::Lossless => Lossless::DECODE_WGSL,
         }
     }
 }
@@ -190,6 +204,7 @@ impl clap::ValueEnum for LayoutArgument {
             LayoutArgument::Seed(SeedLayout::FutureMetallic),
             LayoutArgument::Seed(SeedLayout::FutureSpecular),
             LayoutArgument::Seed(SeedLayout::ArmTileBlock),
+            LayoutArgument::Seed(SeedLayout::Lossless),
             LayoutArgument::Classic,
         ]
     }

@@ -13,6 +13,7 @@ pub mod gles;
 pub mod glsl;
 pub mod image;
 pub mod inputs;
+pub mod lossless;
 pub mod mesh;
 pub mod on_tile;
 pub mod options;
