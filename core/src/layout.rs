@@ -255,6 +255,17 @@ pub struct Diagnostic {
     pub message: String,
 }
 
+/// Why `budget` bits cannot be a budget, if they cannot: a budget is whole 32-bit words.
+pub fn check_budget(budget: u32) -> Result<(), String> {
+    match budget != 0 && budget % 32 == 0 {
+        true => Ok(()),
+        false => Err(format!(
+            "budget must be a positive multiple of 32 bits (the fields fill 32-bit words), not \
+             {budget}"
+        )),
+    }
+}
+
 impl Layout {
     /// Builds a layout from borrowed parts (what the generated `layout()` functions call):
     /// per field its name, storage, type and own conversions.
@@ -463,15 +474,8 @@ impl Layout {
                 format!("layout name `{}` {reason}", self.name),
             );
         }
-        if self.budget == 0 || self.budget % 32 != 0 {
-            report(
-                Subject::Budget,
-                format!(
-                    "budget must be a positive multiple of 32 bits (the fields fill 32-bit \
-                     words), not {}",
-                    self.budget
-                ),
-            );
+        if let Err(problem) = check_budget(self.budget) {
+            report(Subject::Budget, problem);
         }
         if self.fields.is_empty() {
             report(

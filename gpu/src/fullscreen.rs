@@ -34,3 +34,36 @@ pub fn fullscreen_vertex_glsl(version: &str, vulkan: bool) -> String {
          }}\n"
     )
 }
+
+/// A pipeline that draws the fullscreen triangle of `module` (which holds [`FULLSCREEN_WGSL`])
+/// with its `fragment` entry point into `targets`: no vertex buffer, no depth, `layout` or the
+/// one wgpu derives from the shader.
+pub fn render_pipeline(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    fragment: &str,
+    layout: Option<&wgpu::PipelineLayout>,
+    targets: &[Option<wgpu::ColorTargetState>],
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(fragment),
+        layout,
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("full_screen"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(fragment),
+            compilation_options: Default::default(),
+            targets,
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}

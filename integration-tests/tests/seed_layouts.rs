@@ -89,9 +89,10 @@ fn wgpu_rejection(gpu: &Gpu, formats: &[Format]) -> Option<String> {
         .collect();
     let shader = format!(
         "struct Outputs {{ {} }}\n\
-         @vertex fn vs() -> @builtin(position) vec4<f32> {{ return vec4<f32>(0.0); }}\n\
+         {}\n\
          @fragment fn fs() -> Outputs {{ var o: Outputs; return o; }}",
-        outputs.join(" ")
+        outputs.join(" "),
+        gbuffer_gpu::fullscreen::FULLSCREEN_WGSL
     );
     let device = &gpu.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -103,27 +104,7 @@ fn wgpu_rejection(gpu: &Gpu, formats: &[Format]) -> Option<String> {
         .map(|&format| Some(wgpu_format(format).into()))
         .collect();
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let _pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: None,
-        layout: None,
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: Default::default(),
-        depth_stencil: None,
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs"),
-            compilation_options: Default::default(),
-            targets: &targets,
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
+    let _pipeline = gbuffer_gpu::fullscreen::render_pipeline(device, &module, "fs", None, &targets);
     pollster::block_on(scope.pop()).map(|error| error.to_string())
 }
 

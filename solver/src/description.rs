@@ -359,15 +359,8 @@ impl SceneDescription {
                 format!("scene name `{}` {reason}", self.name),
             );
         }
-        if self.budget == 0 || self.budget % 32 != 0 {
-            report(
-                Setting::Budget,
-                format!(
-                    "budget must be a positive multiple of 32 bits (each word of tile memory is \
-                     32 bits), not {}",
-                    self.budget
-                ),
-            );
+        if let Err(problem) = gbuffer_codegen::layout::check_budget(self.budget) {
+            report(Setting::Budget, problem);
         }
         let precision = &self.precision;
         let positive = [

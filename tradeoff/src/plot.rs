@@ -24,11 +24,9 @@ pub enum Plot {
 
 /// A perceptually ordered colour map (dark blue, purple, orange, yellow) at t in [0, 1].
 fn colour_map(t: f64) -> [u8; 3] {
+    #[rustfmt::skip] // five stops of a small table
     const STOPS: [[f64; 3]; 5] = [
-        [13.0, 8.0, 135.0],
-        [126.0, 3.0, 168.0],
-        [204.0, 71.0, 120.0],
-        [248.0, 149.0, 64.0],
+        [13.0, 8.0, 135.0], [126.0, 3.0, 168.0], [204.0, 71.0, 120.0], [248.0, 149.0, 64.0],
         [240.0, 249.0, 33.0],
     ];
     let t = if t.is_finite() {
@@ -120,13 +118,9 @@ pub fn curves(path: &Path, series: &[&[(f64, f64)]]) -> std::io::Result<(f64, f6
 }
 
 /// The colours of a chart's series, in order; `CURVE_COLOURS` names them.
+#[rustfmt::skip] // six colours of a small table
 const SERIES_COLOURS: [[u8; 3]; 6] = [
-    [0, 0, 0],
-    [220, 50, 47],
-    [38, 139, 210],
-    [133, 153, 0],
-    [211, 54, 130],
-    [181, 137, 0],
+    [0, 0, 0], [220, 50, 47], [38, 139, 210], [133, 153, 0], [211, 54, 130], [181, 137, 0],
 ];
 
 /// The colour names of a chart's series (`curves`, `log_scatter`), for the report.

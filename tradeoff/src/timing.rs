@@ -333,29 +333,13 @@ pub fn gpu_time(
                     fragment_harness_with_chain(row_wgsl, chain).into(),
                 ),
             });
-            Pipeline::Render(
-                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                    label: Some("bench"),
-                    layout: Some(&pipeline_layout),
-                    vertex: wgpu::VertexState {
-                        module: &module,
-                        entry_point: Some("full_screen"),
-                        compilation_options: Default::default(),
-                        buffers: &[],
-                    },
-                    primitive: Default::default(),
-                    depth_stencil: None,
-                    multisample: Default::default(),
-                    fragment: Some(wgpu::FragmentState {
-                        module: &module,
-                        entry_point: Some("bench_fragment"),
-                        compilation_options: Default::default(),
-                        targets: &[Some(target_format.into())],
-                    }),
-                    multiview_mask: None,
-                    cache: None,
-                }),
-            )
+            Pipeline::Render(gbuffer_gpu::fullscreen::render_pipeline(
+                device,
+                &module,
+                "bench_fragment",
+                Some(&pipeline_layout),
+                &[Some(target_format.into())],
+            ))
         }
     };
     use wgpu::util::DeviceExt;
