@@ -49,6 +49,13 @@ pub fn float_edges() -> Vec<f32> {
         f32::INFINITY,
         f32::NEG_INFINITY,
     ];
+    // Ties of the small floats' denormals, (k + 0.5) steps, even and odd k: the exact
+    // conversions must round them to even on every translator and driver.
+    for (step, last) in [(-24, 1023), (-20, 63), (-19, 31)] {
+        for k in [0u32, 1, 2, 3, last / 2, last / 2 + 1, last - 1, last] {
+            edges.push((k as f32 + 0.5) * 2f32.powi(step));
+        }
+    }
     // Unorm rounding midpoints (k + 0.5) / (2^n - 1) and their f32 neighbours.
     for bits in [2u32, 8, 10, 16] {
         let max = (1u32 << bits) - 1;

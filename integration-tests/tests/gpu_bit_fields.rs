@@ -165,13 +165,7 @@ fn solved_layouts_match_the_mirror_on_the_adapter() {
     let Some(gpu) = gbuffer_testkit::gpu() else {
         return;
     };
-    let presets = gbuffer_testkit::workspace().join("solver/scenes");
-    let mut paths: Vec<_> = std::fs::read_dir(presets)
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .collect();
-    paths.sort();
-    for path in paths {
+    for path in gbuffer_testkit::scene_presets() {
         let solution = gbuffer_solver::file::read_and_solve(&path).unwrap();
         let layout = solution.layout;
         let wgsl = gbuffer_codegen::emit::wgsl::emit(&layout);

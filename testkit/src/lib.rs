@@ -102,6 +102,16 @@ pub fn workspace() -> std::path::PathBuf {
         .to_path_buf()
 }
 
+/// The solver's preset scene files (`solver/scenes/*.toml`), in order.
+pub fn scene_presets() -> Vec<std::path::PathBuf> {
+    let mut paths: Vec<std::path::PathBuf> = std::fs::read_dir(workspace().join("solver/scenes"))
+        .expect("solver/scenes is there")
+        .map(|entry| entry.expect("a readable folder entry").path())
+        .collect();
+    paths.sort();
+    paths
+}
+
 /// Exact and fast conversions side by side: each field chooses its own, the layout's are
 /// exact. rgba8 appears in both.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]

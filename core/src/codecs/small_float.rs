@@ -65,14 +65,21 @@ pub const WGSL_ROUND: &str = "\
 // MANTISSA_BITS bits of mantissa: to nearest even, denormals kept, saturating at the largest finite
 // code (never infinity); the caller maps NaN. Normal results round the f32 bits in integer
 // arithmetic, rebiasing the exponent in the same add (a carry moves into the exponent, as it
-// should). Denormal results scale the value by a power of two, exactly, and `round` it (to
-// nearest even). No step depends on how the adapter rounds. Each path gives at least the code
-// where the other applies (under 2^-14 the rebias wraps around; from 2^-14 up the scaled value
-// is at least the code, saturating in the conversion), so `min` picks the right one.
+// should). Denormal results scale the value by a power of two, exactly, and round it to
+// nearest even from its floor and fraction, both exact: not with `round`, whose direction at
+// an exact half a translator may leave to the driver (Tint writes GLSL's round(), which GLSL
+// ES leaves open at ties). No step depends on how the adapter rounds. Each path gives at least
+// the code where the other applies (under 2^-14 the rebias wraps around; from 2^-14 up the
+// scaled value is at least the code, saturating in the conversion), so `min` picks the right
+// one.
 fn PREFIX_LANES_round_to_NAME(magnitude: UINTS) -> UINTS {
     let odd = (magnitude >> SHIFT) & UINTS(1u);
     let normal = ((magnitude + ROUNDING_AND_REBIAS + odd) >> SHIFT) + SMALLEST_NORMAL;
-    let denormal = UINTS(round(bitcast<FLOATS>(magnitude) * DENORMAL_SCALE));
+    let scaled = bitcast<FLOATS>(magnitude) * DENORMAL_SCALE;
+    let whole = floor(scaled);
+    let fraction = scaled - whole;
+    let up = UINTS(fraction > FLOATS(0.5)) | (UINTS(fraction == FLOATS(0.5)) & UINTS(whole) & UINTS(1u));
+    let denormal = UINTS(whole) + up;
     return min(min(normal, denormal), MAX_CODE);
 }
 
