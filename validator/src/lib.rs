@@ -446,21 +446,15 @@ pub fn validate_everywhere(source: &str) -> Result<Validated, Problem> {
 mod tests {
     use super::*;
 
+    /// Parse errors come with their position, validation errors from the validator.
     #[test]
-    fn reports_parse_errors_with_their_position() {
-        let problem = validate_wgsl("fn f() -> u32 {\n    return 1.5 +;\n}\n")
-            .err()
-            .unwrap();
-        assert_eq!(problem.stage, Stage::Parse);
-        assert_eq!(problem.location.map(|(line, _)| line), Some(2));
-    }
-
-    #[test]
-    fn reports_validation_errors() {
-        let problem = validate_wgsl("fn f() -> u32 {\n    if true { return 1u; }\n}\n")
-            .err()
-            .unwrap();
-        assert_eq!(problem.stage, Stage::Validate);
+    fn reports_parse_and_validation_errors() {
+        let problem = |source: &str| validate_wgsl(source).err().unwrap();
+        let parse = problem("fn f() -> u32 {\n    return 1.5 +;\n}\n");
+        assert_eq!(parse.stage, Stage::Parse);
+        assert_eq!(parse.location.map(|(line, _)| line), Some(2));
+        let validation = problem("fn f() -> u32 {\n    if true { return 1u; }\n}\n");
+        assert_eq!(validation.stage, Stage::Validate);
     }
 
     #[test]

@@ -15,6 +15,12 @@ fn write(folder: &Path, name: &str, text: &str) -> PathBuf {
     path
 }
 
+/// `gbuffer validate` on `shader` fails with status 1: its standard error.
+fn failure(shader: &Path) -> String {
+    let output = validate().arg(shader).fails_with(1);
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
 #[test]
 fn a_shader_using_the_library_and_a_layout_file_is_valid_everywhere() {
     let output = validate()
@@ -75,8 +81,7 @@ fn a_wrong_return_is_placed_at_the_returned_expression() {
         "return.wgsl",
         "fn offset(y: vec2<f32>) -> f32 {\n    let unused = 1.0;\n    return y + vec2<f32>(1.0);\n}\n",
     );
-    let output = validate().arg(&shader).fails_with(1);
-    let stderr = String::from_utf8_lossy(&output.stderr);
+    let stderr = failure(&shader);
     assert!(
         stderr.starts_with(&format!("{}:3:12: error: ", shader.display())),
         "{stderr}"
@@ -100,8 +105,7 @@ fn include_problems_are_placed_at_the_include_line() {
         "a.wgsl",
         "fn f() {}\n#include <gbuffer/brdf>\n",
     );
-    let output = validate().arg(&shader).fails_with(1);
-    let stderr = String::from_utf8_lossy(&output.stderr);
+    let stderr = failure(&shader);
     assert!(
         stderr.starts_with(&format!(
             "{}:2:1: error: unknown WGSL module `brdf`",
@@ -137,8 +141,7 @@ fn problems_in_an_included_wgsl_file_name_that_file() {
         "main.wgsl",
         "#include \"common.wgsl\"\nfn main_helper() -> f32 { return helper(); }\n",
     );
-    let output = validate().arg(&shader).fails_with(1);
-    let stderr = String::from_utf8_lossy(&output.stderr);
+    let stderr = failure(&shader);
     // naga labels a return-type mismatch at the function and the value: the problem sits at
     // the value, in the included file.
     assert!(
