@@ -11,6 +11,9 @@ use crate::layout::Layout;
 pub const WEBGPU_BYTES_PER_SAMPLE_LIMIT: u32 = 32;
 /// WebGPU's default `maxColorAttachments`.
 pub const WEBGPU_COLOR_ATTACHMENT_LIMIT: usize = 8;
+/// WebGL2's colour attachments in wgpu (`Limits::downlevel_webgl2_defaults`): 4. Its bytes per
+/// sample are WebGPU's 32.
+pub const WEBGL2_COLOR_ATTACHMENT_LIMIT: usize = 4;
 
 /// The bytes per sample of a list of render targets, as WebGPU validates it: for each target
 /// in order, round the total up to its alignment, then add its cost.
@@ -184,7 +187,37 @@ impl fmt::Display for Report {
             out,
             "  packed: {} = {packed} bytes per sample: {verdict} the default limit",
             layout.packed_target_formats().join(" + ")
-        )
+        )?;
+        writeln!(out, "  {}", self.webgl2())
+    }
+}
+
+impl Report {
+    /// What WebGL2 (wgpu's `Limits::downlevel_webgl2_defaults`) says to the packed targets: one
+    /// line, naming the limit they pass or break.
+    pub fn webgl2(&self) -> String {
+        let targets = self.layout.targets();
+        let bytes = self.packed_targets_bytes();
+        let mut broken = Vec::new();
+        if targets > WEBGL2_COLOR_ATTACHMENT_LIMIT {
+            broken.push(format!(
+                "{targets} colour attachments, over max_color_attachments {WEBGL2_COLOR_ATTACHMENT_LIMIT}"
+            ));
+        }
+        if bytes > WEBGPU_BYTES_PER_SAMPLE_LIMIT {
+            broken.push(format!(
+                "{bytes} bytes per sample, over max_color_attachment_bytes_per_sample \
+                 {WEBGPU_BYTES_PER_SAMPLE_LIMIT}"
+            ));
+        }
+        match broken.is_empty() {
+            true => format!(
+                "WebGL2: the packed targets fit ({targets} of {WEBGL2_COLOR_ATTACHMENT_LIMIT} \
+                 colour attachments, {bytes} of {WEBGPU_BYTES_PER_SAMPLE_LIMIT} bytes per sample); \
+                 its GLSL ES 3.00 has fragment passes only"
+            ),
+            false => format!("WebGL2: the packed targets need {}", broken.join(" and ")),
+        }
     }
 }
 

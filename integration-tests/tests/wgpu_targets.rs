@@ -433,6 +433,48 @@ fn limit_errors_name_what_is_needed_against_what_is_allowed() {
     );
 }
 
+/// WebGL2's limits (wgpu's `downlevel_webgl2_defaults`): the report's WebGL2 line says what
+/// `check_limits` says, with the constants it prints being wgpu's.
+#[test]
+fn the_report_says_what_webgl2_allows() {
+    use gbuffer::packing::Report;
+    use gbuffer_codegen::report::{WEBGL2_COLOR_ATTACHMENT_LIMIT, WEBGPU_BYTES_PER_SAMPLE_LIMIT};
+    let webgl2 = wgpu::Limits::downlevel_webgl2_defaults();
+    assert_eq!(
+        webgl2.max_color_attachments as usize,
+        WEBGL2_COLOR_ATTACHMENT_LIMIT
+    );
+    assert_eq!(
+        webgl2.max_color_attachment_bytes_per_sample,
+        WEBGPU_BYTES_PER_SAMPLE_LIMIT
+    );
+    let verdicts = [
+        (
+            MobileMetallic::layout(),
+            MobileMetallic::check_limits(&webgl2).is_ok(),
+        ),
+        (
+            NineWords::layout(),
+            NineWords::check_limits(&webgl2).is_ok(),
+        ),
+        (
+            TwentyWords::layout(),
+            TwentyWords::check_limits(&webgl2).is_ok(),
+        ),
+    ];
+    for (layout, fits) in verdicts {
+        let line = Report::new(&layout).webgl2();
+        assert_eq!(line.contains("fit ("), fits, "{}: {line}", layout.name);
+    }
+    let twenty = Report::new(&TwentyWords::layout()).webgl2();
+    assert!(
+        twenty.contains("5 colour attachments, over max_color_attachments 4")
+            && twenty
+                .contains("80 bytes per sample, over max_color_attachment_bytes_per_sample 32"),
+        "{twenty}"
+    );
+}
+
 /// Whether wgpu accepts a G-buffer pipeline of `T`'s colour targets on `gpu`.
 fn wgpu_accepts_targets<T: GBufferTargets>(gpu: &Gpu) -> bool {
     let device = &gpu.device;
