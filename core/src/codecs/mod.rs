@@ -11,10 +11,11 @@
 //!
 //! # Adding a codec
 //!
-//! Write one file here with a unit struct that implements [`Codec`], and add one line to the
-//! list at the end of this file. The derive and layout files then accept its name, the WGSL
-//! and GLSL emitters write it, the Rust mirror packs it, and the report and the solver's
-//! catalogue list it. [`log_luminance`] was added this way.
+//! Write one file here that builds its [`Codec`] as a constant (`pub const CODEC: Codec =
+//! Codec::floats(...)`, with its mirror's functions and its WGSL), and add one line to the list
+//! at the end of this file. The derive and layout files then accept its name, the WGSL and GLSL
+//! emitters write it, the Rust mirror packs it, and where it offers light storage the solver's
+//! catalogue lists it. [`log_luminance`] was added this way.
 
 pub mod boolean;
 pub mod float32;
