@@ -266,6 +266,24 @@ mod tests {
         assert!(!wgsl.contains("module `colour`"));
     }
 
+    /// f16 comes in only where asked for: no module requires the one that enables it, and
+    /// the library composed without naming it enables nothing.
+    #[test]
+    fn only_naming_the_half_module_enables_f16() {
+        let enables_f16 = |module: &Module| !module.directives().is_empty();
+        let (half, others): (Vec<&Module>, Vec<&Module>) =
+            modules().iter().partition(|module| enables_f16(module));
+        assert_eq!(
+            half.iter().map(|module| module.name).collect::<Vec<_>>(),
+            ["mobile_half"]
+        );
+        let names: Vec<&str> = others.iter().map(|module| module.name).collect();
+        assert!(!compose(&names).unwrap().contains("enable f16;"));
+        assert!(compose(&["mobile_half"])
+            .unwrap()
+            .starts_with("enable f16;"));
+    }
+
     #[test]
     fn unknown_modules_are_named() {
         let error = compose(&["brdf"]).unwrap_err();

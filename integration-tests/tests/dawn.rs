@@ -197,6 +197,16 @@ fn every_wgsl() -> Vec<Value> {
         "the shading library composed",
         gbuffer::modules::compose(&names).unwrap(),
     ));
+    // What an adapter without shader-f16 composes: every module but the one that enables it.
+    let without_f16: Vec<&str> = modules
+        .iter()
+        .filter(|module| module.directives().is_empty())
+        .map(|module| module.name)
+        .collect();
+    jobs.push(compile(
+        "the shading library composed without f16",
+        gbuffer::modules::compose(&without_f16).unwrap(),
+    ));
     jobs
 }
 
