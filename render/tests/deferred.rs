@@ -66,38 +66,6 @@ fn every_gbuffer_renders_a_frame_that_matches_the_cpu_reference() {
     }
 }
 
-/// Against the lossless G-buffer a frame shows its layout's storage alone: the halves of
-/// Listing 2.7 come closer than the 8 and 10-bit channels of Listing 2.2, and neither is the
-/// lossless frame itself.
-#[test]
-fn finer_storage_comes_closer_to_the_lossless_gbuffer() {
-    let Some(renderer) = renderer() else {
-        return;
-    };
-    let frame = |layout| {
-        renderer
-            .render(&accurate(GBuffer::Packed(layout)))
-            .unwrap_or_else(|error| panic!("{error}"))
-    };
-    let lossless = frame(SeedLayout::Lossless);
-    let psnr = |layout| {
-        let comparison = compare(&frame(layout), &lossless);
-        eprintln!(
-            "{}: PSNR {:.2} dB, largest error {} against the lossless G-buffer",
-            layout.flag(),
-            comparison.psnr,
-            comparison.max_error
-        );
-        comparison.psnr
-    };
-    let (coarse, fine) = (
-        psnr(SeedLayout::MobileMetallic),
-        psnr(SeedLayout::FutureMetallic),
-    );
-    assert!(coarse.is_finite() && coarse > 40.0, "{coarse}");
-    assert!(fine > coarse, "{fine} <= {coarse}");
-}
-
 #[test]
 fn the_mobile_forms_render_close_to_the_accurate_reference() {
     let Some(renderer) = renderer() else {

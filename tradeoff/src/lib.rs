@@ -26,6 +26,16 @@ use gbuffer_gpu::adapter::{Gpu, Request};
 use plot::Plot;
 use rows::Row;
 
+/// Each seed layout's largest error over the study's surfaces, in 8-bit sRGB steps (its "whole
+/// layout" row), by the row's name (`Listing 2.2 (MobileMetallic)`): what the study predicts a
+/// layout costs the picture.
+pub fn layout_errors() -> Vec<(String, f64)> {
+    rows::layout_rows()
+        .into_iter()
+        .map(|row| (row.name, row.errors.max))
+        .collect()
+}
+
 /// A row's measurements besides its error.
 struct Measured {
     naga_expressions: usize,

@@ -813,7 +813,7 @@ impl SeedRow {
     }
 }
 
-fn layout_rows() -> Vec<Row> {
+pub(crate) fn layout_rows() -> Vec<Row> {
     use gbuffer::seed_layouts::{ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic};
     // Each layout by its own convention (`gbuffer::seed_conventions`), as the renderer stores it.
     let layouts = [
