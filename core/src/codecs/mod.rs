@@ -130,6 +130,26 @@ fn no_light_storage(_: f64) -> Vec<LightStorage> {
 }
 
 impl Codec {
+    /// A codec of these parts, without a fast form or light storage (the `with_` methods add
+    /// them).
+    const fn new(
+        name: &'static str,
+        scalar_kind: ScalarKind,
+        shape: Shape,
+        conversion: Conversion,
+        wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
+    ) -> Codec {
+        Codec {
+            name,
+            scalar_kind,
+            shape,
+            has_fast_form: false,
+            conversion,
+            wgsl,
+            light_storage: no_light_storage,
+        }
+    }
+
     /// A per-component codec of floats, `low` to `high` bits a component.
     pub const fn floats(
         name: &'static str,
@@ -137,15 +157,9 @@ impl Codec {
         (encode, decode): FloatConversions,
         wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
     ) -> Codec {
-        Codec {
-            name,
-            scalar_kind: ScalarKind::Float,
-            shape: Shape::PerComponent(low, high),
-            has_fast_form: false,
-            conversion: Conversion::Floats(encode, decode),
-            wgsl,
-            light_storage: no_light_storage,
-        }
+        let shape = Shape::PerComponent(low, high);
+        let conversion = Conversion::Floats(encode, decode);
+        Codec::new(name, ScalarKind::Float, shape, conversion, wgsl)
     }
 
     /// A per-component codec of integers (or bools) of `scalar_kind`, `low` to `high` bits a
@@ -153,16 +167,13 @@ impl Codec {
     pub const fn integers(
         name: &'static str,
         scalar_kind: ScalarKind,
-        widths: (u32, u32),
+        (low, high): (u32, u32),
         (encode, decode): IntegerConversions,
         wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
     ) -> Codec {
-        let floats = Codec::floats(name, widths, (|_, _| 0, |_, _| 0.0), wgsl);
-        Codec {
-            scalar_kind,
-            conversion: Conversion::Integers(encode, decode),
-            ..floats
-        }
+        let shape = Shape::PerComponent(low, high);
+        let conversion = Conversion::Integers(encode, decode);
+        Codec::new(name, scalar_kind, shape, conversion, wgsl)
     }
 
     /// A codec of a whole `Vec3`, of `shape`.
@@ -172,12 +183,8 @@ impl Codec {
         (encode, decode): VectorConversions,
         wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
     ) -> Codec {
-        let floats = Codec::floats(name, (0, 0), (|_, _| 0, |_, _| 0.0), wgsl);
-        Codec {
-            shape,
-            conversion: Conversion::Vector(encode, decode),
-            ..floats
-        }
+        let conversion = Conversion::Vector(encode, decode);
+        Codec::new(name, ScalarKind::Float, shape, conversion, wgsl)
     }
 
     /// The codec with another shape.
