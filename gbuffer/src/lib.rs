@@ -63,6 +63,7 @@
 // The derive's expansion names `::gbuffer`; this lets the seed layouts below use it too.
 extern crate self as gbuffer;
 
+pub mod engine_conventions;
 pub mod engine_layouts;
 pub mod modules;
 pub mod seed_conventions;

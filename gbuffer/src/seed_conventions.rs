@@ -7,7 +7,7 @@
 //! Each convention is written twice, side by side: as WGSL (`encode_texel` from a [`Surface`],
 //! `decode_texel` to the [`Shading`] the lighting pass reads, over the shading library's
 //! `colour`, `hdr`, `normals`, `material` and `constants` modules and [`SURFACE_WGSL`]) and as
-//! its Rust mirror ([`SeedConvention::encode`], [`SeedConvention::decode`]) over
+//! its Rust mirror ([`SurfaceConvention::encode`], [`SurfaceConvention::decode`]) over
 //! [`crate::shading::mirror`], in the same order of operations.
 
 use crate::glam::{Vec2, Vec3};
@@ -102,8 +102,9 @@ fn metallic_workflow(base_colour: Vec3, metallic: f32) -> m::material::MaterialC
     m::material::metallic_workflow(base_colour, metallic, m::constants::DIELECTRIC_F0)
 }
 
-/// A seed layout's convention: how a [`Surface`] goes into it and a [`Shading`] comes out.
-pub trait SeedConvention: GBufferLayout {
+/// A layout's convention: how a [`Surface`] goes into it and a [`Shading`] comes out (the seed
+/// layouts' here, the engine layouts' in [`crate::engine_conventions`]).
+pub trait SurfaceConvention: GBufferLayout {
     /// `fn encode_texel(s: Surface) -> <Layout>`.
     const ENCODE_WGSL: &'static str;
     /// `fn decode_texel(t: <Layout>) -> Shading`.
@@ -114,7 +115,7 @@ pub trait SeedConvention: GBufferLayout {
     fn decode(&self) -> Shading;
 }
 
-impl SeedConvention for MobileMetallic {
+impl SurfaceConvention for MobileMetallic {
     const ENCODE_WGSL: &'static str = "fn encode_texel(s: Surface) -> MobileMetallic {
     return MobileMetallic(scale_hdr_to_unit(s.light, LIGHT_SCALE), s.distance, vec4<f32>(normal_to_unorm(s.normal), s.roughness), vec4<f32>(linear_to_pseudo_gamma(s.base_colour), s.metallic));
 }";
@@ -147,7 +148,7 @@ impl SeedConvention for MobileMetallic {
     }
 }
 
-impl SeedConvention for SpecularWorkflow {
+impl SurfaceConvention for SpecularWorkflow {
     const ENCODE_WGSL: &'static str = "fn encode_texel(s: Surface) -> SpecularWorkflow {
     let colours = metallic_workflow(s.base_colour, s.metallic, DIELECTRIC_F0);
     return SpecularWorkflow(scale_hdr_to_unit(s.light, LIGHT_SCALE), s.distance, vec4<f32>(normal_to_unorm(s.normal), s.roughness), linear_to_pseudo_gamma(colours.diffuse), linear_to_pseudo_gamma(colours.f0));
@@ -178,7 +179,7 @@ impl SeedConvention for SpecularWorkflow {
     }
 }
 
-impl SeedConvention for FutureMetallic {
+impl SurfaceConvention for FutureMetallic {
     const ENCODE_WGSL: &'static str = "fn encode_texel(s: Surface) -> FutureMetallic {
     return FutureMetallic(s.position.x, s.position.y, s.position.z, s.light.rg, vec2<f32>(s.light.b, s.normal.x), s.normal.yz, vec2<f32>(s.roughness, s.metallic), s.base_colour);
 }";
@@ -220,7 +221,7 @@ impl SeedConvention for FutureMetallic {
     }
 }
 
-impl SeedConvention for FutureSpecular {
+impl SurfaceConvention for FutureSpecular {
     const ENCODE_WGSL: &'static str = "fn encode_texel(s: Surface) -> FutureSpecular {
     let colours = metallic_workflow(s.base_colour, s.metallic, DIELECTRIC_F0);
     return FutureSpecular(s.position.x, s.position.y, s.position.z, s.light.rg, vec2<f32>(s.light.b, s.roughness), normal_to_unorm(s.normal), colours.diffuse, colours.f0);
@@ -257,7 +258,7 @@ impl SeedConvention for FutureSpecular {
     }
 }
 
-impl SeedConvention for ArmTileBlock {
+impl SurfaceConvention for ArmTileBlock {
     const ENCODE_WGSL: &'static str = "fn encode_texel(s: Surface) -> ArmTileBlock {
     return ArmTileBlock(s.light, linear_to_pseudo_gamma(s.base_colour), normal_to_unorm(s.normal), vec2<f32>(s.metallic, s.roughness));
 }";
@@ -292,7 +293,7 @@ impl SeedConvention for ArmTileBlock {
 
 /// A surface through a seed layout as stored: encoded, packed, unpacked and decoded, the Rust
 /// mirror of what the G-buffer and lighting passes do to it.
-pub fn round_trip<L: SeedConvention>(surface: &Surface) -> Shading {
+pub fn round_trip<L: SurfaceConvention>(surface: &Surface) -> Shading {
     L::unpack(&L::encode(surface).pack()).decode()
 }
 

@@ -15,7 +15,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use gbuffer::packing::{Conversions, Layout};
 use gbuffer::GBufferLayout;
 use gbuffer_codegen::emit::wgsl::emit_with;
-use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_render::shaders::{self, Positions};
 use gbuffer_testkit::{AllFormats, EveryEncoding, FastBitFields, FastFormats, MixedConversions};
@@ -176,7 +176,7 @@ fn every_wgsl() -> Vec<Value> {
             gbuffer::modules::compose(&[module.name]).unwrap(),
         ));
     }
-    for layout in SeedLayout::ALL {
+    for layout in PackedLayout::ALL {
         let options = Options {
             gbuffer: GBuffer::Packed(layout),
             sun: SunForm::Ggx,

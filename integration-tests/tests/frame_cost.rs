@@ -1,13 +1,13 @@
 //! What a layout costs the picture: each seed layout's frame against the lossless G-buffer's
 //! (every quantity an f32), in the order the trade-off study's whole-layout rows predict.
 
-use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::compare;
 use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_render::wgpu::Renderer;
 
 /// The frame through a layout's G-buffer, small: 160x90.
-fn options(layout: SeedLayout) -> Options {
+fn options(layout: PackedLayout) -> Options {
     Options {
         gbuffer: GBuffer::Packed(layout),
         sun: SunForm::Ggx,
@@ -32,9 +32,9 @@ fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
             .render(&options(layout))
             .unwrap_or_else(|error| panic!("{error}"))
     };
-    let lossless = render(SeedLayout::Lossless);
+    let lossless = render(PackedLayout::Lossless);
     let predictions = gbuffer_tradeoff::layout_errors();
-    let predicted = |layout: SeedLayout| {
+    let predicted = |layout: PackedLayout| {
         let name = format!("({})", layout.layout().name);
         predictions
             .iter()
@@ -42,11 +42,11 @@ fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
             .unwrap_or_else(|| panic!("no trade-off row for {name}"))
             .1
     };
-    let mut measured: Vec<(f64, f64, SeedLayout)> = [
-        SeedLayout::MobileMetallic,
-        SeedLayout::ArmTileBlock,
-        SeedLayout::FutureMetallic,
-        SeedLayout::FutureSpecular,
+    let mut measured: Vec<(f64, f64, PackedLayout)> = [
+        PackedLayout::MobileMetallic,
+        PackedLayout::ArmTileBlock,
+        PackedLayout::FutureMetallic,
+        PackedLayout::FutureSpecular,
     ]
     .into_iter()
     .map(|layout| {

@@ -9,7 +9,7 @@
 //! On a CPU rasteriser (llvmpipe, lavapipe) there is no tile memory: its times are a CPU's,
 //! and the traffic the fused paths save is counted, not felt.
 
-use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::compare;
 use gbuffer_render::on_tile::{Path, TileOptions};
@@ -86,7 +86,7 @@ fn main() {
         "{:<28} {:>6} {:>11} {:>11} {:>6} {:>12} {:>12}",
         "G-buffer / path", "passes", "MB loaded", "MB stored", "BU", "1280x720 ms", "1920x1080 ms"
     );
-    let gbuffers = SeedLayout::ALL
+    let gbuffers = PackedLayout::ALL
         .into_iter()
         .map(GBuffer::Packed)
         .chain([GBuffer::Classic]);
@@ -101,7 +101,7 @@ fn main() {
     }
 
     // The on-tile backends, for the layouts they keep on tile.
-    for layout in [SeedLayout::MobileMetallic, SeedLayout::FutureMetallic] {
+    for layout in [PackedLayout::MobileMetallic, PackedLayout::FutureMetallic] {
         let tile = |path, size| TileOptions {
             options: options(GBuffer::Packed(layout), size),
             path,
@@ -154,7 +154,7 @@ fn main() {
         "{:<18} {:<7} {:<7} {:>9} {:>13}",
         "G-buffer", "sun", "IBL", "PSNR dB", "largest error"
     );
-    for gbuffer in SeedLayout::ALL
+    for gbuffer in PackedLayout::ALL
         .into_iter()
         .map(GBuffer::Packed)
         .chain([GBuffer::Classic])

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use gbuffer_render::gbuffers::{GBuffer, LayoutArgument, SeedLayout};
+use gbuffer_render::gbuffers::{GBuffer, LayoutArgument, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::{compare, difference, write_png};
 use gbuffer_render::on_tile::{Backend, Path, TileOptions};
@@ -217,7 +217,7 @@ fn main() -> ExitCode {
             // The same scene through the lossless G-buffer, on wgpu (the fused paths cannot
             // keep its twelve words on tile): what the layout alone costs the picture.
             let lossless_options = Options {
-                gbuffer: GBuffer::Packed(SeedLayout::Lossless),
+                gbuffer: GBuffer::Packed(PackedLayout::Lossless),
                 ..options.clone()
             };
             eprintln!("rendering through the lossless G-buffer...");

@@ -1,37 +1,43 @@
-//! The G-buffers the renderer can use: any seed layout, packed into `Rgba32Uint` targets by
-//! the generated WGSL; a layout solved for a scene description, packed the same way; or the
-//! classic unpacked set of native targets a user writes without this library. Each seed
-//! layout brings the WGSL that stores a surface in its fields and reads the shading inputs
-//! back, by the conventions of its source; a solved layout brings its own (`gbuffer_solver::texel`).
+//! The G-buffers the renderer can use: a packed layout (a seed layout, an engine's, the coarse
+//! yardstick or the lossless one) in `Rgba32Uint` targets by the generated WGSL; a layout solved
+//! for a scene description, packed the same way; or the classic unpacked set of native targets a
+//! user writes without this library. Each packed layout brings the WGSL that stores a surface
+//! in its fields and reads the shading inputs back, by its convention
+//! ([`gbuffer::seed_conventions`], [`gbuffer::engine_conventions`]); a solved layout brings its
+//! own (`gbuffer_solver::texel`).
 
 use std::sync::Arc;
 
+use gbuffer::engine_layouts::{BevyDeferred, HdrpLit};
 use gbuffer::packing::{Layout, PackedTarget};
-use gbuffer::seed_conventions::SeedConvention;
+use gbuffer::seed_conventions::SurfaceConvention;
 use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
-use gbuffer::GBufferLayout;
 use gbuffer_solver::{Features, Solution};
 
+use crate::coarse::CoarseNormals;
 use crate::lossless::Lossless;
 
 /// Where the G-buffer pass writes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum GBuffer {
-    /// A seed layout, packed into `Rgba32Uint` targets.
-    Packed(SeedLayout),
+    /// A packed layout in `Rgba32Uint` targets, the reference scene.
+    Packed(PackedLayout),
     /// Separate native targets: Rgba16Float light, Rgba8Unorm normal and roughness,
     /// Rgba8UnormSrgb base colour and metallic.
     Classic,
     /// The layout solved for a scene description, packed into `Rgba32Uint` targets: the
     /// scene shows the description's features and the lighting pass has only their terms.
     Solved(Arc<Solution>),
+    /// The lossless G-buffer ([`PackedLayout::Lossless`]) of a scene showing these features,
+    /// lit by the full lighting pass: what a solved layout's frame is held against.
+    LosslessScene(Features),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-/// The seed layouts the renderer can use.
-pub enum SeedLayout {
+/// The packed layouts the renderer can use.
+pub enum PackedLayout {
     /// GPU Pro 7 Listing 2.2.
     MobileMetallic,
     /// GPU Pro 7 Listing 2.1.
@@ -42,19 +48,62 @@ pub enum SeedLayout {
     FutureSpecular,
     /// Arm's pixel local storage block.
     ArmTileBlock,
-    /// Not a seed layout: every quantity as an f32 ([`crate::lossless`]), what a layout's
-    /// frame is held against. Not in [`SeedLayout::ALL`].
+    /// Bevy's deferred G-buffer, its WebGL2 form ([`gbuffer::engine_layouts::BevyDeferred`]).
+    BevyDeferred,
+    /// Unity HDRP's Lit G-buffer ([`gbuffer::engine_layouts::HdrpLit`]).
+    HdrpLit,
+    /// Not a shipped layout: Listing 2.2 with 2 x 8-bit octahedral normals
+    /// ([`crate::coarse`]), a layout the picture should show.
+    CoarseNormals,
+    /// Not a shipped layout: every quantity as an f32 ([`crate::lossless`]), what a layout's
+    /// frame is held against.
     Lossless,
 }
 
-impl SeedLayout {
+/// What the renderer takes of a layout: its model, its generated WGSL, and its convention's
+/// `encode_texel` and `decode_texel`.
+struct Entry {
+    layout: Layout,
+    wgsl: &'static str,
+    encode_wgsl: &'static str,
+    decode_wgsl: &'static str,
+}
+
+impl Entry {
+    fn of<L: SurfaceConvention>() -> Entry {
+        Entry {
+            layout: L::layout(),
+            wgsl: L::WGSL,
+            encode_wgsl: L::ENCODE_WGSL,
+            decode_wgsl: L::DECODE_WGSL,
+        }
+    }
+}
+
+impl PackedLayout {
     /// Every seed layout.
-    pub const ALL: [SeedLayout; 5] = [
-        SeedLayout::MobileMetallic,
-        SeedLayout::SpecularWorkflow,
-        SeedLayout::FutureMetallic,
-        SeedLayout::FutureSpecular,
-        SeedLayout::ArmTileBlock,
+    pub const SEEDS: [PackedLayout; 5] = [
+        PackedLayout::MobileMetallic,
+        PackedLayout::SpecularWorkflow,
+        PackedLayout::FutureMetallic,
+        PackedLayout::FutureSpecular,
+        PackedLayout::ArmTileBlock,
+    ];
+
+    /// The engine layouts.
+    pub const ENGINES: [PackedLayout; 2] = [PackedLayout::BevyDeferred, PackedLayout::HdrpLit];
+
+    /// Every packed layout: the seeds, the engines', the coarse one and the lossless one.
+    pub const ALL: [PackedLayout; 9] = [
+        PackedLayout::MobileMetallic,
+        PackedLayout::SpecularWorkflow,
+        PackedLayout::FutureMetallic,
+        PackedLayout::FutureSpecular,
+        PackedLayout::ArmTileBlock,
+        PackedLayout::BevyDeferred,
+        PackedLayout::HdrpLit,
+        PackedLayout::CoarseNormals,
+        PackedLayout::Lossless,
     ];
 
     /// The command-line name, e.g. `mobile-metallic`.
@@ -62,41 +111,38 @@ impl SeedLayout {
         crate::flag(&self)
     }
 
+    fn entry(self) -> Entry {
+        match self {
+            PackedLayout::MobileMetallic => Entry::of::<MobileMetallic>(),
+            PackedLayout::SpecularWorkflow => Entry::of::<SpecularWorkflow>(),
+            PackedLayout::FutureMetallic => Entry::of::<FutureMetallic>(),
+            PackedLayout::FutureSpecular => Entry::of::<FutureSpecular>(),
+            PackedLayout::ArmTileBlock => Entry::of::<ArmTileBlock>(),
+            PackedLayout::BevyDeferred => Entry::of::<BevyDeferred>(),
+            PackedLayout::HdrpLit => Entry::of::<HdrpLit>(),
+            PackedLayout::CoarseNormals => Entry::of::<CoarseNormals>(),
+            PackedLayout::Lossless => Entry::of::<Lossless>(),
+        }
+    }
+
     /// Its layout.
     pub fn layout(self) -> Layout {
-        match self {
-            SeedLayout::MobileMetallic => MobileMetallic::layout(),
-            SeedLayout::SpecularWorkflow => SpecularWorkflow::layout(),
-            SeedLayout::FutureMetallic => FutureMetallic::layout(),
-            SeedLayout::FutureSpecular => FutureSpecular::layout(),
-            SeedLayout::ArmTileBlock => ArmTileBlock::layout(),
-            SeedLayout::Lossless => Lossless::layout(),
-        }
+        self.entry().layout
     }
 
     /// Its generated WGSL.
     pub fn wgsl(self) -> &'static str {
-        match self {
-            SeedLayout::MobileMetallic => MobileMetallic::WGSL,
-            SeedLayout::SpecularWorkflow => SpecularWorkflow::WGSL,
-            SeedLayout::FutureMetallic => FutureMetallic::WGSL,
-            SeedLayout::FutureSpecular => FutureSpecular::WGSL,
-            SeedLayout::ArmTileBlock => ArmTileBlock::WGSL,
-            SeedLayout::Lossless => Lossless::WGSL,
-        }
+        self.entry().wgsl
     }
 
-    /// `fn encode_texel(surface: Surface) -> <Name>`: the layout's convention
-    /// ([`gbuffer::seed_conventions`]).
+    /// `fn encode_texel(surface: Surface) -> <Name>`: the layout's convention.
     pub fn encode_wgsl(self) -> &'static str {
-        match self {
-            SeedLayout::MobileMetallic => MobileMetallic::ENCODE_WGSL,
-            SeedLayout::SpecularWorkflow => SpecularWorkflow::ENCODE_WGSL,
-            SeedLayout::FutureMetallic => FutureMetallic::ENCODE_WGSL,
-            SeedLayout::FutureSpecular => FutureSpecular::ENCODE_WGSL,
-            SeedLayout::ArmTileBlock => ArmTileBlock::ENCODE_WGSL,
-            SeedLayout::Lossless => Lossless::ENCODE_WGSL,
-        }
+        self.entry().encode_wgsl
+    }
+
+    /// `fn decode_texel(t: <Name>) -> Shading`: the inverse of `encode_texel`.
+    pub fn decode_wgsl(self) -> &'static str {
+        self.entry().decode_wgsl
     }
 
     /// What the on-tile paths need beyond `encode_texel` and `decode_texel`, for layouts that
@@ -106,7 +152,7 @@ impl SeedLayout {
     /// error says why another layout cannot be kept on tile by this renderer.
     pub fn on_tile_wgsl(self) -> Result<&'static str, String> {
         match self {
-            SeedLayout::MobileMetallic => Ok("fn texel_position(t: MobileMetallic, direction: vec3<f32>) -> vec3<f32> {
+            PackedLayout::MobileMetallic => Ok("fn texel_position(t: MobileMetallic, direction: vec3<f32>) -> vec3<f32> {
     return SCENE_EYE + direction * t.depth;
 }
 
@@ -123,7 +169,7 @@ fn paint_texel(t: MobileMetallic, decal: u32, weight: f32) -> MobileMetallic {
     painted.normals_roughness.w = paint_roughness(t.normals_roughness.w, decal, weight);
     return painted;
 }"),
-            SeedLayout::FutureMetallic => Ok("fn texel_position(t: FutureMetallic, direction: vec3<f32>) -> vec3<f32> {
+            PackedLayout::FutureMetallic => Ok("fn texel_position(t: FutureMetallic, direction: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(t.position_x, t.position_y, t.position_z);
 }
 
@@ -140,17 +186,25 @@ fn paint_texel(t: FutureMetallic, decal: u32, weight: f32) -> FutureMetallic {
     painted.roughness_metallic.x = paint_roughness(t.roughness_metallic.x, decal, weight);
     return painted;
 }"),
-            SeedLayout::SpecularWorkflow | SeedLayout::FutureSpecular => Err(format!(
+            PackedLayout::SpecularWorkflow | PackedLayout::FutureSpecular => Err(format!(
                 "layout `{}` stores diffuse and specular colour, not the base colour the decals \
                  paint in place; keep mobile-metallic or future-metallic on tile",
                 self.flag()
             )),
-            SeedLayout::ArmTileBlock => Err(format!(
+            PackedLayout::BevyDeferred | PackedLayout::HdrpLit | PackedLayout::CoarseNormals => {
+                Err(format!(
+                    "layout `{}` is not kept on tile by this renderer (its on-tile paths need \
+                     `with_light` and `paint_texel` for the layout); keep mobile-metallic or \
+                     future-metallic on tile, or render it on --backend wgpu",
+                    self.flag()
+                ))
+            }
+            PackedLayout::ArmTileBlock => Err(format!(
                 "layout `{}` stores neither depth nor position, which the decals and point \
                  lights read on tile; keep mobile-metallic or future-metallic on tile",
                 self.flag()
             )),
-            SeedLayout::Lossless => Err(
+            PackedLayout::Lossless => Err(
                 "the lossless G-buffer's twelve words are more than the fused paths keep on \
                  tile: it renders on --backend wgpu"
                     .to_string(),
@@ -162,7 +216,7 @@ fn paint_texel(t: FutureMetallic, decal: u32, weight: f32) -> FutureMetallic {
     /// writes only the attachments that hold them.
     pub fn on_tile_fields(self) -> (&'static [&'static str], &'static [&'static str]) {
         match self {
-            SeedLayout::FutureMetallic => (
+            PackedLayout::FutureMetallic => (
                 &["light_accumulation_rg", "light_accumulation_b_normal_x"],
                 &["roughness_metallic", "albedo_or_reflectance"],
             ),
@@ -172,26 +226,13 @@ fn paint_texel(t: FutureMetallic, decal: u32, weight: f32) -> FutureMetallic {
             ),
         }
     }
-
-    /// `fn decode_texel(t: <Name>) -> Shading`: the inverse of `encode_texel`
-    /// ([`gbuffer::seed_conventions`]).
-    pub fn decode_wgsl(self) -> &'static str {
-        match self {
-            SeedLayout::MobileMetallic => MobileMetallic::DECODE_WGSL,
-            SeedLayout::SpecularWorkflow => SpecularWorkflow::DECODE_WGSL,
-            SeedLayout::FutureMetallic => FutureMetallic::DECODE_WGSL,
-            SeedLayout::FutureSpecular => FutureSpecular::DECODE_WGSL,
-            SeedLayout::ArmTileBlock => ArmTileBlock::DECODE_WGSL,
-            SeedLayout::Lossless => Lossless::DECODE_WGSL,
-        }
-    }
 }
 
-/// What `--layout` names: a seed layout or `classic` (the unpacked native targets).
+/// What `--layout` names: a packed layout or `classic` (the unpacked native targets).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LayoutArgument {
-    /// A seed layout, packed.
-    Seed(SeedLayout),
+    /// A packed layout.
+    Packed(PackedLayout),
     /// The classic unpacked targets.
     Classic,
 }
@@ -199,19 +240,22 @@ pub enum LayoutArgument {
 impl clap::ValueEnum for LayoutArgument {
     fn value_variants<'a>() -> &'a [Self] {
         &[
-            LayoutArgument::Seed(SeedLayout::MobileMetallic),
-            LayoutArgument::Seed(SeedLayout::SpecularWorkflow),
-            LayoutArgument::Seed(SeedLayout::FutureMetallic),
-            LayoutArgument::Seed(SeedLayout::FutureSpecular),
-            LayoutArgument::Seed(SeedLayout::ArmTileBlock),
-            LayoutArgument::Seed(SeedLayout::Lossless),
+            LayoutArgument::Packed(PackedLayout::MobileMetallic),
+            LayoutArgument::Packed(PackedLayout::SpecularWorkflow),
+            LayoutArgument::Packed(PackedLayout::FutureMetallic),
+            LayoutArgument::Packed(PackedLayout::FutureSpecular),
+            LayoutArgument::Packed(PackedLayout::ArmTileBlock),
+            LayoutArgument::Packed(PackedLayout::BevyDeferred),
+            LayoutArgument::Packed(PackedLayout::HdrpLit),
+            LayoutArgument::Packed(PackedLayout::CoarseNormals),
+            LayoutArgument::Packed(PackedLayout::Lossless),
             LayoutArgument::Classic,
         ]
     }
 
     fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
         match self {
-            LayoutArgument::Seed(layout) => layout.to_possible_value(),
+            LayoutArgument::Packed(layout) => layout.to_possible_value(),
             LayoutArgument::Classic => Some(clap::builder::PossibleValue::new("classic")),
         }
     }
@@ -220,37 +264,49 @@ impl clap::ValueEnum for LayoutArgument {
 impl From<LayoutArgument> for GBuffer {
     fn from(argument: LayoutArgument) -> GBuffer {
         match argument {
-            LayoutArgument::Seed(layout) => GBuffer::Packed(layout),
+            LayoutArgument::Packed(layout) => GBuffer::Packed(layout),
             LayoutArgument::Classic => GBuffer::Classic,
         }
     }
 }
 
 impl GBuffer {
-    /// The name in messages: a seed layout's command-line name, `classic`, or a solved
+    /// The name in messages: a packed layout's command-line name, `classic`, or a solved
     /// layout's name.
     pub fn name(&self) -> String {
         match self {
-            GBuffer::Packed(layout) => layout.flag(),
             GBuffer::Classic => "classic".to_string(),
             GBuffer::Solved(solution) => solution.layout.name.clone(),
+            GBuffer::Packed(layout) => layout.flag(),
+            GBuffer::LosslessScene(_) => PackedLayout::Lossless.flag(),
+        }
+    }
+
+    /// The packed layout with its convention, if the G-buffer has one (the lossless scene's is
+    /// [`PackedLayout::Lossless`]).
+    pub fn packed_layout(&self) -> Option<PackedLayout> {
+        match self {
+            GBuffer::Packed(layout) => Some(*layout),
+            GBuffer::LosslessScene(_) => Some(PackedLayout::Lossless),
+            GBuffer::Classic | GBuffer::Solved(_) => None,
         }
     }
 
     /// The packed layout, if the G-buffer is packed.
     pub fn layout(&self) -> Option<Layout> {
         match self {
-            GBuffer::Packed(layout) => Some(layout.layout()),
-            GBuffer::Classic => None,
             GBuffer::Solved(solution) => Some(solution.layout.clone()),
+            other => other.packed_layout().map(PackedLayout::layout),
         }
     }
 
-    /// What the scene shows: a solved layout's features, else the reference scene's.
+    /// What the scene shows: a solved layout's features or the lossless scene's, else the
+    /// reference scene's.
     pub fn features(&self) -> Features {
         match self {
             GBuffer::Solved(solution) => solution.scene.features,
-            _ => crate::scene::reference_features(),
+            GBuffer::LosslessScene(features) => *features,
+            GBuffer::Packed(_) | GBuffer::Classic => crate::scene::reference_features(),
         }
     }
 

@@ -8,6 +8,7 @@
 //! translated to GLSL by [`glsl`] for GLES and Vulkan), and the [`recording`] of a frame's
 //! passes, from which its memory traffic is counted.
 
+pub mod coarse;
 pub mod gbuffers;
 pub mod gles;
 pub mod glsl;

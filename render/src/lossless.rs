@@ -8,7 +8,7 @@
 //! it renders on wgpu, through memory.
 
 use gbuffer::glam::Vec3;
-use gbuffer::seed_conventions::{SeedConvention, Shading, Surface};
+use gbuffer::seed_conventions::{Shading, Surface, SurfaceConvention};
 use gbuffer::shading::mirror as m;
 use gbuffer::GBufferLayout;
 
@@ -54,7 +54,7 @@ pub struct Lossless {
     pub metallic: f32,
 }
 
-impl SeedConvention for Lossless {
+impl SurfaceConvention for Lossless {
     const ENCODE_WGSL: &'static str = "fn encode_texel(s: Surface) -> Lossless {
     return Lossless(s.light.r, s.light.g, s.light.b, s.distance, s.normal.x, s.normal.y, s.normal.z, s.roughness, s.base_colour.r, s.base_colour.g, s.base_colour.b, s.metallic);
 }";

@@ -22,7 +22,7 @@
 
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 
-use crate::gbuffers::{GBuffer, SeedLayout};
+use crate::gbuffers::{GBuffer, PackedLayout};
 use crate::options::Options;
 use crate::shaders::{self, library, INPUTS_WGSL, VOLUME_WGSL};
 
@@ -148,7 +148,7 @@ impl Stage {
     /// it does not (and keeps them out of a llvmpipe bug, see the README).
     pub fn writes(
         self,
-        layout: SeedLayout,
+        layout: PackedLayout,
         attachments: usize,
         words_per_attachment: usize,
     ) -> Vec<bool> {
@@ -213,9 +213,10 @@ pub fn texel_struct_name(layout: &gbuffer::packing::Layout) -> Result<String, St
 }
 
 /// The seed layout of `options`, if it can be kept on tile (the error says why not).
-pub fn tile_layout(options: &Options) -> Result<SeedLayout, String> {
+pub fn tile_layout(options: &Options) -> Result<PackedLayout, String> {
     match &options.gbuffer {
         GBuffer::Packed(layout) => layout.on_tile_wgsl().map(|_| *layout),
+        GBuffer::LosslessScene(_) => PackedLayout::Lossless.on_tile_wgsl().map(|_| PackedLayout::Lossless),
         other => Err(format!(
             "the on-tile paths render the seed layouts mobile-metallic and future-metallic, not `{}`",
             other.name()
@@ -295,7 +296,7 @@ fn translation_entry(@builtin(position) position: vec4<f32>) -> @location(0) vec
 /// The WGSL the fused paths translate: the library, the scene, the inputs, the layout and its
 /// on-tile functions, the lighting, the vertex shaders and the stages. `y_sign` is the
 /// backend's clip-space y (both GL and Vulkan render with -1).
-pub fn fused_wgsl(options: &Options, layout: SeedLayout, y_sign: f32) -> String {
+pub fn fused_wgsl(options: &Options, layout: PackedLayout, y_sign: f32) -> String {
     let on_tile = layout
         .on_tile_wgsl()
         .expect("tile_layout checked the layout");

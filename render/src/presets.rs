@@ -9,7 +9,7 @@ use gbuffer_solver::lighting::Forms;
 use gbuffer_solver::Solution;
 use gbuffer_validator::cost::Cost;
 
-use crate::gbuffers::{GBuffer, SeedLayout};
+use crate::gbuffers::{GBuffer, PackedLayout};
 use crate::image::compare;
 use crate::options::Options;
 use crate::reference;
@@ -58,7 +58,7 @@ pub fn lighting_cost(options: &Options) -> Result<Cost, String> {
 /// what the presets are specialised from.
 pub fn unspecialised_options(forms: Forms, width: u32, height: u32) -> Options {
     Options {
-        gbuffer: GBuffer::Packed(SeedLayout::MobileMetallic),
+        gbuffer: GBuffer::Packed(PackedLayout::MobileMetallic),
         sun: forms.sun,
         ibl: forms.ibl,
         width,

@@ -193,7 +193,8 @@ fn read_packed_targets(layout: &Layout) -> (String, String) {
 /// (wgpu 1, GL and Vulkan -1).
 pub fn gbuffer_wgsl(options: &Options, y_sign: f32) -> String {
     let (layout_wgsl, encode, output_type) = match &options.gbuffer {
-        GBuffer::Packed(layout) => {
+        GBuffer::Packed(_) | GBuffer::LosslessScene(_) => {
+            let layout = options.gbuffer.packed_layout().expect("a packed layout");
             let (encode, output_type) = write_packed_targets(&layout.layout());
             (
                 format!("{}\n{}", layout.wgsl(), layout.encode_wgsl()),
@@ -278,7 +279,8 @@ pub fn lighting_pass_wgsl(options: &Options, positions: Positions) -> Result<Str
     // `sample_gbuffer(pixel)`: whether a surface is there, and what the lighting reads of it.
     let (bindings, sample) = match &options.gbuffer {
         GBuffer::Solved(solution) => return Ok(solved_lighting_wgsl(solution, options)),
-        GBuffer::Packed(layout) => {
+        GBuffer::Packed(_) | GBuffer::LosslessScene(_) => {
+            let layout = options.gbuffer.packed_layout().expect("a packed layout");
             let model = layout.layout();
             let (bindings, targets) = read_packed_targets(&model);
             let (name, snake) = (&model.name, model.snake_name());

@@ -3,7 +3,7 @@
 //! reference and to the wgpu frame; the fused paths' recorded calls show one pass that stores
 //! only the output; the G-buffer's words agree across backends; bad configurations are named.
 
-use gbuffer_render::gbuffers::{GBuffer, SeedLayout};
+use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::{compare, is_blank};
 use gbuffer_render::on_tile::{Path, TileOptions};
@@ -18,7 +18,7 @@ use gbuffer_testkit::or_skip;
 const WIDTH: u32 = 320;
 const HEIGHT: u32 = 180;
 
-fn options(layout: SeedLayout) -> Options {
+fn options(layout: PackedLayout) -> Options {
     Options {
         gbuffer: GBuffer::Packed(layout),
         sun: SunForm::Ggx,
@@ -28,7 +28,7 @@ fn options(layout: SeedLayout) -> Options {
     }
 }
 
-fn tile(layout: SeedLayout, path: Path) -> TileOptions {
+fn tile(layout: PackedLayout, path: Path) -> TileOptions {
     TileOptions {
         options: options(layout),
         path,
@@ -54,7 +54,7 @@ fn wgpu() -> Option<Renderer> {
 
 /// Every path of both backends, with the frame and the calls of one frame (none without the
 /// drivers).
-fn every_path(layout: SeedLayout) -> Vec<(String, Frame, Recording)> {
+fn every_path(layout: PackedLayout) -> Vec<(String, Frame, Recording)> {
     let mut frames = Vec::new();
     let (Some(gles), Some(vulkan)) = (gles(), vulkan()) else {
         return frames;
@@ -76,7 +76,7 @@ fn every_path(layout: SeedLayout) -> Vec<(String, Frame, Recording)> {
 
 #[test]
 fn every_path_renders_the_scene_close_to_the_reference_and_to_wgpu() {
-    let layout = SeedLayout::MobileMetallic;
+    let layout = PackedLayout::MobileMetallic;
     let reference = reference::render(WIDTH, HEIGHT, reference_features(), &|_| {});
     let Some(wgpu) = wgpu() else {
         return;
@@ -105,7 +105,7 @@ fn every_path_renders_the_scene_close_to_the_reference_and_to_wgpu() {
 
 #[test]
 fn the_fused_paths_keep_the_gbuffer_in_one_pass_and_store_only_the_output() {
-    for (name, frame, recording) in every_path(SeedLayout::MobileMetallic) {
+    for (name, frame, recording) in every_path(PackedLayout::MobileMetallic) {
         let draws: Vec<&str> = recording
             .calls
             .iter()
@@ -154,7 +154,7 @@ fn the_fused_paths_keep_the_gbuffer_in_one_pass_and_store_only_the_output() {
 
 #[test]
 fn a_256_bit_layout_renders_on_the_packed_paths() {
-    let layout = SeedLayout::FutureMetallic;
+    let layout = PackedLayout::FutureMetallic;
     let (Some(gles), Some(vulkan)) = (gles(), vulkan()) else {
         return;
     };
@@ -175,7 +175,7 @@ fn a_256_bit_layout_renders_on_the_packed_paths() {
 
 #[test]
 fn the_gbuffer_words_agree_across_backends() {
-    let options = options(SeedLayout::MobileMetallic);
+    let options = options(PackedLayout::MobileMetallic);
     let (Some(gles), Some(vulkan)) = (gles(), vulkan()) else {
         return;
     };
@@ -239,21 +239,21 @@ fn configurations_the_paths_cannot_draw_are_named() {
         return;
     };
     let error = |result: Result<(Frame, Recording), String>| result.expect_err("an error");
-    let specular = error(gles.render(&tile(SeedLayout::SpecularWorkflow, Path::FetchPacked)));
+    let specular = error(gles.render(&tile(PackedLayout::SpecularWorkflow, Path::FetchPacked)));
     assert!(
         specular.contains("diffuse and specular colour"),
         "{specular}"
     );
-    let arm = error(gles.render(&tile(SeedLayout::ArmTileBlock, Path::FetchNative)));
+    let arm = error(gles.render(&tile(PackedLayout::ArmTileBlock, Path::FetchNative)));
     assert!(arm.contains("neither depth nor position"), "{arm}");
     // Eight native attachments and the output: more than llvmpipe's eight draw buffers.
-    let native = error(gles.render(&tile(SeedLayout::FutureMetallic, Path::FetchNative)));
+    let native = error(gles.render(&tile(PackedLayout::FutureMetallic, Path::FetchNative)));
     assert!(
         native.contains("GL_MAX_DRAW_BUFFERS") && native.contains("9 colour attachments"),
         "{native}"
     );
-    let wrong_api = error(gles.render(&tile(SeedLayout::MobileMetallic, Path::Subpass)));
+    let wrong_api = error(gles.render(&tile(PackedLayout::MobileMetallic, Path::Subpass)));
     assert!(wrong_api.contains("Vulkan"), "{wrong_api}");
-    let wrong_api = error(vulkan.render(&tile(SeedLayout::MobileMetallic, Path::FetchNative)));
+    let wrong_api = error(vulkan.render(&tile(PackedLayout::MobileMetallic, Path::FetchNative)));
     assert!(wrong_api.contains("GLES"), "{wrong_api}");
 }

@@ -5,7 +5,7 @@ use gbuffer::glam::{DVec3, Vec2, Vec3, Vec4};
 use gbuffer::packing::codecs::unorm;
 use gbuffer::packing::{BitField, Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
 use gbuffer::seed_conventions::{
-    round_trip, SeedConvention, Shading, Surface, LIGHT_SCALE, SURFACE_WGSL,
+    round_trip, Shading, Surface, SurfaceConvention, LIGHT_SCALE, SURFACE_WGSL,
 };
 use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
 use gbuffer::shading::{mirror as m, reference as r};
@@ -801,7 +801,7 @@ struct SeedRow {
 }
 
 impl SeedRow {
-    fn of<L: SeedConvention>(name: &'static str) -> SeedRow {
+    fn of<L: SurfaceConvention>(name: &'static str) -> SeedRow {
         SeedRow {
             name,
             layout: L::layout(),

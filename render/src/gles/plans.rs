@@ -7,7 +7,7 @@ use glow::HasContext as _;
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
 
 use super::{GlesRenderer, Plan, Target, FETCH};
-use crate::gbuffers::SeedLayout;
+use crate::gbuffers::PackedLayout;
 use crate::glsl::{self, Dialect};
 use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage, TileOptions};
 use crate::options::Options;
@@ -38,7 +38,7 @@ impl GlesRenderer {
     pub(super) fn fused_plan(
         &self,
         options: &Options,
-        layout: SeedLayout,
+        layout: PackedLayout,
         path: Path,
         (width, height): (i32, i32),
     ) -> Result<Plan, String> {

@@ -23,7 +23,7 @@ impl VulkanRenderer {
     pub(super) fn subpass_plan(
         &self,
         options: &Options,
-        layout: crate::gbuffers::SeedLayout,
+        layout: crate::gbuffers::PackedLayout,
         store_gbuffer: bool,
     ) -> Result<Plan, String> {
         let model = layout.layout();
