@@ -1,15 +1,19 @@
-//! What a layout costs the picture: each seed layout's frame against the lossless G-buffer's
-//! (every quantity an f32), in the order the trade-off study's whole-layout rows predict.
+//! What a layout costs the picture: each layout's frame against the lossless G-buffer's (every
+//! quantity an f32), in the order the trade-off study's whole-layout rows predict, and a scene
+//! solved for a tighter precision no worse in the frame than the same scene solved looser.
+
+use std::path::Path;
+use std::sync::Arc;
 
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::compare;
 use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_render::wgpu::Renderer;
 
-/// The frame through a layout's G-buffer, small: 160x90.
-fn options(layout: PackedLayout) -> Options {
+/// A frame, small: 160x90.
+fn options(gbuffer: GBuffer) -> Options {
     Options {
-        gbuffer: GBuffer::Packed(layout),
+        gbuffer,
         sun: SunForm::Ggx,
         ibl: IblForm::Lut,
         width: 160,
@@ -17,22 +21,32 @@ fn options(layout: PackedLayout) -> Options {
     }
 }
 
-/// Coarser storage, lower PSNR against the lossless frame: the layouts the study rates worse
-/// (a larger largest error over its surfaces) come out further from the lossless frame.
-#[test]
-fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
-    let Some(renderer) = gbuffer_testkit::or_skip(
+fn renderer() -> Option<Renderer> {
+    gbuffer_testkit::or_skip(
         "the wgpu renderer",
         Renderer::new(&|message| eprintln!("{message}")),
-    ) else {
-        return;
-    };
-    let render = |layout| {
+    )
+}
+
+/// PSNR of `gbuffer`'s frame against `lossless`'s, in dB.
+fn psnr_against(renderer: &Renderer, gbuffer: GBuffer, lossless: GBuffer) -> f64 {
+    let render = |gbuffer| {
         renderer
-            .render(&options(layout))
+            .render(&options(gbuffer))
             .unwrap_or_else(|error| panic!("{error}"))
     };
-    let lossless = render(PackedLayout::Lossless);
+    compare(&render(gbuffer), &render(lossless)).psnr
+}
+
+/// Coarser storage, lower PSNR against the lossless frame: the layouts the study rates worse
+/// (a larger largest error over its surfaces) come out further from the lossless frame. The
+/// coarse layout (2 x 8-bit octahedral normals), Listing 2.2, the Arm block, Listing 2.7 and
+/// Listing 2.8: five PSNRs, all different, in the predicted order.
+#[test]
+fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
+    let Some(renderer) = renderer() else {
+        return;
+    };
     let predictions = gbuffer_tradeoff::layout_errors();
     let predicted = |layout: PackedLayout| {
         let name = format!("({})", layout.layout().name);
@@ -43,6 +57,7 @@ fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
             .1
     };
     let mut measured: Vec<(f64, f64, PackedLayout)> = [
+        PackedLayout::CoarseNormals,
         PackedLayout::MobileMetallic,
         PackedLayout::ArmTileBlock,
         PackedLayout::FutureMetallic,
@@ -50,15 +65,14 @@ fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
     ]
     .into_iter()
     .map(|layout| {
-        let comparison = compare(&render(layout), &lossless);
+        let lossless = GBuffer::Packed(PackedLayout::Lossless);
+        let psnr = psnr_against(&renderer, GBuffer::Packed(layout), lossless);
         eprintln!(
-            "{}: predicted {:.3} steps; PSNR {:.2} dB, largest error {} against the lossless frame",
+            "{}: predicted {:.3} steps; PSNR {psnr:.2} dB against the lossless frame",
             layout.flag(),
             predicted(layout),
-            comparison.psnr,
-            comparison.max_error
         );
-        (predicted(layout), comparison.psnr, layout)
+        (predicted(layout), psnr, layout)
     })
     .collect();
     // From the largest predicted error down: the PSNR must rise.
@@ -73,6 +87,58 @@ fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
             pair[1].2.flag(),
             pair[1].0,
             pair[1].1
+        );
+    }
+}
+
+/// The mobile-metallic preset's scene, with its precision replaced by `precision`.
+fn scene(precision: &str, budget: u32) -> gbuffer_solver::Solution {
+    let source = format!(
+        "name = \"PrecisionScene\"\nmodel = \"metallic\"\nbudget = {budget}\n\n\
+         [features]\nmetals = true\nnormal_maps = true\nimage_based_lighting = true\n\
+         light_maps = true\nsun = true\n\n[precision]\n{precision}"
+    );
+    gbuffer_solver::file::parse_and_solve(&source, Path::new("precision.toml"))
+        .unwrap_or_else(|diagnostics| panic!("{diagnostics:?}"))
+}
+
+/// A scene solved for a tighter precision (finer normals, colours, materials and light) takes
+/// more bits and comes out no worse against the lossless frame of the same scene than the
+/// scene solved for the preset's precision; and the coarse precision, no better.
+#[test]
+fn a_tighter_precision_is_no_worse_in_the_frame() {
+    let Some(renderer) = renderer() else {
+        return;
+    };
+    let coarse = scene(
+        "normal_degrees = 2.0\ncolour_steps = 64\nmaterial_steps = 64\nhdr_max = 8.0\n\
+         hdr_min = 0.015625\nhdr_relative = 0.05\n",
+        128,
+    );
+    let preset = scene(
+        "normal_degrees = 0.5\ncolour_steps = 256\nmaterial_steps = 256\nhdr_max = 8.0\n\
+         hdr_min = 0.015625\nhdr_relative = 0.02\n",
+        128,
+    );
+    let tight = scene(
+        "normal_degrees = 0.05\ncolour_steps = 1024\nmaterial_steps = 1024\nhdr_max = 8.0\n\
+         hdr_min = 0.015625\nhdr_relative = 0.002\n",
+        256,
+    );
+    let mut measured = Vec::new();
+    for solution in [coarse, preset, tight] {
+        let bits = solution.layout.used_bits();
+        let lossless = GBuffer::LosslessScene(solution.scene.features);
+        let psnr = psnr_against(&renderer, GBuffer::Solved(Arc::new(solution)), lossless);
+        eprintln!("{bits} used bits: PSNR {psnr:.2} dB against the lossless frame");
+        measured.push((bits, psnr));
+    }
+    for pair in measured.windows(2) {
+        let ((looser_bits, looser), (tighter_bits, tighter)) = (pair[0], pair[1]);
+        assert!(tighter_bits > looser_bits, "{measured:?}");
+        assert!(
+            tighter >= looser,
+            "tighter precision, worse frame: {measured:?}"
         );
     }
 }

@@ -24,6 +24,8 @@ pub struct Comparison {
     pub psnr: f64,
     /// The largest difference of one channel, in 8-bit steps.
     pub max_error: u8,
+    /// The share of pixels (0 to 1) with a channel more than one 8-bit step off.
+    pub share_over_one_step: f64,
 }
 
 /// How `b` differs from `a`. Panics unless the frames have the same size.
@@ -35,17 +37,62 @@ pub fn compare(a: &Frame, b: &Frame) -> Comparison {
     );
     let mut squares = 0.0;
     let mut max_error = 0;
+    let mut over_one_step = 0usize;
     for (pixel_a, pixel_b) in a.pixels.iter().zip(&b.pixels) {
+        let mut pixel_error = 0;
         for channel in 0..3 {
             let difference = pixel_a[channel].abs_diff(pixel_b[channel]);
-            max_error = max_error.max(difference);
+            pixel_error = pixel_error.max(difference);
             squares += f64::from(difference).powi(2);
         }
+        max_error = max_error.max(pixel_error);
+        over_one_step += usize::from(pixel_error > 1);
     }
     let mean_square = squares / (3 * a.pixels.len()) as f64;
     Comparison {
         psnr: 10.0 * (255.0 * 255.0 / mean_square).log10(),
         max_error,
+        share_over_one_step: over_one_step as f64 / a.pixels.len() as f64,
+    }
+}
+
+/// Where two frames differ, as a heat map: each pixel coloured by its largest channel
+/// difference on a logarithmic ramp, black (none) through blue (1 step), red (about 4) to
+/// yellow (16 steps or more), so one-step rounding and a broken highlight both show.
+pub fn heatmap(a: &Frame, b: &Frame) -> Frame {
+    const RAMP: [[f32; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [40.0, 60.0, 220.0],
+        [220.0, 40.0, 40.0],
+        [255.0, 240.0, 60.0],
+    ];
+    let pixels = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .map(|(pixel_a, pixel_b)| {
+            let error = (0..3)
+                .map(|index| pixel_a[index].abs_diff(pixel_b[index]))
+                .max()
+                .unwrap_or(0);
+            // On the ramp: 1 step at 1, 4 steps at 2, 16 at 3 (1 + log2(error) / 2).
+            let position = if error == 0 {
+                0.0
+            } else {
+                (1.0 + f32::from(error).log2() / 2.0).min(3.0)
+            };
+            let low = (position.floor() as usize).min(2);
+            let t = position - low as f32;
+            let channel = |index: usize| {
+                (RAMP[low][index] + (RAMP[low + 1][index] - RAMP[low][index]) * t).round() as u8
+            };
+            [channel(0), channel(1), channel(2), 255]
+        })
+        .collect();
+    Frame {
+        width: a.width,
+        height: a.height,
+        pixels,
     }
 }
 

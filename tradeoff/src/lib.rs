@@ -11,6 +11,7 @@
 //! CPU. The packing conversions get their own table: per format, exact and
 //! fast, their instructions, branches, error in codes and time per million texels.
 
+pub mod frames;
 pub mod furnace;
 mod packing;
 pub mod packing_cost;
@@ -122,6 +123,8 @@ pub fn run(folder: &Path) -> Result<(), String> {
     }
     let furnace = white_furnace();
     print_furnace(&furnace);
+    let frames = frames::measure_all(folder, &|message| eprintln!("{message}"))?;
+    frames::print(&frames, &adapter);
     let mut plots =
         write_plots(folder, &rows).map_err(|error| format!("writing plots: {error}"))?;
     plots.extend(
@@ -132,6 +135,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
     json["packing"] = packing::json(&packing);
     json["timing_consistent"] = serde_json::json!(inconsistencies.is_empty());
     json["timing_inconsistencies"] = serde_json::json!(inconsistencies);
+    json["frames"] = frames::json(&frames);
     json["white_furnace"] = serde_json::json!(furnace
         .iter()
         .map(|energy| serde_json::json!({"roughness": energy.roughness, "metal_head_on": energy.metal_head_on, "metal_grazing": energy.metal_grazing, "white_dielectric_max": energy.dielectric_max}))
@@ -146,6 +150,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
         );
     }
     markdown.push_str(&furnace_markdown(&furnace));
+    markdown.push_str(&frames::markdown(&frames, &adapter));
     for (name, contents) in [
         (
             "report.json",

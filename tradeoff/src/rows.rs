@@ -790,8 +790,8 @@ fn surfaces() -> Vec<Surface> {
         .collect()
 }
 
-/// A seed layout's row: its name, model, WGSL, bits and the Rust mirror of its convention.
-struct SeedRow {
+/// A layout's row: its name, model, WGSL, bits and the Rust mirror of its convention.
+struct LayoutRow {
     name: &'static str,
     layout: Layout,
     wgsl: &'static str,
@@ -800,9 +800,9 @@ struct SeedRow {
     round_trip: fn(&Surface) -> Shading,
 }
 
-impl SeedRow {
-    fn of<L: SurfaceConvention>(name: &'static str) -> SeedRow {
-        SeedRow {
+impl LayoutRow {
+    fn of<L: SurfaceConvention>(name: &'static str) -> LayoutRow {
+        LayoutRow {
             name,
             layout: L::layout(),
             wgsl: L::WGSL,
@@ -814,13 +814,19 @@ impl SeedRow {
 }
 
 pub(crate) fn layout_rows() -> Vec<Row> {
+    use gbuffer::engine_layouts::{BevyDeferred, HdrpLit};
     use gbuffer::seed_layouts::{ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic};
-    // Each layout by its own convention (`gbuffer::seed_conventions`), as the renderer stores it.
+    use gbuffer_render::coarse::CoarseNormals;
+    // Each layout by its own convention (`gbuffer::seed_conventions`,
+    // `gbuffer::engine_conventions`), as the renderer stores it.
     let layouts = [
-        SeedRow::of::<MobileMetallic>("Listing 2.2 (MobileMetallic)"),
-        SeedRow::of::<ArmTileBlock>("Arm tile block (ArmTileBlock)"),
-        SeedRow::of::<FutureMetallic>("Listing 2.7 (FutureMetallic)"),
-        SeedRow::of::<FutureSpecular>("Listing 2.8 (FutureSpecular)"),
+        LayoutRow::of::<MobileMetallic>("Listing 2.2 (MobileMetallic)"),
+        LayoutRow::of::<ArmTileBlock>("Arm tile block (ArmTileBlock)"),
+        LayoutRow::of::<FutureMetallic>("Listing 2.7 (FutureMetallic)"),
+        LayoutRow::of::<FutureSpecular>("Listing 2.8 (FutureSpecular)"),
+        LayoutRow::of::<BevyDeferred>("Bevy, WebGL2 (BevyDeferred)"),
+        LayoutRow::of::<HdrpLit>("HDRP Lit (HdrpLit)"),
+        LayoutRow::of::<CoarseNormals>("2 x 8-bit normals (CoarseNormals)"),
     ];
     let surfaces = surfaces();
     layouts

@@ -1,0 +1,338 @@
+//! The frame table: what each layout costs the picture, beside its bits, its traffic and its
+//! time. Every shipped layout (the seed layouts, the engines', the layouts solved for the scene
+//! presets) and a deliberately coarse one render the reference scene through the reference
+//! renderer, and each frame is held against the lossless G-buffer's frame of the same scene
+//! (every quantity an f32, the same passes): the difference is what the layout's storage
+//! loses, apart from the renderer's own error against the CPU reference.
+//!
+//! Per layout: bits and words; the bandwidth units (width x height x 4 bytes) its frame moves
+//! on wgpu (the G-buffer through memory) and, for the layouts the on-tile paths keep, on
+//! Vulkan's two-pass and fused (subpass) paths; PSNR, largest error and the share of pixels
+//! more than one 8-bit step off against the lossless frame; the frame time on the adapter
+//! (median of [`TIMED_FRAMES`]); and a heat map of where the error sits. For the solved
+//! presets, also what the solver predicted for each quantity.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
+use gbuffer_render::image::{compare, heatmap, write_png, Comparison};
+use gbuffer_render::on_tile::{Path as TilePath, TileOptions};
+use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
+use gbuffer_render::presets::{preset_path, PRESETS};
+use gbuffer_render::vulkan::VulkanRenderer;
+use gbuffer_render::wgpu::Renderer;
+use gbuffer_solver::Solution;
+
+/// The frame size of the table.
+pub const SIZE: (u32, u32) = (1280, 720);
+/// Frames timed per layout; the table gives their median.
+pub const TIMED_FRAMES: usize = 5;
+
+/// One layout's row.
+#[derive(Clone, Debug)]
+pub struct FrameRow {
+    /// The layout's name: a packed layout's command-line name, or `preset <name>`.
+    pub layout: String,
+    /// What it is: `seed`, `engine`, `solved` or `coarse`.
+    pub kind: &'static str,
+    /// Bits the layout takes (its words x 32).
+    pub bits: u32,
+    /// Its 32-bit words.
+    pub words: usize,
+    /// Bandwidth units of the wgpu frame.
+    pub wgpu_bandwidth_units: f64,
+    /// Bandwidth units of Vulkan's two-pass path, where the on-tile paths keep the layout.
+    pub two_pass_bandwidth_units: Option<f64>,
+    /// Bandwidth units of Vulkan's fused (subpass) path, where it keeps the layout.
+    pub fused_bandwidth_units: Option<f64>,
+    /// Against the lossless frame of the same scene.
+    pub comparison: Comparison,
+    /// Median frame time on the wgpu adapter, milliseconds.
+    pub frame_ms: f64,
+    /// The heat map's file name, beside the report.
+    pub heatmap: String,
+    /// For a solved preset, each quantity's predicted error as the solver words it
+    /// (`normal: 0.25 degrees`).
+    pub predicted: Vec<String>,
+}
+
+/// The packed layouts of the table, with their kind.
+fn packed_layouts() -> Vec<(PackedLayout, &'static str)> {
+    let seeds = PackedLayout::SEEDS.map(|layout| (layout, "seed"));
+    let engines = PackedLayout::ENGINES.map(|layout| (layout, "engine"));
+    seeds
+        .into_iter()
+        .chain(engines)
+        .chain([(PackedLayout::CoarseNormals, "coarse")])
+        .collect()
+}
+
+fn options(gbuffer: GBuffer) -> Options {
+    Options {
+        gbuffer,
+        sun: SunForm::Ggx,
+        ibl: IblForm::Lut,
+        width: SIZE.0,
+        height: SIZE.1,
+    }
+}
+
+/// The renderers the table uses: wgpu always, Vulkan for the on-tile paths' traffic when it is
+/// there (its absence leaves those columns empty, said once).
+struct Renderers {
+    wgpu: Renderer,
+    vulkan: Option<VulkanRenderer>,
+}
+
+/// Measures one G-buffer against `lossless`, writes its heat map into `folder`.
+fn measure(
+    renderers: &Renderers,
+    gbuffer: GBuffer,
+    kind: &'static str,
+    lossless: &Frame,
+    folder: &Path,
+) -> Result<FrameRow, String> {
+    let name = gbuffer.name();
+    let layout = gbuffer
+        .layout()
+        .ok_or_else(|| format!("`{name}` is not a packed layout"))?;
+    let options = options(gbuffer);
+    let (frame, recording) = renderers.wgpu.render_recorded(&options)?;
+    let comparison = compare(&frame, lossless);
+    let tile_bandwidth = |path: TilePath| -> Result<Option<f64>, String> {
+        let Some(vulkan) = &renderers.vulkan else {
+            return Ok(None);
+        };
+        if gbuffer_render::on_tile::tile_layout(&options).is_err() {
+            return Ok(None);
+        }
+        let tile = TileOptions {
+            options: options.clone(),
+            path,
+        };
+        let (_, recording) = vulkan.render(&tile)?;
+        Ok(Some(
+            recording
+                .traffic(SIZE.0, SIZE.1)
+                .bandwidth_units(SIZE.0, SIZE.1),
+        ))
+    };
+    let times = renderers.wgpu.time_frames(&options, TIMED_FRAMES)?;
+    let file_stem = name.replace(|c: char| !c.is_ascii_alphanumeric(), "-");
+    let heatmap_name = format!("frame-{}-heatmap.png", file_stem.to_lowercase());
+    let heatmap_path = folder.join(&heatmap_name);
+    write_png(&heatmap_path, &heatmap(&frame, lossless))
+        .map_err(|error| format!("cannot write {}: {error}", heatmap_path.display()))?;
+    Ok(FrameRow {
+        layout: name,
+        kind,
+        bits: layout.bits(),
+        words: layout.words(),
+        wgpu_bandwidth_units: recording
+            .traffic(SIZE.0, SIZE.1)
+            .bandwidth_units(SIZE.0, SIZE.1),
+        two_pass_bandwidth_units: tile_bandwidth(TilePath::TwoPass)?,
+        fused_bandwidth_units: tile_bandwidth(TilePath::Subpass)?,
+        comparison,
+        frame_ms: median(times) * 1e3,
+        heatmap: heatmap_name,
+        predicted: Vec::new(),
+    })
+}
+
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values.get(values.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// The solver's predicted error of each quantity of a solution, as `gbuffer solve` words it.
+fn predictions(solution: &Solution) -> Vec<String> {
+    solution
+        .placements
+        .iter()
+        .map(|placement| {
+            format!(
+                "{}: {}",
+                placement.quantity.name(),
+                gbuffer_solver::solver::describe_error(
+                    placement.quantity,
+                    placement.predicted_error
+                )
+            )
+        })
+        .collect()
+}
+
+/// Renders every layout of the table and measures it, writing the heat maps into `folder`.
+/// The error says what is missing (the wgpu adapter) or what failed.
+pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRow>, String> {
+    let renderers = Renderers {
+        wgpu: Renderer::new(progress)?,
+        vulkan: match VulkanRenderer::new(progress) {
+            Ok(vulkan) => Some(vulkan),
+            Err(reason) => {
+                progress(&format!(
+                    "frame table: no Vulkan, so no two-pass and fused traffic ({reason})"
+                ));
+                None
+            }
+        },
+    };
+    let lossless = renderers
+        .wgpu
+        .render(&options(GBuffer::Packed(PackedLayout::Lossless)))?;
+    let mut rows = Vec::new();
+    for (layout, kind) in packed_layouts() {
+        progress(&format!("frame table: {}", layout.flag()));
+        rows.push(measure(
+            &renderers,
+            GBuffer::Packed(layout),
+            kind,
+            &lossless,
+            folder,
+        )?);
+    }
+    for preset in PRESETS {
+        progress(&format!("frame table: preset {preset}"));
+        let solution = Arc::new(
+            gbuffer_solver::file::read_and_solve(&preset_path(preset))
+                .map_err(|error| error.to_string())?,
+        );
+        let features = solution.scene.features;
+        let lossless = renderers
+            .wgpu
+            .render(&options(GBuffer::LosslessScene(features)))?;
+        let mut row = measure(
+            &renderers,
+            GBuffer::Solved(solution.clone()),
+            "solved",
+            &lossless,
+            folder,
+        )?;
+        row.layout = format!("preset {preset}");
+        row.predicted = predictions(&solution);
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+fn bandwidth(units: Option<f64>) -> String {
+    units.map_or_else(|| "-".to_string(), |units| format!("{units:.2}"))
+}
+
+/// The table as printed on stdout.
+pub fn print(rows: &[FrameRow], adapter: &str) {
+    println!(
+        "\nframes at {}x{} against the lossless G-buffer (PSNR, largest error and share of \
+         pixels over one 8-bit step), bandwidth units (width x height x 4 bytes) on wgpu and \
+         Vulkan's two-pass and fused paths, median frame ms on {adapter}:",
+        SIZE.0, SIZE.1
+    );
+    println!(
+        "{:<28} {:<7} {:>4} {:>5} {:>6} {:>8} {:>6} {:>8} {:>8} {:>9} {:>9}",
+        "layout",
+        "kind",
+        "bits",
+        "words",
+        "wgpu",
+        "two-pass",
+        "fused",
+        "PSNR dB",
+        "largest",
+        "> 1 step",
+        "frame ms"
+    );
+    for row in rows {
+        println!(
+            "{:<28} {:<7} {:>4} {:>5} {:>6.2} {:>8} {:>6} {:>8.2} {:>8} {:>8.3}% {:>9.2}",
+            row.layout,
+            row.kind,
+            row.bits,
+            row.words,
+            row.wgpu_bandwidth_units,
+            bandwidth(row.two_pass_bandwidth_units),
+            bandwidth(row.fused_bandwidth_units),
+            row.comparison.psnr,
+            row.comparison.max_error,
+            row.comparison.share_over_one_step * 100.0,
+            row.frame_ms
+        );
+    }
+    for row in rows.iter().filter(|row| !row.predicted.is_empty()) {
+        println!(
+            "{}: the solver predicted {}",
+            row.layout,
+            row.predicted.join("; ")
+        );
+    }
+}
+
+/// The rows as `report.json`'s `frames`.
+pub fn json(rows: &[FrameRow]) -> serde_json::Value {
+    let rows: Vec<serde_json::Value> = rows
+        .iter()
+        .map(|row| {
+            serde_json::json!({
+                "layout": row.layout,
+                "kind": row.kind,
+                "bits": row.bits,
+                "words": row.words,
+                "width": SIZE.0,
+                "height": SIZE.1,
+                "wgpu_bandwidth_units": row.wgpu_bandwidth_units,
+                "two_pass_bandwidth_units": row.two_pass_bandwidth_units,
+                "fused_bandwidth_units": row.fused_bandwidth_units,
+                "psnr_db": row.comparison.psnr,
+                "largest_error_steps": row.comparison.max_error,
+                "share_over_one_step": row.comparison.share_over_one_step,
+                "frame_ms_median": row.frame_ms,
+                "heatmap": row.heatmap,
+                "predicted_errors": row.predicted,
+            })
+        })
+        .collect();
+    serde_json::json!(rows)
+}
+
+/// The table in `report.md`, with each heat map linked.
+pub fn markdown(rows: &[FrameRow], adapter: &str) -> String {
+    let mut out = format!(
+        "\n## Frames: what each layout costs the picture\n\n\
+         The reference scene at {}x{}, each layout's frame against the lossless G-buffer's \
+         (every quantity an f32, the same passes; for a solved preset, the lossless G-buffer of \
+         its scene). Bandwidth in units of width x height x 4 bytes, from the passes' load and \
+         store operations; `-` where the on-tile paths do not keep the layout or no Vulkan \
+         was there. Frame time: median of {TIMED_FRAMES} frames on {adapter} (compare ratios, \
+         not absolute times).\n\n\
+         | layout | kind | bits | words | BU wgpu | BU two-pass | BU fused | PSNR dB | largest error (steps) | pixels > 1 step | frame ms | heat map |\n\
+         | --- | --- | --: | --: | --: | --: | --: | --: | --: | --: | --: | --- |\n",
+        SIZE.0, SIZE.1
+    );
+    for row in rows {
+        out.push_str(&format!(
+            "| {} | {} | {} | {} | {:.2} | {} | {} | {:.2} | {} | {:.3}% | {:.2} | [png]({}) |\n",
+            row.layout,
+            row.kind,
+            row.bits,
+            row.words,
+            row.wgpu_bandwidth_units,
+            bandwidth(row.two_pass_bandwidth_units),
+            bandwidth(row.fused_bandwidth_units),
+            row.comparison.psnr,
+            row.comparison.max_error,
+            row.comparison.share_over_one_step * 100.0,
+            row.frame_ms,
+            row.heatmap
+        ));
+    }
+    for row in rows.iter().filter(|row| !row.predicted.is_empty()) {
+        out.push_str(&format!(
+            "\n{}: the solver predicted {}.",
+            row.layout,
+            row.predicted.join("; ")
+        ));
+    }
+    out.push('\n');
+    out
+}
