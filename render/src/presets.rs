@@ -2,7 +2,7 @@
 //! take, what their specialised lighting pass costs, and their error against the full model
 //! (the CPU reference of the same scene, every term, f64, no packing).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 use gbuffer_solver::lighting::Forms;
@@ -24,11 +24,26 @@ pub const PRESETS: [&str; 4] = [
     "desktop-256",
 ];
 
-/// A preset's scene file.
-pub fn preset_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../solver/scenes")
-        .join(format!("{name}.toml"))
+/// A preset solved: its scene file (`solver/scenes/<name>.toml`, compiled in, so that a binary
+/// built here runs on a machine without the source tree) through the solver.
+pub fn solve_preset(name: &str) -> Result<Solution, String> {
+    let source = match name {
+        "mobile-metallic" => include_str!("../../solver/scenes/mobile-metallic.toml"),
+        "dielectric-only" => include_str!("../../solver/scenes/dielectric-only.toml"),
+        "fully-rough-props" => include_str!("../../solver/scenes/fully-rough-props.toml"),
+        "desktop-256" => include_str!("../../solver/scenes/desktop-256.toml"),
+        other => {
+            return Err(format!(
+                "no scene preset named `{other}`: {}",
+                PRESETS.join(", ")
+            ))
+        }
+    };
+    let path = Path::new("solver/scenes").join(format!("{name}.toml"));
+    gbuffer_solver::file::parse_and_solve(source, &path).map_err(|diagnostics| {
+        let lines: Vec<String> = diagnostics.iter().map(ToString::to_string).collect();
+        lines.join("\n")
+    })
 }
 
 /// One row of the report.
@@ -74,10 +89,7 @@ pub fn measure_preset(
     width: u32,
     height: u32,
 ) -> Result<PresetRow, String> {
-    let solution = Arc::new(
-        gbuffer_solver::file::read_and_solve(&preset_path(preset))
-            .map_err(|error| error.to_string())?,
-    );
+    let solution = Arc::new(solve_preset(preset)?);
     let options = Options {
         gbuffer: GBuffer::Solved(solution.clone()),
         sun: forms.sun,

@@ -19,7 +19,7 @@ use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::{compare, heatmap, write_png, Comparison};
 use gbuffer_render::on_tile::{Path as TilePath, TileOptions};
 use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
-use gbuffer_render::presets::{preset_path, PRESETS};
+use gbuffer_render::presets::{solve_preset, PRESETS};
 use gbuffer_render::vulkan::VulkanRenderer;
 use gbuffer_render::wgpu::Renderer;
 use gbuffer_solver::Solution;
@@ -85,18 +85,18 @@ struct Renderers {
     vulkan: Option<VulkanRenderer>,
 }
 
-/// Measures one G-buffer against `lossless`, writes its heat map into `folder`.
+/// Measures one G-buffer, named `name` in the table, against `lossless`; writes its heat map
+/// into `folder`.
 fn measure(
     renderers: &Renderers,
+    (name, kind): (String, &'static str),
     gbuffer: GBuffer,
-    kind: &'static str,
     lossless: &Frame,
     folder: &Path,
 ) -> Result<FrameRow, String> {
-    let name = gbuffer.name();
     let layout = gbuffer
         .layout()
-        .ok_or_else(|| format!("`{name}` is not a packed layout"))?;
+        .ok_or_else(|| format!("`{name}` is not a packed G-buffer"))?;
     let options = options(gbuffer);
     let (frame, recording) = renderers.wgpu.render_recorded(&options)?;
     let comparison = compare(&frame, lossless);
@@ -120,7 +120,7 @@ fn measure(
     };
     let times = renderers.wgpu.time_frames(&options, TIMED_FRAMES)?;
     let file_stem = name.replace(|c: char| !c.is_ascii_alphanumeric(), "-");
-    let heatmap_name = format!("frame-{}-heatmap.png", file_stem.to_lowercase());
+    let heatmap_name = format!("frame-{file_stem}-heatmap.png");
     let heatmap_path = folder.join(&heatmap_name);
     write_png(&heatmap_path, &heatmap(&frame, lossless))
         .map_err(|error| format!("cannot write {}: {error}", heatmap_path.display()))?;
@@ -187,30 +187,26 @@ pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRo
         progress(&format!("frame table: {}", layout.flag()));
         rows.push(measure(
             &renderers,
+            (layout.flag(), kind),
             GBuffer::Packed(layout),
-            kind,
             &lossless,
             folder,
         )?);
     }
     for preset in PRESETS {
         progress(&format!("frame table: preset {preset}"));
-        let solution = Arc::new(
-            gbuffer_solver::file::read_and_solve(&preset_path(preset))
-                .map_err(|error| error.to_string())?,
-        );
+        let solution = Arc::new(solve_preset(preset)?);
         let features = solution.scene.features;
         let lossless = renderers
             .wgpu
             .render(&options(GBuffer::LosslessScene(features)))?;
         let mut row = measure(
             &renderers,
+            (format!("preset {preset}"), "solved"),
             GBuffer::Solved(solution.clone()),
-            "solved",
             &lossless,
             folder,
         )?;
-        row.layout = format!("preset {preset}");
         row.predicted = predictions(&solution);
         rows.push(row);
     }

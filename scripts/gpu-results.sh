@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# The measurements that want a real GPU, in one command: the trade-off study with its frame
+# table (`gbuffer report`) and the renderer's bench, written as one dated, adapter-named file.
+#
+#   scripts/gpu-results.sh build          # here: release binaries into .gpu/ (no GPU needed)
+#   scripts/gpu-results.sh run [DIR]      # on the GPU machine: measure, write into DIR
+#   scripts/gpu-results.sh                # both, on a machine that has cargo and a GPU
+#
+# `run` writes DIR/<date>-<adapter>.md (the report's markdown, the frame table, the bench's
+# table), DIR/<date>-<adapter>.json (report.json) and DIR/<date>-<adapter>-heatmaps.tar (the
+# frame table's heat maps); DIR defaults to docs/gpu. It needs no Rust toolchain: it runs what
+# `build` put in .gpu/, so a machine that only runs binaries (the device tool's) can run it.
+# With a Vulkan loader and an NVIDIA driver, wgpu picks the GPU; WGPU_BACKEND=vulkan forces it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build() {
+    cargo build --release -p gbuffer-cli
+    # The bench's executable, without running it (cargo prints where it put it).
+    local bench
+    bench=$(cargo bench --no-run -p gbuffer-render --bench deferred --message-format=json 2>/dev/null |
+        sed -n 's/.*"executable":"\([^"]*deferred-[^"]*\)".*/\1/p' | tail -n 1)
+    [ -n "$bench" ] || { echo "gpu-results: cargo built no bench executable" >&2; exit 1; }
+    mkdir -p .gpu
+    cp target/release/gbuffer .gpu/gbuffer
+    cp "$bench" .gpu/deferred-bench
+    # The scene presets the frame table solves, read from the source tree at run time.
+    echo "gpu-results: built .gpu/gbuffer and .gpu/deferred-bench"
+}
+
+run() {
+    local folder=${1:-docs/gpu}
+    [ -x .gpu/gbuffer ] && [ -x .gpu/deferred-bench ] ||
+        { echo "gpu-results: run '$0 build' first (no .gpu/gbuffer)" >&2; exit 1; }
+    local work
+    work=$(mktemp -d)
+    .gpu/gbuffer report --out "$work/report" | tee "$work/report.txt"
+    # The adapter the study ran on: report.json's "adapter", made a file name.
+    local adapter
+    adapter=$(sed -n 's/^  "adapter": "\(.*\)",$/\1/p' "$work/report/report.json" | head -n 1)
+    local slug
+    slug=$(printf '%s' "${adapter:-unknown-adapter}" | tr -cs 'A-Za-z0-9' '-' | sed 's/^-//; s/-$//' | cut -c1-60)
+    local name
+    name="$(date -u +%Y-%m-%d)-$slug"
+    .gpu/deferred-bench | tee "$work/bench.txt"
+    mkdir -p "$folder"
+    {
+        echo "# GPU results: $adapter, $(date -u +%Y-%m-%d)"
+        echo
+        echo "Written by \`scripts/gpu-results.sh\` (commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown))."
+        echo "Compare ratios between rows, not absolute times with another machine's."
+        echo
+        cat "$work/report/report.md"
+        echo
+        echo "## The renderer's bench"
+        echo
+        echo '```text'
+        cat "$work/bench.txt"
+        echo '```'
+    } >"$folder/$name.md"
+    cp "$work/report/report.json" "$folder/$name.json"
+    (cd "$work/report" && tar -cf - frame-*-heatmap.png) >"$folder/$name-heatmaps.tar"
+    echo "gpu-results: wrote $folder/$name.md, $name.json and $name-heatmaps.tar"
+}
+
+case "${1:-all}" in
+build) build ;;
+run) run "${2:-}" ;;
+all) build && run "${2:-}" ;;
+*) echo "usage: $0 [build | run [DIR] | all [DIR]]" >&2; exit 2 ;;
+esac
