@@ -415,6 +415,7 @@ const SCENE_EMISSIVE: bool = {emissive};
 const SCENE_IMAGE_BASED_LIGHTING: bool = {image_based_lighting};
 const SCENE_LIGHT_MAPS: bool = {light_maps};
 const SCENE_FULLY_ROUGH: bool = {fully_rough};
+const SCENE_SUN: bool = {sun_light};
 const SCENE_POINT_LIGHTS: bool = {point_lights};
 
 fn sphere_centre(column: u32, row: u32) -> vec3<f32> {{
@@ -519,6 +520,7 @@ fn ground_normal(x: f32, z: f32) -> vec3<f32> {{
         image_based_lighting = features.contains(Feature::ImageBasedLighting),
         light_maps = features.contains(Feature::LightMaps),
         fully_rough = features.contains(Feature::FullyRough),
+        sun_light = features.contains(Feature::Sun),
         point_lights = features.contains(Feature::PointLights),
         near = CAMERA_NEAR as f32,
         far = CAMERA_FAR as f32,

@@ -71,11 +71,20 @@ fn geometry_vertex(@location(0) position: vec3<f32>, @location(1) normal: vec3<f
 /// Light volumes keep the cost of a light to the pixels it can reach.
 pub const VOLUME_WGSL: &str = include_str!("../wgsl/volume.wgsl");
 
-/// The binding of the inputs' sampler (GLSL combines it with each texture).
-pub const SAMPLER_BINDING: u32 = 3;
+/// The binding of the environment's sampler, which wraps around the sky in u (GLSL combines
+/// it with the environment).
+pub const ENVIRONMENT_SAMPLER_BINDING: u32 = 3;
+
+/// The binding of the sampler of the LUT and the light map, which clamps to their edges (GLSL
+/// combines it with each).
+pub const CLAMPED_SAMPLER_BINDING: u32 = 6;
+
+/// The binding of the environment texture.
+pub const ENVIRONMENT_BINDING: u32 = 1;
 
 /// The host functions over the baked inputs that the scene and the lighting read, at group 0:
-/// the environment (1), the LUT (2), the sampler (3), the light map (5).
+/// the environment (1), the LUT (2), the environment's sampler (3), the light map (5), the
+/// sampler of the LUT and the light map (6).
 pub const INPUTS_WGSL: &str = include_str!("../wgsl/inputs.wgsl");
 
 /// The lighting of a decoded texel, in the chosen forms: `environment_light` (the image-based
@@ -325,7 +334,12 @@ fn pixel_radiance(position: vec4<f32>) -> vec3<f32> {{
         return sky(direction);
     }}
     let view = -direction;
-    return environment_light(sample.shading, view) + sun_light(sample.shading, view);
+    // The scene's features decide the terms (a solved preset's scene held lossless).
+    var radiance = select(sample.shading.light, environment_light(sample.shading, view), SCENE_IMAGE_BASED_LIGHTING);
+    if SCENE_SUN {{
+        radiance += sun_light(sample.shading, view);
+    }}
+    return radiance;
 }}
 
 // Every point light at a pixel, one after the other (the on-tile two-pass path's way).

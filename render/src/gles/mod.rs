@@ -93,18 +93,24 @@ impl GlesRenderer {
                 glow::UNSIGNED_BYTE,
                 &[inputs.light_map],
             )?;
-            // One sampler for the inputs, as wgpu's: trilinear, u repeating (around the sky).
-            let sampler = gl.create_sampler()?;
-            for (name, value) in [
-                (glow::TEXTURE_MIN_FILTER, glow::LINEAR_MIPMAP_LINEAR),
-                (glow::TEXTURE_MAG_FILTER, glow::LINEAR),
-                (glow::TEXTURE_WRAP_S, glow::REPEAT),
-                (glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE),
+            // As wgpu's samplers: trilinear, the environment's wrapping around the sky in u, the
+            // LUT's and the light map's clamped to their edges.
+            for (wrap, units) in [
+                (glow::REPEAT, &[ENVIRONMENT_UNIT][..]),
+                (glow::CLAMP_TO_EDGE, &[LUT_UNIT, LIGHT_MAP_UNIT][..]),
             ] {
-                gl.sampler_parameter_i32(sampler, name, value as i32);
-            }
-            for unit in [ENVIRONMENT_UNIT, LUT_UNIT, LIGHT_MAP_UNIT] {
-                gl.bind_sampler(unit, Some(sampler));
+                let sampler = gl.create_sampler()?;
+                for (name, value) in [
+                    (glow::TEXTURE_MIN_FILTER, glow::LINEAR_MIPMAP_LINEAR),
+                    (glow::TEXTURE_MAG_FILTER, glow::LINEAR),
+                    (glow::TEXTURE_WRAP_S, wrap),
+                    (glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE),
+                ] {
+                    gl.sampler_parameter_i32(sampler, name, value as i32);
+                }
+                for &unit in units {
+                    gl.bind_sampler(unit, Some(sampler));
+                }
             }
 
             let vertices = buffer(gl, glow::ARRAY_BUFFER, bytemuck::cast_slice(&mesh.vertices))?;

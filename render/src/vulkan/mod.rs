@@ -41,7 +41,10 @@ pub struct VulkanRenderer {
     vulkan: Vulkan,
     /// The inputs by binding: environment (1), LUT (2), light map (5).
     inputs: Vec<(u32, vk::ImageView)>,
-    linear: vk::Sampler,
+    /// Trilinear, wrapping around the sky in u.
+    environment_sampler: vk::Sampler,
+    /// Trilinear, clamped to the edges: the LUT and the light map.
+    clamped_sampler: vk::Sampler,
     nearest: vk::Sampler,
     vertices: StorageBuffer,
     indices: StorageBuffer,
@@ -121,11 +124,16 @@ impl VulkanRenderer {
                 .max_lod(vk::LOD_CLAMP_NONE);
             vulkan.sampler(&info)
         };
-        // As wgpu's sampler: trilinear, u repeating (around the sky).
-        let linear = sampler(
+        // As wgpu's samplers: trilinear, the environment's wrapping around the sky in u.
+        let environment_sampler = sampler(
             vk::Filter::LINEAR,
             vk::SamplerMipmapMode::LINEAR,
             vk::SamplerAddressMode::REPEAT,
+        )?;
+        let clamped_sampler = sampler(
+            vk::Filter::LINEAR,
+            vk::SamplerMipmapMode::LINEAR,
+            vk::SamplerAddressMode::CLAMP_TO_EDGE,
         )?;
         let nearest = sampler(
             vk::Filter::NEAREST,
@@ -154,7 +162,8 @@ impl VulkanRenderer {
             },
             vulkan,
             inputs: Vec::new(),
-            linear,
+            environment_sampler,
+            clamped_sampler,
             nearest,
         };
         renderer.inputs = vec![

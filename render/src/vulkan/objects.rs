@@ -8,24 +8,33 @@ use gbuffer_gpu::vulkan::{GraphicsPipeline, Resource};
 use super::VulkanRenderer;
 use crate::glsl::{self, Dialect};
 use crate::mesh::Vertex;
-use crate::shaders::{used_bindings, SAMPLER_BINDING};
+use crate::shaders::{
+    used_bindings, CLAMPED_SAMPLER_BINDING, ENVIRONMENT_BINDING, ENVIRONMENT_SAMPLER_BINDING,
+};
 
 impl VulkanRenderer {
     /// A descriptor set (and its layout) of combined image samplers at `bindings`: the inputs
-    /// (linear sampler) and `frame_textures` (nearest), for the fragment stage.
+    /// (trilinear: the environment's wrapping in u, the others' clamped) and `frame_textures`
+    /// (nearest), for the fragment stage.
     pub(super) fn sampled_set(
         &self,
         bindings: &[u32],
         frame_textures: &[(u32, vk::ImageView)],
     ) -> Result<(vk::DescriptorSetLayout, vk::DescriptorSet), String> {
         let mut resources = Vec::new();
-        // GLSL combines the sampler with each texture.
+        // GLSL combines each texture with its sampler.
+        let samplers = [ENVIRONMENT_SAMPLER_BINDING, CLAMPED_SAMPLER_BINDING];
         for &binding in bindings
             .iter()
-            .filter(|&&binding| binding != SAMPLER_BINDING)
+            .filter(|binding| !samplers.contains(binding))
         {
             if let Some((_, view)) = self.inputs.iter().find(|(input, _)| *input == binding) {
-                resources.push((binding, *view, self.linear));
+                let sampler = if binding == ENVIRONMENT_BINDING {
+                    self.environment_sampler
+                } else {
+                    self.clamped_sampler
+                };
+                resources.push((binding, *view, sampler));
             } else if let Some((_, view)) = frame_textures
                 .iter()
                 .find(|(texture, _)| *texture == binding)

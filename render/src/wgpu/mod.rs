@@ -49,7 +49,10 @@ pub struct Renderer {
     environment: wgpu::TextureView,
     lut: wgpu::TextureView,
     light_map: wgpu::TextureView,
-    sampler: wgpu::Sampler,
+    /// Trilinear, wrapping around the sky in u.
+    environment_sampler: wgpu::Sampler,
+    /// Trilinear, clamped to the edges: the LUT and the light map.
+    clamped_sampler: wgpu::Sampler,
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     index_count: u32,
@@ -87,13 +90,19 @@ impl Renderer {
             wgpu::TextureFormat::Rgba8Unorm,
             &inputs.environment,
         );
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            address_mode_u: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            ..Default::default()
-        });
+        // Trilinear; the environment's wraps around the sky in u, the other clamps to the
+        // edges (the LUT's n.v = 1 column must not blend with its n.v = 0 one).
+        let sampler = |address_mode_u| {
+            device.create_sampler(&wgpu::SamplerDescriptor {
+                address_mode_u,
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                mipmap_filter: wgpu::MipmapFilterMode::Linear,
+                ..Default::default()
+            })
+        };
+        let environment_sampler = sampler(wgpu::AddressMode::Repeat);
+        let clamped_sampler = sampler(wgpu::AddressMode::ClampToEdge);
         let mesh = Mesh::scene();
         let vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("vertices"),
@@ -113,7 +122,8 @@ impl Renderer {
             environment,
             lut,
             light_map,
-            sampler,
+            environment_sampler,
+            clamped_sampler,
             vertices,
             indices,
             index_count: mesh.indices.len() as u32,
@@ -297,8 +307,8 @@ impl Renderer {
             layout: &pipeline.get_bind_group_layout(0),
             entries: &[
                 wgpu::BindGroupEntry {
-                    binding: shaders::SAMPLER_BINDING,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                    binding: shaders::CLAMPED_SAMPLER_BINDING,
+                    resource: wgpu::BindingResource::Sampler(&self.clamped_sampler),
                 },
                 wgpu::BindGroupEntry {
                     binding: 5,

@@ -9,7 +9,8 @@ use crate::options::Options;
 use crate::recording::{Attachment, Call, Load, Recording};
 use crate::scene::POINT_LIGHT_COUNT;
 use crate::shaders::{
-    self, gbuffer_wgsl, lighting_pass_wgsl, tonemap_wgsl, Positions, GBUFFER_FIRST_BINDING,
+    self, gbuffer_wgsl, lighting_pass_wgsl, tonemap_wgsl, Positions, CLAMPED_SAMPLER_BINDING,
+    ENVIRONMENT_BINDING, ENVIRONMENT_SAMPLER_BINDING, GBUFFER_FIRST_BINDING,
 };
 
 use super::{Renderer, DEPTH_FORMAT, HDR_FORMAT};
@@ -155,20 +156,22 @@ impl Passes {
             binding,
             resource: wgpu::BindingResource::TextureView(view),
         };
-        let sampler = wgpu::BindGroupEntry {
-            binding: 3,
-            resource: wgpu::BindingResource::Sampler(&renderer.sampler),
+        let sampler = |binding, sampler| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::Sampler(sampler),
         };
+        let clamped_sampler = sampler(CLAMPED_SAMPLER_BINDING, &renderer.clamped_sampler);
         let gbuffer_bindings = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &gbuffer.get_bind_group_layout(0),
-            entries: &[sampler.clone(), texture(5, &renderer.light_map)],
+            entries: &[clamped_sampler.clone(), texture(5, &renderer.light_map)],
         });
         let mut entries = vec![
-            texture(1, &renderer.environment),
+            texture(ENVIRONMENT_BINDING, &renderer.environment),
             texture(2, &renderer.lut),
-            sampler,
+            sampler(ENVIRONMENT_SAMPLER_BINDING, &renderer.environment_sampler),
             texture(4, &depth_view),
+            clamped_sampler,
         ];
         for (index, target_view) in gbuffer_views.iter().enumerate() {
             entries.push(texture(GBUFFER_FIRST_BINDING + index as u32, target_view));
