@@ -66,51 +66,45 @@ pub fn heatmap(a: &Frame, b: &Frame) -> Frame {
         [220.0, 40.0, 40.0],
         [255.0, 240.0, 60.0],
     ];
-    let pixels = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .map(|(pixel_a, pixel_b)| {
-            let error = (0..3)
-                .map(|index| pixel_a[index].abs_diff(pixel_b[index]))
-                .max()
-                .unwrap_or(0);
-            // On the ramp: 1 step at 1, 4 steps at 2, 16 at 3 (1 + log2(error) / 2).
-            let position = if error == 0 {
-                0.0
-            } else {
-                (1.0 + f32::from(error).log2() / 2.0).min(3.0)
-            };
-            let low = (position.floor() as usize).min(2);
-            let t = position - low as f32;
-            let channel = |index: usize| {
-                (RAMP[low][index] + (RAMP[low + 1][index] - RAMP[low][index]) * t).round() as u8
-            };
-            [channel(0), channel(1), channel(2), 255]
-        })
-        .collect();
-    Frame {
-        width: a.width,
-        height: a.height,
-        pixels,
-    }
+    per_pixel(a, b, |pixel_a, pixel_b| {
+        let error = (0..3)
+            .map(|index| pixel_a[index].abs_diff(pixel_b[index]))
+            .max()
+            .unwrap_or(0);
+        // On the ramp: 1 step at 1, 4 steps at 2, 16 at 3 (1 + log2(error) / 2).
+        let position = if error == 0 {
+            0.0
+        } else {
+            (1.0 + f32::from(error).log2() / 2.0).min(3.0)
+        };
+        let low = (position.floor() as usize).min(2);
+        let t = position - low as f32;
+        let channel = |index: usize| {
+            (RAMP[low][index] + (RAMP[low + 1][index] - RAMP[low][index]) * t).round() as u8
+        };
+        [channel(0), channel(1), channel(2), 255]
+    })
 }
 
 /// The absolute difference of two frames, amplified 8 times so small errors show.
 pub fn difference(a: &Frame, b: &Frame) -> Frame {
-    let pixels = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .map(|(pixel_a, pixel_b)| {
-            let channel = |index: usize| pixel_a[index].abs_diff(pixel_b[index]).saturating_mul(8);
-            [channel(0), channel(1), channel(2), 255]
-        })
-        .collect();
+    per_pixel(a, b, |pixel_a, pixel_b| {
+        let channel = |index: usize| pixel_a[index].abs_diff(pixel_b[index]).saturating_mul(8);
+        [channel(0), channel(1), channel(2), 255]
+    })
+}
+
+/// A frame of `a`'s size whose pixels are `pixel` of `a`'s and `b`'s.
+fn per_pixel(a: &Frame, b: &Frame, pixel: impl Fn(&[u8; 4], &[u8; 4]) -> [u8; 4]) -> Frame {
     Frame {
         width: a.width,
         height: a.height,
-        pixels,
+        pixels: a
+            .pixels
+            .iter()
+            .zip(&b.pixels)
+            .map(|(pixel_a, pixel_b)| pixel(pixel_a, pixel_b))
+            .collect(),
     }
 }
 

@@ -141,6 +141,25 @@ fn measure(
     })
 }
 
+impl FrameRow {
+    /// The table's cells, as both the printed and the markdown table show them.
+    fn cells(&self) -> [String; 11] {
+        [
+            self.layout.clone(),
+            self.kind.to_string(),
+            self.bits.to_string(),
+            self.words.to_string(),
+            format!("{:.2}", self.wgpu_bandwidth_units),
+            bandwidth(self.two_pass_bandwidth_units),
+            bandwidth(self.fused_bandwidth_units),
+            format!("{:.2}", self.comparison.psnr),
+            self.comparison.max_error.to_string(),
+            format!("{:.3}%", self.comparison.share_over_one_step * 100.0),
+            format!("{:.2}", self.frame_ms),
+        ]
+    }
+}
+
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
     values.get(values.len() / 2).copied().unwrap_or(f64::NAN)
@@ -240,19 +259,10 @@ pub fn print(rows: &[FrameRow], adapter: &str) {
         "frame ms"
     );
     for row in rows {
+        let [layout, kind, bits, words, wgpu, two_pass, fused, psnr, largest, share, frame_ms] =
+            row.cells();
         println!(
-            "{:<28} {:<7} {:>4} {:>5} {:>6.2} {:>8} {:>6} {:>8.2} {:>8} {:>8.3}% {:>9.2}",
-            row.layout,
-            row.kind,
-            row.bits,
-            row.words,
-            row.wgpu_bandwidth_units,
-            bandwidth(row.two_pass_bandwidth_units),
-            bandwidth(row.fused_bandwidth_units),
-            row.comparison.psnr,
-            row.comparison.max_error,
-            row.comparison.share_over_one_step * 100.0,
-            row.frame_ms
+            "{layout:<28} {kind:<7} {bits:>4} {words:>5} {wgpu:>6} {two_pass:>8} {fused:>6} {psnr:>8} {largest:>8} {share:>9} {frame_ms:>9}"
         );
     }
     for row in rows.iter().filter(|row| !row.predicted.is_empty()) {
@@ -306,21 +316,8 @@ pub fn markdown(rows: &[FrameRow], adapter: &str) -> String {
         SIZE.0, SIZE.1
     );
     for row in rows {
-        out.push_str(&format!(
-            "| {} | {} | {} | {} | {:.2} | {} | {} | {:.2} | {} | {:.3}% | {:.2} | [png]({}) |\n",
-            row.layout,
-            row.kind,
-            row.bits,
-            row.words,
-            row.wgpu_bandwidth_units,
-            bandwidth(row.two_pass_bandwidth_units),
-            bandwidth(row.fused_bandwidth_units),
-            row.comparison.psnr,
-            row.comparison.max_error,
-            row.comparison.share_over_one_step * 100.0,
-            row.frame_ms,
-            row.heatmap
-        ));
+        let cells = row.cells().join(" | ");
+        out.push_str(&format!("| {cells} | [png]({}) |\n", row.heatmap));
     }
     for row in rows.iter().filter(|row| !row.predicted.is_empty()) {
         out.push_str(&format!(
