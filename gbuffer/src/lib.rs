@@ -138,13 +138,7 @@ pub trait GBufferLayout: Sized {
     /// When the slices' lengths differ.
     fn pack_slice(texels: &[Self], packed: &mut [Self::Packed]) {
         check_slice_lengths("pack_slice", texels.len(), packed.len());
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2, checked just above.
-            unsafe { slices::pack_with_avx2(texels, packed) };
-            return;
-        }
-        slices::pack(texels, packed);
+        slices::convert(texels, packed, Self::pack);
     }
 
     /// Unpacks `packed` into `texels`, texel i from `packed[i]`, each as [`Self::unpack`]
@@ -155,13 +149,7 @@ pub trait GBufferLayout: Sized {
     /// When the slices' lengths differ.
     fn unpack_slice(packed: &[Self::Packed], texels: &mut [Self]) {
         check_slice_lengths("unpack_slice", texels.len(), packed.len());
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2, checked just above.
-            unsafe { slices::unpack_with_avx2(packed, texels) };
-            return;
-        }
-        slices::unpack(packed, texels);
+        slices::convert(packed, texels, Self::unpack);
     }
 
     /// The bit report: per field the format, bits and used bits; the total against the
@@ -189,22 +177,26 @@ fn check_slice_lengths(call: &str, texels: usize, packed: usize) {
     );
 }
 
-/// The loops behind [`GBufferLayout::pack_slice`] and [`GBufferLayout::unpack_slice`], and
-/// their copies compiled for AVX2.
+/// The loop behind [`GBufferLayout::pack_slice`] and [`GBufferLayout::unpack_slice`], and its
+/// copy compiled for AVX2.
 mod slices {
-    use super::GBufferLayout;
-
+    /// Writes `output[i] = convert(&input[i])` for every i; on x86-64 CPUs with AVX2 (checked at
+    /// run time) through a copy compiled for AVX2.
     #[inline(always)]
-    pub fn pack<L: GBufferLayout>(texels: &[L], packed: &mut [L::Packed]) {
-        for (texel, out) in texels.iter().zip(packed) {
-            *out = texel.pack();
+    pub fn convert<A, B>(input: &[A], output: &mut [B], convert: impl Fn(&A) -> B) {
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2, checked just above.
+            unsafe { convert_with_avx2(input, output, &convert) };
+            return;
         }
+        each(input, output, &convert);
     }
 
     #[inline(always)]
-    pub fn unpack<L: GBufferLayout>(packed: &[L::Packed], texels: &mut [L]) {
-        for (words, texel) in packed.iter().zip(texels) {
-            *texel = L::unpack(words);
+    fn each<A, B>(input: &[A], output: &mut [B], convert: &impl Fn(&A) -> B) {
+        for (from, to) in input.iter().zip(output) {
+            *to = convert(from);
         }
     }
 
@@ -213,16 +205,7 @@ mod slices {
     /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    pub unsafe fn pack_with_avx2<L: GBufferLayout>(texels: &[L], packed: &mut [L::Packed]) {
-        pack(texels, packed);
-    }
-
-    /// # Safety
-    ///
-    /// The CPU must have AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    pub unsafe fn unpack_with_avx2<L: GBufferLayout>(packed: &[L::Packed], texels: &mut [L]) {
-        unpack(packed, texels);
+    unsafe fn convert_with_avx2<A, B>(input: &[A], output: &mut [B], convert: &impl Fn(&A) -> B) {
+        each(input, output, convert);
     }
 }
