@@ -2,14 +2,15 @@
 //! ([`crate::engine_layouts`]), by each engine's own conventions, so that the reference renderer
 //! and the trade-off study can show what an engine's G-buffer costs the picture:
 //!
-//! - **Bevy** ([`BevyDeferred`], its WebGL2 form): base colour in sRGB beside perceptual
-//!   roughness, the light in the rgb9e5 emissive word (Bevy adds emissive to the lit result as
-//!   the renderer adds its light accumulation), Bevy's `reflectance` (f0 = 0.16 reflectance²,
-//!   Filament's remapping) at 0.5 for f0 = 0.04, full occlusion, the 24-bit octahedral normal
-//!   and no flags. Its 4-bit reflectance cannot hold 0.5: it decodes as 8/15, so dielectrics
-//!   come back with f0 ≈ 0.0455 instead of 0.04, as in Bevy's own WebGL2 path. The 20-bit depth
-//!   is written as 0: the renderer reads positions from its depth buffer, where Bevy's WebGL2
-//!   path stores clip-space depth.
+//! - **Bevy** ([`BevyDeferred`], its WebGL2 form), as `bevy_pbr`'s deferred functions store
+//!   and read it: base colour gamma 2.2 encoded (`pow(c, 1 / 2.2)`, not the sRGB curve) beside
+//!   perceptual roughness, the light in the rgb9e5 emissive word (Bevy adds emissive and the
+//!   light map's light to the lit result as the renderer adds its light accumulation), Bevy's
+//!   `reflectance` (f0 = 0.16 reflectance², Filament's remapping) at 0.5 for f0 = 0.04, full
+//!   occlusion, the 24-bit octahedral normal and no flags. 4 bits cannot hold 0.5: it is stored
+//!   as 8/15, and read back, as Bevy's WebGL2 path reads it, less 1/30, which gives 0.5 again.
+//!   The 20-bit depth is written as 0: the renderer reads positions from its depth buffer,
+//!   where Bevy's WebGL2 path stores clip-space depth.
 //! - **HDRP** ([`HdrpLit`], the standard material in its specular colour form): the diffuse
 //!   colour in sRGB with full specular occlusion, the normal, perceptual roughness, fresnel0 in
 //!   sRGB, material feature 0 with no coat, and the light in the `r11f_g11f_b10f` baked diffuse
@@ -25,20 +26,27 @@ use crate::shading::mirror as m;
 /// Bevy's `reflectance` for dielectrics: f0 = 0.16 x 0.5² = 0.04.
 const BEVY_DIELECTRIC_REFLECTANCE: f32 = 0.5;
 
+/// What Bevy's WebGL2 path takes off the 4-bit reflectance it reads (`props.r - 0.03333`), so
+/// that the 8/15 that 0.5 is stored as reads as 0.5. WGSL `BEVY_WEBGL2_REFLECTANCE_BIAS`.
+const BEVY_WEBGL2_REFLECTANCE_BIAS: f32 = 1.0 / 30.0;
+
 impl SurfaceConvention for BevyDeferred {
     const ENCODE_WGSL: &'static str = "fn encode_texel(s: Surface) -> BevyDeferred {
-    return BevyDeferred(vec4<f32>(linear_to_srgb(s.base_colour), s.roughness), s.light, 0.5, s.metallic, 1.0, 0.0, s.normal, 0u);
+    return BevyDeferred(vec4<f32>(linear_to_gamma_2_2(s.base_colour), s.roughness), s.light, 0.5, s.metallic, 1.0, 0.0, s.normal, 0u);
 }";
-    const DECODE_WGSL: &'static str = "fn decode_texel(t: BevyDeferred) -> Shading {
-    // Filament's reflectance remapping, as Bevy decodes it: f0 = 0.16 reflectance^2.
-    let dielectric_f0 = 0.16 * t.reflectance * t.reflectance;
-    let colours = metallic_workflow(srgb_to_linear(t.base_color_roughness.rgb), t.metallic, dielectric_f0);
+    const DECODE_WGSL: &'static str = "const BEVY_WEBGL2_REFLECTANCE_BIAS: f32 = 1.0 / 30.0;
+
+fn decode_texel(t: BevyDeferred) -> Shading {
+    // Bevy's WebGL2 bias (0.5 is stored as 8/15), then Filament's remapping: f0 = 0.16 r^2.
+    let reflectance = saturate(t.reflectance - BEVY_WEBGL2_REFLECTANCE_BIAS);
+    let dielectric_f0 = 0.16 * reflectance * reflectance;
+    let colours = metallic_workflow(gamma_2_2_to_linear(t.base_color_roughness.rgb), t.metallic, dielectric_f0);
     return Shading(t.normal, t.base_color_roughness.a, colours.diffuse, colours.f0, t.emissive);
 }";
 
     fn encode(s: &Surface) -> Self {
         BevyDeferred {
-            base_color_roughness: m::colour::linear_to_srgb(s.base_colour).extend(s.roughness),
+            base_color_roughness: m::colour::linear_to_gamma_2_2(s.base_colour).extend(s.roughness),
             emissive: s.light,
             reflectance: BEVY_DIELECTRIC_REFLECTANCE,
             metallic: s.metallic,
@@ -50,8 +58,9 @@ impl SurfaceConvention for BevyDeferred {
     }
 
     fn decode(&self) -> Shading {
-        let dielectric_f0 = 0.16 * self.reflectance * self.reflectance;
-        let base_colour = m::colour::srgb_to_linear(self.base_color_roughness.truncate());
+        let reflectance = (self.reflectance - BEVY_WEBGL2_REFLECTANCE_BIAS).clamp(0.0, 1.0);
+        let dielectric_f0 = 0.16 * reflectance * reflectance;
+        let base_colour = m::colour::gamma_2_2_to_linear(self.base_color_roughness.truncate());
         let colours = m::material::metallic_workflow(base_colour, self.metallic, dielectric_f0);
         Shading {
             normal: self.normal,
@@ -102,6 +111,7 @@ mod tests {
     use super::*;
     use crate::glam::Vec3;
     use crate::seed_conventions::round_trip;
+    use crate::GBufferLayout;
 
     fn surface(metallic: f32) -> Surface {
         Surface {
@@ -115,13 +125,14 @@ mod tests {
         }
     }
 
-    /// Bevy's 4-bit reflectance decodes 0.5 as 8/15: a dielectric's f0 comes back as
-    /// 0.16 (8/15)² ≈ 0.0455, the cost its WebGL2 G-buffer has in Bevy too.
+    /// Bevy's 4-bit reflectance stores 0.5 as 8/15 and reads it back less 1/30, as Bevy's
+    /// WebGL2 path does: a dielectric's f0 comes back as 0.04.
     #[test]
-    fn bevy_dielectrics_come_back_with_the_four_bit_reflectance() {
+    fn bevy_dielectrics_come_back_with_f0_0_04() {
+        let stored = BevyDeferred::unpack(&BevyDeferred::encode(&surface(0.0)).pack());
+        assert!((stored.reflectance - 8.0 / 15.0).abs() < 1e-6, "{stored:?}");
         let shading = round_trip::<BevyDeferred>(&surface(0.0));
-        let expected = 0.16 * (8.0f32 / 15.0).powi(2);
-        assert!((shading.f0.x - expected).abs() < 1e-6, "{shading:?}");
+        assert!((shading.f0.x - 0.04).abs() < 1e-6, "{shading:?}");
         assert!((shading.light - surface(0.0).light).abs().max_element() < 0.01);
     }
 
