@@ -24,6 +24,9 @@ pub struct Request {
     pub limits: Option<wgpu::Limits>,
     /// Features wanted: those of them the adapter has are enabled (timestamp queries, say).
     pub features: wgpu::Features,
+    /// The backends to look on (`wgpu::Backends::GL` for WebGL2's), where the caller chooses;
+    /// `None` takes `WGPU_BACKEND`, else the primary backends first and then any.
+    pub backends: Option<wgpu::Backends>,
 }
 
 impl Gpu {
@@ -54,7 +57,7 @@ impl Gpu {
         };
         let request_adapter =
             |backends| pollster::block_on(instance(backends).request_adapter(&options));
-        let chosen = wgpu::Backends::from_env();
+        let chosen = request.backends.or_else(wgpu::Backends::from_env);
         let adapter = match chosen {
             Some(backends) => request_adapter(backends),
             None => request_adapter(wgpu::Backends::PRIMARY)

@@ -145,18 +145,45 @@ impl PackedLayout {
         self.entry().decode_wgsl
     }
 
-    /// What the on-tile paths need beyond `encode_texel` and `decode_texel`, for layouts that
-    /// store where the surface is and its base colour (the decals paint base colour, the
-    /// point lights need the position): `texel_position(t, direction)`, `with_light(t,
-    /// light)` (the light accumulation replaced) and `paint_texel(t, decal, weight)`. The
-    /// error says why another layout cannot be kept on tile by this renderer.
-    pub fn on_tile_wgsl(self) -> Result<&'static str, String> {
-        match self {
-            PackedLayout::MobileMetallic => Ok("fn texel_position(t: MobileMetallic, direction: vec3<f32>) -> vec3<f32> {
-    return SCENE_EYE + direction * t.depth;
-}
+    /// `fn texel_position(t: <Name>, direction: vec3<f32>) -> vec3<f32>`: where the surface
+    /// of a texel is, from the depth (distance along the view ray) or the world position the
+    /// layout stores, for lighting passes that cannot read the depth buffer (the on-tile
+    /// paths; wgpu's GL backend). The error says why a layout has none.
+    pub fn texel_position_wgsl(self) -> Result<String, String> {
+        let name = self.layout().name;
+        let position = match self {
+            PackedLayout::MobileMetallic
+            | PackedLayout::SpecularWorkflow
+            | PackedLayout::CoarseNormals
+            | PackedLayout::Lossless => "SCENE_EYE + direction * t.depth",
+            PackedLayout::FutureMetallic | PackedLayout::FutureSpecular => {
+                "vec3<f32>(t.position_x, t.position_y, t.position_z)"
+            }
+            PackedLayout::ArmTileBlock | PackedLayout::BevyDeferred | PackedLayout::HdrpLit => {
+                return Err(format!(
+                    "layout `{}` stores neither the distance to the surface nor its position",
+                    self.flag()
+                ))
+            }
+        };
+        Ok(format!(
+            "fn texel_position(t: {name}, direction: vec3<f32>) -> vec3<f32> {{\n    return {position};\n}}\n"
+        ))
+    }
 
-fn with_light(t: MobileMetallic, light: vec3<f32>) -> MobileMetallic {
+    /// What the fused paths need beyond `encode_texel` and `decode_texel`, for layouts that
+    /// store where the surface is and its base colour (the decals paint base colour, the
+    /// point lights need the position): [`Self::texel_position_wgsl`], `with_light(t, light)`
+    /// (the light accumulation replaced) and `paint_texel(t, decal, weight)`. The error says
+    /// why another layout cannot be kept on tile by this renderer.
+    pub fn on_tile_wgsl(self) -> Result<String, String> {
+        let extras = self.on_tile_extras_wgsl()?;
+        Ok(format!("{}\n{extras}", self.texel_position_wgsl()?))
+    }
+
+    fn on_tile_extras_wgsl(self) -> Result<&'static str, String> {
+        match self {
+            PackedLayout::MobileMetallic => Ok("fn with_light(t: MobileMetallic, light: vec3<f32>) -> MobileMetallic {
     var lit = t;
     lit.light_accumulation = scale_hdr_to_unit(light, LIGHT_SCALE);
     return lit;
@@ -169,11 +196,7 @@ fn paint_texel(t: MobileMetallic, decal: u32, weight: f32) -> MobileMetallic {
     painted.normals_roughness.w = paint_roughness(t.normals_roughness.w, decal, weight);
     return painted;
 }"),
-            PackedLayout::FutureMetallic => Ok("fn texel_position(t: FutureMetallic, direction: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(t.position_x, t.position_y, t.position_z);
-}
-
-fn with_light(t: FutureMetallic, light: vec3<f32>) -> FutureMetallic {
+            PackedLayout::FutureMetallic => Ok("fn with_light(t: FutureMetallic, light: vec3<f32>) -> FutureMetallic {
     var lit = t;
     lit.light_accumulation_rg = light.rg;
     lit.light_accumulation_b_normal_x.x = light.b;

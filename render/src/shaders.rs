@@ -294,8 +294,8 @@ pub fn lighting_pass_wgsl(options: &Options, positions: Positions) -> Result<Str
             let (bindings, targets) = read_packed_targets(&model);
             let (name, snake) = (&model.name, model.snake_name());
             let texel_positions = match positions {
-                Positions::Texel => layout.on_tile_wgsl()?,
-                Positions::DepthBuffer => "",
+                Positions::Texel => layout.texel_position_wgsl()?,
+                Positions::DepthBuffer => String::new(),
             };
             (
                 format!("{}\n{}\n{texel_positions}\n{bindings}", layout.wgsl(), layout.decode_wgsl()),

@@ -1,6 +1,7 @@
 //! The reference renderer on the adapter at hand (in CI, Mesa's lavapipe or llvmpipe): a small
 //! frame renders, is not blank, matches the CPU reference, and its PNG is written.
 
+use gbuffer_gpu::adapter::Request;
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::{compare, is_blank, write_png};
 use gbuffer_render::options::{IblForm, Options, SunForm};
@@ -52,6 +53,43 @@ fn the_lossless_frame_reaches_the_floor_against_the_cpu_reference() {
         comparison.psnr, comparison.max_error
     );
     assert!(comparison.psnr >= 49.0, "{comparison:?}");
+}
+
+/// On wgpu's GL backend held to WebGL2's limits (`Limits::downlevel_webgl2_defaults()`), whose
+/// GLSL cannot load from a depth texture: a layout that stores the distance to the surface
+/// renders, close to the CPU reference, and one that stores neither distance nor position is
+/// refused with a message that names the limit, not a panic.
+#[test]
+fn under_webgl2_limits_on_gl_a_layout_with_depth_renders_and_one_without_is_refused() {
+    let request = Request {
+        label: "webgl2",
+        limits: Some(wgpu::Limits::downlevel_webgl2_defaults()),
+        features: wgpu::Features::empty(),
+        backends: Some(wgpu::Backends::GL),
+    };
+    let Some(renderer) = gbuffer_testkit::or_skip(
+        "wgpu's GL backend",
+        Renderer::with_request(&request, &|message| eprintln!("{message}")),
+    ) else {
+        return;
+    };
+    let frame = renderer
+        .render(&accurate(GBuffer::Packed(PackedLayout::MobileMetallic)))
+        .unwrap_or_else(|error| panic!("{error}"));
+    let features = gbuffer_render::scene::reference_features();
+    let comparison = compare(&frame, &reference::render(WIDTH, HEIGHT, features, &|_| {}));
+    eprintln!(
+        "mobile-metallic on GL under WebGL2 limits: PSNR {:.2} dB",
+        comparison.psnr
+    );
+    assert!(comparison.psnr >= 45.0, "{comparison:?}");
+    let refused = renderer
+        .render(&accurate(GBuffer::Packed(PackedLayout::ArmTileBlock)))
+        .expect_err("arm-tile-block stores no depth");
+    assert!(
+        refused.contains("cannot load from a depth texture"),
+        "{refused}"
+    );
 }
 
 #[test]

@@ -45,6 +45,7 @@ pub fn gpu_with(limits: Option<wgpu::Limits>, features: wgpu::Features) -> Optio
         label: "tests",
         limits,
         features,
+        backends: None,
     };
     or_skip("a wgpu adapter", Gpu::open(&request))
 }

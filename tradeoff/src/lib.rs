@@ -62,6 +62,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
         label: "trade-off study",
         limits: None,
         features: wgpu::Features::TIMESTAMP_QUERY,
+        backends: None,
     })?;
     let adapter = gpu.describe();
     eprintln!("timing on {adapter}");

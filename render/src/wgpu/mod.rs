@@ -26,8 +26,7 @@ use crate::inputs::Inputs;
 use crate::mesh::{Mesh, Vertex};
 use crate::options::{Frame, Options};
 use crate::recording::{Call, Recording};
-use crate::shaders::gbuffer_wgsl;
-use crate::shaders::{self};
+use crate::shaders::{self, gbuffer_wgsl, Positions};
 
 use gbuffer_gpu::timestamps::Timestamps;
 use passes::{Passes, VERTEX_ATTRIBUTES};
@@ -63,15 +62,25 @@ impl Renderer {
     /// Opens an adapter (any wgpu finds, software ones included) and prepares the inputs,
     /// reporting progress.
     pub fn new(progress: &dyn Fn(&str)) -> Result<Renderer, String> {
+        Renderer::with_request(
+            &Request {
+                label: "deferred",
+                limits: None,
+                features: wgpu::Features::TIMESTAMP_QUERY,
+                backends: None,
+            },
+            progress,
+        )
+    }
+
+    /// As [`Renderer::new`], on the device `request` asks for: a backend, limits to hold it
+    /// to (WebGL2's: `wgpu::Limits::downlevel_webgl2_defaults()` on `wgpu::Backends::GL`).
+    pub fn with_request(request: &Request, progress: &dyn Fn(&str)) -> Result<Renderer, String> {
         let Gpu {
             device,
             queue,
             info,
-        } = Gpu::open(&Request {
-            label: "deferred",
-            limits: None,
-            features: wgpu::Features::TIMESTAMP_QUERY,
-        })?;
+        } = Gpu::open(request)?;
         let timestamp_feature = device.features() & wgpu::Features::TIMESTAMP_QUERY;
         progress(&format!("adapter: {} ({:?})", info.name, info.backend));
 
@@ -373,15 +382,46 @@ impl Renderer {
         ))
     }
 
+    /// The passes of a frame, or why this device cannot make them: what the backend lacks, or
+    /// what wgpu rejected (a validation or internal error, caught rather than left to panic).
     fn passes(&self, options: &Options) -> Result<Passes, String> {
-        let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let passes = Passes::new(self, options);
-        match pollster::block_on(scope.pop()) {
+        let positions = self.positions(options)?;
+        let internal = self.device.push_error_scope(wgpu::ErrorFilter::Internal);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let passes = Passes::new(self, options, positions);
+        let errors = [
+            pollster::block_on(validation.pop()),
+            pollster::block_on(internal.pop()),
+        ];
+        match errors.into_iter().flatten().next() {
             Some(error) => Err(format!(
-                "wgpu rejected the passes for {}: {error}",
-                options.gbuffer.name()
+                "wgpu rejected the passes for {} on {} ({:?}): {error}",
+                options.gbuffer.name(),
+                self.adapter.name,
+                self.adapter.backend
             )),
             None => Ok(passes),
         }
+    }
+
+    /// Where the lighting pass finds positions: the depth buffer, except on the GL backend,
+    /// whose GLSL (GLSL ES 3.00 on WebGL2) cannot load from a depth texture; there, from the
+    /// texel of a layout that stores depth or position, and no other layout can render.
+    fn positions(&self, options: &Options) -> Result<Positions, String> {
+        if self.adapter.backend != wgpu::Backend::Gl {
+            return Ok(Positions::DepthBuffer);
+        }
+        let texel_position = match options.gbuffer.packed_layout() {
+            Some(layout) => layout.texel_position_wgsl().map(|_| ()),
+            None => Err("its G-buffer is not one of the packed layouts".to_string()),
+        };
+        texel_position.map(|()| Positions::Texel).map_err(|reason| {
+            format!(
+                "`{}` cannot render on wgpu's GL backend: GLSL (GLSL ES 3.00 on WebGL2) cannot \
+                 load from a depth texture, so the point lights take positions from the \
+                 G-buffer's texel, and {reason}",
+                options.gbuffer.name()
+            )
+        })
     }
 }

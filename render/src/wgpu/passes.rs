@@ -43,7 +43,8 @@ pub const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 3] =
     wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32];
 
 impl Passes {
-    pub(super) fn new(renderer: &Renderer, options: &Options) -> Passes {
+    /// The passes of a frame, the lighting reading positions from `positions`.
+    pub(super) fn new(renderer: &Renderer, options: &Options, positions: Positions) -> Passes {
         let device = &renderer.device;
         let size = wgpu::Extent3d {
             width: options.width,
@@ -119,8 +120,8 @@ impl Passes {
             &options.gbuffer.target_formats(),
             true,
         );
-        let lighting_source = lighting_pass_wgsl(options, Positions::DepthBuffer)
-            .expect("positions from the depth buffer suit every layout");
+        let lighting_source = lighting_pass_wgsl(options, positions)
+            .expect("Renderer::positions chose positions the layout has");
         let lighting_bindings_used = shaders::used_bindings(&lighting_source, "lighting_main");
         // Seed and classic layouts draw the point lights as volumes (a solved layout's lighting
         // function loops over its lights): the pipeline, and the bindings it reads.
