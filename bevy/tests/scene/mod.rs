@@ -44,6 +44,7 @@ pub fn render(plugin: Option<AddPlugins>) -> Pixels {
                 })
                 .disable::<bevy::log::LogPlugin>(),
         );
+    let replacing = plugin.is_some();
     if let Some(plugin) = plugin {
         plugin(&mut app);
     }
@@ -70,6 +71,8 @@ pub fn render(plugin: Option<AddPlugins>) -> Pixels {
     for _ in 0..20 {
         app.update();
         if let Some(pixels) = captured.lock().unwrap().take() {
+            // The frame is the layout's only if its module took Bevy's place before it.
+            assert_eq!(gbuffer_bevy::is_replaced(&app), replacing);
             return pixels;
         }
     }
