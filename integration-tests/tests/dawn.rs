@@ -176,7 +176,7 @@ fn every_wgsl() -> Vec<Value> {
             gbuffer::modules::compose(&[module.name]).unwrap(),
         ));
     }
-    for layout in PackedLayout::ALL {
+    for &layout in PackedLayout::all() {
         let options = Options {
             gbuffer: GBuffer::Packed(layout),
             sun: SunForm::Ggx,

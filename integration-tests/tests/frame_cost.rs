@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::compare;
-use gbuffer_render::options::{IblForm, Options, SunForm};
+use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
 use gbuffer_render::wgpu::Renderer;
 
 /// A frame, small: 160x90.
@@ -28,14 +28,10 @@ fn renderer() -> Option<Renderer> {
     )
 }
 
-/// PSNR of `gbuffer`'s frame against `lossless`'s, in dB.
-fn psnr_against(renderer: &Renderer, gbuffer: GBuffer, lossless: GBuffer) -> f64 {
-    let render = |gbuffer| {
-        renderer
-            .render(&options(gbuffer))
-            .unwrap_or_else(|error| panic!("{error}"))
-    };
-    compare(&render(gbuffer), &render(lossless)).psnr
+fn render(renderer: &Renderer, gbuffer: GBuffer) -> Frame {
+    renderer
+        .render(&options(gbuffer))
+        .unwrap_or_else(|error| panic!("{error}"))
 }
 
 /// Coarser storage, lower PSNR against the lossless frame: the layouts the study rates worse
@@ -56,6 +52,7 @@ fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
             .unwrap_or_else(|| panic!("no trade-off row for {name}"))
             .1
     };
+    let lossless = render(&renderer, GBuffer::Packed(PackedLayout::Lossless));
     let mut measured: Vec<(f64, f64, PackedLayout)> = [
         PackedLayout::CoarseNormals,
         PackedLayout::MobileMetallic,
@@ -65,8 +62,7 @@ fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
     ]
     .into_iter()
     .map(|layout| {
-        let lossless = GBuffer::Packed(PackedLayout::Lossless);
-        let psnr = psnr_against(&renderer, GBuffer::Packed(layout), lossless);
+        let psnr = compare(&render(&renderer, GBuffer::Packed(layout)), &lossless).psnr;
         eprintln!(
             "{}: predicted {:.3} steps; PSNR {psnr:.2} dB against the lossless frame",
             layout.flag(),
@@ -125,11 +121,13 @@ fn a_tighter_precision_is_no_worse_in_the_frame() {
          hdr_min = 0.015625\nhdr_relative = 0.002\n",
         256,
     );
+    // The three scenes differ in precision only: one lossless frame serves them all.
+    let lossless = render(&renderer, GBuffer::LosslessScene(preset.scene.features));
     let mut measured = Vec::new();
     for solution in [coarse, preset, tight] {
         let bits = solution.layout.used_bits();
-        let lossless = GBuffer::LosslessScene(solution.scene.features);
-        let psnr = psnr_against(&renderer, GBuffer::Solved(Arc::new(solution)), lossless);
+        let solved = render(&renderer, GBuffer::Solved(Arc::new(solution)));
+        let psnr = compare(&solved, &lossless).psnr;
         eprintln!("{bits} used bits: PSNR {psnr:.2} dB against the lossless frame");
         measured.push((bits, psnr));
     }

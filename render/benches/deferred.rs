@@ -86,8 +86,9 @@ fn main() {
         "{:<28} {:>6} {:>11} {:>11} {:>6} {:>12} {:>12}",
         "G-buffer / path", "passes", "MB loaded", "MB stored", "BU", "1280x720 ms", "1920x1080 ms"
     );
-    let gbuffers = PackedLayout::ALL
-        .into_iter()
+    let gbuffers = PackedLayout::all()
+        .iter()
+        .copied()
         .map(GBuffer::Packed)
         .chain([GBuffer::Classic]);
     for gbuffer in gbuffers {
@@ -154,8 +155,9 @@ fn main() {
         "{:<18} {:<7} {:<7} {:>9} {:>13}",
         "G-buffer", "sun", "IBL", "PSNR dB", "largest error"
     );
-    for gbuffer in PackedLayout::ALL
-        .into_iter()
+    for gbuffer in PackedLayout::all()
+        .iter()
+        .copied()
         .map(GBuffer::Packed)
         .chain([GBuffer::Classic])
     {

@@ -93,18 +93,11 @@ impl PackedLayout {
     /// The engine layouts.
     pub const ENGINES: [PackedLayout; 2] = [PackedLayout::BevyDeferred, PackedLayout::HdrpLit];
 
-    /// Every packed layout: the seeds, the engines', the coarse one and the lossless one.
-    pub const ALL: [PackedLayout; 9] = [
-        PackedLayout::MobileMetallic,
-        PackedLayout::SpecularWorkflow,
-        PackedLayout::FutureMetallic,
-        PackedLayout::FutureSpecular,
-        PackedLayout::ArmTileBlock,
-        PackedLayout::BevyDeferred,
-        PackedLayout::HdrpLit,
-        PackedLayout::CoarseNormals,
-        PackedLayout::Lossless,
-    ];
+    /// Every packed layout: the seeds, the engines', the coarse one and the lossless one (the
+    /// variants, in order, as `--layout` lists them).
+    pub fn all() -> &'static [PackedLayout] {
+        <PackedLayout as clap::ValueEnum>::value_variants()
+    }
 
     /// The command-line name, e.g. `mobile-metallic`.
     pub fn flag(self) -> String {

@@ -118,7 +118,7 @@ fn measure(
                 .bandwidth_units(SIZE.0, SIZE.1),
         ))
     };
-    let times = renderers.wgpu.time_frames(&options, TIMED_FRAMES)?;
+    let mut times = renderers.wgpu.time_frames(&options, TIMED_FRAMES)?;
     let file_stem = name.replace(|c: char| !c.is_ascii_alphanumeric(), "-");
     let heatmap_name = format!("frame-{file_stem}-heatmap.png");
     let heatmap_path = folder.join(&heatmap_name);
@@ -135,7 +135,7 @@ fn measure(
         two_pass_bandwidth_units: tile_bandwidth(TilePath::TwoPass)?,
         fused_bandwidth_units: tile_bandwidth(TilePath::Subpass)?,
         comparison,
-        frame_ms: median(times) * 1e3,
+        frame_ms: crate::timing::median(&mut times) * 1e3,
         heatmap: heatmap_name,
         predicted: Vec::new(),
     })
@@ -158,11 +158,6 @@ impl FrameRow {
             format!("{:.2}", self.frame_ms),
         ]
     }
-}
-
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values.get(values.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
 /// The solver's predicted error of each quantity of a solution, as `gbuffer solve` words it.

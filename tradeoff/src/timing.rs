@@ -630,7 +630,8 @@ pub fn cpu_ns_per_eval(evaluate: &dyn Fn(Vec4) -> Vec4) -> f64 {
     median(&mut times) * 1e9 / f64::from(EVALUATIONS)
 }
 
-fn median(values: &mut [f64]) -> f64 {
+/// The median of `values` (sorted in place); they must not be empty.
+pub(crate) fn median(values: &mut [f64]) -> f64 {
     values.sort_by(f64::total_cmp);
     values[values.len() / 2]
 }
