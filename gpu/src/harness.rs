@@ -102,7 +102,9 @@ fn field_from_scalars(ty: &gbuffer::packing::FieldType, first: usize) -> String 
 
 /// A compute shader that reads texels as scalar bits, packs them with the generated
 /// `pack_<snake>`, writes the words, unpacks them again with `unpack_<snake>` and writes the
-/// scalars' bits. Bindings: 0 inputs, 1 packed words, 2 unpacked scalars, 3 texel count.
+/// scalars' bits, then reads each field alone with `load_<snake>_<field>` and writes those
+/// scalars' bits too. Bindings: 0 inputs, 1 packed words, 2 unpacked scalars, 3 loaded
+/// scalars, 4 texel count (in `x`); workgroups of 64.
 pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
     let prefix = layout.snake_name();
     let scalars = scalars_per_texel(layout);
@@ -112,7 +114,8 @@ pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
     out.push_str("@group(0) @binding(0) var<storage, read> harness_inputs: array<u32>;\n");
     out.push_str("@group(0) @binding(1) var<storage, read_write> harness_packed: array<u32>;\n");
     out.push_str("@group(0) @binding(2) var<storage, read_write> harness_unpacked: array<u32>;\n");
-    out.push_str("@group(0) @binding(3) var<uniform> harness_count: vec4<u32>;\n\n");
+    out.push_str("@group(0) @binding(3) var<storage, read_write> harness_loaded: array<u32>;\n");
+    out.push_str("@group(0) @binding(4) var<uniform> harness_count: vec4<u32>;\n\n");
     out.push_str("@compute @workgroup_size(64)\n");
     out.push_str("fn harness_main(@builtin(global_invocation_id) id: vec3<u32>) {\n");
     out.push_str("    let index = id.x;\n");
@@ -133,21 +136,35 @@ pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
         "harness_unpacked",
         "base",
     ));
+    let _ = writeln!(out, "    var loaded: {};", layout.name);
+    for field in &layout.fields {
+        let _ = writeln!(
+            out,
+            "    loaded.{0} = load_{prefix}_{0}(words);",
+            field.name
+        );
+    }
+    out.push_str(&scalars_to_output(
+        layout,
+        "loaded",
+        "harness_loaded",
+        "base",
+    ));
     out.push_str("}\n");
     out
 }
 
 /// Runs a [`compute_harness`] of `layout` over `texels` texels on the adapter, in batches small
 /// enough for the default storage binding size. `inputs(first, count)` gives a batch's scalar
-/// bits; `results(inputs, packed words, unpacked scalar bits)` receives each batch's. The
-/// error is wgpu's, where it rejected the harness.
+/// bits; `results(inputs, packed words, unpacked scalar bits, loaded scalar bits)` receives
+/// each batch's. The error is wgpu's, where it rejected the harness.
 pub fn run_in_batches(
     gpu: &crate::Gpu,
     layout: &Layout,
     harness: &str,
     texels: usize,
     mut inputs: impl FnMut(usize, usize) -> Vec<u32>,
-    mut results: impl FnMut(&[u32], &[u32], &[u32]),
+    mut results: impl FnMut(&[u32], &[u32], &[u32], &[u32]),
 ) -> Result<(), String> {
     const BATCH: usize = 1 << 18;
     let (scalars, words) = (scalars_per_texel(layout), layout.words());
@@ -158,10 +175,10 @@ pub fn run_in_batches(
             harness,
             "harness_main",
             &batch,
-            &[count * words, count * scalars],
+            &[count * words, count * scalars, count * scalars],
             count as u32,
         )?;
-        results(&batch, &outputs[0], &outputs[1]);
+        results(&batch, &outputs[0], &outputs[1], &outputs[2]);
     }
     Ok(())
 }

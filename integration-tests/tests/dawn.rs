@@ -1,42 +1,75 @@
-//! Chrome's WGSL compiler: every WGSL the project generates or ships (layouts seed, engine,
-//! solved and random, exact and fast; the shading library's modules alone and composed; the
-//! renderer's passes) goes through Tint (in Dawn, npm `webgpu`), which must say nothing about
-//! it. A wgpu application on the web has
-//! its WGSL compiled by the browser, not by naga.
+//! Chrome's WGSL compiler and engine: Tint (in Dawn, npm `webgpu`) compiles every WGSL the
+//! project generates or ships (layouts seed, engine, solved and random, exact and fast; the
+//! shading library's modules alone and composed; the renderer's passes) and must say nothing
+//! about it, and Dawn runs the layouts' pack, unpack and per-field loads, whose words must be
+//! the Rust mirror's. A wgpu application on the web has its WGSL compiled by the browser, not
+//! by naga. Both run on each of Dawn's backends that this machine serves: Vulkan (core WebGPU,
+//! SPIR-V from Tint) and OpenGL ES (compatibility mode, GLSL ES from Tint: a translation of its
+//! own, the one Chrome uses for WebGL-class devices).
 //!
 //! Dawn's Node bindings are looked for in `$GBUFFER_DAWN_MODULES` (a `node_modules` folder),
 //! else `/opt/gbuffer-dawn/node_modules`, where `.ci/run` installs them; `dawn/run.mjs` drives
-//! them. Without them the tests skip, except under `CI=true`.
+//! them. Without them, or without a backend's adapter, the tests skip, except under `CI=true`.
 
-use std::path::PathBuf;
+use std::fmt;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use gbuffer::packing::{Conversions, Layout};
+use gbuffer::packing::{Conversions, Encoding, Layout};
 use gbuffer::GBufferLayout;
 use gbuffer_codegen::emit::wgsl::emit_with;
+use gbuffer_gpu::harness::{compute_harness, scalars_per_texel};
+use gbuffer_gpu::values::Values;
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_render::shaders::{self, Positions};
+use gbuffer_testkit::texels::{compare, inputs};
 use gbuffer_testkit::{AllFormats, EveryEncoding, FastBitFields, FastFormats, MixedConversions};
+use gbuffer_tradeoff::packing_cost::{fast_domain_inputs, Deviation};
 use proptest::strategy::{Strategy, ValueTree};
 use serde_json::{json, Value};
 
 /// Where `.ci/run` installs `webgpu`.
 const DEFAULT_MODULES: &str = "/opt/gbuffer-dawn/node_modules";
 
-/// Jobs per Node process: Dawn's OpenGL ES backend on llvmpipe (Mesa 22.3) aborts or hangs
-/// now and then with a second shader module in one process (a mutex assertion in the driver),
-/// and its Vulkan backend on lavapipe after a few dozen pipelines; one shader a process runs
-/// cleanly.
-const JOBS_PER_PROCESS: usize = 1;
+/// Texels each layout runs through Dawn: the edge cases first, then random values.
+const TEXELS: usize = 1 << 17;
+
+/// Dawn's backends, each with the feature level it is asked for.
+#[derive(Clone, Copy, Debug)]
+enum Backend {
+    /// Core WebGPU on Vulkan (lavapipe).
+    Vulkan,
+    /// Compatibility mode on OpenGL ES (llvmpipe through EGL surfaceless).
+    OpenGles,
+}
+
+impl Backend {
+    const ALL: [Backend; 2] = [Backend::Vulkan, Backend::OpenGles];
+
+    /// The name `dawn/run.mjs` takes.
+    fn flag(self) -> &'static str {
+        match self {
+            Backend::Vulkan => "vulkan",
+            Backend::OpenGles => "opengles",
+        }
+    }
+}
+
+impl fmt::Display for Backend {
+    fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(formatter, "Dawn's {} backend", self.flag())
+    }
+}
 
 /// Dawn's Node bindings, found.
 struct Dawn {
     modules: PathBuf,
 }
 
-/// What Dawn made of the jobs: the adapter, whether it has shader-f16, one result a job.
+/// What Dawn made of the jobs: the adapter, whether it has shader-f16, one result a job
+/// (`{name, messages, error}`, see `dawn/run.mjs`).
 struct Outcome {
     adapter: String,
     has_f16: bool,
@@ -65,63 +98,52 @@ impl Dawn {
         Ok(Dawn { modules })
     }
 
-    /// Compiles the jobs (`{name, wgsl}`, see `dawn/run.mjs`), one to a process.
-    fn run(&self, jobs: &[Value]) -> Outcome {
-        static RUNS: AtomicUsize = AtomicUsize::new(0);
-        let mut outcome = Outcome {
-            adapter: String::new(),
-            has_f16: false,
-            results: Vec::new(),
+    /// Runs the jobs (see `dawn/run.mjs`) in one Node process on `backend`. The error says
+    /// that the backend has no adapter here; a crash or a failed run panics, with what Node
+    /// printed.
+    fn run(&self, backend: Backend, jobs: &[Value]) -> Result<Outcome, String> {
+        let folder = scratch_folder();
+        let (jobs_path, results_path) = (folder.join("jobs.json"), folder.join("results.json"));
+        std::fs::write(&jobs_path, serde_json::to_string(jobs).unwrap()).unwrap();
+        let output = Command::new("node")
+            .arg(gbuffer_testkit::workspace().join("integration-tests/dawn/run.mjs"))
+            .arg(backend.flag())
+            .arg(&jobs_path)
+            .arg(&results_path)
+            .env("GBUFFER_DAWN_MODULES", &self.modules)
+            .env("EGL_PLATFORM", "surfaceless")
+            // Cargo points the loader at its own folders, whose libraries Node must not load.
+            .env_remove("LD_LIBRARY_PATH")
+            .output()
+            .expect("node runs");
+        assert!(
+            output.status.success(),
+            "dawn/run.mjs on {backend} failed ({}): {}",
+            output.status,
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let results: Value =
+            serde_json::from_str(&std::fs::read_to_string(&results_path).unwrap()).unwrap();
+        let _ = std::fs::remove_file(&jobs_path);
+        let _ = std::fs::remove_file(&results_path);
+        let Some(adapter) = results["adapter"].as_str() else {
+            return Err("Dawn found no adapter there".to_string());
         };
-        for batch in jobs.chunks(JOBS_PER_PROCESS) {
-            let run = RUNS.fetch_add(1, Ordering::Relaxed);
-            let stem =
-                std::env::temp_dir().join(format!("gbuffer-dawn-{}-{run}", std::process::id()));
-            let (jobs_path, results_path) = (
-                stem.with_extension("jobs.json"),
-                stem.with_extension("results.json"),
-            );
-            std::fs::write(&jobs_path, serde_json::to_string(batch).unwrap()).unwrap();
-            let node = || {
-                Command::new("node")
-                    .arg(gbuffer_testkit::workspace().join("integration-tests/dawn/run.mjs"))
-                    .arg(&jobs_path)
-                    .arg(&results_path)
-                    .env("GBUFFER_DAWN_MODULES", &self.modules)
-                    .env("EGL_PLATFORM", "surfaceless")
-                    // Cargo points the loader at its own folders, whose libraries Node must
-                    // not load.
-                    .env_remove("LD_LIBRARY_PATH")
-                    .output()
-                    .expect("node runs")
-            };
-            // The driver's abort (see JOBS_PER_PROCESS) is a crash, not a verdict on the
-            // shader: a crashed run is tried again, twice.
-            let mut output = node();
-            for _ in 0..2 {
-                if output.status.success() {
-                    break;
-                }
-                output = node();
-            }
-            assert!(
-                output.status.success(),
-                "dawn/run.mjs failed ({}): {}",
-                output.status,
-                String::from_utf8_lossy(&output.stderr)
-            );
-            let results: Value =
-                serde_json::from_str(&std::fs::read_to_string(&results_path).unwrap()).unwrap();
-            let _ = std::fs::remove_file(&jobs_path);
-            let _ = std::fs::remove_file(&results_path);
-            outcome.adapter = results["adapter"].as_str().unwrap_or_default().to_string();
-            outcome.has_f16 = results["f16"].as_bool().unwrap_or(false);
-            outcome
-                .results
-                .extend(results["results"].as_array().cloned().unwrap_or_default());
-        }
-        outcome
+        Ok(Outcome {
+            adapter: adapter.to_string(),
+            has_f16: results["f16"].as_bool().unwrap_or(false),
+            results: results["results"].as_array().cloned().unwrap_or_default(),
+        })
     }
+}
+
+/// A new empty folder under the system's temporary one, for one run's files.
+fn scratch_folder() -> PathBuf {
+    static RUNS: AtomicUsize = AtomicUsize::new(0);
+    let run = RUNS.fetch_add(1, Ordering::Relaxed);
+    let folder = std::env::temp_dir().join(format!("gbuffer-dawn-{}-{run}", std::process::id()));
+    std::fs::create_dir_all(&folder).unwrap();
+    folder
 }
 
 fn dawn() -> Option<Dawn> {
@@ -210,32 +232,256 @@ fn every_wgsl() -> Vec<Value> {
     jobs
 }
 
-/// Tint compiles every WGSL the project generates or ships without an error or a warning (a
-/// module that enables f16 is left out where the adapter has no shader-f16).
+/// Each of Dawn's backends this machine serves, with `run`'s outcome on it; a backend without
+/// an adapter is reported by the GPU tests' rule (`or_skip`).
+fn on_each_backend(dawn: &Dawn, jobs: &[Value]) -> Vec<(Backend, Outcome)> {
+    Backend::ALL
+        .into_iter()
+        .filter_map(|backend| {
+            let outcome = gbuffer_testkit::or_skip(&backend.to_string(), dawn.run(backend, jobs))?;
+            eprintln!("{backend}: {}", outcome.adapter);
+            Some((backend, outcome))
+        })
+        .collect()
+}
+
+/// What a job's result says went wrong: Tint's messages (the first three) and the error
+/// Dawn raised, or `None`.
+fn problems(result: &Value) -> Option<String> {
+    let messages = result["messages"].as_array().cloned().unwrap_or_default();
+    if messages.is_empty() && result["error"].is_null() {
+        return None;
+    }
+    let mut lines: Vec<String> = messages
+        .iter()
+        .take(3)
+        .map(|message| format!("line {}: {}", message["line"], message["text"]))
+        .collect();
+    if let Some(error) = result["error"].as_str() {
+        lines.push(error.to_string());
+    }
+    Some(lines.join("; "))
+}
+
+/// Tint compiles every WGSL the project generates or ships without an error or a warning, on
+/// each backend (a module that enables f16 is left out where the adapter has no shader-f16).
 #[test]
 fn every_wgsl_compiles_in_tint_without_a_message() {
     let Some(dawn) = dawn() else {
         return;
     };
     let jobs = every_wgsl();
-    let outcome = dawn.run(&jobs);
-    eprintln!("Dawn: {}; {} shaders", outcome.adapter, jobs.len());
     let mut failures = Vec::new();
-    for (job, result) in jobs.iter().zip(&outcome.results) {
-        let wgsl = job["wgsl"].as_str().unwrap();
-        if wgsl.contains("enable f16;") && !outcome.has_f16 {
-            eprintln!("{}: enables f16, which this adapter lacks", job["name"]);
-            continue;
-        }
-        let messages = result["messages"].as_array().cloned().unwrap_or_default();
-        if !messages.is_empty() || !result["error"].is_null() {
-            let first: Vec<String> = messages
-                .iter()
-                .take(3)
-                .map(|message| format!("line {}: {}", message["line"], message["text"]))
-                .collect();
-            failures.push(format!("{}: {}", job["name"], first.join("; ")));
+    for (backend, outcome) in on_each_backend(&dawn, &jobs) {
+        eprintln!("{backend}: {} shaders", jobs.len());
+        for (job, result) in jobs.iter().zip(&outcome.results) {
+            let wgsl = job["wgsl"].as_str().unwrap();
+            if wgsl.contains("enable f16;") && !outcome.has_f16 {
+                eprintln!(
+                    "{backend}: {}: enables f16, which the adapter lacks",
+                    job["name"]
+                );
+                continue;
+            }
+            if let Some(problems) = problems(result) {
+                failures.push(format!("{backend}: {}: {problems}", job["name"]));
+            }
         }
     }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A layout's compute harness (`gbuffer_gpu::harness::compute_harness`: pack, unpack and each
+/// field's load) over the texels `inputs` (scalar bits), as a Dawn job whose outputs land in
+/// `folder`.
+struct HarnessRun {
+    job: Value,
+    /// The files Dawn writes: packed words, unpacked scalars, loaded scalars.
+    outputs: [PathBuf; 3],
+    inputs: Vec<u32>,
+}
+
+impl HarnessRun {
+    fn new(layout: &Layout, wgsl: &str, inputs: Vec<u32>, folder: &Path) -> HarnessRun {
+        let texels = inputs.len() / scalars_per_texel(layout);
+        let file = |what: &str| folder.join(format!("{}.{what}", layout.snake_name()));
+        let outputs = [file("packed"), file("unpacked"), file("loaded")];
+        std::fs::write(file("inputs"), bytemuck::cast_slice::<u32, u8>(&inputs)).unwrap();
+        let job = json!({
+            "name": layout.name,
+            "wgsl": compute_harness(layout, wgsl),
+            "entry": "harness_main",
+            "inputs": file("inputs"),
+            "outputs": [
+                texels * layout.words(),
+                texels * scalars_per_texel(layout),
+                texels * scalars_per_texel(layout),
+            ],
+            "count": texels,
+            "workgroups": texels.div_ceil(64),
+            "results": outputs,
+        });
+        HarnessRun {
+            job,
+            outputs,
+            inputs,
+        }
+    }
+
+    /// What Dawn wrote: packed words, unpacked scalars, loaded scalars.
+    fn read(&self) -> [Vec<u32>; 3] {
+        self.outputs.clone().map(|path| {
+            let bytes =
+                std::fs::read(&path).unwrap_or_else(|error| panic!("{}: {error}", path.display()));
+            bytemuck::pod_collect_to_vec(&bytes)
+        })
+    }
+}
+
+/// Runs the harnesses on each backend; `check(backend, run, [packed, unpacked, loaded])` is
+/// called for each layout, after Tint and Dawn are held to saying nothing about it.
+fn run_harnesses(
+    dawn: &Dawn,
+    runs: &[HarnessRun],
+    mut check: impl FnMut(Backend, &HarnessRun, [Vec<u32>; 3]),
+) {
+    let jobs: Vec<Value> = runs.iter().map(|run| run.job.clone()).collect();
+    for (backend, outcome) in on_each_backend(dawn, &jobs) {
+        for (run, result) in runs.iter().zip(&outcome.results) {
+            if let Some(problems) = problems(result) {
+                panic!("{backend}: {}: {problems}", run.job["name"]);
+            }
+            check(backend, run, run.read());
+        }
+    }
+}
+
+/// The exact layouts (every format, every encoding, the seeds and the engines') pack, unpack
+/// and load each field on Dawn as the Rust mirror does: words bit for bit, decodes within the
+/// tolerance each codec states (`gbuffer_testkit::texels`), over the edge cases (NaN,
+/// infinities, subnormals, the ties of half and the small floats, which Tint's GLSL would leave
+/// to the driver were they rounded with `round`) and random texels.
+#[test]
+fn exact_layouts_pack_unpack_and_load_as_the_mirror_on_dawn() {
+    let Some(dawn) = dawn() else {
+        return;
+    };
+    let folder = scratch_folder();
+    let layouts: Vec<(Layout, &str)> = [
+        (AllFormats::layout(), AllFormats::WGSL),
+        (EveryEncoding::layout(), EveryEncoding::WGSL),
+    ]
+    .into_iter()
+    .chain(gbuffer::seed_layouts::all())
+    .chain(gbuffer::engine_layouts::all())
+    .collect();
+    let runs: Vec<HarnessRun> = layouts
+        .iter()
+        .enumerate()
+        .map(|(index, (layout, wgsl))| {
+            let mut values = Values::new(300 + index as u64);
+            let texels = inputs(layout, 0, TEXELS, &mut values);
+            HarnessRun::new(layout, wgsl, texels, &folder)
+        })
+        .collect();
+    let mut failures = Vec::new();
+    run_harnesses(&dawn, &runs, |backend, run, [packed, unpacked, loaded]| {
+        let (layout, _) = layouts
+            .iter()
+            .find(|(layout, _)| run.job["name"] == layout.name.as_str())
+            .unwrap();
+        let what = backend.to_string();
+        compare(
+            &what,
+            layout,
+            &run.inputs,
+            Some(&packed),
+            Some(&unpacked),
+            &mut failures,
+            20,
+        );
+        let loads = format!("{backend}, per-field loads");
+        compare(
+            &loads,
+            layout,
+            &run.inputs,
+            None,
+            Some(&loaded),
+            &mut failures,
+            20,
+        );
+        eprintln!("{backend}: {}: {TEXELS} texels as the mirror", layout.name);
+    });
+    let _ = std::fs::remove_dir_all(&folder);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The fast layouts keep README's contract on Dawn: a fast channel within one code of the exact
+/// mirror (octahedral and RGBM fields, measured on their decoded values, within two steps), an
+/// exact field of a mixed layout bit for bit, over values in the fast domain (finite, within
+/// f16's range), edge cases first.
+#[test]
+fn fast_layouts_keep_their_contract_on_dawn() {
+    let Some(dawn) = dawn() else {
+        return;
+    };
+    let folder = scratch_folder();
+    // Each layout with its own conversions, which a field may override.
+    let layouts = [
+        (FastFormats::layout(), FastFormats::WGSL, Conversions::Fast),
+        (
+            FastBitFields::layout(),
+            FastBitFields::WGSL,
+            Conversions::Fast,
+        ),
+        (
+            MixedConversions::layout(),
+            MixedConversions::WGSL,
+            Conversions::Exact,
+        ),
+    ];
+    let runs: Vec<HarnessRun> = layouts
+        .iter()
+        .enumerate()
+        .map(|(index, (layout, wgsl, _))| {
+            let inputs = fast_domain_inputs(400 + index as u64, scalars_per_texel(layout))(TEXELS);
+            HarnessRun::new(layout, wgsl, inputs, &folder)
+        })
+        .collect();
+    let mut failures = Vec::new();
+    run_harnesses(&dawn, &runs, |backend, run, [packed, _, _]| {
+        let (layout, _, conversions) = layouts
+            .iter()
+            .find(|(layout, _, _)| run.job["name"] == layout.name.as_str())
+            .unwrap();
+        let mut found = Deviation::new(layout.fields.len());
+        found.add(layout, &run.inputs, &packed);
+        eprintln!(
+            "{backend}: {}: {} of {} codes ({:.3}%) differ from the exact mirror, by at most {:?} per field",
+            layout.name,
+            found.differing,
+            found.channels,
+            100.0 * found.differing_fraction(),
+            found.largest_code_error_by_field
+        );
+        for (field, largest) in layout.fields.iter().zip(&found.largest_code_error_by_field) {
+            let allowed = match (field.conversions.unwrap_or(*conversions), field.bit_field()) {
+                (Conversions::Exact, _) => 0,
+                (_, Some(bits))
+                    if matches!(bits.encoding, Encoding::Octahedral | Encoding::Rgbm(_)) =>
+                {
+                    2
+                }
+                _ => 1,
+            };
+            if *largest > allowed {
+                failures.push(format!(
+                    "{backend}: {}.{}: codes differ by {largest} from the exact mirror's (allowed {allowed})",
+                    layout.name, field.name
+                ));
+            }
+        }
+    });
+    let _ = std::fs::remove_dir_all(&folder);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

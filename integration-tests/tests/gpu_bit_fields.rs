@@ -118,13 +118,22 @@ fn check(gpu: &Gpu, layout: &Layout, wgsl: &str, inputs: Vec<u32>) -> Vec<String
         &harness,
         texels,
         |first, count| inputs[first * scalars..(first + count) * scalars].to_vec(),
-        |batch, packed, unpacked| {
+        |batch, packed, unpacked, loaded| {
             compare(
                 "wgpu",
                 layout,
                 batch,
                 Some(packed),
                 Some(unpacked),
+                &mut failures,
+                16,
+            );
+            compare(
+                "wgpu, per-field loads",
+                layout,
+                batch,
+                None,
+                Some(loaded),
                 &mut failures,
                 16,
             );

@@ -58,7 +58,7 @@ fn check_layout(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64
         &harness,
         texels,
         |first, count| inputs(layout, first, count, &mut values),
-        |inputs, packed, unpacked| {
+        |inputs, packed, unpacked, loaded| {
             compare(
                 "wgpu",
                 layout,
@@ -67,7 +67,16 @@ fn check_layout(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64
                 Some(unpacked),
                 &mut failures,
                 20,
-            )
+            );
+            compare(
+                "wgpu, per-field loads",
+                layout,
+                inputs,
+                None,
+                Some(loaded),
+                &mut failures,
+                20,
+            );
         },
     )
     .expect("the adapter runs the harness");

@@ -187,10 +187,68 @@ pub fn in_fast_domain(value: f32) -> bool {
     value.is_finite() && value.abs() <= 65504.0
 }
 
+/// Scalar bits for `count` texels of `scalars` float scalars each, in the domain fast
+/// conversions promise to handle: the float edge cases in that domain first (once, from the
+/// first call on), then random values from [`Values::float`] kept to it. A batch at a time.
+pub fn fast_domain_inputs(seed: u64, scalars: usize) -> impl FnMut(usize) -> Vec<u32> {
+    let edges: Vec<f32> = float_edges()
+        .into_iter()
+        .filter(|value| in_fast_domain(*value))
+        .collect();
+    let mut values = Values::new(seed);
+    let mut next = 0usize;
+    move |count| {
+        (0..count * scalars)
+            .map(|_| {
+                next += 1;
+                let value = match edges.get(next - 1) {
+                    Some(edge) => *edge,
+                    None => loop {
+                        let value = values.float();
+                        if in_fast_domain(value) {
+                            break value;
+                        }
+                    },
+                };
+                value.to_bits()
+            })
+            .collect()
+    }
+}
+
+impl Deviation {
+    /// No codes compared yet, for a layout of `fields` fields.
+    pub fn new(fields: usize) -> Deviation {
+        Deviation {
+            largest_code_error_by_field: vec![0; fields],
+            ..Deviation::default()
+        }
+    }
+
+    /// Adds a batch: `packed` (the words a shader packed, per texel) against what the exact
+    /// mirror packs from `inputs` (scalar bits, per texel).
+    pub fn add(&mut self, layout: &Layout, inputs: &[u32], packed: &[u32]) {
+        let (scalars, words) = (scalars_per_texel(layout), layout.words());
+        for (texel, got) in packed.chunks_exact(words).enumerate() {
+            let expected = expected_words(layout, &inputs[texel * scalars..][..scalars]);
+            for (field, (word, member)) in layout.field_locations().into_iter().enumerate() {
+                // Codes of one sign are ordered like their values (a sign bit is the top bit,
+                // so a sign flip shows as a large difference).
+                let errors = field_code_errors(layout, field, member, expected[word], got[word]);
+                for error in errors {
+                    let by_field = &mut self.largest_code_error_by_field[field];
+                    *by_field = (*by_field).max(error);
+                    self.differing += usize::from(error != 0);
+                    self.channels += 1;
+                }
+            }
+        }
+    }
+}
+
 /// Packs `texels` texels of a layout of float fields on the adapter with `wgsl` (the layout's
-/// WGSL, of either conversions) and compares every channel's code with the exact mirror's.
-/// The inputs are the float edge cases in the fast domain first, then random values from
-/// [`Values::float`] kept to that domain. The error is wgpu's, where it rejected the harness.
+/// WGSL, of either conversions) and compares every channel's code with the exact mirror's,
+/// over [`fast_domain_inputs`]. The error is wgpu's, where it rejected the harness.
 pub fn deviation(
     gpu: &Gpu,
     layout: &Layout,
@@ -199,53 +257,15 @@ pub fn deviation(
     seed: u64,
 ) -> Result<Deviation, String> {
     let harness = compute_harness(layout, wgsl);
-    let scalars = scalars_per_texel(layout);
-    let words = layout.words();
-    let edges: Vec<f32> = float_edges()
-        .into_iter()
-        .filter(|value| in_fast_domain(*value))
-        .collect();
-    let mut values = Values::new(seed);
-    let mut next = 0usize;
-    let mut input = move || {
-        next += 1;
-        match edges.get(next - 1) {
-            Some(edge) => *edge,
-            None => loop {
-                let value = values.float();
-                if in_fast_domain(value) {
-                    break value;
-                }
-            },
-        }
-    };
-    let mut deviation = Deviation {
-        largest_code_error_by_field: vec![0; layout.fields.len()],
-        ..Deviation::default()
-    };
+    let mut inputs = fast_domain_inputs(seed, scalars_per_texel(layout));
+    let mut deviation = Deviation::new(layout.fields.len());
     run_in_batches(
         gpu,
         layout,
         &harness,
         texels,
-        |_, count| (0..count * scalars).map(|_| input().to_bits()).collect(),
-        |inputs, packed, _| {
-            for (texel, got) in packed.chunks_exact(words).enumerate() {
-                let expected = expected_words(layout, &inputs[texel * scalars..][..scalars]);
-                for (field, (word, member)) in layout.field_locations().into_iter().enumerate() {
-                    // Codes of one sign are ordered like their values (a sign bit is the top
-                    // bit, so a sign flip shows as a large difference).
-                    let errors =
-                        field_code_errors(layout, field, member, expected[word], got[word]);
-                    for error in errors {
-                        let by_field = &mut deviation.largest_code_error_by_field[field];
-                        *by_field = (*by_field).max(error);
-                        deviation.differing += usize::from(error != 0);
-                        deviation.channels += 1;
-                    }
-                }
-            }
-        },
+        |_, count| inputs(count),
+        |inputs, packed, _, _| deviation.add(layout, inputs, packed),
     )?;
     Ok(deviation)
 }
