@@ -62,25 +62,27 @@ impl Report {
     }
 }
 
-impl fmt::Display for Report {
-    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let layout = &self.layout;
-        let bits = layout.bits();
-        let width = layout
+/// A layout's fields, one row each: the word, the name, the storage, the Rust type, the bit
+/// range and the bits used, then the total. The bit report and the solver's summary print it.
+pub struct FieldTable<'a>(pub &'a Layout);
+
+impl FieldTable<'_> {
+    /// The width of the name column: the longest name, at least that of `field`.
+    fn name_width(&self) -> usize {
+        self.0
             .fields
             .iter()
             .map(|field| field.name.len())
             .max()
             .unwrap_or(0)
-            .max(5);
-        writeln!(
-            out,
-            "{}: {} words, {bits} bits, {} used, budget {}",
-            layout.name,
-            layout.words(),
-            layout.used_bits(),
-            layout.budget
-        )?;
+            .max(5)
+    }
+}
+
+impl fmt::Display for FieldTable<'_> {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let layout = self.0;
+        let width = self.name_width();
         let storage_width = layout
             .fields
             .iter()
@@ -106,11 +108,29 @@ impl fmt::Display for Report {
         }
         writeln!(
             out,
-            "  {:<total_width$} {bits:>5} {:>4}",
+            "  {:<total_width$} {:>5} {:>4}",
             "total",
+            layout.bits(),
             layout.used_bits(),
             total_width = width + storage_width + 14
+        )
+    }
+}
+
+impl fmt::Display for Report {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let layout = &self.layout;
+        let bits = layout.bits();
+        writeln!(
+            out,
+            "{}: {} words, {bits} bits, {} used, budget {}",
+            layout.name,
+            layout.words(),
+            layout.used_bits(),
+            layout.budget
         )?;
+        let table = FieldTable(layout);
+        write!(out, "{table}")?;
         if bits <= layout.budget {
             writeln!(
                 out,
@@ -154,7 +174,7 @@ impl fmt::Display for Report {
             .map(String::len)
             .max()
             .unwrap_or(0)
-            .max(width);
+            .max(table.name_width());
         for (word, names) in words.iter().zip(&word_names) {
             let target = word.format.target().webgpu;
             let note = match target.feature {

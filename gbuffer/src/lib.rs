@@ -88,7 +88,7 @@ pub mod targets;
 pub mod packing {
     pub use gbuffer_core::codecs;
     pub use gbuffer_core::convert::Scalar;
-    pub use gbuffer_core::report::Report;
+    pub use gbuffer_core::report::{FieldTable, Report};
     pub use gbuffer_core::{
         BitField, Channel, Codec, Conversions, Encoding, Field, FieldType, Format, FormatRow,
         GlFormat, Layout, Member, PackedTarget, RgbmRange, ScalarKind, Storage, TargetFormat,

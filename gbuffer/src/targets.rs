@@ -39,9 +39,9 @@ use std::fmt;
 
 use wgpu::{
     BindGroup, BindGroupEntry, BindGroupLayout, BindGroupLayoutEntry, BindingResource, BindingType,
-    ColorTargetState, ColorWrites, Device, Extent3d, Limits, ShaderStages, Texture,
-    TextureDescriptor, TextureDimension, TextureFormat, TextureSampleType, TextureUsages,
-    TextureView, TextureViewDimension,
+    Color, ColorTargetState, ColorWrites, Device, Extent3d, Limits, LoadOp, Operations,
+    RenderPassColorAttachment, ShaderStages, StoreOp, Texture, TextureDescriptor, TextureDimension,
+    TextureFormat, TextureSampleType, TextureUsages, TextureView, TextureViewDimension,
 };
 
 use crate::packing::{Layout, PackedTarget};
@@ -101,6 +101,29 @@ pub struct GBufferTextures {
     pub textures: Vec<Texture>,
     /// A view of each texture, in the same order.
     pub views: Vec<TextureView>,
+}
+
+impl GBufferTextures {
+    /// The colour attachments of a pass that writes the G-buffer (`color_attachments` of its
+    /// `RenderPassDescriptor`): every target cleared to `clear` and stored, in the order of
+    /// [`GBufferTargets::color_targets`]. A packed target is an unsigned integer texture, so
+    /// `clear`'s channels are integers (`f64::from(u32::MAX)` for all ones).
+    pub fn color_attachments(&self, clear: Color) -> Vec<Option<RenderPassColorAttachment<'_>>> {
+        self.views
+            .iter()
+            .map(|view| {
+                Some(RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: Operations {
+                        load: LoadOp::Clear(clear),
+                        store: StoreOp::Store,
+                    },
+                })
+            })
+            .collect()
+    }
 }
 
 /// A layout's targets exceed an adapter's limits: what they need against what the limits

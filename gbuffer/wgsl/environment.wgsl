@@ -52,9 +52,7 @@ fn integrate_env_brdf(roughness: f32, n_dot_v: f32, sample_count: u32) -> vec2<f
         if n_dot_l > 0.0 {
             // BRDF * n.l / pdf, without Fresnel: 4 V n.l (v.h) / (n.h).
             let weight = 4.0 * v_smith_ggx_correlated(n_dot_v, n_dot_l, roughness) * n_dot_l * v_dot_h / half_vector.z;
-            let grazing = 1.0 - v_dot_h;
-            let grazing_squared = grazing * grazing;
-            let fresnel = grazing_squared * grazing_squared * grazing;
+            let fresnel = schlick_weight(v_dot_h);
             scale += (1.0 - fresnel) * weight;
             bias += fresnel * weight;
         }

@@ -30,20 +30,25 @@ fn v_schlick_ggx(n_dot_v: f32, n_dot_l: f32, roughness: f32) -> f32 {
     return 0.25 / (view * light);
 }
 
+// Schlick's Fresnel weight (Schlick 1994): (1 - cos)^5, the share of the grazing value in the
+// reflectance at an angle whose cosine is `cos_theta`. Three multiplications, not pow(): pow is
+// exp2(5 log2(x)) on most GPUs, undefined at x = 0 in WGSL and GLSL. Domain [0, 1].
+fn schlick_weight(cos_theta: f32) -> f32 {
+    let grazing = 1.0 - cos_theta;
+    let grazing_squared = grazing * grazing;
+    return grazing_squared * grazing_squared * grazing;
+}
+
 // Schlick's Fresnel (Schlick 1994): f0 + (1 - f0) (1 - v.h)^5. Domain v.h in [0, 1].
 fn f_schlick(f0: vec3<f32>, v_dot_h: f32) -> vec3<f32> {
-    let grazing = 1.0 - v_dot_h;
-    let grazing_squared = grazing * grazing;
-    return f0 + (vec3<f32>(1.0) - f0) * (grazing_squared * grazing_squared * grazing);
+    return f0 + (vec3<f32>(1.0) - f0) * schlick_weight(v_dot_h);
 }
 
 // Schlick's Fresnel with a roughness-limited grazing value (Lagarde 2011; GPU Pro 7 Listing
 // 2.6, whose smoothness is 1 - roughness). Any n.v: it is clamped to [0, 1].
 fn f_schlick_roughness(f0: vec3<f32>, n_dot_v: f32, roughness: f32) -> vec3<f32> {
-    let grazing = 1.0 - clamp(n_dot_v, 0.0, 1.0);
-    let grazing_squared = grazing * grazing;
     let limit = max(vec3<f32>(1.0 - roughness), f0);
-    return f0 + (limit - f0) * (grazing_squared * grazing_squared * grazing);
+    return f0 + (limit - f0) * schlick_weight(clamp(n_dot_v, 0.0, 1.0));
 }
 
 // Lambert diffuse BRDF: diffuse_colour / pi. Energy conserving for diffuse_colour <= 1.

@@ -283,10 +283,10 @@ fn check(
     }
 }
 
-/// Mesa 22.3's llvmpipe reads native 8- and 10-bit attachments correctly through framebuffer
-/// fetch, but a draw that writes such an attachment after fetching it stores wrong texels
-/// (often those of other pixels) unless every pixel holds the same value. The packed include
-/// (RGBA32UI) and the 16- and 32-bit formats are unaffected.
+/// llvmpipe (Mesa 22.3, and 25.0 still) reads native 8- and 10-bit attachments correctly
+/// through framebuffer fetch, but a draw that writes such an attachment after fetching it
+/// stores wrong texels (often those of other pixels) unless every pixel holds the same value.
+/// The packed include (RGBA32UI) and the 16- and 32-bit formats are unaffected.
 fn llvmpipe_miswrites_after_fetch(format: Format) -> bool {
     matches!(
         format,

@@ -267,21 +267,7 @@ fn render_and_read<T: GBufferTargets>(gpu: &Gpu, inputs: &[u32]) -> Vec<u32> {
 
     let mut encoder = device.create_command_encoder(&Default::default());
     {
-        let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = targets
-            .views
-            .iter()
-            .map(|view| {
-                Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })
-            })
-            .collect();
+        let attachments = targets.color_attachments(wgpu::Color::TRANSPARENT);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("G-buffer pass"),
             color_attachments: &attachments,

@@ -86,12 +86,7 @@ fn main() {
         "{:<28} {:>6} {:>11} {:>11} {:>6} {:>12} {:>12}",
         "G-buffer / path", "passes", "MB loaded", "MB stored", "BU", "1280x720 ms", "1920x1080 ms"
     );
-    let gbuffers = PackedLayout::all()
-        .iter()
-        .copied()
-        .map(GBuffer::Packed)
-        .chain([GBuffer::Classic]);
-    for gbuffer in gbuffers {
+    for gbuffer in GBuffer::named() {
         let recorded = renderer.render_recorded(&options(gbuffer.clone(), SIZES[1]));
         let times = SIZES
             .map(|size| median_ms(renderer.time_frames(&options(gbuffer.clone(), size), FRAMES)));
@@ -155,12 +150,7 @@ fn main() {
         "{:<18} {:<7} {:<7} {:>9} {:>13}",
         "G-buffer", "sun", "IBL", "PSNR dB", "largest error"
     );
-    for gbuffer in PackedLayout::all()
-        .iter()
-        .copied()
-        .map(GBuffer::Packed)
-        .chain([GBuffer::Classic])
-    {
+    for gbuffer in GBuffer::named() {
         for (sun, ibl) in [
             (SunForm::Ggx, IblForm::Lut),
             (SunForm::Ggx, IblForm::Approx),

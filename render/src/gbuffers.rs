@@ -287,6 +287,16 @@ impl From<LayoutArgument> for GBuffer {
 }
 
 impl GBuffer {
+    /// Every G-buffer `--layout` names, in its order: each packed layout, then the classic
+    /// targets.
+    pub fn named() -> impl Iterator<Item = GBuffer> {
+        use clap::ValueEnum;
+        LayoutArgument::value_variants()
+            .iter()
+            .copied()
+            .map(GBuffer::from)
+    }
+
     /// The name in messages: a packed layout's command-line name, `classic`, or a solved
     /// layout's name.
     pub fn name(&self) -> String {

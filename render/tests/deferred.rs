@@ -132,12 +132,7 @@ fn every_gbuffer_renders_a_frame_that_matches_the_cpu_reference() {
         &|_| {},
     );
     assert!(!is_blank(&reference));
-    let gbuffers = PackedLayout::all()
-        .iter()
-        .copied()
-        .map(GBuffer::Packed)
-        .chain([GBuffer::Classic]);
-    for gbuffer in gbuffers {
+    for gbuffer in GBuffer::named() {
         let frame = renderer
             .render(&accurate(gbuffer.clone()))
             .unwrap_or_else(|error| panic!("{error}"));

@@ -3,6 +3,8 @@
 
 use std::fmt;
 
+use gbuffer::packing::FieldTable;
+
 use crate::solver::{describe_error, Solution};
 
 impl fmt::Display for Solution {
@@ -18,17 +20,7 @@ impl fmt::Display for Solution {
             layout.used_bits(),
             self.custom_words()
         )?;
-        writeln!(out, "  word  bits   field                         storage")?;
-        for (field, (word, member)) in layout.fields.iter().zip(layout.field_locations()) {
-            let range = member.bit_range();
-            writeln!(
-                out,
-                "  {word:<4}  {range:<5}  {:<28}  {} {}",
-                field.name,
-                field.storage_name(),
-                field.ty.rust_name()
-            )?;
-        }
+        write!(out, "{}", FieldTable(layout))?;
         writeln!(
             out,
             "  {:<16} {:<36} {:<34} {:<34} needed by",

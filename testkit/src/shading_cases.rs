@@ -495,6 +495,16 @@ pub fn cases() -> Vec<Case> {
         },
         Case {
             module: "microfacet",
+            call: "schlick_weight(a0)",
+            arguments: &[UNIT],
+            output: Output::Floats(1),
+            mirror: |a| out(&[m::microfacet::schlick_weight(f(a, 0))]),
+            reference: Some(|a| vec![(1.0 - a[0]).powi(5)]),
+            ulps: 8,
+            absolute: 1e-7,
+        },
+        Case {
+            module: "microfacet",
             call: "f_schlick(a0, a1)",
             arguments: &[COLOUR, UNIT],
             output: Output::Floats(3),

@@ -5,7 +5,7 @@
 //! and the conditional branches. The engines' idiom for each format ([`builtin_form`]) is
 //! measured in the same harness, so the three columns compare like with like.
 
-use gbuffer::packing::{Field, FieldType, Format, Layout, ScalarKind, Storage};
+use gbuffer::packing::{Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
 use gbuffer_codegen::emit::wgsl::Conversions;
 
 use gbuffer_gpu::harness::field_code_errors;
@@ -216,7 +216,58 @@ pub fn fast_domain_inputs(seed: u64, scalars: usize) -> impl FnMut(usize) -> Vec
     }
 }
 
+impl std::fmt::Display for Deviation {
+    /// `N of M codes (P%) differ from the exact mirror, by at most [a, b, ...] per field`.
+    fn fmt(&self, out: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            out,
+            "{} of {} codes ({:.3}%) differ from the exact mirror, by at most {:?} per field",
+            self.differing,
+            self.channels,
+            100.0 * self.differing_fraction(),
+            self.largest_code_error_by_field
+        )
+    }
+}
+
+/// README's contract for a field's codes against the exact mirror's, given the layout's
+/// conversions (a field's own override them): the same codes under exact conversions; under
+/// fast ones within one code, or for octahedral and RGBM bit fields, measured on their decoded
+/// values ([`field_code_errors`]), within two steps (each side is within one of the input).
+pub fn allowed_code_error(field: &Field, layout_conversions: Conversions) -> u32 {
+    match (
+        field.conversions.unwrap_or(layout_conversions),
+        field.bit_field(),
+    ) {
+        (Conversions::Exact, _) => 0,
+        (Conversions::Fast, Some(bits))
+            if matches!(bits.encoding, Encoding::Octahedral | Encoding::Rgbm(_)) =>
+        {
+            2
+        }
+        (Conversions::Fast, _) => 1,
+    }
+}
+
 impl Deviation {
+    /// A line for each field whose codes strayed further than [`allowed_code_error`] allows.
+    pub fn beyond_contract(&self, layout: &Layout, layout_conversions: Conversions) -> Vec<String> {
+        layout
+            .fields
+            .iter()
+            .zip(&self.largest_code_error_by_field)
+            .filter_map(|(field, &largest)| {
+                let allowed = allowed_code_error(field, layout_conversions);
+                (largest > allowed).then(|| {
+                    format!(
+                        "{}.{}: codes differ by {largest} from the exact mirror's (allowed {allowed})",
+                        layout.name, field.name
+                    )
+                })
+            })
+            .collect()
+    }
+
     /// No codes compared yet, for a layout of `fields` fields.
     pub fn new(fields: usize) -> Deviation {
         Deviation {

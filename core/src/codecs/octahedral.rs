@@ -216,6 +216,41 @@ fn wgsl(field: &BitField) -> Functions {
     }
 }
 
+/// The directions where an octahedral encoding is hardest to get right, for tests of an
+/// implementation (this codec's, a shader's): unit vectors at the map's poles, on its seam (the
+/// equator, where the lower hemisphere folds) and just beside it, on its diagonals, with signed
+/// zeros; and vectors that are not unit: the zero vector, tiny, huge, infinite and NaN ones.
+pub fn edge_directions() -> Vec<[f32; 3]> {
+    let root2 = std::f32::consts::FRAC_1_SQRT_2;
+    let root3 = 1.0 / 3f32.sqrt();
+    let mut edges = vec![
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+        [-0.0, -0.0, -1.0],
+        [0.0, 0.0, -0.0],
+        [0.0, 0.0, 0.0],
+        [f32::NAN, 0.0, 1.0],
+        [f32::NAN, f32::NAN, f32::NAN],
+        [f32::INFINITY, 0.0, 0.0],
+        [f32::INFINITY, f32::NEG_INFINITY, 1.0],
+        [1e-40, -1e-42, 0.0],
+        [3.0, 4.0, -12.0],
+        [1.0, 1e-30, -1e-30],
+    ];
+    for x in [-1.0f32, -0.0, 0.0, 1.0] {
+        for y in [-1.0f32, -0.0, 0.0, 1.0] {
+            for z in [-1.0f32, -0.0, 0.0, 1.0] {
+                edges.push([x, y, z]);
+                edges.push([x * root2, y * root2, z]);
+                edges.push([x * root3, y * root3, z * root3]);
+                // Just beside the equator (the fold's seam).
+                edges.push([x * root2, y * root2, z * 1e-7]);
+            }
+        }
+    }
+    edges
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -276,44 +311,11 @@ mod tests {
         cross.iter().map(|c| c * c).sum::<f64>().sqrt().atan2(dot)
     }
 
-    /// Unit vectors at the map's poles, seams and diagonals, with signed zeros, non-unit, tiny,
-    /// infinite and NaN ones.
-    fn edges() -> Vec<[f32; 3]> {
-        let root2 = std::f32::consts::FRAC_1_SQRT_2;
-        let root3 = 1.0 / 3f32.sqrt();
-        let mut edges = vec![
-            [0.0, 0.0, 1.0],
-            [0.0, 0.0, -1.0],
-            [-0.0, -0.0, -1.0],
-            [0.0, 0.0, -0.0],
-            [0.0, 0.0, 0.0],
-            [f32::NAN, 0.0, 1.0],
-            [f32::NAN, f32::NAN, f32::NAN],
-            [f32::INFINITY, 0.0, 0.0],
-            [f32::INFINITY, f32::NEG_INFINITY, 1.0],
-            [1e-40, -1e-42, 0.0],
-            [3.0, 4.0, -12.0],
-            [1.0, 1e-30, -1e-30],
-        ];
-        for x in [-1.0f32, -0.0, 0.0, 1.0] {
-            for y in [-1.0f32, -0.0, 0.0, 1.0] {
-                for z in [-1.0f32, -0.0, 0.0, 1.0] {
-                    edges.push([x, y, z]);
-                    edges.push([x * root2, y * root2, z]);
-                    edges.push([x * root3, y * root3, z * root3]);
-                    // Just beside the equator (the fold's seam).
-                    edges.push([x * root2, y * root2, z * 1e-7]);
-                }
-            }
-        }
-        edges
-    }
-
     #[test]
     fn follows_its_contract_and_the_map() {
         use rand::{Rng, SeedableRng};
         let mut rng = rand::rngs::SmallRng::seed_from_u64(9);
-        let mut vectors = edges();
+        let mut vectors = edge_directions();
         for _ in 0..200_000 {
             let v = [0; 3].map(|_| rng.random_range(-1.0f32..1.0));
             vectors.push(v);
@@ -354,7 +356,7 @@ mod tests {
     /// The f32 map and its inverse come back to the direction (away from the zero vector).
     #[test]
     fn the_f32_map_inverts() {
-        for v in edges() {
+        for v in edge_directions() {
             let length = v.iter().map(|c| c * c).sum::<f32>().sqrt();
             if !(length.is_finite() && length > 1e-20) {
                 continue;

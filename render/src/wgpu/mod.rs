@@ -289,9 +289,18 @@ impl Renderer {
             &formats,
             (true, false),
         );
-        let texture = |format| {
-            self.device.create_texture(&wgpu::TextureDescriptor {
-                label: None,
+        // The layout's targets as the library makes them, copied out afterwards.
+        let targets = gbuffer::targets::create_targets(
+            &self.device,
+            &layout,
+            options.width,
+            options.height,
+            wgpu::TextureUsages::COPY_SRC,
+        );
+        let depth = self
+            .device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some("gbuffer words depth"),
                 size: wgpu::Extent3d {
                     width: options.width,
                     height: options.height,
@@ -300,17 +309,11 @@ impl Renderer {
                 mip_level_count: 1,
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                format: DEPTH_FORMAT,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
                 view_formats: &[],
             })
-        };
-        let targets: Vec<wgpu::Texture> = formats.iter().map(|format| texture(*format)).collect();
-        let views: Vec<wgpu::TextureView> = targets
-            .iter()
-            .map(|target| target.create_view(&Default::default()))
-            .collect();
-        let depth = texture(DEPTH_FORMAT).create_view(&Default::default());
+            .create_view(&Default::default());
         let bindings = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
             layout: &pipeline.get_bind_group_layout(0),
@@ -327,20 +330,7 @@ impl Renderer {
         });
         let mut encoder = self.device.create_command_encoder(&Default::default());
         {
-            let attachments: Vec<_> = views
-                .iter()
-                .map(|view| {
-                    Some(wgpu::RenderPassColorAttachment {
-                        view,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                            store: wgpu::StoreOp::Store,
-                        },
-                    })
-                })
-                .collect();
+            let attachments = targets.color_attachments(wgpu::Color::TRANSPARENT);
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("gbuffer words"),
                 color_attachments: &attachments,
@@ -367,6 +357,7 @@ impl Renderer {
             return Err(format!("wgpu rejected the G-buffer words pass: {error}"));
         }
         let per_target: Vec<Vec<u32>> = targets
+            .textures
             .iter()
             .zip(&formats)
             .map(|(target, format)| {

@@ -42,9 +42,7 @@ pub fn integrate_env_brdf(roughness: Float, n_dot_v: Float, sample_count: u32) -
         let n_dot_l = 2.0 * v_dot_h * half_vector.z - view.z;
         if n_dot_l > 0.0 {
             let weight = 4.0 * v_smith_ggx_correlated(n_dot_v, n_dot_l, roughness) * n_dot_l * v_dot_h / half_vector.z;
-            let grazing = 1.0 - v_dot_h;
-            let grazing_squared = grazing * grazing;
-            let fresnel = grazing_squared * grazing_squared * grazing;
+            let fresnel = schlick_weight(v_dot_h);
             scale += (1.0 - fresnel) * weight;
             bias += fresnel * weight;
         }

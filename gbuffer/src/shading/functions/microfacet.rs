@@ -24,19 +24,22 @@ pub fn v_schlick_ggx(n_dot_v: Float, n_dot_l: Float, roughness: Float) -> Float 
     0.25 / (view * light)
 }
 
+/// Schlick's Fresnel weight (Schlick 1994): (1 - cos)^5.
+pub fn schlick_weight(cos_theta: Float) -> Float {
+    let grazing = 1.0 - cos_theta;
+    let grazing_squared = grazing * grazing;
+    grazing_squared * grazing_squared * grazing
+}
+
 /// Schlick's Fresnel (Schlick 1994).
 pub fn f_schlick(f0: Vec3, v_dot_h: Float) -> Vec3 {
-    let grazing = 1.0 - v_dot_h;
-    let grazing_squared = grazing * grazing;
-    f0 + (Vec3::ONE - f0) * (grazing_squared * grazing_squared * grazing)
+    f0 + (Vec3::ONE - f0) * schlick_weight(v_dot_h)
 }
 
 /// Schlick's Fresnel with a roughness-limited grazing value (Lagarde 2011; Listing 2.6).
 pub fn f_schlick_roughness(f0: Vec3, n_dot_v: Float, roughness: Float) -> Vec3 {
-    let grazing = 1.0 - n_dot_v.clamp(0.0, 1.0);
-    let grazing_squared = grazing * grazing;
     let limit = Vec3::splat(1.0 - roughness).max(f0);
-    f0 + (limit - f0) * (grazing_squared * grazing_squared * grazing)
+    f0 + (limit - f0) * schlick_weight(n_dot_v.clamp(0.0, 1.0))
 }
 
 /// Lambert diffuse BRDF.
