@@ -24,7 +24,7 @@ use gbuffer_gpu::values::Values;
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_render::shaders::{self, Positions};
-use gbuffer_testkit::texels::{compare, inputs};
+use gbuffer_testkit::texels::{compare_harness, inputs};
 use gbuffer_testkit::{AllFormats, EveryEncoding, FastBitFields, FastFormats, MixedConversions};
 use gbuffer_tradeoff::packing_cost::{fast_domain_inputs, Deviation};
 use proptest::strategy::{Strategy, ValueTree};
@@ -390,23 +390,12 @@ fn exact_layouts_pack_unpack_and_load_as_the_mirror_on_dawn() {
             .iter()
             .find(|(layout, _)| run.job["name"] == layout.name.as_str())
             .unwrap();
-        let what = backend.to_string();
-        compare(
-            &what,
+        let outputs = [&packed[..], &unpacked, &loaded];
+        compare_harness(
+            &backend.to_string(),
             layout,
             &run.inputs,
-            Some(&packed),
-            Some(&unpacked),
-            &mut failures,
-            20,
-        );
-        let loads = format!("{backend}, per-field loads");
-        compare(
-            &loads,
-            layout,
-            &run.inputs,
-            None,
-            Some(&loaded),
+            outputs,
             &mut failures,
             20,
         );

@@ -7,12 +7,12 @@
 //! `vulkan_includes`, whose random layouts hold bit fields too.
 
 use gbuffer::packing::codecs::octahedral;
-use gbuffer::packing::{Conversions, Encoding, Layout};
+use gbuffer::packing::{Encoding, Layout};
 use gbuffer::GBufferLayout;
-use gbuffer_gpu::harness::{compute_harness, run_in_batches, scalars_per_texel};
+use gbuffer_gpu::harness::scalars_per_texel;
 use gbuffer_gpu::values::{float_edges, Values};
 use gbuffer_gpu::Gpu;
-use gbuffer_testkit::texels::{compare, inputs};
+use gbuffer_testkit::texels::{check_on_adapter, inputs};
 use gbuffer_testkit::EveryEncoding;
 use proptest::prelude::*;
 
@@ -84,39 +84,10 @@ fn every_encoding_inputs(layout: &Layout, texels: usize, values: &mut Values) ->
 /// Runs `texels` texels of `layout` through its WGSL on the adapter; returns a line per
 /// mismatch with the mirror (words bit for bit, decodes within their tolerance).
 fn check(gpu: &Gpu, layout: &Layout, wgsl: &str, inputs: Vec<u32>) -> Vec<String> {
-    let harness = compute_harness(layout, wgsl);
     let scalars = scalars_per_texel(layout);
     let texels = inputs.len() / scalars;
-    let mut failures = Vec::new();
-    run_in_batches(
-        gpu,
-        layout,
-        &harness,
-        texels,
-        |first, count| inputs[first * scalars..(first + count) * scalars].to_vec(),
-        |batch, packed, unpacked, loaded| {
-            compare(
-                "wgpu",
-                layout,
-                batch,
-                Some(packed),
-                Some(unpacked),
-                &mut failures,
-                16,
-            );
-            compare(
-                "wgpu, per-field loads",
-                layout,
-                batch,
-                None,
-                Some(loaded),
-                &mut failures,
-                16,
-            );
-        },
-    )
-    .expect("the adapter runs the harness");
-    failures
+    let batch = |first, count| inputs[first * scalars..(first + count) * scalars].to_vec();
+    check_on_adapter(gpu, layout, wgsl, texels, batch, 16)
 }
 
 #[test]
@@ -184,24 +155,4 @@ proptest! {
         let failures = check(&gpu, &layout, &wgsl, inputs);
         prop_assert!(failures.is_empty(), "{}", failures.join("\n"));
     }
-}
-
-/// Fast conversions of bit fields (f32 arithmetic and the pack builtins) stay within one code
-/// of the exact mirror on the adapter (octahedral normals and RGBM colours within two steps of
-/// their decoded values), and the exact WGSL of the same layout does not differ.
-#[test]
-fn fast_bit_fields_stay_within_their_steps_of_the_exact_mirror() {
-    use gbuffer_testkit::FastBitFields;
-    use gbuffer_tradeoff::packing_cost::deviation;
-    let Some(gpu) = gbuffer_testkit::gpu() else {
-        return;
-    };
-    let layout = FastBitFields::layout();
-    let found = deviation(&gpu, &layout, FastBitFields::WGSL, 1 << 18, 41).unwrap();
-    eprintln!("fast bit fields on {}: {found}", gpu.describe());
-    let beyond = found.beyond_contract(&layout, Conversions::Fast);
-    assert!(beyond.is_empty(), "{}", beyond.join("\n"));
-    let exact = gbuffer_codegen::emit::wgsl::emit_with(&layout, Conversions::Exact);
-    let found = deviation(&gpu, &layout, &exact, 1 << 16, 42).unwrap();
-    assert_eq!(found.differing, 0, "{found:?}");
 }

@@ -1,14 +1,16 @@
 //! Texels for the packing tests on real drivers: inputs that walk the edge sets before random
-//! values, and the comparison of what a driver produced with the Rust mirror. The wgpu,
+//! values, and the comparison of what a driver produced with the Rust mirror. The wgpu, Dawn,
 //! GLES and Vulkan tests share them, so every path is held to the same contract.
 
 use gbuffer::packing::codecs::unsigned_float::EXPONENT_BITS;
 use gbuffer::packing::{Channel, Encoding, Format, Layout, ScalarKind, Storage};
 
 use gbuffer_gpu::harness::{
-    expected_scalars, expected_words, field_code_errors, scalars_per_texel,
+    compute_harness, expected_scalars, expected_words, field_code_errors, run_in_batches,
+    scalars_per_texel,
 };
 use gbuffer_gpu::values::{float_edges, sint_edges, uint_edges, Values};
+use gbuffer_gpu::Gpu;
 
 /// How far a decoded scalar may be from the mirror's.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -183,6 +185,51 @@ pub fn compare(
     if let Some(decoded) = decoded {
         compare_decoded(what, layout, &expected, decoded, failures, limit);
     }
+}
+
+/// Compares what a layout's compute harness (`gbuffer_gpu::harness::compute_harness`) wrote for
+/// `inputs` on a path named `what` with the Rust mirror: the packed words bit for bit, the
+/// unpacked and the per-field loaded values within their tolerance. Pushes a line per mismatch
+/// onto `failures`, at most `limit` in all.
+pub fn compare_harness(
+    what: &str,
+    layout: &Layout,
+    inputs: &[u32],
+    [packed, unpacked, loaded]: [&[u32]; 3],
+    failures: &mut Vec<String>,
+    limit: usize,
+) {
+    let (words, decoded) = (Some(packed), Some(unpacked));
+    compare(what, layout, inputs, words, decoded, failures, limit);
+    let loads = format!("{what}, per-field loads");
+    compare(&loads, layout, inputs, None, Some(loaded), failures, limit);
+}
+
+/// Runs the compute harness of `layout` (its WGSL `wgsl`) over `texels` texels on the adapter,
+/// `inputs(first, count)` giving each batch's scalar bits, and compares what it wrote with the
+/// mirror ([`compare_harness`]): a line per mismatch, at most `limit`.
+pub fn check_on_adapter(
+    gpu: &Gpu,
+    layout: &Layout,
+    wgsl: &str,
+    texels: usize,
+    inputs: impl FnMut(usize, usize) -> Vec<u32>,
+    limit: usize,
+) -> Vec<String> {
+    let mut failures = Vec::new();
+    run_in_batches(
+        gpu,
+        layout,
+        &compute_harness(layout, wgsl),
+        texels,
+        inputs,
+        |batch, packed, unpacked, loaded| {
+            let outputs = [packed, unpacked, loaded];
+            compare_harness("wgpu", layout, batch, outputs, &mut failures, limit);
+        },
+    )
+    .expect("the adapter runs the harness");
+    failures
 }
 
 /// Compares what a shader decoded (scalar bits per texel) with the mirror's decoding of
