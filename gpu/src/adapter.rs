@@ -129,13 +129,7 @@ impl Gpu {
             compilation_options: Default::default(),
             cache: None,
         });
-        let storage = |contents: &[u32], usage| {
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: None,
-                contents: bytemuck::cast_slice(contents),
-                usage,
-            })
-        };
+        let storage = |contents: &[u32], usage| self.buffer_of(contents, usage);
         let input = storage(inputs, wgpu::BufferUsages::STORAGE);
         let outputs: Vec<wgpu::Buffer> = output_lengths
             .iter()
@@ -195,6 +189,16 @@ impl Gpu {
             ));
         }
         staging.iter().map(|buffer| self.read(buffer)).collect()
+    }
+
+    /// A buffer holding `words`, for `usage`.
+    pub fn buffer_of(&self, words: &[u32], usage: wgpu::BufferUsages) -> wgpu::Buffer {
+        self.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: None,
+                contents: bytemuck::cast_slice(words),
+                usage,
+            })
     }
 
     /// The words of a mapped-readable buffer.

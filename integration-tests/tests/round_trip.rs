@@ -12,7 +12,7 @@
 //!
 //! NaN stores as 0 in every format but r32f, which keeps it.
 
-use gbuffer::packing::{Channel, Encoding, Format, ScalarKind};
+use gbuffer::packing::{Channel, Encoding, Format, Scalar, ScalarKind};
 use gbuffer_gpu::values::{float_edges, sint_edges, uint_edges, Values};
 
 const RANDOM_VALUES_PER_FORMAT: usize = 1_000_000;
@@ -69,6 +69,24 @@ fn int_expected(channel: Channel, value: i64) -> i64 {
     }
 }
 
+/// Each channel of an integer format's round trip of `values`: its index, and what went wrong
+/// where the value read back is not the value clamped to the channel's range.
+fn integer_round_trip<T>(format: Format, values: [T; 4]) -> Vec<(u32, Option<String>)>
+where
+    T: Scalar + Into<i64> + std::fmt::Display,
+{
+    let channels = format.channels();
+    let back = format.decode::<T>(format.encode(values));
+    (0..channels.len())
+        .map(|index| {
+            let expected = int_expected(channels[index], values[index].into());
+            let ok = back[index].into() == expected;
+            let problem = format!("{} decoded as {}", values[index], back[index]);
+            (index as u32, (!ok).then_some(problem))
+        })
+        .collect()
+}
+
 #[test]
 fn every_format_round_trips_within_its_quantization_bound() {
     let mut failures = Vec::new();
@@ -91,37 +109,8 @@ fn every_format_round_trips_within_its_quantization_bound() {
                         })
                         .collect()
                 }
-                ScalarKind::Uint => {
-                    let back = format.decode::<u32>(format.encode(inputs));
-                    (0..count)
-                        .map(|index| {
-                            let expected = int_expected(channels[index], i64::from(inputs[index]));
-                            let ok = i64::from(back[index]) == expected;
-                            (
-                                index as u32,
-                                (!ok).then(|| {
-                                    format!("{} decoded as {}", inputs[index], back[index])
-                                }),
-                            )
-                        })
-                        .collect()
-                }
-                ScalarKind::Sint => {
-                    let values = inputs.map(|bits| bits as i32);
-                    let back = format.decode::<i32>(format.encode(values));
-                    (0..count)
-                        .map(|index| {
-                            let expected = int_expected(channels[index], i64::from(values[index]));
-                            let ok = i64::from(back[index]) == expected;
-                            (
-                                index as u32,
-                                (!ok).then(|| {
-                                    format!("{} decoded as {}", values[index], back[index])
-                                }),
-                            )
-                        })
-                        .collect()
-                }
+                ScalarKind::Uint => integer_round_trip(format, inputs),
+                ScalarKind::Sint => integer_round_trip(format, inputs.map(|bits| bits as i32)),
                 ScalarKind::Bool => unreachable!("no format holds booleans"),
             };
             for (index, error) in decoded {

@@ -19,7 +19,6 @@ use gbuffer_gpu::values::Values;
 use gbuffer_gpu::Gpu;
 use gbuffer_testkit::texels::{compare, inputs};
 use gbuffer_testkit::AllFormats;
-use wgpu::util::DeviceExt;
 
 /// Nine r32f words, 288 bits: the layout of the limit example.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
@@ -167,13 +166,7 @@ fn render_and_read<T: GBufferTargets>(gpu: &Gpu, inputs: &[u32]) -> Vec<u32> {
     let layout = T::layout();
     let stride = layout.words() + scalars_per_texel(&layout);
     let texels = (WIDTH * HEIGHT) as usize;
-    let storage = |contents: &[u32], usage| {
-        device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: None,
-            contents: bytemuck::cast_slice(contents),
-            usage,
-        })
-    };
+    let storage = |contents: &[u32], usage| gpu.buffer_of(contents, usage);
     let input_buffer = storage(inputs, wgpu::BufferUsages::STORAGE);
     let output_buffer = storage(
         &vec![0xdead_beef; texels * stride],
