@@ -6,10 +6,11 @@
 //! The result keeps a map from its lines back to where they came from, so a problem in the
 //! combined source is reported at its file and line.
 
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 use gbuffer_codegen::layout_file::read_layout_file;
+
+use crate::{FileProblem, Stage};
 
 /// Where a run of lines of the resolved source came from.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -68,46 +69,31 @@ impl Resolved {
     }
 }
 
-/// An include that could not be resolved, at the line of its directive.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct IncludeError {
-    /// The file with the include line (or the file that could not be read).
-    pub file: PathBuf,
-    /// The include line's number (0 when there is no line to point at).
-    pub line: usize,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl fmt::Display for IncludeError {
-    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            out,
-            "{}:{}:1: error: {}",
-            self.file.display(),
-            self.line,
-            self.message
-        )
+/// An include that could not be resolved, as a problem of the `Include` stage at the line of its
+/// directive in `file` (no line for a file that could not be read).
+fn include_problem(file: &Path, line: Option<usize>, message: String) -> FileProblem {
+    FileProblem {
+        origin: file.display().to_string(),
+        location: line.map(|line| (line, 1)),
+        stage: Stage::Include,
+        message,
+        labels: Vec::new(),
+        notes: Vec::new(),
     }
 }
 
-impl std::error::Error for IncludeError {}
-
 /// Reads `path` and resolves its includes.
-pub fn resolve_file(path: &Path) -> Result<Resolved, IncludeError> {
+pub fn resolve_file(path: &Path) -> Result<Resolved, FileProblem> {
     let mut resolver = Resolver::default();
-    let source = std::fs::read_to_string(path).map_err(|error| IncludeError {
-        file: path.to_path_buf(),
-        line: 0,
-        message: format!("cannot read the file: {error}"),
-    })?;
+    let source = std::fs::read_to_string(path)
+        .map_err(|error| include_problem(path, None, format!("cannot read the file: {error}")))?;
     resolver.included_files.push(canonical(path));
     resolver.resolve(path, &source)?;
     Ok(resolver.finish())
 }
 
 /// Resolves the includes of `source`, read from `path`.
-pub fn resolve_source(path: &Path, source: &str) -> Result<Resolved, IncludeError> {
+pub fn resolve_source(path: &Path, source: &str) -> Result<Resolved, FileProblem> {
     let mut resolver = Resolver::default();
     resolver.included_files.push(canonical(path));
     resolver.resolve(path, source)?;
@@ -154,7 +140,7 @@ impl Resolver {
         self.resolved
     }
 
-    fn resolve(&mut self, path: &Path, source: &str) -> Result<(), IncludeError> {
+    fn resolve(&mut self, path: &Path, source: &str) -> Result<(), FileProblem> {
         let origin = path.display().to_string();
         let mut pending = String::new();
         let mut pending_start = 1;
@@ -170,11 +156,7 @@ impl Resolver {
             };
             self.resolved
                 .push(&origin, pending_start, &std::mem::take(&mut pending));
-            let error = |message: String| IncludeError {
-                file: path.to_path_buf(),
-                line: line_number,
-                message,
-            };
+            let error = |message: String| include_problem(path, Some(line_number), message);
             let target = target.trim();
             if let Some(module) = target
                 .strip_prefix("<gbuffer/")
@@ -258,7 +240,7 @@ mod tests {
             "fn f() {}\n#include <gbuffer/brdf>\n",
         )
         .unwrap_err();
-        assert_eq!(error.line, 2);
+        assert_eq!(error.location, Some((2, 1)));
         assert!(
             error.message.starts_with("unknown WGSL module `brdf`"),
             "{}",

@@ -344,16 +344,7 @@ impl fmt::Display for FileProblem {
 pub fn check_file(path: &Path, portability: bool) -> Vec<FileProblem> {
     let resolved = match include::resolve_file(path) {
         Ok(resolved) => resolved,
-        Err(error) => {
-            return vec![FileProblem {
-                origin: error.file.display().to_string(),
-                location: (error.line > 0).then_some((error.line, 1)),
-                stage: Stage::Include,
-                message: error.message,
-                labels: Vec::new(),
-                notes: Vec::new(),
-            }]
-        }
+        Err(problem) => return vec![problem],
     };
     // Places a problem of the combined source in the file it came from.
     let place = |problem: Problem| {
