@@ -71,19 +71,19 @@ impl Resolved {
 
 /// An include that could not be resolved, as a problem of the `Include` stage at the line of its
 /// directive in `file` (no line for a file that could not be read).
-fn include_problem(file: &Path, line: Option<usize>, message: String) -> FileProblem {
-    FileProblem {
+fn include_problem(file: &Path, line: Option<usize>, message: String) -> Box<FileProblem> {
+    Box::new(FileProblem {
         origin: file.display().to_string(),
         location: line.map(|line| (line, 1)),
         stage: Stage::Include,
         message,
         labels: Vec::new(),
         notes: Vec::new(),
-    }
+    })
 }
 
 /// Reads `path` and resolves its includes.
-pub fn resolve_file(path: &Path) -> Result<Resolved, FileProblem> {
+pub fn resolve_file(path: &Path) -> Result<Resolved, Box<FileProblem>> {
     let mut resolver = Resolver::default();
     let source = std::fs::read_to_string(path)
         .map_err(|error| include_problem(path, None, format!("cannot read the file: {error}")))?;
@@ -93,7 +93,7 @@ pub fn resolve_file(path: &Path) -> Result<Resolved, FileProblem> {
 }
 
 /// Resolves the includes of `source`, read from `path`.
-pub fn resolve_source(path: &Path, source: &str) -> Result<Resolved, FileProblem> {
+pub fn resolve_source(path: &Path, source: &str) -> Result<Resolved, Box<FileProblem>> {
     let mut resolver = Resolver::default();
     resolver.included_files.push(canonical(path));
     resolver.resolve(path, source)?;
@@ -140,7 +140,7 @@ impl Resolver {
         self.resolved
     }
 
-    fn resolve(&mut self, path: &Path, source: &str) -> Result<(), FileProblem> {
+    fn resolve(&mut self, path: &Path, source: &str) -> Result<(), Box<FileProblem>> {
         let origin = path.display().to_string();
         let mut pending = String::new();
         let mut pending_start = 1;

@@ -344,7 +344,7 @@ impl fmt::Display for FileProblem {
 pub fn check_file(path: &Path, portability: bool) -> Vec<FileProblem> {
     let resolved = match include::resolve_file(path) {
         Ok(resolved) => resolved,
-        Err(problem) => return vec![problem],
+        Err(problem) => return vec![*problem],
     };
     // Places a problem of the combined source in the file it came from.
     let place = |problem: Problem| {
