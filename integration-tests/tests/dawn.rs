@@ -124,8 +124,7 @@ impl Dawn {
         );
         let results: Value =
             serde_json::from_str(&std::fs::read_to_string(&results_path).unwrap()).unwrap();
-        let _ = std::fs::remove_file(&jobs_path);
-        let _ = std::fs::remove_file(&results_path);
+        let _ = std::fs::remove_dir_all(&folder);
         let Some(adapter) = results["adapter"].as_str() else {
             return Err("Dawn found no adapter there".to_string());
         };
@@ -338,20 +337,20 @@ impl HarnessRun {
     }
 }
 
-/// Runs the harnesses on each backend; `check(backend, run, [packed, unpacked, loaded])` is
-/// called for each layout, after Tint and Dawn are held to saying nothing about it.
+/// Runs the harnesses on each backend; `check(backend, index, [packed, unpacked, loaded])` is
+/// called for each run (`runs[index]`), after Tint and Dawn are held to saying nothing about it.
 fn run_harnesses(
     dawn: &Dawn,
     runs: &[HarnessRun],
-    mut check: impl FnMut(Backend, &HarnessRun, [Vec<u32>; 3]),
+    mut check: impl FnMut(Backend, usize, [Vec<u32>; 3]),
 ) {
     let jobs: Vec<Value> = runs.iter().map(|run| run.job.clone()).collect();
     for (backend, outcome) in on_each_backend(dawn, &jobs) {
-        for (run, result) in runs.iter().zip(&outcome.results) {
+        for (index, (run, result)) in runs.iter().zip(&outcome.results).enumerate() {
             if let Some(problems) = problems(result) {
                 panic!("{backend}: {}: {problems}", run.job["name"]);
             }
-            check(backend, run, run.read());
+            check(backend, index, run.read());
         }
     }
 }
@@ -385,22 +384,23 @@ fn exact_layouts_pack_unpack_and_load_as_the_mirror_on_dawn() {
         })
         .collect();
     let mut failures = Vec::new();
-    run_harnesses(&dawn, &runs, |backend, run, [packed, unpacked, loaded]| {
-        let (layout, _) = layouts
-            .iter()
-            .find(|(layout, _)| run.job["name"] == layout.name.as_str())
-            .unwrap();
-        let outputs = [&packed[..], &unpacked, &loaded];
-        compare_harness(
-            &backend.to_string(),
-            layout,
-            &run.inputs,
-            outputs,
-            &mut failures,
-            20,
-        );
-        eprintln!("{backend}: {}: {TEXELS} texels as the mirror", layout.name);
-    });
+    run_harnesses(
+        &dawn,
+        &runs,
+        |backend, index, [packed, unpacked, loaded]| {
+            let (layout, _) = &layouts[index];
+            let outputs = [&packed[..], &unpacked, &loaded];
+            compare_harness(
+                &backend.to_string(),
+                layout,
+                &runs[index].inputs,
+                outputs,
+                &mut failures,
+                20,
+            );
+            eprintln!("{backend}: {}: {TEXELS} texels as the mirror", layout.name);
+        },
+    );
     let _ = std::fs::remove_dir_all(&folder);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
@@ -438,13 +438,10 @@ fn fast_layouts_keep_their_contract_on_dawn() {
         })
         .collect();
     let mut failures = Vec::new();
-    run_harnesses(&dawn, &runs, |backend, run, [packed, _, _]| {
-        let (layout, _, conversions) = layouts
-            .iter()
-            .find(|(layout, _, _)| run.job["name"] == layout.name.as_str())
-            .unwrap();
+    run_harnesses(&dawn, &runs, |backend, index, [packed, _, _]| {
+        let (layout, _, conversions) = &layouts[index];
         let mut found = Deviation::new(layout.fields.len());
-        found.add(layout, &run.inputs, &packed);
+        found.add(layout, &runs[index].inputs, &packed);
         eprintln!("{backend}: {}: {found}", layout.name);
         let beyond = found.beyond_contract(layout, *conversions);
         failures.extend(beyond.iter().map(|line| format!("{backend}: {line}")));
