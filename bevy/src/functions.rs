@@ -79,15 +79,18 @@ fn stored(quantity: Quantity) -> &'static str {
     }
 }
 
+/// The field that holds `quantity`, if one does.
+fn field_of(mapping: &[(String, Quantity)], quantity: Quantity) -> Option<&str> {
+    mapping
+        .iter()
+        .find(|(_, stored)| *stored == quantity)
+        .map(|(field, _)| field.as_str())
+}
+
 /// Where `quantity` is read back from: the texel's field, or `default` (what `pbr_input_new`
 /// starts from: Bevy's own default).
 fn read(mapping: &[(String, Quantity)], quantity: Quantity, default: &str) -> String {
-    let field = |quantity| {
-        mapping
-            .iter()
-            .find(|(_, stored)| *stored == quantity)
-            .map(|(field, _)| field.as_str())
-    };
+    let field = |quantity| field_of(mapping, quantity);
     match (field(quantity), quantity) {
         (Some(field), _) => format!("texel.{field}"),
         (None, Quantity::BaseColor) => field(Quantity::BaseColorRoughness)
@@ -215,10 +218,6 @@ fn pbr_input_from_deferred_gbuffer(frag_coord: vec4<f32>, gbuffer: vec4<u32>) ->
             "pbr.material.clearcoat_perceptual_roughness",
         ),
         occlusion = read(mapping, Quantity::DiffuseOcclusion, "pbr.diffuse_occlusion.r"),
-        normal = mapping
-            .iter()
-            .find(|(_, quantity)| *quantity == Quantity::Normal)
-            .map(|(field, _)| field.as_str())
-            .unwrap_or("normal"),
+        normal = field_of(mapping, Quantity::Normal).unwrap_or("normal"),
     )
 }

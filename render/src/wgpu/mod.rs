@@ -359,9 +359,8 @@ impl Renderer {
         let per_target: Vec<Vec<u32>> = targets
             .textures
             .iter()
-            .zip(&formats)
-            .map(|(target, format)| {
-                let bytes = format.block_copy_size(None).unwrap_or(16);
+            .map(|target| {
+                let bytes = target.format().block_copy_size(None).unwrap_or(16);
                 let texels = self.read_texture(target, options.width, options.height, bytes)?;
                 Ok(bytemuck::pod_collect_to_vec(&texels))
             })
