@@ -385,27 +385,33 @@ impl Vulkan {
             .contains(vk::FormatFeatureFlags::COLOR_ATTACHMENT)
     }
 
-    /// A memory type allowed by `type_bits` that has all of `flags`.
-    fn memory_type(&self, type_bits: u32, flags: vk::MemoryPropertyFlags) -> Option<u32> {
-        (0..self.memory_types.len() as u32).find(|&index| {
-            type_bits & (1 << index) != 0
-                && self.memory_types[index as usize]
-                    .property_flags
-                    .contains(flags)
-        })
-    }
-
+    /// Memory for `requirements`, of the first of `preferences` (property flags, best first)
+    /// that a memory type the requirements allow has, and the flags it was chosen for; `what`
+    /// names the object in the error when none has.
     fn allocate(
         &self,
         requirements: vk::MemoryRequirements,
-        type_index: u32,
-    ) -> Result<vk::DeviceMemory, String> {
+        preferences: &[vk::MemoryPropertyFlags],
+        what: &str,
+    ) -> Result<(vk::DeviceMemory, vk::MemoryPropertyFlags), String> {
+        // The first memory type the requirements allow that has all of `flags`.
+        let offered = |flags: vk::MemoryPropertyFlags| {
+            (0..self.memory_types.len()).find(|&index| {
+                requirements.memory_type_bits & (1 << index) != 0
+                    && self.memory_types[index].property_flags.contains(flags)
+            })
+        };
+        let (type_index, flags) = preferences
+            .iter()
+            .find_map(|&flags| Some((offered(flags)?, flags)))
+            .ok_or_else(|| format!("no memory type with {preferences:?} for {what}"))?;
         let info = vk::MemoryAllocateInfo::default()
             .allocation_size(requirements.size)
-            .memory_type_index(type_index);
-        // SAFETY: the type index comes from the requirements' type bits.
+            .memory_type_index(type_index as u32);
+        // SAFETY: the type index is one the requirements' type bits allow.
         let memory = unsafe { self.device.allocate_memory(&info, None) };
-        self.created("vkAllocateMemory", memory, Device::free_memory)
+        let memory = self.created("vkAllocateMemory", memory, Device::free_memory)?;
+        Ok((memory, flags))
     }
 
     /// A `width` x `height` colour attachment in `format` that is also read as an input
@@ -462,27 +468,22 @@ impl Vulkan {
                 Device::destroy_image,
             )?;
             let requirements = self.device.get_image_memory_requirements(image);
-            let lazily = usage
-                .contains(vk::ImageUsageFlags::TRANSIENT_ATTACHMENT)
-                .then(|| {
-                    self.memory_type(
-                        requirements.memory_type_bits,
+            // A transient attachment prefers memory that a tiler never backs.
+            let preferences: &[vk::MemoryPropertyFlags] =
+                if usage.contains(vk::ImageUsageFlags::TRANSIENT_ATTACHMENT) {
+                    &[
                         vk::MemoryPropertyFlags::LAZILY_ALLOCATED,
-                    )
-                })
-                .flatten();
-            let (type_index, kind) = match lazily {
-                Some(index) => (index, AttachmentMemory::LazilyAllocated),
-                None => (
-                    self.memory_type(
-                        requirements.memory_type_bits,
                         vk::MemoryPropertyFlags::DEVICE_LOCAL,
-                    )
-                    .ok_or("no device-local memory type for an image")?,
-                    AttachmentMemory::DeviceLocal,
-                ),
+                    ]
+                } else {
+                    &[vk::MemoryPropertyFlags::DEVICE_LOCAL]
+                };
+            let (memory, flags) = self.allocate(requirements, preferences, "an image")?;
+            let kind = if flags == vk::MemoryPropertyFlags::LAZILY_ALLOCATED {
+                AttachmentMemory::LazilyAllocated
+            } else {
+                AttachmentMemory::DeviceLocal
             };
-            let memory = self.allocate(requirements, type_index)?;
             self.device
                 .bind_image_memory(image, memory, 0)
                 .map_err(|error| format!("vkBindImageMemory: {error}"))?;
@@ -525,13 +526,9 @@ impl Vulkan {
             let buffer = self.device.create_buffer(&info, None);
             let buffer = self.created("vkCreateBuffer", buffer, Device::destroy_buffer)?;
             let requirements = self.device.get_buffer_memory_requirements(buffer);
-            let type_index = self
-                .memory_type(
-                    requirements.memory_type_bits,
-                    vk::MemoryPropertyFlags::HOST_VISIBLE | vk::MemoryPropertyFlags::HOST_COHERENT,
-                )
-                .ok_or("no host-visible, coherent memory type for a buffer")?;
-            let memory = self.allocate(requirements, type_index)?;
+            let host_coherent =
+                vk::MemoryPropertyFlags::HOST_VISIBLE | vk::MemoryPropertyFlags::HOST_COHERENT;
+            let (memory, _) = self.allocate(requirements, &[host_coherent], "a buffer")?;
             self.device
                 .bind_buffer_memory(buffer, memory, 0)
                 .map_err(|error| format!("vkBindBufferMemory: {error}"))?;

@@ -1,18 +1,17 @@
 //! A `bool` in one bit: 1 for true. Any set bit decodes as true.
 
 use super::wgsl::{BitField, Functions};
-use super::{Codec, Shape};
+use super::{Codec, Conversion, Shape};
 use crate::format::ScalarKind;
 
 /// The bool codec.
-pub const CODEC: Codec = Codec::integers(
+pub const CODEC: Codec = Codec::new(
     "bool",
     ScalarKind::Bool,
-    (1, 1),
-    (|lane, _| u32::from(lane != 0), |code, _| code & 1),
+    Shape::Fixed(1, 1, "a `bool`"),
+    Conversion::Integers(|lane, _| u32::from(lane != 0), |code, _| code & 1),
     wgsl,
-)
-.with_shape(Shape::Fixed(1, 1, "a `bool`"));
+);
 
 /// A bool bit field's WGSL: WGSL converts `bool` to and from `u32` itself.
 fn wgsl(_: &BitField) -> Functions {

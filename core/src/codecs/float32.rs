@@ -1,16 +1,17 @@
 //! IEEE binary32, stored bit for bit: `r32f`, or a 32-bit bit field of one `f32`.
 
 use super::wgsl::{BitField, Functions};
-use super::{Codec, Shape};
+use super::{Codec, Conversion, Shape};
+use crate::format::ScalarKind;
 
 /// The f32 codec.
-pub const CODEC: Codec = Codec::floats(
+pub const CODEC: Codec = Codec::new(
     "float32",
-    (32, 32),
-    (|value, _| value.to_bits(), |code, _| f32::from_bits(code)),
+    ScalarKind::Float,
+    Shape::Fixed(32, 1, "an `f32`"),
+    Conversion::Floats(|value, _| value.to_bits(), |code, _| f32::from_bits(code)),
     wgsl,
-)
-.with_shape(Shape::Fixed(32, 1, "an `f32`"));
+);
 
 /// An f32 bit field's WGSL: its bits.
 fn wgsl(_: &BitField) -> Functions {

@@ -3,7 +3,7 @@
 //! per component. The integer formats (`rgba8ui`, `rg16i`, `r32ui`, ...) are built from them.
 
 use super::wgsl::{BitField, Functions};
-use super::{max_code, Codec};
+use super::{max_code, Codec, Conversion, Shape};
 use crate::format::ScalarKind;
 
 /// Clamps an unsigned integer to `bits` bits.
@@ -26,20 +26,20 @@ pub fn i32_from_sint(code: u32, bits: u32) -> i32 {
 }
 
 /// The unsigned integer codec.
-pub const UINT: Codec = Codec::integers(
+pub const UINT: Codec = Codec::new(
     "uint",
     ScalarKind::Uint,
-    (1, 32),
-    (uint_saturate, |code, _| code),
+    Shape::PerComponent(1, 32),
+    Conversion::Integers(uint_saturate, |code, _| code),
     uint_wgsl,
 );
 
 /// The signed integer codec: lanes are `i32`s' bits.
-pub const SINT: Codec = Codec::integers(
+pub const SINT: Codec = Codec::new(
     "sint",
     ScalarKind::Sint,
-    (1, 32),
-    (
+    Shape::PerComponent(1, 32),
+    Conversion::Integers(
         |lane, each| sint_saturate(lane as i32, each),
         |code, each| i32_from_sint(code, each) as u32,
     ),

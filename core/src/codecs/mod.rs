@@ -115,9 +115,6 @@ pub enum Conversion {
 /// A float codec's conversions of one component: a value to its code of `each` bits, and back.
 pub type FloatConversions = (fn(f32, u32) -> u32, fn(u32, u32) -> f32);
 
-/// An integer codec's conversions of one component: a lane to its code, and back.
-pub type IntegerConversions = (fn(u32, u32) -> u32, fn(u32, u32) -> u32);
-
 /// A vector codec's conversions: a `vec3` to its code given `each` and the range, and back.
 pub type VectorConversions = (
     fn([f32; 3], u32, Option<f32>) -> u32,
@@ -131,8 +128,10 @@ fn no_light_storage(_: f64) -> Vec<LightStorage> {
 
 impl Codec {
     /// A codec of these parts, without a fast form or light storage (the `with_` methods add
-    /// them).
-    const fn new(
+    /// them). `conversion` goes with `scalar_kind`: `Floats` and `Vector` with floats,
+    /// `Integers` with the integers and bools. Float codecs of one component at a time have the
+    /// shorter [`Codec::floats`].
+    pub const fn new(
         name: &'static str,
         scalar_kind: ScalarKind,
         shape: Shape,
@@ -162,20 +161,6 @@ impl Codec {
         Codec::new(name, ScalarKind::Float, shape, conversion, wgsl)
     }
 
-    /// A per-component codec of integers (or bools) of `scalar_kind`, `low` to `high` bits a
-    /// component.
-    pub const fn integers(
-        name: &'static str,
-        scalar_kind: ScalarKind,
-        (low, high): (u32, u32),
-        (encode, decode): IntegerConversions,
-        wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
-    ) -> Codec {
-        let shape = Shape::PerComponent(low, high);
-        let conversion = Conversion::Integers(encode, decode);
-        Codec::new(name, scalar_kind, shape, conversion, wgsl)
-    }
-
     /// A codec of a whole `Vec3`, of `shape`.
     pub const fn vector(
         name: &'static str,
@@ -185,11 +170,6 @@ impl Codec {
     ) -> Codec {
         let conversion = Conversion::Vector(encode, decode);
         Codec::new(name, ScalarKind::Float, shape, conversion, wgsl)
-    }
-
-    /// The codec with another shape.
-    pub const fn with_shape(self, shape: Shape) -> Codec {
-        Codec { shape, ..self }
     }
 
     /// The codec with a fast form.

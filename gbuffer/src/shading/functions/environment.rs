@@ -34,20 +34,20 @@ pub fn importance_sample_ggx(xi: Vec2, roughness: Float) -> Vec3 {
 /// Split-sum environment BRDF (scale, bias) by importance-sampled integration (Karis 2013).
 pub fn integrate_env_brdf(roughness: Float, n_dot_v: Float, sample_count: u32) -> Vec2 {
     let view = Vec3::new((1.0 - n_dot_v * n_dot_v).sqrt(), 0.0, n_dot_v);
-    let mut scale = 0.0;
-    let mut bias = 0.0;
-    for index in 0..sample_count {
-        let half_vector = importance_sample_ggx(hammersley(index, sample_count), roughness);
-        let v_dot_h = view.dot(half_vector);
-        let n_dot_l = 2.0 * v_dot_h * half_vector.z - view.z;
-        if n_dot_l > 0.0 {
-            let weight = 4.0 * v_smith_ggx_correlated(n_dot_v, n_dot_l, roughness) * n_dot_l * v_dot_h / half_vector.z;
-            let fresnel = schlick_weight(v_dot_h);
-            scale += (1.0 - fresnel) * weight;
-            bias += fresnel * weight;
-        }
-    }
-    Vec2::new(scale, bias) / sample_count as Float
+    // Each sample's (scale, bias) terms, summed in index order as the WGSL loop adds them.
+    let sum: Vec2 = (0..sample_count)
+        .map(|index| importance_sample_ggx(hammersley(index, sample_count), roughness))
+        .filter_map(|half_vector| {
+            let v_dot_h = view.dot(half_vector);
+            let n_dot_l = 2.0 * v_dot_h * half_vector.z - view.z;
+            (n_dot_l > 0.0).then(|| {
+                let weight = 4.0 * v_smith_ggx_correlated(n_dot_v, n_dot_l, roughness) * n_dot_l * v_dot_h / half_vector.z;
+                let fresnel = schlick_weight(v_dot_h);
+                Vec2::new(1.0 - fresnel, fresnel) * weight
+            })
+        })
+        .sum();
+    sum / sample_count as Float
 }
 
 /// Specular IBL of the seed (GPU Pro 7, Listing 2.6).
