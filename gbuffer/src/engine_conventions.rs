@@ -62,13 +62,12 @@ fn decode_texel(t: BevyDeferred) -> Shading {
         let dielectric_f0 = 0.16 * reflectance * reflectance;
         let base_colour = m::colour::gamma_2_2_to_linear(self.base_color_roughness.truncate());
         let colours = m::material::metallic_workflow(base_colour, self.metallic, dielectric_f0);
-        Shading {
-            normal: self.normal,
-            roughness: self.base_color_roughness.w,
-            diffuse: colours.diffuse,
-            f0: colours.f0,
-            light: self.emissive,
-        }
+        Shading::from_colours(
+            self.normal,
+            self.base_color_roughness.w,
+            colours,
+            self.emissive,
+        )
     }
 }
 

@@ -84,17 +84,29 @@ pub struct Shading {
 }
 
 impl Shading {
+    /// A shading with the diffuse colour and reflectance at normal incidence of `colours`
+    /// (what the metallic workflow gives), in the order of the WGSL constructor
+    /// `Shading(normal, roughness, colours.diffuse, colours.f0, light)`.
+    pub fn from_colours(
+        normal: Vec3,
+        roughness: f32,
+        colours: m::material::MaterialColours,
+        light: Vec3,
+    ) -> Shading {
+        Shading {
+            normal,
+            roughness,
+            diffuse: colours.diffuse,
+            f0: colours.f0,
+            light,
+        }
+    }
+
     /// What a G-buffer that stored `surface` exactly would give back: the metallic workflow
     /// with dielectrics at [`crate::shading::mirror::constants::DIELECTRIC_F0`].
     pub fn of(surface: &Surface) -> Shading {
         let colours = metallic_workflow(surface.base_colour, surface.metallic);
-        Shading {
-            normal: surface.normal,
-            roughness: surface.roughness,
-            diffuse: colours.diffuse,
-            f0: colours.f0,
-            light: surface.light,
-        }
+        Shading::from_colours(surface.normal, surface.roughness, colours, surface.light)
     }
 }
 
@@ -138,13 +150,12 @@ impl SurfaceConvention for MobileMetallic {
             m::colour::pseudo_gamma_to_linear(self.albedo_metallic.truncate()),
             self.albedo_metallic.w,
         );
-        Shading {
-            normal: m::normals::unorm_to_normal(self.normals_roughness.truncate()),
-            roughness: self.normals_roughness.w,
-            diffuse: colours.diffuse,
-            f0: colours.f0,
-            light: m::hdr::scale_unit_to_hdr(self.light_accumulation, LIGHT_SCALE),
-        }
+        Shading::from_colours(
+            m::normals::unorm_to_normal(self.normals_roughness.truncate()),
+            self.normals_roughness.w,
+            colours,
+            m::hdr::scale_unit_to_hdr(self.light_accumulation, LIGHT_SCALE),
+        )
     }
 }
 
@@ -208,16 +219,15 @@ impl SurfaceConvention for FutureMetallic {
             self.light_accumulation_b_normal_x.y,
             self.normal_yz.x,
             self.normal_yz.y,
-        );
-        Shading {
-            normal: normal.normalize(),
-            roughness: self.roughness_metallic.x,
-            diffuse: colours.diffuse,
-            f0: colours.f0,
-            light: self
-                .light_accumulation_rg
+        )
+        .normalize();
+        Shading::from_colours(
+            normal,
+            self.roughness_metallic.x,
+            colours,
+            self.light_accumulation_rg
                 .extend(self.light_accumulation_b_normal_x.x),
-        }
+        )
     }
 }
 
@@ -281,13 +291,12 @@ impl SurfaceConvention for ArmTileBlock {
             m::colour::pseudo_gamma_to_linear(self.albedo),
             self.metallic_roughness.x,
         );
-        Shading {
-            normal: m::normals::unorm_to_normal(self.normal),
-            roughness: self.metallic_roughness.y,
-            diffuse: colours.diffuse,
-            f0: colours.f0,
-            light: self.light,
-        }
+        Shading::from_colours(
+            m::normals::unorm_to_normal(self.normal),
+            self.metallic_roughness.y,
+            colours,
+            self.light,
+        )
     }
 }
 

@@ -9,105 +9,109 @@
 use crate::glam::{Vec2, Vec3, Vec4};
 use crate::GBufferLayout;
 
-/// Listing 2.1: specular workflow, 160 bits (142 used). Light accumulation is HDR (scale it
-/// into 0..1 for `rgb10_a2`); base and specular colour are stored in gamma space.
-#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 256)]
-pub struct SpecularWorkflow {
-    /// HDR light accumulation, scaled into 0..1.
-    #[pls(rgb10a2)]
-    pub light_accumulation: Vec3,
-    /// Depth.
-    #[pls(r32f)]
-    pub depth: f32,
-    /// The normal mapped to 0..1 (xyz) and roughness (w).
-    #[pls(rgba8)]
-    pub normals_roughness: Vec4,
-    /// Base colour, in gamma space.
-    #[pls(rgba8)]
-    pub base_colour: Vec3,
-    /// Specular colour, in gamma space.
-    #[pls(rgba8)]
-    pub specular_colour: Vec3,
+/// Declares layouts that begin with the same fields, as the chapter's listings do in pairs:
+/// `{ the fields they share } Name(budget = bits) { its other fields } ...`. Each expands to a
+/// plain `#[derive(GBufferLayout)]` struct, the shared fields first.
+macro_rules! layouts_beginning_with {
+    ($shared:tt $($(#[$doc:meta])* $name:ident(budget = $budget:literal) $own:tt)*) => {
+        $(layouts_beginning_with!(@layout $shared $(#[$doc])* $name $budget $own);)*
+    };
+    (@layout { $($shared:tt)* } $(#[$doc:meta])* $name:ident $budget:literal { $($own:tt)* }) => {
+        $(#[$doc])*
+        #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+        #[gbuffer(budget = $budget)]
+        pub struct $name {
+            $($shared)*
+            $($own)*
+        }
+    };
 }
 
-/// Listing 2.2: metallic workflow in 128 bits (126 used), the chapter's recommended layout.
-#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 128)]
-pub struct MobileMetallic {
-    /// HDR light accumulation, scaled into 0..1.
-    #[pls(rgb10a2)]
-    pub light_accumulation: Vec3,
-    /// Depth.
-    #[pls(r32f)]
-    pub depth: f32,
-    /// The normal mapped to 0..1 (xyz) and roughness (w).
-    #[pls(rgba8)]
-    pub normals_roughness: Vec4,
-    /// Albedo, in gamma space (rgb), and metallic (w).
-    #[pls(rgba8)]
-    pub albedo_metallic: Vec4,
+// The 128-bit design of the chapter and its specular variant: HDR light accumulation, depth,
+// the normal and roughness, then the material's colours.
+layouts_beginning_with! {
+    {
+        /// HDR light accumulation, scaled into 0..1.
+        #[pls(rgb10a2)]
+        pub light_accumulation: Vec3,
+        /// Depth.
+        #[pls(r32f)]
+        pub depth: f32,
+        /// The normal mapped to 0..1 (xyz) and roughness (w).
+        #[pls(rgba8)]
+        pub normals_roughness: Vec4,
+    }
+
+    /// Listing 2.1: specular workflow, 160 bits (142 used). Light accumulation is HDR (scale it
+    /// into 0..1 for `rgb10_a2`); base and specular colour are stored in gamma space.
+    SpecularWorkflow(budget = 256) {
+        /// Base colour, in gamma space.
+        #[pls(rgba8)]
+        pub base_colour: Vec3,
+        /// Specular colour, in gamma space.
+        #[pls(rgba8)]
+        pub specular_colour: Vec3,
+    }
+
+    /// Listing 2.2: metallic workflow in 128 bits (126 used), the chapter's recommended layout.
+    MobileMetallic(budget = 128) {
+        /// Albedo, in gamma space (rgb), and metallic (w).
+        #[pls(rgba8)]
+        pub albedo_metallic: Vec4,
+    }
 }
 
-/// Listing 2.7: a future metallic workflow in 256 bits, world position instead of depth and
-/// everything in linear space at half precision.
-#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 256)]
-pub struct FutureMetallic {
-    /// World position, x.
-    #[pls(r32f)]
-    pub position_x: f32,
-    /// World position, y.
-    #[pls(r32f)]
-    pub position_y: f32,
-    /// World position, z.
-    #[pls(r32f)]
-    pub position_z: f32,
-    /// Light accumulation, red and green.
-    #[pls(rg16f)]
-    pub light_accumulation_rg: Vec2,
-    /// Light accumulation, blue, and the normal's x.
-    #[pls(rg16f)]
-    pub light_accumulation_b_normal_x: Vec2,
-    /// The normal's y and z.
-    #[pls(rg16f)]
-    pub normal_yz: Vec2,
-    /// Roughness and metallic.
-    #[pls(rg16f)]
-    pub roughness_metallic: Vec2,
-    /// Albedo (dielectrics) or reflectance (metals), linear.
-    #[pls(r11f_g11f_b10f)]
-    pub albedo_or_reflectance: Vec3,
-}
+// The 256-bit layouts of the next PowerVR tiles: the world position at full precision, which
+// spares the lighting pass reconstructing it from depth, and light accumulation's red and green
+// at half precision; then everything else at half precision or in small floats, linear.
+layouts_beginning_with! {
+    {
+        /// World position, x.
+        #[pls(r32f)]
+        pub position_x: f32,
+        /// World position, y.
+        #[pls(r32f)]
+        pub position_y: f32,
+        /// World position, z.
+        #[pls(r32f)]
+        pub position_z: f32,
+        /// Light accumulation, red and green.
+        #[pls(rg16f)]
+        pub light_accumulation_rg: Vec2,
+    }
 
-/// Listing 2.8: a future specular workflow in 256 bits.
-#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 256)]
-pub struct FutureSpecular {
-    /// World position, x.
-    #[pls(r32f)]
-    pub position_x: f32,
-    /// World position, y.
-    #[pls(r32f)]
-    pub position_y: f32,
-    /// World position, z.
-    #[pls(r32f)]
-    pub position_z: f32,
-    /// Light accumulation, red and green.
-    #[pls(rg16f)]
-    pub light_accumulation_rg: Vec2,
-    /// Light accumulation, blue, and roughness.
-    #[pls(rg16f)]
-    pub light_accumulation_b_roughness: Vec2,
-    /// The normal, mapped to 0..1.
-    #[pls(r11f_g11f_b10f)]
-    pub normal: Vec3,
-    /// Diffuse albedo, linear.
-    #[pls(r11f_g11f_b10f)]
-    pub albedo: Vec3,
-    /// Specular reflectance, linear.
-    #[pls(r11f_g11f_b10f)]
-    pub reflectance: Vec3,
+    /// Listing 2.7: a future metallic workflow in 256 bits, world position instead of depth and
+    /// everything in linear space at half precision.
+    FutureMetallic(budget = 256) {
+        /// Light accumulation, blue, and the normal's x.
+        #[pls(rg16f)]
+        pub light_accumulation_b_normal_x: Vec2,
+        /// The normal's y and z.
+        #[pls(rg16f)]
+        pub normal_yz: Vec2,
+        /// Roughness and metallic.
+        #[pls(rg16f)]
+        pub roughness_metallic: Vec2,
+        /// Albedo (dielectrics) or reflectance (metals), linear.
+        #[pls(r11f_g11f_b10f)]
+        pub albedo_or_reflectance: Vec3,
+    }
+
+    /// Listing 2.8: a future specular workflow in 256 bits.
+    FutureSpecular(budget = 256) {
+        /// Light accumulation, blue, and roughness.
+        #[pls(rg16f)]
+        pub light_accumulation_b_roughness: Vec2,
+        /// The normal, mapped to 0..1.
+        #[pls(r11f_g11f_b10f)]
+        pub normal: Vec3,
+        /// Diffuse albedo, linear.
+        #[pls(r11f_g11f_b10f)]
+        pub albedo: Vec3,
+        /// Specular reflectance, linear.
+        #[pls(r11f_g11f_b10f)]
+        pub reflectance: Vec3,
+    }
 }
 
 /// Arm's pixel local storage block: HDR light, albedo in pseudo-gamma (square root), the

@@ -221,6 +221,7 @@ fn parse_gbuffer_attributes(input: &DeriveInput, errors: &mut Option<syn::Error>
 /// `fast` or `exact`, written as a path or a string (`conversions = "fast"`).
 fn conversions_value(value: &syn::Expr) -> syn::Result<Conversions> {
     let name = match value {
+        syn::Expr::Group(group) => return conversions_value(&group.expr),
         syn::Expr::Path(path) => path.path.get_ident().map(ToString::to_string),
         syn::Expr::Lit(syn::ExprLit {
             lit: syn::Lit::Str(literal),
@@ -241,6 +242,9 @@ fn conversions_value(value: &syn::Expr) -> syn::Result<Conversions> {
 /// A budget written as an integer literal that fits a u32.
 fn budget_value(expression: &syn::Expr) -> Option<u32> {
     match expression {
+        // A value that came through a `macro_rules!` fragment (`$budget:literal`) arrives in
+        // an invisible group.
+        syn::Expr::Group(group) => budget_value(&group.expr),
         syn::Expr::Lit(syn::ExprLit {
             lit: syn::Lit::Int(literal),
             ..

@@ -58,13 +58,12 @@ impl SurfaceConvention for CoarseNormals {
             self.albedo_metallic.w,
             m::constants::DIELECTRIC_F0,
         );
-        Shading {
-            normal: self.normal,
-            roughness: self.roughness,
-            diffuse: colours.diffuse,
-            f0: colours.f0,
-            light: m::hdr::scale_unit_to_hdr(self.light_accumulation, LIGHT_SCALE),
-        }
+        Shading::from_colours(
+            self.normal,
+            self.roughness,
+            colours,
+            m::hdr::scale_unit_to_hdr(self.light_accumulation, LIGHT_SCALE),
+        )
     }
 }
 

@@ -38,7 +38,7 @@ pub struct Texels {
 }
 
 /// Everything the passes sample.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Inputs {
     /// The split-sum LUT, `Rgba16Float`.
     pub lut: Texels,

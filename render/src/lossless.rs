@@ -84,13 +84,12 @@ impl SurfaceConvention for Lossless {
         let base_colour = Vec3::new(self.base_red, self.base_green, self.base_blue);
         let colours =
             m::material::metallic_workflow(base_colour, self.metallic, m::constants::DIELECTRIC_F0);
-        Shading {
-            normal: Vec3::new(self.normal_x, self.normal_y, self.normal_z),
-            roughness: self.roughness,
-            diffuse: colours.diffuse,
-            f0: colours.f0,
-            light: Vec3::new(self.light_red, self.light_green, self.light_blue),
-        }
+        Shading::from_colours(
+            Vec3::new(self.normal_x, self.normal_y, self.normal_z),
+            self.roughness,
+            colours,
+            Vec3::new(self.light_red, self.light_green, self.light_blue),
+        )
     }
 }
 
