@@ -229,15 +229,12 @@ pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDia
     let mut diagnostics = Vec::new();
     let mut conversions_of = |value: &Option<Spanned<String>>| {
         let value = value.as_ref()?;
-        match value.get_ref().as_str() {
-            "exact" => Some(Conversions::Exact),
-            "fast" => Some(Conversions::Fast),
-            other => {
-                let message = format!("unknown conversions `{other}`: expected \"exact\" (the default: bit-identical everywhere) or \"fast\" (WGSL's pack builtins where they exist)");
-                diagnostics.push(FileDiagnostic::at(path, source, value.span(), message));
-                None
-            }
+        let conversions = Conversions::from_name(value.get_ref());
+        if conversions.is_none() {
+            let message = format!("unknown conversions `{}`: expected \"exact\" (the default: bit-identical everywhere) or \"fast\" (WGSL's pack builtins where they exist)", value.get_ref());
+            diagnostics.push(FileDiagnostic::at(path, source, value.span(), message));
         }
+        conversions
     };
     let conversions = conversions_of(&entry.conversions).unwrap_or_default();
     let field_conversions: Vec<Option<Conversions>> = entry
@@ -510,11 +507,7 @@ pub fn to_toml(layout: &Layout, conversions: Conversions) -> String {
         }
         out.push_str(&format!("type = \"{}\"\n", field.ty.rust_name()));
         if let Some(own) = field.conversions {
-            let name = match own {
-                Conversions::Exact => "exact",
-                Conversions::Fast => "fast",
-            };
-            out.push_str(&format!("conversions = \"{name}\"\n"));
+            out.push_str(&format!("conversions = \"{}\"\n", own.name()));
         }
     }
     out

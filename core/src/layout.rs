@@ -108,6 +108,21 @@ impl Conversions {
         self == Conversions::Exact || !encoding.has_fast_form()
     }
 
+    /// The name layout files and `#[gbuffer(conversions = ...)]` give them: `exact` or `fast`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Conversions::Exact => "exact",
+            Conversions::Fast => "fast",
+        }
+    }
+
+    /// The conversions [`Conversions::name`] names.
+    pub fn from_name(name: &str) -> Option<Conversions> {
+        [Conversions::Exact, Conversions::Fast]
+            .into_iter()
+            .find(|conversions| conversions.name() == name)
+    }
+
     /// What the generated functions of a field with these conversions add to their names
     /// where the layout's conversions differ: `_exact` or `_fast`.
     pub fn name_suffix(self) -> &'static str {
@@ -624,6 +639,15 @@ pub fn fitting_types(format: Format) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn conversions_are_found_by_their_names_only() {
+        assert_eq!(Conversions::from_name("exact"), Some(Conversions::Exact));
+        assert_eq!(Conversions::from_name("fast"), Some(Conversions::Fast));
+        assert_eq!(Conversions::from_name("Fast"), None);
+        assert_eq!(Conversions::from_name(""), None);
+        assert_eq!(Conversions::Fast.name_suffix(), "_fast");
+    }
 
     fn field(name: &str, format: Format, ty: &str) -> Field {
         Field {

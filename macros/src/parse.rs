@@ -229,11 +229,10 @@ fn conversions_value(value: &syn::Expr) -> syn::Result<Conversions> {
         }) => Some(literal.value()),
         _ => None,
     };
-    match name.as_deref() {
-        Some("exact") => Ok(Conversions::Exact),
-        Some("fast") => Ok(Conversions::Fast),
-        other => {
-            let given = other.map_or_else(|| "this".to_string(), |name| format!("`{name}`"));
+    match name.as_deref().and_then(Conversions::from_name) {
+        Some(conversions) => Ok(conversions),
+        None => {
+            let given = name.map_or_else(|| "this".to_string(), |name| format!("`{name}`"));
             Err(syn::Error::new_spanned(value, format!("unknown conversions {given}: expected `exact` (the default: bit-identical everywhere) or `fast` (WGSL's pack builtins where they exist)")))
         }
     }

@@ -35,10 +35,7 @@ impl PackingRow {
     }
 
     fn mode(&self) -> &'static str {
-        match self.conversions {
-            Conversions::Exact => "exact",
-            Conversions::Fast => "fast",
-        }
+        self.conversions.name()
     }
 }
 

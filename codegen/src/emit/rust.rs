@@ -230,10 +230,6 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
 #[cfg(feature = "tools")]
 pub fn derive_source(layout: &Layout, conversions: crate::layout::Conversions) -> String {
     use crate::layout::Conversions;
-    let conversions_name = |conversions| match conversions {
-        Conversions::Exact => "exact",
-        Conversions::Fast => "fast",
-    };
     let mut options = format!("budget = {}", layout.budget);
     if conversions == Conversions::Fast {
         options.push_str(", conversions = fast");
@@ -257,7 +253,7 @@ pub fn derive_source(layout: &Layout, conversions: crate::layout::Conversions) -
     for field in &layout.fields {
         let own = field
             .conversions
-            .map(|own| format!(", conversions = {}", conversions_name(own)))
+            .map(|own| format!(", conversions = {}", own.name()))
             .unwrap_or_default();
         let attribute = match field.storage {
             Storage::Word(format) => format!("#[pls({format}{own})]"),
