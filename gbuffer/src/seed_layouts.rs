@@ -27,8 +27,8 @@ macro_rules! layouts_beginning_with {
     };
 }
 
-// The 128-bit design of the chapter and its specular variant: HDR light accumulation, depth,
-// the normal and roughness, then the material's colours.
+// Listings 2.1 and 2.2 begin alike: HDR light accumulation, depth, and the normal with
+// roughness; the material's colours follow, two of them in the specular workflow.
 layouts_beginning_with! {
     {
         /// HDR light accumulation, scaled into 0..1.
