@@ -191,29 +191,14 @@ pub fn in_fast_domain(value: f32) -> bool {
 /// conversions promise to handle: the float edge cases in that domain first (once, from the
 /// first call on), then random values from [`Values::float`] kept to it. A batch at a time.
 pub fn fast_domain_inputs(seed: u64, scalars: usize) -> impl FnMut(usize) -> Vec<u32> {
-    let edges: Vec<f32> = float_edges()
+    let edges = float_edges()
         .into_iter()
-        .filter(|value| in_fast_domain(*value))
-        .collect();
+        .filter(|value| in_fast_domain(*value));
     let mut values = Values::new(seed);
-    let mut next = 0usize;
-    move |count| {
-        (0..count * scalars)
-            .map(|_| {
-                next += 1;
-                let value = match edges.get(next - 1) {
-                    Some(edge) => *edge,
-                    None => loop {
-                        let value = values.float();
-                        if in_fast_domain(value) {
-                            break value;
-                        }
-                    },
-                };
-                value.to_bits()
-            })
-            .collect()
-    }
+    let random =
+        std::iter::repeat_with(move || values.float()).filter(|value| in_fast_domain(*value));
+    let mut stream = edges.chain(random).map(f32::to_bits);
+    move |count| stream.by_ref().take(count * scalars).collect()
 }
 
 impl std::fmt::Display for Deviation {
