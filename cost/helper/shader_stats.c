@@ -1,0 +1,641 @@
+/*
+ * shader-stats: compiles one shader on whatever GPU driver the environment selects, and prints
+ * what the driver's compiler reports about it. It is the part of the cost model that must run
+ * inside the driver's process: built for amd64 (RADV, radeonsi, nouveau) and for arm64 (turnip,
+ * freedreno, panvk, panfrost, run under qemu-user), with Mesa's drm-shim preloaded so that the
+ * production compilers run with no GPU present. It knows nothing of any one driver's statistics:
+ * the Rust side (gbuffer-cost) reads them.
+ *
+ *   shader-stats gl     STAGE SHADER [VERTEX]
+ *       GLSL ES through EGL surfaceless. Prints `renderer: ...`, `version: ...`, then each
+ *       KHR_debug message as `message: ...` (where Mesa's shader-db statistics arrive).
+ *   shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--descriptor SET,BINDING,KIND]...
+ *                       [--color FORMAT]... [--disassembly]
+ *       SPIR-V through VK_KHR_pipeline_executable_properties. Prints `device: ...`,
+ *       `driver: ...`, then per executable `executable: NAME` and `statistic: NAME = VALUE`,
+ *       and with --disassembly `representation: NAME` followed by its text.
+ *
+ * STAGE is `vertex`, `fragment` or `compute`. A fragment shader needs a vertex shader to link
+ * against (GLSL ES links the pair; a Vulkan pipeline needs both). KIND is one of uniform,
+ * storage, sampled, sampler, combined, storage-image, input-attachment; FORMAT one of r32ui,
+ * rg32ui, rgba32ui, r32i, rgba32i, r32f, rgba32f, rgba16f, rgba8, rgb10a2, rg11b10f.
+ *
+ * Exit status: 0 compiled, 1 the driver or the shader failed (a one-line reason on stderr),
+ * 2 usage. Every API entry point is loaded with dlopen, so the program needs no GPU headers'
+ * libraries at link time and cross-compiles with nothing but a C compiler and its libc.
+ */
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#define GL_GLES_PROTOTYPES 0
+#include <GLES3/gl32.h>
+#define VK_NO_PROTOTYPES
+#include <vulkan/vulkan.h>
+
+static void fail(const char *format, ...) {
+    va_list args;
+    va_start(args, format);
+    fputs("shader-stats: ", stderr);
+    vfprintf(stderr, format, args);
+    fputc('\n', stderr);
+    va_end(args);
+    exit(1);
+}
+
+static void usage(void) {
+    fputs("usage: shader-stats gl STAGE SHADER [VERTEX]\n"
+          "       shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--descriptor SET,BINDING,KIND]..."
+          " [--color FORMAT]... [--disassembly]\n",
+          stderr);
+    exit(2);
+}
+
+/* The whole file, NUL-terminated; its length in *length when asked. */
+static char *read_file(const char *path, size_t *length) {
+    FILE *file = fopen(path, "rb");
+    if (!file) fail("cannot read %s", path);
+    size_t capacity = 1 << 16, used = 0;
+    char *bytes = malloc(capacity);
+    size_t got;
+    while (bytes && (got = fread(bytes + used, 1, capacity - used - 1, file)) > 0) {
+        used += got;
+        if (used + 1 == capacity) bytes = realloc(bytes, capacity *= 2);
+    }
+    fclose(file);
+    if (!bytes) fail("out of memory reading %s", path);
+    bytes[used] = 0;
+    if (length) *length = used;
+    return bytes;
+}
+
+static void *library(const char *name) {
+    void *handle = dlopen(name, RTLD_NOW | RTLD_LOCAL);
+    if (!handle) fail("cannot load %s: %s", name, dlerror());
+    return handle;
+}
+
+/* ---- GLES through EGL surfaceless ---------------------------------------------------------- */
+
+static void GL_APIENTRY on_debug_message(GLenum source, GLenum type, GLuint id, GLenum severity,
+                                         GLsizei length, const GLchar *message, const void *user) {
+    (void)source, (void)type, (void)id, (void)severity, (void)user;
+    /* One record a line: a message that spans lines keeps its lines, each prefixed. */
+    const char *line = message;
+    const char *end = length >= 0 ? message + length : message + strlen(message);
+    while (line < end) {
+        const char *newline = memchr(line, '\n', (size_t)(end - line));
+        const char *stop = newline ? newline : end;
+        if (stop > line) printf("message: %.*s\n", (int)(stop - line), line);
+        line = stop + 1;
+    }
+}
+
+static GLenum gl_stage(const char *stage) {
+    if (!strcmp(stage, "vertex")) return GL_VERTEX_SHADER;
+    if (!strcmp(stage, "fragment")) return GL_FRAGMENT_SHADER;
+    if (!strcmp(stage, "compute")) return GL_COMPUTE_SHADER;
+    usage();
+    return 0;
+}
+
+#define GL_FUNCTIONS(X)                                                                           \
+    X(PFNGLGETSTRINGPROC, glGetString)                                                           \
+    X(PFNGLENABLEPROC, glEnable)                                                                 \
+    X(PFNGLDEBUGMESSAGECALLBACKPROC, glDebugMessageCallback)                                     \
+    X(PFNGLDEBUGMESSAGECONTROLPROC, glDebugMessageControl)                                       \
+    X(PFNGLCREATESHADERPROC, glCreateShader)                                                     \
+    X(PFNGLSHADERSOURCEPROC, glShaderSource)                                                     \
+    X(PFNGLCOMPILESHADERPROC, glCompileShader)                                                   \
+    X(PFNGLGETSHADERIVPROC, glGetShaderiv)                                                       \
+    X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog)                                             \
+    X(PFNGLCREATEPROGRAMPROC, glCreateProgram)                                                   \
+    X(PFNGLATTACHSHADERPROC, glAttachShader)                                                     \
+    X(PFNGLLINKPROGRAMPROC, glLinkProgram)                                                       \
+    X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                                                     \
+    X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)                                           \
+    X(PFNGLFINISHPROC, glFinish)
+
+#define DECLARE(type, name) static type name;
+GL_FUNCTIONS(DECLARE)
+
+static GLuint gl_compile(GLenum stage, const char *path) {
+    const char *source = read_file(path, NULL);
+    GLuint shader = glCreateShader(stage);
+    glShaderSource(shader, 1, &source, NULL);
+    glCompileShader(shader);
+    GLint compiled = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &compiled);
+    if (!compiled) {
+        char log[4096] = "";
+        glGetShaderInfoLog(shader, sizeof log, NULL, log);
+        for (char *c = log; *c; c++)
+            if (*c == '\n') *c = ' ';
+        fail("%s does not compile: %s", path, log);
+    }
+    return shader;
+}
+
+static int run_gl(int argc, char **argv) {
+    if (argc < 2 || argc > 3) usage();
+    GLenum stage = gl_stage(argv[0]);
+    if (stage == GL_FRAGMENT_SHADER && argc != 3) fail("a fragment shader needs a vertex shader");
+
+    void *egl = library("libEGL.so.1");
+    PFNEGLGETPROCADDRESSPROC get = (PFNEGLGETPROCADDRESSPROC)dlsym(egl, "eglGetProcAddress");
+    if (!get) fail("libEGL.so.1 has no eglGetProcAddress");
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get_display =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)get("eglGetPlatformDisplayEXT");
+    PFNEGLINITIALIZEPROC initialize = (PFNEGLINITIALIZEPROC)get("eglInitialize");
+    PFNEGLBINDAPIPROC bind_api = (PFNEGLBINDAPIPROC)get("eglBindAPI");
+    PFNEGLCREATECONTEXTPROC create_context = (PFNEGLCREATECONTEXTPROC)get("eglCreateContext");
+    PFNEGLMAKECURRENTPROC make_current = (PFNEGLMAKECURRENTPROC)get("eglMakeCurrent");
+    if (!get_display || !initialize || !bind_api || !create_context || !make_current)
+        fail("EGL lacks eglGetPlatformDisplayEXT or a core entry point");
+
+    EGLDisplay display = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    EGLint major, minor;
+    if (display == EGL_NO_DISPLAY || !initialize(display, &major, &minor))
+        fail("no EGL surfaceless display");
+    if (!bind_api(EGL_OPENGL_ES_API)) fail("EGL cannot bind OpenGL ES");
+    /* The newest GLES the driver offers, with debug output so that statistics arrive. */
+    static const EGLint versions[][2] = {{3, 2}, {3, 1}, {3, 0}};
+    EGLContext context = EGL_NO_CONTEXT;
+    for (unsigned i = 0; i < 3 && context == EGL_NO_CONTEXT; i++) {
+        EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, versions[i][0],
+                               EGL_CONTEXT_MINOR_VERSION, versions[i][1],
+                               EGL_CONTEXT_OPENGL_DEBUG,  EGL_TRUE,
+                               EGL_NONE};
+        context = create_context(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+    }
+    if (context == EGL_NO_CONTEXT) fail("no OpenGL ES 3 context");
+    if (!make_current(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
+        fail("cannot make the OpenGL ES context current");
+
+#define LOAD(type, name)                                                                          \
+    if (!(name = (type)get(#name))) fail("OpenGL ES lacks " #name);
+    GL_FUNCTIONS(LOAD)
+
+    printf("renderer: %s\n", (const char *)glGetString(GL_RENDERER));
+    printf("version: %s\n", (const char *)glGetString(GL_VERSION));
+    fflush(stdout);
+    glEnable(GL_DEBUG_OUTPUT);
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback(on_debug_message, NULL);
+    glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, NULL, GL_TRUE);
+
+    GLuint program = glCreateProgram();
+    glAttachShader(program, gl_compile(stage, argv[1]));
+    if (argc == 3) glAttachShader(program, gl_compile(GL_VERTEX_SHADER, argv[2]));
+    glLinkProgram(program);
+    GLint linked = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (!linked) {
+        char log[4096] = "";
+        glGetProgramInfoLog(program, sizeof log, NULL, log);
+        for (char *c = log; *c; c++)
+            if (*c == '\n') *c = ' ';
+        fail("the program does not link: %s", log);
+    }
+    glFinish();
+    return 0;
+}
+
+/* ---- Vulkan through VK_KHR_pipeline_executable_properties ---------------------------------- */
+
+#define MAX_ITEMS 32
+
+struct descriptor {
+    uint32_t set, binding;
+    VkDescriptorType type;
+};
+
+static VkDescriptorType descriptor_type(const char *kind) {
+    static const struct {
+        const char *name;
+        VkDescriptorType type;
+    } kinds[] = {
+        {"uniform", VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+        {"storage", VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+        {"sampled", VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE},
+        {"sampler", VK_DESCRIPTOR_TYPE_SAMPLER},
+        {"combined", VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+        {"storage-image", VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+        {"input-attachment", VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT},
+    };
+    for (unsigned i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
+        if (!strcmp(kind, kinds[i].name)) return kinds[i].type;
+    usage();
+    return 0;
+}
+
+static VkFormat color_format(const char *name) {
+    static const struct {
+        const char *name;
+        VkFormat format;
+    } formats[] = {
+        {"r32ui", VK_FORMAT_R32_UINT},
+        {"rg32ui", VK_FORMAT_R32G32_UINT},
+        {"rgba32ui", VK_FORMAT_R32G32B32A32_UINT},
+        {"r32i", VK_FORMAT_R32_SINT},
+        {"rgba32i", VK_FORMAT_R32G32B32A32_SINT},
+        {"r32f", VK_FORMAT_R32_SFLOAT},
+        {"rgba32f", VK_FORMAT_R32G32B32A32_SFLOAT},
+        {"rgba16f", VK_FORMAT_R16G16B16A16_SFLOAT},
+        {"rgba8", VK_FORMAT_R8G8B8A8_UNORM},
+        {"rgb10a2", VK_FORMAT_A2B10G10R10_UNORM_PACK32},
+        {"rg11b10f", VK_FORMAT_B10G11R11_UFLOAT_PACK32},
+    };
+    for (unsigned i = 0; i < sizeof formats / sizeof formats[0]; i++)
+        if (!strcmp(name, formats[i].name)) return formats[i].format;
+    usage();
+    return 0;
+}
+
+static PFN_vkGetInstanceProcAddr instance_function;
+static PFN_vkGetDeviceProcAddr device_function;
+
+#define CHECK(call, what)                                                                         \
+    do {                                                                                          \
+        VkResult result_ = (call);                                                                \
+        if (result_ != VK_SUCCESS) fail("%s failed (VkResult %d)", what, (int)result_);           \
+    } while (0)
+
+static VkShaderModule shader_module(VkDevice device, const char *path) {
+    size_t length;
+    char *words = read_file(path, &length);
+    if (length == 0 || length % 4) fail("%s is not SPIR-V (its length is not whole words)", path);
+    PFN_vkCreateShaderModule create =
+        (PFN_vkCreateShaderModule)device_function(device, "vkCreateShaderModule");
+    VkShaderModuleCreateInfo info = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                     .codeSize = length,
+                                     .pCode = (const uint32_t *)words};
+    VkShaderModule module;
+    CHECK(create(device, &info, NULL, &module), "vkCreateShaderModule");
+    return module;
+}
+
+/* One descriptor set layout per set number up to the highest named, empty where none is. */
+static VkPipelineLayout pipeline_layout(VkDevice device, const struct descriptor *descriptors,
+                                        unsigned count) {
+    PFN_vkCreateDescriptorSetLayout create_set =
+        (PFN_vkCreateDescriptorSetLayout)device_function(device, "vkCreateDescriptorSetLayout");
+    PFN_vkCreatePipelineLayout create_layout =
+        (PFN_vkCreatePipelineLayout)device_function(device, "vkCreatePipelineLayout");
+    uint32_t sets = 0;
+    for (unsigned i = 0; i < count; i++)
+        if (descriptors[i].set + 1 > sets) sets = descriptors[i].set + 1;
+    if (sets > 8) fail("descriptor sets above 7 are not supported");
+    VkDescriptorSetLayout set_layouts[8];
+    for (uint32_t set = 0; set < sets; set++) {
+        VkDescriptorSetLayoutBinding bindings[MAX_ITEMS];
+        uint32_t used = 0;
+        for (unsigned i = 0; i < count; i++) {
+            if (descriptors[i].set != set) continue;
+            bindings[used++] = (VkDescriptorSetLayoutBinding){
+                .binding = descriptors[i].binding,
+                .descriptorType = descriptors[i].type,
+                .descriptorCount = 1,
+                .stageFlags = VK_SHADER_STAGE_ALL,
+            };
+        }
+        VkDescriptorSetLayoutCreateInfo info = {
+            .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+            .bindingCount = used,
+            .pBindings = bindings};
+        CHECK(create_set(device, &info, NULL, &set_layouts[set]), "vkCreateDescriptorSetLayout");
+    }
+    VkPipelineLayoutCreateInfo info = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                       .setLayoutCount = sets,
+                                       .pSetLayouts = set_layouts};
+    VkPipelineLayout layout;
+    CHECK(create_layout(device, &info, NULL, &layout), "vkCreatePipelineLayout");
+    return layout;
+}
+
+/* A render pass with one colour attachment a format, and the input attachments the shader
+ * names (set 0's input-attachment descriptors, in binding order) as extra attachments. */
+static VkRenderPass render_pass(VkDevice device, const VkFormat *colors, unsigned color_count,
+                                const struct descriptor *descriptors, unsigned descriptor_count) {
+    VkAttachmentDescription attachments[2 * MAX_ITEMS];
+    VkAttachmentReference color_references[MAX_ITEMS], input_references[MAX_ITEMS];
+    unsigned attachment_count = 0, input_count = 0;
+    for (unsigned i = 0; i < color_count; i++) {
+        color_references[i] = (VkAttachmentReference){attachment_count,
+                                                      VK_IMAGE_LAYOUT_GENERAL};
+        attachments[attachment_count++] = (VkAttachmentDescription){
+            .format = colors[i],
+            .samples = VK_SAMPLE_COUNT_1_BIT,
+            .loadOp = VK_ATTACHMENT_LOAD_OP_LOAD,
+            .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+            .stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+            .stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
+            .initialLayout = VK_IMAGE_LAYOUT_GENERAL,
+            .finalLayout = VK_IMAGE_LAYOUT_GENERAL,
+        };
+    }
+    for (unsigned i = 0; i < descriptor_count; i++) {
+        if (descriptors[i].type != VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT) continue;
+        /* Input attachment index = binding order; the shader's index is the binding here. */
+        input_references[input_count++] = (VkAttachmentReference){attachment_count,
+                                                                  VK_IMAGE_LAYOUT_GENERAL};
+        attachments[attachment_count++] = (VkAttachmentDescription){
+            .format = VK_FORMAT_R32_UINT,
+            .samples = VK_SAMPLE_COUNT_1_BIT,
+            .loadOp = VK_ATTACHMENT_LOAD_OP_LOAD,
+            .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+            .stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+            .stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
+            .initialLayout = VK_IMAGE_LAYOUT_GENERAL,
+            .finalLayout = VK_IMAGE_LAYOUT_GENERAL,
+        };
+    }
+    VkSubpassDescription subpass = {.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                    .inputAttachmentCount = input_count,
+                                    .pInputAttachments = input_references,
+                                    .colorAttachmentCount = color_count,
+                                    .pColorAttachments = color_references};
+    VkRenderPassCreateInfo info = {.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO,
+                                   .attachmentCount = attachment_count,
+                                   .pAttachments = attachments,
+                                   .subpassCount = 1,
+                                   .pSubpasses = &subpass};
+    PFN_vkCreateRenderPass create =
+        (PFN_vkCreateRenderPass)device_function(device, "vkCreateRenderPass");
+    VkRenderPass pass;
+    CHECK(create(device, &info, NULL, &pass), "vkCreateRenderPass");
+    return pass;
+}
+
+static VkPipeline graphics_pipeline(VkDevice device, VkShaderModule vertex,
+                                    VkShaderModule fragment, VkPipelineLayout layout,
+                                    VkRenderPass pass, unsigned color_count,
+                                    VkPipelineCreateFlags flags) {
+    VkPipelineShaderStageCreateInfo stages[2] = {
+        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+         .stage = VK_SHADER_STAGE_VERTEX_BIT,
+         .module = vertex,
+         .pName = "main"},
+        {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+         .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
+         .module = fragment,
+         .pName = "main"},
+    };
+    VkPipelineVertexInputStateCreateInfo vertex_input = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo assembly = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
+        .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+    VkViewport viewport = {0, 0, 64, 64, 0, 1};
+    VkRect2D scissor = {{0, 0}, {64, 64}};
+    VkPipelineViewportStateCreateInfo viewport_state = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
+        .viewportCount = 1,
+        .pViewports = &viewport,
+        .scissorCount = 1,
+        .pScissors = &scissor};
+    VkPipelineRasterizationStateCreateInfo raster = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
+        .polygonMode = VK_POLYGON_MODE_FILL,
+        .cullMode = VK_CULL_MODE_NONE,
+        .lineWidth = 1};
+    VkPipelineMultisampleStateCreateInfo multisample = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
+        .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT};
+    VkPipelineColorBlendAttachmentState blends[MAX_ITEMS];
+    for (unsigned i = 0; i < color_count; i++)
+        blends[i] = (VkPipelineColorBlendAttachmentState){.colorWriteMask = 0xf};
+    VkPipelineColorBlendStateCreateInfo blend = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
+        .attachmentCount = color_count,
+        .pAttachments = blends};
+    VkGraphicsPipelineCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+        .flags = flags,
+        .stageCount = 2,
+        .pStages = stages,
+        .pVertexInputState = &vertex_input,
+        .pInputAssemblyState = &assembly,
+        .pViewportState = &viewport_state,
+        .pRasterizationState = &raster,
+        .pMultisampleState = &multisample,
+        .pColorBlendState = &blend,
+        .layout = layout,
+        .renderPass = pass};
+    PFN_vkCreateGraphicsPipelines create =
+        (PFN_vkCreateGraphicsPipelines)device_function(device, "vkCreateGraphicsPipelines");
+    VkPipeline pipeline;
+    CHECK(create(device, VK_NULL_HANDLE, 1, &info, NULL, &pipeline), "vkCreateGraphicsPipelines");
+    return pipeline;
+}
+
+static VkPipeline compute_pipeline(VkDevice device, VkShaderModule module,
+                                   VkPipelineLayout layout, VkPipelineCreateFlags flags) {
+    VkComputePipelineCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .flags = flags,
+        .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                  .module = module,
+                  .pName = "main"},
+        .layout = layout};
+    PFN_vkCreateComputePipelines create =
+        (PFN_vkCreateComputePipelines)device_function(device, "vkCreateComputePipelines");
+    VkPipeline pipeline;
+    CHECK(create(device, VK_NULL_HANDLE, 1, &info, NULL, &pipeline), "vkCreateComputePipelines");
+    return pipeline;
+}
+
+static void print_statistic(const VkPipelineExecutableStatisticKHR *statistic) {
+    printf("statistic: %s = ", statistic->name);
+    switch (statistic->format) {
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR:
+        printf("%u\n", statistic->value.b32);
+        break;
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR:
+        printf("%lld\n", (long long)statistic->value.i64);
+        break;
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR:
+        printf("%llu\n", (unsigned long long)statistic->value.u64);
+        break;
+    default:
+        printf("%.9g\n", statistic->value.f64);
+        break;
+    }
+}
+
+static void print_executables(VkDevice device, VkPipeline pipeline, int disassembly) {
+    PFN_vkGetPipelineExecutablePropertiesKHR properties =
+        (PFN_vkGetPipelineExecutablePropertiesKHR)device_function(
+            device, "vkGetPipelineExecutablePropertiesKHR");
+    PFN_vkGetPipelineExecutableStatisticsKHR statistics =
+        (PFN_vkGetPipelineExecutableStatisticsKHR)device_function(
+            device, "vkGetPipelineExecutableStatisticsKHR");
+    PFN_vkGetPipelineExecutableInternalRepresentationsKHR representations =
+        (PFN_vkGetPipelineExecutableInternalRepresentationsKHR)device_function(
+            device, "vkGetPipelineExecutableInternalRepresentationsKHR");
+    VkPipelineInfoKHR pipeline_info = {.sType = VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR,
+                                       .pipeline = pipeline};
+    uint32_t count = 0;
+    CHECK(properties(device, &pipeline_info, &count, NULL), "vkGetPipelineExecutableProperties");
+    VkPipelineExecutablePropertiesKHR executables[MAX_ITEMS];
+    if (count > MAX_ITEMS) count = MAX_ITEMS;
+    for (uint32_t i = 0; i < count; i++)
+        executables[i] = (VkPipelineExecutablePropertiesKHR){
+            .sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR};
+    CHECK(properties(device, &pipeline_info, &count, executables),
+          "vkGetPipelineExecutableProperties");
+    for (uint32_t i = 0; i < count; i++) {
+        printf("executable: %s\n", executables[i].name);
+        VkPipelineExecutableInfoKHR info = {.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR,
+                                            .pipeline = pipeline,
+                                            .executableIndex = i};
+        uint32_t statistic_count = 0;
+        CHECK(statistics(device, &info, &statistic_count, NULL),
+              "vkGetPipelineExecutableStatistics");
+        VkPipelineExecutableStatisticKHR *values =
+            calloc(statistic_count ? statistic_count : 1, sizeof *values);
+        for (uint32_t s = 0; s < statistic_count; s++)
+            values[s].sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR;
+        CHECK(statistics(device, &info, &statistic_count, values),
+              "vkGetPipelineExecutableStatistics");
+        for (uint32_t s = 0; s < statistic_count; s++) print_statistic(&values[s]);
+        free(values);
+        if (!disassembly) continue;
+        uint32_t text_count = 0;
+        CHECK(representations(device, &info, &text_count, NULL),
+              "vkGetPipelineExecutableInternalRepresentations");
+        VkPipelineExecutableInternalRepresentationKHR *texts =
+            calloc(text_count ? text_count : 1, sizeof *texts);
+        for (uint32_t t = 0; t < text_count; t++)
+            texts[t].sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INTERNAL_REPRESENTATION_KHR;
+        CHECK(representations(device, &info, &text_count, texts),
+              "vkGetPipelineExecutableInternalRepresentations");
+        for (uint32_t t = 0; t < text_count; t++) {
+            if (!texts[t].isText) continue;
+            texts[t].pData = calloc(texts[t].dataSize + 1, 1);
+        }
+        CHECK(representations(device, &info, &text_count, texts),
+              "vkGetPipelineExecutableInternalRepresentations");
+        for (uint32_t t = 0; t < text_count; t++) {
+            if (!texts[t].isText) continue;
+            printf("representation: %s\n%s\n", texts[t].name, (const char *)texts[t].pData);
+        }
+    }
+}
+
+static int run_vulkan(int argc, char **argv) {
+    if (argc < 2) usage();
+    const char *stage = argv[0], *shader = argv[1], *vertex = NULL;
+    struct descriptor descriptors[MAX_ITEMS];
+    VkFormat colors[MAX_ITEMS];
+    unsigned descriptor_count = 0, color_count = 0;
+    int disassembly = 0;
+    for (int i = 2; i < argc; i++) {
+        if (!strcmp(argv[i], "--disassembly")) {
+            disassembly = 1;
+        } else if (!strcmp(argv[i], "--descriptor") && i + 1 < argc) {
+            char kind[32];
+            unsigned set, binding;
+            if (descriptor_count == MAX_ITEMS ||
+                sscanf(argv[++i], "%u,%u,%31s", &set, &binding, kind) != 3)
+                usage();
+            descriptors[descriptor_count++] =
+                (struct descriptor){set, binding, descriptor_type(kind)};
+        } else if (!strcmp(argv[i], "--color") && i + 1 < argc) {
+            if (color_count == MAX_ITEMS) usage();
+            colors[color_count++] = color_format(argv[++i]);
+        } else if (argv[i][0] != '-' && !vertex) {
+            vertex = argv[i];
+        } else {
+            usage();
+        }
+    }
+    int compute = !strcmp(stage, "compute");
+    if (!compute && strcmp(stage, "fragment")) fail("Vulkan statistics are for fragment or compute");
+    if (!compute && !vertex) fail("a fragment shader needs a vertex shader");
+
+    void *loader = library("libvulkan.so.1");
+    instance_function = (PFN_vkGetInstanceProcAddr)dlsym(loader, "vkGetInstanceProcAddr");
+    if (!instance_function) fail("libvulkan.so.1 has no vkGetInstanceProcAddr");
+    PFN_vkCreateInstance create_instance =
+        (PFN_vkCreateInstance)instance_function(NULL, "vkCreateInstance");
+    VkApplicationInfo application = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                                     .pApplicationName = "shader-stats",
+                                     .apiVersion = VK_API_VERSION_1_1};
+    VkInstanceCreateInfo instance_info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+                                          .pApplicationInfo = &application};
+    VkInstance instance;
+    CHECK(create_instance(&instance_info, NULL, &instance), "vkCreateInstance");
+    PFN_vkEnumeratePhysicalDevices enumerate =
+        (PFN_vkEnumeratePhysicalDevices)instance_function(instance, "vkEnumeratePhysicalDevices");
+    PFN_vkGetPhysicalDeviceProperties2 properties2 =
+        (PFN_vkGetPhysicalDeviceProperties2)instance_function(instance,
+                                                              "vkGetPhysicalDeviceProperties2");
+    PFN_vkCreateDevice create_device =
+        (PFN_vkCreateDevice)instance_function(instance, "vkCreateDevice");
+    device_function =
+        (PFN_vkGetDeviceProcAddr)instance_function(instance, "vkGetDeviceProcAddr");
+    uint32_t count = 1;
+    VkPhysicalDevice physical;
+    VkResult found = enumerate(instance, &count, &physical);
+    if ((found != VK_SUCCESS && found != VK_INCOMPLETE) || count == 0)
+        fail("no Vulkan device");
+    VkPhysicalDeviceDriverProperties driver = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driver};
+    properties2(physical, &properties);
+    printf("device: %s\n", properties.properties.deviceName);
+    printf("driver: %s %s\n", driver.driverName, driver.driverInfo);
+    fflush(stdout);
+
+    float priority = 1;
+    VkDeviceQueueCreateInfo queue = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+                                     .queueFamilyIndex = 0,
+                                     .queueCount = 1,
+                                     .pQueuePriorities = &priority};
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable_feature = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR,
+        .pipelineExecutableInfo = VK_TRUE};
+    const char *extensions[] = {VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME};
+    VkDeviceCreateInfo device_info = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+                                      .pNext = &executable_feature,
+                                      .queueCreateInfoCount = 1,
+                                      .pQueueCreateInfos = &queue,
+                                      .enabledExtensionCount = 1,
+                                      .ppEnabledExtensionNames = extensions};
+    VkDevice device;
+    CHECK(create_device(physical, &device_info, NULL, &device),
+          "vkCreateDevice with VK_KHR_pipeline_executable_properties");
+
+    VkPipelineCreateFlags flags = VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
+    if (disassembly) flags |= VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR;
+    VkPipelineLayout layout = pipeline_layout(device, descriptors, descriptor_count);
+    VkPipeline pipeline;
+    if (compute) {
+        pipeline = compute_pipeline(device, shader_module(device, shader), layout, flags);
+    } else {
+        VkRenderPass pass = render_pass(device, colors, color_count, descriptors,
+                                        descriptor_count);
+        pipeline = graphics_pipeline(device, shader_module(device, vertex),
+                                     shader_module(device, shader), layout, pass, color_count,
+                                     flags);
+    }
+    print_executables(device, pipeline, disassembly);
+    return 0;
+}
+
+int main(int argc, char **argv) {
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    if (argc < 2) usage();
+    if (!strcmp(argv[1], "gl")) return run_gl(argc - 2, argv + 2);
+    if (!strcmp(argv[1], "vulkan")) return run_vulkan(argc - 2, argv + 2);
+    usage();
+    return 2;
+}
