@@ -2,6 +2,8 @@
 //! own module, with its arguments, its `--help` text and its exit statuses.
 
 mod codegen;
+mod cost;
+mod output;
 mod report;
 mod solve;
 mod validate;
@@ -30,6 +32,7 @@ enum Subcommands {
     Validate(validate::Arguments),
     Solve(solve::Arguments),
     Report(report::Arguments),
+    Cost(cost::Arguments),
 }
 
 fn main() -> ExitCode {
@@ -38,5 +41,6 @@ fn main() -> ExitCode {
         Subcommands::Validate(arguments) => validate::run(arguments),
         Subcommands::Solve(arguments) => solve::run(arguments),
         Subcommands::Report(arguments) => report::run(arguments),
+        Subcommands::Cost(arguments) => cost::run(arguments),
     }
 }

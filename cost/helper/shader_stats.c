@@ -6,26 +6,32 @@
  * production compilers run with no GPU present. It knows nothing of any one driver's statistics:
  * the Rust side (gbuffer-cost) reads them.
  *
- *   shader-stats gl     STAGE SHADER [VERTEX]
- *       GLSL ES through EGL surfaceless. Prints `renderer: ...`, `version: ...`, then each
- *       KHR_debug message as `message: ...` (where Mesa's shader-db statistics arrive).
+ *   shader-stats gl     STAGE SHADER [VERTEX] [-- STAGE SHADER [VERTEX]]...
+ *       GLSL ES through EGL surfaceless. Prints `renderer: ...`, `version: ...`, then for each
+ *       shader `shader: N` and each KHR_debug message as `message: ...` (where Mesa's shader-db
+ *       statistics arrive), or `error: ...` where it does not compile or link.
  *   shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--descriptor SET,BINDING,KIND]...
- *                       [--color FORMAT]... [--disassembly]
+ *                       [--color FORMAT]... [--disassembly] [-- STAGE SHADER.spv ...]...
  *       SPIR-V through VK_KHR_pipeline_executable_properties. Prints `device: ...`,
- *       `driver: ...`, then per executable `executable: NAME` and `statistic: NAME = VALUE`,
- *       and with --disassembly `representation: NAME` followed by its text.
+ *       `driver: ...`, then for each shader `shader: N`, per executable `executable: NAME` and
+ *       `statistic: NAME = VALUE`, with --disassembly `representation: NAME` followed by its
+ *       text and `end-representation`, or `error: ...` where the pipeline cannot be created.
+ *
+ * Several shaders separated by `--` compile in one process: starting the driver (under qemu,
+ * most of a run) is paid once.
  *
  * STAGE is `vertex`, `fragment` or `compute`. A fragment shader needs a vertex shader to link
  * against (GLSL ES links the pair; a Vulkan pipeline needs both). KIND is one of uniform,
  * storage, sampled, sampler, combined, storage-image, input-attachment; FORMAT one of r32ui,
  * rg32ui, rgba32ui, r32i, rgba32i, r32f, rgba32f, rgba16f, rgba8, rgb10a2, rg11b10f.
  *
- * Exit status: 0 compiled, 1 the driver or the shader failed (a one-line reason on stderr),
- * 2 usage. Every API entry point is loaded with dlopen, so the program needs no GPU headers'
+ * Exit status: 0 when the driver started (each shader's own failure is its `error:` line), 1
+ * when it did not (a one-line reason on stderr), 2 usage. Every API entry point is loaded with dlopen, so the program needs no GPU headers'
  * libraries at link time and cross-compiles with nothing but a C compiler and its libc.
  */
 #define _GNU_SOURCE
 #include <dlfcn.h>
+#include <setjmp.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,14 +44,42 @@
 #define VK_NO_PROTOTYPES
 #include <vulkan/vulkan.h>
 
+/* While a shader is being compiled, a failure is that shader's: it is printed as its `error:`
+ * line and the next shader goes on. Before (the driver starting), it ends the program. */
+static jmp_buf *this_shader;
+
 static void fail(const char *format, ...) {
     va_list args;
     va_start(args, format);
-    fputs("shader-stats: ", stderr);
-    vfprintf(stderr, format, args);
-    fputc('\n', stderr);
+    FILE *out = this_shader ? stdout : stderr;
+    fputs(this_shader ? "error: " : "shader-stats: ", out);
+    vfprintf(out, format, args);
+    fputc('\n', out);
     va_end(args);
+    if (this_shader) longjmp(*this_shader, 1);
     exit(1);
+}
+
+typedef void (*compile_function)(void *context, int argc, char **argv);
+
+static void guarded(compile_function compile, void *context, int argc, char **argv) {
+    jmp_buf recover;
+    if (!setjmp(recover)) {
+        this_shader = &recover;
+        compile(context, argc, argv);
+    }
+    this_shader = NULL;
+}
+
+/* Compiles each group of arguments (separated by `--`) after a `shader: N` line. */
+static void each_shader(int argc, char **argv, compile_function compile, void *context) {
+    for (int start = 0, index = 0; start < argc; index++) {
+        int end = start;
+        while (end < argc && strcmp(argv[end], "--")) end++;
+        printf("shader: %d\n", index);
+        guarded(compile, context, end - start, argv + start);
+        start = end + 1;
+    }
 }
 
 static void usage(void) {
@@ -141,11 +175,30 @@ static GLuint gl_compile(GLenum stage, const char *path) {
     return shader;
 }
 
-static int run_gl(int argc, char **argv) {
+/* One program: STAGE SHADER [VERTEX]. */
+static void gl_program(void *unused, int argc, char **argv) {
+    (void)unused;
     if (argc < 2 || argc > 3) usage();
     GLenum stage = gl_stage(argv[0]);
     if (stage == GL_FRAGMENT_SHADER && argc != 3) fail("a fragment shader needs a vertex shader");
+    GLuint program = glCreateProgram();
+    glAttachShader(program, gl_compile(stage, argv[1]));
+    if (argc == 3) glAttachShader(program, gl_compile(GL_VERTEX_SHADER, argv[2]));
+    glLinkProgram(program);
+    GLint linked = 0;
+    glGetProgramiv(program, GL_LINK_STATUS, &linked);
+    if (!linked) {
+        char log[4096] = "";
+        glGetProgramInfoLog(program, sizeof log, NULL, log);
+        for (char *c = log; *c; c++)
+            if (*c == '\n') *c = ' ';
+        fail("the program does not link: %s", log);
+    }
+    glFinish();
+}
 
+static int run_gl(int argc, char **argv) {
+    if (argc < 2) usage();
     void *egl = library("libEGL.so.1");
     PFNEGLGETPROCADDRESSPROC get = (PFNEGLGETPROCADDRESSPROC)dlsym(egl, "eglGetProcAddress");
     if (!get) fail("libEGL.so.1 has no eglGetProcAddress");
@@ -189,20 +242,7 @@ static int run_gl(int argc, char **argv) {
     glDebugMessageCallback(on_debug_message, NULL);
     glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, NULL, GL_TRUE);
 
-    GLuint program = glCreateProgram();
-    glAttachShader(program, gl_compile(stage, argv[1]));
-    if (argc == 3) glAttachShader(program, gl_compile(GL_VERTEX_SHADER, argv[2]));
-    glLinkProgram(program);
-    GLint linked = 0;
-    glGetProgramiv(program, GL_LINK_STATUS, &linked);
-    if (!linked) {
-        char log[4096] = "";
-        glGetProgramInfoLog(program, sizeof log, NULL, log);
-        for (char *c = log; *c; c++)
-            if (*c == '\n') *c = ' ';
-        fail("the program does not link: %s", log);
-    }
-    glFinish();
+    each_shader(argc, argv, gl_program, NULL);
     return 0;
 }
 
@@ -524,12 +564,15 @@ static void print_executables(VkDevice device, VkPipeline pipeline, int disassem
               "vkGetPipelineExecutableInternalRepresentations");
         for (uint32_t t = 0; t < text_count; t++) {
             if (!texts[t].isText) continue;
-            printf("representation: %s\n%s\n", texts[t].name, (const char *)texts[t].pData);
+            printf("representation: %s\n%s\nend-representation\n", texts[t].name,
+                   (const char *)texts[t].pData);
         }
     }
 }
 
-static int run_vulkan(int argc, char **argv) {
+/* One pipeline: STAGE SHADER.spv [VERTEX.spv] and its options. */
+static void vulkan_pipeline(void *context, int argc, char **argv) {
+    VkDevice device = context;
     if (argc < 2) usage();
     const char *stage = argv[0], *shader = argv[1], *vertex = NULL;
     struct descriptor descriptors[MAX_ITEMS];
@@ -560,6 +603,25 @@ static int run_vulkan(int argc, char **argv) {
     if (!compute && strcmp(stage, "fragment")) fail("Vulkan statistics are for fragment or compute");
     if (!compute && !vertex) fail("a fragment shader needs a vertex shader");
 
+    VkPipelineCreateFlags flags = VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
+    if (disassembly) flags |= VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR;
+    VkPipelineLayout layout = pipeline_layout(device, descriptors, descriptor_count);
+    VkPipeline pipeline;
+    if (compute) {
+        pipeline = compute_pipeline(device, shader_module(device, shader), layout, flags);
+    } else {
+        VkRenderPass pass = render_pass(device, colors, color_count, descriptors,
+                                        descriptor_count);
+        pipeline = graphics_pipeline(device, shader_module(device, vertex),
+                                     shader_module(device, shader), layout, pass, color_count,
+                                     flags);
+    }
+    print_executables(device, pipeline, disassembly);
+}
+
+
+static int run_vulkan(int argc, char **argv) {
+    if (argc < 2) usage();
     void *loader = library("libvulkan.so.1");
     instance_function = (PFN_vkGetInstanceProcAddr)dlsym(loader, "vkGetInstanceProcAddr");
     if (!instance_function) fail("libvulkan.so.1 has no vkGetInstanceProcAddr");
@@ -614,20 +676,7 @@ static int run_vulkan(int argc, char **argv) {
     CHECK(create_device(physical, &device_info, NULL, &device),
           "vkCreateDevice with VK_KHR_pipeline_executable_properties");
 
-    VkPipelineCreateFlags flags = VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
-    if (disassembly) flags |= VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR;
-    VkPipelineLayout layout = pipeline_layout(device, descriptors, descriptor_count);
-    VkPipeline pipeline;
-    if (compute) {
-        pipeline = compute_pipeline(device, shader_module(device, shader), layout, flags);
-    } else {
-        VkRenderPass pass = render_pass(device, colors, color_count, descriptors,
-                                        descriptor_count);
-        pipeline = graphics_pipeline(device, shader_module(device, vertex),
-                                     shader_module(device, shader), layout, pass, color_count,
-                                     flags);
-    }
-    print_executables(device, pipeline, disassembly);
+    each_shader(argc, argv, vulkan_pipeline, device);
     return 0;
 }
 

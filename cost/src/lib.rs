@@ -1,0 +1,329 @@
+//! What a shader costs on the GPUs users ship on, without the GPUs: Mesa's production
+//! compilers for Mali (panfrost), Adreno (freedreno and turnip), AMD (RADV/ACO) and NVIDIA
+//! (nouveau) run here because Mesa's drm-shim fakes each GPU's kernel driver; the arm64-only
+//! drivers run under qemu-user from Debian's arm64 packages. A small C helper
+//! (`cost/helper/shader_stats.c`) compiles the shader inside the driver and prints what the
+//! compiler reports; this crate prepares the shader as a backend would see it ([`Shader`]),
+//! runs the helper for each [`Target`] and reads the statistics into [`Statistics`].
+//!
+//! `scripts/cost-setup.sh` installs what it needs on Debian 12. No Mesa driver offers
+//! `GL_EXT_shader_pixel_local_storage`, so the PLS includes cannot be costed here; freedreno and
+//! panfrost offer `GL_EXT_shader_framebuffer_fetch`, so the fetch includes can, as shipped.
+//!
+//! ```no_run
+//! use gbuffer_cost::{measure, Shader, Stage, Target};
+//!
+//! let shader = Shader::glsl(Stage::Fragment, "#version 310 es\n\
+//!     precision highp float;\n\
+//!     in vec4 colour;\n\
+//!     layout(location = 0) out highp uint word;\n\
+//!     void main() { word = packUnorm4x8(colour); }\n");
+//! let target = Target::named("mali-g610")?;
+//! for measurement in measure(&[shader], &target, false)? {
+//!     let measurement = measurement?;
+//!     println!("{}: {} instructions", measurement.device, measurement.statistics.instructions);
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod run;
+mod shader;
+mod statistics;
+mod target;
+
+use std::fmt;
+
+use serde::Serialize;
+
+pub use run::{Setup, DEFAULT_ROOT};
+pub use shader::{companion_vertex_glsl, GlesForm, Shader, ShaderError, VulkanForm};
+pub use statistics::{parse, Cycles, Statistic, Statistics};
+pub use target::{Api, Architecture, Compiler, Target, DEFAULT_TARGETS, TARGETS};
+
+use run::Scratch;
+
+/// The stages whose cost is measured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Stage {
+    /// A fragment shader: per pixel.
+    Fragment,
+    /// A compute shader: per invocation.
+    Compute,
+}
+
+impl Stage {
+    /// `fragment` or `compute`, as the helper takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Fragment => "fragment",
+            Stage::Compute => "compute",
+        }
+    }
+}
+
+/// Why a target could not cost anything.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CostError {
+    /// Something the target needs is not installed: names it and the setup script.
+    NotSetUp(String),
+    /// The driver answered as another device: the shim failed and Mesa fell back to software
+    /// (llvmpipe, lavapipe), whose numbers would be a CPU's.
+    Fallback {
+        /// The target asked for.
+        target: &'static str,
+        /// What the driver called itself.
+        device: String,
+    },
+    /// The driver did not start or did not finish.
+    Driver(String),
+}
+
+impl fmt::Display for CostError {
+    fn fmt(&self, formatter: &mut fmt::Formatter) -> fmt::Result {
+        match self {
+            CostError::NotSetUp(message) | CostError::Driver(message) => {
+                formatter.write_str(message)
+            }
+            CostError::Fallback { target, device } => write!(
+                formatter,
+                "{target}: the driver answered as `{device}`, not the GPU asked for (the drm-shim \
+                 failed and Mesa fell back); its numbers are refused"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for CostError {}
+
+/// One shader's cost on one target.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Measurement {
+    /// The target's name.
+    pub target: &'static str,
+    /// The driver's own name for the device and its version (`Mali-G610 (Panfrost), OpenGL ES
+    /// 3.1 Mesa 25.0.7-2~bpo12+1`).
+    pub device: String,
+    /// What the compiler reported.
+    pub statistics: Statistics,
+    /// The compiler's listing, when asked for (Vulkan's internal representations; on GL, what
+    /// the compiler printed with its debug flags).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub disassembly: Option<String>,
+}
+
+/// Compiles each shader on `target` (in one run of the driver) and reads what its compiler
+/// reports. The outer error is the target's (not set up, fallen back, failed); each inner one
+/// is a shader's (does not translate, compile or link).
+pub fn measure(
+    shaders: &[Shader],
+    target: &Target,
+    disassembly: bool,
+) -> Result<Vec<Result<Measurement, String>>, CostError> {
+    let setup = Setup::find();
+    setup.check(target)?;
+    // GL compilers print their listings on standard error, all shaders together: with a
+    // listing asked for, each shader gets a run of its own.
+    if disassembly && target.api == Api::Gles && shaders.len() > 1 {
+        let mut all = Vec::new();
+        for shader in shaders {
+            all.extend(measure(std::slice::from_ref(shader), target, true)?);
+        }
+        return Ok(all);
+    }
+    let scratch = Scratch::new()?;
+    let mut arguments = Vec::new();
+    let mut prepared = Vec::new();
+    for (index, shader) in shaders.iter().enumerate() {
+        match prepare(shader, target, &scratch, index, disassembly) {
+            Ok(shader_arguments) => {
+                if !arguments.is_empty() {
+                    arguments.push("--".to_string());
+                }
+                arguments.extend(shader_arguments);
+                prepared.push(Ok(()));
+            }
+            Err(error) => prepared.push(Err(error)),
+        }
+    }
+    let mut sections = Vec::new();
+    let mut device = String::new();
+    if !arguments.is_empty() {
+        let mode = match target.api {
+            Api::Gles => "gl",
+            Api::Vulkan => "vulkan",
+        };
+        arguments.insert(0, mode.to_string());
+        let (stdout, stderr) = setup.run(target, &arguments, disassembly)?;
+        device = device_of(&stdout, target)?;
+        sections = split_sections(&stdout);
+        if disassembly && target.api == Api::Gles {
+            if let Some(section) = sections.first_mut() {
+                section.disassembly = Some(stderr);
+            }
+        }
+    }
+    let mut sections = sections.into_iter();
+    Ok(shaders
+        .iter()
+        .zip(prepared)
+        .map(|(shader, prepared)| {
+            prepared?;
+            let section = sections
+                .next()
+                .ok_or_else(|| "the driver stopped before this shader".to_string())?;
+            if let Some(error) = section.error {
+                return Err(error);
+            }
+            let lines: Vec<&str> = section.lines.iter().map(String::as_str).collect();
+            let statistics = parse(target.compiler, shader.stage(), &lines).ok_or_else(|| {
+                format!(
+                    "{} printed no statistics for the {} shader",
+                    target.name,
+                    shader.stage().name()
+                )
+            })?;
+            Ok(Measurement {
+                target: target.name,
+                device: device.clone(),
+                statistics,
+                disassembly: section.disassembly,
+            })
+        })
+        .collect())
+}
+
+/// Writes `shader`'s files for `target` and returns the helper's arguments for it.
+fn prepare(
+    shader: &Shader,
+    target: &Target,
+    scratch: &Scratch,
+    index: usize,
+    disassembly: bool,
+) -> Result<Vec<String>, String> {
+    let scratch_error = |error: CostError| error.to_string();
+    let mut arguments = vec![shader.stage().name().to_string()];
+    match target.api {
+        Api::Gles => {
+            let form = shader.gles()?;
+            arguments.push(
+                scratch
+                    .write(&format!("{index}.glsl"), form.shader.as_bytes())
+                    .map_err(scratch_error)?,
+            );
+            if let Some(vertex) = form.vertex {
+                arguments.push(
+                    scratch
+                        .write(&format!("{index}.vert.glsl"), vertex.as_bytes())
+                        .map_err(scratch_error)?,
+                );
+            }
+        }
+        Api::Vulkan => {
+            let form = shader.vulkan()?;
+            let bytes = |words: &[u32]| {
+                words
+                    .iter()
+                    .flat_map(|word| word.to_le_bytes())
+                    .collect::<Vec<u8>>()
+            };
+            arguments.push(
+                scratch
+                    .write(&format!("{index}.spv"), &bytes(&form.shader))
+                    .map_err(scratch_error)?,
+            );
+            if let Some(vertex) = form.vertex {
+                arguments.push(
+                    scratch
+                        .write(&format!("{index}.vert.spv"), &bytes(&vertex))
+                        .map_err(scratch_error)?,
+                );
+            }
+            for descriptor in form.descriptors {
+                arguments.extend(["--descriptor".to_string(), descriptor]);
+            }
+            for color in form.colors {
+                arguments.extend(["--color".to_string(), color]);
+            }
+            if disassembly {
+                arguments.push("--disassembly".to_string());
+            }
+        }
+    }
+    Ok(arguments)
+}
+
+/// The driver's name for the device and its version, from the helper's first lines; a device
+/// that is not the target's is a fallback.
+fn device_of(stdout: &str, target: &Target) -> Result<String, CostError> {
+    let value = |key: &str| {
+        stdout
+            .lines()
+            .find_map(|line| line.strip_prefix(key))
+            .map(str::trim)
+    };
+    let (name, version) = match target.api {
+        Api::Gles => (value("renderer: "), value("version: ")),
+        Api::Vulkan => (value("device: "), value("driver: ")),
+    };
+    let name = name.ok_or_else(|| {
+        CostError::Driver(format!("{}: the helper printed no device", target.name))
+    })?;
+    if !name.contains(target.expected_device) {
+        return Err(CostError::Fallback {
+            target: target.name,
+            device: name.to_string(),
+        });
+    }
+    Ok(match version {
+        Some(version) => format!("{name}, {version}"),
+        None => name.to_string(),
+    })
+}
+
+/// One shader's part of the helper's output.
+struct Section {
+    lines: Vec<String>,
+    error: Option<String>,
+    disassembly: Option<String>,
+}
+
+/// The helper's output cut at its `shader: N` lines; Vulkan listings (`representation:` to
+/// `end-representation`) are taken out of the lines into the section's disassembly.
+fn split_sections(stdout: &str) -> Vec<Section> {
+    let mut sections: Vec<Section> = Vec::new();
+    let mut listing: Option<String> = None;
+    for line in stdout.lines() {
+        if let Some(text) = listing.as_mut() {
+            if line == "end-representation" {
+                let text = listing.take().unwrap_or_default();
+                if let Some(section) = sections.last_mut() {
+                    section
+                        .disassembly
+                        .get_or_insert_with(String::new)
+                        .push_str(&text);
+                }
+            } else {
+                text.push_str(line);
+                text.push('\n');
+            }
+            continue;
+        }
+        if line.starts_with("shader: ") {
+            sections.push(Section {
+                lines: Vec::new(),
+                error: None,
+                disassembly: None,
+            });
+        } else if let Some(section) = sections.last_mut() {
+            if let Some(name) = line.strip_prefix("representation: ") {
+                listing = Some(format!("; {name}\n"));
+            } else if let Some(error) = line.strip_prefix("error: ") {
+                section.error = Some(error.to_string());
+            } else {
+                section.lines.push(line.to_string());
+            }
+        }
+    }
+    sections
+}

@@ -1,0 +1,418 @@
+//! A shader as each API's compiler sees it. WGSL is translated by naga, to GLSL ES 3.10 for GL
+//! (panfrost's newest) and to SPIR-V for Vulkan; GLSL ES is given to GL drivers as written.
+//! A fragment shader needs a vertex shader to link with: one is made that writes what the
+//! fragment shader reads, each input from the vertex index. Not zero: Mesa's linkers propagate
+//! a constant output into the next stage, and the fragment shader's work on it would fold away
+//! (a pack of zeros costs two Adreno instructions where a pack of varyings costs thirty).
+
+use naga::back::{glsl, spv};
+use naga::{AddressSpace, Binding, ImageClass, Interpolation, ScalarKind, ShaderStage, TypeInner};
+
+use gbuffer_codegen::emit::glsl::naga_glsl;
+
+use crate::Stage;
+
+/// A shader to cost.
+#[derive(Clone, Debug)]
+pub struct Shader {
+    stage: Stage,
+    source: Source,
+    colors: Option<Vec<String>>,
+}
+
+#[derive(Clone, Debug)]
+enum Source {
+    /// GLSL ES, with its `#version` line.
+    Glsl(String),
+    /// WGSL and the entry point to compile.
+    Wgsl { text: String, entry: String },
+}
+
+/// The GL form: the stage's GLSL ES and, for a fragment shader, the vertex shader it links with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GlesForm {
+    /// The shader.
+    pub shader: String,
+    /// The vertex shader (fragment shaders only).
+    pub vertex: Option<String>,
+}
+
+/// The Vulkan form: SPIR-V, the vertex shader's, and the pipeline layout and attachments.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VulkanForm {
+    /// The shader's SPIR-V.
+    pub shader: Vec<u32>,
+    /// The vertex shader's SPIR-V (fragment shaders only).
+    pub vertex: Option<Vec<u32>>,
+    /// `SET,BINDING,KIND` for each resource (the helper's `--descriptor`).
+    pub descriptors: Vec<String>,
+    /// The colour attachments' formats by location (the helper's `--color`).
+    pub colors: Vec<String>,
+}
+
+/// Why a shader cannot be prepared: it does not parse, validate or translate.
+pub type ShaderError = String;
+
+impl Shader {
+    /// GLSL ES as written, `#version` line included; it compiles only on GL targets.
+    pub fn glsl(stage: Stage, text: &str) -> Shader {
+        Shader {
+            stage,
+            source: Source::Glsl(text.to_string()),
+            colors: None,
+        }
+    }
+
+    /// WGSL's entry point `entry`; the stage is the entry point's. The module must validate.
+    pub fn wgsl(text: &str, entry: &str) -> Result<Shader, ShaderError> {
+        let (module, _) = naga_glsl::validate(text, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
+        let entry_point = module
+            .entry_points
+            .iter()
+            .find(|point| point.name == entry)
+            .ok_or_else(|| format!("the WGSL has no entry point `{entry}`"))?;
+        let stage =
+            match entry_point.stage {
+                ShaderStage::Fragment => Stage::Fragment,
+                ShaderStage::Compute => Stage::Compute,
+                other => return Err(format!(
+                    "`{entry}` is a {other:?} shader: only fragment and compute shaders are costed"
+                )),
+            };
+        Ok(Shader {
+            stage,
+            source: Source::Wgsl {
+                text: text.to_string(),
+                entry: entry.to_string(),
+            },
+            colors: None,
+        })
+    }
+
+    /// The colour attachments' formats on Vulkan, by location, where the default (32-bit
+    /// integers for integer outputs, `rgba16f` or `r32f` for floats) is not the one a renderer
+    /// uses: `rgba8`, `rgb10a2`, `rg11b10f`, `r32ui`...
+    pub fn with_colors(mut self, colors: &[&str]) -> Shader {
+        self.colors = Some(colors.iter().map(|color| color.to_string()).collect());
+        self
+    }
+
+    /// The shader's stage.
+    pub fn stage(&self) -> Stage {
+        self.stage
+    }
+
+    /// The GLSL ES a GL driver compiles.
+    pub fn gles(&self) -> Result<GlesForm, ShaderError> {
+        let shader = match &self.source {
+            Source::Glsl(text) => text.clone(),
+            Source::Wgsl { text, entry } => {
+                let (module, info) =
+                    naga_glsl::validate(text, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
+                let options = gles_options(&module);
+                let stage = naga_stage(self.stage);
+                naga_glsl::write((&module, &info), stage, entry, &options)?.0
+            }
+        };
+        let vertex = (self.stage == Stage::Fragment).then(|| companion_vertex_glsl(&shader));
+        Ok(GlesForm { shader, vertex })
+    }
+
+    /// The SPIR-V a Vulkan driver compiles, with what its pipeline needs.
+    pub fn vulkan(&self) -> Result<VulkanForm, ShaderError> {
+        let Source::Wgsl { text, entry } = &self.source else {
+            return Err("GLSL ES is costed on GL targets only: give WGSL for Vulkan".into());
+        };
+        let (module, info) = naga_glsl::validate(text, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
+        let shader = spirv(&module, &info, naga_stage(self.stage), entry)?;
+        let entry_point = module
+            .entry_points
+            .iter()
+            .find(|point| &point.name == entry)
+            .expect("the entry point was found when the shader was made");
+        let descriptors = descriptors(&module);
+        let (vertex, colors) = match self.stage {
+            Stage::Compute => (None, Vec::new()),
+            Stage::Fragment => {
+                let vertex_wgsl = companion_vertex_wgsl(&module, &entry_point.function);
+                let (vertex_module, vertex_info) =
+                    naga_glsl::validate(&vertex_wgsl, naga::valid::Capabilities::empty())
+                        .map_err(|error| format!("the companion vertex shader: {error}"))?;
+                let vertex = spirv(&vertex_module, &vertex_info, ShaderStage::Vertex, "main")?;
+                let colors = match &self.colors {
+                    Some(colors) => colors.clone(),
+                    None => default_colors(&module, &entry_point.function),
+                };
+                (Some(vertex), colors)
+            }
+        };
+        Ok(VulkanForm {
+            shader,
+            vertex,
+            descriptors,
+            colors,
+        })
+    }
+}
+
+fn naga_stage(stage: Stage) -> ShaderStage {
+    match stage {
+        Stage::Fragment => ShaderStage::Fragment,
+        Stage::Compute => ShaderStage::Compute,
+    }
+}
+
+/// GLSL ES 3.10 with every resource's binding kept (ES 3.10 declares bindings in the shader).
+fn gles_options(module: &naga::Module) -> glsl::Options {
+    let mut binding_map = glsl::BindingMap::default();
+    for (_, global) in module.global_variables.iter() {
+        if let Some(binding) = &global.binding {
+            binding_map.insert(*binding, binding.binding as u8);
+        }
+    }
+    glsl::Options {
+        version: glsl::Version::new_gles(310),
+        writer_flags: glsl::WriterFlags::empty(),
+        binding_map,
+        ..glsl::Options::default()
+    }
+}
+
+fn spirv(
+    module: &naga::Module,
+    info: &naga::valid::ModuleInfo,
+    stage: ShaderStage,
+    entry: &str,
+) -> Result<Vec<u32>, ShaderError> {
+    let pipeline = spv::PipelineOptions {
+        shader_stage: stage,
+        entry_point: entry.to_string(),
+    };
+    spv::write_vec(module, info, &spv::Options::default(), Some(&pipeline))
+        .map_err(|error| format!("naga cannot translate `{entry}` to SPIR-V: {error}"))
+}
+
+/// `SET,BINDING,KIND` for every resource the module declares.
+fn descriptors(module: &naga::Module) -> Vec<String> {
+    let mut descriptors = Vec::new();
+    for (_, global) in module.global_variables.iter() {
+        let Some(binding) = &global.binding else {
+            continue;
+        };
+        let kind = match (global.space, &module.types[global.ty].inner) {
+            (AddressSpace::Uniform, _) => "uniform",
+            (AddressSpace::Storage { .. }, _) => "storage",
+            (_, TypeInner::Sampler { .. }) => "sampler",
+            (
+                _,
+                TypeInner::Image {
+                    class: ImageClass::Storage { .. },
+                    ..
+                },
+            ) => "storage-image",
+            (_, TypeInner::Image { .. }) => "sampled",
+            _ => continue,
+        };
+        descriptors.push(format!("{},{},{kind}", binding.group, binding.binding));
+    }
+    descriptors
+}
+
+/// The `(location, type)` of each of a function's arguments or results bound to a location,
+/// struct members included.
+fn located(
+    module: &naga::Module,
+    ty: naga::Handle<naga::Type>,
+    binding: Option<&Binding>,
+) -> Vec<(u32, Option<Interpolation>, naga::Handle<naga::Type>)> {
+    match (binding, &module.types[ty].inner) {
+        (
+            Some(Binding::Location {
+                location,
+                interpolation,
+                ..
+            }),
+            _,
+        ) => {
+            vec![(*location, *interpolation, ty)]
+        }
+        (None, TypeInner::Struct { members, .. }) => members
+            .iter()
+            .flat_map(|member| located(module, member.ty, member.binding.as_ref()))
+            .collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// The WGSL type of an input, and a value of it made from the vertex index `index`.
+fn wgsl_type_and_value(module: &naga::Module, ty: naga::Handle<naga::Type>) -> (String, String) {
+    let scalar = |scalar: naga::Scalar| match scalar.kind {
+        ScalarKind::Sint => "i32",
+        ScalarKind::Uint => "u32",
+        _ => "f32",
+    };
+    match module.types[ty].inner {
+        TypeInner::Vector { size, scalar: s } => {
+            let ty = format!("vec{}<{}>", size as u8, scalar(s));
+            let value = format!("{ty}({}(index))", scalar(s));
+            (ty, value)
+        }
+        TypeInner::Scalar(s) => (scalar(s).to_string(), format!("{}(index)", scalar(s))),
+        _ => ("f32".to_string(), "f32(index)".to_string()),
+    }
+}
+
+/// A WGSL vertex shader whose outputs are the fragment shader's inputs, each the vertex index.
+fn companion_vertex_wgsl(module: &naga::Module, function: &naga::Function) -> String {
+    let inputs: Vec<_> = function
+        .arguments
+        .iter()
+        .flat_map(|argument| located(module, argument.ty, argument.binding.as_ref()))
+        .collect();
+    let mut members = String::from("    @builtin(position) position: vec4<f32>,\n");
+    let mut writes = String::new();
+    for (location, interpolation, ty) in inputs {
+        let flat = match interpolation {
+            Some(Interpolation::Flat) => " @interpolate(flat)",
+            Some(Interpolation::Linear) => " @interpolate(linear)",
+            _ => "",
+        };
+        let (ty, value) = wgsl_type_and_value(module, ty);
+        members.push_str(&format!(
+            "    @location({location}){flat} input{location}: {ty},\n"
+        ));
+        writes.push_str(&format!("    out.input{location} = {value};\n"));
+    }
+    format!(
+        "// Writes what the costed fragment shader reads, from the vertex index.\n\
+         struct Varyings {{\n{members}}}\n\n\
+         @vertex\nfn main(@builtin(vertex_index) index: u32) -> Varyings {{\n    \
+         var out: Varyings;\n{writes}    \
+         let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));\n    \
+         out.position = vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);\n    \
+         return out;\n}}\n"
+    )
+}
+
+/// Each colour output's attachment format: 32-bit integers for integer outputs (`r32ui`,
+/// `rg32ui`, `rgba32ui`, `r32i`, `rgba32i`), `r32f` or `rgba16f` for floats.
+fn default_colors(module: &naga::Module, function: &naga::Function) -> Vec<String> {
+    let Some(result) = &function.result else {
+        return Vec::new();
+    };
+    let mut outputs = located(module, result.ty, result.binding.as_ref());
+    outputs.sort_by_key(|(location, _, _)| *location);
+    outputs
+        .iter()
+        .map(|(_, _, ty)| {
+            let (kind, components) = match module.types[*ty].inner {
+                TypeInner::Scalar(scalar) => (scalar.kind, 1),
+                TypeInner::Vector { size, scalar } => (scalar.kind, size as u8),
+                _ => (ScalarKind::Float, 4),
+            };
+            match (kind, components) {
+                (ScalarKind::Uint, 1) => "r32ui",
+                (ScalarKind::Uint, 2) => "rg32ui",
+                (ScalarKind::Uint, _) => "rgba32ui",
+                (ScalarKind::Sint, 1) => "r32i",
+                (ScalarKind::Sint, _) => "rgba32i",
+                (_, 1) => "r32f",
+                _ => "rgba16f",
+            }
+            .to_string()
+        })
+        .collect()
+}
+
+/// A GLSL ES vertex shader, under the fragment shader's `#version`, that writes each of the
+/// fragment shader's `in` variables (as declared at the start of a line, naga's
+/// `smooth in highp vec4 _vs2fs_location0;` as a user's `layout(location = 1) flat in uint id;`)
+/// from the vertex index, over a fullscreen triangle.
+pub fn companion_vertex_glsl(fragment: &str) -> String {
+    let version = fragment
+        .lines()
+        .find(|line| line.trim_start().starts_with("#version"))
+        .unwrap_or("#version 310 es")
+        .trim();
+    let mut declarations = String::new();
+    let mut writes = String::new();
+    for line in fragment.lines() {
+        let Some((qualifiers, declaration)) = input_declaration(line) else {
+            continue;
+        };
+        let mut words = declaration.split_whitespace().collect::<Vec<_>>();
+        let name = words.pop().unwrap_or_default().trim_end_matches(';');
+        let ty = words.last().copied().unwrap_or("float");
+        declarations.push_str(&format!("{qualifiers}out {declaration}\n"));
+        writes.push_str(&format!("    {name} = {ty}(gl_VertexID);\n"));
+    }
+    format!(
+        "{version}\n// Writes what the costed fragment shader reads, from the vertex index.\n\
+         precision highp float;\nprecision highp int;\n{declarations}\
+         void main() {{\n{writes}    \
+         vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n    \
+         gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);\n}}\n"
+    )
+}
+
+/// `(qualifiers before `in`, the declaration after it)` of a line that declares a fragment
+/// shader input: `[layout(...)] [flat|smooth|noperspective|centroid]... in [precision] TYPE NAME;`.
+fn input_declaration(line: &str) -> Option<(String, String)> {
+    let declaration = line.trim().strip_suffix(';')?;
+    let (layout, rest) = if declaration.starts_with("layout") {
+        let close = declaration.find(')')?;
+        (&declaration[..=close], &declaration[close + 1..])
+    } else {
+        ("", declaration)
+    };
+    let words: Vec<&str> = rest.split_whitespace().collect();
+    let position = words.iter().position(|word| *word == "in")?;
+    let interpolation = &words[..position];
+    let is_qualifier =
+        |word: &&str| matches!(*word, "flat" | "smooth" | "noperspective" | "centroid");
+    if !interpolation.iter().all(is_qualifier) || words.len() < position + 3 {
+        return None;
+    }
+    let qualifiers: String = std::iter::once(layout)
+        .chain(interpolation.iter().copied())
+        .filter(|word| !word.is_empty())
+        .map(|word| format!("{word} "))
+        .collect();
+    Some((qualifiers, format!("{};", words[position + 1..].join(" "))))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn companion_writes_every_input() {
+        let fragment = "#version 310 es\nprecision highp float;\nsmooth in highp vec4 _vs2fs_location0;\nlayout(location = 1) flat in highp uint id;\nlayout(location = 0) out highp uint word;\nvoid main() { word = id; }\n";
+        let vertex = companion_vertex_glsl(fragment);
+        assert!(vertex.starts_with("#version 310 es\n"));
+        assert!(vertex.contains("smooth out highp vec4 _vs2fs_location0;"));
+        assert!(vertex.contains("layout(location = 1) flat out highp uint id;"));
+        assert!(vertex.contains("    id = uint(gl_VertexID);"));
+        assert!(!vertex.contains("word"));
+    }
+
+    #[test]
+    fn wgsl_is_prepared_for_both_apis() {
+        let wgsl = "@group(0) @binding(0) var<uniform> scale: vec4<f32>;\n\
+                    @fragment fn shade(@location(0) colour: vec4<f32>, @location(1) @interpolate(flat) id: u32) -> @location(0) u32 {\n\
+                    return pack4x8unorm(colour * scale) ^ id;\n}\n";
+        let shader = Shader::wgsl(wgsl, "shade").unwrap();
+        assert_eq!(shader.stage(), Stage::Fragment);
+        let gles = shader.gles().unwrap();
+        assert!(gles.shader.starts_with("#version 310 es"));
+        let vertex = gles.vertex.unwrap();
+        assert!(vertex.contains("layout(location = 1) flat out uint _vs2fs_location1;"));
+        let vulkan = shader.vulkan().unwrap();
+        assert_eq!(vulkan.descriptors, ["0,0,uniform"]);
+        assert_eq!(vulkan.colors, ["r32ui"]);
+        assert_eq!(vulkan.shader[0], 0x0723_0203, "SPIR-V's magic number");
+        assert!(Shader::wgsl(wgsl, "missing")
+            .unwrap_err()
+            .contains("`missing`"));
+    }
+}
