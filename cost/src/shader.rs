@@ -18,6 +18,7 @@ pub struct Shader {
     stage: Stage,
     source: Source,
     colors: Option<Vec<String>>,
+    vertex: Option<String>,
 }
 
 #[derive(Clone, Debug)]
@@ -60,6 +61,7 @@ impl Shader {
             stage,
             source: Source::Glsl(text.to_string()),
             colors: None,
+            vertex: None,
         }
     }
 
@@ -71,14 +73,15 @@ impl Shader {
             .iter()
             .find(|point| point.name == entry)
             .ok_or_else(|| format!("the WGSL has no entry point `{entry}`"))?;
-        let stage =
-            match entry_point.stage {
-                ShaderStage::Fragment => Stage::Fragment,
-                ShaderStage::Compute => Stage::Compute,
-                other => return Err(format!(
+        let stage = match entry_point.stage {
+            ShaderStage::Fragment => Stage::Fragment,
+            ShaderStage::Compute => Stage::Compute,
+            other => {
+                return Err(format!(
                     "`{entry}` is a {other:?} shader: only fragment and compute shaders are costed"
-                )),
-            };
+                ))
+            }
+        };
         Ok(Shader {
             stage,
             source: Source::Wgsl {
@@ -86,6 +89,7 @@ impl Shader {
                 entry: entry.to_string(),
             },
             colors: None,
+            vertex: None,
         })
     }
 
@@ -94,6 +98,13 @@ impl Shader {
     /// uses: `rgba8`, `rgb10a2`, `rg11b10f`, `r32ui`...
     pub fn with_colors(mut self, colors: &[&str]) -> Shader {
         self.colors = Some(colors.iter().map(|color| color.to_string()).collect());
+        self
+    }
+
+    /// The GLSL ES vertex shader a fragment shader links with on GL, where the program has
+    /// one of its own (a renderer's), instead of the one made from the fragment's inputs.
+    pub fn with_vertex(mut self, vertex: &str) -> Shader {
+        self.vertex = Some(vertex.to_string());
         self
     }
 
@@ -114,7 +125,10 @@ impl Shader {
                 naga_glsl::write((&module, &info), stage, entry, &options)?.0
             }
         };
-        let vertex = (self.stage == Stage::Fragment).then(|| companion_vertex_glsl(&shader));
+        let vertex = (self.stage == Stage::Fragment).then(|| match &self.vertex {
+            Some(vertex) => vertex.clone(),
+            None => companion_vertex_glsl(&shader),
+        });
         Ok(GlesForm { shader, vertex })
     }
 

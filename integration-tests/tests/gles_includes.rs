@@ -24,9 +24,7 @@ use gbuffer_testkit::skip_without_driver;
 use gbuffer_testkit::texels::{
     check_native_words, compare, compare_decoded, inputs, restore_changes, word_from_components,
 };
-use gbuffer_testkit::user_shaders::{
-    has_storage_buffers, preambles, scalars_of_texel, texel_from_scalars,
-};
+use gbuffer_testkit::user_shaders::{fetch_user_shaders, preambles};
 use proptest::prelude::*;
 
 const WIDTH: i32 = 48;
@@ -47,49 +45,6 @@ fn gles() -> Option<Gles> {
             None
         }
     }
-}
-
-/// The two passes of the user's shader for `include` under `preamble`.
-fn user_shaders(
-    layout: &Layout,
-    conversions: Conversions,
-    include: Include,
-    preamble: &str,
-) -> (String, String) {
-    let (text, _) = glsl::include_with(layout, conversions, include, 0).unwrap();
-    let names = glsl::translate(layout).unwrap().names;
-    let prefix = layout.snake_name();
-    let scalars = scalars_per_texel(layout);
-    let texel = texel_from_scalars(layout, &names, |index| format!("harness_scalar({index})"));
-    let store = format!(
-        "{preamble}{text}\n// The user's code.\nuniform highp usampler2D harness_inputs;\n\n\
-         highp uint harness_scalar(highp int index) {{\n    highp ivec2 pixel = ivec2(gl_FragCoord.xy);\n    \
-         return texelFetch(harness_inputs, ivec2(pixel.x * {scalars} + index, pixel.y), 0).x;\n}}\n\n\
-         void main() {{\n    store_{prefix}({texel});\n}}\n"
-    );
-    let mut reload = format!("{preamble}{text}\n// The user's code.\n");
-    let decode = has_storage_buffers(preamble);
-    if decode {
-        reload.push_str(
-            "layout(std430, binding = 0) buffer HarnessDecoded {\n    highp uint harness_decoded[];\n};\n\n",
-        );
-    }
-    reload.push_str(&format!(
-        "void main() {{\n    {} texel = load_{prefix}();\n    store_{prefix}(texel);\n",
-        names.layout
-    ));
-    if decode {
-        reload.push_str(&format!(
-            "    highp int base = (int(gl_FragCoord.y) * {WIDTH} + int(gl_FragCoord.x)) * {scalars};\n"
-        ));
-        for (index, scalar) in scalars_of_texel(layout, &names, "texel").iter().enumerate() {
-            reload.push_str(&format!(
-                "    harness_decoded[base + {index}] = {scalar};\n"
-            ));
-        }
-    }
-    reload.push_str("}\n");
-    (store, reload)
 }
 
 /// How to read an attachment back so that its bits come out as the layout's word: the pixel
@@ -186,7 +141,7 @@ fn check(
         return;
     }
     let what = format!("{include:?} under {:?}", preamble.replace('\n', " "));
-    let (store, reload) = user_shaders(layout, conversions, include, preamble);
+    let (store, reload) = fetch_user_shaders(layout, conversions, include, preamble, WIDTH);
     let store = gles
         .program(&store)
         .unwrap_or_else(|log| panic!("{what}: {log}"));

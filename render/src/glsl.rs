@@ -15,7 +15,8 @@ use naga::back::glsl;
 /// Which GLSL a translation is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Dialect {
-    /// GLSL ES 3.20, for GLES 3.2.
+    /// GLSL ES 3.10 (the GLES backend runs on GLES 3.2; panfrost, whose compiler the cost model
+    /// runs, offers 3.10 at most).
     Gles,
     /// GLSL 450 for Vulkan (compiled to SPIR-V by glslang).
     Vulkan,
@@ -55,7 +56,7 @@ pub fn translate(
     }
     let options = glsl::Options {
         version: match dialect {
-            Dialect::Gles => glsl::Version::new_gles(320),
+            Dialect::Gles => glsl::Version::new_gles(310),
             Dialect::Vulkan => glsl::Version::Desktop(450),
         },
         writer_flags: glsl::WriterFlags::empty(),

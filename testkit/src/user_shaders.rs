@@ -6,7 +6,9 @@
 use std::fmt::Write as _;
 
 use gbuffer::packing::{Layout, ScalarKind};
-use gbuffer_codegen::emit::glsl::{GlslNames, Include};
+use gbuffer_codegen::emit::glsl::{self, GlslNames, Include};
+use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_gpu::harness::scalars_per_texel;
 
 /// The preambles a user may write before an include: every `#version` it supports, each
 /// without default precision, with `mediump` defaults, and with `highp` float plus an extra
@@ -99,4 +101,52 @@ pub fn scalars_of_texel(layout: &Layout, names: &GlslNames, texel: &str) -> Vec<
         }
     }
     scalars
+}
+
+/// The two passes of a user's shader around a framebuffer-fetch `include` under `preamble`:
+/// the first builds texels from scalars read from `harness_inputs` (a texture of
+/// `scalars_per_texel` words per pixel) and stores them; the second loads them, stores them
+/// again and (where the GLSL has storage buffers) writes each decoded field's bits to
+/// `harness_decoded`, `width` pixels a row.
+pub fn fetch_user_shaders(
+    layout: &Layout,
+    conversions: Conversions,
+    include: Include,
+    preamble: &str,
+    width: i32,
+) -> (String, String) {
+    let (text, _) = glsl::include_with(layout, conversions, include, 0).unwrap();
+    let names = glsl::translate(layout).unwrap().names;
+    let prefix = layout.snake_name();
+    let scalars = scalars_per_texel(layout);
+    let texel = texel_from_scalars(layout, &names, |index| format!("harness_scalar({index})"));
+    let store = format!(
+        "{preamble}{text}\n// The user's code.\nuniform highp usampler2D harness_inputs;\n\n\
+         highp uint harness_scalar(highp int index) {{\n    highp ivec2 pixel = ivec2(gl_FragCoord.xy);\n    \
+         return texelFetch(harness_inputs, ivec2(pixel.x * {scalars} + index, pixel.y), 0).x;\n}}\n\n\
+         void main() {{\n    store_{prefix}({texel});\n}}\n"
+    );
+    let mut reload = format!("{preamble}{text}\n// The user's code.\n");
+    let decode = has_storage_buffers(preamble);
+    if decode {
+        reload.push_str(
+            "layout(std430, binding = 0) buffer HarnessDecoded {\n    highp uint harness_decoded[];\n};\n\n",
+        );
+    }
+    reload.push_str(&format!(
+        "void main() {{\n    {} texel = load_{prefix}();\n    store_{prefix}(texel);\n",
+        names.layout
+    ));
+    if decode {
+        reload.push_str(&format!(
+            "    highp int base = (int(gl_FragCoord.y) * {width} + int(gl_FragCoord.x)) * {scalars};\n"
+        ));
+        for (index, scalar) in scalars_of_texel(layout, &names, "texel").iter().enumerate() {
+            reload.push_str(&format!(
+                "    harness_decoded[base + {index}] = {scalar};\n"
+            ));
+        }
+    }
+    reload.push_str("}\n");
+    (store, reload)
 }

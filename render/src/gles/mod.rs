@@ -17,6 +17,7 @@ use gbuffer_codegen::emit::glsl::{self as includes, Include};
 use gbuffer_gpu::gles::Gles;
 
 mod plans;
+pub mod sources;
 
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
@@ -201,13 +202,14 @@ impl GlesRenderer {
         let texel = texel_struct_name(&model)?;
         let main =
             Stage::Geometry.fragment_main(&texel, &snake, &format!("    store_{snake}(texel);\n"));
-        let program = self.fused_program(
+        let (vertex, fragment) = sources::program(
             &wgsl,
             &include,
             &interface,
             Stage::Geometry.vertex_entry(),
             &main,
         )?;
+        let program = self.gles.link(&vertex, &fragment)?;
         let targets = interface.attachments.len();
         let formats: Vec<(u32, u32)> = interface
             .attachments

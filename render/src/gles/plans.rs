@@ -4,12 +4,13 @@
 
 use glow::HasContext as _;
 
-use gbuffer_codegen::emit::glsl::{self as includes, Include};
+use gbuffer_codegen::emit::glsl::Include;
 
+use super::sources::{fused_programs, FusedPrograms};
 use super::{GlesRenderer, Plan, Target, FETCH};
 use crate::gbuffers::PackedLayout;
 use crate::glsl::{self, Dialect};
-use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage, TileOptions};
+use crate::on_tile::{tile_layout, Path, Stage, TileOptions};
 use crate::options::Options;
 
 impl GlesRenderer {
@@ -42,14 +43,11 @@ impl GlesRenderer {
         path: Path,
         (width, height): (i32, i32),
     ) -> Result<Plan, String> {
-        let model = layout.layout();
-        let kind = if path == Path::FetchPacked {
-            Include::FetchPacked
-        } else {
-            Include::FetchNative
-        };
-        let (include, interface) =
-            includes::include(&model, kind, 0).map_err(|error| error.to_string())?;
+        let FusedPrograms {
+            include: kind,
+            interface,
+            programs: sources,
+        } = fused_programs(options, path)?;
         let colour_attachments = interface.attachments.len() as i32 + 1;
         let draw_buffers = self.gles.limit(glow::MAX_DRAW_BUFFERS);
         let attachments_limit = self.gles.limit(glow::MAX_COLOR_ATTACHMENTS);
@@ -64,29 +62,14 @@ impl GlesRenderer {
                 interface.attachments.len()
             ));
         }
-        let wgsl = fused_wgsl(options, layout, -1.0);
-        let snake = model.snake_name();
-        let texel = texel_struct_name(&model)?;
-        let output = format!(
-            "layout(location = {}) inout highp vec4 frame_colour;\n",
-            interface.attachments.len()
-        );
-        // The volume drawn comes in a uniform; each draw writes only what it changes.
-        let declarations = format!("{output}uniform highp uint volume_index;\n");
-        let store = format!("    store_{snake}(texel);\n");
         let words_per_attachment = if kind == Include::FetchPacked { 4 } else { 1 };
         let writes = Stage::ALL
             .map(|stage| stage.writes(layout, interface.attachments.len(), words_per_attachment))
             .to_vec();
         let mut programs = Vec::new();
-        for stage in Stage::ALL {
-            let main = format!(
-                "{declarations}{}",
-                stage.fragment_main(&texel, &snake, &store)
-            );
-            let name = stage.name();
-            match self.fused_program(&wgsl, &include, &interface, stage.vertex_entry(), &main) {
-                Ok(program) => programs.push((name, program)),
+        for source in sources {
+            match self.gles.link(&source.vertex, &source.fragment) {
+                Ok(program) => programs.push((source.name, program)),
                 Err(error) => {
                     // SAFETY: programs of the current context.
                     unsafe {
@@ -94,7 +77,7 @@ impl GlesRenderer {
                             .iter()
                             .for_each(|(_, p)| self.gles.gl.delete_program(*p))
                     };
-                    return Err(format!("the {name} program: {error}"));
+                    return Err(format!("the {} program: {error}", source.name));
                 }
             }
         }
@@ -177,37 +160,6 @@ impl GlesRenderer {
                 depth: depth.into_iter().collect(),
             })
         }
-    }
-
-    /// A fused program: `vertex` of the WGSL translated, and a fragment shader of the GLES
-    /// preamble, the layout's include as generated, the output, the renderer's translated
-    /// declarations and `main`.
-    pub(super) fn fused_program(
-        &self,
-        wgsl: &str,
-        include: &str,
-        interface: &includes::Interface,
-        vertex: &str,
-        main: &str,
-    ) -> Result<glow::Program, String> {
-        let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
-        let stages = glsl::translate(
-            wgsl,
-            naga::ShaderStage::Fragment,
-            "translation_entry",
-            Dialect::Gles,
-        )?;
-        let extensions: String = interface
-            .include
-            .shader_extensions()
-            .iter()
-            .map(|extension| format!("#extension {extension} : require\n"))
-            .collect();
-        let fragment = format!(
-            "#version 320 es\n{extensions}precision highp float;\nprecision highp int;\n\n{include}\n{}\n{main}",
-            glsl::declarations(&stages.text, include),
-        );
-        self.gles.link(&vertex.text, &fragment)
     }
 
     /// A framebuffer of colour attachments (internal format, bytes per pixel) and a 32-bit

@@ -1,0 +1,116 @@
+//! The GLSL ES of the fused paths' programs, made without a context: the GLES backend links
+//! them, and the cost model (`gbuffer-cost`) and the tile compilers' test compile the same text
+//! on Mali's and Adreno's compilers.
+
+use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface};
+
+use crate::glsl::{self, Dialect};
+use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage};
+use crate::options::Options;
+
+/// The GLSL ES version of every program: 3.10, the newest panfrost (Mali) offers; the shaders
+/// need nothing of 3.20.
+pub const VERSION: &str = "#version 310 es";
+
+/// One program's shaders.
+#[derive(Clone, Debug)]
+pub struct Program {
+    /// What the program draws (`gbuffer`, `decals`, `lights`, ...).
+    pub name: &'static str,
+    /// The vertex shader.
+    pub vertex: String,
+    /// The fragment shader: the preamble, the layout's include as generated, the renderer's
+    /// declarations and `main`.
+    pub fragment: String,
+}
+
+/// A fused path's programs, one per stage, and the include's interface.
+#[derive(Clone, Debug)]
+pub struct FusedPrograms {
+    /// The include the fragment shaders use.
+    pub include: Include,
+    /// Its attachments (the G-buffer's; the output follows them).
+    pub interface: Interface,
+    /// The programs, in [`Stage::ALL`]'s order.
+    pub programs: Vec<Program>,
+}
+
+/// The programs of fused path `path` (`FetchPacked` or `FetchNative`) for `options`.
+pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, String> {
+    let layout = tile_layout(options)?;
+    let model = layout.layout();
+    let include = if path == Path::FetchPacked {
+        Include::FetchPacked
+    } else {
+        Include::FetchNative
+    };
+    let (include_text, interface) =
+        includes::include(&model, include, 0).map_err(|error| error.to_string())?;
+    let wgsl = fused_wgsl(options, layout, -1.0);
+    let snake = model.snake_name();
+    let texel = texel_struct_name(&model)?;
+    let output = format!(
+        "layout(location = {}) inout highp vec4 frame_colour;\n",
+        interface.attachments.len()
+    );
+    // The volume drawn comes in a uniform; each draw writes only what it changes.
+    let declarations = format!("{output}uniform highp uint volume_index;\n");
+    let store = format!("    store_{snake}(texel);\n");
+    let programs = Stage::ALL
+        .into_iter()
+        .map(|stage| {
+            let main = format!(
+                "{declarations}{}",
+                stage.fragment_main(&texel, &snake, &store)
+            );
+            let (vertex, fragment) = program(
+                &wgsl,
+                &include_text,
+                &interface,
+                stage.vertex_entry(),
+                &main,
+            )
+            .map_err(|error| format!("the {} program: {error}", stage.name()))?;
+            Ok(Program {
+                name: stage.name(),
+                vertex,
+                fragment,
+            })
+        })
+        .collect::<Result<_, String>>()?;
+    Ok(FusedPrograms {
+        include,
+        interface,
+        programs,
+    })
+}
+
+/// A fused program's shaders: `vertex` of the WGSL translated, and a fragment shader of the
+/// GLES preamble, the layout's include as generated, the renderer's translated declarations
+/// and `main`.
+pub fn program(
+    wgsl: &str,
+    include: &str,
+    interface: &Interface,
+    vertex: &str,
+    main: &str,
+) -> Result<(String, String), String> {
+    let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
+    let stages = glsl::translate(
+        wgsl,
+        naga::ShaderStage::Fragment,
+        "translation_entry",
+        Dialect::Gles,
+    )?;
+    let extensions: String = interface
+        .include
+        .shader_extensions()
+        .iter()
+        .map(|extension| format!("#extension {extension} : require\n"))
+        .collect();
+    let fragment = format!(
+        "{VERSION}\n{extensions}precision highp float;\nprecision highp int;\n\n{include}\n{}\n{main}",
+        glsl::declarations(&stages.text, include),
+    );
+    Ok((vertex.text, fragment))
+}
