@@ -10,7 +10,7 @@
  *       GLSL ES through EGL surfaceless. Prints `renderer: ...`, `version: ...`, then for each
  *       shader `shader: N` and each KHR_debug message as `message: ...` (where Mesa's shader-db
  *       statistics arrive), or `error: ...` where it does not compile or link.
- *   shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--descriptor SET,BINDING,KIND]...
+ *   shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--entry NAME] [--descriptor SET,BINDING,KIND]...
  *                       [--color FORMAT]... [--disassembly] [-- STAGE SHADER.spv ...]...
  *       SPIR-V through VK_KHR_pipeline_executable_properties. Prints `device: ...`,
  *       `driver: ...`, then for each shader `shader: N`, per executable `executable: NAME` and
@@ -20,7 +20,8 @@
  * Several shaders separated by `--` compile in one process: starting the driver (under qemu,
  * most of a run) is paid once.
  *
- * STAGE is `vertex`, `fragment` or `compute`. A fragment shader needs a vertex shader to link
+ * STAGE is `vertex`, `fragment` or `compute`; NAME the SPIR-V entry point (default `main`; the
+ * vertex shader's is `main`). A fragment shader needs a vertex shader to link
  * against (GLSL ES links the pair; a Vulkan pipeline needs both). KIND is one of uniform,
  * storage, sampled, sampler, combined, storage-image, input-attachment; FORMAT one of r32ui,
  * rg32ui, rgba32ui, r32i, rgba32i, r32f, rgba32f, rgba16f, rgba8, rgb10a2, rg11b10f.
@@ -84,8 +85,8 @@ static void each_shader(int argc, char **argv, compile_function compile, void *c
 
 static void usage(void) {
     fputs("usage: shader-stats gl STAGE SHADER [VERTEX]\n"
-          "       shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--descriptor SET,BINDING,KIND]..."
-          " [--color FORMAT]... [--disassembly]\n",
+          "       shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--entry NAME]"
+          " [--descriptor SET,BINDING,KIND]... [--color FORMAT]... [--disassembly]\n",
           stderr);
     exit(2);
 }
@@ -413,7 +414,8 @@ static VkRenderPass render_pass(VkDevice device, const VkFormat *colors, unsigne
 }
 
 static VkPipeline graphics_pipeline(VkDevice device, VkShaderModule vertex,
-                                    VkShaderModule fragment, VkPipelineLayout layout,
+                                    VkShaderModule fragment, const char *entry,
+                                    VkPipelineLayout layout,
                                     VkRenderPass pass, unsigned color_count,
                                     VkPipelineCreateFlags flags) {
     VkPipelineShaderStageCreateInfo stages[2] = {
@@ -424,7 +426,7 @@ static VkPipeline graphics_pipeline(VkDevice device, VkShaderModule vertex,
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
          .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
          .module = fragment,
-         .pName = "main"},
+         .pName = entry},
     };
     VkPipelineVertexInputStateCreateInfo vertex_input = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
@@ -474,7 +476,7 @@ static VkPipeline graphics_pipeline(VkDevice device, VkShaderModule vertex,
     return pipeline;
 }
 
-static VkPipeline compute_pipeline(VkDevice device, VkShaderModule module,
+static VkPipeline compute_pipeline(VkDevice device, VkShaderModule module, const char *entry,
                                    VkPipelineLayout layout, VkPipelineCreateFlags flags) {
     VkComputePipelineCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
@@ -482,7 +484,7 @@ static VkPipeline compute_pipeline(VkDevice device, VkShaderModule module,
         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                   .stage = VK_SHADER_STAGE_COMPUTE_BIT,
                   .module = module,
-                  .pName = "main"},
+                  .pName = entry},
         .layout = layout};
     PFN_vkCreateComputePipelines create =
         (PFN_vkCreateComputePipelines)device_function(device, "vkCreateComputePipelines");
@@ -574,7 +576,7 @@ static void print_executables(VkDevice device, VkPipeline pipeline, int disassem
 static void vulkan_pipeline(void *context, int argc, char **argv) {
     VkDevice device = context;
     if (argc < 2) usage();
-    const char *stage = argv[0], *shader = argv[1], *vertex = NULL;
+    const char *stage = argv[0], *shader = argv[1], *vertex = NULL, *entry = "main";
     struct descriptor descriptors[MAX_ITEMS];
     VkFormat colors[MAX_ITEMS];
     unsigned descriptor_count = 0, color_count = 0;
@@ -582,6 +584,8 @@ static void vulkan_pipeline(void *context, int argc, char **argv) {
     for (int i = 2; i < argc; i++) {
         if (!strcmp(argv[i], "--disassembly")) {
             disassembly = 1;
+        } else if (!strcmp(argv[i], "--entry") && i + 1 < argc) {
+            entry = argv[++i];
         } else if (!strcmp(argv[i], "--descriptor") && i + 1 < argc) {
             char kind[32];
             unsigned set, binding;
@@ -608,12 +612,13 @@ static void vulkan_pipeline(void *context, int argc, char **argv) {
     VkPipelineLayout layout = pipeline_layout(device, descriptors, descriptor_count);
     VkPipeline pipeline;
     if (compute) {
-        pipeline = compute_pipeline(device, shader_module(device, shader), layout, flags);
+        pipeline = compute_pipeline(device, shader_module(device, shader), entry, layout, flags);
     } else {
         VkRenderPass pass = render_pass(device, colors, color_count, descriptors,
                                         descriptor_count);
         pipeline = graphics_pipeline(device, shader_module(device, vertex),
-                                     shader_module(device, shader), layout, pass, color_count,
+                                     shader_module(device, shader), entry, layout, pass,
+                                     color_count,
                                      flags);
     }
     print_executables(device, pipeline, disassembly);

@@ -239,6 +239,7 @@ fn prepare(
                         .map_err(scratch_error)?,
                 );
             }
+            arguments.extend(["--entry".to_string(), form.entry]);
             for descriptor in form.descriptors {
                 arguments.extend(["--descriptor".to_string(), descriptor]);
             }
@@ -326,4 +327,52 @@ fn split_sections(stdout: &str) -> Vec<Section> {
         }
     }
     sections
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_driver_that_answers_as_another_device_is_refused() {
+        let mali = Target::named("mali-g610").unwrap();
+        let fallback =
+            "renderer: llvmpipe (LLVM 15.0.6, 256 bits)\nversion: OpenGL ES 3.2 Mesa 25.0.7\n";
+        assert_eq!(
+            device_of(fallback, &mali),
+            Err(CostError::Fallback {
+                target: "mali-g610",
+                device: "llvmpipe (LLVM 15.0.6, 256 bits)".into()
+            })
+        );
+        let right = "renderer: Mali-G610 (Panfrost)\nversion: OpenGL ES 3.1 Mesa 25.0.7\n";
+        assert_eq!(
+            device_of(right, &mali).unwrap(),
+            "Mali-G610 (Panfrost), OpenGL ES 3.1 Mesa 25.0.7"
+        );
+        let navi = Target::named("amd-navi21").unwrap();
+        let lavapipe = "device: llvmpipe (LLVM 15.0.6, 256 bits)\ndriver: llvmpipe Mesa 25.0.7\n";
+        assert!(device_of(lavapipe, &navi).is_err());
+    }
+
+    #[test]
+    fn output_splits_into_one_section_a_shader() {
+        let stdout = "device: X\nshader: 0\nexecutable: fragment\nstatistic: Instructions = 3\n\
+                      representation: ACO\n  v_mov_b32 v0, 0\nend-representation\n\
+                      shader: 1\nerror: vkCreateGraphicsPipelines failed (VkResult -3)\n";
+        let sections = split_sections(stdout);
+        assert_eq!(sections.len(), 2);
+        assert_eq!(
+            sections[0].lines,
+            ["executable: fragment", "statistic: Instructions = 3"]
+        );
+        assert_eq!(
+            sections[0].disassembly.as_deref(),
+            Some("; ACO\n  v_mov_b32 v0, 0\n")
+        );
+        assert_eq!(
+            sections[1].error.as_deref(),
+            Some("vkCreateGraphicsPipelines failed (VkResult -3)")
+        );
+    }
 }

@@ -43,6 +43,8 @@ pub struct GlesForm {
 pub struct VulkanForm {
     /// The shader's SPIR-V.
     pub shader: Vec<u32>,
+    /// Its entry point's name (the WGSL's).
+    pub entry: String,
     /// The vertex shader's SPIR-V (fragment shaders only).
     pub vertex: Option<Vec<u32>>,
     /// `SET,BINDING,KIND` for each resource (the helper's `--descriptor`).
@@ -162,6 +164,7 @@ impl Shader {
         };
         Ok(VulkanForm {
             shader,
+            entry: entry.clone(),
             vertex,
             descriptors,
             colors,

@@ -2,6 +2,7 @@
 //! `file:line:col`, and its exit statuses. Cargo builds the binary for these tests.
 
 mod codegen;
+mod cost;
 mod solve;
 mod validate;
 
