@@ -6,7 +6,7 @@
 //! expressions and SPIR-V instructions; its time is measured on the adapter at hand, in a
 //! compute dispatch and in a fullscreen draw's fragment shader (a dependent chain of
 //! evaluations grown until a run lasts 10 ms, median of 7 runs, less the harness's own time,
-//! `n/r` where that does not stand clear of the runs' spread, and nowhere printed when the
+//! an upper bound `<X` where that does not stand clear of the runs' spread, and nowhere printed when the
 //! times contradict the order the instruction counts predict) and for its f32 mirror on the
 //! CPU. The packing conversions get their own table: per format, exact and
 //! fast, their instructions, branches, error in codes and time per million texels.
@@ -212,13 +212,17 @@ fn check_consistency(
     found
 }
 
-/// A time with three significant digits; "n/r" where it did not resolve (within the runs'
-/// spread), "n/a" where it could not be measured.
+/// A time with three significant digits; `<X` where it is below the harness's resolution (X
+/// the upper bound), "n/r" where the run's times were not trusted, "n/a" where it could not be
+/// measured.
 fn format_time(time: Option<timing::GpuTime>) -> String {
     match time {
         None => "n/a".to_string(),
-        Some(time) if !time.resolved() => "n/r".to_string(),
-        Some(time) => significant(time.median_ns),
+        Some(time) if time.resolved() => significant(time.median_ns),
+        Some(time) => match time.upper_bound_ns() {
+            Some(bound) => format!("<{}", significant(bound)),
+            None => "n/r".to_string(),
+        },
     }
 }
 
@@ -234,16 +238,22 @@ fn timings_json(times: &timing::StageTimes) -> serde_json::Value {
         .into_iter()
         .filter_map(|stage| times.get(stage))
         .map(|time| {
+            // A time below the harness's resolution has no median of its own (less the
+            // harness's, it may read negative): only its upper bound is written.
+            let resolved = time.resolved();
+            let bound = time.upper_bound_ns();
             serde_json::json!({
                 "stage": time.stage.name(),
                 "clock": time.clock.name(),
-                "evaluations_per_second": time.evaluations_per_second(),
+                "evaluations_per_second": resolved.then(|| time.evaluations_per_second()),
+                "evaluations_per_second_at_least": bound.map(|bound| 1e9 / bound),
                 "evaluations_per_run": time.evaluations_per_run(),
                 "run_ms": time.run_ms,
-                "median_ns": time.median_ns,
-                "min_ns": time.min_ns,
-                "max_ns": time.max_ns,
-                "resolved": time.resolved(),
+                "median_ns": resolved.then_some(time.median_ns),
+                "min_ns": resolved.then_some(time.min_ns),
+                "max_ns": resolved.then_some(time.max_ns),
+                "upper_bound_ns": bound,
+                "resolved": resolved,
             })
         })
         .collect();
@@ -461,7 +471,7 @@ fn markdown_report(
     let _ = writeln!(out, "of `gbuffer::shading::reference` over each row's domain; costs are naga IR expressions reachable from the row's");
     let _ = writeln!(out, "WGSL and the SPIR-V instructions it adds to a compute shader; GPU time (`median_ns` in report.json) is the median run's time divided by the run's evaluations, in nanoseconds: device ns per evaluation; runs are a dependent");
     let _ = writeln!(out, "chain whose length grows until a run lasts 10 ms (median of {} runs, wall clock around a synchronised submit, less the", timing::GPU_RUNS);
-    let _ = writeln!(out, "harness's own time; n/r where the median is within the runs' spread); CPU time is the f32 mirror's.\n");
+    let _ = writeln!(out, "harness's own time; `<X` where the median is within the runs' spread: the row is below the harness's resolution and X, the median plus the spread, bounds its time; n/r where the times were not trusted); CPU time is the f32 mirror's.\n");
     let mut family = "";
     for (row, measured) in rows.iter().zip(measured) {
         if row.family != family {

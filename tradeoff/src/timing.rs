@@ -114,6 +114,15 @@ impl GpuTime {
         self.trusted && self.median_ns > 0.0 && self.median_ns > self.max_ns - self.min_ns
     }
 
+    /// Where the time does not resolve but was trusted: an upper bound on it, in nanoseconds
+    /// per evaluation. The row's own time (the run's less the harness's) is then smaller than
+    /// the runs' spread, so it is at most the median (taken as zero when the harness's time
+    /// exceeded it) plus that spread. Never negative.
+    pub fn upper_bound_ns(&self) -> Option<f64> {
+        (self.trusted && !self.resolved())
+            .then(|| self.median_ns.max(0.0) + (self.max_ns - self.min_ns).max(0.0))
+    }
+
     /// Evaluations per run, over the whole device.
     pub fn evaluations_per_run(&self) -> u64 {
         u64::from(self.chain) * u64::from(self.invocations)
@@ -657,6 +666,25 @@ mod tests {
         let less = time.less(Some(harness));
         assert!((less.median_ns - 80.0).abs() < 1e-9);
         assert!((less.evaluations_per_second() - 1e5 / 0.008).abs() < 1e-3);
+    }
+
+    /// A row faster than the harness can tell (its median, less the harness's, below zero: the
+    /// "fully rough" row read -0.11 ns on llvmpipe) reports an upper bound, never a negative
+    /// time; a resolved row reports none.
+    #[test]
+    fn a_time_below_the_resolution_is_an_upper_bound() {
+        let runs = vec![0.0100, 0.0104, 0.0098, 0.0101, 0.0099, 0.0102, 0.0097];
+        let row = GpuTime::of_runs(Stage::Compute, Clock::Wall, runs, 100, 1000);
+        let harness = GpuTime::of_runs(Stage::Compute, Clock::Wall, vec![0.0101; 7], 100, 1000);
+        let less = row.less(Some(harness));
+        assert!(less.median_ns < 0.0 && !less.resolved());
+        let bound = less.upper_bound_ns().unwrap();
+        // Spread 7 ns (97 to 104 ns a run), the median taken as zero.
+        assert!((bound - 7.0).abs() < 1e-6, "{bound}");
+        assert_eq!(time(100.0).upper_bound_ns(), None);
+        let mut untrusted = less;
+        untrusted.trusted = false;
+        assert_eq!(untrusted.upper_bound_ns(), None);
     }
 
     fn time(median_ns: f64) -> GpuTime {
