@@ -54,6 +54,19 @@ pub struct Statistics {
     pub raw: Vec<Statistic>,
 }
 
+impl Cycles {
+    /// The busiest arithmetic unit's cycles (Valhall's fma, cvt or sfu; Bifrost's arithmetic):
+    /// the part of the estimate a conversion's arithmetic changes, where loads, stores,
+    /// varyings or textures bound the total.
+    pub fn arithmetic(&self) -> f64 {
+        self.parts
+            .iter()
+            .filter(|part| matches!(part.name.as_str(), "fma" | "cvt" | "sfu" | "arithmetic"))
+            .map(|part| part.value)
+            .fold(0.0, f64::max)
+    }
+}
+
 impl Statistics {
     /// The value the compiler called `name`, if it printed one.
     pub fn raw_value(&self, name: &str) -> Option<f64> {
@@ -165,11 +178,11 @@ pub fn parse(compiler: Compiler, stage: Stage, lines: &[&str]) -> Option<Statist
 }
 
 /// The name a shader-db line gives the stage: panfrost writes Mesa's `MESA_SHADER_FRAGMENT`,
-/// ir3 its own `FRAG`/`CS`.
+/// ir3 its own `FRAG`, and `CL` for a GL compute shader.
 fn shader_db_stage(compiler: Compiler, stage: Stage) -> &'static str {
     match (compiler, stage) {
         (Compiler::Ir3, Stage::Fragment) => "FRAG",
-        (Compiler::Ir3, Stage::Compute) => "CS",
+        (Compiler::Ir3, Stage::Compute) => "CL",
         (_, Stage::Fragment) => "MESA_SHADER_FRAGMENT",
         (_, Stage::Compute) => "MESA_SHADER_COMPUTE",
     }
@@ -274,6 +287,7 @@ mod tests {
         assert_eq!(cycles.parts[1].value, 0.296875);
         assert_eq!(statistics.occupancy, Some(2));
         assert_eq!(statistics.spills, Some(3));
+        assert_eq!(statistics.cycles.as_ref().unwrap().arithmetic(), 0.5625);
         assert!(parse(Compiler::Valhall, Stage::Compute, &lines).is_none());
     }
 

@@ -11,9 +11,10 @@
 //! CPU. The packing conversions get their own table: per format, exact and
 //! fast, their instructions, branches, error in codes and time per million texels.
 
+pub mod compilers;
 pub mod frames;
 pub mod furnace;
-mod packing;
+pub mod packing;
 pub mod packing_cost;
 mod plot;
 mod rows;

@@ -203,3 +203,121 @@ pub fn json(rows: &[PackingRow]) -> serde_json::Value {
         }))
         .collect::<Vec<_>>())
 }
+
+/// The targets of the packing table's compiler columns.
+pub const COMPILER_TARGETS: [&str; 4] = ["mali-g610", "mali-g52", "adreno-740", "amd-navi21"];
+
+/// The packing conversions on the GPUs' compilers: per converted format its exact, fast and
+/// builtin forms, and per seed and engine layout its exact and fast ones, each in the compute
+/// harness the SPIR-V column counts (pack one texel, unpack one), each invocation its own.
+pub struct CompiledPacking {
+    /// Per shader: the format's or layout's name, and its mode (`exact`, `fast`, `builtin`).
+    pub rows: Vec<(String, &'static str)>,
+    /// The compilers' columns.
+    pub compiled: crate::compilers::Compiled,
+}
+
+/// Compiles the packing harnesses on [`COMPILER_TARGETS`].
+pub fn compile_on_compilers() -> CompiledPacking {
+    let mut rows = Vec::new();
+    let mut shaders = Vec::new();
+    let harness = |wgsl: &str, words: usize| {
+        gbuffer_cost::Shader::wgsl(
+            &crate::packing_cost::invocation_harness(wgsl, words),
+            "main",
+        )
+        .expect("the packing harness validates")
+    };
+    for format in CONVERTED_FORMATS {
+        let layout = one_field(format);
+        for conversions in [Conversions::Exact, Conversions::Fast] {
+            rows.push((format.name().to_string(), conversions.name()));
+            shaders.push(harness(&emit_with(&layout, conversions), 1));
+        }
+        if let Some(builtin) = crate::packing_cost::builtin_form(format) {
+            rows.push((format.name().to_string(), "builtin"));
+            shaders.push(harness(&builtin, 1));
+        }
+    }
+    for (layout, _) in gbuffer::seed_layouts::all()
+        .into_iter()
+        .chain(gbuffer::engine_layouts::all())
+    {
+        let mut renamed = layout.clone();
+        renamed.name = "Texel".into();
+        for conversions in [Conversions::Exact, Conversions::Fast] {
+            rows.push((layout.name.clone(), conversions.name()));
+            shaders.push(harness(&emit_with(&renamed, conversions), renamed.words()));
+        }
+    }
+    CompiledPacking {
+        rows,
+        compiled: crate::compilers::compile(&shaders, &COMPILER_TARGETS),
+    }
+}
+
+impl CompiledPacking {
+    /// Exact's figure over fast's on column `column` for row `index` (an exact row), where both
+    /// are there.
+    fn ratio(&self, column: &crate::compilers::Column, index: usize) -> Option<f64> {
+        let (name, mode) = &self.rows[index];
+        if *mode != "exact" {
+            return None;
+        }
+        let fast = self
+            .rows
+            .iter()
+            .position(|(other, other_mode)| other == name && *other_mode == "fast")?;
+        Some(column.figure(index)? / column.figure(fast)?)
+    }
+
+    /// The table in markdown: a row per shader, a column per target, and for exact rows their
+    /// ratio to fast on Mali-G610 (cycles) and Adreno 740 (instructions).
+    pub fn markdown(&self) -> String {
+        let mut out = String::from("\n## Packing conversions on GPU compilers\n\n");
+        let _ = writeln!(out, "The packing harness above (pack one texel, unpack one, in a compute shader; here each invocation its own texel, which no compiler can hoist) compiled by the GPUs' own compilers: Mali's estimated arithmetic cycles per invocation (the busiest arithmetic unit's; the harness's loads and stores, alike for every form, bound Mali's total), Adreno's and AMD's instructions. `exact / fast` is exact's figure over fast's. {}\n", self.compiled.provenance());
+        let columns = self.compiled.columns();
+        let mut heading = String::from("| format or layout | mode |");
+        let mut rule = String::from("| --- | --- |");
+        for column in columns {
+            let _ = write!(heading, " {} |", column.heading());
+            rule.push_str(" ---: |");
+        }
+        heading.push_str(" exact / fast (mali-g610, adreno-740) |\n");
+        rule.push_str(" ---: |\n");
+        out.push_str(&heading);
+        out.push_str(&rule);
+        for (index, (name, mode)) in self.rows.iter().enumerate() {
+            let _ = write!(out, "| {name} | {mode} |");
+            for column in columns {
+                let _ = write!(
+                    out,
+                    " {} |",
+                    crate::compilers::format_figure(column.figure(index))
+                );
+            }
+            let ratios: Vec<String> = columns
+                .iter()
+                .filter(|column| matches!(column.target, "mali-g610" | "adreno-740"))
+                .map(|column| match self.ratio(column, index) {
+                    Some(ratio) => format!("{ratio:.2}x"),
+                    None => "-".to_string(),
+                })
+                .collect();
+            let _ = writeln!(out, " {} |", ratios.join(", "));
+        }
+        out
+    }
+
+    /// The report's JSON: per shader its name, mode and each compiler's statistics.
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "compilers": self.compiled.provenance_json(),
+            "rows": self.rows.iter().enumerate().map(|(index, (name, mode))| serde_json::json!({
+                "name": name,
+                "mode": mode,
+                "compilers": self.compiled.json(index),
+            })).collect::<Vec<_>>(),
+        })
+    }
+}

@@ -75,6 +75,22 @@ pub fn harness(texel_wgsl: &str, words: usize) -> String {
     )
 }
 
+/// The compilers' form of [`harness`]: each invocation packs its own texel and unpacks its own
+/// words. A GPU compiler hoists work on values that are the same for every invocation out of
+/// the shader (ir3 into its once-a-draw preamble), and [`harness`]'s one texel is such a value.
+pub fn invocation_harness(texel_wgsl: &str, words: usize) -> String {
+    format!(
+        "{texel_wgsl}\n\
+         @group(0) @binding(0) var<storage, read> texels_in: array<Texel>;\n\
+         @group(0) @binding(1) var<storage, read_write> words_out: array<array<u32, {words}>>;\n\
+         @group(0) @binding(2) var<storage, read> words_in: array<array<u32, {words}>>;\n\
+         @group(0) @binding(3) var<storage, read_write> texels_out: array<Texel>;\n\n\
+         @compute @workgroup_size(64)\nfn main(@builtin(global_invocation_id) id: vec3<u32>) {{\n    \
+         words_out[id.x] = pack_texel(texels_in[id.x]);\n    \
+         texels_out[id.x] = unpack_texel(words_in[id.x]);\n}}\n"
+    )
+}
+
 /// The cost of `layout` (named `Texel`) under `conversions`.
 pub fn layout_cost(layout: &Layout, conversions: Conversions) -> Result<Cost, String> {
     let wgsl = gbuffer_codegen::emit::wgsl::emit_with(layout, conversions);

@@ -1,0 +1,167 @@
+//! The trade's speed side on the compilers of the GPUs users ship on (`gbuffer-cost`: Mesa's
+//! panfrost, freedreno and ACO run through drm-shim): the same shaders whose SPIR-V the other
+//! columns count, compiled for Mali, Adreno and AMD, each compiler's own figure in a column.
+//! Without the setup (`scripts/cost-setup.sh`) the columns are absent and the report says why.
+
+use gbuffer_cost::{measure, CostError, Shader, Statistics, Target};
+
+/// One target's column: the driver's own name and version, and each shader's statistics
+/// (`None` where that shader failed on it: the reason was printed).
+pub struct Column {
+    /// The target's name (`mali-g610`).
+    pub target: &'static str,
+    /// The driver's name and version.
+    pub device: String,
+    /// Per shader, in the order given.
+    pub statistics: Vec<Option<Statistics>>,
+}
+
+impl Column {
+    /// The column's heading: the target and [`Column::unit`].
+    pub fn heading(&self) -> String {
+        format!("{} {}", self.target, self.unit())
+    }
+
+    /// What the column's figures count: Mali's estimated arithmetic cycles per thread (the
+    /// busiest arithmetic unit's: a harness's loads and stores, the same for every form, would
+    /// otherwise bound Mali's total and hide the conversions), or the others' instructions.
+    pub fn unit(&self) -> &'static str {
+        if self.is_mali() {
+            "arithmetic cycles"
+        } else {
+            "instructions"
+        }
+    }
+
+    fn is_mali(&self) -> bool {
+        self.target.starts_with("mali")
+    }
+
+    /// Shader `index`'s figure, in [`Column::unit`].
+    pub fn figure(&self, index: usize) -> Option<f64> {
+        let statistics = self.statistics.get(index)?.as_ref()?;
+        Some(match &statistics.cycles {
+            Some(cycles) if self.is_mali() => cycles.arithmetic(),
+            _ => statistics.instructions as f64,
+        })
+    }
+}
+
+/// The compilers' columns for a set of shaders, or why there are none.
+pub enum Compiled {
+    /// One column per target, in the order asked.
+    Columns(Vec<Column>),
+    /// The setup is missing (or a driver did not start): the reason.
+    Unavailable(String),
+}
+
+impl Compiled {
+    /// The columns; none where unavailable.
+    pub fn columns(&self) -> &[Column] {
+        match self {
+            Compiled::Columns(columns) => columns,
+            Compiled::Unavailable(_) => &[],
+        }
+    }
+
+    /// The compilers' names and versions, or why there are none, as a sentence for reports.
+    pub fn provenance(&self) -> String {
+        match self {
+            Compiled::Columns(columns) => {
+                let names: Vec<String> = columns
+                    .iter()
+                    .map(|column| format!("{} = {}", column.target, column.device))
+                    .collect();
+                format!(
+                    "Compilers (Mesa's, through drm-shim): {}.",
+                    names.join("; ")
+                )
+            }
+            Compiled::Unavailable(reason) => {
+                format!("No compiler columns: {reason}.")
+            }
+        }
+    }
+
+    /// The JSON of shader `index`'s figures: `{target: {instructions, cycles, ...}}`.
+    pub fn json(&self, index: usize) -> serde_json::Value {
+        let mut object = serde_json::Map::new();
+        for column in self.columns() {
+            if let Some(Some(statistics)) = column.statistics.get(index) {
+                object.insert(
+                    column.target.to_string(),
+                    serde_json::to_value(statistics).unwrap_or_default(),
+                );
+            }
+        }
+        serde_json::Value::Object(object)
+    }
+
+    /// The JSON of the compilers: `{available, reason | devices}`.
+    pub fn provenance_json(&self) -> serde_json::Value {
+        match self {
+            Compiled::Columns(columns) => serde_json::json!({
+                "available": true,
+                "devices": columns.iter().map(|column| (column.target.to_string(), serde_json::json!(column.device))).collect::<serde_json::Map<_, _>>(),
+            }),
+            Compiled::Unavailable(reason) => serde_json::json!({
+                "available": false,
+                "reason": reason,
+            }),
+        }
+    }
+}
+
+/// Compiles `shaders` on each of `targets`, one run of each driver.
+pub fn compile(shaders: &[Shader], targets: &[&str]) -> Compiled {
+    let mut columns = Vec::new();
+    for name in targets {
+        let target = match Target::named(name) {
+            Ok(target) => target,
+            Err(error) => return Compiled::Unavailable(error),
+        };
+        eprintln!("compiling {} shaders for {name}...", shaders.len());
+        let results = match measure(shaders, &target, false) {
+            Ok(results) => results,
+            Err(
+                error
+                @ (CostError::NotSetUp(_) | CostError::Driver(_) | CostError::Fallback { .. }),
+            ) => {
+                return Compiled::Unavailable(error.to_string());
+            }
+        };
+        let mut device = String::new();
+        let statistics = results
+            .into_iter()
+            .map(|result| match result {
+                Ok(measurement) => {
+                    device = measurement.device;
+                    Some(measurement.statistics)
+                }
+                Err(error) => {
+                    eprintln!("  {name}: {error}");
+                    None
+                }
+            })
+            .collect();
+        columns.push(Column {
+            target: target.name,
+            device,
+            statistics,
+        });
+    }
+    Compiled::Columns(columns)
+}
+
+/// A figure for a table: cycles with up to three decimals, instructions whole; `-` where
+/// there is none.
+pub fn format_figure(value: Option<f64>) -> String {
+    match value {
+        None => "-".to_string(),
+        Some(value) if value.fract() == 0.0 => format!("{value:.0}"),
+        Some(value) => {
+            let text = format!("{value:.3}");
+            text.trim_end_matches('0').to_string()
+        }
+    }
+}
