@@ -5,11 +5,23 @@
 
 use gbuffer_cost::{measure, CostError, Shader, Statistics, Target};
 
+/// Which of Mali's cycle estimates a column shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MaliCycles {
+    /// The estimate: the busiest unit's cycles, loads, stores, varyings and textures included.
+    Total,
+    /// The busiest arithmetic unit's: for harnesses whose loads and stores, the same for every
+    /// form measured, would bound the total and hide the arithmetic.
+    Arithmetic,
+}
+
 /// One target's column: the driver's own name and version, and each shader's statistics
 /// (`None` where that shader failed on it: the reason was printed).
 pub struct Column {
     /// The target's name (`mali-g610`).
     pub target: &'static str,
+    /// Which cycles a Mali column shows.
+    pub mali_cycles: MaliCycles,
     /// The driver's name and version.
     pub device: String,
     /// Per shader, in the order given.
@@ -22,14 +34,13 @@ impl Column {
         format!("{} {}", self.target, self.unit())
     }
 
-    /// What the column's figures count: Mali's estimated arithmetic cycles per thread (the
-    /// busiest arithmetic unit's: a harness's loads and stores, the same for every form, would
-    /// otherwise bound Mali's total and hide the conversions), or the others' instructions.
+    /// What the column's figures count: Mali's estimated cycles per thread ([`MaliCycles`]),
+    /// or the others' instructions.
     pub fn unit(&self) -> &'static str {
-        if self.is_mali() {
-            "arithmetic cycles"
-        } else {
-            "instructions"
+        match self.mali_cycles {
+            _ if !self.is_mali() => "instructions",
+            MaliCycles::Total => "cycles",
+            MaliCycles::Arithmetic => "arithmetic cycles",
         }
     }
 
@@ -40,8 +51,9 @@ impl Column {
     /// Shader `index`'s figure, in [`Column::unit`].
     pub fn figure(&self, index: usize) -> Option<f64> {
         let statistics = self.statistics.get(index)?.as_ref()?;
-        Some(match &statistics.cycles {
-            Some(cycles) if self.is_mali() => cycles.arithmetic(),
+        Some(match (&statistics.cycles, self.mali_cycles) {
+            (Some(cycles), MaliCycles::Total) if self.is_mali() => cycles.total,
+            (Some(cycles), MaliCycles::Arithmetic) if self.is_mali() => cycles.arithmetic(),
             _ => statistics.instructions as f64,
         })
     }
@@ -112,8 +124,9 @@ impl Compiled {
     }
 }
 
-/// Compiles `shaders` on each of `targets`, one run of each driver.
-pub fn compile(shaders: &[Shader], targets: &[&str]) -> Compiled {
+/// Compiles `shaders` on each of `targets`, one run of each driver; Mali columns show
+/// `mali_cycles`.
+pub fn compile(shaders: &[Shader], targets: &[&str], mali_cycles: MaliCycles) -> Compiled {
     let mut columns = Vec::new();
     for name in targets {
         let target = match Target::named(name) {
@@ -146,6 +159,7 @@ pub fn compile(shaders: &[Shader], targets: &[&str]) -> Compiled {
             .collect();
         columns.push(Column {
             target: target.name,
+            mali_cycles,
             device,
             statistics,
         });

@@ -45,6 +45,24 @@ struct Measured {
     /// The adapter's times in both stages, less the harness's.
     gpu: timing::StageTimes,
     cpu_ns_per_eval: f64,
+    /// Per [`ROW_TARGETS`] column, what the row adds to the fragment harness: Mali's cycles,
+    /// the others' instructions (`None` where it failed or the compilers are not set up).
+    compilers: Vec<Option<f64>>,
+}
+
+/// The GPU compilers the rows are costed on.
+const ROW_TARGETS: [&str; 3] = ["mali-g610", "adreno-740", "amd-navi21"];
+
+/// Each row's fragment harness (one evaluation, after the baseline's) on [`ROW_TARGETS`].
+fn compile_rows(rows: &[Row]) -> compilers::Compiled {
+    let shaders: Vec<gbuffer_cost::Shader> = std::iter::once(timing::BASELINE_ROW)
+        .chain(rows.iter().map(|row| row.wgsl.as_str()))
+        .map(|wgsl| {
+            gbuffer_cost::Shader::wgsl(&timing::fragment_harness(wgsl), "bench_fragment")
+                .expect("every row's fragment harness validates")
+        })
+        .collect();
+    compilers::compile(&shaders, &ROW_TARGETS, compilers::MaliCycles::Total)
 }
 
 /// The SPIR-V of a row's timing harness, without the library functions the row does not
@@ -84,6 +102,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
         .map(|size| (size, EnvBrdfLut::bake(size, 1024).texels))
         .collect();
 
+    let row_compilers = compile_rows(&rows);
     let mut measured = Vec::new();
     for (index, row) in rows.iter().enumerate() {
         eprintln!(
@@ -110,13 +129,25 @@ pub fn run(folder: &Path) -> Result<(), String> {
                 .saturating_sub(baseline_instructions),
             gpu: gpu_time,
             cpu_ns_per_eval: timing::cpu_ns_per_eval(&row.cpu),
+            compilers: ROW_TARGETS
+                .iter()
+                .map(|target| {
+                    let column = row_compilers
+                        .columns()
+                        .iter()
+                        .find(|column| column.target == *target)?;
+                    Some(column.figure(index + 1)? - column.figure(0)?)
+                })
+                .collect(),
         });
     }
 
     let mut packing = packing::measure(&gpu, &baseline_gpu)?;
     let inconsistencies = check_consistency(&rows, &mut measured, &mut packing);
-    print_table(&rows, &measured, &adapter);
+    print_table(&rows, &measured, &adapter, &row_compilers);
     packing::print(&packing, &gpu);
+    let compiled_packing = packing::compile_on_compilers();
+    println!("{}", compiled_packing.markdown());
     if !inconsistencies.is_empty() {
         println!(
             "\nthe timing did not resolve on {adapter}, so no time is printed: {}",
@@ -135,6 +166,8 @@ pub fn run(folder: &Path) -> Result<(), String> {
     );
     let mut json = json_report(&rows, &measured, &adapter);
     json["packing"] = packing::json(&packing);
+    json["packing_on_compilers"] = compiled_packing.json();
+    json["compilers"] = row_compilers.provenance_json();
     json["timing_consistent"] = serde_json::json!(inconsistencies.is_empty());
     json["timing_inconsistencies"] = serde_json::json!(inconsistencies);
     json["frames"] = frames::json(&frames);
@@ -142,8 +175,9 @@ pub fn run(folder: &Path) -> Result<(), String> {
         .iter()
         .map(|energy| serde_json::json!({"roughness": energy.roughness, "metal_head_on": energy.metal_head_on, "metal_grazing": energy.metal_grazing, "white_dielectric_max": energy.dielectric_max}))
         .collect::<Vec<_>>());
-    let mut markdown = markdown_report(&rows, &measured, &adapter, &plots);
+    let mut markdown = markdown_report(&rows, &measured, &adapter, &plots, &row_compilers);
     markdown.push_str(&packing::markdown(&packing, &gpu));
+    markdown.push_str(&compiled_packing.markdown());
     if !inconsistencies.is_empty() {
         let _ = writeln!(
             markdown,
@@ -261,10 +295,11 @@ fn timings_json(times: &timing::StageTimes) -> serde_json::Value {
     serde_json::json!(objects)
 }
 
-fn print_table(rows: &[Row], measured: &[Measured], adapter: &str) {
+fn print_table(rows: &[Row], measured: &[Measured], adapter: &str, compiled: &compilers::Compiled) {
     println!("adapter: {adapter}");
+    println!("{}", compiled.provenance());
     println!(
-        "{:<17} {:<34} {:>4} {:>11} {:>11} {:<24} {:>5} {:>5} {:>8} {:>8} {:>8}",
+        "{:<17} {:<34} {:>4} {:>11} {:>11} {:<24} {:>5} {:>5} {:>8} {:>8} {:>8} {:>7} {:>6} {:>6}",
         "family",
         "row",
         "bits",
@@ -275,11 +310,14 @@ fn print_table(rows: &[Row], measured: &[Measured], adapter: &str) {
         "spirv",
         "gpu ns",
         "frag ns",
-        "cpu ns"
+        "cpu ns",
+        "G610 cy",
+        "A740",
+        "navi21"
     );
     for (row, measured) in rows.iter().zip(measured) {
         println!(
-            "{:<17} {:<34} {:>4} {:>11.3e} {:>11.3e} {:<24} {:>5} {:>5} {:>8} {:>8} {:>8.2}",
+            "{:<17} {:<34} {:>4} {:>11.3e} {:>11.3e} {:<24} {:>5} {:>5} {:>8} {:>8} {:>8.2} {:>7} {:>6} {:>6}",
             row.family,
             row.name,
             row.bits
@@ -291,7 +329,10 @@ fn print_table(rows: &[Row], measured: &[Measured], adapter: &str) {
             measured.spirv_instructions,
             format_time(measured.gpu.compute),
             format_time(measured.gpu.fragment),
-            measured.cpu_ns_per_eval
+            measured.cpu_ns_per_eval,
+            compilers::format_figure(measured.compilers[0]),
+            compilers::format_figure(measured.compilers[1]),
+            compilers::format_figure(measured.compilers[2]),
         );
     }
 }
@@ -314,6 +355,7 @@ fn json_report(rows: &[Row], measured: &[Measured], adapter: &str) -> serde_json
                 "gpu_ns_per_eval": measured.gpu.compute.filter(timing::GpuTime::resolved).map(|time| time.median_ns),
                 "timings": timings_json(&measured.gpu),
                 "cpu_ns_per_eval": measured.cpu_ns_per_eval,
+                "compilers": ROW_TARGETS.iter().zip(&measured.compilers).map(|(target, figure)| (target.to_string(), serde_json::json!(figure))).collect::<serde_json::Map<_, _>>(),
             });
             if let Some(bits) = row.bits {
                 entry["bits"] = serde_json::json!(bits);
@@ -462,6 +504,7 @@ fn markdown_report(
     measured: &[Measured],
     adapter: &str,
     plots: &[WrittenPlot],
+    compiled: &compilers::Compiled,
 ) -> String {
     let mut out = String::new();
     let _ = writeln!(
@@ -472,7 +515,8 @@ fn markdown_report(
     let _ = writeln!(out, "of `gbuffer::shading::reference` over each row's domain; costs are naga IR expressions reachable from the row's");
     let _ = writeln!(out, "WGSL and the SPIR-V instructions it adds to a compute shader; GPU time (`median_ns` in report.json) is the median run's time divided by the run's evaluations, in nanoseconds: device ns per evaluation; runs are a dependent");
     let _ = writeln!(out, "chain whose length grows until a run lasts 10 ms (median of {} runs, wall clock around a synchronised submit, less the", timing::GPU_RUNS);
-    let _ = writeln!(out, "harness's own time; `<X` where the median is within the runs' spread: the row is below the harness's resolution and X, the median plus the spread, bounds its time; n/r where the times were not trusted); CPU time is the f32 mirror's.\n");
+    let _ = writeln!(out, "harness's own time; `<X` where the median is within the runs' spread: the row is below the harness's resolution and X, the median plus the spread, bounds its time; n/r where the times were not trusted); CPU time is the f32 mirror's.");
+    let _ = writeln!(out, "The last three columns are what one evaluation adds to a fragment shader (the GPU time's harness with a chain of one, less the same harness around an identity), compiled by the GPUs' own compilers: Mali-G610's estimated cycles per pixel, Adreno 740's and navi21's (ACO) instructions. {}\n", compiled.provenance());
     let mut family = "";
     for (row, measured) in rows.iter().zip(measured) {
         if row.family != family {
@@ -482,15 +526,15 @@ fn markdown_report(
                 "\n## {family}\n\nDomain: {}. Unit: {}.\n",
                 row.domain, row.unit
             );
-            let _ = writeln!(out, "| row | bits | max error | RMS error | naga expressions | SPIR-V instructions | GPU ns/eval (compute) | GPU ns/eval (fragment) | CPU ns/eval |");
+            let _ = writeln!(out, "| row | bits | max error | RMS error | naga expressions | SPIR-V instructions | GPU ns/eval (compute) | GPU ns/eval (fragment) | CPU ns/eval | Mali-G610 cycles | Adreno 740 instructions | navi21 instructions |");
             let _ = writeln!(
                 out,
-                "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+                "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
             );
         }
         let _ = writeln!(
             out,
-            "| {} | {} | {:.3e} | {:.3e} | {} | {} | {} | {} | {:.2} |",
+            "| {} | {} | {:.3e} | {:.3e} | {} | {} | {} | {} | {:.2} | {} | {} | {} |",
             row.name,
             row.bits
                 .map_or_else(|| "-".to_string(), |bits| bits.to_string()),
@@ -500,7 +544,10 @@ fn markdown_report(
             measured.spirv_instructions,
             format_time(measured.gpu.compute),
             format_time(measured.gpu.fragment),
-            measured.cpu_ns_per_eval
+            measured.cpu_ns_per_eval,
+            compilers::format_figure(measured.compilers[0]),
+            compilers::format_figure(measured.compilers[1]),
+            compilers::format_figure(measured.compilers[2]),
         );
     }
     let _ = writeln!(out, "\n## Plots\n");

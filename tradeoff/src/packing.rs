@@ -252,7 +252,11 @@ pub fn compile_on_compilers() -> CompiledPacking {
     }
     CompiledPacking {
         rows,
-        compiled: crate::compilers::compile(&shaders, &COMPILER_TARGETS),
+        compiled: crate::compilers::compile(
+            &shaders,
+            &COMPILER_TARGETS,
+            crate::compilers::MaliCycles::Arithmetic,
+        ),
     }
 }
 

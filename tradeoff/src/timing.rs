@@ -223,6 +223,12 @@ pub fn harness(row_wgsl: &str) -> String {
     harness_with_chain(row_wgsl, CHAIN)
 }
 
+/// The fragment shader around a row's `row_eval` with one evaluation, entry point
+/// `bench_fragment`, as the GPU compilers cost it.
+pub fn fragment_harness(row_wgsl: &str) -> String {
+    fragment_harness_with_chain(row_wgsl, 1)
+}
+
 /// The fragment stage's shaders around a row's `row_eval`, with `chain` evaluations per
 /// pixel: a fullscreen triangle, and a fragment shader whose inputs come from its position.
 fn fragment_harness_with_chain(row_wgsl: &str, chain: u32) -> String {
