@@ -24,7 +24,7 @@ use gbuffer_testkit::skip_without_driver;
 use gbuffer_testkit::texels::{
     check_native_words, compare, compare_decoded, inputs, restore_changes, word_from_components,
 };
-use gbuffer_testkit::user_shaders::{fetch_user_shaders, preambles};
+use gbuffer_testkit::user_shaders::{fetch_user_shaders, has_storage_buffers, preambles};
 use proptest::prelude::*;
 
 const WIDTH: i32 = 48;
