@@ -256,44 +256,42 @@ struct descriptor {
     VkDescriptorType type;
 };
 
-static VkDescriptorType descriptor_type(const char *kind) {
-    static const struct {
-        const char *name;
-        VkDescriptorType type;
-    } kinds[] = {
-        {"uniform", VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-        {"storage", VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-        {"sampled", VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE},
-        {"sampler", VK_DESCRIPTOR_TYPE_SAMPLER},
-        {"combined", VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-        {"storage-image", VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-        {"input-attachment", VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT},
-    };
-    for (unsigned i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
-        if (!strcmp(kind, kinds[i].name)) return kinds[i].type;
-    usage();
-    return 0;
-}
+/* A name on the command line and the Vulkan enumerant it stands for. */
+struct named {
+    const char *name;
+    int value;
+};
 
-static VkFormat color_format(const char *name) {
-    static const struct {
-        const char *name;
-        VkFormat format;
-    } formats[] = {
-        {"r32ui", VK_FORMAT_R32_UINT},
-        {"rg32ui", VK_FORMAT_R32G32_UINT},
-        {"rgba32ui", VK_FORMAT_R32G32B32A32_UINT},
-        {"r32i", VK_FORMAT_R32_SINT},
-        {"rgba32i", VK_FORMAT_R32G32B32A32_SINT},
-        {"r32f", VK_FORMAT_R32_SFLOAT},
-        {"rgba32f", VK_FORMAT_R32G32B32A32_SFLOAT},
-        {"rgba16f", VK_FORMAT_R16G16B16A16_SFLOAT},
-        {"rgba8", VK_FORMAT_R8G8B8A8_UNORM},
-        {"rgb10a2", VK_FORMAT_A2B10G10R10_UNORM_PACK32},
-        {"rg11b10f", VK_FORMAT_B10G11R11_UFLOAT_PACK32},
-    };
-    for (unsigned i = 0; i < sizeof formats / sizeof formats[0]; i++)
-        if (!strcmp(name, formats[i].name)) return formats[i].format;
+static const struct named descriptor_kinds[] = {
+    {"uniform", VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+    {"storage", VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+    {"sampled", VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE},
+    {"sampler", VK_DESCRIPTOR_TYPE_SAMPLER},
+    {"combined", VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+    {"storage-image", VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+    {"input-attachment", VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT},
+    {NULL, 0},
+};
+
+static const struct named color_formats[] = {
+    {"r32ui", VK_FORMAT_R32_UINT},
+    {"rg32ui", VK_FORMAT_R32G32_UINT},
+    {"rgba32ui", VK_FORMAT_R32G32B32A32_UINT},
+    {"r32i", VK_FORMAT_R32_SINT},
+    {"rgba32i", VK_FORMAT_R32G32B32A32_SINT},
+    {"r32f", VK_FORMAT_R32_SFLOAT},
+    {"rgba32f", VK_FORMAT_R32G32B32A32_SFLOAT},
+    {"rgba16f", VK_FORMAT_R16G16B16A16_SFLOAT},
+    {"rgba8", VK_FORMAT_R8G8B8A8_UNORM},
+    {"rgb10a2", VK_FORMAT_A2B10G10R10_UNORM_PACK32},
+    {"rg11b10f", VK_FORMAT_B10G11R11_UFLOAT_PACK32},
+    {NULL, 0},
+};
+
+/* The value `name` stands for in `table`; a name not there is a usage error. */
+static int named_value(const struct named *table, const char *name) {
+    for (; table->name; table++)
+        if (!strcmp(name, table->name)) return table->value;
     usage();
     return 0;
 }
@@ -593,10 +591,11 @@ static void vulkan_pipeline(void *context, int argc, char **argv) {
                 sscanf(argv[++i], "%u,%u,%31s", &set, &binding, kind) != 3)
                 usage();
             descriptors[descriptor_count++] =
-                (struct descriptor){set, binding, descriptor_type(kind)};
+                (struct descriptor){set, binding,
+                                    (VkDescriptorType)named_value(descriptor_kinds, kind)};
         } else if (!strcmp(argv[i], "--color") && i + 1 < argc) {
             if (color_count == MAX_ITEMS) usage();
-            colors[color_count++] = color_format(argv[++i]);
+            colors[color_count++] = (VkFormat)named_value(color_formats, argv[++i]);
         } else if (argv[i][0] != '-' && !vertex) {
             vertex = argv[i];
         } else {

@@ -44,6 +44,11 @@ impl Setup {
         }
     }
 
+    /// The folder the setup installed into.
+    pub fn root(&self) -> &Path {
+        &self.root
+    }
+
     fn helper(&self, architecture: Architecture) -> PathBuf {
         self.root.join("bin").join(match architecture {
             Architecture::X86_64 => "shader-stats-x86_64",
@@ -61,6 +66,15 @@ impl Setup {
             Architecture::X86_64 => format!("/usr/lib/x86_64-linux-gnu/{}", target.shim),
             Architecture::Aarch64 => format!("/usr/lib/aarch64-linux-gnu/{}", target.shim),
         }
+    }
+
+    /// What is missing for any target, or `None` when every target is set up: for a test's
+    /// skip rule, or a report's reason to leave the compilers' columns out.
+    pub fn missing(&self) -> Option<String> {
+        crate::target::TARGETS
+            .iter()
+            .find_map(|target| self.check(target).err())
+            .map(|error| error.to_string())
     }
 
     /// Whether everything `target` needs is in place; the error names the first thing missing.

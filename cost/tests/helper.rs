@@ -6,33 +6,27 @@
 //! what the helper itself promises. Outside CI a missing setup skips with the reason; under
 //! `CI=true` it fails.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
-use gbuffer_cost::{Api, Architecture, Shader, Stage, Target, TARGETS};
+use gbuffer_cost::{Api, Architecture, Setup, Shader, Stage, Target, TARGETS};
+use gbuffer_testkit::skip_without_driver;
 
-fn root() -> PathBuf {
-    std::env::var_os("GBUFFER_COST_ROOT")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(gbuffer_cost::DEFAULT_ROOT))
-}
-
+/// Whether the setup is there; outside CI, says why the test skips when it is not.
 fn set_up() -> bool {
-    let helper = root().join("bin/shader-stats-aarch64");
-    if helper.is_file() {
-        return true;
+    match Setup::find().missing() {
+        None => true,
+        Some(reason) => {
+            skip_without_driver("the cost model's compilers", &reason);
+            false
+        }
     }
-    let message = format!("{} is missing: run scripts/cost-setup.sh", helper.display());
-    if std::env::var_os("CI").is_some_and(|value| value == "true") {
-        panic!("{message} (under CI=true a missing setup is a failure)");
-    }
-    eprintln!("skipped: {message}");
-    false
 }
 
 /// Runs the helper for `target` by hand, with the environment README gives for it.
 fn helper(target: &Target, arguments: &[&str]) -> Output {
-    let root = root();
+    let setup = Setup::find();
+    let root = setup.root();
     let mut command = match target.architecture {
         Architecture::X86_64 => {
             let mut command = Command::new(root.join("bin/shader-stats-x86_64"));
