@@ -13,8 +13,9 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 /// Tools for pixel local storage G-buffers: generate shader includes from layout files,
-/// validate shaders that use them, solve scenes for the smallest layout, and measure the
-/// speed/accuracy trade of the shading library.
+/// validate shaders that use them, solve scenes for the smallest layout, measure the
+/// speed/accuracy trade of the shading library, and cost shaders on the compilers of Mali,
+/// Adreno, AMD and NVIDIA GPUs.
 ///
 /// Exit status: 0 on success, 1 when an input is invalid (a layout, a shader, a scene) or an
 /// output cannot be written, 2 on a usage error.
