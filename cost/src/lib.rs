@@ -122,12 +122,17 @@ pub fn measure(
 ) -> Result<Vec<Result<Measurement, String>>, CostError> {
     let setup = Setup::find();
     setup.check(target)?;
-    // GL compilers print their listings on standard error, all shaders together: with a
-    // listing asked for, each shader gets a run of its own.
-    if disassembly && target.api == Api::Gles && shaders.len() > 1 {
+    // GL compilers print their listings on standard error, all shaders together, and
+    // panfrost's listing flag silences its statistics: with a listing asked for, each shader
+    // gets a run for its statistics and one for its listing.
+    if disassembly && target.api == Api::Gles {
         let mut all = Vec::new();
         for shader in shaders {
-            all.extend(measure(std::slice::from_ref(shader), target, true)?);
+            let mut results = measure(std::slice::from_ref(shader), target, false)?;
+            if let Some(Ok(measurement)) = results.first_mut() {
+                measurement.disassembly = gl_listing(&setup, shader, target)?;
+            }
+            all.extend(results);
         }
         return Ok(all);
     }
@@ -154,14 +159,9 @@ pub fn measure(
             Api::Vulkan => "vulkan",
         };
         arguments.insert(0, mode.to_string());
-        let (stdout, stderr) = setup.run(target, &arguments, disassembly)?;
+        let (stdout, _) = setup.run(target, &arguments, disassembly)?;
         device = device_of(&stdout, target)?;
         sections = split_sections(&stdout);
-        if disassembly && target.api == Api::Gles {
-            if let Some(section) = sections.first_mut() {
-                section.disassembly = Some(stderr);
-            }
-        }
     }
     let mut sections = sections.into_iter();
     Ok(shaders
@@ -191,6 +191,22 @@ pub fn measure(
             })
         })
         .collect())
+}
+
+/// What a GL compiler prints of `shader` with its listing flag (`None` where it prints
+/// nothing: nouveau lists only in Mesa's debug builds).
+fn gl_listing(
+    setup: &Setup,
+    shader: &Shader,
+    target: &Target,
+) -> Result<Option<String>, CostError> {
+    let scratch = Scratch::new()?;
+    let Ok(mut arguments) = prepare(shader, target, &scratch, 0, true) else {
+        return Ok(None);
+    };
+    arguments.insert(0, "gl".to_string());
+    let (_, stderr) = setup.run(target, &arguments, true)?;
+    Ok((!stderr.trim().is_empty()).then_some(stderr))
 }
 
 /// Writes `shader`'s files for `target` and returns the helper's arguments for it.

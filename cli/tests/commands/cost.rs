@@ -207,3 +207,35 @@ fn an_unknown_target_or_glsl_on_vulkan_is_a_usage_error() {
         .fails_with(2);
     assert!(String::from_utf8_lossy(&output.stderr).contains("GL targets only"));
 }
+
+#[test]
+fn the_disassembly_comes_on_request() {
+    if !set_up() {
+        return;
+    }
+    let folder = tempfile::tempdir().unwrap();
+    let shader = write(
+        folder.path(),
+        "pack.wgsl",
+        "@fragment\nfn pack(@location(0) colour: vec4<f32>) -> @location(0) u32 {\n    return pack4x8unorm(colour);\n}\n",
+    );
+    let output = gbuffer("cost")
+        .arg(&shader)
+        .args([
+            "--target",
+            "mali-g610",
+            "--target",
+            "amd-navi21",
+            "--disassembly",
+            "--json",
+        ])
+        .succeed();
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    for measurement in json["measurements"].as_array().unwrap() {
+        let listing = measurement["disassembly"].as_str().unwrap_or_default();
+        assert!(listing.len() > 100, "{measurement}");
+    }
+    // ACO's listing names its instructions.
+    let aco = json["measurements"][1]["disassembly"].as_str().unwrap();
+    assert!(aco.contains("v_") || aco.contains("s_"), "{aco}");
+}
