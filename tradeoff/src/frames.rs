@@ -58,7 +58,7 @@ pub struct FrameRow {
 }
 
 /// The packed layouts of the table, with their kind.
-fn packed_layouts() -> Vec<(PackedLayout, &'static str)> {
+pub(crate) fn packed_layouts() -> Vec<(PackedLayout, &'static str)> {
     let seeds = PackedLayout::SEEDS.map(|layout| (layout, "seed"));
     let engines = PackedLayout::ENGINES.map(|layout| (layout, "engine"));
     seeds
@@ -68,7 +68,8 @@ fn packed_layouts() -> Vec<(PackedLayout, &'static str)> {
         .collect()
 }
 
-fn options(gbuffer: GBuffer) -> Options {
+/// The table's options for `gbuffer`: GGX sun, LUT environment, [`SIZE`].
+pub(crate) fn options(gbuffer: GBuffer) -> Options {
     Options {
         gbuffer,
         sun: SunForm::Ggx,

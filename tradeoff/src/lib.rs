@@ -12,6 +12,7 @@
 //! fast, their instructions, branches, error in codes and time per million texels.
 
 pub mod compilers;
+pub mod frame_shaders;
 pub mod frames;
 pub mod furnace;
 pub mod packing;
@@ -158,6 +159,12 @@ pub fn run(folder: &Path) -> Result<(), String> {
     print_furnace(&furnace);
     let frames = frames::measure_all(folder, &|message| eprintln!("{message}"))?;
     frames::print(&frames, &adapter);
+    let layouts: Vec<_> = frames::packed_layouts()
+        .into_iter()
+        .map(|(layout, _)| layout)
+        .collect();
+    let frame_shaders = frame_shaders::compile_frames(&layouts);
+    println!("{}", frame_shaders.markdown());
     let mut plots =
         write_plots(folder, &rows).map_err(|error| format!("writing plots: {error}"))?;
     plots.extend(
@@ -171,6 +178,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
     json["timing_consistent"] = serde_json::json!(inconsistencies.is_empty());
     json["timing_inconsistencies"] = serde_json::json!(inconsistencies);
     json["frames"] = frames::json(&frames);
+    json["frames_on_compilers"] = frame_shaders.json();
     json["white_furnace"] = serde_json::json!(furnace
         .iter()
         .map(|energy| serde_json::json!({"roughness": energy.roughness, "metal_head_on": energy.metal_head_on, "metal_grazing": energy.metal_grazing, "white_dielectric_max": energy.dielectric_max}))
@@ -187,6 +195,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
     }
     markdown.push_str(&furnace_markdown(&furnace));
     markdown.push_str(&frames::markdown(&frames, &adapter));
+    markdown.push_str(&frame_shaders.markdown());
     for (name, contents) in [
         (
             "report.json",
