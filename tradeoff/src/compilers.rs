@@ -125,16 +125,28 @@ impl Compiled {
 }
 
 /// Compiles `shaders` on each of `targets`, one run of each driver; Mali columns show
-/// `mali_cycles`.
-pub fn compile(shaders: &[Shader], targets: &[&str], mali_cycles: MaliCycles) -> Compiled {
+/// `mali_cycles`. A shader that could not be made (`Err`, its reason printed once) has no
+/// statistics in any column.
+pub fn compile(
+    shaders: &[Result<Shader, String>],
+    targets: &[&str],
+    mali_cycles: MaliCycles,
+) -> Compiled {
+    for error in shaders.iter().filter_map(|shader| shader.as_ref().err()) {
+        eprintln!("  not compiled: {error}");
+    }
+    let made: Vec<Shader> = shaders
+        .iter()
+        .filter_map(|shader| shader.clone().ok())
+        .collect();
     let mut columns = Vec::new();
     for name in targets {
         let target = match Target::named(name) {
             Ok(target) => target,
             Err(error) => return Compiled::Unavailable(error),
         };
-        eprintln!("compiling {} shaders for {name}...", shaders.len());
-        let results = match measure(shaders, &target, false) {
+        eprintln!("compiling {} shaders for {name}...", made.len());
+        let results = match measure(&made, &target, false) {
             Ok(results) => results,
             Err(
                 error
@@ -144,17 +156,21 @@ pub fn compile(shaders: &[Shader], targets: &[&str], mali_cycles: MaliCycles) ->
             }
         };
         let mut device = String::new();
-        let statistics = results
-            .into_iter()
-            .map(|result| match result {
-                Ok(measurement) => {
-                    device = measurement.device;
-                    Some(measurement.statistics)
-                }
-                Err(error) => {
-                    eprintln!("  {name}: {error}");
-                    None
-                }
+        let mut results = results.into_iter();
+        let statistics = shaders
+            .iter()
+            .map(|shader| match shader.as_ref().map(|_| results.next()) {
+                Err(_) | Ok(None) => None,
+                Ok(Some(result)) => match result {
+                    Ok(measurement) => {
+                        device = measurement.device;
+                        Some(measurement.statistics)
+                    }
+                    Err(error) => {
+                        eprintln!("  {name}: {error}");
+                        None
+                    }
+                },
             })
             .collect();
         columns.push(Column {

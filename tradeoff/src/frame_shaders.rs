@@ -50,9 +50,9 @@ pub struct FrameShaders {
 
 /// Compiles the G-buffer and lighting passes of `layouts` in every form they render in.
 pub fn compile_frames(layouts: &[PackedLayout]) -> FrameShaders {
-    let mut shaders: Vec<Shader> = Vec::new();
+    let mut shaders: Vec<Result<Shader, String>> = Vec::new();
     let mut forms = Vec::new();
-    let mut add = |shader: Shader| {
+    let mut add = |shader: Result<Shader, String>| {
         shaders.push(shader);
         shaders.len() - 1
     };
@@ -62,7 +62,7 @@ pub fn compile_frames(layouts: &[PackedLayout]) -> FrameShaders {
             continue;
         };
         let translated = |wgsl: &str, entry: &str| {
-            Shader::wgsl(wgsl, entry).unwrap_or_else(|error| panic!("{}: {error}", layout.flag()))
+            Shader::wgsl(wgsl, entry).map_err(|error| format!("{}: {error}", layout.flag()))
         };
         let gbuffer = add(translated(&gbuffer_wgsl(&options, -1.0), "gbuffer_main"));
         let lighting = add(translated(&lighting_wgsl, "lighting_main"));
@@ -82,20 +82,21 @@ pub fn compile_frames(layouts: &[PackedLayout]) -> FrameShaders {
             if fused.interface.attachments.len() + 1 > MAX_DRAW_BUFFERS {
                 continue;
             }
-            let mut programs = fused.programs.into_iter().map(|program| {
-                add(
-                    Shader::glsl(gbuffer_cost::Stage::Fragment, &program.fragment)
-                        .with_vertex(&program.vertex),
-                )
-            });
             // Stage::ALL's order: geometry, decal, sun and environment, point light, resolve,
-            // sky.
-            let indices: Vec<usize> = programs.by_ref().collect();
+            // sky; the first and the third are compiled.
+            let indices = [0, 2].map(|stage| {
+                let program = &fused.programs[stage];
+                add(Ok(Shader::glsl(
+                    gbuffer_cost::Stage::Fragment,
+                    &program.fragment,
+                )
+                .with_vertex(&program.vertex)))
+            });
             forms.push(FormShaders {
                 layout: layout.flag(),
                 form,
                 gbuffer: vec![indices[0]],
-                lighting: vec![indices[2]],
+                lighting: vec![indices[1]],
             });
         }
     }

@@ -226,7 +226,6 @@ pub fn compile_on_compilers() -> CompiledPacking {
             &crate::packing_cost::invocation_harness(wgsl, words),
             "main",
         )
-        .expect("the packing harness validates")
     };
     for format in CONVERTED_FORMATS {
         let layout = one_field(format);
