@@ -619,3 +619,49 @@ fn furnace_markdown(furnace: &[FurnaceEnergy]) -> String {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every row, every packing harness and every frame shader the report costs compiles on
+    /// each GPU compiler and gives a figure (outside CI, a missing setup skips).
+    #[test]
+    fn the_report_compiles_everything_it_costs_on_the_gpu_compilers() {
+        if let Some(reason) = gbuffer_cost::Setup::find().missing() {
+            gbuffer_testkit::skip_without_driver("the cost model's compilers", &reason);
+            return;
+        }
+        let rows = rows::rows();
+        let compiled = compile_rows(&rows);
+        assert_eq!(
+            compiled.columns().len(),
+            ROW_TARGETS.len(),
+            "{}",
+            compiled.provenance()
+        );
+        for column in compiled.columns() {
+            for index in 0..=rows.len() {
+                assert!(
+                    column.figure(index).is_some(),
+                    "{}: shader {index}",
+                    column.target
+                );
+            }
+        }
+        let packing = packing::compile_on_compilers();
+        let markdown = packing.markdown();
+        assert!(!markdown.contains("| - |"), "{markdown}");
+        let layouts: Vec<_> = frames::packed_layouts()
+            .into_iter()
+            .map(|(layout, _)| layout)
+            .collect();
+        let frames = frame_shaders::compile_frames(&layouts);
+        let markdown = frames.markdown();
+        assert!(
+            markdown.contains("mobile-metallic | fused native |"),
+            "{markdown}"
+        );
+        assert!(markdown.contains("costs least on Mali-G610"), "{markdown}");
+    }
+}
