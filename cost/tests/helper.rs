@@ -10,18 +10,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use gbuffer_cost::{Api, Architecture, Setup, Shader, Stage, Target, TARGETS};
-use gbuffer_testkit::skip_without_driver;
-
-/// Whether the setup is there; outside CI, says why the test skips when it is not.
-fn set_up() -> bool {
-    match Setup::find().missing() {
-        None => true,
-        Some(reason) => {
-            skip_without_driver("the cost model's compilers", &reason);
-            false
-        }
-    }
-}
+use gbuffer_testkit::compilers_set_up;
 
 /// Runs the helper for `target` by hand, with the environment README gives for it.
 fn helper(target: &Target, arguments: &[&str]) -> Output {
@@ -74,7 +63,7 @@ fn spirv_bytes(words: &[u32]) -> Vec<u8> {
 
 #[test]
 fn the_helper_reports_each_shader_on_every_target() {
-    if !set_up() {
+    if !compilers_set_up() {
         return;
     }
     let folder = tempfile::tempdir().unwrap();

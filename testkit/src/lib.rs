@@ -30,6 +30,18 @@ pub fn skip_without_driver(what: &str, error: &str) {
     eprintln!("skipped: {what}: {error}");
 }
 
+/// Whether the cost model's GPU compilers are set up (`scripts/cost-setup.sh`); where they
+/// are not, [`skip_without_driver`] says why (and fails under `CI=true`).
+pub fn compilers_set_up() -> bool {
+    match gbuffer_cost::Setup::find().missing() {
+        None => true,
+        Some(reason) => {
+            skip_without_driver("the cost model's compilers", &reason);
+            false
+        }
+    }
+}
+
 /// The adapter wgpu prefers, with its full limits (its name printed), or `None` to skip (see
 /// [`or_skip`]).
 pub fn gpu() -> Option<Gpu> {

@@ -628,8 +628,7 @@ mod tests {
     /// each GPU compiler and gives a figure (outside CI, a missing setup skips).
     #[test]
     fn the_report_compiles_everything_it_costs_on_the_gpu_compilers() {
-        if let Some(reason) = gbuffer_cost::Setup::find().missing() {
-            gbuffer_testkit::skip_without_driver("the cost model's compilers", &reason);
+        if !gbuffer_testkit::compilers_set_up() {
             return;
         }
         let rows = rows::rows();

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command as Process;
 
 use gbuffer_cost::Setup;
-use gbuffer_testkit::skip_without_driver;
+use gbuffer_testkit::compilers_set_up;
 
 use crate::{gbuffer, Run};
 
@@ -15,19 +15,11 @@ use crate::{gbuffer, Run};
 const FRAGMENT: &str = "#version 310 es\nprecision highp float;\n\
 layout(location = 0) out highp uint word;\n\
 void main() { word = packUnorm4x8(fract(gl_FragCoord.xyxy * vec4(0.1, 0.2, 0.3, 0.4))); }\n";
+/// A WGSL fragment shader that packs its input.
+const PACK_WGSL: &str =
+    "@fragment\nfn pack(@location(0) colour: vec4<f32>) -> @location(0) u32 {\n    return pack4x8unorm(colour);\n}\n";
 const VERTEX: &str =
     "#version 310 es\nvoid main() { gl_Position = vec4(float(gl_VertexID), 0.0, 0.0, 1.0); }\n";
-
-/// Whether the setup is there; outside CI, says why the test skips when it is not.
-fn set_up() -> bool {
-    match Setup::find().missing() {
-        None => true,
-        Some(reason) => {
-            skip_without_driver("the cost model's compilers", &reason);
-            false
-        }
-    }
-}
 
 fn write(folder: &Path, name: &str, text: &str) -> PathBuf {
     let path = folder.join(name);
@@ -70,7 +62,7 @@ fn driver_line(
 
 #[test]
 fn the_numbers_are_the_drivers_own() {
-    if !set_up() {
+    if !compilers_set_up() {
         return;
     }
     let folder = tempfile::tempdir().unwrap();
@@ -119,15 +111,11 @@ fn the_numbers_are_the_drivers_own() {
 
 #[test]
 fn wgsl_is_costed_on_gl_and_vulkan_targets_in_json() {
-    if !set_up() {
+    if !compilers_set_up() {
         return;
     }
     let folder = tempfile::tempdir().unwrap();
-    let shader = write(
-        folder.path(),
-        "pack.wgsl",
-        "@fragment\nfn pack(@location(0) colour: vec4<f32>) -> @location(0) u32 {\n    return pack4x8unorm(colour);\n}\n",
-    );
+    let shader = write(folder.path(), "pack.wgsl", PACK_WGSL);
     let output = gbuffer("cost")
         .arg(&shader)
         .args([
@@ -210,15 +198,11 @@ fn an_unknown_target_or_glsl_on_vulkan_is_a_usage_error() {
 
 #[test]
 fn the_disassembly_comes_on_request() {
-    if !set_up() {
+    if !compilers_set_up() {
         return;
     }
     let folder = tempfile::tempdir().unwrap();
-    let shader = write(
-        folder.path(),
-        "pack.wgsl",
-        "@fragment\nfn pack(@location(0) colour: vec4<f32>) -> @location(0) u32 {\n    return pack4x8unorm(colour);\n}\n",
-    );
+    let shader = write(folder.path(), "pack.wgsl", PACK_WGSL);
     let output = gbuffer("cost")
         .arg(&shader)
         .args([
