@@ -36,7 +36,7 @@ use std::fmt;
 use serde::Serialize;
 
 pub use run::{Setup, DEFAULT_ROOT};
-pub use shader::{companion_vertex_glsl, GlesForm, Shader, ShaderError, VulkanForm};
+pub use shader::{GlesForm, Shader, ShaderError, VulkanForm};
 pub use statistics::{parse, Cycles, Statistic, Statistics};
 pub use target::{Api, Architecture, Compiler, Target, DEFAULT_TARGETS, TARGETS};
 

@@ -37,13 +37,6 @@ impl Setup {
         Setup { root }
     }
 
-    /// The setup in `root`.
-    pub fn at(root: &Path) -> Setup {
-        Setup {
-            root: root.to_path_buf(),
-        }
-    }
-
     /// The folder the setup installed into.
     pub fn root(&self) -> &Path {
         &self.root

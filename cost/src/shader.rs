@@ -345,7 +345,7 @@ fn default_colors(module: &naga::Module, function: &naga::Function) -> Vec<Strin
 /// fragment shader's `in` variables (as declared at the start of a line, naga's
 /// `smooth in highp vec4 _vs2fs_location0;` as a user's `layout(location = 1) flat in uint id;`)
 /// from the vertex index, over a fullscreen triangle.
-pub fn companion_vertex_glsl(fragment: &str) -> String {
+fn companion_vertex_glsl(fragment: &str) -> String {
     let version = fragment
         .lines()
         .find(|line| line.trim_start().starts_with("#version"))
