@@ -131,13 +131,11 @@ fn shader(arguments: &Arguments) -> Result<Shader, String> {
         .is_some_and(|extension| extension == "wgsl");
     if is_wgsl {
         let resolved = resolve_file(file).map_err(|problem| problem.to_string())?;
-        let entry = match &arguments.entry {
-            Some(entry) => entry.clone(),
-            None => only_entry_point(&resolved.source)
-                .map_err(|message| format!("{}: {message}", file.display()))?,
+        let shader = match &arguments.entry {
+            Some(entry) => Shader::wgsl(&resolved.source, entry),
+            None => Shader::wgsl_only_entry_point(&resolved.source),
         };
-        return Shader::wgsl(&resolved.source, &entry)
-            .map_err(|message| format!("{}: {message}", file.display()));
+        return shader.map_err(|message| format!("{}: {message}", file.display()));
     }
     let text = std::fs::read_to_string(file)
         .map_err(|error| format!("{}: cannot read: {error}", file.display()))?;
@@ -153,30 +151,6 @@ fn shader(arguments: &Arguments) -> Result<Shader, String> {
         None => Stage::Fragment,
     };
     Ok(Shader::glsl(stage, &text))
-}
-
-/// The name of the module's one fragment or compute entry point.
-fn only_entry_point(wgsl: &str) -> Result<String, String> {
-    let module = naga::front::wgsl::parse_str(wgsl).map_err(|error| error.emit_to_string(wgsl))?;
-    let names: Vec<&str> = module
-        .entry_points
-        .iter()
-        .filter(|point| {
-            matches!(
-                point.stage,
-                naga::ShaderStage::Fragment | naga::ShaderStage::Compute
-            )
-        })
-        .map(|point| point.name.as_str())
-        .collect();
-    match names.as_slice() {
-        [name] => Ok(name.to_string()),
-        [] => Err("no fragment or compute entry point to cost".into()),
-        _ => Err(format!(
-            "several entry points ({}): name one with --entry",
-            names.join(", ")
-        )),
-    }
 }
 
 fn optional(value: Option<u64>) -> String {

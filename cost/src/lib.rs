@@ -237,21 +237,16 @@ fn prepare(
         }
         Api::Vulkan => {
             let form = shader.vulkan()?;
-            let bytes = |words: &[u32]| {
-                words
-                    .iter()
-                    .flat_map(|word| word.to_le_bytes())
-                    .collect::<Vec<u8>>()
-            };
+            let bytes = bytemuck::cast_slice::<u32, u8>;
             arguments.push(
                 scratch
-                    .write(&format!("{index}.spv"), &bytes(&form.shader))
+                    .write(&format!("{index}.spv"), bytes(&form.shader))
                     .map_err(scratch_error)?,
             );
             if let Some(vertex) = form.vertex {
                 arguments.push(
                     scratch
-                        .write(&format!("{index}.vert.spv"), &bytes(&vertex))
+                        .write(&format!("{index}.vert.spv"), bytes(&vertex))
                         .map_err(scratch_error)?,
                 );
             }

@@ -5,7 +5,10 @@
 //! a constant output into the next stage, and the fragment shader's work on it would fold away
 //! (a pack of zeros costs two Adreno instructions where a pack of varyings costs thirty).
 
+use std::sync::Arc;
+
 use naga::back::{glsl, spv};
+use naga::valid::ModuleInfo;
 use naga::{AddressSpace, Binding, ImageClass, Interpolation, ScalarKind, ShaderStage, TypeInner};
 
 use gbuffer_codegen::emit::glsl::naga_glsl;
@@ -25,8 +28,12 @@ pub struct Shader {
 enum Source {
     /// GLSL ES, with its `#version` line.
     Glsl(String),
-    /// WGSL and the entry point to compile.
-    Wgsl { text: String, entry: String },
+    /// WGSL, validated once when the shader is made (shared by its clones), and the entry
+    /// point to compile.
+    Wgsl {
+        module: Arc<(naga::Module, ModuleInfo)>,
+        entry: String,
+    },
 }
 
 /// The GL form: the stage's GLSL ES and, for a fragment shader, the vertex shader it links with.
@@ -69,8 +76,36 @@ impl Shader {
 
     /// WGSL's entry point `entry`; the stage is the entry point's. The module must validate.
     pub fn wgsl(text: &str, entry: &str) -> Result<Shader, ShaderError> {
-        let (module, _) = naga_glsl::validate(text, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
-        let entry_point = module
+        let validated = naga_glsl::validate(text, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
+        Shader::of_entry_point(Arc::new(validated), entry)
+    }
+
+    /// WGSL's one fragment or compute entry point; an error names them where there are several.
+    pub fn wgsl_only_entry_point(text: &str) -> Result<Shader, ShaderError> {
+        let validated = naga_glsl::validate(text, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
+        let names: Vec<String> = validated
+            .0
+            .entry_points
+            .iter()
+            .filter(|point| matches!(point.stage, ShaderStage::Fragment | ShaderStage::Compute))
+            .map(|point| point.name.clone())
+            .collect();
+        match names.as_slice() {
+            [name] => Shader::of_entry_point(Arc::new(validated), name),
+            [] => Err("no fragment or compute entry point to cost".into()),
+            _ => Err(format!(
+                "several entry points ({}): name one with --entry",
+                names.join(", ")
+            )),
+        }
+    }
+
+    fn of_entry_point(
+        validated: Arc<(naga::Module, ModuleInfo)>,
+        entry: &str,
+    ) -> Result<Shader, ShaderError> {
+        let entry_point = validated
+            .0
             .entry_points
             .iter()
             .find(|point| point.name == entry)
@@ -87,7 +122,7 @@ impl Shader {
         Ok(Shader {
             stage,
             source: Source::Wgsl {
-                text: text.to_string(),
+                module: validated,
                 entry: entry.to_string(),
             },
             colors: None,
@@ -119,12 +154,11 @@ impl Shader {
     pub fn gles(&self) -> Result<GlesForm, ShaderError> {
         let shader = match &self.source {
             Source::Glsl(text) => text.clone(),
-            Source::Wgsl { text, entry } => {
-                let (module, info) =
-                    naga_glsl::validate(text, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
-                let options = gles_options(&module);
-                let stage = naga_stage(self.stage);
-                naga_glsl::write((&module, &info), stage, entry, &options)?.0
+            Source::Wgsl { module, entry } => {
+                let (module, info) = &**module;
+                let options =
+                    naga_glsl::options_keeping_bindings(module, glsl::Version::new_gles(310));
+                naga_glsl::write((module, info), naga_stage(self.stage), entry, &options)?.0
             }
         };
         let vertex = (self.stage == Stage::Fragment).then(|| match &self.vertex {
@@ -136,28 +170,28 @@ impl Shader {
 
     /// The SPIR-V a Vulkan driver compiles, with what its pipeline needs.
     pub fn vulkan(&self) -> Result<VulkanForm, ShaderError> {
-        let Source::Wgsl { text, entry } = &self.source else {
+        let Source::Wgsl { module, entry } = &self.source else {
             return Err("GLSL ES is costed on GL targets only: give WGSL for Vulkan".into());
         };
-        let (module, info) = naga_glsl::validate(text, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
-        let shader = spirv(&module, &info, naga_stage(self.stage), entry)?;
+        let (module, info) = &**module;
+        let shader = spirv(module, info, naga_stage(self.stage), entry)?;
         let entry_point = module
             .entry_points
             .iter()
             .find(|point| &point.name == entry)
             .expect("the entry point was found when the shader was made");
-        let descriptors = descriptors(&module);
+        let descriptors = descriptors(module);
         let (vertex, colors) = match self.stage {
             Stage::Compute => (None, Vec::new()),
             Stage::Fragment => {
-                let vertex_wgsl = companion_vertex_wgsl(&module, &entry_point.function);
+                let vertex_wgsl = companion_vertex_wgsl(module, &entry_point.function);
                 let (vertex_module, vertex_info) =
                     naga_glsl::validate(&vertex_wgsl, naga::valid::Capabilities::empty())
                         .map_err(|error| format!("the companion vertex shader: {error}"))?;
                 let vertex = spirv(&vertex_module, &vertex_info, ShaderStage::Vertex, "main")?;
                 let colors = match &self.colors {
                     Some(colors) => colors.clone(),
-                    None => default_colors(&module, &entry_point.function),
+                    None => default_colors(module, &entry_point.function),
                 };
                 (Some(vertex), colors)
             }
@@ -179,25 +213,9 @@ fn naga_stage(stage: Stage) -> ShaderStage {
     }
 }
 
-/// GLSL ES 3.10 with every resource's binding kept (ES 3.10 declares bindings in the shader).
-fn gles_options(module: &naga::Module) -> glsl::Options {
-    let mut binding_map = glsl::BindingMap::default();
-    for (_, global) in module.global_variables.iter() {
-        if let Some(binding) = &global.binding {
-            binding_map.insert(*binding, binding.binding as u8);
-        }
-    }
-    glsl::Options {
-        version: glsl::Version::new_gles(310),
-        writer_flags: glsl::WriterFlags::empty(),
-        binding_map,
-        ..glsl::Options::default()
-    }
-}
-
 fn spirv(
     module: &naga::Module,
-    info: &naga::valid::ModuleInfo,
+    info: &ModuleInfo,
     stage: ShaderStage,
     entry: &str,
 ) -> Result<Vec<u32>, ShaderError> {

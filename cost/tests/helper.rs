@@ -57,10 +57,6 @@ fn write(folder: &Path, name: &str, bytes: &[u8]) -> String {
     path.display().to_string()
 }
 
-fn spirv_bytes(words: &[u32]) -> Vec<u8> {
-    words.iter().flat_map(|word| word.to_le_bytes()).collect()
-}
-
 #[test]
 fn the_helper_reports_each_shader_on_every_target() {
     if !compilers_set_up() {
@@ -85,12 +81,20 @@ fn the_helper_reports_each_shader_on_every_target() {
                 return pack4x8unorm(colour);\n}\n";
     let compute = Shader::wgsl(wgsl, "pack").unwrap().vulkan().unwrap();
     let shade = Shader::wgsl(wgsl, "shade").unwrap().vulkan().unwrap();
-    let compute_spv = write(folder.path(), "pack.spv", &spirv_bytes(&compute.shader));
-    let shade_spv = write(folder.path(), "shade.spv", &spirv_bytes(&shade.shader));
+    let compute_spv = write(
+        folder.path(),
+        "pack.spv",
+        bytemuck::cast_slice(&compute.shader),
+    );
+    let shade_spv = write(
+        folder.path(),
+        "shade.spv",
+        bytemuck::cast_slice(&shade.shader),
+    );
     let shade_vertex = write(
         folder.path(),
         "shade.vert.spv",
-        &spirv_bytes(shade.vertex.as_ref().unwrap()),
+        bytemuck::cast_slice(shade.vertex.as_ref().unwrap()),
     );
     for target in TARGETS {
         let output = match target.api {

@@ -48,21 +48,11 @@ pub fn translate(
     dialect: Dialect,
 ) -> Result<Translation, String> {
     let (module, info) = module(wgsl)?;
-    let mut binding_map = glsl::BindingMap::default();
-    for (_, global) in module.global_variables.iter() {
-        if let Some(binding) = &global.binding {
-            binding_map.insert(*binding, binding.binding as u8);
-        }
-    }
-    let options = glsl::Options {
-        version: match dialect {
-            Dialect::Gles => glsl::Version::new_gles(310),
-            Dialect::Vulkan => glsl::Version::Desktop(450),
-        },
-        writer_flags: glsl::WriterFlags::empty(),
-        binding_map,
-        ..glsl::Options::default()
+    let version = match dialect {
+        Dialect::Gles => glsl::Version::new_gles(310),
+        Dialect::Vulkan => glsl::Version::Desktop(450),
     };
+    let options = naga_glsl::options_keeping_bindings(&module, version);
     let (mut text, reflection) = naga_glsl::write((&module, &info), stage, entry, &options)?;
     let mut samplers: Vec<(String, u32)> = reflection
         .texture_mapping

@@ -22,6 +22,24 @@ pub fn validate(wgsl: &str, extra: Capabilities) -> Result<(naga::Module, Module
     Ok((module, info))
 }
 
+/// Options for naga's GLSL writer: `version`, clip space left as the WGSL writes it (no
+/// coordinate adjustment), and every resource keeping its WGSL binding number (GLSL ES 3.10
+/// and GLSL 450 declare bindings in the shader; a host binds by those numbers).
+pub fn options_keeping_bindings(module: &naga::Module, version: glsl::Version) -> glsl::Options {
+    let mut binding_map = glsl::BindingMap::default();
+    for (_, global) in module.global_variables.iter() {
+        if let Some(binding) = &global.binding {
+            binding_map.insert(*binding, binding.binding as u8);
+        }
+    }
+    glsl::Options {
+        version,
+        writer_flags: glsl::WriterFlags::empty(),
+        binding_map,
+        ..glsl::Options::default()
+    }
+}
+
 /// naga's GLSL of entry point `entry` (of `stage`) of a validated module, and the reflection
 /// that says which uniform samples which texture. `options` says the version, the writer's
 /// flags (naga's default adjusts clip space to GL's) and the bindings.
