@@ -77,6 +77,84 @@ impl Statistics {
     }
 }
 
+/// What a compiler calls the values the typed fields hold (`None` where it reports none).
+struct Names {
+    instructions: &'static str,
+    registers: Option<&'static str>,
+    occupancy: Option<&'static str>,
+    /// Two values whose sum is the spills (spills and fills, stores and loads).
+    spills: Option<(&'static str, &'static str)>,
+    latency: Option<&'static str>,
+    inverse_throughput: Option<&'static str>,
+    /// Mali's cycles per unit: (the compiler's name, the record's name).
+    cycle_parts: &'static [(&'static str, &'static str)],
+}
+
+const NO_NAMES: Names = Names {
+    instructions: "inst",
+    registers: None,
+    occupancy: None,
+    spills: None,
+    latency: None,
+    inverse_throughput: None,
+    cycle_parts: &[],
+};
+
+fn names(compiler: Compiler) -> Names {
+    match compiler {
+        Compiler::Valhall => Names {
+            occupancy: Some("threads"),
+            spills: Some(("spills", "fills")),
+            cycle_parts: &[
+                ("fma", "fma"),
+                ("cvt", "cvt"),
+                ("sfu", "sfu"),
+                ("v", "varying"),
+                ("t", "texture"),
+                ("ls", "load_store"),
+            ],
+            ..NO_NAMES
+        },
+        Compiler::Bifrost => Names {
+            occupancy: Some("threads"),
+            spills: Some(("spills", "fills")),
+            cycle_parts: &[
+                ("arith", "arithmetic"),
+                ("texture", "texture"),
+                ("vary", "varying"),
+                ("ldst", "load_store"),
+            ],
+            ..NO_NAMES
+        },
+        Compiler::Ir3 => Names {
+            registers: Some("full"),
+            occupancy: Some("waves"),
+            spills: Some(("stp", "ldp")),
+            ..NO_NAMES
+        },
+        Compiler::Turnip => Names {
+            instructions: "Instruction Count",
+            registers: Some("Registers used"),
+            occupancy: Some("Max Waves Per Core"),
+            spills: Some(("STP Count", "LDP Count")),
+            ..NO_NAMES
+        },
+        Compiler::Aco => Names {
+            instructions: "Instructions",
+            registers: Some("VGPRs"),
+            occupancy: Some("Subgroups per SIMD"),
+            spills: Some(("Spilled SGPRs", "Spilled VGPRs")),
+            latency: Some("Latency"),
+            inverse_throughput: Some("Inverse Throughput"),
+            ..NO_NAMES
+        },
+        Compiler::Nouveau => Names {
+            registers: Some("gpr"),
+            ..NO_NAMES
+        },
+    }
+}
+
 /// Reads one shader's statistics from the lines the helper printed for it: `message:` lines
 /// (GL) or `executable:`/`statistic:` lines (Vulkan). `None` when no line is the stage's.
 pub fn parse(compiler: Compiler, stage: Stage, lines: &[&str]) -> Option<Statistics> {
@@ -90,91 +168,38 @@ pub fn parse(compiler: Compiler, stage: Stage, lines: &[&str]) -> Option<Statist
             .find(|statistic| statistic.name == name)
             .map(|statistic| statistic.value)
     };
-    let whole = |name: &str| get(name).map(|value| value as u64);
-    let sum = |a: &str, b: &str| Some(whole(a)? + whole(b)?);
-    let statistics = match compiler {
-        Compiler::Bifrost | Compiler::Valhall => {
-            let parts: &[(&str, &str)] = if compiler == Compiler::Valhall {
-                &[
-                    ("fma", "fma"),
-                    ("cvt", "cvt"),
-                    ("sfu", "sfu"),
-                    ("v", "varying"),
-                    ("t", "texture"),
-                    ("ls", "load_store"),
-                ]
-            } else {
-                &[
-                    ("arith", "arithmetic"),
-                    ("texture", "texture"),
-                    ("vary", "varying"),
-                    ("ldst", "load_store"),
-                ]
-            };
-            Statistics {
-                instructions: whole("inst")?,
-                cycles: Some(Cycles {
-                    total: get("cycles")?,
-                    parts: parts
-                        .iter()
-                        .map(|(name, meaning)| {
-                            Some(Statistic {
-                                name: meaning.to_string(),
-                                value: get(name)?,
-                            })
-                        })
-                        .collect::<Option<_>>()?,
-                }),
-                latency_cycles: None,
-                inverse_throughput_cycles: None,
-                registers: None,
-                occupancy: whole("threads"),
-                spills: sum("spills", "fills"),
-                raw,
-            }
-        }
-        Compiler::Ir3 => Statistics {
-            instructions: whole("inst")?,
-            cycles: None,
-            latency_cycles: None,
-            inverse_throughput_cycles: None,
-            registers: whole("full"),
-            occupancy: whole("waves"),
-            spills: sum("stp", "ldp"),
-            raw,
-        },
-        Compiler::Turnip => Statistics {
-            instructions: whole("Instruction Count")?,
-            cycles: None,
-            latency_cycles: None,
-            inverse_throughput_cycles: None,
-            registers: whole("Registers used"),
-            occupancy: whole("Max Waves Per Core"),
-            spills: sum("STP Count", "LDP Count"),
-            raw,
-        },
-        Compiler::Aco => Statistics {
-            instructions: whole("Instructions")?,
-            cycles: None,
-            latency_cycles: whole("Latency"),
-            inverse_throughput_cycles: whole("Inverse Throughput"),
-            registers: whole("VGPRs"),
-            occupancy: whole("Subgroups per SIMD"),
-            spills: sum("Spilled SGPRs", "Spilled VGPRs"),
-            raw,
-        },
-        Compiler::Nouveau => Statistics {
-            instructions: whole("inst")?,
-            cycles: None,
-            latency_cycles: None,
-            inverse_throughput_cycles: None,
-            registers: whole("gpr"),
-            occupancy: None,
-            spills: None,
-            raw,
-        },
+    let whole = |name: Option<&str>| get(name?).map(|value| value as u64);
+    let names = names(compiler);
+    let cycles = if names.cycle_parts.is_empty() {
+        None
+    } else {
+        let parts = names
+            .cycle_parts
+            .iter()
+            .map(|(name, meaning)| {
+                Some(Statistic {
+                    name: meaning.to_string(),
+                    value: get(name)?,
+                })
+            })
+            .collect::<Option<_>>()?;
+        Some(Cycles {
+            total: get("cycles")?,
+            parts,
+        })
     };
-    Some(statistics)
+    Some(Statistics {
+        instructions: whole(Some(names.instructions))?,
+        cycles,
+        latency_cycles: whole(names.latency),
+        inverse_throughput_cycles: whole(names.inverse_throughput),
+        registers: whole(names.registers),
+        occupancy: whole(names.occupancy),
+        spills: names
+            .spills
+            .and_then(|(first, second)| Some(whole(Some(first))? + whole(Some(second))?)),
+        raw,
+    })
 }
 
 /// The name a shader-db line gives the stage: panfrost writes Mesa's `MESA_SHADER_FRAGMENT`,
