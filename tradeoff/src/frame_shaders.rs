@@ -17,7 +17,7 @@
 use std::fmt::Write as _;
 
 use gbuffer_cost::Shader;
-use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
+use gbuffer_render::gbuffers::GBuffer;
 use gbuffer_render::gles::sources::fused_programs;
 use gbuffer_render::on_tile::Path as TilePath;
 use gbuffer_render::shaders::{gbuffer_wgsl, lighting_pass_wgsl, Positions};
@@ -48,15 +48,16 @@ pub struct FrameShaders {
     compiled: Compiled,
 }
 
-/// Compiles the G-buffer and lighting passes of `layouts` in every form they render in.
-pub fn compile_frames(layouts: &[PackedLayout]) -> FrameShaders {
+/// Compiles the G-buffer and lighting passes of the frame table's layouts in every form they
+/// render in.
+pub fn compile_frames() -> FrameShaders {
     let mut shaders: Vec<Result<Shader, String>> = Vec::new();
     let mut forms = Vec::new();
     let mut add = |shader: Result<Shader, String>| {
         shaders.push(shader);
         shaders.len() - 1
     };
-    for &layout in layouts {
+    for (layout, _) in crate::frames::packed_layouts() {
         let options = crate::frames::options(GBuffer::Packed(layout));
         let Ok(lighting_wgsl) = lighting_pass_wgsl(&options, Positions::Texel) else {
             continue;

@@ -156,11 +156,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
     print_furnace(&furnace);
     let frames = frames::measure_all(folder, &|message| eprintln!("{message}"))?;
     frames::print(&frames, &adapter);
-    let layouts: Vec<_> = frames::packed_layouts()
-        .into_iter()
-        .map(|(layout, _)| layout)
-        .collect();
-    let frame_shaders = frame_shaders::compile_frames(&layouts);
+    let frame_shaders = frame_shaders::compile_frames();
     println!("{}", frame_shaders.markdown());
     let mut plots =
         write_plots(folder, &rows).map_err(|error| format!("writing plots: {error}"))?;
@@ -651,16 +647,41 @@ mod tests {
         let packing = packing::compile_on_compilers();
         let markdown = packing.markdown();
         assert!(!markdown.contains("| - |"), "{markdown}");
-        let layouts: Vec<_> = frames::packed_layouts()
-            .into_iter()
-            .map(|(layout, _)| layout)
+        // README's excerpt of the table is the report's lines, to the digit.
+        let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md"))
+            .expect("README.md beside the workspace");
+        let section = readme
+            .split("### On the GPUs' own compilers")
+            .nth(1)
+            .and_then(|rest| rest.split("\n### ").next())
+            .expect("README's section on the GPUs' own compilers");
+        let excerpt: Vec<&str> = section
+            .lines()
+            .filter(|line| line.starts_with("| ") && !line.starts_with("| format or layout"))
+            .filter(|line| !line.starts_with("| ---"))
             .collect();
-        let frames = frame_shaders::compile_frames(&layouts);
+        assert!(excerpt.len() >= 10, "README's packing excerpt");
+        for line in excerpt {
+            assert!(
+                markdown.lines().any(|report| report == line),
+                "README's line\n{line}\nis not the report's; the report's table:\n{markdown}"
+            );
+        }
+        let frames = frame_shaders::compile_frames();
         let markdown = frames.markdown();
         assert!(
             markdown.contains("mobile-metallic | fused native |"),
             "{markdown}"
         );
         assert!(markdown.contains("costs least on Mali-G610"), "{markdown}");
+        // README quotes the report's line for mobile-metallic.
+        let line = markdown
+            .lines()
+            .find(|line| line.starts_with("- mobile-metallic: "))
+            .expect("a line for mobile-metallic");
+        assert!(
+            section.contains(line.trim_start_matches("- ")),
+            "README does not quote the report's line:\n{line}"
+        );
     }
 }
