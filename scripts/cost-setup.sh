@@ -15,10 +15,9 @@
 # on a fresh machine, a second when everything is in place. Exit status 1 names what failed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-export DEBIAN_FRONTEND=noninteractive
+source scripts/debian.sh
 
 root=${GBUFFER_COST_ROOT:-/opt/gbuffer-cost}
-backports=/etc/apt/sources.list.d/bookworm-backports.sources
 host_packages=(mesa-drm-shim qemu-user-static gcc-aarch64-linux-gnu libc6-dev-arm64-cross
     libvulkan-dev libegl-dev libgles-dev mesa-vulkan-drivers libgl1-mesa-dri libegl-mesa0)
 arm64_packages=(libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri mesa-vulkan-drivers libvulkan1
@@ -28,17 +27,6 @@ fail() {
     echo "cost-setup: $*" >&2
     exit 1
 }
-# Retries a command three times: a mirror can fail for a moment.
-retry() {
-    for attempt in 1 2 3; do
-        "$@" && return 0
-        [ "$attempt" = 3 ] && return 1
-        sleep 10
-    done
-}
-installed() {
-    dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"
-}
 
 # 1. Host packages, from backports where it has them (Mesa 25: the drm-shim's version must be
 #    the drivers').
@@ -47,11 +35,7 @@ for package in "${host_packages[@]}"; do
     installed "$package" || missing+=("$package")
 done
 if ((${#missing[@]})); then
-    if [ ! -f "$backports" ]; then
-        printf '%s\n' 'Types: deb' 'URIs: http://deb.debian.org/debian' \
-            'Suites: bookworm-backports' 'Components: main' \
-            'Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg' >"$backports"
-    fi
+    add_backports
     retry apt-get update -qq || fail "could not update the package lists"
     retry apt-get install -y -qq --no-install-recommends -t bookworm-backports "${missing[@]}" \
         >/dev/null || fail "could not install ${missing[*]}"

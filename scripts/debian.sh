@@ -1,0 +1,26 @@
+# Sourced by .ci/run and scripts/cost-setup.sh: what both need to install Debian 12's packages.
+export DEBIAN_FRONTEND=noninteractive
+
+# Retries a command three times: a mirror can fail for a moment.
+retry() {
+    for attempt in 1 2 3; do
+        "$@" && return 0
+        [ "$attempt" = 3 ] && return 1
+        sleep 10
+    done
+}
+
+# Whether a package is installed, at a version that contains $2 where given.
+installed() {
+    dpkg-query -W -f='${Status} ${Version}' "$1" 2>/dev/null | grep -q "install ok installed.*${2:-}"
+}
+
+# Adds Debian 12's backports to apt's sources (Mesa 25 and its drm-shim come from there).
+add_backports() {
+    local sources=/etc/apt/sources.list.d/bookworm-backports.sources
+    if [ ! -f "$sources" ]; then
+        printf '%s\n' 'Types: deb' 'URIs: http://deb.debian.org/debian' \
+            'Suites: bookworm-backports' 'Components: main' \
+            'Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg' >"$sources"
+    fi
+}
