@@ -18,8 +18,11 @@ cd "$(dirname "$0")/.."
 source scripts/debian.sh
 
 root=${GBUFFER_COST_ROOT:-/opt/gbuffer-cost}
-host_packages=(mesa-drm-shim qemu-user-static gcc-aarch64-linux-gnu libc6-dev-arm64-cross
-    libvulkan-dev libegl-dev libgles-dev mesa-vulkan-drivers libgl1-mesa-dri libegl-mesa0)
+# Mesa's packages must be backports' (the drm-shim's version must be the drivers'), the
+# others may be Debian 12's.
+mesa_packages=(mesa-drm-shim mesa-vulkan-drivers libgl1-mesa-dri libegl-mesa0)
+host_packages=(qemu-user-static gcc-aarch64-linux-gnu libc6-dev-arm64-cross libvulkan-dev
+    libegl-dev libgles-dev)
 arm64_packages=(libegl1 libegl-mesa0 libgles2 libgl1-mesa-dri mesa-vulkan-drivers libvulkan1
     mesa-drm-shim)
 
@@ -28,11 +31,13 @@ fail() {
     exit 1
 }
 
-# 1. Host packages, from backports where it has them (Mesa 25: the drm-shim's version must be
-#    the drivers').
+# 1. Host packages, from backports where it has them.
 missing=()
 for package in "${host_packages[@]}"; do
     installed "$package" || missing+=("$package")
+done
+for package in "${mesa_packages[@]}"; do
+    installed "$package" "~bpo12" || missing+=("$package")
 done
 if ((${#missing[@]})); then
     add_backports
