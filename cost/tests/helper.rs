@@ -7,49 +7,9 @@
 //! `CI=true` it fails.
 
 use std::path::Path;
-use std::process::{Command, Output};
 
-use gbuffer_cost::{Api, Architecture, Setup, Shader, Stage, Target, TARGETS};
-use gbuffer_testkit::compilers_set_up;
-
-/// Runs the helper for `target` by hand, with the environment README gives for it.
-fn helper(target: &Target, arguments: &[&str]) -> Output {
-    let setup = Setup::find();
-    let root = setup.root();
-    let mut command = match target.architecture {
-        Architecture::X86_64 => {
-            let mut command = Command::new(root.join("bin/shader-stats-x86_64"));
-            command.env(
-                "LD_PRELOAD",
-                format!("/usr/lib/x86_64-linux-gnu/{}", target.shim),
-            );
-            command
-        }
-        Architecture::Aarch64 => {
-            let mut command = Command::new("/usr/bin/qemu-aarch64-static");
-            command
-                .arg("-L")
-                .arg(root.join("arm64"))
-                .arg("-E")
-                .arg(format!(
-                    "LD_PRELOAD=/usr/lib/aarch64-linux-gnu/{}",
-                    target.shim
-                ))
-                .arg(root.join("bin/shader-stats-aarch64"));
-            command
-        }
-    };
-    command
-        .env_remove("VK_ICD_FILENAMES")
-        .env("GALLIUM_THREAD", "0")
-        .env("MESA_SHADER_CACHE_DISABLE", "true")
-        .env("BIFROST_MESA_DEBUG", "shaderdb")
-        .env("FD_MESA_DEBUG", "shaderdb")
-        .envs(target.environment.iter().copied())
-        .args(arguments)
-        .output()
-        .unwrap()
-}
+use gbuffer_cost::{Api, Shader, Stage, TARGETS};
+use gbuffer_testkit::{compilers_set_up, shader_stats_by_hand as helper};
 
 fn write(folder: &Path, name: &str, bytes: &[u8]) -> String {
     let path = folder.join(name);

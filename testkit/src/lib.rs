@@ -272,3 +272,47 @@ pub struct FastBitFields {
     #[bits(32, rgbm(51.5))]
     pub rgbm_51_5: Vec3,
 }
+
+/// Runs the cost model's helper (`cost/helper/shader_stats.c`) for `target` by hand, with the
+/// target's environment and the shader-db switches on, not through `gbuffer_cost`'s runner:
+/// the tests hold the crate's readings to what the driver prints this way.
+pub fn shader_stats_by_hand(
+    target: &gbuffer_cost::Target,
+    arguments: &[&str],
+) -> std::process::Output {
+    let setup = gbuffer_cost::Setup::find();
+    let root = setup.root();
+    let mut command = match target.architecture {
+        gbuffer_cost::Architecture::X86_64 => {
+            let mut command = std::process::Command::new(root.join("bin/shader-stats-x86_64"));
+            command.env(
+                "LD_PRELOAD",
+                format!("/usr/lib/x86_64-linux-gnu/{}", target.shim),
+            );
+            command
+        }
+        gbuffer_cost::Architecture::Aarch64 => {
+            let mut command = std::process::Command::new("/usr/bin/qemu-aarch64-static");
+            command
+                .arg("-L")
+                .arg(root.join("arm64"))
+                .arg("-E")
+                .arg(format!(
+                    "LD_PRELOAD=/usr/lib/aarch64-linux-gnu/{}",
+                    target.shim
+                ))
+                .arg(root.join("bin/shader-stats-aarch64"));
+            command
+        }
+    };
+    command
+        .env_remove("VK_ICD_FILENAMES")
+        .env("GALLIUM_THREAD", "0")
+        .env("MESA_SHADER_CACHE_DISABLE", "true")
+        .env("BIFROST_MESA_DEBUG", "shaderdb")
+        .env("FD_MESA_DEBUG", "shaderdb")
+        .envs(target.environment.iter().copied())
+        .args(arguments)
+        .output()
+        .unwrap()
+}

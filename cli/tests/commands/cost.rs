@@ -4,10 +4,9 @@
 //! `scripts/cost-setup.sh` installs them: outside CI, a missing setup skips with the reason.
 
 use std::path::{Path, PathBuf};
-use std::process::Command as Process;
 
-use gbuffer_cost::Setup;
-use gbuffer_testkit::compilers_set_up;
+use gbuffer_cost::Target;
+use gbuffer_testkit::{compilers_set_up, shader_stats_by_hand};
 
 use crate::{gbuffer, Run};
 
@@ -28,36 +27,29 @@ fn write(folder: &Path, name: &str, text: &str) -> PathBuf {
 }
 
 /// The driver's own shader-db line for the fragment shader, from the helper run by hand.
-fn driver_line(
-    environment: &[(&str, &str)],
-    shim: &str,
-    shader: &Path,
-    vertex: &Path,
-    prefix: &str,
-) -> String {
-    let setup = Setup::find();
-    let root = setup.root();
-    let output = Process::new("/usr/bin/qemu-aarch64-static")
-        .env_clear()
-        .arg("-L")
-        .arg(root.join("arm64"))
-        .arg("-E")
-        .arg(format!("LD_PRELOAD=/usr/lib/aarch64-linux-gnu/{shim}"))
-        .arg(root.join("bin/shader-stats-aarch64"))
-        .args(["gl", "fragment"])
-        .arg(shader)
-        .arg(vertex)
-        .env("GALLIUM_THREAD", "0")
-        .env("MESA_SHADER_CACHE_DISABLE", "true")
-        .envs(environment.iter().copied())
-        .output()
-        .unwrap();
+fn driver_line(target: &str, shader: &Path, vertex: &Path, prefix: &str) -> String {
+    let target = Target::named(target).unwrap();
+    let (shader, vertex) = (shader.display().to_string(), vertex.display().to_string());
+    let output = shader_stats_by_hand(&target, &["gl", "fragment", &shader, &vertex]);
     let stdout = String::from_utf8_lossy(&output.stdout);
     stdout
         .lines()
         .find_map(|line| line.strip_prefix("message: ")?.strip_prefix(prefix))
         .unwrap_or_else(|| panic!("no `{prefix}` line in:\n{stdout}"))
         .to_string()
+}
+
+/// `gbuffer cost --json` of [`PACK_WGSL`] with `arguments`: its measurements.
+fn pack_measurements(arguments: &[&str]) -> Vec<serde_json::Value> {
+    let folder = tempfile::tempdir().unwrap();
+    let shader = write(folder.path(), "pack.wgsl", PACK_WGSL);
+    let output = gbuffer("cost")
+        .arg(&shader)
+        .args(arguments)
+        .arg("--json")
+        .succeed();
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    json["measurements"].as_array().unwrap().clone()
 }
 
 #[test]
@@ -74,19 +66,12 @@ fn the_numbers_are_the_drivers_own() {
         .succeed();
     let stdout = String::from_utf8_lossy(&output.stdout);
     let mali = driver_line(
-        &[("PAN_GPU_ID", "a867"), ("BIFROST_MESA_DEBUG", "shaderdb")],
-        "libpanfrost_noop_drm_shim.so",
+        "mali-g610",
         &shader,
         &vertex,
         "MESA_SHADER_FRAGMENT shader: ",
     );
-    let adreno = driver_line(
-        &[("FD_GPU_ID", "740"), ("FD_MESA_DEBUG", "shaderdb")],
-        "libfreedreno_noop_drm_shim.so",
-        &shader,
-        &vertex,
-        "FRAG shader: ",
-    );
+    let adreno = driver_line("adreno-740", &shader, &vertex, "FRAG shader: ");
     for (target, line) in [("mali-g610", mali), ("adreno-740", adreno)] {
         let section = stdout
             .split(&format!("\n{target} reported:\n"))
@@ -114,22 +99,14 @@ fn wgsl_is_costed_on_gl_and_vulkan_targets_in_json() {
     if !compilers_set_up() {
         return;
     }
-    let folder = tempfile::tempdir().unwrap();
-    let shader = write(folder.path(), "pack.wgsl", PACK_WGSL);
-    let output = gbuffer("cost")
-        .arg(&shader)
-        .args([
-            "--target",
-            "mali-g52",
-            "--target",
-            "amd-navi21",
-            "--target",
-            "adreno-630-vulkan",
-            "--json",
-        ])
-        .succeed();
-    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
-    let measurements = json["measurements"].as_array().unwrap();
+    let measurements = pack_measurements(&[
+        "--target",
+        "mali-g52",
+        "--target",
+        "amd-navi21",
+        "--target",
+        "adreno-630-vulkan",
+    ]);
     let names: Vec<&str> = measurements
         .iter()
         .map(|m| m["target"].as_str().unwrap())
@@ -201,25 +178,18 @@ fn the_disassembly_comes_on_request() {
     if !compilers_set_up() {
         return;
     }
-    let folder = tempfile::tempdir().unwrap();
-    let shader = write(folder.path(), "pack.wgsl", PACK_WGSL);
-    let output = gbuffer("cost")
-        .arg(&shader)
-        .args([
-            "--target",
-            "mali-g610",
-            "--target",
-            "amd-navi21",
-            "--disassembly",
-            "--json",
-        ])
-        .succeed();
-    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
-    for measurement in json["measurements"].as_array().unwrap() {
+    let measurements = pack_measurements(&[
+        "--target",
+        "mali-g610",
+        "--target",
+        "amd-navi21",
+        "--disassembly",
+    ]);
+    for measurement in &measurements {
         let listing = measurement["disassembly"].as_str().unwrap_or_default();
         assert!(listing.len() > 100, "{measurement}");
     }
     // ACO's listing names its instructions.
-    let aco = json["measurements"][1]["disassembly"].as_str().unwrap();
+    let aco = measurements[1]["disassembly"].as_str().unwrap();
     assert!(aco.contains("v_") || aco.contains("s_"), "{aco}");
 }
