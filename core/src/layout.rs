@@ -76,8 +76,9 @@ impl FieldType {
 /// How the WGSL converts values to and from channel codes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Conversions {
-    /// Integer operations on the float's bits: the same words on every adapter as the Rust
-    /// mirror, and portable to every backend.
+    /// Steps no adapter can round its own way (integer operations on the float's bits, and
+    /// float arithmetic only where every rounding and order gives one answer): the same words
+    /// on every adapter as the Rust mirror, and portable to every backend.
     #[default]
     Exact,
     /// What engines write: WGSL's builtins where a format has one (`pack4x8unorm` for rgba8,

@@ -194,7 +194,9 @@ pub fn measure(
 }
 
 /// What a GL compiler prints of `shader` with its listing flag (`None` where it prints
-/// nothing: nouveau lists only in Mesa's debug builds).
+/// nothing: nouveau lists only in Mesa's debug builds). Freedreno and nouveau print it on
+/// standard error; panfrost on standard output, after the helper's own lines (`renderer:`,
+/// `version:`, `shader: 0`), which are left out.
 fn gl_listing(
     setup: &Setup,
     shader: &Shader,
@@ -205,8 +207,17 @@ fn gl_listing(
         return Ok(None);
     };
     arguments.insert(0, "gl".to_string());
-    let (_, stderr) = setup.run(target, &arguments, true)?;
-    Ok((!stderr.trim().is_empty()).then_some(stderr))
+    let (stdout, stderr) = setup.run(target, &arguments, true)?;
+    let helper_line = |line: &&str| {
+        line.starts_with("renderer: ") || line.starts_with("version: ") || *line == "shader: 0"
+    };
+    let listing: String = stdout
+        .lines()
+        .skip_while(helper_line)
+        .chain(stderr.lines())
+        .map(|line| format!("{line}\n"))
+        .collect();
+    Ok((!listing.trim().is_empty()).then_some(listing))
 }
 
 /// Writes `shader`'s files for `target` and returns the helper's arguments for it.

@@ -37,12 +37,12 @@ pub const WGSL: &str = "\
 // Signed normalized encode, per lane: GL's round(clamp(value, -1, 1) * (2^(bits - 1) - 1)),
 // halves away from zero, exact: the magnitude's unorm code at bits - 1 bits (NaN's is 0),
 // negated in the bits-bit two's complement for a set sign bit (a multiply-free negation, as
-// GLSL ES 3.00 has no `select` on integer vectors). magnitude_* are to_unorm's parameters
-// at bits - 1 bits; mask is 2^bits - 1.
-fn PREFIX_LANES_to_snorm(value: FLOATS, magnitude_bits: UINTS, magnitude_max: UINTS, shift_bias: UINTS, mask: UINTS) -> UINTS {
+// GLSL ES 3.00 has no `select` on integer vectors). magnitude_max and two_to_magnitude_bits
+// are to_unorm's parameters at bits - 1 bits; mask is 2^bits - 1.
+fn PREFIX_LANES_to_snorm(value: FLOATS, magnitude_max: FLOATS, two_to_magnitude_bits: FLOATS, mask: UINTS) -> UINTS {
     let value_bits = bitcast<UINTS>(value);
     let magnitude = bitcast<FLOATS>(value_bits & UINTS(0x7fffffffu));
-    let code = PREFIX_LANES_to_unorm(magnitude, magnitude_bits, magnitude_max, shift_bias);
+    let code = PREFIX_LANES_to_unorm(magnitude, magnitude_max, two_to_magnitude_bits);
     let negative = value_bits >> UINTS(31u);
     return ((code ^ (UINTS(0u) - negative)) + negative) & mask;
 }
@@ -65,11 +65,10 @@ fn wgsl(field: &BitField) -> Functions {
     let max = max_code(each);
     Functions {
         encode: format!(
-            "    let codes = {prefix}_{}_to_snorm(value, {}, {}, {}, {});\n    return {};\n",
+            "    let codes = {prefix}_{}_to_snorm(value, {}, {}, {});\n    return {};\n",
             lanes.name(),
-            lanes.splat(each - 1),
-            lanes.splat(max >> 1),
-            lanes.splat(150 - (each - 1)),
+            lanes.splat_f32((max >> 1) as f32),
+            lanes.splat_f32((1u32 << (each - 1)) as f32),
             lanes.splat(max),
             field.joined("codes")
         ),

@@ -3,36 +3,39 @@
 //! from 1 up the largest code. 1 to 23 bits per component (past that an f32 has no more bits to
 //! give). The formats `rgba8`, `rgb10_a2` and `rg16` are built from it.
 //!
-//! The exact WGSL works on the float's bits, as the mirror does, because a GPU compiler may
-//! reassociate float arithmetic; the fast form is the engines' `u32(clamp(x) * max + 0.5)`, one
-//! code from the exact one at most.
+//! The exact encode rounds in f32 arithmetic and then checks its rounding exactly: the engines'
+//! `u32(clamp(x) * max + 0.5)` is the code or one above it, whatever the adapter's rounding,
+//! and one more product, exact by construction, tells which. The fast form is that first step
+//! alone, one code from the exact one at most.
 
 use super::wgsl::{BitField, Functions};
 use super::{max_code, Codec, F32_INFINITY_BITS};
 
-/// The bits of 1.0 as f32.
-const F32_ONE_BITS: u32 = 0x3f80_0000;
-
 /// Unsigned normalized encode: `floor(0.5 + (2^bits - 1) * clamp(value, 0, 1))`, exact; NaN
 /// gives 0. Valid for `bits` from 1 to 23.
 ///
-/// The WGSL's algorithm ([`WGSL_ENCODE`]): with `value = significand * 2^-(shift + bits)` and
-/// `2^bits - 1 = max_code`, the code is `(significand - significand / 2^bits + 2^(shift -
-/// 1)) >> shift`, where rounding `significand / 2^bits` up changes no result. NaN and negatives
-/// (as unsigned integers above infinity's bits) clamp to 0, values from 1.0 up to 1.0; past a
-/// shift of 26 every code is 0, as it is at 26.
+/// The WGSL's algorithm ([`WGSL_ENCODE`]), step for step, with `x` the clamped value (NaN and
+/// negatives, as unsigned integers above infinity's bits, give 0) and `max_code = 2^bits - 1`:
+/// - the candidate `floor(x * max_code + 0.5)` is the code or the code plus one however its
+///   roundings go, fused or not: a rounding never crosses an integer the exact value lies
+///   beyond, and the exact sum is below the code plus one;
+/// - it is one too high exactly when `x * max_code + 0.5 < candidate`, that is when `x *
+///   2^bits - candidate + 0.5 < x`, and each step of that is exact: `x * 2^bits` (a power of
+///   two), its difference with the candidate (the two lie within a factor of two, Sterbenz's
+///   lemma), and the half added (the sum is exact wherever it could equal `x`: from `x =
+///   2^-(bits + 1)` up; below, the candidate is 0 and the sum at least 0.5), in any order an
+///   optimiser picks (freedreno folds the half into the candidate first, also exact).
 #[inline(always)]
 pub fn unorm_from_f32(value: f32, bits: u32) -> u32 {
-    let value_bits = value.to_bits();
-    let clamped = if value_bits > F32_INFINITY_BITS {
-        0
+    let x = if value.to_bits() > F32_INFINITY_BITS {
+        0.0
     } else {
-        value_bits.min(F32_ONE_BITS)
+        value.min(1.0)
     };
-    let significand = (clamped & 0x7f_ffff) | 0x80_0000;
-    let shift = (150 - bits - (clamped >> 23)).min(26);
-    let scaled = significand - ((significand + max_code(bits)) >> bits);
-    (scaled + ((1 << shift) >> 1)) >> shift
+    let candidate = (x * max_code(bits) as f32 + 0.5).floor();
+    let below = (x * (1u32 << bits) as f32 - candidate) + 0.5;
+    let correction = if below < x { 1.0 } else { 0.0 };
+    (candidate - correction) as u32
 }
 
 /// Unsigned normalized decode: the exact quotient `code / (2^bits - 1)`, correctly rounded.
@@ -43,22 +46,20 @@ pub fn f32_from_unorm(code: u32, bits: u32) -> f32 {
 
 /// The exact encode, per lane (`PREFIX_LANES_to_unorm`).
 pub const WGSL_ENCODE: &str = "\
-// Unsigned normalized encode, per lane: floor(0.5 + max_code * clamp(value, 0, 1)), exact, in
-// integer arithmetic on the float's bits (a GPU compiler may reassociate float arithmetic, so
-// exactness cannot rest on it). With value = significand * 2^-(shift + bits) and max_code =
-// 2^bits - 1, the code is (significand - significand / 2^bits + 2^(shift - 1)) >> shift, and
-// rounding significand / 2^bits up changes no result. NaN and negatives give 0 (as unsigned
-// integers their bits lie above infinity's), values from 1.0 up give max_code; past a shift of
-// 26 every code is 0, as it is at 26. No branch, so the fragments of a tile never diverge, and
-// no `select` on integer vectors, which GLSL ES 3.00 cannot express (a multiply by 0 or 1).
-// shift_bias is 150 - bits (passed in: an optimiser does not fold vector constants).
-fn PREFIX_LANES_to_unorm(value: FLOATS, bits: UINTS, max_code: UINTS, shift_bias: UINTS) -> UINTS {
-    let value_bits = bitcast<UINTS>(value);
-    let clamped = min(value_bits, UINTS(0x3f800000u)) * UINTS(value_bits <= UINTS(0x7f800000u));
-    let significand = (clamped & UINTS(0x7fffffu)) | UINTS(0x800000u);
-    let shift = min(shift_bias - (clamped >> UINTS(23u)), UINTS(26u));
-    let scaled = significand - ((significand + max_code) >> bits);
-    return (scaled + ((UINTS(1u) << shift) >> UINTS(1u))) >> shift;
+// Unsigned normalized encode, per lane: floor(0.5 + max_code * clamp(value, 0, 1)), exact.
+// NaN and negatives give 0 (as unsigned integers their bits lie above infinity's; saturate's
+// NaN is the adapter's, so it is not trusted), values from 1.0 up max_code. The candidate,
+// rounded in f32 as engines round, is the code or one above it whatever the adapter's rounding;
+// it is one too high exactly when x * max_code + 0.5 < candidate, tested as x * two_to_bits -
+// candidate + 0.5 < x, whose every step is exact (a power-of-two product, Sterbenz's lemma, a
+// sum exact wherever it could equal x), so no rounding mode, fused multiply-add or reordering
+// changes the answer (the proof: unorm_from_f32 in gbuffer-core). Float selects only: GLSL ES
+// 3.00 has none on integer vectors. max_code = 2^bits - 1 and two_to_bits = 2^bits.
+fn PREFIX_LANES_to_unorm(value: FLOATS, max_code: FLOATS, two_to_bits: FLOATS) -> UINTS {
+    let x = select(FLOATS(0.0), saturate(value), bitcast<UINTS>(value) <= UINTS(0x7f800000u));
+    let candidate = floor(x * max_code + FLOATS(0.5));
+    let below = (x * two_to_bits - candidate) + FLOATS(0.5);
+    return UINTS(candidate - select(FLOATS(0.0), FLOATS(1.0), below < x));
 }
 
 ";
@@ -103,8 +104,8 @@ pub fn wgsl_decode(field: &BitField) -> String {
 pub const CODEC: Codec =
     Codec::floats("unorm", (1, 23), (unorm_from_f32, f32_from_unorm), wgsl).with_fast_form();
 
-/// A unorm bit field's WGSL: the exact encode on the float's bits, or the engines' f32
-/// rounding; the decode, each code times its largest code's reciprocal.
+/// A unorm bit field's WGSL: the exact encode (the engines' f32 rounding, checked), or that
+/// rounding alone; the decode, each code times its largest code's reciprocal.
 fn wgsl(field: &BitField) -> Functions {
     let (prefix, lanes, each) = (field.prefix, field.lanes, field.each);
     let max = max_code(each);
@@ -120,11 +121,10 @@ fn wgsl(field: &BitField) -> Functions {
         )
     } else {
         format!(
-            "    let codes = {prefix}_{}_to_unorm(value, {}, {}, {});\n    return {};\n",
+            "    let codes = {prefix}_{}_to_unorm(value, {}, {});\n    return {};\n",
             lanes.name(),
-            lanes.splat(each),
-            lanes.splat(max),
-            lanes.splat(150 - each),
+            lanes.splat_f32(max as f32),
+            lanes.splat_f32((1u32 << each) as f32),
             field.joined("codes")
         )
     };

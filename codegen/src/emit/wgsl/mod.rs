@@ -3,9 +3,10 @@
 //!
 //! Exact conversions (the default) give every conforming adapter the Rust mirror's bits. They
 //! use only steps whose result no adapter may choose: integer and bit operations on the
-//! float's bits, comparisons, `min`, `round` of a value scaled by a power of two, and
-//! `unpack2x16float` (binary16 to binary32 loses nothing). Float arithmetic is avoided: a GPU
-//! compiler may reassociate it. WGSL's `pack2x16float` rounds in an implementation-defined
+//! float's bits, comparisons, `min`, `floor` of a value scaled by a power of two, float
+//! arithmetic only where every order and rounding a GPU compiler may pick gives the same
+//! answer (unorm's checked candidate, see `gbuffer_core::codecs::unorm`), and
+//! `unpack2x16float` (binary16 to binary32 loses nothing). WGSL's `pack2x16float` rounds in an implementation-defined
 //! way and `pack4x8unorm` lets the adapter pick either neighbour, so exact conversions do not
 //! use them. The channels of a word are converted together, one vector instruction for all of
 //! them; nothing branches on the data, and no `select` works on integer vectors (GLSL ES 3.00
@@ -583,11 +584,10 @@ fn encode_body(prefix: &str, format: Format) -> String {
             )
         }
         Encoding::Unorm => format!(
-            "{prefix}_{}_to_unorm(c, {}, {}, {})",
+            "{prefix}_{}_to_unorm(c, {}, {})",
             lanes.name(),
-            per_channel(format, |c| c.bits),
-            per_channel(format, |c| max_code(c.bits)),
-            per_channel(format, |c| 150 - c.bits)
+            channel_literal(format, "f32", |c| format!("{:?}", max_code(c.bits) as f32)),
+            channel_literal(format, "f32", |c| format!("{:?}", (1u32 << c.bits) as f32))
         ),
         Encoding::Half => format!("{prefix}_{}_to_half(c)", lanes.name()),
         Encoding::UnsignedFloat => {
