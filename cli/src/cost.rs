@@ -130,7 +130,7 @@ fn shader(arguments: &Arguments) -> Result<Shader, String> {
         .extension()
         .is_some_and(|extension| extension == "wgsl");
     if is_wgsl {
-        let resolved = resolve_file(file).map_err(|problem| problem.to_string())?;
+        let resolved = resolve_file(file, &[]).map_err(|problem| problem.to_string())?;
         let shader = match &arguments.entry {
             Some(entry) => Shader::wgsl(&resolved.source, entry),
             None => Shader::wgsl_only_entry_point(&resolved.source),

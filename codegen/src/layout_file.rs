@@ -191,7 +191,7 @@ impl FileError {
         kind: &'static str,
         parse: impl FnOnce(&str, &Path) -> Result<T, Vec<FileDiagnostic>>,
     ) -> Result<T, FileError> {
-        let source = std::fs::read_to_string(path).map_err(|error| FileError::Io {
+        let source = crate::input::read_input(path).map_err(|error| FileError::Io {
             kind,
             path: path.to_path_buf(),
             error,

@@ -6,7 +6,8 @@
 //! emitters:
 //!
 //! - [`emit`]: WGSL and Rust mirror emitters;
-//! - with the `tools` feature (on by default): `layout_file` (layouts in TOML), `output` (the
+//! - with the `tools` feature (on by default): `input` (how every input file is read),
+//!   `layout_file` (layouts in TOML), `output` (the
 //!   files the tool writes, atomically and only when changed), the GLSL and
 //!   Rust-source emitters, `Builder` for build scripts (the `gbuffer codegen` command runs them).
 //!
@@ -15,6 +16,8 @@
 #[cfg(feature = "tools")]
 mod builder;
 pub mod emit;
+#[cfg(feature = "tools")]
+pub mod input;
 #[cfg(feature = "tools")]
 pub mod layout_file;
 #[cfg(feature = "tools")]

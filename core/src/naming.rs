@@ -24,14 +24,26 @@ pub fn snake_case(name: &str) -> String {
     snake
 }
 
+/// The longest name a layout, field or scene may have, in characters. Generated names join a
+/// layout's snake_case name, a field's and a suffix, and GLSL ES implementations need accept
+/// identifiers of no more than 1024 characters (GLSL ES 3.20, section 3.7).
+pub const MAX_IDENTIFIER_LENGTH: usize = 128;
+
 /// Checks that `name` is an identifier every output accepts: ASCII letters, digits and
-/// underscores, not starting with a digit or `__`, and not a WGSL keyword or reserved word.
-/// The error completes the sentence "name `x` ...".
+/// underscores, not starting with a digit, at most [`MAX_IDENTIFIER_LENGTH`] characters,
+/// without `__` (WGSL reserves it at the start, GLSL anywhere), and none of WGSL's, GLSL ES's
+/// or Rust's keywords and reserved words. The error completes the sentence "name `x` ...".
 pub fn check_identifier(name: &str) -> Result<(), String> {
     let mut characters = name.chars();
     let Some(first) = characters.next() else {
         return Err("is empty".into());
     };
+    if name.len() > MAX_IDENTIFIER_LENGTH {
+        return Err(format!(
+            "is {} characters long; names are limited to {MAX_IDENTIFIER_LENGTH}",
+            name.len()
+        ));
+    }
     if !(first.is_ascii_alphabetic() || first == '_')
         || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
     {
@@ -39,11 +51,19 @@ pub fn check_identifier(name: &str) -> Result<(), String> {
             "must be an ASCII identifier (letters, digits, `_`; not starting with a digit)".into(),
         );
     }
-    if name == "_" || name.starts_with("__") {
-        return Err("is reserved in WGSL (`_` and names starting with `__`)".into());
+    if name == "_" || name.contains("__") {
+        return Err(
+            "is reserved (`_` alone in WGSL and Rust, `__` in WGSL and GLSL): rename it".into(),
+        );
     }
-    if WGSL_RESERVED.binary_search(&name).is_ok() {
-        return Err("is a WGSL keyword or reserved word: rename it".into());
+    for (language, reserved) in [
+        ("WGSL", WGSL_RESERVED),
+        ("GLSL ES", GLSL_RESERVED),
+        ("Rust", RUST_RESERVED),
+    ] {
+        if reserved.binary_search(&name).is_ok() {
+            return Err(format!("is a {language} keyword or reserved word: rename it"));
+        }
     }
     Ok(())
 }
@@ -441,6 +461,258 @@ pub const WGSL_RESERVED: &[&str] = &[
     "yield",
 ];
 
+/// GLSL ES 3.20's keywords and the words it reserves for future use (GLSL ES 3.20, section
+/// 3.7), sorted. naga renames such names in what it translates, but the includes' own
+/// declarations use the names as written.
+pub const GLSL_RESERVED: &[&str] = &[
+    "active",
+    "asm",
+    "atomic_uint",
+    "attribute",
+    "bool",
+    "break",
+    "buffer",
+    "bvec2",
+    "bvec3",
+    "bvec4",
+    "case",
+    "cast",
+    "centroid",
+    "class",
+    "coherent",
+    "common",
+    "const",
+    "continue",
+    "default",
+    "discard",
+    "do",
+    "double",
+    "dvec2",
+    "dvec3",
+    "dvec4",
+    "else",
+    "enum",
+    "extern",
+    "external",
+    "false",
+    "filter",
+    "fixed",
+    "flat",
+    "float",
+    "for",
+    "fvec2",
+    "fvec3",
+    "fvec4",
+    "goto",
+    "half",
+    "highp",
+    "hvec2",
+    "hvec3",
+    "hvec4",
+    "if",
+    "iimage1D",
+    "iimage1DArray",
+    "iimage2D",
+    "iimage2DArray",
+    "iimage2DMS",
+    "iimage2DMSArray",
+    "iimage2DRect",
+    "iimage3D",
+    "iimageBuffer",
+    "iimageCube",
+    "iimageCubeArray",
+    "image1D",
+    "image1DArray",
+    "image2D",
+    "image2DArray",
+    "image2DMS",
+    "image2DMSArray",
+    "image2DRect",
+    "image3D",
+    "imageBuffer",
+    "imageCube",
+    "imageCubeArray",
+    "in",
+    "inline",
+    "inout",
+    "input",
+    "int",
+    "interface",
+    "invariant",
+    "isampler1D",
+    "isampler1DArray",
+    "isampler2D",
+    "isampler2DArray",
+    "isampler2DMS",
+    "isampler2DMSArray",
+    "isampler2DRect",
+    "isampler3D",
+    "isamplerBuffer",
+    "isamplerCube",
+    "isamplerCubeArray",
+    "ivec2",
+    "ivec3",
+    "ivec4",
+    "layout",
+    "long",
+    "lowp",
+    "mat2",
+    "mat2x2",
+    "mat2x3",
+    "mat2x4",
+    "mat3",
+    "mat3x2",
+    "mat3x3",
+    "mat3x4",
+    "mat4",
+    "mat4x2",
+    "mat4x3",
+    "mat4x4",
+    "mediump",
+    "namespace",
+    "noinline",
+    "noperspective",
+    "out",
+    "output",
+    "partition",
+    "patch",
+    "precise",
+    "precision",
+    "public",
+    "readonly",
+    "resource",
+    "restrict",
+    "return",
+    "sample",
+    "sampler1D",
+    "sampler1DArray",
+    "sampler1DArrayShadow",
+    "sampler1DShadow",
+    "sampler2D",
+    "sampler2DArray",
+    "sampler2DArrayShadow",
+    "sampler2DMS",
+    "sampler2DMSArray",
+    "sampler2DRect",
+    "sampler2DRectShadow",
+    "sampler2DShadow",
+    "sampler3D",
+    "sampler3DRect",
+    "samplerBuffer",
+    "samplerCube",
+    "samplerCubeArray",
+    "samplerCubeArrayShadow",
+    "samplerCubeShadow",
+    "shared",
+    "short",
+    "sizeof",
+    "smooth",
+    "static",
+    "struct",
+    "subroutine",
+    "superp",
+    "switch",
+    "template",
+    "this",
+    "true",
+    "typedef",
+    "uimage1D",
+    "uimage1DArray",
+    "uimage2D",
+    "uimage2DArray",
+    "uimage2DMS",
+    "uimage2DMSArray",
+    "uimage2DRect",
+    "uimage3D",
+    "uimageBuffer",
+    "uimageCube",
+    "uimageCubeArray",
+    "uint",
+    "uniform",
+    "union",
+    "unsigned",
+    "usampler1D",
+    "usampler1DArray",
+    "usampler2D",
+    "usampler2DArray",
+    "usampler2DMS",
+    "usampler2DMSArray",
+    "usampler2DRect",
+    "usampler3D",
+    "usamplerBuffer",
+    "usamplerCube",
+    "usamplerCubeArray",
+    "using",
+    "uvec2",
+    "uvec3",
+    "uvec4",
+    "varying",
+    "vec2",
+    "vec3",
+    "vec4",
+    "void",
+    "volatile",
+    "while",
+    "writeonly",
+];
+
+/// Rust's strict and reserved keywords (the Rust Reference, "Keywords", edition 2024), sorted;
+/// `crate`, `self`, `super` and `Self` cannot even be raw identifiers.
+pub const RUST_RESERVED: &[&str] = &[
+    "Self",
+    "abstract",
+    "as",
+    "async",
+    "await",
+    "become",
+    "box",
+    "break",
+    "const",
+    "continue",
+    "crate",
+    "do",
+    "dyn",
+    "else",
+    "enum",
+    "extern",
+    "false",
+    "final",
+    "fn",
+    "for",
+    "gen",
+    "if",
+    "impl",
+    "in",
+    "let",
+    "loop",
+    "macro",
+    "match",
+    "mod",
+    "move",
+    "mut",
+    "override",
+    "priv",
+    "pub",
+    "ref",
+    "return",
+    "self",
+    "static",
+    "struct",
+    "super",
+    "trait",
+    "true",
+    "try",
+    "type",
+    "typeof",
+    "unsafe",
+    "unsized",
+    "use",
+    "virtual",
+    "where",
+    "while",
+    "yield",
+];
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -463,13 +735,16 @@ mod tests {
     fn reserved_lists_are_sorted_for_binary_search() {
         assert!(WGSL_RESERVED.windows(2).all(|pair| pair[0] < pair[1]));
         assert!(WGSL_PREDECLARED.windows(2).all(|pair| pair[0] < pair[1]));
+        assert!(GLSL_RESERVED.windows(2).all(|pair| pair[0] < pair[1]));
+        assert!(RUST_RESERVED.windows(2).all(|pair| pair[0] < pair[1]));
     }
 
     #[test]
     fn layout_names() {
         assert!(check_layout_name("MobileMetallic").is_ok());
         assert!(check_layout_name("main").is_ok(), "GLSL renames it");
-        assert!(check_layout_name("vec4").unwrap_err().contains("`vec4`"));
+        assert!(check_layout_name("clamp").unwrap_err().contains("`clamp`"));
+        assert!(check_layout_name("vec4").unwrap_err().contains("GLSL ES keyword"));
         assert!(check_layout_name("GlState")
             .unwrap_err()
             .contains("`gl_state_target0`"));
@@ -483,5 +758,13 @@ mod tests {
         assert!(check_identifier("__hidden").is_err());
         assert!(check_identifier("2d").is_err());
         assert!(check_identifier("größe").is_err());
+        // Each language's own: Rust's `in`, `dyn`, `box`; GLSL's `sample`, `smooth`.
+        for name in ["in", "dyn", "box", "sample", "smooth", "a__b"] {
+            assert!(check_identifier(name).is_err(), "{name}");
+        }
+        assert!(check_identifier(&"n".repeat(MAX_IDENTIFIER_LENGTH)).is_ok());
+        assert!(check_identifier(&"n".repeat(MAX_IDENTIFIER_LENGTH + 1))
+            .unwrap_err()
+            .contains("limited to 128"));
     }
 }

@@ -1,13 +1,19 @@
 //! Include resolution for user shaders: a line `#include <gbuffer/NAME>` pulls in a module of
 //! the shading library (with its dependencies), `#include "PATH.toml"` the generated WGSL of a
 //! layout file, and `#include "PATH.wgsl"` another WGSL file (itself resolved). Paths are
-//! relative to the including file. Each module and file is included once.
+//! relative to the including file, and the file they name must lie inside one of the include
+//! roots: the folder of the file given (as a C compiler's quoted includes would find it) and
+//! any folder the caller adds (`gbuffer validate --include-dir`), so that a shader cannot
+//! read files elsewhere on the machine. Each module and file is included once; files nest at
+//! most [`MAX_INCLUDE_DEPTH`] deep. Files are read as every input is
+//! ([`gbuffer_codegen::input::read_input`]).
 //!
 //! The result keeps a map from its lines back to where they came from, so a problem in the
 //! combined source is reported at its file and line.
 
 use std::path::{Path, PathBuf};
 
+use gbuffer_codegen::input::read_input;
 use gbuffer_codegen::layout_file::read_layout_file;
 
 use crate::{FileProblem, Stage};
@@ -82,24 +88,41 @@ fn include_problem(file: &Path, line: Option<usize>, message: String) -> Box<Fil
     })
 }
 
-/// Reads `path` and resolves its includes.
-pub fn resolve_file(path: &Path) -> Result<Resolved, Box<FileProblem>> {
-    let mut resolver = Resolver::default();
-    let source = std::fs::read_to_string(path)
+/// How deep `#include "FILE"` may nest: a chain longer than any project's, and short enough
+/// that resolving it cannot exhaust the stack.
+pub const MAX_INCLUDE_DEPTH: usize = 64;
+
+/// Reads `path` and resolves its includes, confined to `path`'s folder and `include_dirs`.
+pub fn resolve_file(path: &Path, include_dirs: &[PathBuf]) -> Result<Resolved, Box<FileProblem>> {
+    let source = read_input(path)
         .map_err(|error| include_problem(path, None, format!("cannot read the file: {error}")))?;
+    resolve_source(path, &source, include_dirs)
+}
+
+/// Resolves the includes of `source`, read from `path`, confined to `path`'s folder and
+/// `include_dirs`.
+pub fn resolve_source(
+    path: &Path,
+    source: &str,
+    include_dirs: &[PathBuf],
+) -> Result<Resolved, Box<FileProblem>> {
+    let folder = path
+        .parent()
+        .filter(|parent| !parent.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let mut resolver = Resolver {
+        roots: std::iter::once(folder)
+            .chain(include_dirs.iter().map(PathBuf::as_path))
+            .map(canonical)
+            .collect(),
+        ..Resolver::default()
+    };
     resolver.included_files.push(canonical(path));
-    resolver.resolve(path, &source)?;
+    resolver.resolve(path, source, 0)?;
     Ok(resolver.finish())
 }
 
-/// Resolves the includes of `source`, read from `path`.
-pub fn resolve_source(path: &Path, source: &str) -> Result<Resolved, Box<FileProblem>> {
-    let mut resolver = Resolver::default();
-    resolver.included_files.push(canonical(path));
-    resolver.resolve(path, source)?;
-    Ok(resolver.finish())
-}
-
+/// `path` with links and `..` resolved, where it exists.
 fn canonical(path: &Path) -> PathBuf {
     path.canonicalize().unwrap_or_else(|_| path.to_path_buf())
 }
@@ -107,6 +130,8 @@ fn canonical(path: &Path) -> PathBuf {
 #[derive(Default)]
 struct Resolver {
     resolved: Resolved,
+    /// The folders included files must lie in, canonical.
+    roots: Vec<PathBuf>,
     included_modules: Vec<&'static str>,
     included_files: Vec<PathBuf>,
     /// `enable` directives of included modules: WGSL wants them before every declaration.
@@ -140,7 +165,13 @@ impl Resolver {
         self.resolved
     }
 
-    fn resolve(&mut self, path: &Path, source: &str) -> Result<(), Box<FileProblem>> {
+    /// Resolves `source`, read from `path`, which `depth` includes led to.
+    fn resolve(
+        &mut self,
+        path: &Path,
+        source: &str,
+        depth: usize,
+    ) -> Result<(), Box<FileProblem>> {
         let origin = path.display().to_string();
         let mut pending = String::new();
         let mut pending_start = 1;
@@ -184,9 +215,25 @@ impl Resolver {
                 .and_then(|rest| rest.strip_suffix('"'))
             {
                 let included = path.parent().unwrap_or(Path::new(".")).join(relative);
-                let key = canonical(&included);
+                let key = included.canonicalize().map_err(|problem| {
+                    error(format!("cannot read included file `{}`: {problem}", included.display()))
+                })?;
+                if !self.roots.iter().any(|root| key.starts_with(root)) {
+                    let roots: Vec<String> =
+                        self.roots.iter().map(|root| root.display().to_string()).collect();
+                    return Err(error(format!(
+                        "cannot include `{relative}`: it lies outside the include roots ({}); \
+                         add its folder with --include-dir",
+                        roots.join(", ")
+                    )));
+                }
                 if self.included_files.contains(&key) {
                     continue;
+                }
+                if depth + 1 > MAX_INCLUDE_DEPTH {
+                    return Err(error(format!(
+                        "cannot include `{relative}`: includes nest more than {MAX_INCLUDE_DEPTH} files deep"
+                    )));
                 }
                 self.included_files.push(key);
                 match included.extension().and_then(|extension| extension.to_str()) {
@@ -196,9 +243,9 @@ impl Resolver {
                         self.resolved.push(&format!("<generated from {}>", included.display()), 1, &wgsl);
                     }
                     Some("wgsl") => {
-                        let text = std::fs::read_to_string(&included)
+                        let text = read_input(&included)
                             .map_err(|problem| error(format!("cannot read included file `{}`: {problem}", included.display())))?;
-                        self.resolve(&included, &text)?;
+                        self.resolve(&included, &text, depth + 1)?;
                     }
                     _ => return Err(error(format!("cannot include `{relative}`: only .wgsl and .toml (layout) files can be included"))),
                 }
@@ -220,7 +267,7 @@ mod tests {
     #[test]
     fn shaderlib_modules_are_included_once_with_their_dependencies() {
         let source = "#include <gbuffer/shading>\n#include <gbuffer/microfacet>\nfn f() -> f32 { return d_ggx(1.0, 0.5); }\n";
-        let resolved = resolve_source(Path::new("user.wgsl"), source).unwrap();
+        let resolved = resolve_source(Path::new("user.wgsl"), source, &[]).unwrap();
         assert_eq!(
             resolved
                 .source
@@ -238,6 +285,7 @@ mod tests {
         let error = resolve_source(
             Path::new("user.wgsl"),
             "fn f() {}\n#include <gbuffer/brdf>\n",
+            &[],
         )
         .unwrap_err();
         assert_eq!(error.location, Some((2, 1)));
@@ -246,7 +294,7 @@ mod tests {
             "{}",
             error.message
         );
-        let error = resolve_source(Path::new("user.wgsl"), "#include shading\n").unwrap_err();
+        let error = resolve_source(Path::new("user.wgsl"), "#include shading\n", &[]).unwrap_err();
         assert!(
             error.message.starts_with("malformed include"),
             "{}",

@@ -6,10 +6,11 @@
 
 pub mod cost;
 pub mod diagnostic;
+pub mod expression_size;
 pub mod include;
 
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use gbuffer_codegen::emit::glsl::naga_glsl;
 pub use gbuffer_codegen::emit::glsl::naga_glsl::GENERATED_CODE_CAPABILITIES;
@@ -339,24 +340,51 @@ impl fmt::Display for FileProblem {
     }
 }
 
-/// Checks a WGSL file: resolves its includes, validates it with naga, and (with `portability`)
-/// translates it to every backend. Returns every problem found; empty when the file is valid.
-pub fn check_file(path: &Path, portability: bool) -> Vec<FileProblem> {
-    let resolved = match include::resolve_file(path) {
+/// The stack of the thread that parses, validates and translates a shader: naga walks an
+/// expression tree recursively, and a chain of [`expression_size::MAX_OPERATORS`] operators
+/// is that deep.
+const CHECK_STACK_BYTES: usize = 256 << 20;
+
+/// Checks a WGSL file: resolves its includes (confined to its folder and `include_dirs`),
+/// validates it with naga, and (with `portability`) translates it to every backend. Returns
+/// every problem found; empty when the file is valid.
+pub fn check_file(path: &Path, portability: bool, include_dirs: &[PathBuf]) -> Vec<FileProblem> {
+    let resolved = match include::resolve_file(path, include_dirs) {
         Ok(resolved) => resolved,
         Err(problem) => return vec![*problem],
     };
+    std::thread::scope(|scope| {
+        std::thread::Builder::new()
+            .name("gbuffer-validate".into())
+            .stack_size(CHECK_STACK_BYTES)
+            .spawn_scoped(scope, || check_resolved(path, &resolved, portability))
+            .map(|thread| thread.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+            .unwrap_or_else(|error| {
+                vec![FileProblem {
+                    origin: path.display().to_string(),
+                    location: None,
+                    stage: Stage::Parse,
+                    message: format!("cannot start the checking thread: {error}"),
+                    labels: Vec::new(),
+                    notes: Vec::new(),
+                }]
+            })
+    })
+}
+
+/// [`check_file`]'s checks of a resolved file.
+fn check_resolved(path: &Path, resolved: &include::Resolved, portability: bool) -> Vec<FileProblem> {
     // Places a problem of the combined source in the file it came from.
     let place = |problem: Problem| {
         let labels: Vec<PlacedLabel> = problem
             .labels
             .iter()
-            .filter_map(|label| place_label(&resolved, label))
+            .filter_map(|label| place_label(resolved, label))
             .collect();
         // The problem sits at the most specific place naga gives: its innermost label (the
         // expression rather than the function around it); the others stay as context.
         let innermost = innermost_label(&problem.labels)
-            .and_then(|index| place_label(&resolved, &problem.labels[index]));
+            .and_then(|index| place_label(resolved, &problem.labels[index]));
         let (origin, location) = match innermost.as_ref().or(labels.first()) {
             Some(label) => (label.origin.clone(), Some((label.line, label.column))),
             None => {
@@ -384,6 +412,9 @@ pub fn check_file(path: &Path, portability: bool) -> Vec<FileProblem> {
             notes: problem.notes,
         }
     };
+    if let Err(problem) = expression_size::check(&resolved.source) {
+        return vec![place(problem)];
+    }
     let validated = match validate_wgsl(&resolved.source) {
         Ok(validated) => validated,
         Err(problem) => return vec![place(problem)],
