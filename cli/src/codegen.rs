@@ -4,16 +4,20 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use gbuffer_codegen::layout_file::{read_layout_file, FileError};
-use gbuffer_codegen::output::{generate, write_if_changed, Output, WriteOutcome};
+use gbuffer_codegen::output::{generate, Output, WriteOutcome};
+use gbuffer_codegen::staging::{write_all, Planned, StagingError};
+
+use crate::output;
 
 /// Turns G-buffer layout files (TOML) into shader includes: WGSL, GLSL ES pixel local storage
 /// blocks, framebuffer-fetch and Vulkan subpass-input includes, Rust mirrors and bit reports.
 ///
-/// With no output switch, every output is written. Files are written atomically, and a file
-/// whose contents would not change is not rewritten.
+/// With no output switch, every output is written. A run writes all its files or none: they
+/// are staged beside the folder and moved in once every one is written (a file whose contents
+/// would not change is not rewritten); two layouts that would write one file are an error.
 ///
-/// Exit status: 0 on success, 1 when a layout is invalid (or an output cannot be written),
-/// 2 on a usage error (bad arguments, an unreadable layout file).
+/// Exit status: 0 on success, 1 when a layout is invalid or unreadable or an output cannot be
+/// written (nothing is written then), 2 on a usage error (bad arguments).
 #[derive(clap::Args, Debug)]
 pub struct Arguments {
     /// Layout files to generate from.
@@ -66,58 +70,66 @@ impl Arguments {
     }
 }
 
-const INVALID_LAYOUT: u8 = 1;
-const USAGE: u8 = 2;
+/// Exit status 1: an invalid or unreadable layout, or outputs that cannot be written.
+const FAILED: u8 = 1;
 
 pub fn run(arguments: Arguments) -> ExitCode {
     let outputs = arguments.outputs();
     // Read and check every layout first, so that all problems are reported together and
     // nothing is written from a set of layouts that has an invalid one.
     let mut layouts = Vec::new();
-    let mut status = None;
+    let mut failed = false;
     for path in &arguments.layouts {
         match read_layout_file(path) {
-            Ok(layout) => layouts.push(layout),
+            Ok(layout) => layouts.push((path, layout)),
             Err(error @ FileError::Io { .. }) => {
                 eprintln!("gbuffer codegen: {error}");
-                status = Some(USAGE);
+                failed = true;
             }
             Err(error) => {
                 eprintln!("{error}\n");
-                status = status.or(Some(INVALID_LAYOUT));
+                failed = true;
             }
         }
     }
-    if let Some(status) = status {
-        return ExitCode::from(status);
+    if failed {
+        return ExitCode::from(FAILED);
     }
-    for file in &layouts {
-        let layout = &file.layout;
-        let files = match generate(layout, file.conversions, &outputs) {
-            Ok(files) => files,
+    let mut files = Vec::new();
+    for (path, file) in &layouts {
+        match generate(&file.layout, file.conversions, &outputs) {
+            Ok(generated) => files.extend(generated.into_iter().map(|generated| {
+                (format!("{} (layout {})", path.display(), file.layout.name), generated)
+            })),
             Err(error) => {
-                eprintln!("gbuffer codegen: {}: {error}", layout.name);
-                return ExitCode::from(INVALID_LAYOUT);
-            }
-        };
-        for file in files {
-            let path = arguments.out.join(&file.name);
-            match write_if_changed(&path, &file.contents) {
-                Ok(outcome) if !arguments.quiet => {
-                    let verb = if outcome == WriteOutcome::Written {
-                        "wrote"
-                    } else {
-                        "unchanged"
-                    };
-                    println!("{verb:>9} {}", path.display());
-                }
-                Ok(_) => {}
-                Err(error) => {
-                    eprintln!("gbuffer codegen: {}: cannot write: {error}", path.display());
-                    return ExitCode::from(INVALID_LAYOUT);
-                }
+                eprintln!("gbuffer codegen: {}: {error}", file.layout.name);
+                return ExitCode::from(FAILED);
             }
         }
     }
-    ExitCode::SUCCESS
+    // The lines go out before the files move in: output that cannot be written fails the run.
+    let report = |planned: &[Planned]| {
+        if arguments.quiet {
+            return Ok(());
+        }
+        let lines: String = planned
+            .iter()
+            .map(|file| {
+                let verb = match file.outcome {
+                    WriteOutcome::Written => "wrote",
+                    WriteOutcome::Unchanged => "unchanged",
+                };
+                format!("{verb:>9} {}\n", file.path.display())
+            })
+            .collect();
+        output::print(&lines)
+    };
+    match write_all(&arguments.out, &files, report) {
+        Ok(_) => ExitCode::SUCCESS,
+        Err(StagingError::Report) => ExitCode::from(FAILED),
+        Err(error) => {
+            eprintln!("gbuffer codegen: {error}; nothing was written");
+            ExitCode::from(FAILED)
+        }
+    }
 }

@@ -6,17 +6,20 @@
 //! and decode), `<name>.lighting.wgsl` (the specialised lighting function), and the solved
 //! layout as a layout file (`<name>.layout.toml`) and as derive source (`<name>.derive.rs`).
 //!
-//! Exit status: 0 on success, 1 when a scene cannot be solved or an output cannot be written,
-//! 2 on a usage error (bad arguments, an unreadable file).
+//! Exit status: 0 on success, 1 when a scene is unreadable or cannot be solved or an output
+//! cannot be written (nothing is written then), 2 on a usage error (bad arguments).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_codegen::layout_file::FileError;
-use gbuffer_codegen::output::{generate, write_if_changed, Output};
+use gbuffer_codegen::output::{generate, GeneratedFile, Output};
+use gbuffer_codegen::staging::{write_all, StagingError};
 use gbuffer_solver::file::read_and_solve;
 use gbuffer_solver::lighting::{lighting_wgsl, Forms};
+
+use crate::output;
 
 /// Solves scene descriptions (TOML): the smallest G-buffer layout that meets their precision,
 /// and a lighting shader with only the terms they use.
@@ -26,8 +29,10 @@ use gbuffer_solver::lighting::{lighting_wgsl, Forms};
 /// `<name>.scene.wgsl`, `<name>.lighting.wgsl`, and the layout as `<name>.layout.toml` and
 /// `<name>.derive.rs`.
 ///
-/// Exit status: 0 on success, 1 when a scene cannot be solved or an output cannot be written,
-/// 2 on a usage error (bad arguments, an unreadable file).
+/// A run writes all its files or none; two scenes that would write one file are an error.
+///
+/// Exit status: 0 on success, 1 when a scene is unreadable or cannot be solved or an output
+/// cannot be written (nothing is written then), 2 on a usage error (bad arguments).
 #[derive(clap::Args, Debug)]
 pub struct Arguments {
     /// Scene description files.
@@ -48,60 +53,67 @@ pub fn run(arguments: Arguments) -> ExitCode {
     } else {
         Forms::ACCURATE
     };
-    let mut status = ExitCode::SUCCESS;
+    // Every scene is solved before anything is printed or written: one that fails fails the
+    // run, and nothing is written.
+    let mut failed = false;
+    let mut summaries = String::new();
+    let mut files = Vec::new();
     for path in &arguments.scenes {
         let solution = match read_and_solve(path) {
             Ok(solution) => solution,
             Err(error @ FileError::Io { .. }) => {
                 eprintln!("gbuffer solve: {error}");
-                return ExitCode::from(2);
+                failed = true;
+                continue;
             }
             Err(error) => {
                 eprintln!("{error}");
-                status = ExitCode::FAILURE;
+                failed = true;
                 continue;
             }
         };
-        println!("{solution}");
-        let Some(folder) = &arguments.out else {
+        summaries.push_str(&format!("{solution}\n"));
+        if arguments.out.is_none() {
             continue;
-        };
+        }
+        let source = format!("{} (scene {})", path.display(), solution.layout.name);
         let snake = solution.layout.snake_name();
-        let mut files = match generate(&solution.layout, Conversions::Exact, &Output::ALL) {
-            Ok(files) => files,
+        let mut generated = match generate(&solution.layout, Conversions::Exact, &Output::ALL) {
+            Ok(generated) => generated,
             Err(error) => {
                 eprintln!("gbuffer solve: {}: {error}", path.display());
-                status = ExitCode::FAILURE;
+                failed = true;
                 continue;
             }
         };
-        files.push(gbuffer_codegen::output::GeneratedFile {
-            name: format!("{snake}.scene.wgsl"),
-            contents: gbuffer_solver::texel::texel_wgsl(&solution),
-        });
-        files.push(gbuffer_codegen::output::GeneratedFile {
-            name: format!("{snake}.lighting.wgsl"),
-            contents: lighting_wgsl(&solution, forms),
-        });
-        files.push(gbuffer_codegen::output::GeneratedFile {
-            name: format!("{snake}.layout.toml"),
-            contents: solution.layout_file(),
-        });
-        files.push(gbuffer_codegen::output::GeneratedFile {
-            name: format!("{snake}.derive.rs"),
-            contents: solution.derive_source(),
-        });
-        if let Err(error) = std::fs::create_dir_all(folder) {
-            eprintln!("gbuffer solve: cannot create {}: {error}", folder.display());
-            return ExitCode::FAILURE;
+        for (suffix, contents) in [
+            ("scene.wgsl", gbuffer_solver::texel::texel_wgsl(&solution)),
+            ("lighting.wgsl", lighting_wgsl(&solution, forms)),
+            ("layout.toml", solution.layout_file()),
+            ("derive.rs", solution.derive_source()),
+        ] {
+            generated.push(GeneratedFile {
+                name: format!("{snake}.{suffix}"),
+                contents,
+            });
         }
-        for file in files {
-            let target = folder.join(&file.name);
-            if let Err(error) = write_if_changed(&target, &file.contents) {
-                eprintln!("gbuffer solve: cannot write {}: {error}", target.display());
-                status = ExitCode::FAILURE;
-            }
+        files.extend(generated.into_iter().map(|file| (source.clone(), file)));
+    }
+    if failed {
+        return ExitCode::FAILURE;
+    }
+    let Some(folder) = &arguments.out else {
+        return match output::print(&summaries) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(()) => ExitCode::FAILURE,
+        };
+    };
+    match write_all(folder, &files, |_| output::print(&summaries)) {
+        Ok(_) => ExitCode::SUCCESS,
+        Err(StagingError::Report) => ExitCode::FAILURE,
+        Err(error) => {
+            eprintln!("gbuffer solve: {error}; nothing was written");
+            ExitCode::FAILURE
         }
     }
-    status
 }

@@ -6,15 +6,19 @@ use std::process::ExitCode;
 
 use gbuffer_validator::{check_file, FileProblem, Stage};
 
+use crate::output;
+
 /// Validates WGSL shaders with naga and checks that they translate to SPIR-V, MSL, HLSL and
 /// GLSL ES. Lines `#include <gbuffer/MODULE>` pull in a module of the shading library with
 /// its dependencies; `#include "layout.toml"` the generated WGSL of a layout file;
-/// `#include "other.wgsl"` another shader. Paths are relative to the including file.
+/// `#include "other.wgsl"` another shader. Paths are relative to the including file and must
+/// stay inside the include roots: the folder of the shader named here and each
+/// `--include-dir`.
 ///
 /// Problems print as `file:line:col: error: message` with the source line and a caret.
 ///
-/// Exit status: 0 when every shader is valid, 1 when any is invalid, 2 on a usage error
-/// (bad arguments, an unreadable file).
+/// Exit status: 0 when every shader is valid, 1 when any is invalid or unreadable, 2 on a
+/// usage error (bad arguments).
 #[derive(clap::Args, Debug)]
 pub struct Arguments {
     /// WGSL files to check.
@@ -26,6 +30,9 @@ pub struct Arguments {
     /// Only validate; skip the translation to every backend.
     #[arg(long)]
     no_portability: bool,
+    /// A folder included files may also come from (repeatable), beside the shader's own.
+    #[arg(long, short = 'I', value_name = "DIR")]
+    include_dir: Vec<PathBuf>,
 }
 
 fn stage_name(stage: Stage) -> String {
@@ -57,15 +64,10 @@ fn problem_json(problem: &FileProblem) -> serde_json::Value {
 
 pub fn run(arguments: Arguments) -> ExitCode {
     let mut any_invalid = false;
-    let mut unreadable = false;
     let mut results = Vec::new();
+    let mut valid_lines = String::new();
     for file in &arguments.files {
-        if let Err(error) = std::fs::metadata(file) {
-            eprintln!("gbuffer validate: {}: cannot read: {error}", file.display());
-            unreadable = true;
-            continue;
-        }
-        let problems = check_file(file, !arguments.no_portability);
+        let problems = check_file(file, !arguments.no_portability, &arguments.include_dir);
         any_invalid |= !problems.is_empty();
         if arguments.json {
             results.push(serde_json::json!({
@@ -74,24 +76,21 @@ pub fn run(arguments: Arguments) -> ExitCode {
                 "problems": problems.iter().map(problem_json).collect::<Vec<_>>(),
             }));
         } else if problems.is_empty() {
-            println!("{}: valid", file.display());
+            valid_lines.push_str(&format!("{}: valid\n", file.display()));
         } else {
             for problem in &problems {
                 eprintln!("{problem}\n");
             }
         }
     }
-    if arguments.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&serde_json::json!({ "files": results }))
-                .unwrap_or_default()
-        );
-    }
-    if unreadable {
-        ExitCode::from(2)
-    } else if any_invalid {
-        ExitCode::from(1)
+    let text = if arguments.json {
+        let json = serde_json::json!({ "files": results });
+        format!("{}\n", serde_json::to_string_pretty(&json).unwrap_or_default())
+    } else {
+        valid_lines
+    };
+    if output::print(&text).is_err() || any_invalid {
+        ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS
     }

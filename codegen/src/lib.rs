@@ -8,7 +8,8 @@
 //! - [`emit`]: WGSL and Rust mirror emitters;
 //! - with the `tools` feature (on by default): `input` (how every input file is read),
 //!   `layout_file` (layouts in TOML), `output` (the
-//!   files the tool writes, atomically and only when changed), the GLSL and
+//!   files the tool writes, atomically and only when changed), `staging` (a run's files, all
+//!   or none), the GLSL and
 //!   Rust-source emitters, `Builder` for build scripts (the `gbuffer codegen` command runs them).
 //!
 //! The model's modules are re-exported here, so that the emitters' users name one crate.
@@ -22,6 +23,8 @@ pub mod input;
 pub mod layout_file;
 #[cfg(feature = "tools")]
 pub mod output;
+#[cfg(feature = "tools")]
+pub mod staging;
 
 #[cfg(feature = "tools")]
 pub use builder::{BuildError, Builder};

@@ -7,14 +7,14 @@ use gbuffer::packing::{BitField, Encoding, Field, FieldType, Format, Layout, Rgb
 use gbuffer::GBufferLayout;
 use proptest::prelude::*;
 
-/// Field names that are valid in WGSL but that GLSL reserves or that naga renames.
+/// Field names that are valid in WGSL and Rust but that GLSL reserves or that naga renames;
+/// [`awkward_field_names`] adds every GLSL ES reserved word the name check accepts.
 pub const AWKWARD_FIELD_NAMES: &[&str] = &[
     "sampler",
     "output",
     "input",
     "texture",
     "main",
-    "in",
     "out",
     "inout",
     "flat",
@@ -60,6 +60,18 @@ pub const AWKWARD_FIELD_NAMES: &[&str] = &[
     "packed",
     "texel",
 ];
+
+/// [`AWKWARD_FIELD_NAMES`] and every word of [`gbuffer_codegen::naming::GLSL_RESERVED`] that a field
+/// may be named (not WGSL's or Rust's too).
+pub fn awkward_field_names() -> Vec<&'static str> {
+    let mut names: Vec<&str> = AWKWARD_FIELD_NAMES.to_vec();
+    for name in gbuffer_codegen::naming::GLSL_RESERVED {
+        if gbuffer_codegen::naming::check_identifier(name).is_ok() && !names.contains(name) {
+            names.push(name);
+        }
+    }
+    names
+}
 
 /// Layout names that are valid in WGSL but that GLSL reserves.
 pub const AWKWARD_LAYOUT_NAMES: &[&str] = &[
@@ -169,7 +181,7 @@ pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
         .prop_map(|(encoding, components, width)| bit_field(encoding, components, width));
     let field = (
         prop_oneof![word, bits],
-        prop::option::of(0..AWKWARD_FIELD_NAMES.len()),
+        prop::option::of(0..awkward_field_names().len()),
     );
     (
         prop::collection::vec(field, 1..=max_fields),
@@ -178,10 +190,11 @@ pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
         prop::option::of(0..AWKWARD_LAYOUT_NAMES.len()),
     )
         .prop_map(|(fields, extra_words, tag, layout_name)| {
+            let awkward = awkward_field_names();
             let mut named: Vec<Field> = Vec::new();
             for (index, ((storage, ty), name)) in fields.into_iter().enumerate() {
                 let mut name = name.map_or(format!("field_{index}"), |pick| {
-                    AWKWARD_FIELD_NAMES[pick].to_string()
+                    awkward[pick].to_string()
                 });
                 if named.iter().any(|field| field.name == name) {
                     name = format!("{name}_{index}");
