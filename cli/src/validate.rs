@@ -12,8 +12,8 @@ use crate::output;
 /// GLSL ES. Lines `#include <gbuffer/MODULE>` pull in a module of the shading library with
 /// its dependencies; `#include "layout.toml"` the generated WGSL of a layout file;
 /// `#include "other.wgsl"` another shader. Paths are relative to the including file and must
-/// stay inside the include roots: the folder of the shader named here and each
-/// `--include-dir`.
+/// stay inside the include roots: the folder of the shader named here, the current folder and
+/// each `--include-dir`.
 ///
 /// Problems print as `file:line:col: error: message` with the source line and a caret.
 ///

@@ -2,7 +2,7 @@
 //! the shading library (with its dependencies), `#include "PATH.toml"` the generated WGSL of a
 //! layout file, and `#include "PATH.wgsl"` another WGSL file (itself resolved). Paths are
 //! relative to the including file, and the file they name must lie inside one of the include
-//! roots: the folder of the file given (as a C compiler's quoted includes would find it) and
+//! roots: the folder of the file given, the current folder (the project a build runs in) and
 //! any folder the caller adds (`gbuffer validate --include-dir`), so that a shader cannot
 //! read files elsewhere on the machine. Each module and file is included once; files nest at
 //! most [`MAX_INCLUDE_DEPTH`] deep. Files are read as every input is
@@ -92,15 +92,16 @@ fn include_problem(file: &Path, line: Option<usize>, message: String) -> Box<Fil
 /// that resolving it cannot exhaust the stack.
 pub const MAX_INCLUDE_DEPTH: usize = 64;
 
-/// Reads `path` and resolves its includes, confined to `path`'s folder and `include_dirs`.
+/// Reads `path` and resolves its includes, confined to `path`'s folder, the current folder and
+/// `include_dirs`.
 pub fn resolve_file(path: &Path, include_dirs: &[PathBuf]) -> Result<Resolved, Box<FileProblem>> {
     let source = read_input(path)
         .map_err(|error| include_problem(path, None, format!("cannot read the file: {error}")))?;
     resolve_source(path, &source, include_dirs)
 }
 
-/// Resolves the includes of `source`, read from `path`, confined to `path`'s folder and
-/// `include_dirs`.
+/// Resolves the includes of `source`, read from `path`, confined to `path`'s folder, the
+/// current folder and `include_dirs`.
 pub fn resolve_source(
     path: &Path,
     source: &str,
@@ -111,9 +112,10 @@ pub fn resolve_source(
         .filter(|parent| !parent.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     let mut resolver = Resolver {
-        roots: std::iter::once(folder)
-            .chain(include_dirs.iter().map(PathBuf::as_path))
-            .map(canonical)
+        roots: std::iter::once(folder.to_path_buf())
+            .chain(std::env::current_dir().ok())
+            .chain(include_dirs.iter().cloned())
+            .map(|root| canonical(&root))
             .collect(),
         ..Resolver::default()
     };

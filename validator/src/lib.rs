@@ -345,7 +345,8 @@ impl fmt::Display for FileProblem {
 /// is that deep.
 const CHECK_STACK_BYTES: usize = 256 << 20;
 
-/// Checks a WGSL file: resolves its includes (confined to its folder and `include_dirs`),
+/// Checks a WGSL file: resolves its includes (confined to its folder, the current folder and
+/// `include_dirs`),
 /// validates it with naga, and (with `portability`) translates it to every backend. Returns
 /// every problem found; empty when the file is valid.
 pub fn check_file(path: &Path, portability: bool, include_dirs: &[PathBuf]) -> Vec<FileProblem> {

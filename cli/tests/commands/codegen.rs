@@ -155,10 +155,10 @@ fn usage_errors_exit_2() {
         .arg(&layout)
         .args(["--out", "/tmp", "--hlsl"])
         .fails_with(2);
-    // A layout file that does not exist.
+    // A layout file that does not exist is bad input, not a usage error.
     let output = codegen()
         .args(["/no/such/layout.toml", "--out", "/tmp"])
-        .fails_with(2);
+        .fails_with(1);
     assert!(String::from_utf8_lossy(&output.stderr)
         .contains("/no/such/layout.toml: cannot read the layout file"));
 }

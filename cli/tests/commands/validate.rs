@@ -166,6 +166,6 @@ fn problems_in_an_included_wgsl_file_name_that_file() {
 #[test]
 fn usage_errors_exit_2() {
     validate().fails_with(2);
-    validate().arg("no/such/shader.wgsl").fails_with(2);
+    validate().arg("no/such/shader.wgsl").fails_with(1);
     validate().args(["--hlsl", "a.wgsl"]).fails_with(2);
 }
