@@ -271,6 +271,11 @@ pub struct Diagnostic {
     pub message: String,
 }
 
+/// The most fields a layout may have: far more than a G-buffer holds (eight render targets of
+/// 128 bits), and few enough that every output generates in well under a second (naga's
+/// translation grows faster than linearly with the number of functions, one a bit field).
+pub const MAX_FIELDS: usize = 256;
+
 /// Why `budget` bits cannot be a budget, if they cannot: a budget is whole 32-bit words.
 pub fn check_budget(budget: u32) -> Result<(), String> {
     match budget != 0 && budget % 32 == 0 {
@@ -492,6 +497,18 @@ impl Layout {
         }
         if let Err(problem) = check_budget(self.budget) {
             report(Subject::Budget, problem);
+        }
+        if self.fields.len() > MAX_FIELDS {
+            // The per-field checks are not run: their cost is what the limit bounds.
+            report(
+                Subject::Name,
+                format!(
+                    "layout `{}` has {} fields; layouts are limited to {MAX_FIELDS}",
+                    self.name,
+                    self.fields.len()
+                ),
+            );
+            return diagnostics;
         }
         if self.fields.is_empty() {
             report(
