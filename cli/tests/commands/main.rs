@@ -3,6 +3,7 @@
 
 mod codegen;
 mod cost;
+mod hostile;
 mod solve;
 mod validate;
 

@@ -1,6 +1,6 @@
 //! `gbuffer solve`: a scene file gives what `gbuffer codegen` gives a layout file plus the
-//! scene's WGSL; a bad scene is an error at its `file:line:col` with exit status 1, a missing
-//! file exit status 2.
+//! scene's WGSL; a bad scene is an error at its `file:line:col` with exit status 1, as is a
+//! missing file.
 
 use crate::{gbuffer, workspace, Run};
 use assert_cmd::Command;
