@@ -41,13 +41,16 @@ pub struct Resolved {
 }
 
 impl Resolved {
-    /// The origin and origin line of a line of the resolved source.
+    /// The origin and origin line of a line of the resolved source. The line after the last
+    /// (where a parser finds the source ended too soon) is the last origin's next line.
     pub fn origin_of(&self, line: usize) -> Option<(&str, usize)> {
+        let end_of_source = |segment: &&Segment| line == segment.first_line + segment.lines;
         self.segments
             .iter()
             .find(|segment| {
                 (segment.first_line..segment.first_line + segment.lines).contains(&line)
             })
+            .or_else(|| self.segments.last().filter(end_of_source))
             .map(|segment| {
                 (
                     segment.origin.as_str(),

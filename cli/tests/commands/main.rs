@@ -3,6 +3,7 @@
 
 mod codegen;
 mod cost;
+mod fuzz;
 mod hostile;
 mod solve;
 mod validate;
