@@ -12,6 +12,7 @@
 //! (median of [`TIMED_FRAMES`]); and a heat map of where the error sits. For the solved
 //! presets, also what the solver predicted for each quantity.
 
+use crate::stdout::report_line;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -234,13 +235,13 @@ fn bandwidth(units: Option<f64>) -> String {
 
 /// The table as printed on stdout.
 pub fn print(rows: &[FrameRow], adapter: &str) {
-    println!(
+    report_line!(
         "\nframes at {}x{} against the lossless G-buffer (PSNR, largest error and share of \
          pixels over one 8-bit step), bandwidth units (width x height x 4 bytes) on wgpu and \
          Vulkan's two-pass and fused paths, median frame ms on {adapter}:",
         SIZE.0, SIZE.1
     );
-    println!(
+    report_line!(
         "{:<28} {:<7} {:>4} {:>5} {:>6} {:>8} {:>6} {:>8} {:>8} {:>9} {:>9}",
         "layout",
         "kind",
@@ -257,12 +258,12 @@ pub fn print(rows: &[FrameRow], adapter: &str) {
     for row in rows {
         let [layout, kind, bits, words, wgpu, two_pass, fused, psnr, largest, share, frame_ms] =
             row.cells();
-        println!(
+        report_line!(
             "{layout:<28} {kind:<7} {bits:>4} {words:>5} {wgpu:>6} {two_pass:>8} {fused:>6} {psnr:>8} {largest:>8} {share:>9} {frame_ms:>9}"
         );
     }
     for row in rows.iter().filter(|row| !row.predicted.is_empty()) {
-        println!(
+        report_line!(
             "{}: the solver predicted {}",
             row.layout,
             row.predicted.join("; ")

@@ -19,6 +19,7 @@ pub mod packing;
 pub mod packing_cost;
 mod plot;
 mod rows;
+mod stdout;
 mod timing;
 
 use std::fmt::Write as _;
@@ -28,6 +29,7 @@ use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
 use gbuffer_gpu::adapter::{Gpu, Request};
 use plot::Plot;
 use rows::Row;
+use stdout::report_line;
 
 /// Each seed layout's largest error over the study's surfaces, in 8-bit sRGB steps (its "whole
 /// layout" row), by the row's name (`Listing 2.2 (MobileMetallic)`): what the study predicts a
@@ -145,9 +147,9 @@ pub fn run(folder: &Path) -> Result<(), String> {
     print_table(&rows, &measured, &adapter, &row_compilers);
     packing::print(&packing, &gpu);
     let compiled_packing = packing::compile_on_compilers();
-    println!("{}", compiled_packing.markdown());
+    report_line!("{}", compiled_packing.markdown());
     if !inconsistencies.is_empty() {
-        println!(
+        report_line!(
             "\nthe timing did not resolve on {adapter}, so no time is printed: {}",
             inconsistencies.join("; ")
         );
@@ -157,7 +159,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
     let frames = frames::measure_all(folder, &|message| eprintln!("{message}"))?;
     frames::print(&frames, &adapter);
     let frame_shaders = frame_shaders::compile_frames();
-    println!("{}", frame_shaders.markdown());
+    report_line!("{}", frame_shaders.markdown());
     let mut plots =
         write_plots(folder, &rows).map_err(|error| format!("writing plots: {error}"))?;
     plots.extend(
@@ -201,7 +203,10 @@ pub fn run(folder: &Path) -> Result<(), String> {
             .map_err(|error| format!("cannot write {}: {error}", path.display()))?;
     }
     eprintln!("wrote {}", folder.display());
-    Ok(())
+    match stdout::failure() {
+        Some(error) => Err(format!("cannot write standard output: {error}")),
+        None => Ok(()),
+    }
 }
 
 /// Checks the adapter's times against the order the instruction counts predict, within each
@@ -298,9 +303,9 @@ fn timings_json(times: &timing::StageTimes) -> serde_json::Value {
 }
 
 fn print_table(rows: &[Row], measured: &[Measured], adapter: &str, compiled: &compilers::Compiled) {
-    println!("adapter: {adapter}");
-    println!("{}", compiled.provenance());
-    println!(
+    report_line!("adapter: {adapter}");
+    report_line!("{}", compiled.provenance());
+    report_line!(
         "{:<17} {:<34} {:>4} {:>11} {:>11} {:<24} {:>5} {:>5} {:>8} {:>8} {:>8} {:>7} {:>6} {:>6}",
         "family",
         "row",
@@ -318,7 +323,7 @@ fn print_table(rows: &[Row], measured: &[Measured], adapter: &str, compiled: &co
         "navi21"
     );
     for (row, measured) in rows.iter().zip(measured) {
-        println!(
+        report_line!(
             "{:<17} {:<34} {:>4} {:>11.3e} {:>11.3e} {:<24} {:>5} {:>5} {:>8} {:>8} {:>8.2} {:>7} {:>6} {:>6}",
             row.family,
             row.name,
@@ -587,13 +592,13 @@ fn white_furnace() -> Vec<FurnaceEnergy> {
 }
 
 fn print_furnace(furnace: &[FurnaceEnergy]) {
-    println!("\nwhite furnace (energy reflected of 1 received):");
-    println!(
+    report_line!("\nwhite furnace (energy reflected of 1 received):");
+    report_line!(
         "{:>9} {:>14} {:>14} {:>16}",
         "roughness", "metal n.v=1", "metal n.v=0.25", "white dielectric"
     );
     for energy in furnace {
-        println!(
+        report_line!(
             "{:>9} {:>14.4} {:>14.4} {:>16.4}",
             energy.roughness, energy.metal_head_on, energy.metal_grazing, energy.dielectric_max
         );

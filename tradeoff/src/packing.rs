@@ -4,6 +4,7 @@
 //! over edge cases and random values in fast conversions' domain, and the adapter's time to
 //! pack and unpack a million texels.
 
+use crate::stdout::report_line;
 use std::fmt::Write as _;
 
 use crate::packing_cost::{deviation, layout_cost, one_field, Cost, Deviation, CONVERTED_FORMATS};
@@ -150,7 +151,7 @@ fn cells(row: &PackingRow) -> [String; 8] {
 
 /// The table on standard output.
 pub fn print(rows: &[PackingRow], gpu: &Gpu) {
-    println!("\npacking conversions ({})", time_note(gpu));
+    report_line!("\npacking conversions ({})", time_note(gpu));
     let line = |cells: &[String; 8]| {
         format!(
             "{:<16} {:<6} {:>12} {:>8} {:>11} {:>10} {:>13} {:>13}",
@@ -167,9 +168,9 @@ pub fn print(rows: &[PackingRow], gpu: &Gpu) {
         "ms/Mtexel",
         "frag ms/Mtexel",
     ];
-    println!("{}", line(&header.map(str::to_string)));
+    report_line!("{}", line(&header.map(str::to_string)));
     for row in rows {
-        println!("{}", line(&cells(row)));
+        report_line!("{}", line(&cells(row)));
     }
 }
 

@@ -1,0 +1,40 @@
+//! The report's standard output. `std::println!` panics when standard output cannot be
+//! written (a full disk, `> /dev/full`); the report's lines go through [`report_line!`]
+//! instead, which stops printing at the first failure and lets [`run`](crate::run) return it
+//! as an error, and which ends quietly on a closed pipe (`gbuffer report | head`), as Unix
+//! tools do.
+
+use std::io::{ErrorKind, Write};
+use std::sync::Mutex;
+
+/// The first write error of this process's report output; `Some(None)` for a closed pipe.
+static FAILURE: Mutex<Option<Option<String>>> = Mutex::new(None);
+
+/// Writes one line of the report to standard output, unless an earlier one failed.
+pub fn line(text: &str) {
+    let mut failure = FAILURE.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    if failure.is_some() {
+        return;
+    }
+    let mut stdout = std::io::stdout().lock();
+    if let Err(error) = writeln!(stdout, "{text}").and_then(|()| stdout.flush()) {
+        *failure = Some((error.kind() != ErrorKind::BrokenPipe).then(|| error.to_string()));
+    }
+}
+
+/// The error that stopped the report's output, if one did (a closed pipe is none).
+pub fn failure() -> Option<String> {
+    FAILURE
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+        .clone()
+        .flatten()
+}
+
+/// `println!` for the report: see the module's documentation.
+macro_rules! report_line {
+    ($($argument:tt)*) => {
+        $crate::stdout::line(&format!($($argument)*))
+    };
+}
+pub(crate) use report_line;
