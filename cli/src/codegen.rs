@@ -99,7 +99,10 @@ pub fn run(arguments: Arguments) -> ExitCode {
     for (path, file) in &layouts {
         match generate(&file.layout, file.conversions, &outputs) {
             Ok(generated) => files.extend(generated.into_iter().map(|generated| {
-                (format!("{} (layout {})", path.display(), file.layout.name), generated)
+                (
+                    format!("{} (layout {})", path.display(), file.layout.name),
+                    generated,
+                )
             })),
             Err(error) => {
                 eprintln!("gbuffer codegen: {}: {error}", file.layout.name);

@@ -85,7 +85,10 @@ pub fn run(arguments: Arguments) -> ExitCode {
     }
     let text = if arguments.json {
         let json = serde_json::json!({ "files": results });
-        format!("{}\n", serde_json::to_string_pretty(&json).unwrap_or_default())
+        format!(
+            "{}\n",
+            serde_json::to_string_pretty(&json).unwrap_or_default()
+        )
     } else {
         valid_lines
     };

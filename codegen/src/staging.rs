@@ -56,13 +56,11 @@ pub fn write_all(
         sources.push((&file.name, source));
     }
     let mut run = Run::new(folder)?;
-    let result = run
-        .stage(files)
-        .and_then(|planned| {
-            report(&planned).map_err(|()| StagingError::Report)?;
-            run.commit()?;
-            Ok(planned)
-        });
+    let result = run.stage(files).and_then(|planned| {
+        report(&planned).map_err(|()| StagingError::Report)?;
+        run.commit()?;
+        Ok(planned)
+    });
     if result.is_err() {
         run.roll_back();
     }
@@ -121,7 +119,9 @@ impl Run {
                         path.display()
                     )));
                 }
-                Ok(_) if std::fs::read(&path).is_ok_and(|held| held == file.contents.as_bytes()) => {
+                Ok(_)
+                    if std::fs::read(&path).is_ok_and(|held| held == file.contents.as_bytes()) =>
+                {
                     WriteOutcome::Unchanged
                 }
                 _ => {
@@ -223,10 +223,18 @@ mod tests {
             file("c.wgsl", "1"),
             ("b.toml".to_string(), file("c.wgsl", "2").1),
         ];
-        let error = write_all(&folder, &twice, |_| Ok(())).unwrap_err().to_string();
-        assert!(error.contains("a.toml") && error.contains("b.toml"), "{error}");
+        let error = write_all(&folder, &twice, |_| Ok(()))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.contains("a.toml") && error.contains("b.toml"),
+            "{error}"
+        );
         assert!(!folder.join("c.wgsl").exists());
-        let left: Vec<_> = std::fs::read_dir(&folder).unwrap().map(|entry| entry.unwrap().file_name()).collect();
+        let left: Vec<_> = std::fs::read_dir(&folder)
+            .unwrap()
+            .map(|entry| entry.unwrap().file_name())
+            .collect();
         assert_eq!(left.len(), 2, "{left:?}");
         std::fs::remove_dir_all(&root).unwrap();
     }

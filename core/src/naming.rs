@@ -58,7 +58,9 @@ pub fn check_identifier(name: &str) -> Result<(), String> {
     }
     for (language, reserved) in [("WGSL", WGSL_RESERVED), ("Rust", RUST_RESERVED)] {
         if reserved.binary_search(&name).is_ok() {
-            return Err(format!("is a {language} keyword or reserved word: rename it"));
+            return Err(format!(
+                "is a {language} keyword or reserved word: rename it"
+            ));
         }
     }
     Ok(())
@@ -656,58 +658,11 @@ pub const GLSL_RESERVED: &[&str] = &[
 /// Rust's strict and reserved keywords (the Rust Reference, "Keywords", edition 2024), sorted;
 /// `crate`, `self`, `super` and `Self` cannot even be raw identifiers.
 pub const RUST_RESERVED: &[&str] = &[
-    "Self",
-    "abstract",
-    "as",
-    "async",
-    "await",
-    "become",
-    "box",
-    "break",
-    "const",
-    "continue",
-    "crate",
-    "do",
-    "dyn",
-    "else",
-    "enum",
-    "extern",
-    "false",
-    "final",
-    "fn",
-    "for",
-    "gen",
-    "if",
-    "impl",
-    "in",
-    "let",
-    "loop",
-    "macro",
-    "match",
-    "mod",
-    "move",
-    "mut",
-    "override",
-    "priv",
-    "pub",
-    "ref",
-    "return",
-    "self",
-    "static",
-    "struct",
-    "super",
-    "trait",
-    "true",
-    "try",
-    "type",
-    "typeof",
-    "unsafe",
-    "unsized",
-    "use",
-    "virtual",
-    "where",
-    "while",
-    "yield",
+    "Self", "abstract", "as", "async", "await", "become", "box", "break", "const", "continue",
+    "crate", "do", "dyn", "else", "enum", "extern", "false", "final", "fn", "for", "gen", "if",
+    "impl", "in", "let", "loop", "macro", "match", "mod", "move", "mut", "override", "priv", "pub",
+    "ref", "return", "self", "static", "struct", "super", "trait", "true", "try", "type", "typeof",
+    "unsafe", "unsized", "use", "virtual", "where", "while", "yield",
 ];
 
 #[cfg(test)]
@@ -756,7 +711,10 @@ mod tests {
         assert!(check_identifier("größe").is_err());
         // Rust's own keywords are refused; GLSL's are renamed by naga, so accepted.
         for name in ["in", "dyn", "box", "gen"] {
-            assert!(check_identifier(name).unwrap_err().contains("Rust"), "{name}");
+            assert!(
+                check_identifier(name).unwrap_err().contains("Rust"),
+                "{name}"
+            );
         }
         for name in GLSL_RESERVED.iter().chain(&["a__b"]) {
             if WGSL_RESERVED.contains(name) || RUST_RESERVED.contains(name) {

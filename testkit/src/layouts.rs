@@ -193,9 +193,8 @@ pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
             let awkward = awkward_field_names();
             let mut named: Vec<Field> = Vec::new();
             for (index, ((storage, ty), name)) in fields.into_iter().enumerate() {
-                let mut name = name.map_or(format!("field_{index}"), |pick| {
-                    awkward[pick].to_string()
-                });
+                let mut name =
+                    name.map_or(format!("field_{index}"), |pick| awkward[pick].to_string());
                 if named.iter().any(|field| field.name == name) {
                     name = format!("{name}_{index}");
                 }

@@ -239,7 +239,8 @@ pub fn print(rows: &[FrameRow], adapter: &str) {
         "\nframes at {}x{} against the lossless G-buffer (PSNR, largest error and share of \
          pixels over one 8-bit step), bandwidth units (width x height x 4 bytes) on wgpu and \
          Vulkan's two-pass and fused paths, median frame ms on {adapter}:",
-        SIZE.0, SIZE.1
+        SIZE.0,
+        SIZE.1
     );
     report_line!(
         "{:<28} {:<7} {:>4} {:>5} {:>6} {:>8} {:>6} {:>8} {:>8} {:>9} {:>9}",

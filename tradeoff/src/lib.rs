@@ -595,12 +595,18 @@ fn print_furnace(furnace: &[FurnaceEnergy]) {
     report_line!("\nwhite furnace (energy reflected of 1 received):");
     report_line!(
         "{:>9} {:>14} {:>14} {:>16}",
-        "roughness", "metal n.v=1", "metal n.v=0.25", "white dielectric"
+        "roughness",
+        "metal n.v=1",
+        "metal n.v=0.25",
+        "white dielectric"
     );
     for energy in furnace {
         report_line!(
             "{:>9} {:>14.4} {:>14.4} {:>16.4}",
-            energy.roughness, energy.metal_head_on, energy.metal_grazing, energy.dielectric_max
+            energy.roughness,
+            energy.metal_head_on,
+            energy.metal_grazing,
+            energy.dielectric_max
         );
     }
 }

@@ -12,7 +12,9 @@ static FAILURE: Mutex<Option<Option<String>>> = Mutex::new(None);
 
 /// Writes one line of the report to standard output, unless an earlier one failed.
 pub fn line(text: &str) {
-    let mut failure = FAILURE.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    let mut failure = FAILURE
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
     if failure.is_some() {
         return;
     }

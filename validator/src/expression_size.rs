@@ -27,7 +27,11 @@ pub fn check(source: &str) -> Result<(), Problem> {
         let next = characters.get(index + 1).copied();
         let position = (line, column);
         index += 1;
-        (line, column) = if character == '\n' { (line + 1, 1) } else { (line, column + 1) };
+        (line, column) = if character == '\n' {
+            (line + 1, 1)
+        } else {
+            (line, column + 1)
+        };
         // Comments: `//` to the end of the line, `/* */` nested as WGSL nests them.
         if comments == 0 && character == '/' && next == Some('/') {
             while index < characters.len() && characters[index] != '\n' {
@@ -35,8 +39,14 @@ pub fn check(source: &str) -> Result<(), Problem> {
             }
             continue;
         }
-        if character == '/' && next == Some('*') || comments > 0 && character == '*' && next == Some('/') {
-            comments = if character == '/' { comments + 1 } else { comments - 1 };
+        if character == '/' && next == Some('*')
+            || comments > 0 && character == '*' && next == Some('/')
+        {
+            comments = if character == '/' {
+                comments + 1
+            } else {
+                comments - 1
+            };
             index += 1;
             column += 1;
             continue;
@@ -96,14 +106,25 @@ mod tests {
 
     #[test]
     fn long_chains_and_deep_nesting_are_refused_where_they_start() {
-        let chain = format!("fn f() -> f32 {{\n    return {};\n}}\n", vec!["1.0"; 5000].join(" + "));
+        let chain = format!(
+            "fn f() -> f32 {{\n    return {};\n}}\n",
+            vec!["1.0"; 5000].join(" + ")
+        );
         let problem = check(&chain).unwrap_err();
         assert_eq!(problem.location, Some((2, 5)), "{problem}");
-        let nested = format!("fn f() -> f32 {{\n    return {}1.0{};\n}}\n", "(".repeat(100), ")".repeat(100));
+        let nested = format!(
+            "fn f() -> f32 {{\n    return {}1.0{};\n}}\n",
+            "(".repeat(100),
+            ")".repeat(100)
+        );
         let problem = check(&nested).unwrap_err();
         assert_eq!(problem.location, Some((2, 75)), "{problem}");
         // Operators in comments do not count; a real shader passes.
-        let commented = format!("// {}\n/* {} /* */ */ fn f() {{}}\n", "+".repeat(9000), "-".repeat(9000));
+        let commented = format!(
+            "// {}\n/* {} /* */ */ fn f() {{}}\n",
+            "+".repeat(9000),
+            "-".repeat(9000)
+        );
         check(&commented).unwrap();
         for module in gbuffer::modules::modules() {
             check(&module.source).unwrap();

@@ -171,12 +171,7 @@ impl Resolver {
     }
 
     /// Resolves `source`, read from `path`, which `depth` includes led to.
-    fn resolve(
-        &mut self,
-        path: &Path,
-        source: &str,
-        depth: usize,
-    ) -> Result<(), Box<FileProblem>> {
+    fn resolve(&mut self, path: &Path, source: &str, depth: usize) -> Result<(), Box<FileProblem>> {
         let origin = path.display().to_string();
         let mut pending = String::new();
         let mut pending_start = 1;
@@ -221,11 +216,17 @@ impl Resolver {
             {
                 let included = path.parent().unwrap_or(Path::new(".")).join(relative);
                 let key = included.canonicalize().map_err(|problem| {
-                    error(format!("cannot read included file `{}`: {problem}", included.display()))
+                    error(format!(
+                        "cannot read included file `{}`: {problem}",
+                        included.display()
+                    ))
                 })?;
                 if !self.roots.iter().any(|root| key.starts_with(root)) {
-                    let roots: Vec<String> =
-                        self.roots.iter().map(|root| root.display().to_string()).collect();
+                    let roots: Vec<String> = self
+                        .roots
+                        .iter()
+                        .map(|root| root.display().to_string())
+                        .collect();
                     return Err(error(format!(
                         "cannot include `{relative}`: it lies outside the include roots ({}); \
                          add its folder with --include-dir",

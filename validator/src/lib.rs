@@ -359,7 +359,11 @@ pub fn check_file(path: &Path, portability: bool, include_dirs: &[PathBuf]) -> V
             .name("gbuffer-validate".into())
             .stack_size(CHECK_STACK_BYTES)
             .spawn_scoped(scope, || check_resolved(path, &resolved, portability))
-            .map(|thread| thread.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+            .map(|thread| {
+                thread
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+            })
             .unwrap_or_else(|error| {
                 vec![FileProblem {
                     origin: path.display().to_string(),
@@ -374,7 +378,11 @@ pub fn check_file(path: &Path, portability: bool, include_dirs: &[PathBuf]) -> V
 }
 
 /// [`check_file`]'s checks of a resolved file.
-fn check_resolved(path: &Path, resolved: &include::Resolved, portability: bool) -> Vec<FileProblem> {
+fn check_resolved(
+    path: &Path,
+    resolved: &include::Resolved,
+    portability: bool,
+) -> Vec<FileProblem> {
     // Places a problem of the combined source in the file it came from.
     let place = |problem: Problem| {
         let labels: Vec<PlacedLabel> = problem

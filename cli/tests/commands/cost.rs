@@ -192,7 +192,10 @@ fn the_disassembly_comes_on_request() {
     // Panfrost's listing (on the driver's standard output) holds the Valhall blocks, and
     // ACO's names its instructions.
     let mali = measurements[0]["disassembly"].as_str().unwrap();
-    assert!(mali.contains("block0 {") && mali.contains("STORE"), "{mali}");
+    assert!(
+        mali.contains("block0 {") && mali.contains("STORE"),
+        "{mali}"
+    );
     let aco = measurements[1]["disassembly"].as_str().unwrap();
     assert!(aco.contains("v_") || aco.contains("s_"), "{aco}");
 }

@@ -26,10 +26,38 @@ fn cases() -> u32 {
 /// Pieces a mutation inserts: each format's syntax, names the languages reserve, and numbers
 /// at the edges.
 const PIECES: &[&str] = &[
-    "\"", "[[fields]]\n", "[", "]", "=", "\n", "{", "}", "(", ")", ";", "in", "dyn", "fn", "__x",
-    "4294967296", "-1", "1e39", "nan", "0x", "bits = 33", "format = \"rgba8\"", "type = \"Vec4\"",
-    "encoding = \"half\"", "#include \"x.wgsl\"", "#include <gbuffer/nope>", "+1.0", "vec4<f32>(",
-    "\u{0}", "é", "\\", "'''",
+    "\"",
+    "[[fields]]\n",
+    "[",
+    "]",
+    "=",
+    "\n",
+    "{",
+    "}",
+    "(",
+    ")",
+    ";",
+    "in",
+    "dyn",
+    "fn",
+    "__x",
+    "4294967296",
+    "-1",
+    "1e39",
+    "nan",
+    "0x",
+    "bits = 33",
+    "format = \"rgba8\"",
+    "type = \"Vec4\"",
+    "encoding = \"half\"",
+    "#include \"x.wgsl\"",
+    "#include <gbuffer/nope>",
+    "+1.0",
+    "vec4<f32>(",
+    "\u{0}",
+    "é",
+    "\\",
+    "'''",
 ];
 
 /// One edit of a text: remove a range, repeat a range, insert a piece, or swap a byte.
@@ -85,7 +113,9 @@ fn located(message: &str, path: &Path) -> bool {
         line.strip_prefix(&prefix).is_some_and(|rest| {
             let mut parts = rest.splitn(3, ':');
             parts.next().is_some_and(|line| line.parse::<u32>().is_ok())
-                && parts.next().is_some_and(|column| column.parse::<u32>().is_ok())
+                && parts
+                    .next()
+                    .is_some_and(|column| column.parse::<u32>().is_ok())
         })
     })
 }
@@ -131,7 +161,10 @@ fn mutated_layout_files_fail_cleanly_and_write_nothing() {
             Ok(file) => {
                 let files = generate(&file.layout, file.conversions, &Output::ALL)
                     .expect("a checked layout generates");
-                let named: Vec<_> = files.into_iter().map(|file| ("input".to_string(), file)).collect();
+                let named: Vec<_> = files
+                    .into_iter()
+                    .map(|file| ("input".to_string(), file))
+                    .collect();
                 write_all(&out, &named, |_| Ok(())).expect("the outputs are written");
             }
             Err(FileError::Io { .. }) => panic!("the file was written"),

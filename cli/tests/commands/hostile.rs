@@ -47,7 +47,10 @@ fn rust_keywords_as_names_are_errors_not_panics() {
 
 /// `gbuffer ARGUMENTS > /dev/full`: its exit code and standard error.
 fn into_full_device(arguments: &[&std::ffi::OsStr]) -> (Option<i32>, String) {
-    let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_gbuffer"))
         .current_dir(workspace())
         .args(arguments)
@@ -55,7 +58,10 @@ fn into_full_device(arguments: &[&std::ffi::OsStr]) -> (Option<i32>, String) {
         .stderr(Stdio::piped())
         .output()
         .unwrap();
-    (output.status.code(), String::from_utf8_lossy(&output.stderr).into_owned())
+    (
+        output.status.code(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
 }
 
 #[test]
@@ -95,7 +101,11 @@ fn a_closed_pipe_ends_the_output_quietly() {
     drop(child.stdout.take());
     let output = child.wait_with_output().unwrap();
     assert_eq!(output.status.code(), Some(0));
-    assert!(output.stderr.is_empty(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
 }
 
 #[test]
@@ -110,9 +120,20 @@ fn long_expressions_and_include_chains_get_located_errors() {
     .unwrap();
     let output = gbuffer("validate").arg(&long).fails_with(1);
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(stderr.contains("long.wgsl:3:5: error: this statement has more than 4096 operators"), "{stderr}");
+    assert!(
+        stderr.contains("long.wgsl:3:5: error: this statement has more than 4096 operators"),
+        "{stderr}"
+    );
     let nested = folder.path().join("nested.wgsl");
-    std::fs::write(&nested, format!("fn f() -> f32 {{ return {}1.0{}; }}\n", "(".repeat(10_000), ")".repeat(10_000))).unwrap();
+    std::fs::write(
+        &nested,
+        format!(
+            "fn f() -> f32 {{ return {}1.0{}; }}\n",
+            "(".repeat(10_000),
+            ")".repeat(10_000)
+        ),
+    )
+    .unwrap();
     let output = gbuffer("validate").arg(&nested).fails_with(1);
     assert!(String::from_utf8_lossy(&output.stderr).contains("nested.wgsl:1:"));
     for index in 0..3000 {
@@ -123,7 +144,9 @@ fn long_expressions_and_include_chains_get_located_errors() {
         .unwrap();
     }
     std::fs::write(folder.path().join("3000.wgsl"), "fn last() {}\n").unwrap();
-    let output = gbuffer("validate").arg(folder.path().join("0.wgsl")).fails_with(1);
+    let output = gbuffer("validate")
+        .arg(folder.path().join("0.wgsl"))
+        .fails_with(1);
     assert!(String::from_utf8_lossy(&output.stderr).contains("nest more than 64 files deep"));
 }
 
@@ -132,17 +155,33 @@ fn oversized_inputs_and_special_files_are_refused_at_once() {
     let folder = tempfile::tempdir().unwrap();
     let huge = folder.path().join("huge.toml");
     std::fs::write(&huge, layout(&"N".repeat(50 << 20), "value")).unwrap();
-    let output = gbuffer("codegen").arg(&huge).arg("--out").arg(folder.path().join("out")).fails_with(1);
+    let output = gbuffer("codegen")
+        .arg(&huge)
+        .arg("--out")
+        .arg(folder.path().join("out"))
+        .fails_with(1);
     assert!(String::from_utf8_lossy(&output.stderr).contains("over the limit"));
     let fifo = folder.path().join("fifo.toml");
-    assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    assert!(std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
     let started = Instant::now();
-    let output = gbuffer("codegen").arg(&fifo).arg("--out").arg(folder.path().join("out")).fails_with(1);
+    let output = gbuffer("codegen")
+        .arg(&fifo)
+        .arg("--out")
+        .arg(folder.path().join("out"))
+        .fails_with(1);
     assert!(String::from_utf8_lossy(&output.stderr).contains("not a regular file"));
     let shader = folder.path().join("fifo_include.wgsl");
     std::fs::write(&shader, "#include \"fifo.toml\"\n").unwrap();
     gbuffer("validate").arg(&shader).fails_with(1);
-    gbuffer("codegen").arg(folder.path()).arg("--out").arg(folder.path().join("out")).fails_with(1);
+    gbuffer("codegen")
+        .arg(folder.path())
+        .arg("--out")
+        .arg(folder.path().join("out"))
+        .fails_with(1);
     assert!(started.elapsed() < Duration::from_secs(10));
     assert!(!folder.path().join("out").exists());
 }
@@ -152,12 +191,18 @@ fn thousands_of_fields_are_refused_quickly() {
     let folder = tempfile::tempdir().unwrap();
     let mut text = String::from("name = \"Many\"\nbudget = 10016\n");
     for index in 0..10_000 {
-        text.push_str(&format!("\n[[fields]]\nname = \"f{index}\"\nbits = 1\nencoding = \"unorm\"\ntype = \"f32\"\n"));
+        text.push_str(&format!(
+            "\n[[fields]]\nname = \"f{index}\"\nbits = 1\nencoding = \"unorm\"\ntype = \"f32\"\n"
+        ));
     }
     let path = folder.path().join("many.toml");
     std::fs::write(&path, text).unwrap();
     let started = Instant::now();
-    let output = gbuffer("codegen").arg(&path).arg("--out").arg(folder.path().join("out")).fails_with(1);
+    let output = gbuffer("codegen")
+        .arg(&path)
+        .arg("--out")
+        .arg(folder.path().join("out"))
+        .fails_with(1);
     assert!(String::from_utf8_lossy(&output.stderr).contains("limited to 256"));
     assert!(started.elapsed() < Duration::from_secs(5));
 }
@@ -175,9 +220,14 @@ fn a_failed_run_leaves_no_file_behind() {
     assert!(String::from_utf8_lossy(&output.stderr).contains("nothing was written"));
     assert_eq!(entries(&out), ["mobile_metallic.fetch.glsl"]);
     // Two scenes, the second unsolvable: nothing of the first.
-    let scene = std::fs::read_to_string(workspace().join("solver/scenes/mobile-metallic.toml")).unwrap();
+    let scene =
+        std::fs::read_to_string(workspace().join("solver/scenes/mobile-metallic.toml")).unwrap();
     let broken = folder.path().join("broken.toml");
-    std::fs::write(&broken, scene.replace("normal_degrees = 0.5", "normal_degrees = -1")).unwrap();
+    std::fs::write(
+        &broken,
+        scene.replace("normal_degrees = 0.5", "normal_degrees = -1"),
+    )
+    .unwrap();
     let scenes_out = folder.path().join("scenes");
     gbuffer("solve")
         .arg(workspace().join("solver/scenes/mobile-metallic.toml"))
@@ -196,13 +246,26 @@ fn two_sources_of_one_file_are_an_error_naming_both() {
     std::fs::write(&first, layout("MobileMetallic", "value")).unwrap();
     std::fs::write(&second, layout("Mobile_Metallic", "value")).unwrap();
     let out = folder.path().join("out");
-    let output = gbuffer("codegen").arg(&first).arg(&second).arg("--out").arg(&out).fails_with(1);
+    let output = gbuffer("codegen")
+        .arg(&first)
+        .arg(&second)
+        .arg("--out")
+        .arg(&out)
+        .fails_with(1);
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(stderr.contains("first.toml") && stderr.contains("second.toml"), "{stderr}");
+    assert!(
+        stderr.contains("first.toml") && stderr.contains("second.toml"),
+        "{stderr}"
+    );
     assert!(!out.exists());
     // One scene given twice: the same.
     let scene = workspace().join("solver/scenes/mobile-metallic.toml");
-    gbuffer("solve").arg(&scene).arg(&scene).arg("--out").arg(&out).fails_with(1);
+    gbuffer("solve")
+        .arg(&scene)
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .fails_with(1);
     assert!(!out.exists());
 }
 
@@ -211,7 +274,11 @@ fn a_very_long_name_is_refused() {
     let folder = tempfile::tempdir().unwrap();
     let path = folder.path().join("long.toml");
     std::fs::write(&path, layout("Texel", &"n".repeat(10_000))).unwrap();
-    let output = gbuffer("codegen").arg(&path).arg("--out").arg(folder.path().join("out")).fails_with(1);
+    let output = gbuffer("codegen")
+        .arg(&path)
+        .arg("--out")
+        .arg(folder.path().join("out"))
+        .fails_with(1);
     assert!(String::from_utf8_lossy(&output.stderr).contains("names are limited to 128"));
 }
 
@@ -226,5 +293,9 @@ fn includes_outside_the_roots_are_refused() {
     let output = gbuffer("validate").arg(&shader).fails_with(1);
     assert!(String::from_utf8_lossy(&output.stderr).contains("outside the include roots"));
     // An include directory lets it in.
-    gbuffer("validate").arg(&shader).arg("--include-dir").arg(folder.path()).succeed();
+    gbuffer("validate")
+        .arg(&shader)
+        .arg("--include-dir")
+        .arg(folder.path())
+        .succeed();
 }
