@@ -131,13 +131,17 @@ fn shader(arguments: &Arguments) -> Result<Shader, String> {
         .is_some_and(|extension| extension == "wgsl");
     if is_wgsl {
         let resolved = resolve_file(file, &[]).map_err(|problem| problem.to_string())?;
+        gbuffer_validator::expression_size::check(&resolved.source).map_err(|problem| {
+            let (line, column) = problem.location.unwrap_or((1, 1));
+            format!("{}:{line}:{column}: {}", file.display(), problem.message)
+        })?;
         let shader = match &arguments.entry {
             Some(entry) => Shader::wgsl(&resolved.source, entry),
             None => Shader::wgsl_only_entry_point(&resolved.source),
         };
         return shader.map_err(|message| format!("{}: {message}", file.display()));
     }
-    let text = std::fs::read_to_string(file)
+    let text = gbuffer_codegen::input::read_input(file)
         .map_err(|error| format!("{}: cannot read: {error}", file.display()))?;
     let stage = match arguments.stage.as_deref() {
         Some("compute") => Stage::Compute,

@@ -36,12 +36,28 @@ enum Subcommands {
     Cost(cost::Arguments),
 }
 
+/// The stack of the thread a subcommand runs on: naga walks a shader's expressions
+/// recursively, and the largest statement the commands accept (see
+/// `gbuffer_validator::expression_size`) needs more than a main thread's 8 MiB.
+const STACK_BYTES: usize = 256 << 20;
+
 fn main() -> ExitCode {
-    match Command::parse().subcommand {
+    let command = Command::parse();
+    let run = move || match command.subcommand {
         Subcommands::Codegen(arguments) => codegen::run(arguments),
         Subcommands::Validate(arguments) => validate::run(arguments),
         Subcommands::Solve(arguments) => solve::run(arguments),
         Subcommands::Report(arguments) => report::run(arguments),
         Subcommands::Cost(arguments) => cost::run(arguments),
+    };
+    match std::thread::Builder::new().stack_size(STACK_BYTES).spawn(run) {
+        // A panic stays one (exit 101): the tests must see it, not a quiet failure.
+        Ok(thread) => thread
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+        Err(error) => {
+            eprintln!("gbuffer: cannot start: {error}");
+            ExitCode::FAILURE
+        }
     }
 }
