@@ -50,7 +50,10 @@ fn main() -> ExitCode {
         Subcommands::Report(arguments) => report::run(arguments),
         Subcommands::Cost(arguments) => cost::run(arguments),
     };
-    match std::thread::Builder::new().stack_size(STACK_BYTES).spawn(run) {
+    match std::thread::Builder::new()
+        .stack_size(STACK_BYTES)
+        .spawn(run)
+    {
         // A panic stays one (exit 101): the tests must see it, not a quiet failure.
         Ok(thread) => thread
             .join()

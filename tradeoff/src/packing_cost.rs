@@ -151,10 +151,7 @@ fn count(binary: &[u8]) -> Cost {
         conditional_branches: 0,
     };
     let mut in_function = false;
-    // After the 5-word header, each instruction's first word holds its length and opcode.
-    let mut at = 5;
-    while at < words.len() {
-        let (length, opcode) = ((words[at] >> 16) as usize, words[at] & 0xffff);
+    for opcode in gbuffer_validator::cost::spirv_opcodes(&words) {
         match opcode {
             OP_FUNCTION => in_function = true,
             OP_FUNCTION_END => in_function = false,
@@ -165,7 +162,6 @@ fn count(binary: &[u8]) -> Cost {
             }
             _ => {}
         }
-        at += length.max(1);
     }
     cost
 }

@@ -93,18 +93,23 @@ pub fn naga_expressions(module: &Module, root: &str) -> usize {
     total
 }
 
-/// The number of instructions in a SPIR-V binary (after its 5-word header, each instruction's
-/// first word holds its word count in the high 16 bits).
-pub fn spirv_instructions(words: &[u32]) -> usize {
-    let mut count = 0;
+/// The opcodes of a SPIR-V module's instructions, in order: after the 5-word header, each
+/// instruction's first word holds its length in words (high half) and its opcode (low half).
+/// A zero length, which no valid module has, ends the walk.
+pub fn spirv_opcodes(words: &[u32]) -> impl Iterator<Item = u32> + '_ {
     let mut index = 5;
-    while index < words.len() {
-        let length = (words[index] >> 16) as usize;
+    std::iter::from_fn(move || {
+        let first = *words.get(index)?;
+        let length = (first >> 16) as usize;
         if length == 0 {
-            break;
+            return None;
         }
         index += length;
-        count += 1;
-    }
-    count
+        Some(first & 0xffff)
+    })
+}
+
+/// SPIR-V instructions in a module (all of them, header excluded).
+pub fn spirv_instructions(words: &[u32]) -> usize {
+    spirv_opcodes(words).count()
 }
