@@ -15,7 +15,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 build() {
-    cargo build --release -p gbuffer-cli
+    cargo build --release -p gbuffer-cli --features report
     # The bench's executable, without running it (cargo prints where it put it).
     local bench
     bench=$(cargo bench --no-run -p gbuffer-render --bench deferred --message-format=json 2>/dev/null |

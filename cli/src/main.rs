@@ -1,12 +1,19 @@
 //! `gbuffer`: one command for the tools around a G-buffer layout. Each subcommand lives in its
-//! own module, with its arguments, its `--help` text and its exit statuses.
+//! own module, with its arguments, its `--help` text and its exit statuses. `report` and
+//! `cost` come with the features of their names (off by default, so that `cargo install
+//! gbuffer-cli` builds no GPU stack); without them, asking for one says which feature to
+//! enable.
 
 mod codegen;
+#[cfg(feature = "cost")]
 mod cost;
 mod output;
+#[cfg(feature = "report")]
 mod report;
 mod solve;
 mod validate;
+#[cfg(not(all(feature = "report", feature = "cost")))]
+mod without_feature;
 
 use std::process::ExitCode;
 
@@ -17,8 +24,11 @@ use clap::{Parser, Subcommand};
 /// speed/accuracy trade of the shading library, and cost shaders on the compilers of Mali,
 /// Adreno, AMD and NVIDIA GPUs.
 ///
-/// Exit status: 0 on success, 1 when an input is invalid (a layout, a shader, a scene) or an
-/// output cannot be written, 2 on a usage error.
+/// `report` and `cost` need the features of their names: `cargo install gbuffer-cli --features
+/// report,cost`.
+///
+/// Exit status: 0 on success, 1 when an input is invalid or unreadable (a layout, a shader, a
+/// scene) or an output cannot be written, 2 on a usage error.
 #[derive(Parser, Debug)]
 #[command(name = "gbuffer", version, about, long_about)]
 struct Command {
@@ -32,8 +42,18 @@ enum Subcommands {
     Codegen(codegen::Arguments),
     Validate(validate::Arguments),
     Solve(solve::Arguments),
+    #[cfg(feature = "report")]
     Report(report::Arguments),
+    /// Measures the speed/accuracy trade of the shading library (this build lacks the `report`
+    /// feature: `cargo install gbuffer-cli --features report`).
+    #[cfg(not(feature = "report"))]
+    Report(without_feature::Arguments),
+    #[cfg(feature = "cost")]
     Cost(cost::Arguments),
+    /// Costs a shader on the compilers of Mali, Adreno, AMD and NVIDIA GPUs (this build lacks
+    /// the `cost` feature: `cargo install gbuffer-cli --features cost`).
+    #[cfg(not(feature = "cost"))]
+    Cost(without_feature::Arguments),
 }
 
 /// The stack of the thread a subcommand runs on: naga walks a shader's expressions
@@ -47,8 +67,14 @@ fn main() -> ExitCode {
         Subcommands::Codegen(arguments) => codegen::run(arguments),
         Subcommands::Validate(arguments) => validate::run(arguments),
         Subcommands::Solve(arguments) => solve::run(arguments),
+        #[cfg(feature = "report")]
         Subcommands::Report(arguments) => report::run(arguments),
+        #[cfg(not(feature = "report"))]
+        Subcommands::Report(_) => without_feature::run("report"),
+        #[cfg(feature = "cost")]
         Subcommands::Cost(arguments) => cost::run(arguments),
+        #[cfg(not(feature = "cost"))]
+        Subcommands::Cost(_) => without_feature::run("cost"),
     };
     match std::thread::Builder::new()
         .stack_size(STACK_BYTES)

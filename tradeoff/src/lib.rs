@@ -1,6 +1,6 @@
 //! The speed/accuracy trade of every approximation and encoding, side by side.
 //!
-//! Run with `cargo run --release -p gbuffer-cli -- report`. Prints a table and writes
+//! Run with `cargo run --release -p gbuffer-cli --features report -- report`. Prints a table and writes
 //! `target/tradeoff/report.md`, `report.json` and PNG plots (or into `--out DIR`). Each row's error is measured
 //! against the f64 references over the stated domain; its cost is counted in naga IR
 //! expressions and SPIR-V instructions; its time is measured on the adapter at hand, in a

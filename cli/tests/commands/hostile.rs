@@ -118,12 +118,14 @@ fn long_expressions_and_include_chains_get_located_errors() {
         format!("@fragment\nfn main() -> @location(0) vec4<f32> {{\n    return vec4<f32>({terms});\n}}\n"),
     )
     .unwrap();
-    let output = gbuffer("cost").arg(&long).fails_with(1);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        stderr.contains("long.wgsl:3:5: this statement has more than 4096"),
-        "{stderr}"
-    );
+    if cfg!(feature = "cost") {
+        let output = gbuffer("cost").arg(&long).fails_with(1);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            stderr.contains("long.wgsl:3:5: this statement has more than 4096"),
+            "{stderr}"
+        );
+    }
     let output = gbuffer("validate").arg(&long).fails_with(1);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(
@@ -183,10 +185,12 @@ fn oversized_inputs_and_special_files_are_refused_at_once() {
     let shader = folder.path().join("fifo_include.wgsl");
     std::fs::write(&shader, "#include \"fifo.toml\"\n").unwrap();
     gbuffer("validate").arg(&shader).fails_with(1);
-    let output = gbuffer("cost")
-        .arg(folder.path().join("fifo.toml"))
-        .fails_with(1);
-    assert!(String::from_utf8_lossy(&output.stderr).contains("not a regular file"));
+    if cfg!(feature = "cost") {
+        let output = gbuffer("cost")
+            .arg(folder.path().join("fifo.toml"))
+            .fails_with(1);
+        assert!(String::from_utf8_lossy(&output.stderr).contains("not a regular file"));
+    }
     gbuffer("codegen")
         .arg(folder.path())
         .arg("--out")

@@ -2,11 +2,14 @@
 //! `file:line:col`, and its exit statuses. Cargo builds the binary for these tests.
 
 mod codegen;
+#[cfg(feature = "cost")]
 mod cost;
 mod fuzz;
 mod hostile;
 mod solve;
 mod validate;
+#[cfg(not(all(feature = "report", feature = "cost")))]
+mod without_feature;
 
 use assert_cmd::Command;
 use std::path::{Path, PathBuf};
