@@ -509,6 +509,16 @@ static void print_statistic(const VkPipelineExecutableStatisticKHR *statistic) {
     }
 }
 
+/* A zeroed array of `count` (at least one) Vulkan output structures of `size` bytes each, with
+ * every sType set: the second call of Vulkan's count-then-fill idiom. Every such structure
+ * begins with its sType. */
+static void *vulkan_outputs(uint32_t count, size_t size, VkStructureType type) {
+    char *array = calloc(count ? count : 1, size);
+    if (!array) fail("out of memory");
+    for (uint32_t i = 0; i < count; i++) memcpy(array + i * size, &type, sizeof type);
+    return array;
+}
+
 static void print_executables(VkDevice device, VkPipeline pipeline, int disassembly) {
     PFN_vkGetPipelineExecutablePropertiesKHR properties =
         (PFN_vkGetPipelineExecutablePropertiesKHR)device_function(
@@ -523,11 +533,9 @@ static void print_executables(VkDevice device, VkPipeline pipeline, int disassem
                                        .pipeline = pipeline};
     uint32_t count = 0;
     CHECK(properties(device, &pipeline_info, &count, NULL), "vkGetPipelineExecutableProperties");
-    VkPipelineExecutablePropertiesKHR executables[MAX_ITEMS];
-    if (count > MAX_ITEMS) count = MAX_ITEMS;
-    for (uint32_t i = 0; i < count; i++)
-        executables[i] = (VkPipelineExecutablePropertiesKHR){
-            .sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR};
+    VkPipelineExecutablePropertiesKHR *executables =
+        vulkan_outputs(count, sizeof *executables,
+                       VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR);
     CHECK(properties(device, &pipeline_info, &count, executables),
           "vkGetPipelineExecutableProperties");
     for (uint32_t i = 0; i < count; i++) {
@@ -538,10 +546,8 @@ static void print_executables(VkDevice device, VkPipeline pipeline, int disassem
         uint32_t statistic_count = 0;
         CHECK(statistics(device, &info, &statistic_count, NULL),
               "vkGetPipelineExecutableStatistics");
-        VkPipelineExecutableStatisticKHR *values =
-            calloc(statistic_count ? statistic_count : 1, sizeof *values);
-        for (uint32_t s = 0; s < statistic_count; s++)
-            values[s].sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR;
+        VkPipelineExecutableStatisticKHR *values = vulkan_outputs(
+            statistic_count, sizeof *values, VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR);
         CHECK(statistics(device, &info, &statistic_count, values),
               "vkGetPipelineExecutableStatistics");
         for (uint32_t s = 0; s < statistic_count; s++) print_statistic(&values[s]);
@@ -551,9 +557,8 @@ static void print_executables(VkDevice device, VkPipeline pipeline, int disassem
         CHECK(representations(device, &info, &text_count, NULL),
               "vkGetPipelineExecutableInternalRepresentations");
         VkPipelineExecutableInternalRepresentationKHR *texts =
-            calloc(text_count ? text_count : 1, sizeof *texts);
-        for (uint32_t t = 0; t < text_count; t++)
-            texts[t].sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INTERNAL_REPRESENTATION_KHR;
+            vulkan_outputs(text_count, sizeof *texts,
+                           VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INTERNAL_REPRESENTATION_KHR);
         CHECK(representations(device, &info, &text_count, texts),
               "vkGetPipelineExecutableInternalRepresentations");
         for (uint32_t t = 0; t < text_count; t++) {
@@ -563,11 +568,14 @@ static void print_executables(VkDevice device, VkPipeline pipeline, int disassem
         CHECK(representations(device, &info, &text_count, texts),
               "vkGetPipelineExecutableInternalRepresentations");
         for (uint32_t t = 0; t < text_count; t++) {
-            if (!texts[t].isText) continue;
-            printf("representation: %s\n%s\nend-representation\n", texts[t].name,
-                   (const char *)texts[t].pData);
+            if (texts[t].isText)
+                printf("representation: %s\n%s\nend-representation\n", texts[t].name,
+                       (const char *)texts[t].pData);
+            free(texts[t].pData);
         }
+        free(texts);
     }
+    free(executables);
 }
 
 /* One pipeline: STAGE SHADER.spv [VERTEX.spv] and its options. */
