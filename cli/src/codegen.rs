@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use gbuffer_codegen::layout_file::{read_layout_file, FileError};
 use gbuffer_codegen::output::{generate, Output, WriteOutcome};
-use gbuffer_codegen::staging::{write_all, Planned, StagingError};
+use gbuffer_codegen::staging::Planned;
 
 use crate::output;
 
@@ -70,9 +70,6 @@ impl Arguments {
     }
 }
 
-/// Exit status 1: an invalid or unreadable layout, or outputs that cannot be written.
-const FAILED: u8 = 1;
-
 pub fn run(arguments: Arguments) -> ExitCode {
     let outputs = arguments.outputs();
     // Read and check every layout first, so that all problems are reported together and
@@ -93,7 +90,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
         }
     }
     if failed {
-        return ExitCode::from(FAILED);
+        return ExitCode::FAILURE;
     }
     let mut files = Vec::new();
     for (path, file) in &layouts {
@@ -106,7 +103,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
             })),
             Err(error) => {
                 eprintln!("gbuffer codegen: {}: {error}", file.layout.name);
-                return ExitCode::from(FAILED);
+                return ExitCode::FAILURE;
             }
         }
     }
@@ -127,12 +124,5 @@ pub fn run(arguments: Arguments) -> ExitCode {
             .collect();
         output::print(&lines)
     };
-    match write_all(&arguments.out, &files, report) {
-        Ok(_) => ExitCode::SUCCESS,
-        Err(StagingError::Report) => ExitCode::from(FAILED),
-        Err(error) => {
-            eprintln!("gbuffer codegen: {error}; nothing was written");
-            ExitCode::from(FAILED)
-        }
-    }
+    output::write_files("codegen", &arguments.out, &files, report)
 }

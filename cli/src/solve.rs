@@ -15,7 +15,6 @@ use std::process::ExitCode;
 use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_codegen::layout_file::FileError;
 use gbuffer_codegen::output::{generate, GeneratedFile, Output};
-use gbuffer_codegen::staging::{write_all, StagingError};
 use gbuffer_solver::file::read_and_solve;
 use gbuffer_solver::lighting::{lighting_wgsl, Forms};
 
@@ -108,12 +107,5 @@ pub fn run(arguments: Arguments) -> ExitCode {
             Err(()) => ExitCode::FAILURE,
         };
     };
-    match write_all(folder, &files, |_| output::print(&summaries)) {
-        Ok(_) => ExitCode::SUCCESS,
-        Err(StagingError::Report) => ExitCode::FAILURE,
-        Err(error) => {
-            eprintln!("gbuffer solve: {error}; nothing was written");
-            ExitCode::FAILURE
-        }
-    }
+    output::write_files("solve", folder, &files, |_| output::print(&summaries))
 }

@@ -121,10 +121,15 @@ pub enum WriteOutcome {
     Unchanged,
 }
 
+/// Whether the file at `path` holds exactly `contents` (so that writing it would change nothing).
+pub fn holds(path: &Path, contents: &str) -> bool {
+    std::fs::read(path).is_ok_and(|held| held == contents.as_bytes())
+}
+
 /// Writes `contents` to `path` unless it already holds exactly that, through a temporary file
 /// in the same folder renamed over the target, so a reader never sees half a file.
 pub fn write_if_changed(path: &Path, contents: &str) -> io::Result<WriteOutcome> {
-    if std::fs::read(path).is_ok_and(|existing| existing == contents.as_bytes()) {
+    if holds(path, contents) {
         return Ok(WriteOutcome::Unchanged);
     }
     let folder = path

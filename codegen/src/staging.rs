@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::output::{GeneratedFile, WriteOutcome};
+use crate::output::{holds, GeneratedFile, WriteOutcome};
 
 /// A file of the run: where it goes, and whether the run writes it.
 #[derive(Debug)]
@@ -64,7 +64,7 @@ pub fn write_all(
     if result.is_err() {
         run.roll_back();
     }
-    run.clean_up();
+    let _ = std::fs::remove_dir_all(&run.staging);
     result
 }
 
@@ -119,11 +119,7 @@ impl Run {
                         path.display()
                     )));
                 }
-                Ok(_)
-                    if std::fs::read(&path).is_ok_and(|held| held == file.contents.as_bytes()) =>
-                {
-                    WriteOutcome::Unchanged
-                }
+                Ok(_) if holds(&path, &file.contents) => WriteOutcome::Unchanged,
                 _ => {
                     let staged = self.staging.join(&file.name);
                     std::fs::write(&staged, &file.contents).map_err(|error| {
@@ -157,7 +153,8 @@ impl Run {
         Ok(())
     }
 
-    /// Puts back what the moved files replaced, and removes what the run created.
+    /// Puts back what the moved files replaced (from the staging folder, which the caller
+    /// removes afterwards), and removes the folders the run created.
     fn roll_back(&self) {
         for (destination, backup) in self.moved.iter().rev() {
             match backup {
@@ -169,14 +166,9 @@ impl Run {
                 }
             }
         }
-        let _ = std::fs::remove_dir_all(&self.staging);
         if let Some(created) = &self.created {
             let _ = std::fs::remove_dir_all(created);
         }
-    }
-
-    fn clean_up(&self) {
-        let _ = std::fs::remove_dir_all(&self.staging);
     }
 }
 
