@@ -40,18 +40,19 @@ pub fn check_identifier(name: &str) -> Result<(), String> {
     let Some(first) = characters.next() else {
         return Err("is empty".into());
     };
-    if name.len() > MAX_IDENTIFIER_LENGTH {
-        return Err(format!(
-            "is {} characters long; names are limited to {MAX_IDENTIFIER_LENGTH}",
-            name.len()
-        ));
-    }
     if !(first.is_ascii_alphabetic() || first == '_')
         || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
     {
         return Err(
             "must be an ASCII identifier (letters, digits, `_`; not starting with a digit)".into(),
         );
+    }
+    // ASCII: its length in bytes is its length in characters.
+    if name.len() > MAX_IDENTIFIER_LENGTH {
+        return Err(format!(
+            "is {} characters long; names are limited to {MAX_IDENTIFIER_LENGTH}",
+            name.len()
+        ));
     }
     if name == "_" || name.starts_with("__") {
         return Err("is reserved in WGSL (`_` and names starting with `__`)".into());
@@ -695,6 +696,7 @@ mod tests {
     fn layout_names() {
         assert!(check_layout_name("MobileMetallic").is_ok());
         assert!(check_layout_name("main").is_ok(), "GLSL renames it");
+        assert!(check_layout_name("vec4").unwrap_err().contains("`vec4`"));
         assert!(check_layout_name("clamp").unwrap_err().contains("`clamp`"));
         assert!(check_layout_name("GlState")
             .unwrap_err()

@@ -124,6 +124,8 @@ pub fn validate_generated(source: &str) -> Result<Validated, Problem> {
 
 /// Parses and validates WGSL with the default capabilities and `extra`.
 fn validate_with(source: &str, extra: Capabilities) -> Result<Validated, Problem> {
+    // Before naga, whose recursion a huge statement would overflow.
+    expression_size::check(source)?;
     let module = naga::front::wgsl::parse_str(source).map_err(|error| Problem {
         stage: Stage::Parse,
         location: error
@@ -346,9 +348,8 @@ impl fmt::Display for FileProblem {
 const CHECK_STACK_BYTES: usize = 256 << 20;
 
 /// Checks a WGSL file: resolves its includes (confined to its folder, the current folder and
-/// `include_dirs`),
-/// validates it with naga, and (with `portability`) translates it to every backend. Returns
-/// every problem found; empty when the file is valid.
+/// `include_dirs`), validates it with naga, and (with `portability`) translates it to every
+/// backend. Returns every problem found; empty when the file is valid.
 pub fn check_file(path: &Path, portability: bool, include_dirs: &[PathBuf]) -> Vec<FileProblem> {
     let resolved = match include::resolve_file(path, include_dirs) {
         Ok(resolved) => resolved,
@@ -421,9 +422,6 @@ fn check_resolved(
             notes: problem.notes,
         }
     };
-    if let Err(problem) = expression_size::check(&resolved.source) {
-        return vec![place(problem)];
-    }
     let validated = match validate_wgsl(&resolved.source) {
         Ok(validated) => validated,
         Err(problem) => return vec![place(problem)],
