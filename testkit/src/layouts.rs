@@ -179,18 +179,15 @@ pub fn random_layout_with(max_fields: usize) -> impl Strategy<Value = Layout> {
     });
     let bits = (0..Encoding::CODECS.len(), 0usize..4, 0u32..64)
         .prop_map(|(encoding, components, width)| bit_field(encoding, components, width));
-    let field = (
-        prop_oneof![word, bits],
-        prop::option::of(0..awkward_field_names().len()),
-    );
+    let awkward = awkward_field_names();
+    let field = (prop_oneof![word, bits], prop::option::of(0..awkward.len()));
     (
         prop::collection::vec(field, 1..=max_fields),
         0u32..3,
         0u32..1000,
         prop::option::of(0..AWKWARD_LAYOUT_NAMES.len()),
     )
-        .prop_map(|(fields, extra_words, tag, layout_name)| {
-            let awkward = awkward_field_names();
+        .prop_map(move |(fields, extra_words, tag, layout_name)| {
             let mut named: Vec<Field> = Vec::new();
             for (index, ((storage, ty), name)) in fields.into_iter().enumerate() {
                 let mut name =

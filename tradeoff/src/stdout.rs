@@ -5,32 +5,26 @@
 //! tools do.
 
 use std::io::{ErrorKind, Write};
-use std::sync::Mutex;
+use std::sync::OnceLock;
 
-/// The first write error of this process's report output; `Some(None)` for a closed pipe.
-static FAILURE: Mutex<Option<Option<String>>> = Mutex::new(None);
+/// The first write failure of this process's report output: its message, or `None` for a
+/// closed pipe.
+static FAILURE: OnceLock<Option<String>> = OnceLock::new();
 
 /// Writes one line of the report to standard output, unless an earlier one failed.
 pub fn line(text: &str) {
-    let mut failure = FAILURE
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner());
-    if failure.is_some() {
+    if FAILURE.get().is_some() {
         return;
     }
     let mut stdout = std::io::stdout().lock();
     if let Err(error) = writeln!(stdout, "{text}").and_then(|()| stdout.flush()) {
-        *failure = Some((error.kind() != ErrorKind::BrokenPipe).then(|| error.to_string()));
+        let _ = FAILURE.set((error.kind() != ErrorKind::BrokenPipe).then(|| error.to_string()));
     }
 }
 
 /// The error that stopped the report's output, if one did (a closed pipe is none).
 pub fn failure() -> Option<String> {
-    FAILURE
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner())
-        .clone()
-        .flatten()
+    FAILURE.get().cloned().flatten()
 }
 
 /// `println!` for the report: see the module's documentation.

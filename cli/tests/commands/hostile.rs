@@ -13,6 +13,16 @@ fn layout(name: &str, field: &str) -> String {
     format!("name = \"{name}\"\n\n[[fields]]\nname = \"{field}\"\nformat = \"rgba8\"\ntype = \"Vec4\"\n")
 }
 
+/// The standard error of `gbuffer codegen INPUT --out OUT`, which must exit 1.
+fn codegen_refuses(input: &Path, out: &Path) -> String {
+    let output = gbuffer("codegen")
+        .arg(input)
+        .arg("--out")
+        .arg(out)
+        .fails_with(1);
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
 /// The names of the entries of `folder` (none when it does not exist).
 fn entries(folder: &Path) -> Vec<String> {
     std::fs::read_dir(folder).map_or_else(
@@ -31,12 +41,8 @@ fn rust_keywords_as_names_are_errors_not_panics() {
     for (layout_name, field) in [("Texel", "in"), ("Texel", "dyn"), ("Texel", "box")] {
         let path = folder.path().join("keyword.toml");
         std::fs::write(&path, layout(layout_name, field)).unwrap();
-        let output = gbuffer("codegen")
-            .arg(&path)
-            .arg("--out")
-            .arg(folder.path().join("out"))
-            .fails_with(1);
-        let stderr = String::from_utf8_lossy(&output.stderr);
+        let stderr = codegen_refuses(&path, &folder.path().join("out"));
+
         assert!(
             stderr.contains(&format!("field name `{field}` is a Rust keyword")),
             "{stderr}"
@@ -163,12 +169,8 @@ fn oversized_inputs_and_special_files_are_refused_at_once() {
     let folder = tempfile::tempdir().unwrap();
     let huge = folder.path().join("huge.toml");
     std::fs::write(&huge, layout(&"N".repeat(50 << 20), "value")).unwrap();
-    let output = gbuffer("codegen")
-        .arg(&huge)
-        .arg("--out")
-        .arg(folder.path().join("out"))
-        .fails_with(1);
-    assert!(String::from_utf8_lossy(&output.stderr).contains("over the limit"));
+    let stderr = codegen_refuses(&huge, &folder.path().join("out"));
+    assert!(stderr.contains("over the limit"));
     let fifo = folder.path().join("fifo.toml");
     assert!(std::process::Command::new("mkfifo")
         .arg(&fifo)
@@ -176,12 +178,8 @@ fn oversized_inputs_and_special_files_are_refused_at_once() {
         .unwrap()
         .success());
     let started = Instant::now();
-    let output = gbuffer("codegen")
-        .arg(&fifo)
-        .arg("--out")
-        .arg(folder.path().join("out"))
-        .fails_with(1);
-    assert!(String::from_utf8_lossy(&output.stderr).contains("not a regular file"));
+    let stderr = codegen_refuses(&fifo, &folder.path().join("out"));
+    assert!(stderr.contains("not a regular file"));
     let shader = folder.path().join("fifo_include.wgsl");
     std::fs::write(&shader, "#include \"fifo.toml\"\n").unwrap();
     gbuffer("validate").arg(&shader).fails_with(1);
@@ -191,11 +189,7 @@ fn oversized_inputs_and_special_files_are_refused_at_once() {
             .fails_with(1);
         assert!(String::from_utf8_lossy(&output.stderr).contains("not a regular file"));
     }
-    gbuffer("codegen")
-        .arg(folder.path())
-        .arg("--out")
-        .arg(folder.path().join("out"))
-        .fails_with(1);
+    codegen_refuses(folder.path(), &folder.path().join("out"));
     assert!(started.elapsed() < Duration::from_secs(10));
     assert!(!folder.path().join("out").exists());
 }
@@ -212,12 +206,8 @@ fn thousands_of_fields_are_refused_quickly() {
     let path = folder.path().join("many.toml");
     std::fs::write(&path, text).unwrap();
     let started = Instant::now();
-    let output = gbuffer("codegen")
-        .arg(&path)
-        .arg("--out")
-        .arg(folder.path().join("out"))
-        .fails_with(1);
-    assert!(String::from_utf8_lossy(&output.stderr).contains("limited to 256"));
+    let stderr = codegen_refuses(&path, &folder.path().join("out"));
+    assert!(stderr.contains("limited to 256"));
     assert!(started.elapsed() < Duration::from_secs(5));
 }
 
@@ -226,12 +216,11 @@ fn a_failed_run_leaves_no_file_behind() {
     let folder = tempfile::tempdir().unwrap();
     let out = folder.path().join("out");
     std::fs::create_dir_all(out.join("mobile_metallic.fetch.glsl")).unwrap();
-    let output = gbuffer("codegen")
-        .arg(workspace().join("codegen/layouts/mobile_metallic.toml"))
-        .arg("--out")
-        .arg(&out)
-        .fails_with(1);
-    assert!(String::from_utf8_lossy(&output.stderr).contains("nothing was written"));
+    let stderr = codegen_refuses(
+        &workspace().join("codegen/layouts/mobile_metallic.toml"),
+        &out,
+    );
+    assert!(stderr.contains("nothing was written"));
     assert_eq!(entries(&out), ["mobile_metallic.fetch.glsl"]);
     // Two scenes, the second unsolvable: nothing of the first.
     let scene =
@@ -288,12 +277,8 @@ fn a_very_long_name_is_refused() {
     let folder = tempfile::tempdir().unwrap();
     let path = folder.path().join("long.toml");
     std::fs::write(&path, layout("Texel", &"n".repeat(10_000))).unwrap();
-    let output = gbuffer("codegen")
-        .arg(&path)
-        .arg("--out")
-        .arg(folder.path().join("out"))
-        .fails_with(1);
-    assert!(String::from_utf8_lossy(&output.stderr).contains("names are limited to 128"));
+    let stderr = codegen_refuses(&path, &folder.path().join("out"));
+    assert!(stderr.contains("names are limited to 128"));
 }
 
 #[test]

@@ -176,18 +176,6 @@ fn naga_glsl_of(mut wgsl: String) -> Result<String, TranslationError> {
 /// no `__` (the includes call them by those names).
 fn check_bit_field_functions(glsl: &str, layout: &Layout) -> Result<(), TranslationError> {
     let prefix = layout.snake_name();
-    // Every ` name(` of the text, gathered once: a search per field would make thousands of
-    // fields quadratic.
-    let bytes = glsl.as_bytes();
-    let called: std::collections::HashSet<&str> = glsl
-        .match_indices('(')
-        .filter_map(|(end, _)| {
-            let start = bytes[..end]
-                .iter()
-                .rposition(|&byte| !(byte.is_ascii_alphanumeric() || byte == b'_'))?;
-            (bytes[start] == b' ' && start + 1 < end).then(|| &glsl[start + 1..end])
-        })
-        .collect();
     for (index, _) in layout
         .fields
         .iter()
@@ -196,7 +184,7 @@ fn check_bit_field_functions(glsl: &str, layout: &Layout) -> Result<(), Translat
     {
         for verb in ["encode", "decode"] {
             let name = crate::emit::wgsl::bit_field_function_name(&prefix, verb, index);
-            if !called.contains(name.as_str()) {
+            if !glsl.contains(&format!(" {name}(")) {
                 return Err(TranslationError(format!(
                     "naga's GLSL for `{}` has no function `{name}`",
                     layout.name
