@@ -159,6 +159,13 @@ static GLenum gl_stage(const char *stage) {
 #define DECLARE(type, name) static type name;
 GL_FUNCTIONS(DECLARE)
 
+/* A driver's log on one line, as every message of this program is. */
+static const char *one_line(char *log) {
+    for (char *c = log; *c; c++)
+        if (*c == '\n') *c = ' ';
+    return log;
+}
+
 static GLuint gl_compile(GLenum stage, const char *path) {
     const char *source = read_file(path, NULL);
     GLuint shader = glCreateShader(stage);
@@ -169,9 +176,7 @@ static GLuint gl_compile(GLenum stage, const char *path) {
     if (!compiled) {
         char log[4096] = "";
         glGetShaderInfoLog(shader, sizeof log, NULL, log);
-        for (char *c = log; *c; c++)
-            if (*c == '\n') *c = ' ';
-        fail("%s does not compile: %s", path, log);
+        fail("%s does not compile: %s", path, one_line(log));
     }
     return shader;
 }
@@ -191,9 +196,7 @@ static void gl_program(void *unused, int argc, char **argv) {
     if (!linked) {
         char log[4096] = "";
         glGetProgramInfoLog(program, sizeof log, NULL, log);
-        for (char *c = log; *c; c++)
-            if (*c == '\n') *c = ' ';
-        fail("the program does not link: %s", log);
+        fail("the program does not link: %s", one_line(log));
     }
     glFinish();
 }
