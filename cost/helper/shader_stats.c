@@ -362,6 +362,21 @@ static VkPipelineLayout pipeline_layout(VkDevice device, const struct descriptor
 
 /* A render pass with one colour attachment a format, and the input attachments the shader
  * names (set 0's input-attachment descriptors, in binding order) as extra attachments. */
+/* An attachment of `format`, loaded and stored, in the general layout throughout: the render
+ * pass exists only for the pipeline to be created against. */
+static VkAttachmentDescription attachment(VkFormat format) {
+    return (VkAttachmentDescription){
+        .format = format,
+        .samples = VK_SAMPLE_COUNT_1_BIT,
+        .loadOp = VK_ATTACHMENT_LOAD_OP_LOAD,
+        .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+        .stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+        .stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
+        .initialLayout = VK_IMAGE_LAYOUT_GENERAL,
+        .finalLayout = VK_IMAGE_LAYOUT_GENERAL,
+    };
+}
+
 static VkRenderPass render_pass(VkDevice device, const VkFormat *colors, unsigned color_count,
                                 const struct descriptor *descriptors, unsigned descriptor_count) {
     VkAttachmentDescription attachments[2 * MAX_ITEMS];
@@ -370,32 +385,14 @@ static VkRenderPass render_pass(VkDevice device, const VkFormat *colors, unsigne
     for (unsigned i = 0; i < color_count; i++) {
         color_references[i] = (VkAttachmentReference){attachment_count,
                                                       VK_IMAGE_LAYOUT_GENERAL};
-        attachments[attachment_count++] = (VkAttachmentDescription){
-            .format = colors[i],
-            .samples = VK_SAMPLE_COUNT_1_BIT,
-            .loadOp = VK_ATTACHMENT_LOAD_OP_LOAD,
-            .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
-            .stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE,
-            .stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
-            .initialLayout = VK_IMAGE_LAYOUT_GENERAL,
-            .finalLayout = VK_IMAGE_LAYOUT_GENERAL,
-        };
+        attachments[attachment_count++] = attachment(colors[i]);
     }
     for (unsigned i = 0; i < descriptor_count; i++) {
         if (descriptors[i].type != VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT) continue;
         /* Input attachment index = binding order; the shader's index is the binding here. */
         input_references[input_count++] = (VkAttachmentReference){attachment_count,
                                                                   VK_IMAGE_LAYOUT_GENERAL};
-        attachments[attachment_count++] = (VkAttachmentDescription){
-            .format = VK_FORMAT_R32_UINT,
-            .samples = VK_SAMPLE_COUNT_1_BIT,
-            .loadOp = VK_ATTACHMENT_LOAD_OP_LOAD,
-            .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
-            .stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE,
-            .stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE,
-            .initialLayout = VK_IMAGE_LAYOUT_GENERAL,
-            .finalLayout = VK_IMAGE_LAYOUT_GENERAL,
-        };
+        attachments[attachment_count++] = attachment(VK_FORMAT_R32_UINT);
     }
     VkSubpassDescription subpass = {.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS,
                                     .inputAttachmentCount = input_count,
