@@ -9,7 +9,7 @@
 
 use std::fmt::Write as _;
 
-use gbuffer::packing::Layout;
+use gbuffer::layout::Layout;
 
 use crate::quantity::Quantity;
 

@@ -6,7 +6,7 @@
 
 use std::fmt;
 
-use gbuffer::packing::{FieldType, Layout, ScalarKind};
+use gbuffer::layout::{FieldType, Layout, ScalarKind};
 
 /// A quantity Bevy's deferred renderer stores in its G-buffer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

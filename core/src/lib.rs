@@ -12,7 +12,9 @@
 //! - [`naming`]: the identifiers the emitters derive from the layout's names;
 //! - [`convert`]: a whole word's channels through their codecs (the CPU side of the generated
 //!   WGSL);
-//! - [`report`]: the bit report and the WebGPU render-target cost.
+//! - [`report`]: the bit report and the WebGPU render-target cost;
+//! - [`shading_library`]: the WGSL shading library (`wgsl/`), composed by module name, whose
+//!   codec functions are the codecs' own WGSL.
 //!
 //! It depends on nothing: a user's runtime links no proc-macro2, quote or syn.
 
@@ -23,6 +25,7 @@ pub mod format;
 pub mod layout;
 pub mod naming;
 pub mod report;
+pub mod shading_library;
 
 pub use bit_field::BitField;
 pub use codecs::rgbm::RgbmRange;

@@ -52,8 +52,8 @@ pub struct HdrpLit {
 }
 
 /// The engine layouts and their WGSL, as [`crate::seed_layouts::all`] lists the seeds'.
-pub fn all() -> Vec<(crate::packing::Layout, &'static str)> {
-    fn entry<L: GBufferLayout>() -> (crate::packing::Layout, &'static str) {
+pub fn all() -> Vec<(crate::layout::Layout, &'static str)> {
+    fn entry<L: GBufferLayout>() -> (crate::layout::Layout, &'static str) {
         (L::layout(), L::WGSL)
     }
     vec![entry::<BevyDeferred>(), entry::<HdrpLit>()]

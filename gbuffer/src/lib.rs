@@ -34,7 +34,7 @@
 //! A `#[bits(N, encoding)]` field is N bits of a shared `r32ui` word: consecutive bit fields
 //! fill a word from its least significant bit up, and one that does not fit starts the next.
 //! The encodings are `unorm`, `snorm`, `uint`, `sint`, `bool`, `half`, `rgb9e5`, `octahedral`
-//! and `rgbm(range)` ([`packing::Encoding`]); [`engine_layouts`] declares Bevy's and HDRP's
+//! and `rgbm(range)` ([`layout::Encoding`]); [`engine_layouts`] declares Bevy's and HDRP's
 //! G-buffers with them:
 //!
 //! ```
@@ -63,10 +63,7 @@
 // The derive's expansion names `::gbuffer`; this lets the seed layouts below use it too.
 extern crate self as gbuffer;
 
-pub mod engine_conventions;
 pub mod engine_layouts;
-pub mod modules;
-pub mod seed_conventions;
 pub mod seed_layouts;
 pub mod shading;
 
@@ -84,9 +81,19 @@ pub mod build;
 #[cfg(feature = "wgpu")]
 pub mod targets;
 
-/// The layout model and the bit-exact conversions that derived code calls.
-pub mod packing {
-    pub use gbuffer_core::codecs;
+/// The layout model: fields, their formats or bit fields, the words they fill and the budget,
+/// as every front end (the derive, layout files, the solver) describes a G-buffer; and the bit
+/// report. Derived code calls its formats' conversions.
+///
+/// ```
+/// use gbuffer::{engine_layouts::BevyDeferred, layout::Storage, GBufferLayout};
+///
+/// let layout = BevyDeferred::layout();
+/// assert_eq!((layout.words(), layout.bits()), (4, 128));
+/// let normal = layout.fields.iter().find(|field| field.name == "normal").unwrap();
+/// assert!(matches!(normal.storage, Storage::Bits(bits) if bits.bits == 24));
+/// ```
+pub mod layout {
     pub use gbuffer_core::convert::Scalar;
     pub use gbuffer_core::report::{FieldTable, Report};
     pub use gbuffer_core::{
@@ -95,6 +102,10 @@ pub mod packing {
         VulkanFormat, WebGpuTarget, Word,
     };
 }
+
+/// The codecs: how a value becomes bits, one module each with its contract, its exact Rust
+/// conversions and its WGSL.
+pub use gbuffer_core::codecs;
 
 /// A pixel local storage G-buffer layout. Derive it with `#[derive(GBufferLayout)]`.
 ///
@@ -125,7 +136,7 @@ pub trait GBufferLayout: Sized {
     /// Unpacks a texel: floats and integers exactly, unorm as the correctly rounded quotient.
     fn unpack(words: &Self::Packed) -> Self;
     /// The layout's description: fields, formats, types and budget.
-    fn layout() -> packing::Layout;
+    fn layout() -> layout::Layout;
 
     /// Packs `texels` into `packed`, texel i into `packed[i]`, each as [`Self::pack`] packs
     /// it: a whole G-buffer at once, for uploads and readbacks (`bytemuck::cast_slice` turns
@@ -154,8 +165,8 @@ pub trait GBufferLayout: Sized {
 
     /// The bit report: per field the format, bits and used bits; the total against the
     /// budget; and the WebGPU cost of the same fields as separate render targets.
-    fn report() -> packing::Report {
-        packing::Report::new(&Self::layout())
+    fn report() -> layout::Report {
+        layout::Report::new(&Self::layout())
     }
 
     /// [`Self::WGSL`] as a naga_oil composable module, importable as `gbuffer::<snake>`

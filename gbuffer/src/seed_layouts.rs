@@ -134,8 +134,8 @@ pub struct ArmTileBlock {
 }
 
 /// The name, report and WGSL of every seed layout, for tools that iterate over them.
-pub fn all() -> Vec<(crate::packing::Layout, &'static str)> {
-    fn entry<L: GBufferLayout>() -> (crate::packing::Layout, &'static str) {
+pub fn all() -> Vec<(crate::layout::Layout, &'static str)> {
+    fn entry<L: GBufferLayout>() -> (crate::layout::Layout, &'static str) {
         (L::layout(), L::WGSL)
     }
     vec![

@@ -44,7 +44,7 @@ use wgpu::{
     TextureFormat, TextureSampleType, TextureUsages, TextureView, TextureViewDimension,
 };
 
-use crate::packing::{Layout, PackedTarget};
+use crate::layout::{Layout, PackedTarget};
 use crate::GBufferLayout;
 
 /// Words per `Rgba32Uint` target.
@@ -55,10 +55,10 @@ const WORDS_PER_TARGET: usize = 4;
 pub const MAX_PACKED_TARGETS: usize = 16;
 
 /// The packed target formats for a layout of `words` words: `Rgba32Uint` for every four, the
-/// last as narrow as the words it holds, as [`packing::Layout::packed_target_formats`] names
+/// last as narrow as the words it holds, as [`layout::Layout::packed_target_formats`] names
 /// them. A layout of more than 64 words is a compile-time error where its formats are used.
 ///
-/// [`packing::Layout::packed_target_formats`]: crate::packing::Layout::packed_target_formats
+/// [`layout::Layout::packed_target_formats`]: crate::layout::Layout::packed_target_formats
 pub const fn packed_target_formats(words: usize) -> &'static [TextureFormat] {
     const WIDE: TextureFormat = texture_format(PackedTarget::FourWords);
     const fn ending(last: TextureFormat) -> [TextureFormat; MAX_PACKED_TARGETS] {

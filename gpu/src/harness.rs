@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use gbuffer::packing::{Encoding, Layout, Member, ScalarKind, Storage};
+use gbuffer_core::{Encoding, Layout, Member, ScalarKind, Storage};
 
 /// Scalars per texel: the components of all fields.
 pub fn scalars_per_texel(layout: &Layout) -> usize {
@@ -86,7 +86,7 @@ pub fn scalars_to_output(layout: &Layout, texel: &str, output: &str, base: &str)
 }
 
 /// The WGSL expression that builds field `field` from scalars `inputs[base + first..]`.
-fn field_from_scalars(ty: &gbuffer::packing::FieldType, first: usize) -> String {
+fn field_from_scalars(ty: &gbuffer_core::FieldType, first: usize) -> String {
     let components: Vec<String> = (0..ty.components)
         .map(|component| {
             let load = format!("harness_inputs[base + {}u]", first + component);

@@ -2,8 +2,8 @@
 //! generator that mixes them with random bits and values in the formats' ranges, and
 //! low-discrepancy spreads (Halton points, Fibonacci directions) over shading domains.
 
-use gbuffer::glam::{DVec3, Vec3};
-use gbuffer::packing::ScalarKind;
+use gbuffer_core::ScalarKind;
+use glam::{DVec3, Vec3};
 use rand::rngs::SmallRng;
 use rand::{Rng, SeedableRng};
 

@@ -8,7 +8,7 @@
 
 use std::path::{Path, PathBuf};
 
-use gbuffer::packing::{Format, Layout};
+use gbuffer::layout::{Format, Layout};
 use gbuffer_codegen::emit::glsl::{self, Include, Interface, PlsBlock};
 use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_codegen::layout_file::read_layout_file;

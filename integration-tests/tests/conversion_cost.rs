@@ -4,7 +4,7 @@
 //! the fast ones; fast conversions cost at most 1.25x the engines' idiom (WGSL's builtins where
 //! a format has one). The table prints with `-- --nocapture`.
 
-use gbuffer::packing::{Format, Layout};
+use gbuffer::layout::{Format, Layout};
 use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_tradeoff::packing_cost::{builtin_form, cost, harness, layout_cost, one_field, Cost};
 

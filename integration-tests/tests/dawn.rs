@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use gbuffer::packing::{Conversions, Layout};
+use gbuffer::layout::{Conversions, Layout};
 use gbuffer::GBufferLayout;
 use gbuffer_codegen::emit::wgsl::emit_with;
 use gbuffer_gpu::harness::{compute_harness, scalars_per_texel};
@@ -190,11 +190,11 @@ fn every_wgsl() -> Vec<Value> {
     for (layout, wgsl) in layouts {
         jobs.push(compile(format!("layout {}", layout.name), wgsl));
     }
-    let modules = gbuffer::modules::modules();
+    let modules = gbuffer::shading::wgsl::modules();
     for module in modules {
         jobs.push(compile(
             format!("shading module {}", module.name),
-            gbuffer::modules::compose(&[module.name]).unwrap(),
+            gbuffer::shading::compose(&[module.name]).unwrap(),
         ));
     }
     for &layout in PackedLayout::all() {
@@ -216,7 +216,7 @@ fn every_wgsl() -> Vec<Value> {
     let names: Vec<&str> = modules.iter().map(|module| module.name).collect();
     jobs.push(compile(
         "the shading library composed",
-        gbuffer::modules::compose(&names).unwrap(),
+        gbuffer::shading::compose(&names).unwrap(),
     ));
     // What an adapter without shader-f16 composes: every module but the one that enables it.
     let without_f16: Vec<&str> = modules
@@ -226,7 +226,7 @@ fn every_wgsl() -> Vec<Value> {
         .collect();
     jobs.push(compile(
         "the shading library composed without f16",
-        gbuffer::modules::compose(&without_f16).unwrap(),
+        gbuffer::shading::compose(&without_f16).unwrap(),
     ));
     jobs
 }

@@ -373,7 +373,7 @@ fn hdrp_decode(words: &[u32; 4]) -> HdrpLit {
     let rt1 = bytes(words[1]);
     let folded = hdrp_unpack_888_to_float2([rt1[0], rt1[1], rt1[2]]) * 2.0 - Vec2::ONE;
     let rt2 = bytes(words[2]);
-    let light = gbuffer::packing::Format::R11fG11fB10f.decode::<f32>(words[3]);
+    let light = gbuffer::layout::Format::R11fG11fB10f.decode::<f32>(words[3]);
     HdrpLit {
         base_color_specular_occlusion: Vec4::from_array(bytes(words[0]).map(unorm)),
         normal: engine_octahedral_decode(folded),

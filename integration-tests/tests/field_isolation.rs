@@ -2,7 +2,7 @@
 //! bits, and the derived `pack`/`unpack` are the model's conversions exactly.
 
 use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
-use gbuffer::packing::{Layout, ScalarKind, Storage};
+use gbuffer::layout::{Layout, ScalarKind, Storage};
 use gbuffer::{seed_layouts, GBufferLayout};
 use gbuffer_gpu::harness::{expected_scalars, expected_words, scalars_per_texel};
 use gbuffer_gpu::values::Values;

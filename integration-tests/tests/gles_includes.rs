@@ -14,7 +14,7 @@
 //! and layouts generated at random (with names GLSL reserves), for the packed include and the
 //! native one (one attachment per field, converted by the driver).
 
-use gbuffer::packing::{Format, Layout, Storage};
+use gbuffer::layout::{Format, Layout, Storage};
 use gbuffer_codegen::emit::glsl::{self, Include, Interface};
 use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_gpu::gles::{Framebuffer, Gles};

@@ -6,8 +6,8 @@
 //! The GLSL of the same layouts runs on Mesa's GLES and lavapipe in `gles_includes` and
 //! `vulkan_includes`, whose random layouts hold bit fields too.
 
-use gbuffer::packing::codecs::octahedral;
-use gbuffer::packing::{Encoding, Layout};
+use gbuffer::codecs::octahedral;
+use gbuffer::layout::{Encoding, Layout};
 use gbuffer::GBufferLayout;
 use gbuffer_gpu::harness::scalars_per_texel;
 use gbuffer_gpu::values::{float_edges, Values};

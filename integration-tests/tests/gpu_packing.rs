@@ -4,7 +4,7 @@
 //! quotient by 2 ulp (the WGSL multiplies by a correctly rounded reciprocal). Fast conversions
 //! are held to their own contract, within a code or two of the exact mirror.
 
-use gbuffer::packing::{Conversions, Layout};
+use gbuffer::layout::{Conversions, Layout};
 use gbuffer::{seed_layouts, GBufferLayout};
 use gbuffer_codegen::emit::wgsl::emit_with;
 use gbuffer_gpu::harness::scalars_per_texel;

@@ -12,7 +12,7 @@
 //!
 //! NaN stores as 0 in every format but r32f, which keeps it.
 
-use gbuffer::packing::{Channel, Encoding, Format, Scalar, ScalarKind};
+use gbuffer::layout::{Channel, Encoding, Format, Scalar, ScalarKind};
 use gbuffer_gpu::values::{float_edges, sint_edges, uint_edges, Values};
 
 const RANDOM_VALUES_PER_FORMAT: usize = 1_000_000;

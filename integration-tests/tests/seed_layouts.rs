@@ -1,7 +1,7 @@
 //! The seed layouts have the sizes their sources state, and the report's WebGPU cost of the
 //! same fields as separate render targets is what wgpu itself enforces.
 
-use gbuffer::packing::{Format, Report};
+use gbuffer::layout::{Format, Report};
 use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };

@@ -10,7 +10,7 @@
 //! for any finite input, and each clamp is shown to be needed.
 
 use gbuffer::glam::{DVec3, Vec3};
-use gbuffer::packing::{Encoding, Format, ScalarKind};
+use gbuffer::layout::{Encoding, Format, ScalarKind};
 use gbuffer::shading::half_precision::{self as h, Half, Half3};
 use gbuffer::shading::mirror as m;
 use gbuffer_gpu::values::{float_edges, sint_edges, uint_edges};
@@ -483,7 +483,7 @@ fn half_precision_forms_run_on_an_f16_adapter_and_agree_with_their_mirror() {
         return;
     }
     let extremes = half_extremes();
-    let library = gbuffer::modules::compose(&["mobile_half"]).unwrap();
+    let library = gbuffer::shading::compose(&["mobile_half"]).unwrap();
     let shader = format!(
         "{library}\n\
          @group(0) @binding(0) var<storage, read> inputs: array<f32>;\n\

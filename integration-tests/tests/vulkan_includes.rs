@@ -18,7 +18,7 @@
 use std::collections::BTreeSet;
 
 use ash::vk;
-use gbuffer::packing::Layout;
+use gbuffer::layout::Layout;
 use gbuffer_codegen::emit::glsl::{self, GlslNames, Include, Interface};
 use gbuffer_gpu::fullscreen::fullscreen_vertex_glsl;
 use gbuffer_gpu::harness::scalars_per_texel;
@@ -469,7 +469,7 @@ fn subpass_includes_round_trip_bit_exactly_on_vulkan_under_every_preamble() {
 /// attachment (the random layouts below found the redefinition this once was).
 #[test]
 fn bit_field_words_whose_names_meet_get_their_own_attachments() {
-    use gbuffer::packing::{BitField, Encoding, Field, FieldType, Format, ScalarKind, Storage};
+    use gbuffer::layout::{BitField, Encoding, Field, FieldType, Format, ScalarKind, Storage};
     let Some(vulkan) = vulkan() else {
         return;
     };

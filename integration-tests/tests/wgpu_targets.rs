@@ -354,7 +354,7 @@ fn target_formats_follow_the_words() {
             .iter()
             .map(|format| format!("{format:?}").to_lowercase())
             .collect();
-        let layout = gbuffer::packing::Layout {
+        let layout = gbuffer::layout::Layout {
             name: "Words".into(),
             budget: 32 * words as u32,
             fields: vec![NineWords::layout().fields[0].clone(); words],
@@ -416,7 +416,7 @@ fn limit_errors_name_what_is_needed_against_what_is_allowed() {
 /// `check_limits` says, with the constants it prints being wgpu's.
 #[test]
 fn the_report_says_what_webgl2_allows() {
-    use gbuffer::packing::Report;
+    use gbuffer::layout::Report;
     use gbuffer_codegen::report::{WEBGL2_COLOR_ATTACHMENT_LIMIT, WEBGPU_BYTES_PER_SAMPLE_LIMIT};
     let webgl2 = wgpu::Limits::downlevel_webgl2_defaults();
     assert_eq!(

@@ -2,7 +2,7 @@
 //! SPIR-V, MSL, HLSL and GLSL ES 3.00 (WebGL2), exercised by a fragment shader that calls
 //! every generated function.
 
-use gbuffer::packing::Layout;
+use gbuffer::layout::Layout;
 use gbuffer::{seed_layouts, GBufferLayout};
 use gbuffer_gpu::harness::fragment_harness;
 use gbuffer_testkit::AllFormats;

@@ -4,7 +4,7 @@
 //! Run with `cargo run --release --example seed_layouts`; add `-- --wgsl` to print the
 //! generated WGSL as well.
 
-use gbuffer::packing::Report;
+use gbuffer::layout::Report;
 use gbuffer::seed_layouts;
 
 fn main() {

@@ -6,8 +6,8 @@
 //! yardstick of a layout whose storage the picture should show (smooth spheres' highlights
 //! band).
 
+use crate::conventions::seed::{Shading, Surface, SurfaceConvention, LIGHT_SCALE};
 use gbuffer::glam::{Vec3, Vec4};
-use gbuffer::seed_conventions::{Shading, Surface, SurfaceConvention, LIGHT_SCALE};
 use gbuffer::shading::mirror as m;
 use gbuffer::GBufferLayout;
 
@@ -70,7 +70,7 @@ impl SurfaceConvention for CoarseNormals {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use gbuffer::seed_conventions::round_trip;
+    use crate::conventions::seed::round_trip;
     use gbuffer::seed_layouts::MobileMetallic;
 
     /// Its normals come back further off than Listing 2.2's, over normals facing the viewer.

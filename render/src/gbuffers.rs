@@ -3,14 +3,14 @@
 //! for a scene description, packed the same way; or the classic unpacked set of native targets a
 //! user writes without this library. Each packed layout brings the WGSL that stores a surface
 //! in its fields and reads the shading inputs back, by its convention
-//! ([`gbuffer::seed_conventions`], [`gbuffer::engine_conventions`]); a solved layout brings its
+//! ([`crate::conventions::seed`], [`crate::conventions::engine`]); a solved layout brings its
 //! own (`gbuffer_solver::texel`).
 
 use std::sync::Arc;
 
+use crate::conventions::seed::SurfaceConvention;
 use gbuffer::engine_layouts::{BevyDeferred, HdrpLit};
-use gbuffer::packing::{Layout, PackedTarget};
-use gbuffer::seed_conventions::SurfaceConvention;
+use gbuffer::layout::{Layout, PackedTarget};
 use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };

@@ -9,6 +9,7 @@
 //! passes, from which its memory traffic is counted.
 
 pub mod coarse;
+pub mod conventions;
 pub mod gbuffers;
 pub mod gles;
 pub mod glsl;

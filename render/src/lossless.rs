@@ -7,8 +7,8 @@
 //! Twelve words (384 bits) are more than the fused paths keep on tile (their attachments), so
 //! it renders on wgpu, through memory.
 
+use crate::conventions::seed::{Shading, Surface, SurfaceConvention};
 use gbuffer::glam::Vec3;
-use gbuffer::seed_conventions::{Shading, Surface, SurfaceConvention};
 use gbuffer::shading::mirror as m;
 use gbuffer::GBufferLayout;
 

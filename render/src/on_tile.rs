@@ -206,7 +206,7 @@ impl Stage {
 
 /// The GLSL name naga gives the layout's texel struct, which the hand-written entry points
 /// declare their texels with.
-pub fn texel_struct_name(layout: &gbuffer::packing::Layout) -> Result<String, String> {
+pub fn texel_struct_name(layout: &gbuffer::layout::Layout) -> Result<String, String> {
     gbuffer_codegen::emit::glsl::translate(layout)
         .map(|translation| translation.names.layout)
         .map_err(|error| error.to_string())

@@ -3,8 +3,8 @@
 //! G-buffer by framebuffer fetch or as subpass inputs. The maths is written once, here and in
 //! the shading library: nothing below is a second copy of it.
 
-use gbuffer::packing::Layout;
-use gbuffer::seed_conventions::SURFACE_WGSL;
+use crate::conventions::seed::SURFACE_WGSL;
+use gbuffer::layout::Layout;
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 use gbuffer_solver::lighting::{self, Forms};
 use gbuffer_solver::quantity::Quantity;
@@ -14,9 +14,9 @@ use crate::gbuffers::GBuffer;
 use crate::options::{IblForm, Options, SunForm, EXPOSURE};
 use crate::scene::{self};
 
-/// The library modules (`gbuffer::modules`) composed, for the passes.
+/// The library modules (`gbuffer::shading::wgsl`) composed, for the passes.
 pub fn library(modules: &[&str]) -> String {
-    gbuffer::modules::compose(modules).expect("the library's modules exist")
+    gbuffer::shading::compose(modules).expect("the library's modules exist")
 }
 
 /// The modules every pass of the renderer draws from.

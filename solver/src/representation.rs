@@ -9,10 +9,10 @@
 
 use std::fmt;
 
-use gbuffer::glam::Vec3;
 use gbuffer_codegen::{
     codecs, BitField, Encoding, FieldType, Format, LightStorage, RgbmRange, ScalarKind, Storage,
 };
+use glam::Vec3;
 
 use crate::description::Precision;
 use crate::quantity::{Kind, Quantity};

@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use gbuffer::packing::FieldTable;
+use gbuffer_core::report::FieldTable;
 
 use crate::solver::{describe_error, Solution};
 

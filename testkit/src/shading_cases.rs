@@ -1118,7 +1118,7 @@ pub fn grid(case: &Case, target: usize) -> Vec<Vec<u32>> {
 /// A compute shader that evaluates the case at every point of `inputs` (the flattened
 /// arguments' bits) into `outputs`; bindings as [`gbuffer_gpu::Gpu::run_compute`] expects.
 pub fn compute_harness(case: &Case) -> String {
-    let mut wgsl = gbuffer::modules::compose(&[case.module]).expect("the case's module exists");
+    let mut wgsl = gbuffer::shading::compose(&[case.module]).expect("the case's module exists");
     let stride: usize = case
         .arguments
         .iter()

@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use gbuffer::packing::{Layout, ScalarKind};
+use gbuffer::layout::{Layout, ScalarKind};
 use gbuffer_codegen::emit::glsl::{self, GlslNames, Include};
 use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_gpu::harness::scalars_per_texel;

@@ -8,7 +8,7 @@ use crate::stdout::report_line;
 use std::fmt::Write as _;
 
 use crate::packing_cost::{deviation, layout_cost, one_field, Cost, Deviation, CONVERTED_FORMATS};
-use gbuffer::packing::Format;
+use gbuffer::layout::Format;
 use gbuffer_codegen::emit::wgsl::{emit_with, Conversions};
 use gbuffer_gpu::Gpu;
 

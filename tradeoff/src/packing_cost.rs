@@ -5,7 +5,7 @@
 //! and the conditional branches. The engines' idiom for each format ([`builtin_form`]) is
 //! measured in the same harness, so the three columns compare like with like.
 
-use gbuffer::packing::{Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
+use gbuffer::layout::{Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
 use gbuffer_codegen::emit::wgsl::Conversions;
 
 use gbuffer_gpu::harness::field_code_errors;

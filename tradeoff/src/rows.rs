@@ -1,14 +1,14 @@
 //! The rows of the trade-off report: each approximation or encoding, its error against the
 //! f64 reference over a stated domain, the WGSL that costs and times it, and its CPU mirror.
 
+use gbuffer::codecs::unorm;
 use gbuffer::glam::{DVec3, Vec2, Vec3, Vec4};
-use gbuffer::packing::codecs::unorm;
-use gbuffer::packing::{BitField, Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
-use gbuffer::seed_conventions::{
-    round_trip, Shading, Surface, SurfaceConvention, LIGHT_SCALE, SURFACE_WGSL,
-};
+use gbuffer::layout::{BitField, Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
 use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
 use gbuffer::shading::{mirror as m, reference as r};
+use gbuffer_render::conventions::seed::{
+    round_trip, Shading, Surface, SurfaceConvention, LIGHT_SCALE, SURFACE_WGSL,
+};
 
 use gbuffer_gpu::values::halton;
 
@@ -78,7 +78,7 @@ fn quantize4(value: vec4<f32>, max_code: f32) -> vec4<f32> {
 ";
 
 fn wgsl(modules: &[&str], body: &str) -> String {
-    let library = gbuffer::modules::compose(modules).expect("the library's modules exist");
+    let library = gbuffer::shading::compose(modules).expect("the library's modules exist");
     format!("{library}\n{PRELUDE}\n{body}")
 }
 
@@ -817,8 +817,8 @@ pub(crate) fn layout_rows() -> Vec<Row> {
     use gbuffer::engine_layouts::{BevyDeferred, HdrpLit};
     use gbuffer::seed_layouts::{ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic};
     use gbuffer_render::coarse::CoarseNormals;
-    // Each layout by its own convention (`gbuffer::seed_conventions`,
-    // `gbuffer::engine_conventions`), as the renderer stores it.
+    // Each layout by its own convention (`gbuffer_render::conventions::seed`,
+    // `gbuffer_render::conventions::engine`), as the renderer stores it.
     let layouts = [
         LayoutRow::of::<MobileMetallic>("Listing 2.2 (MobileMetallic)"),
         LayoutRow::of::<ArmTileBlock>("Arm tile block (ArmTileBlock)"),

@@ -88,7 +88,7 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
     let bits = Literal::u32_unsuffixed(layout.bits());
     let used_bits = Literal::u32_unsuffixed(layout.used_bits());
     let budget = Literal::u32_unsuffixed(layout.budget);
-    let packing = quote!(#krate::packing);
+    let packing = quote!(#krate::layout);
 
     let encoded_words = layout.word_contents().into_iter().map(|word| {
         let codes = word.members.iter().map(|member| {

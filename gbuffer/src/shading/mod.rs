@@ -1,13 +1,26 @@
-//! The Rust side of the WGSL shading library (`gbuffer/wgsl/`), twice over:
+//! The physically based shading library: its WGSL ([`wgsl`], composed by module name with
+//! [`compose`]) and its Rust side, twice over:
 //!
 //! - [`mirror`]: f32, the same formula in the same order of operations as the WGSL, for tests
 //!   and CPU tools; on a conforming adapter the two agree within a few ulp;
 //! - [`reference`](mod@reference): the same functions in f64, the ground truth the f32 forms (and the
 //!   approximations among them) are measured against.
 //!
-//! - [`half_precision`]: the mobile forms of `mobile_half.wgsl`, rounded to f16 at every step.
+//! - [`half_precision`]: the mobile forms of `mobile_half.wgsl`, rounded to f16 at every step;
+//! - [`env_brdf_lut`]: the split-sum LUT the image-based lighting reads, baked on the CPU.
 //!
-//! The first two are compiled from one source per module (`functions/<module>.rs`, included with the
+//! ```
+//! use gbuffer::shading::{compose, mirror};
+//!
+//! // The GGX terms and their dependencies (the constants), as one WGSL source:
+//! let wgsl = compose(&["microfacet"]).unwrap();
+//! assert!(wgsl.contains("fn d_ggx("));
+//! // The same function on the CPU, in the same order of operations:
+//! let peak = mirror::microfacet::d_ggx(1.0, 0.5);
+//! assert!((peak - 1.0 / (std::f32::consts::PI * 0.0625)).abs() < 1e-5);
+//! ```
+//!
+//! The mirror and the reference are compiled from one source per module (`functions/<module>.rs`, included with the
 //! float type set to f32 or f64), so the formulas cannot drift apart. Module and function names
 //! are the WGSL's.
 
@@ -86,3 +99,7 @@ pub mod reference {
 
 pub mod env_brdf_lut;
 pub mod half_precision;
+
+/// The library's WGSL, one module per file of `core/wgsl/`.
+pub use gbuffer_core::shading_library as wgsl;
+pub use gbuffer_core::shading_library::compose;

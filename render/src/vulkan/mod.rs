@@ -15,7 +15,7 @@
 use std::time::Instant;
 
 use ash::vk;
-use gbuffer::packing::PackedTarget;
+use gbuffer::layout::PackedTarget;
 use gbuffer_gpu::vulkan::{
     feedback_barrier, host_read_barrier, ImageTransition, StorageBuffer, Vulkan,
 };

@@ -8,14 +8,14 @@
 //! `decode_texel` to the [`Shading`] the lighting pass reads, over the shading library's
 //! `colour`, `hdr`, `normals`, `material` and `constants` modules and [`SURFACE_WGSL`]) and as
 //! its Rust mirror ([`SurfaceConvention::encode`], [`SurfaceConvention::decode`]) over
-//! [`crate::shading::mirror`], in the same order of operations.
+//! [`gbuffer::shading::mirror`], in the same order of operations.
 
-use crate::glam::{Vec2, Vec3};
-use crate::seed_layouts::{
+use gbuffer::glam::{Vec2, Vec3};
+use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
-use crate::shading::mirror as m;
-use crate::GBufferLayout;
+use gbuffer::shading::mirror as m;
+use gbuffer::GBufferLayout;
 
 /// Light accumulation stored in unorm channels (`rgb10_a2`) is stored as light / this, so
 /// light up to 4 (the brightest light map and emissive of the reference scene) survives;
@@ -24,7 +24,7 @@ pub const LIGHT_SCALE: f32 = 4.0;
 
 /// The WGSL structs [`Surface`] and [`Shading`], and `LIGHT_SCALE`.
 pub const SURFACE_WGSL: &str = "
-// How far rgb10_a2 light accumulation is scaled down (gbuffer::seed_conventions::LIGHT_SCALE).
+// How far rgb10_a2 light accumulation is scaled down (LIGHT_SCALE beside this text).
 const LIGHT_SCALE: f32 = 4.0;
 
 // What the G-buffer pass stores of a surface point.
@@ -103,7 +103,7 @@ impl Shading {
     }
 
     /// What a G-buffer that stored `surface` exactly would give back: the metallic workflow
-    /// with dielectrics at [`crate::shading::mirror::constants::DIELECTRIC_F0`].
+    /// with dielectrics at [`gbuffer::shading::mirror::constants::DIELECTRIC_F0`].
     pub fn of(surface: &Surface) -> Shading {
         let colours = metallic_workflow(surface.base_colour, surface.metallic);
         Shading::from_colours(surface.normal, surface.roughness, colours, surface.light)
@@ -115,7 +115,7 @@ fn metallic_workflow(base_colour: Vec3, metallic: f32) -> m::material::MaterialC
 }
 
 /// A layout's convention: how a [`Surface`] goes into it and a [`Shading`] comes out (the seed
-/// layouts' here, the engine layouts' in [`crate::engine_conventions`]).
+/// layouts' here, the engine layouts' in [`super::engine`]).
 pub trait SurfaceConvention: GBufferLayout {
     /// `fn encode_texel(s: Surface) -> <Layout>`.
     const ENCODE_WGSL: &'static str;

@@ -1,5 +1,5 @@
 //! How the renderer's [`Surface`] goes into the two engine layouts
-//! ([`crate::engine_layouts`]), by each engine's own conventions, so that the reference renderer
+//! ([`gbuffer::engine_layouts`]), by each engine's own conventions, so that the reference renderer
 //! and the trade-off study can show what an engine's G-buffer costs the picture:
 //!
 //! - **Bevy** ([`BevyDeferred`], its WebGL2 form), as `bevy_pbr`'s deferred functions store
@@ -16,12 +16,12 @@
 //!   sRGB, material feature 0 with no coat, and the light in the `r11f_g11f_b10f` baked diffuse
 //!   lighting word.
 //!
-//! As in [`crate::seed_conventions`], each convention is WGSL beside its Rust mirror, in the
+//! As in [`super::seed`], each convention is WGSL beside its Rust mirror, in the
 //! same order of operations.
 
-use crate::engine_layouts::{BevyDeferred, HdrpLit};
-use crate::seed_conventions::{Shading, Surface, SurfaceConvention};
-use crate::shading::mirror as m;
+use super::seed::{Shading, Surface, SurfaceConvention};
+use gbuffer::engine_layouts::{BevyDeferred, HdrpLit};
+use gbuffer::shading::mirror as m;
 
 /// Bevy's `reflectance` for dielectrics: f0 = 0.16 x 0.5² = 0.04.
 const BEVY_DIELECTRIC_REFLECTANCE: f32 = 0.5;
@@ -108,9 +108,9 @@ impl SurfaceConvention for HdrpLit {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::glam::Vec3;
-    use crate::seed_conventions::round_trip;
-    use crate::GBufferLayout;
+    use crate::conventions::seed::round_trip;
+    use gbuffer::glam::Vec3;
+    use gbuffer::GBufferLayout;
 
     fn surface(metallic: f32) -> Surface {
         Surface {
