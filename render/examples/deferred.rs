@@ -9,10 +9,12 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Parser;
 use gbuffer_render::gbuffers::{GBuffer, LayoutArgument, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::{compare, difference, write_png};
+use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::{Backend, Path, TileOptions};
 use gbuffer_render::options::{parse_size, Frame, IblForm, Options, SunForm};
 use gbuffer_render::reference;
@@ -31,7 +33,7 @@ struct Arguments {
     /// targets, as without this library).
     #[arg(
         long,
-        value_enum,
+        value_parser = named::<LayoutArgument>(),
         default_value = "mobile-metallic",
         conflicts_with = "scene"
     )]
@@ -42,12 +44,12 @@ struct Arguments {
     scene: Option<PathBuf>,
     /// The API: `wgpu` (the G-buffer through memory), `gles` (GLES 3.2 through EGL
     /// surfaceless) or `vulkan`.
-    #[arg(long, value_enum, default_value = "wgpu")]
+    #[arg(long, value_parser = named::<Backend>(), default_value = "wgpu")]
     backend: Backend,
     /// How the G-buffer travels: for gles `fetch-native` (default), `fetch-packed` or
     /// `two-pass`; for vulkan `subpass` (default) or `two-pass`. The fused paths keep it in the
     /// render pass and never store it.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = named::<Path>())]
     path: Option<Path>,
     /// Frame size, WIDTHxHEIGHT (at most 8192 each).
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
@@ -56,10 +58,10 @@ struct Arguments {
     #[arg(long, default_value = "frame.png")]
     out: PathBuf,
     /// Sun: `ggx` (GGX, correlated Smith, Schlick) or `approx` (D_Approx with EnvBRDFApprox).
-    #[arg(long, value_enum, default_value = "ggx")]
+    #[arg(long, value_parser = named::<SunForm>(), default_value = "ggx")]
     sun: SunForm,
     /// Image-based light: `lut` (split-sum LUT) or `approx` (EnvBRDFApprox).
-    #[arg(long, value_enum, default_value = "lut")]
+    #[arg(long, value_parser = named::<IblForm>(), default_value = "lut")]
     ibl: IblForm,
     /// Debug: also store the G-buffer as the geometry writes it (before the decals and the
     /// light) and write its packed words to this file (little-endian u32, the layout's words per
@@ -74,6 +76,12 @@ struct Arguments {
     /// `<out>.reference-difference.png` (differences x8).
     #[arg(long)]
     reference: bool,
+}
+
+/// The parser of an option whose values the renderer names ([`Named`]): `--help` lists the
+/// names, and a wrong one is a usage error that lists them too.
+fn named<T: Named + Send + Sync>() -> impl TypedValueParser<Value = T> {
+    PossibleValuesParser::new(T::names()).map(|name| T::from_name(&name).expect("a listed name"))
 }
 
 /// The path named on the command line, checked against the backend (its default if none).

@@ -18,6 +18,7 @@ use gbuffer_solver::{Features, Solution};
 
 use crate::coarse::CoarseNormals;
 use crate::lossless::Lossless;
+use crate::named::Named;
 
 /// Where the G-buffer pass writes.
 #[derive(Clone, Debug, PartialEq)]
@@ -35,8 +36,8 @@ pub enum GBuffer {
     LosslessScene(Features),
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 /// The packed layouts the renderer can use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PackedLayout {
     /// GPU Pro 7 Listing 2.2.
     MobileMetallic,
@@ -96,12 +97,12 @@ impl PackedLayout {
     /// Every packed layout: the seeds, the engines', the coarse one and the lossless one (the
     /// variants, in order, as `--layout` lists them).
     pub fn all() -> &'static [PackedLayout] {
-        <PackedLayout as clap::ValueEnum>::value_variants()
+        PackedLayout::ALL
     }
 
-    /// The command-line name, e.g. `mobile-metallic`.
+    /// The command-line name, e.g. `mobile-metallic` ([`Named`]).
     pub fn flag(self) -> String {
-        crate::flag(&self)
+        self.name().to_string()
     }
 
     fn entry(self) -> Entry {
@@ -253,30 +254,6 @@ pub enum LayoutArgument {
     Classic,
 }
 
-impl clap::ValueEnum for LayoutArgument {
-    fn value_variants<'a>() -> &'a [Self] {
-        &[
-            LayoutArgument::Packed(PackedLayout::MobileMetallic),
-            LayoutArgument::Packed(PackedLayout::SpecularWorkflow),
-            LayoutArgument::Packed(PackedLayout::FutureMetallic),
-            LayoutArgument::Packed(PackedLayout::FutureSpecular),
-            LayoutArgument::Packed(PackedLayout::ArmTileBlock),
-            LayoutArgument::Packed(PackedLayout::BevyDeferred),
-            LayoutArgument::Packed(PackedLayout::HdrpLit),
-            LayoutArgument::Packed(PackedLayout::CoarseNormals),
-            LayoutArgument::Packed(PackedLayout::Lossless),
-            LayoutArgument::Classic,
-        ]
-    }
-
-    fn to_possible_value(&self) -> Option<clap::builder::PossibleValue> {
-        match self {
-            LayoutArgument::Packed(layout) => layout.to_possible_value(),
-            LayoutArgument::Classic => Some(clap::builder::PossibleValue::new("classic")),
-        }
-    }
-}
-
 impl From<LayoutArgument> for GBuffer {
     fn from(argument: LayoutArgument) -> GBuffer {
         match argument {
@@ -290,11 +267,7 @@ impl GBuffer {
     /// Every G-buffer `--layout` names, in its order: each packed layout, then the classic
     /// targets.
     pub fn named() -> impl Iterator<Item = GBuffer> {
-        use clap::ValueEnum;
-        LayoutArgument::value_variants()
-            .iter()
-            .copied()
-            .map(GBuffer::from)
+        LayoutArgument::ALL.iter().copied().map(GBuffer::from)
     }
 
     /// The name in messages: a packed layout's command-line name, `classic`, or a solved

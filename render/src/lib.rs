@@ -17,6 +17,7 @@ pub mod image;
 pub mod inputs;
 pub mod lossless;
 pub mod mesh;
+pub mod named;
 pub mod on_tile;
 pub mod options;
 pub mod parallel;
@@ -27,12 +28,3 @@ pub mod scene;
 pub mod shaders;
 pub mod vulkan;
 pub mod wgpu;
-
-/// The command-line name of a value of the renderer's options, as clap's `ValueEnum` derives
-/// it (kebab case: `mobile-metallic`, `two-pass`): the one spelling of every flag.
-pub fn flag(value: &impl clap::ValueEnum) -> String {
-    value
-        .to_possible_value()
-        .map(|possible| possible.get_name().to_string())
-        .unwrap_or_default()
-}

@@ -23,11 +23,12 @@
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 
 use crate::gbuffers::{GBuffer, PackedLayout};
+use crate::named::Named;
 use crate::options::Options;
 use crate::shaders::{self, library, INPUTS_WGSL, VOLUME_WGSL};
 
 /// Which API draws the frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Backend {
     /// The wgpu renderer (`crate::wgpu`): the G-buffer through memory.
     Wgpu,
@@ -38,7 +39,7 @@ pub enum Backend {
 }
 
 /// How a backend carries the G-buffer from the geometry to the lighting.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Path {
     /// GLES: framebuffer fetch over one attachment per field in its own format (the driver
     /// converts, as Arm's example does).
@@ -53,9 +54,9 @@ pub enum Path {
 }
 
 impl Backend {
-    /// The command-line name.
+    /// The command-line name ([`Named`]).
     pub fn flag(self) -> String {
-        crate::flag(&self)
+        self.name().to_string()
     }
 
     /// The paths the backend offers, the default first.
@@ -69,9 +70,9 @@ impl Backend {
 }
 
 impl Path {
-    /// The command-line name.
+    /// The command-line name ([`Named`]).
     pub fn flag(self) -> String {
-        crate::flag(&self)
+        self.name().to_string()
     }
 
     /// Whether the G-buffer stays in the render pass (the fused paths).

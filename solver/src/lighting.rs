@@ -22,7 +22,6 @@ use crate::solver::Solution;
 
 /// How the sun and point lights are shaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum SunForm {
     /// GGX, height-correlated Smith, Schlick (`shade_directional`).
     Ggx,
@@ -32,7 +31,6 @@ pub enum SunForm {
 
 /// How image-based light is shaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum IblForm {
     /// The split-sum LUT (`shade_ibl`).
     Lut,
