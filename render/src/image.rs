@@ -6,15 +6,61 @@ use crate::options::Frame;
 
 /// Writes an sRGB frame as an 8-bit RGBA PNG.
 pub fn write_png(path: &Path, frame: &Frame) -> std::io::Result<()> {
+    let pixels = bytemuck::cast_slice(&frame.pixels);
+    encode_png(
+        path,
+        frame.width,
+        frame.height,
+        png::ColorType::Rgba,
+        pixels,
+    )
+}
+
+/// Writes 8-bit sRGB pixels, three bytes each, row by row from the top, as an RGB PNG (the
+/// trade-off study's plots).
+pub fn write_rgb_png(path: &Path, width: u32, height: u32, rgb: &[u8]) -> std::io::Result<()> {
+    encode_png(path, width, height, png::ColorType::Rgb, rgb)
+}
+
+fn encode_png(
+    path: &Path,
+    width: u32,
+    height: u32,
+    colour: png::ColorType,
+    pixels: &[u8],
+) -> std::io::Result<()> {
     let file = std::io::BufWriter::new(std::fs::File::create(path)?);
-    let mut encoder = png::Encoder::new(file, frame.width, frame.height);
-    encoder.set_color(png::ColorType::Rgba);
+    let mut encoder = png::Encoder::new(file, width, height);
+    encoder.set_color(colour);
     encoder.set_depth(png::BitDepth::Eight);
     encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
     let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
     writer
-        .write_image_data(bytemuck::cast_slice(&frame.pixels))
+        .write_image_data(pixels)
         .map_err(std::io::Error::other)
+}
+
+/// The colour ramp of every error image (frame heat maps, the study's error maps): a
+/// perceptually ordered map, dark blue, purple, orange to yellow, at `t` in [0, 1] (NaN and
+/// values past the ends clamp, NaN to the top).
+pub fn colour_ramp(t: f64) -> [u8; 3] {
+    #[rustfmt::skip] // five stops of a small table
+    const STOPS: [[f64; 3]; 5] = [
+        [13.0, 8.0, 135.0], [126.0, 3.0, 168.0], [204.0, 71.0, 120.0], [248.0, 149.0, 64.0],
+        [240.0, 249.0, 33.0],
+    ];
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        1.0
+    } * (STOPS.len() - 1) as f64;
+    let index = (t.floor() as usize).min(STOPS.len() - 2);
+    let fraction = t - index as f64;
+    let mix = |channel: usize| {
+        (STOPS[index][channel] * (1.0 - fraction) + STOPS[index + 1][channel] * fraction).round()
+            as u8
+    };
+    [mix(0), mix(1), mix(2)]
 }
 
 /// How two frames of the same size differ, over the 8-bit colour channels.
@@ -56,33 +102,22 @@ pub fn compare(a: &Frame, b: &Frame) -> Comparison {
     }
 }
 
-/// Where two frames differ, as a heat map: each pixel coloured by its largest channel
-/// difference on a logarithmic ramp, black (none) through blue (1 step), red (about 4) to
-/// yellow (16 steps or more), so one-step rounding and a broken highlight both show.
+/// Where two frames differ, as a heat map: a pixel with no difference is black, any other is
+/// coloured by its largest channel difference on [`colour_ramp`], logarithmically: dark blue
+/// at 1 step, magenta at 4, yellow at 16 steps or more, so one-step rounding and a broken
+/// highlight both show.
 pub fn heatmap(a: &Frame, b: &Frame) -> Frame {
-    const RAMP: [[f32; 3]; 4] = [
-        [0.0, 0.0, 0.0],
-        [40.0, 60.0, 220.0],
-        [220.0, 40.0, 40.0],
-        [255.0, 240.0, 60.0],
-    ];
     per_pixel(a, b, |pixel_a, pixel_b| {
         let error = (0..3)
             .map(|index| pixel_a[index].abs_diff(pixel_b[index]))
             .max()
             .unwrap_or(0);
-        // On the ramp: 1 step at 1, 4 steps at 2, 16 at 3 (1 + log2(error) / 2).
-        let position = if error == 0 {
-            0.0
-        } else {
-            (1.0 + f32::from(error).log2() / 2.0).min(3.0)
-        };
-        let low = (position.floor() as usize).min(2);
-        let t = position - low as f32;
-        let channel = |index: usize| {
-            (RAMP[low][index] + (RAMP[low + 1][index] - RAMP[low][index]) * t).round() as u8
-        };
-        [channel(0), channel(1), channel(2), 255]
+        if error == 0 {
+            return [0, 0, 0, 255];
+        }
+        // log2(error) / 4: 0 at 1 step, 1 at 16.
+        let [red, green, blue] = colour_ramp(f64::from(error).log2() / 4.0);
+        [red, green, blue, 255]
     })
 }
 

@@ -4,6 +4,8 @@
 
 use std::path::Path;
 
+use gbuffer_render::image::{colour_ramp, write_rgb_png};
+
 /// An image of a row's error.
 pub enum Plot {
     /// A width x height grid of errors, row 0 at the bottom of the domain's y axis.
@@ -20,36 +22,6 @@ pub enum Plot {
         y_label: &'static str,
         points: Vec<(f64, f64)>,
     },
-}
-
-/// A perceptually ordered colour map (dark blue, purple, orange, yellow) at t in [0, 1].
-fn colour_map(t: f64) -> [u8; 3] {
-    #[rustfmt::skip] // five stops of a small table
-    const STOPS: [[f64; 3]; 5] = [
-        [13.0, 8.0, 135.0], [126.0, 3.0, 168.0], [204.0, 71.0, 120.0], [248.0, 149.0, 64.0],
-        [240.0, 249.0, 33.0],
-    ];
-    let t = if t.is_finite() {
-        t.clamp(0.0, 1.0)
-    } else {
-        1.0
-    } * (STOPS.len() - 1) as f64;
-    let index = (t.floor() as usize).min(STOPS.len() - 2);
-    let fraction = t - index as f64;
-    let mix = |channel: usize| {
-        (STOPS[index][channel] * (1.0 - fraction) + STOPS[index + 1][channel] * fraction).round()
-            as u8
-    };
-    [mix(0), mix(1), mix(2)]
-}
-
-fn write_png(path: &Path, width: usize, height: usize, rgb: &[u8]) -> std::io::Result<()> {
-    let file = std::io::BufWriter::new(std::fs::File::create(path)?);
-    let mut encoder = png::Encoder::new(file, width as u32, height as u32);
-    encoder.set_color(png::ColorType::Rgb);
-    encoder.set_depth(png::BitDepth::Eight);
-    let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
-    writer.write_image_data(rgb).map_err(std::io::Error::other)
 }
 
 /// A heatmap scaled to its maximum, each cell `scale` pixels wide, y up.
@@ -70,7 +42,7 @@ pub fn heatmap(
     for y in 0..image_height {
         for x in 0..image_width {
             let cell = (height - 1 - y / scale) * width + x / scale;
-            let colour = colour_map(if maximum > 0.0 {
+            let colour = colour_ramp(if maximum > 0.0 {
                 values[cell] / maximum
             } else {
                 0.0
@@ -78,7 +50,7 @@ pub fn heatmap(
             rgb[(y * image_width + x) * 3..][..3].copy_from_slice(&colour);
         }
     }
-    write_png(path, image_width, image_height, &rgb)?;
+    write_rgb_png(path, image_width as u32, image_height as u32, &rgb)?;
     Ok(maximum)
 }
 
@@ -157,7 +129,7 @@ impl Canvas {
     }
 
     fn write(&self, path: &Path) -> std::io::Result<()> {
-        write_png(path, self.width, self.height, &self.rgb)
+        write_rgb_png(path, self.width as u32, self.height as u32, &self.rgb)
     }
 }
 

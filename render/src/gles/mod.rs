@@ -258,7 +258,7 @@ impl GlesRenderer {
                 delete_target(gl, target);
             }
             let targets: Vec<Vec<u32>> = words.chunks(per_target).map(<[u32]>::to_vec).collect();
-            Ok(crate::wgpu::texels_of(
+            Ok(crate::gbuffers::texels_of(
                 &targets,
                 (width * height) as usize,
                 model.words(),

@@ -244,7 +244,7 @@ impl VulkanRenderer {
             .iter()
             .map(|(_, buffer)| self.vulkan.read_buffer(buffer))
             .collect::<Result<Vec<_>, String>>()?;
-        Ok(crate::wgpu::texels_of(
+        Ok(crate::gbuffers::texels_of(
             &targets,
             (plan.width * plan.height) as usize,
             layout.layout().words(),

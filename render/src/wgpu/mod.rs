@@ -32,8 +32,6 @@ use gbuffer_gpu::timestamps::Timestamps;
 use passes::{Passes, VERTEX_ATTRIBUTES};
 use textures::texture_with_data;
 
-pub use textures::texels_of;
-
 const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -365,7 +363,7 @@ impl Renderer {
                 Ok(bytemuck::pod_collect_to_vec(&texels))
             })
             .collect::<Result<_, String>>()?;
-        Ok(texels_of(
+        Ok(crate::gbuffers::texels_of(
             &per_target,
             (options.width * options.height) as usize,
             layout.words(),

@@ -56,25 +56,6 @@ impl Renderer {
     }
 }
 
-/// Per pixel, the first `words` words of its texels in `targets` (each target's words for all
-/// pixels, row by row), in target order.
-pub fn texels_of(targets: &[Vec<u32>], pixels: usize, words: usize) -> Vec<u32> {
-    let mut texels = Vec::with_capacity(pixels * words);
-    for pixel in 0..pixels {
-        let texel: Vec<u32> = targets
-            .iter()
-            .flat_map(|target| {
-                let per_pixel = target.len() / pixels;
-                target[pixel * per_pixel..(pixel + 1) * per_pixel]
-                    .iter()
-                    .copied()
-            })
-            .collect();
-        texels.extend_from_slice(&texel[..words]);
-    }
-    texels
-}
-
 /// A sampled texture of `mips` (largest first), uploaded.
 pub(super) fn texture_with_data(
     device: &wgpu::Device,
