@@ -197,47 +197,122 @@ impl Drop for Gles {
     }
 }
 
-/// A framebuffer of colour attachments, one texture each, in the given internal formats.
+/// A framebuffer of colour attachments (and perhaps a depth attachment), each a texture or a
+/// renderbuffer of one internal format.
 pub struct Framebuffer {
     /// The framebuffer object.
     pub framebuffer: glow::Framebuffer,
-    /// One texture per colour attachment, in location order.
-    pub textures: Vec<glow::Texture>,
+    /// The colour attachments, in location order.
+    pub colours: Vec<Attachment>,
+    /// The depth attachment, where one was asked for.
+    pub depth: Option<Attachment>,
     /// Width, pixels.
     pub width: i32,
     /// Height, pixels.
     pub height: i32,
 }
 
+/// One attachment of a [`Framebuffer`]: a texture where it is sampled, a renderbuffer where
+/// nothing reads it but the render pass (on a tiler it may then never reach memory).
+#[derive(Clone, Copy, Debug)]
+pub enum Attachment {
+    /// A texture with one level, filtered NEAREST (an integer texture is incomplete otherwise).
+    Texture(glow::Texture),
+    /// A renderbuffer.
+    Renderbuffer(glow::Renderbuffer),
+}
+
+impl Attachment {
+    /// The texture, where the attachment is one.
+    pub fn texture(self) -> Option<glow::Texture> {
+        match self {
+            Attachment::Texture(texture) => Some(texture),
+            Attachment::Renderbuffer(_) => None,
+        }
+    }
+}
+
+/// How a framebuffer's attachments are backed ([`Attachment`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backing {
+    /// Textures, which later passes can sample.
+    Textures,
+    /// Renderbuffers, which only the render pass reads.
+    Renderbuffers,
+}
+
 impl Gles {
-    /// A framebuffer with one colour attachment per internal format, all drawn to.
+    /// A framebuffer with one colour texture per internal format, all drawn to, and its
+    /// viewport set.
     pub fn framebuffer(
         &self,
         formats: &[u32],
         width: i32,
         height: i32,
     ) -> Result<Framebuffer, String> {
+        self.framebuffer_of(formats, None, width, height, Backing::Textures)
+    }
+
+    /// A framebuffer with one colour attachment per internal format, all drawn to, a depth
+    /// attachment of `depth`'s format where it is given, each backed as `backing` says, and its
+    /// viewport set. An incomplete framebuffer is an error naming the formats.
+    pub fn framebuffer_of(
+        &self,
+        formats: &[u32],
+        depth: Option<u32>,
+        width: i32,
+        height: i32,
+        backing: Backing,
+    ) -> Result<Framebuffer, String> {
         // SAFETY: GL objects of the current context.
         unsafe {
             let gl = &self.gl;
             let framebuffer = gl.create_framebuffer()?;
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(framebuffer));
-            let mut textures = Vec::new();
             // Unit 1, so the inputs bound to unit 0 stay bound.
             gl.active_texture(glow::TEXTURE1);
+            let attach = |format: u32, attachment: u32| -> Result<Attachment, String> {
+                Ok(match backing {
+                    Backing::Textures => {
+                        let texture = gl.create_texture()?;
+                        gl.bind_texture(glow::TEXTURE_2D, Some(texture));
+                        gl.tex_storage_2d(glow::TEXTURE_2D, 1, format, width, height);
+                        for filter in [glow::TEXTURE_MIN_FILTER, glow::TEXTURE_MAG_FILTER] {
+                            gl.tex_parameter_i32(glow::TEXTURE_2D, filter, glow::NEAREST as i32);
+                        }
+                        let target = glow::TEXTURE_2D;
+                        gl.framebuffer_texture_2d(
+                            glow::FRAMEBUFFER,
+                            attachment,
+                            target,
+                            Some(texture),
+                            0,
+                        );
+                        Attachment::Texture(texture)
+                    }
+                    Backing::Renderbuffers => {
+                        let renderbuffer = gl.create_renderbuffer()?;
+                        gl.bind_renderbuffer(glow::RENDERBUFFER, Some(renderbuffer));
+                        gl.renderbuffer_storage(glow::RENDERBUFFER, format, width, height);
+                        let target = glow::RENDERBUFFER;
+                        gl.framebuffer_renderbuffer(
+                            glow::FRAMEBUFFER,
+                            attachment,
+                            target,
+                            Some(renderbuffer),
+                        );
+                        Attachment::Renderbuffer(renderbuffer)
+                    }
+                })
+            };
+            let mut colours = Vec::new();
             for (index, &format) in formats.iter().enumerate() {
-                let texture = gl.create_texture()?;
-                gl.bind_texture(glow::TEXTURE_2D, Some(texture));
-                gl.tex_storage_2d(glow::TEXTURE_2D, 1, format, width, height);
-                gl.framebuffer_texture_2d(
-                    glow::FRAMEBUFFER,
-                    glow::COLOR_ATTACHMENT0 + index as u32,
-                    glow::TEXTURE_2D,
-                    Some(texture),
-                    0,
-                );
-                textures.push(texture);
+                colours.push(attach(format, glow::COLOR_ATTACHMENT0 + index as u32)?);
             }
+            let depth = match depth {
+                Some(format) => Some(attach(format, glow::DEPTH_ATTACHMENT)?),
+                None => None,
+            };
             gl.active_texture(glow::TEXTURE0);
             let buffers: Vec<u32> = (0..formats.len() as u32)
                 .map(|index| glow::COLOR_ATTACHMENT0 + index)
@@ -246,27 +321,33 @@ impl Gles {
             let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
             self.check("creating the framebuffer")?;
             if status != glow::FRAMEBUFFER_COMPLETE {
+                let depth = depth.map_or(String::new(), |_| " with a depth attachment".into());
                 return Err(format!(
-                    "framebuffer of formats {formats:#x?} is incomplete ({status:#x})"
+                    "the driver cannot render to attachments of formats {formats:#x?}{depth} \
+                     (framebuffer status {status:#x})"
                 ));
             }
             gl.viewport(0, 0, width, height);
             Ok(Framebuffer {
                 framebuffer,
-                textures,
+                colours,
+                depth,
                 width,
                 height,
             })
         }
     }
 
-    /// Deletes a framebuffer and its textures.
+    /// Deletes a framebuffer and its attachments.
     pub fn delete(&self, framebuffer: Framebuffer) {
         // SAFETY: objects of the current context, not used again.
         unsafe {
             self.gl.delete_framebuffer(framebuffer.framebuffer);
-            for texture in framebuffer.textures {
-                self.gl.delete_texture(texture);
+            for attachment in framebuffer.colours.into_iter().chain(framebuffer.depth) {
+                match attachment {
+                    Attachment::Texture(texture) => self.gl.delete_texture(texture),
+                    Attachment::Renderbuffer(buffer) => self.gl.delete_renderbuffer(buffer),
+                }
             }
         }
     }

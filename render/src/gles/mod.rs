@@ -46,8 +46,7 @@ pub struct GlesRenderer {
 /// A framebuffer attachment: its GL object and what the recording calls it.
 struct Target {
     name: String,
-    renderbuffer: Option<glow::Renderbuffer>,
-    texture: Option<glow::Texture>,
+    attachment: gbuffer_gpu::gles::Attachment,
     format: u32,
     bytes_per_pixel: u32,
 }
@@ -364,7 +363,7 @@ impl GlesRenderer {
                 gl.disable(glow::DEPTH_TEST);
                 for (index, target) in plan.targets[0].iter().enumerate() {
                     gl.active_texture(glow::TEXTURE0 + GBUFFER_UNIT + index as u32);
-                    gl.bind_texture(glow::TEXTURE_2D, target.texture);
+                    gl.bind_texture(glow::TEXTURE_2D, target.attachment.texture());
                     recording.push(Call::Sample(attachment(target)));
                 }
                 gl.active_texture(glow::TEXTURE0);
@@ -497,11 +496,9 @@ fn attachment(target: &Target) -> Attachment {
 /// # Safety
 /// The context must be current and the target its own.
 unsafe fn delete_target(gl: &glow::Context, target: Target) {
-    if let Some(texture) = target.texture {
-        gl.delete_texture(texture);
-    }
-    if let Some(renderbuffer) = target.renderbuffer {
-        gl.delete_renderbuffer(renderbuffer);
+    match target.attachment {
+        gbuffer_gpu::gles::Attachment::Texture(texture) => gl.delete_texture(texture),
+        gbuffer_gpu::gles::Attachment::Renderbuffer(buffer) => gl.delete_renderbuffer(buffer),
     }
 }
 

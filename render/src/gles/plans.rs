@@ -7,6 +7,8 @@ use glow::HasContext as _;
 use gbuffer_codegen::emit::glsl::Include;
 
 use super::sources::{fused_programs, FusedPrograms};
+use gbuffer_gpu::gles::Backing;
+
 use super::{GlesRenderer, Plan, Target, FETCH};
 use crate::gbuffers::PackedLayout;
 use crate::glsl::{self, Dialect};
@@ -174,77 +176,37 @@ impl GlesRenderer {
         height: i32,
         sampled: bool,
     ) -> Result<(glow::Framebuffer, Vec<Target>, Option<Target>), String> {
-        let gl = &self.gles.gl;
-        let framebuffer = gl.create_framebuffer()?;
-        gl.bind_framebuffer(glow::FRAMEBUFFER, Some(framebuffer));
-        let make = |format: u32, attachment: u32, name: String, bytes_per_pixel: u32| {
-            let mut target = Target {
-                name,
-                renderbuffer: None,
-                texture: None,
+        let backing = if sampled {
+            Backing::Textures
+        } else {
+            Backing::Renderbuffers
+        };
+        let internal_formats: Vec<u32> = formats.iter().map(|(format, _)| *format).collect();
+        let depth_format = glow::DEPTH_COMPONENT32F;
+        let made = self.gles.framebuffer_of(
+            &internal_formats,
+            Some(depth_format),
+            width,
+            height,
+            backing,
+        )?;
+        let colours = made
+            .colours
+            .iter()
+            .zip(formats)
+            .map(|(&attachment, &(format, bytes_per_pixel))| Target {
+                name: String::new(),
+                attachment,
                 format,
                 bytes_per_pixel,
-            };
-            if sampled {
-                let texture = gl.create_texture()?;
-                gl.bind_texture(glow::TEXTURE_2D, Some(texture));
-                gl.tex_storage_2d(glow::TEXTURE_2D, 1, format, width, height);
-                for filter in [glow::TEXTURE_MIN_FILTER, glow::TEXTURE_MAG_FILTER] {
-                    gl.tex_parameter_i32(glow::TEXTURE_2D, filter, glow::NEAREST as i32);
-                }
-                gl.framebuffer_texture_2d(
-                    glow::FRAMEBUFFER,
-                    attachment,
-                    glow::TEXTURE_2D,
-                    Some(texture),
-                    0,
-                );
-                target.texture = Some(texture);
-            } else {
-                let renderbuffer = gl.create_renderbuffer()?;
-                gl.bind_renderbuffer(glow::RENDERBUFFER, Some(renderbuffer));
-                gl.renderbuffer_storage(glow::RENDERBUFFER, format, width, height);
-                gl.framebuffer_renderbuffer(
-                    glow::FRAMEBUFFER,
-                    attachment,
-                    glow::RENDERBUFFER,
-                    Some(renderbuffer),
-                );
-                target.renderbuffer = Some(renderbuffer);
-            }
-            Ok::<Target, String>(target)
-        };
-        let mut colours = Vec::new();
-        for (index, &(format, bytes)) in formats.iter().enumerate() {
-            colours.push(make(
-                format,
-                glow::COLOR_ATTACHMENT0 + index as u32,
-                String::new(),
-                bytes,
-            )?);
-        }
-        let depth = make(
-            glow::DEPTH_COMPONENT32F,
-            glow::DEPTH_ATTACHMENT,
-            "depth".into(),
-            4,
-        )?;
-        let buffers: Vec<u32> = (0..formats.len() as u32)
-            .map(|index| glow::COLOR_ATTACHMENT0 + index)
+            })
             .collect();
-        gl.draw_buffers(&buffers);
-        let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
-        self.gles.check("creating a framebuffer")?;
-        if status != glow::FRAMEBUFFER_COMPLETE {
-            return Err(format!(
-                "the driver cannot render to attachments of formats {:#x?} with a 32-bit float \
-                 depth (framebuffer status {status:#x})",
-                formats
-                    .iter()
-                    .map(|(format, _)| *format)
-                    .collect::<Vec<_>>()
-            ));
-        }
-        Ok((framebuffer, colours, Some(depth)))
+        let depth = made.depth.map(|attachment| Target {
+            name: "depth".into(),
+            attachment,
+            format: depth_format,
+            bytes_per_pixel: 4,
+        });
+        Ok((made.framebuffer, colours, depth))
     }
 }

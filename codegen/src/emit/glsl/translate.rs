@@ -195,22 +195,17 @@ fn check_bit_field_functions(glsl: &str, layout: &Layout) -> Result<(), Translat
     Ok(())
 }
 
-/// The declarations from the first struct up to the entry point, without the entry point's
-/// output variable, and with runs of blank lines folded into one.
+/// The layout's declarations in naga's GLSL ([`super::naga_glsl::declarations`]: no header,
+/// entry point or its output), with runs of blank lines folded into one.
 fn declarations(glsl: &str) -> String {
     let mut body = String::new();
-    for line in glsl
-        .lines()
-        .skip_while(|line| !line.starts_with("struct "))
-        .take_while(|line| !line.starts_with("void main()"))
-        .filter(|line| !line.starts_with("layout("))
-    {
+    for line in super::naga_glsl::declarations(glsl, "").trim().lines() {
         if !(line.is_empty() && body.ends_with("\n\n")) {
             body.push_str(line);
             body.push('\n');
         }
     }
-    body.trim_end().to_string() + "\n"
+    body
 }
 
 /// Reads the names of the first two structs and their members, which the WGSL emitter
