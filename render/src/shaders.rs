@@ -5,6 +5,7 @@
 
 use crate::conventions::seed::SURFACE_WGSL;
 use gbuffer::layout::Layout;
+use gbuffer_codegen::emit::glsl::naga_glsl;
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 use gbuffer_solver::lighting::{self, Forms};
 use gbuffer_solver::quantity::Quantity;
@@ -151,13 +152,8 @@ fn display_colour(radiance: vec3<f32>) -> vec4<f32> {{
 /// The bindings of group 0 that `entry_point` of `wgsl` uses: what a pipeline with a derived
 /// layout expects in its bind group. The WGSL is the renderer's own, so it parses.
 pub fn used_bindings(wgsl: &str, entry_point: &str) -> Vec<u32> {
-    let module = naga::front::wgsl::parse_str(wgsl).expect("the renderer's WGSL parses");
-    let info = naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::all(),
-    )
-    .validate(&module)
-    .expect("the renderer's WGSL is valid");
+    let (module, info) = naga_glsl::validate(wgsl, naga::valid::Capabilities::all())
+        .expect("the renderer's WGSL is valid");
     let index = module
         .entry_points
         .iter()

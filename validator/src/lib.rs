@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use gbuffer_codegen::emit::glsl::naga_glsl;
 pub use gbuffer_codegen::emit::glsl::naga_glsl::GENERATED_CODE_CAPABILITIES;
 use naga::back::{glsl, hlsl, msl, spv};
-use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
+use naga::valid::{Capabilities, ModuleInfo};
 
 use diagnostic::{Handles, Label};
 
@@ -126,7 +126,19 @@ pub fn validate_generated(source: &str) -> Result<Validated, Problem> {
 fn validate_with(source: &str, extra: Capabilities) -> Result<Validated, Problem> {
     // Before naga, whose recursion a huge statement would overflow.
     expression_size::check(source)?;
-    let module = naga::front::wgsl::parse_str(source).map_err(|error| Problem {
+    match naga_glsl::parse_and_validate(source, extra) {
+        Ok((module, info)) => Ok(Validated { module, info }),
+        Err(naga_glsl::WgslError::Parse(error)) => Err(parse_problem(&error, source)),
+        Err(naga_glsl::WgslError::Validate(refused)) => {
+            let (module, error) = *refused;
+            Err(validation_problem(&module, &error, source))
+        }
+    }
+}
+
+/// naga's parse error as a [`Problem`] at its line and column.
+fn parse_problem(error: &naga::front::wgsl::ParseError, source: &str) -> Problem {
+    Problem {
         stage: Stage::Parse,
         location: error
             .location(source)
@@ -143,46 +155,50 @@ fn validate_with(source: &str, extra: Capabilities) -> Result<Validated, Problem
             .collect(),
         notes: error.notes().map(str::to_string).collect(),
         detail: error.emit_to_string(source),
-    })?;
-    let info = Validator::new(ValidationFlags::all(), Capabilities::default() | extra)
-        .validate(&module)
-        .map_err(|error| {
-            let handles = Handles {
-                module: &module,
-                source,
-                function: diagnostic::function_of(&module, error.as_inner()),
-            };
-            let mut notes = Vec::new();
-            let mut cause = std::error::Error::source(error.as_inner());
-            while let Some(inner) = cause {
-                notes.push(handles.describe(&inner.to_string()));
-                cause = inner.source();
-            }
-            let labels: Vec<Label> = error
-                .spans()
-                .filter_map(|(span, text)| {
-                    Some(Label {
-                        span: span.to_range()?,
-                        text: handles.describe(text),
-                    })
-                })
-                .collect();
-            let innermost = innermost_label(&labels)
-                .map(|index| line_and_column(source, labels[index].span.start));
-            Problem {
-                stage: Stage::Validate,
-                location: innermost.or_else(|| {
-                    error
-                        .location(source)
-                        .map(|at| (at.line_number, at.line_position))
-                }),
-                message: handles.describe(&error.as_inner().to_string()),
-                labels,
-                notes,
-                detail: error.emit_to_string(source),
-            }
-        })?;
-    Ok(Validated { module, info })
+    }
+}
+
+/// naga's validation error as a [`Problem`] at its innermost label, the handles it names
+/// described by what they stand for in `module`.
+fn validation_problem(
+    module: &naga::Module,
+    error: &naga::WithSpan<naga::valid::ValidationError>,
+    source: &str,
+) -> Problem {
+    let handles = Handles {
+        module,
+        source,
+        function: diagnostic::function_of(module, error.as_inner()),
+    };
+    let mut notes = Vec::new();
+    let mut cause = std::error::Error::source(error.as_inner());
+    while let Some(inner) = cause {
+        notes.push(handles.describe(&inner.to_string()));
+        cause = inner.source();
+    }
+    let labels: Vec<Label> = error
+        .spans()
+        .filter_map(|(span, text)| {
+            Some(Label {
+                span: span.to_range()?,
+                text: handles.describe(text),
+            })
+        })
+        .collect();
+    let innermost =
+        innermost_label(&labels).map(|index| line_and_column(source, labels[index].span.start));
+    Problem {
+        stage: Stage::Validate,
+        location: innermost.or_else(|| {
+            error
+                .location(source)
+                .map(|at| (at.line_number, at.line_position))
+        }),
+        message: handles.describe(&error.as_inner().to_string()),
+        labels,
+        notes,
+        detail: error.emit_to_string(source),
+    }
 }
 
 /// Translates a validated module to `backend` and returns the text (for SPIR-V, a line with

@@ -15,14 +15,44 @@ use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 /// shader-f16).
 pub const GENERATED_CODE_CAPABILITIES: Capabilities = Capabilities::SHADER_FLOAT16_IN_FLOAT32;
 
-/// Parses and validates `wgsl` with the default capabilities and `extra`; the error is naga's
-/// message with the source.
+/// Why WGSL was refused: naga's parse error or its validation error, whole, for a caller that
+/// reports them in its own form (the validator's diagnostics).
+#[derive(Debug)]
+pub enum WgslError {
+    /// The WGSL front end's error.
+    Parse(naga::front::wgsl::ParseError),
+    /// The validator's error, with its spans, and the module it refused (for the names its
+    /// handles stand for).
+    Validate(Box<(naga::Module, naga::WithSpan<naga::valid::ValidationError>)>),
+}
+
+impl WgslError {
+    /// naga's message with the source lines it points at.
+    pub fn emit_to_string(&self, wgsl: &str) -> String {
+        match self {
+            WgslError::Parse(error) => error.emit_to_string(wgsl),
+            WgslError::Validate(refused) => refused.1.emit_to_string(wgsl),
+        }
+    }
+}
+
+/// Parses and validates `wgsl` with every validation flag, the default capabilities and
+/// `extra`: the one place WGSL is taken in.
+pub fn parse_and_validate(
+    wgsl: &str,
+    extra: Capabilities,
+) -> Result<(naga::Module, ModuleInfo), WgslError> {
+    let module = naga::front::wgsl::parse_str(wgsl).map_err(WgslError::Parse)?;
+    match Validator::new(ValidationFlags::all(), Capabilities::default() | extra).validate(&module)
+    {
+        Ok(info) => Ok((module, info)),
+        Err(error) => Err(WgslError::Validate(Box::new((module, error)))),
+    }
+}
+
+/// [`parse_and_validate`], the error as naga's message with the source.
 pub fn validate(wgsl: &str, extra: Capabilities) -> Result<(naga::Module, ModuleInfo), String> {
-    let module = naga::front::wgsl::parse_str(wgsl).map_err(|error| error.emit_to_string(wgsl))?;
-    let info = Validator::new(ValidationFlags::all(), Capabilities::default() | extra)
-        .validate(&module)
-        .map_err(|error| error.emit_to_string(wgsl))?;
-    Ok((module, info))
+    parse_and_validate(wgsl, extra).map_err(|error| error.emit_to_string(wgsl))
 }
 
 /// Options for naga's GLSL writer: `version`, clip space left as the WGSL writes it (no
