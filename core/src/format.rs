@@ -280,16 +280,30 @@ const PACKED_TARGETS: [TargetFormat; 3] = [
 ];
 
 impl PackedTarget {
+    /// How many targets `words` packed words take: one per four words.
+    pub const fn count_for_words(words: usize) -> usize {
+        words.div_ceil(4)
+    }
+
+    /// The last target of `words` packed words (`words` > 0): as narrow as the words it holds.
+    /// Every other is [`PackedTarget::FourWords`].
+    pub const fn last_for_words(words: usize) -> PackedTarget {
+        match words % 4 {
+            1 => PackedTarget::OneWord,
+            2 => PackedTarget::TwoWords,
+            _ => PackedTarget::FourWords,
+        }
+    }
+
     /// The targets of `words` packed words, in order.
     pub fn for_words(words: usize) -> Vec<PackedTarget> {
-        let mut targets = vec![PackedTarget::FourWords; words / 4];
-        match words % 4 {
-            0 => {}
-            1 => targets.push(PackedTarget::OneWord),
-            2 => targets.push(PackedTarget::TwoWords),
-            _ => targets.push(PackedTarget::FourWords),
-        }
-        targets
+        let count = PackedTarget::count_for_words(words);
+        (1..=count)
+            .map(|target| match target == count {
+                true => PackedTarget::last_for_words(words),
+                false => PackedTarget::FourWords,
+            })
+            .collect()
     }
 
     /// Its row of the table.

@@ -47,9 +47,6 @@ use wgpu::{
 use crate::layout::{Layout, PackedTarget};
 use crate::GBufferLayout;
 
-/// Words per `Rgba32Uint` target.
-const WORDS_PER_TARGET: usize = 4;
-
 /// The most targets [`packed_target_formats`] describes: 16, twice what any adapter allows, so
 /// that [`GBufferTargets::check_limits`] reports a layout too big for one as an error.
 pub const MAX_PACKED_TARGETS: usize = 16;
@@ -71,16 +68,17 @@ pub const fn packed_target_formats(words: usize) -> &'static [TextureFormat] {
         ending(texture_format(PackedTarget::OneWord));
     const ENDING_TWO: [TextureFormat; MAX_PACKED_TARGETS] =
         ending(texture_format(PackedTarget::TwoWords));
-    let targets = words.div_ceil(WORDS_PER_TARGET);
+    let targets = PackedTarget::count_for_words(words);
     assert!(
         targets <= MAX_PACKED_TARGETS,
         "a layout of more than 64 words needs more than 16 render targets"
     );
-    let formats: &'static [TextureFormat; MAX_PACKED_TARGETS] = match words % WORDS_PER_TARGET {
-        1 => &ENDING_ONE,
-        2 => &ENDING_TWO,
-        _ => &ENDING_WIDE,
-    };
+    let formats: &'static [TextureFormat; MAX_PACKED_TARGETS] =
+        match PackedTarget::last_for_words(words) {
+            PackedTarget::OneWord => &ENDING_ONE,
+            PackedTarget::TwoWords => &ENDING_TWO,
+            PackedTarget::FourWords => &ENDING_WIDE,
+        };
     formats.split_at(MAX_PACKED_TARGETS - targets).1
 }
 
@@ -253,7 +251,7 @@ pub trait GBufferTargets: GBufferLayout {
     /// Whether `limits` allow the targets: colour attachments and bytes per sample. Counted
     /// from the words, so a layout too big for any adapter is an error here too.
     fn check_limits(limits: &Limits) -> Result<(), LimitError> {
-        let attachments = Self::WORDS.div_ceil(WORDS_PER_TARGET) as u32;
+        let attachments = PackedTarget::count_for_words(Self::WORDS) as u32;
         let bytes = Self::bytes_per_sample();
         if attachments <= limits.max_color_attachments
             && bytes <= limits.max_color_attachment_bytes_per_sample
@@ -274,7 +272,7 @@ pub trait GBufferTargets: GBufferLayout {
         Limits {
             max_color_attachments: base
                 .max_color_attachments
-                .max(Self::WORDS.div_ceil(WORDS_PER_TARGET) as u32),
+                .max(PackedTarget::count_for_words(Self::WORDS) as u32),
             max_color_attachment_bytes_per_sample: base
                 .max_color_attachment_bytes_per_sample
                 .max(Self::bytes_per_sample()),
