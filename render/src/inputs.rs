@@ -51,17 +51,10 @@ pub struct Inputs {
 impl Inputs {
     /// Bakes the inputs (rows shared between the machine's threads).
     pub fn bake() -> Inputs {
-        let lut = EnvBrdfLut::bake(LUT_SIZE as usize, PREFILTER_SAMPLES);
-        let lut = Texels {
-            width: LUT_SIZE,
-            height: LUT_SIZE,
-            bytes: lut
-                .texels
-                .iter()
-                .flat_map(|[scale, bias]| [*scale, *bias, 0.0, 1.0].map(half_from_f32))
-                .flat_map(|half| (half as u16).to_le_bytes())
-                .collect(),
-        };
+        let lut = lut_texels(
+            LUT_SIZE,
+            &EnvBrdfLut::bake(LUT_SIZE as usize, PREFILTER_SAMPLES).texels,
+        );
         let light_map = Texels {
             width: LIGHT_MAP_SIZE,
             height: LIGHT_MAP_SIZE,
@@ -97,6 +90,21 @@ impl Inputs {
             light_map,
             environment,
         }
+    }
+}
+
+/// A `size` x `size` split-sum LUT of (scale, bias) pairs, row by row, as the `Rgba16Float`
+/// texels every backend samples (scale, bias, 0, 1): filterable everywhere, where a
+/// two-channel float format is not. Missing pairs are zero.
+pub fn lut_texels(size: u32, pairs: &[[f32; 2]]) -> Texels {
+    Texels {
+        width: size,
+        height: size,
+        bytes: (0..(size * size) as usize)
+            .map(|index| pairs.get(index).copied().unwrap_or([0.0, 0.0]))
+            .flat_map(|[scale, bias]| [scale, bias, 0.0, 1.0].map(half_from_f32))
+            .flat_map(|half| (half as u16).to_le_bytes())
+            .collect(),
     }
 }
 

@@ -395,40 +395,19 @@ pub fn gpu_time(
         view_formats: &[],
     });
     let target_view = target.create_view(&Default::default());
-    // The LUT as rgba16float (filterable everywhere): scale in r, bias in g.
-    let size = lut_size.max(1) as u32;
-    let texels: Vec<u16> = (0..(size * size) as usize)
-        .flat_map(|index| {
-            let [scale, bias] = lut.get(index).copied().unwrap_or([0.0, 0.0]);
-            [scale, bias, 0.0, 1.0]
-                .map(|value| gbuffer_codegen::codecs::half::half_from_f32(value) as u16)
-        })
-        .collect();
-    let texture = device.create_texture_with_data(
+    let lut = gbuffer_render::inputs::lut_texels(lut_size.max(1) as u32, lut);
+    let view = gbuffer_render::wgpu::texture_with_data(
+        device,
         &gpu.queue,
-        &wgpu::TextureDescriptor {
-            label: Some("lut"),
-            size: wgpu::Extent3d {
-                width: size,
-                height: size,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba16Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        bytemuck::cast_slice(&texels),
+        "lut",
+        wgpu::TextureFormat::Rgba16Float,
+        &[lut],
     );
     let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
         mag_filter: wgpu::FilterMode::Linear,
         min_filter: wgpu::FilterMode::Linear,
         ..Default::default()
     });
-    let view = texture.create_view(&Default::default());
     let mut bind_entries = vec![
         wgpu::BindGroupEntry {
             binding: 2,

@@ -15,6 +15,7 @@
 
 mod passes;
 mod textures;
+pub use textures::texture_with_data;
 
 use std::time::Instant;
 
@@ -30,7 +31,6 @@ use crate::shaders::{self, gbuffer_wgsl, Positions};
 
 use gbuffer_gpu::timestamps::Timestamps;
 use passes::{Passes, VERTEX_ATTRIBUTES};
-use textures::texture_with_data;
 
 const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;

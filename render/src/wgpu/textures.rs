@@ -57,7 +57,7 @@ impl Renderer {
 }
 
 /// A sampled texture of `mips` (largest first), uploaded.
-pub(super) fn texture_with_data(
+pub fn texture_with_data(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     label: &str,
