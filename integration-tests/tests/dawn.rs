@@ -405,7 +405,7 @@ fn exact_layouts_pack_unpack_and_load_as_the_mirror_on_dawn() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// The fast layouts keep README's contract on Dawn (`packing_cost::allowed_code_error`: a fast
+/// The fast layouts keep the layout contract's rule on Dawn (`packing_cost::allowed_code_error`: a fast
 /// channel within one code of the exact mirror, octahedral and RGBM fields within two steps,
 /// an exact field of a mixed layout bit for bit), over values in the fast domain (finite,
 /// within f16's range), edge cases first.

@@ -65,7 +65,7 @@ fn check_layout(gpu: &Gpu, layout: &Layout, wgsl: &str, texels: usize, seed: u64
 /// Runs `texels` texels in the domain fast conversions promise to handle (finite, within f16's
 /// range; edge cases first) through `wgsl`, a form of `layout` whose conversions are
 /// `conversions` (fields may choose their own), prints how far its codes are from the exact
-/// mirror's and holds them to README's contract (`packing_cost::allowed_code_error`).
+/// mirror's and holds them to the layout contract's rule (`packing_cost::allowed_code_error`).
 fn holds_the_fast_contract(
     gpu: &Gpu,
     layout: &Layout,

@@ -146,7 +146,7 @@ impl Stage {
 
     /// Which colour attachments it writes, the G-buffer's (`words_per_attachment` words each)
     /// then the output: a draw writes back only what it changes, which spares the attachments
-    /// it does not (and keeps them out of a llvmpipe bug, see the README).
+    /// it does not (and keeps them out of a llvmpipe bug, see the guide's fused renderer chapter).
     pub fn writes(
         self,
         layout: PackedLayout,

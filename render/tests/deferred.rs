@@ -31,7 +31,7 @@ fn accurate(gbuffer: GBuffer) -> Options {
 
 /// The renderer's floor: the lossless G-buffer's frame against the CPU reference at 320x180.
 /// 49.75 dB on llvmpipe, nearly half of whose squared error is two silhouette pixels that the
-/// rasteriser's subpixel snapping covers and the ray caster misses (README); the bar
+/// rasteriser's subpixel snapping covers and the ray caster misses (the guide's reference renderer chapter); the bar
 /// with that cause named is 47 dB. One sampler for the LUT and the sky, repeating, left 41.6.
 #[test]
 fn the_lossless_frame_reaches_the_floor_against_the_cpu_reference() {
@@ -53,7 +53,7 @@ fn the_lossless_frame_reaches_the_floor_against_the_cpu_reference() {
         "lossless against the CPU reference: PSNR {:.2} dB, largest error {}",
         comparison.psnr, comparison.max_error
     );
-    // What README says the floor is made of: the pixels the rasteriser covers where the ray
+    // What the guide says the floor is made of: the pixels the rasteriser covers where the ray
     // caster sees sky, their share of the squared error, and the PSNR without them.
     let mesh = gbuffer_render::mesh::Mesh::scene();
     let (mut covered, mut covered_squares, mut squares) = (0, 0.0, 0.0);

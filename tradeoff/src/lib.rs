@@ -658,24 +658,22 @@ mod tests {
         let packing = packing::compile_on_compilers();
         let markdown = packing.markdown();
         assert!(!markdown.contains("| - |"), "{markdown}");
-        // README's excerpt of the table is the report's lines, to the digit.
-        let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md"))
-            .expect("README.md beside the workspace");
-        let section = readme
-            .split("### On the GPUs' own compilers")
-            .nth(1)
-            .and_then(|rest| rest.split("\n### ").next())
-            .expect("README's section on the GPUs' own compilers");
+        // The guide's excerpt of the table is the report's lines, to the digit.
+        let section = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../book/src/gpu-compilers.md"
+        ))
+        .expect("the guide's chapter on the GPUs' own compilers");
         let excerpt: Vec<&str> = section
             .lines()
             .filter(|line| line.starts_with("| ") && !line.starts_with("| format or layout"))
             .filter(|line| !line.starts_with("| ---"))
             .collect();
-        assert!(excerpt.len() >= 10, "README's packing excerpt");
+        assert!(excerpt.len() >= 10, "the guide's packing excerpt");
         for line in excerpt {
             assert!(
                 markdown.lines().any(|report| report == line),
-                "README's line\n{line}\nis not the report's; the report's table:\n{markdown}"
+                "the guide's line\n{line}\nis not the report's; the report's table:\n{markdown}"
             );
         }
         let frames = frame_shaders::compile_frames();
@@ -685,14 +683,14 @@ mod tests {
             "{markdown}"
         );
         assert!(markdown.contains("costs least on Mali-G610"), "{markdown}");
-        // README quotes the report's line for mobile-metallic.
+        // The guide quotes the report's line for mobile-metallic.
         let line = markdown
             .lines()
             .find(|line| line.starts_with("- mobile-metallic: "))
             .expect("a line for mobile-metallic");
         assert!(
             section.contains(line.trim_start_matches("- ")),
-            "README does not quote the report's line:\n{line}"
+            "the guide does not quote the report's line:\n{line}"
         );
     }
 }

@@ -227,7 +227,7 @@ impl std::fmt::Display for Deviation {
     }
 }
 
-/// README's contract for a field's codes against the exact mirror's, given the layout's
+/// the layout contract's rule for a field's codes against the exact mirror's, given the layout's
 /// conversions (a field's own override them): the same codes under exact conversions; under
 /// fast ones within one code, or for octahedral and RGBM bit fields, measured on their decoded
 /// values ([`field_code_errors`]), within two steps (each side is within one of the input).

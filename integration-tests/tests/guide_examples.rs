@@ -1,4 +1,4 @@
-//! The GLSL user shaders README.md shows compile as written there, with the generated include
+//! The GLSL user shaders the guide shows (its chapter on the includes) compile as written there, with the generated include
 //! in place of their `#include` line: the fetch example on Mesa's GLES 3.2, the Vulkan ones with
 //! glslangValidator.
 
@@ -7,12 +7,14 @@ use gbuffer_codegen::emit::glsl::{self, Include};
 use gbuffer_gpu::gles::Gles;
 use gbuffer_testkit::or_skip;
 
-/// The README's ```glsl blocks, without the indentation of the list items they sit in.
-fn readme_glsl_blocks() -> Vec<String> {
-    let readme = std::fs::read_to_string(gbuffer_testkit::workspace().join("README.md")).unwrap();
+/// The chapter's ```glsl blocks, without the indentation of the list items they sit in.
+fn guide_glsl_blocks() -> Vec<String> {
+    let chapter =
+        std::fs::read_to_string(gbuffer_testkit::workspace().join("book/src/on-tile-includes.md"))
+            .unwrap();
     let mut blocks = Vec::new();
     let mut current: Option<(usize, String)> = None;
-    for line in readme.lines() {
+    for line in chapter.lines() {
         let trimmed = line.trim_start();
         match &mut current {
             None if trimmed == "```glsl" => {
@@ -41,20 +43,20 @@ fn with_include(include: Include, file: &str) -> Vec<String> {
         .unwrap();
     let (text, _) = glsl::include(&layout, include, 0).unwrap();
     let line = format!("#include \"{file}\"");
-    let blocks: Vec<String> = readme_glsl_blocks()
+    let blocks: Vec<String> = guide_glsl_blocks()
         .into_iter()
         .filter(|block| block.contains(&line))
         .map(|block| block.replace(&line, &text))
         .collect();
     assert!(
         !blocks.is_empty(),
-        "README.md has no glsl block with `{line}`"
+        "the includes chapter has no glsl block with `{line}`"
     );
     blocks
 }
 
 #[test]
-fn readme_fetch_example_compiles_on_gles() {
+fn the_guides_fetch_example_compiles_on_gles() {
     let shaders = with_include(Include::FetchPacked, "mobile_metallic.fetch.glsl");
     let Some(gles) = or_skip("GLES 3.2 through EGL", Gles::new()) else {
         return;
@@ -65,7 +67,7 @@ fn readme_fetch_example_compiles_on_gles() {
 }
 
 #[test]
-fn readme_vulkan_examples_compile_to_spirv() {
+fn the_guides_vulkan_examples_compile_to_spirv() {
     let shaders = with_include(Include::SubpassPacked, "mobile_metallic.vulkan.glsl");
     assert_eq!(
         shaders.len(),
