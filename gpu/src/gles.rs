@@ -269,8 +269,9 @@ impl Gles {
             let gl = &self.gl;
             let framebuffer = gl.create_framebuffer()?;
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(framebuffer));
-            // Unit 1, so the inputs bound to unit 0 stay bound.
-            gl.active_texture(glow::TEXTURE1);
+            // The textures are made on the active unit; what it had bound is bound again below,
+            // so a caller's inputs stay where it put them.
+            let bound = gl.get_parameter_texture(glow::TEXTURE_BINDING_2D);
             let attach = |format: u32, attachment: u32| -> Result<Attachment, String> {
                 Ok(match backing {
                     Backing::Textures => {
@@ -313,7 +314,7 @@ impl Gles {
                 Some(format) => Some(attach(format, glow::DEPTH_ATTACHMENT)?),
                 None => None,
             };
-            gl.active_texture(glow::TEXTURE0);
+            gl.bind_texture(glow::TEXTURE_2D, bound);
             let buffers: Vec<u32> = (0..formats.len() as u32)
                 .map(|index| glow::COLOR_ATTACHMENT0 + index)
                 .collect();

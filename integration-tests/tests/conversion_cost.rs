@@ -2,7 +2,8 @@
 //! then `spirv-opt -O`, instructions in function bodies). The contract of the issue on packing
 //! cost, per format and for a 4-word layout: exact conversions never branch and cost at most 3.5x
 //! the fast ones; fast conversions cost at most 1.25x the engines' idiom (WGSL's builtins where
-//! a format has one). The table prints with `-- --nocapture`.
+//! a format has one). The table prints with `-- --nocapture`, and
+//! is written to `target/figures/conversion-cost.md` for the guide.
 
 use gbuffer::layout::{Format, Layout};
 use gbuffer_codegen::emit::wgsl::Conversions;
@@ -26,6 +27,7 @@ fn exact_conversions_never_branch_and_cost_at_most_three_and_a_half_times_the_fa
         "layout", "exact", "branches", "fast", "branches", "builtin"
     );
     let mut failures = Vec::new();
+    let mut figures = Vec::new();
     for (name, layout) in &layouts {
         let exact = measured(layout, Conversions::Exact);
         let fast = measured(layout, Conversions::Fast);
@@ -43,6 +45,12 @@ fn exact_conversions_never_branch_and_cost_at_most_three_and_a_half_times_the_fa
             fast.conditional_branches,
             builtin.map_or_else(|| "-".to_string(), |cost| cost.instructions.to_string())
         );
+        figures.push(vec![
+            name.clone(),
+            exact.instructions.to_string(),
+            fast.instructions.to_string(),
+            builtin.map_or_else(|| "-".to_string(), |cost| cost.instructions.to_string()),
+        ]);
         if exact.conditional_branches != 0 {
             failures.push(format!("{name}: exact conversions branch"));
         }
@@ -64,5 +72,8 @@ fn exact_conversions_never_branch_and_cost_at_most_three_and_a_half_times_the_fa
             }
         }
     }
+    // The guide's table (the layout contract's "what each costs").
+    let header = ["format", "exact", "fast", "engines' idiom"];
+    gbuffer_testkit::write_figures("conversion-cost", &header, &figures);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

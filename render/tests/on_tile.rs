@@ -85,6 +85,7 @@ fn every_path_renders_the_scene_close_to_the_reference_and_to_wgpu() {
         .render(&options(layout))
         .unwrap_or_else(|error| panic!("wgpu: {error}"));
     let mut failures = Vec::new();
+    let mut figures = Vec::new();
     for (name, frame, _) in every_path(layout) {
         assert!(!is_blank(&frame), "{name}: the frame is blank");
         let against_reference = compare(&frame, &reference);
@@ -93,6 +94,12 @@ fn every_path_renders_the_scene_close_to_the_reference_and_to_wgpu() {
             "{name}: {:.2} dB against the CPU reference, {:.2} dB against wgpu",
             against_reference.psnr, against_wgpu.psnr
         );
+        let decibels = |psnr: f64| format!("{psnr:.1} dB");
+        figures.push(vec![
+            name.clone(),
+            decibels(against_reference.psnr),
+            decibels(against_wgpu.psnr),
+        ]);
         if against_reference.psnr < 44.0 || against_wgpu.psnr < 45.0 {
             failures.push(format!(
                 "{name}: {:.2} dB against the reference (44 needed), {:.2} dB against wgpu (45 needed)",
@@ -100,6 +107,13 @@ fn every_path_renders_the_scene_close_to_the_reference_and_to_wgpu() {
             ));
         }
     }
+    // The guide's table (the fused renderer's PSNRs).
+    let header = [
+        "path",
+        "PSNR against the CPU reference",
+        "PSNR against the wgpu frame",
+    ];
+    gbuffer_testkit::write_figures("on-tile-psnr", &header, &figures);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

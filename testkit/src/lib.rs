@@ -115,6 +115,22 @@ pub fn workspace() -> std::path::PathBuf {
         .to_path_buf()
 }
 
+/// Writes a table of measured figures as `target/figures/<name>.md`, the file the guide's
+/// table of the same figures names (`<!-- figures: target/figures/<name>.md -->`), which
+/// `.ci/check-figures` holds the text to. `rows` are the cells of each row, `header` the
+/// column names.
+pub fn write_figures(name: &str, header: &[&str], rows: &[Vec<String>]) {
+    let folder = workspace().join("target/figures");
+    std::fs::create_dir_all(&folder).expect("target/figures can be made");
+    let line = |cells: Vec<String>| format!("| {} |\n", cells.join(" | "));
+    let mut markdown = line(header.iter().map(|name| name.to_string()).collect());
+    markdown += &line(header.iter().map(|_| "---".to_string()).collect());
+    for row in rows {
+        markdown += &line(row.clone());
+    }
+    std::fs::write(folder.join(format!("{name}.md")), markdown).expect("the figures are written");
+}
+
 /// The solver's preset scene files (`solver/scenes/*.toml`), in order.
 pub fn scene_presets() -> Vec<std::path::PathBuf> {
     let mut paths: Vec<std::path::PathBuf> = std::fs::read_dir(workspace().join("solver/scenes"))
