@@ -2,7 +2,6 @@
 //! take, what their specialised lighting pass costs, and their error against the full model
 //! (the CPU reference of the same scene, every term, f64, no packing).
 
-use std::path::Path;
 use std::sync::Arc;
 
 use gbuffer_solver::lighting::Forms;
@@ -16,35 +15,13 @@ use crate::reference;
 use crate::shaders::{lighting_pass_wgsl, Positions};
 use crate::wgpu::Renderer;
 
-/// The presets, in the report's order.
-pub const PRESETS: [&str; 4] = [
-    "mobile-metallic",
-    "dielectric-only",
-    "fully-rough-props",
-    "desktop-256",
-];
+/// The presets, in the report's order (the solver's, [`gbuffer_solver::presets::PRESETS`]).
+pub const PRESETS: [&str; 4] = {
+    let presets = gbuffer_solver::presets::PRESETS;
+    [presets[0].0, presets[1].0, presets[2].0, presets[3].0]
+};
 
-/// A preset solved: its scene file (`solver/scenes/<name>.toml`, compiled in, so that a binary
-/// built here runs on a machine without the source tree) through the solver.
-pub fn solve_preset(name: &str) -> Result<Solution, String> {
-    let source = match name {
-        "mobile-metallic" => include_str!("../../solver/scenes/mobile-metallic.toml"),
-        "dielectric-only" => include_str!("../../solver/scenes/dielectric-only.toml"),
-        "fully-rough-props" => include_str!("../../solver/scenes/fully-rough-props.toml"),
-        "desktop-256" => include_str!("../../solver/scenes/desktop-256.toml"),
-        other => {
-            return Err(format!(
-                "no scene preset named `{other}`: {}",
-                PRESETS.join(", ")
-            ))
-        }
-    };
-    let path = Path::new("solver/scenes").join(format!("{name}.toml"));
-    gbuffer_solver::file::parse_and_solve(source, &path).map_err(|diagnostics| {
-        let lines: Vec<String> = diagnostics.iter().map(ToString::to_string).collect();
-        lines.join("\n")
-    })
-}
+pub use gbuffer_solver::presets::solve_preset;
 
 /// One row of the report.
 #[derive(Clone, Debug)]

@@ -15,6 +15,7 @@
 pub mod description;
 pub mod file;
 pub mod lighting;
+pub mod presets;
 pub mod quantity;
 pub mod representation;
 pub mod solver;
