@@ -297,13 +297,11 @@ impl PackedTarget {
 
     /// The targets of `words` packed words, in order.
     pub fn for_words(words: usize) -> Vec<PackedTarget> {
-        let count = PackedTarget::count_for_words(words);
-        (1..=count)
-            .map(|target| match target == count {
-                true => PackedTarget::last_for_words(words),
-                false => PackedTarget::FourWords,
-            })
-            .collect()
+        let mut targets = vec![PackedTarget::FourWords; PackedTarget::count_for_words(words)];
+        if let Some(last) = targets.last_mut() {
+            *last = PackedTarget::last_for_words(words);
+        }
+        targets
     }
 
     /// Its row of the table.

@@ -230,6 +230,17 @@ impl Attachment {
             Attachment::Renderbuffer(_) => None,
         }
     }
+
+    /// Deletes the texture or renderbuffer.
+    ///
+    /// # Safety
+    /// `gl` must be current and own the attachment, which is not used again.
+    pub unsafe fn delete(self, gl: &glow::Context) {
+        match self {
+            Attachment::Texture(texture) => gl.delete_texture(texture),
+            Attachment::Renderbuffer(buffer) => gl.delete_renderbuffer(buffer),
+        }
+    }
 }
 
 /// How a framebuffer's attachments are backed ([`Attachment`]).
@@ -281,11 +292,10 @@ impl Gles {
                         for filter in [glow::TEXTURE_MIN_FILTER, glow::TEXTURE_MAG_FILTER] {
                             gl.tex_parameter_i32(glow::TEXTURE_2D, filter, glow::NEAREST as i32);
                         }
-                        let target = glow::TEXTURE_2D;
                         gl.framebuffer_texture_2d(
                             glow::FRAMEBUFFER,
                             attachment,
-                            target,
+                            glow::TEXTURE_2D,
                             Some(texture),
                             0,
                         );
@@ -295,11 +305,10 @@ impl Gles {
                         let renderbuffer = gl.create_renderbuffer()?;
                         gl.bind_renderbuffer(glow::RENDERBUFFER, Some(renderbuffer));
                         gl.renderbuffer_storage(glow::RENDERBUFFER, format, width, height);
-                        let target = glow::RENDERBUFFER;
                         gl.framebuffer_renderbuffer(
                             glow::FRAMEBUFFER,
                             attachment,
-                            target,
+                            glow::RENDERBUFFER,
                             Some(renderbuffer),
                         );
                         Attachment::Renderbuffer(renderbuffer)
@@ -345,10 +354,7 @@ impl Gles {
         unsafe {
             self.gl.delete_framebuffer(framebuffer.framebuffer);
             for attachment in framebuffer.colours.into_iter().chain(framebuffer.depth) {
-                match attachment {
-                    Attachment::Texture(texture) => self.gl.delete_texture(texture),
-                    Attachment::Renderbuffer(buffer) => self.gl.delete_renderbuffer(buffer),
-                }
+                attachment.delete(&self.gl);
             }
         }
     }

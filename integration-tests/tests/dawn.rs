@@ -22,6 +22,7 @@ use gbuffer_codegen::emit::wgsl::emit_with;
 use gbuffer_gpu::harness::{compute_harness, scalars_per_texel};
 use gbuffer_gpu::values::Values;
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
+use gbuffer_render::named::Named;
 use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_render::shaders::{self, Positions};
 use gbuffer_testkit::texels::{compare_harness, inputs};
@@ -197,7 +198,7 @@ fn every_wgsl() -> Vec<Value> {
             gbuffer::shading::compose(&[module.name]).unwrap(),
         ));
     }
-    for &layout in PackedLayout::all() {
+    for &layout in PackedLayout::ALL {
         let options = Options {
             gbuffer: GBuffer::Packed(layout),
             sun: SunForm::Ggx,
@@ -205,7 +206,7 @@ fn every_wgsl() -> Vec<Value> {
             width: 64,
             height: 64,
         };
-        let name = layout.flag();
+        let name = layout.name();
         let lighting = shaders::lighting_pass_wgsl(&options, Positions::DepthBuffer).unwrap();
         jobs.push(compile(
             format!("{name}: G-buffer pass"),

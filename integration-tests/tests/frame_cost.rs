@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::compare;
+use gbuffer_render::named::Named;
 use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
 use gbuffer_render::wgpu::Renderer;
 
@@ -65,7 +66,7 @@ fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
         let psnr = compare(&render(&renderer, GBuffer::Packed(layout)), &lossless).psnr;
         eprintln!(
             "{}: predicted {:.3} steps; PSNR {psnr:.2} dB against the lossless frame",
-            layout.flag(),
+            layout.name(),
             predicted(layout),
         );
         (predicted(layout), psnr, layout)
@@ -77,10 +78,10 @@ fn frames_order_the_layouts_as_the_trade_off_study_predicts() {
         assert!(
             pair[0].1 < pair[1].1,
             "{} (predicted {:.3}) has PSNR {:.2} dB, not below {} (predicted {:.3}) at {:.2} dB",
-            pair[0].2.flag(),
+            pair[0].2.name(),
             pair[0].0,
             pair[0].1,
-            pair[1].2.flag(),
+            pair[1].2.name(),
             pair[1].0,
             pair[1].1
         );

@@ -24,6 +24,7 @@ use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_cost::{measure, CostError, Shader, Stage, Target};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::sources::fused_programs;
+use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::Path;
 use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_testkit::layouts::seeds_and_every_format;
@@ -125,7 +126,7 @@ fn fetch_includes_compile_on_mali_and_adreno() {
 #[test]
 fn fused_renderer_compiles_on_mali_and_adreno() {
     let mut shaders = Vec::new();
-    for &layout in PackedLayout::all() {
+    for &layout in PackedLayout::ALL {
         let options = Options {
             gbuffer: GBuffer::Packed(layout),
             sun: SunForm::Ggx,
@@ -139,7 +140,7 @@ fn fused_renderer_compiles_on_mali_and_adreno() {
                 continue;
             }
             let fused = fused_programs(&options, path)
-                .unwrap_or_else(|error| panic!("{}: {error}", layout.flag()));
+                .unwrap_or_else(|error| panic!("{}: {error}", layout.name()));
             if fused.interface.attachments.len() + 1 > MAX_DRAW_BUFFERS {
                 continue;
             }
@@ -147,7 +148,7 @@ fn fused_renderer_compiles_on_mali_and_adreno() {
                 let shader =
                     Shader::glsl(Stage::Fragment, &program.fragment).with_vertex(&program.vertex);
                 shaders.push((
-                    format!("{} {} {}", layout.flag(), path.flag(), program.name),
+                    format!("{} {} {}", layout.name(), path.name(), program.name),
                     shader,
                 ));
             }

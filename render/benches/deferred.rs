@@ -12,6 +12,7 @@
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::compare;
+use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::{Path, TileOptions};
 use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
 use gbuffer_render::recording::Recording;
@@ -105,7 +106,7 @@ fn main() {
         match GlesRenderer::new(&progress) {
             Ok(gles) => {
                 for path in [Path::TwoPass, Path::FetchPacked, Path::FetchNative] {
-                    let name = format!("gles {} {}", path.flag(), layout.flag());
+                    let name = format!("gles {} {}", path.name(), layout.name());
                     match gles.render(&tile(path, SIZES[1])) {
                         Ok((_, recording)) => {
                             let times = SIZES
@@ -121,7 +122,7 @@ fn main() {
         match VulkanRenderer::new(&progress) {
             Ok(vulkan) => {
                 for path in [Path::TwoPass, Path::Subpass] {
-                    let name = format!("vulkan {} {}", path.flag(), layout.flag());
+                    let name = format!("vulkan {} {}", path.name(), layout.name());
                     match vulkan.render(&tile(path, SIZES[1])) {
                         Ok((_, recording)) => {
                             let times = SIZES.map(|size| {

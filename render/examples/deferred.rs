@@ -91,15 +91,15 @@ fn backend_path(backend: Backend, path: Option<Path>) -> Result<Option<Path>, St
         (Some(path), []) => Err(format!(
             "--path {}: the wgpu backend has one path (the G-buffer through memory); \
              the on-tile paths are --backend gles or vulkan",
-            path.flag()
+            path.name()
         )),
         (Some(path), paths) if paths.contains(&path) => Ok(Some(path)),
         (Some(path), paths) => {
-            let names: Vec<String> = paths.iter().map(|path| path.flag()).collect();
+            let names: Vec<&str> = paths.iter().map(|path| path.name()).collect();
             Err(format!(
                 "--path {} is not a path of --backend {}: use {}",
-                path.flag(),
-                backend.flag(),
+                path.name(),
+                backend.name(),
                 names.join(", ")
             ))
         }
@@ -207,8 +207,8 @@ fn main() -> ExitCode {
             options.height,
             options.gbuffer.name(),
             options.gbuffer.bytes_per_pixel(),
-            backend.flag(),
-            path.map(|path| format!(", path {}", path.flag()))
+            backend.name(),
+            path.map(|path| format!(", path {}", path.name()))
                 .unwrap_or_default()
         );
         let frame = render(

@@ -11,9 +11,10 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use gbuffer_render::options::parse_size;
-use gbuffer_render::presets::{lighting_cost, measure_preset, unspecialised_options, PRESETS};
+use gbuffer_render::presets::{lighting_cost, measure_preset, unspecialised_options};
 use gbuffer_render::wgpu::Renderer;
 use gbuffer_solver::lighting::{terms, Forms};
+use gbuffer_solver::presets::PRESETS;
 
 #[derive(Parser, Debug)]
 #[command(name = "scene_presets", about)]
@@ -58,7 +59,7 @@ fn run(forms: Forms, width: u32, height: u32) -> Result<(), String> {
         baseline.expressions, baseline.spirv_instructions
     );
     let mut details = String::new();
-    for preset in PRESETS {
+    for (preset, _) in PRESETS {
         eprintln!("{preset}...");
         let row = measure_preset(&renderer, preset, forms, width, height)?;
         let layout = &row.solution.layout;

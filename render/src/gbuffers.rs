@@ -94,17 +94,6 @@ impl PackedLayout {
     /// The engine layouts.
     pub const ENGINES: [PackedLayout; 2] = [PackedLayout::BevyDeferred, PackedLayout::HdrpLit];
 
-    /// Every packed layout: the seeds, the engines', the coarse one and the lossless one (the
-    /// variants, in order, as `--layout` lists them).
-    pub fn all() -> &'static [PackedLayout] {
-        PackedLayout::ALL
-    }
-
-    /// The command-line name, e.g. `mobile-metallic` ([`Named`]).
-    pub fn flag(self) -> String {
-        self.name().to_string()
-    }
-
     fn entry(self) -> Entry {
         match self {
             PackedLayout::MobileMetallic => Entry::of::<MobileMetallic>(),
@@ -156,7 +145,7 @@ impl PackedLayout {
             PackedLayout::ArmTileBlock | PackedLayout::BevyDeferred | PackedLayout::HdrpLit => {
                 return Err(format!(
                     "layout `{}` stores neither the distance to the surface nor its position",
-                    self.flag()
+                    self.name()
                 ))
             }
         };
@@ -206,20 +195,20 @@ fn paint_texel(t: FutureMetallic, decal: u32, weight: f32) -> FutureMetallic {
             PackedLayout::SpecularWorkflow | PackedLayout::FutureSpecular => Err(format!(
                 "layout `{}` stores diffuse and specular colour, not the base colour the decals \
                  paint in place; keep mobile-metallic or future-metallic on tile",
-                self.flag()
+                self.name()
             )),
             PackedLayout::BevyDeferred | PackedLayout::HdrpLit | PackedLayout::CoarseNormals => {
                 Err(format!(
                     "layout `{}` is not kept on tile by this renderer (its on-tile paths need \
                      `with_light` and `paint_texel` for the layout); keep mobile-metallic or \
                      future-metallic on tile, or render it on --backend wgpu",
-                    self.flag()
+                    self.name()
                 ))
             }
             PackedLayout::ArmTileBlock => Err(format!(
                 "layout `{}` stores neither depth nor position, which the decals and point \
                  lights read on tile; keep mobile-metallic or future-metallic on tile",
-                self.flag()
+                self.name()
             )),
             PackedLayout::Lossless => Err(
                 "the lossless G-buffer's twelve words are more than the fused paths keep on \
@@ -276,8 +265,8 @@ impl GBuffer {
         match self {
             GBuffer::Classic => "classic".to_string(),
             GBuffer::Solved(solution) => solution.layout.name.clone(),
-            GBuffer::Packed(layout) => layout.flag(),
-            GBuffer::LosslessScene(_) => PackedLayout::Lossless.flag(),
+            GBuffer::Packed(layout) => layout.name().to_string(),
+            GBuffer::LosslessScene(_) => PackedLayout::Lossless.name().to_string(),
         }
     }
 

@@ -27,6 +27,7 @@ pub trait Named: Copy + Sized + 'static {
 }
 
 impl Named for PackedLayout {
+    /// The seeds, the engines', the coarse one and the lossless one.
     const ALL: &'static [Self] = &[
         PackedLayout::MobileMetallic,
         PackedLayout::SpecularWorkflow,
@@ -55,18 +56,17 @@ impl Named for PackedLayout {
 }
 
 impl Named for LayoutArgument {
-    const ALL: &'static [Self] = &[
-        LayoutArgument::Packed(PackedLayout::MobileMetallic),
-        LayoutArgument::Packed(PackedLayout::SpecularWorkflow),
-        LayoutArgument::Packed(PackedLayout::FutureMetallic),
-        LayoutArgument::Packed(PackedLayout::FutureSpecular),
-        LayoutArgument::Packed(PackedLayout::ArmTileBlock),
-        LayoutArgument::Packed(PackedLayout::BevyDeferred),
-        LayoutArgument::Packed(PackedLayout::HdrpLit),
-        LayoutArgument::Packed(PackedLayout::CoarseNormals),
-        LayoutArgument::Packed(PackedLayout::Lossless),
-        LayoutArgument::Classic,
-    ];
+    /// Every packed layout, in its order, then the classic targets.
+    const ALL: &'static [Self] = &{
+        const PACKED: &[PackedLayout] = PackedLayout::ALL;
+        let mut all = [LayoutArgument::Classic; PACKED.len() + 1];
+        let mut index = 0;
+        while index < PACKED.len() {
+            all[index] = LayoutArgument::Packed(PACKED[index]);
+            index += 1;
+        }
+        all
+    };
 
     fn name(self) -> &'static str {
         match self {

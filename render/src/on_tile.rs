@@ -23,7 +23,6 @@
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 
 use crate::gbuffers::{GBuffer, PackedLayout};
-use crate::named::Named;
 use crate::options::Options;
 use crate::shaders::{self, library, INPUTS_WGSL, VOLUME_WGSL};
 
@@ -54,11 +53,6 @@ pub enum Path {
 }
 
 impl Backend {
-    /// The command-line name ([`Named`]).
-    pub fn flag(self) -> String {
-        self.name().to_string()
-    }
-
     /// The paths the backend offers, the default first.
     pub fn paths(self) -> &'static [Path] {
         match self {
@@ -70,11 +64,6 @@ impl Backend {
 }
 
 impl Path {
-    /// The command-line name ([`Named`]).
-    pub fn flag(self) -> String {
-        self.name().to_string()
-    }
-
     /// Whether the G-buffer stays in the render pass (the fused paths).
     pub fn is_fused(self) -> bool {
         self != Path::TwoPass

@@ -5,6 +5,7 @@
 use std::sync::Arc;
 
 use gbuffer_solver::lighting::Forms;
+use gbuffer_solver::presets::solve_preset;
 use gbuffer_solver::Solution;
 use gbuffer_validator::cost::Cost;
 
@@ -14,14 +15,6 @@ use crate::options::Options;
 use crate::reference;
 use crate::shaders::{lighting_pass_wgsl, Positions};
 use crate::wgpu::Renderer;
-
-/// The presets, in the report's order (the solver's, [`gbuffer_solver::presets::PRESETS`]).
-pub const PRESETS: [&str; 4] = {
-    let presets = gbuffer_solver::presets::PRESETS;
-    [presets[0].0, presets[1].0, presets[2].0, presets[3].0]
-};
-
-pub use gbuffer_solver::presets::solve_preset;
 
 /// One row of the report.
 #[derive(Clone, Debug)]

@@ -6,6 +6,7 @@
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::{compare, is_blank};
+use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::{Path, TileOptions};
 use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
 use gbuffer_render::recording::{Call, Recording};
@@ -62,14 +63,14 @@ fn every_path(layout: PackedLayout) -> Vec<(String, Frame, Recording)> {
     for path in [Path::FetchNative, Path::FetchPacked, Path::TwoPass] {
         let (frame, recording) = gles
             .render(&tile(layout, path))
-            .unwrap_or_else(|error| panic!("gles {}: {error}", path.flag()));
-        frames.push((format!("gles {}", path.flag()), frame, recording));
+            .unwrap_or_else(|error| panic!("gles {}: {error}", path.name()));
+        frames.push((format!("gles {}", path.name()), frame, recording));
     }
     for path in [Path::Subpass, Path::TwoPass] {
         let (frame, recording) = vulkan
             .render(&tile(layout, path))
-            .unwrap_or_else(|error| panic!("vulkan {}: {error}", path.flag()));
-        frames.push((format!("vulkan {}", path.flag()), frame, recording));
+            .unwrap_or_else(|error| panic!("vulkan {}: {error}", path.name()));
+        frames.push((format!("vulkan {}", path.name()), frame, recording));
     }
     frames
 }

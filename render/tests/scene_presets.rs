@@ -1,9 +1,10 @@
 //! The scene presets on the adapter at hand: each renders through its solved layout and
 //! specialised lighting pass, close to the full model, and the specialisations cost less.
 
-use gbuffer_render::presets::{measure_preset, PRESETS};
+use gbuffer_render::presets::measure_preset;
 use gbuffer_render::wgpu::Renderer;
 use gbuffer_solver::lighting::Forms;
+use gbuffer_solver::presets::PRESETS;
 
 #[test]
 fn every_preset_renders_close_to_the_full_model_and_fits_its_budget() {
@@ -15,7 +16,7 @@ fn every_preset_renders_close_to_the_full_model_and_fits_its_budget() {
         return;
     };
     let mut instructions = Vec::new();
-    for preset in PRESETS {
+    for (preset, _) in PRESETS {
         let row = measure_preset(&renderer, preset, Forms::ACCURATE, 160, 90)
             .unwrap_or_else(|error| panic!("{preset}: {error}"));
         let layout = &row.solution.layout;

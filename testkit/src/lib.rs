@@ -122,11 +122,10 @@ pub fn workspace() -> std::path::PathBuf {
 pub fn write_figures(name: &str, header: &[&str], rows: &[Vec<String>]) {
     let folder = workspace().join("target/figures");
     std::fs::create_dir_all(&folder).expect("target/figures can be made");
-    let line = |cells: Vec<String>| format!("| {} |\n", cells.join(" | "));
-    let mut markdown = line(header.iter().map(|name| name.to_string()).collect());
-    markdown += &line(header.iter().map(|_| "---".to_string()).collect());
+    let line = |cells: &[&str]| format!("| {} |\n", cells.join(" | "));
+    let mut markdown = line(header) + &line(&vec!["---"; header.len()]);
     for row in rows {
-        markdown += &line(row.clone());
+        markdown += &line(&row.iter().map(String::as_str).collect::<Vec<_>>());
     }
     std::fs::write(folder.join(format!("{name}.md")), markdown).expect("the figures are written");
 }

@@ -19,6 +19,7 @@ use std::fmt::Write as _;
 use gbuffer_cost::Shader;
 use gbuffer_render::gbuffers::GBuffer;
 use gbuffer_render::gles::sources::fused_programs;
+use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::Path as TilePath;
 use gbuffer_render::shaders::{gbuffer_wgsl, lighting_pass_wgsl, Positions};
 
@@ -63,12 +64,12 @@ pub fn compile_frames() -> FrameShaders {
             continue;
         };
         let translated = |wgsl: &str, entry: &str| {
-            Shader::wgsl(wgsl, entry).map_err(|error| format!("{}: {error}", layout.flag()))
+            Shader::wgsl(wgsl, entry).map_err(|error| format!("{}: {error}", layout.name()))
         };
         let gbuffer = add(translated(&gbuffer_wgsl(&options, -1.0), "gbuffer_main"));
         let lighting = add(translated(&lighting_wgsl, "lighting_main"));
         forms.push(FormShaders {
-            layout: layout.flag(),
+            layout: layout.name().to_string(),
             form: FORMS[0],
             gbuffer: vec![gbuffer],
             lighting: vec![lighting],
@@ -94,7 +95,7 @@ pub fn compile_frames() -> FrameShaders {
                 .with_vertex(&program.vertex)))
             });
             forms.push(FormShaders {
-                layout: layout.flag(),
+                layout: layout.name().to_string(),
                 form,
                 gbuffer: vec![indices[0]],
                 lighting: vec![indices[1]],

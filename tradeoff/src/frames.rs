@@ -18,11 +18,12 @@ use std::sync::Arc;
 
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::{compare, heatmap, write_png, Comparison};
+use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::{Path as TilePath, TileOptions};
 use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
-use gbuffer_render::presets::{solve_preset, PRESETS};
 use gbuffer_render::vulkan::VulkanRenderer;
 use gbuffer_render::wgpu::Renderer;
+use gbuffer_solver::presets::{solve_preset, PRESETS};
 use gbuffer_solver::Solution;
 
 /// The frame size of the table.
@@ -200,16 +201,16 @@ pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRo
         .render(&options(GBuffer::Packed(PackedLayout::Lossless)))?;
     let mut rows = Vec::new();
     for (layout, kind) in packed_layouts() {
-        progress(&format!("frame table: {}", layout.flag()));
+        progress(&format!("frame table: {}", layout.name()));
         rows.push(measure(
             &renderers,
-            (layout.flag(), kind),
+            (layout.name().to_string(), kind),
             GBuffer::Packed(layout),
             &lossless,
             folder,
         )?);
     }
-    for preset in PRESETS {
+    for (preset, _) in PRESETS {
         progress(&format!("frame table: preset {preset}"));
         let solution = Arc::new(solve_preset(preset)?);
         let features = solution.scene.features;

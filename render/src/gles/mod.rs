@@ -254,7 +254,7 @@ impl GlesRenderer {
             gl.delete_program(program);
             gl.delete_framebuffer(framebuffer);
             for target in colours.into_iter().chain(depth) {
-                delete_target(gl, target);
+                target.attachment.delete(gl);
             }
             let targets: Vec<Vec<u32>> = words.chunks(per_target).map(<[u32]>::to_vec).collect();
             Ok(crate::gbuffers::texels_of(
@@ -471,7 +471,7 @@ impl GlesRenderer {
                 gl.delete_framebuffer(framebuffer);
             }
             for target in plan.targets.into_iter().flatten().chain(plan.depth) {
-                delete_target(gl, target);
+                target.attachment.delete(gl);
             }
         }
     }
@@ -490,15 +490,6 @@ fn attachment(target: &Target) -> Attachment {
     Attachment {
         name: target.name.clone(),
         bytes_per_pixel: target.bytes_per_pixel,
-    }
-}
-
-/// # Safety
-/// The context must be current and the target its own.
-unsafe fn delete_target(gl: &glow::Context, target: Target) {
-    match target.attachment {
-        gbuffer_gpu::gles::Attachment::Texture(texture) => gl.delete_texture(texture),
-        gbuffer_gpu::gles::Attachment::Renderbuffer(buffer) => gl.delete_renderbuffer(buffer),
     }
 }
 

@@ -12,6 +12,7 @@ use gbuffer_gpu::gles::Backing;
 use super::{GlesRenderer, Plan, Target, FETCH};
 use crate::gbuffers::PackedLayout;
 use crate::glsl::{self, Dialect};
+use crate::named::Named;
 use crate::on_tile::{tile_layout, Path, Stage, TileOptions};
 use crate::options::Options;
 
@@ -27,7 +28,7 @@ impl GlesRenderer {
                     return Err(format!(
                         "the GLES driver ({}) lacks {FETCH}, which --path {} needs",
                         self.gles.describe(),
-                        tile.path.flag()
+                        tile.path.name()
                     ));
                 }
                 self.fused_plan(options, layout, tile.path, (width, height))
@@ -58,8 +59,8 @@ impl GlesRenderer {
                 "layout `{}` on --path {} needs {} colour attachments ({} for the G-buffer, 1 for \
                  the output), but the driver offers GL_MAX_DRAW_BUFFERS = {draw_buffers} and \
                  GL_MAX_COLOR_ATTACHMENTS = {attachments_limit}",
-                layout.flag(),
-                path.flag(),
+                layout.name(),
+                path.name(),
                 colour_attachments,
                 interface.attachments.len()
             ));

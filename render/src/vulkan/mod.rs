@@ -25,6 +25,7 @@ mod plans;
 
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
+use crate::named::Named;
 use crate::on_tile::{tile_layout, Path, TileOptions};
 use crate::options::{Frame, Options};
 use crate::recording::{Attachment, Call, Load, Recording};
@@ -228,7 +229,7 @@ impl VulkanRenderer {
             Path::TwoPass => self.two_pass_plan(options),
             other => Err(format!(
                 "--path {} is GLES's: use --backend gles",
-                other.flag()
+                other.name()
             )),
         }
     }

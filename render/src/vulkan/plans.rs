@@ -10,6 +10,7 @@ use super::{
     DEPTH_FORMAT, OUTPUT_FORMAT, PACKED_FORMAT,
 };
 use crate::glsl::{self, Dialect};
+use crate::named::Named;
 use crate::on_tile::{fused_wgsl, Stage};
 use crate::options::Options;
 use crate::recording::Attachment;
@@ -39,7 +40,7 @@ impl VulkanRenderer {
                 "layout `{}` on --path subpass needs {} colour attachments and {targets} input \
                  attachments, but the device offers maxColorAttachments = {}, \
                  maxFragmentOutputAttachments = {} and maxPerStageDescriptorInputAttachments = {}",
-                layout.flag(),
+                layout.name(),
                 targets + 1,
                 limits.max_color_attachments,
                 limits.max_fragment_output_attachments,
