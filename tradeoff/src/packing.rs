@@ -144,8 +144,8 @@ fn cells(row: &PackingRow) -> [String; 8] {
         count(|cost| cost.conditional_branches),
         row.deviation.largest_code_error().to_string(),
         format!("{:.3}%", 100.0 * row.deviation.differing_fraction()),
-        crate::format_time(row.times.compute),
-        crate::format_time(row.times.fragment),
+        crate::table::format_time(row.times.compute),
+        crate::table::format_time(row.times.fragment),
     ]
 }
 
@@ -200,7 +200,7 @@ pub fn json(rows: &[PackingRow]) -> serde_json::Value {
             "largest_code_error": row.deviation.largest_code_error(),
             "differing_fraction": row.deviation.differing_fraction(),
             "ms_per_million_texels": row.times.compute.filter(timing::GpuTime::resolved).map(|time| time.median_ns),
-            "timings": crate::timings_json(&row.times),
+            "timings": crate::json::timings_json(&row.times),
         }))
         .collect::<Vec<_>>())
 }

@@ -1,0 +1,50 @@
+//! The timing's consistency check: times against the order the instruction counts predict.
+
+use crate::measured::Measured;
+use crate::rows::Row;
+use crate::{packing, timing};
+
+/// Checks the adapter's times against the order the instruction counts predict, within each
+/// family of rows and each format's two packing modes, in each stage; where they disagree,
+/// every time is marked untrusted (and printed as n/r). The disagreements, a line each.
+pub(crate) fn check_consistency(
+    rows: &[Row],
+    measured: &mut [Measured],
+    packing: &mut [packing::PackingRow],
+) -> Vec<String> {
+    let mut families: Vec<&str> = rows.iter().map(|row| row.family).collect();
+    families.dedup();
+    let mut found = Vec::new();
+    for stage in timing::Stage::ALL {
+        let times: Vec<Option<timing::GpuTime>> = measured
+            .iter()
+            .map(|measured| measured.gpu.get(stage))
+            .collect();
+        for family in &families {
+            let group: Vec<timing::Timed> = rows
+                .iter()
+                .zip(measured.iter())
+                .zip(&times)
+                .filter(|((row, _), _)| row.family == *family)
+                .map(|((row, measured), time)| timing::Timed {
+                    name: format!("{} ({})", row.name, stage.name()),
+                    instructions: measured.spirv_instructions,
+                    time: time.as_ref(),
+                })
+                .collect();
+            found.extend(timing::inconsistencies(&group));
+        }
+        let packing_times: Vec<Option<timing::GpuTime>> =
+            packing.iter().map(|row| row.time(stage)).collect();
+        for group in packing::timed_groups(packing, &packing_times, stage) {
+            found.extend(timing::inconsistencies(&group));
+        }
+    }
+    if !found.is_empty() {
+        for measured in measured.iter_mut() {
+            measured.gpu.distrust();
+        }
+        packing::distrust(packing);
+    }
+    found
+}
