@@ -7,6 +7,7 @@
 mod codegen;
 #[cfg(feature = "cost")]
 mod cost;
+mod json;
 mod output;
 #[cfg(feature = "report")]
 mod report;

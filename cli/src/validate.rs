@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use gbuffer_validator::{check_file, FileProblem, Stage};
 
+use crate::json::Json;
 use crate::output;
 
 /// Validates WGSL shaders with naga and checks that they translate to SPIR-V, MSL, HLSL and
@@ -44,22 +45,34 @@ fn stage_name(stage: Stage) -> String {
     }
 }
 
-fn problem_json(problem: &FileProblem) -> serde_json::Value {
-    serde_json::json!({
-        "origin": problem.origin,
-        "line": problem.location.map(|(line, _)| line),
-        "column": problem.location.map(|(_, column)| column),
-        "stage": stage_name(problem.stage),
-        "message": problem.message,
-        "labels": problem.labels.iter().map(|label| serde_json::json!({
-            "origin": label.origin,
-            "line": label.line,
-            "column": label.column,
-            "length": label.length,
-            "text": label.text,
-        })).collect::<Vec<_>>(),
-        "notes": problem.notes,
-    })
+fn problem_json(problem: &FileProblem) -> Json {
+    let labels = problem.labels.iter().map(|label| {
+        Json::Object(vec![
+            ("origin", Json::string(&label.origin)),
+            ("line", Json::unsigned(Some(label.line))),
+            ("column", Json::unsigned(Some(label.column))),
+            ("length", Json::unsigned(Some(label.length))),
+            ("text", Json::string(&label.text)),
+        ])
+    });
+    Json::Object(vec![
+        ("origin", Json::string(&problem.origin)),
+        (
+            "line",
+            Json::unsigned(problem.location.map(|(line, _)| line)),
+        ),
+        (
+            "column",
+            Json::unsigned(problem.location.map(|(_, column)| column)),
+        ),
+        ("stage", Json::string(stage_name(problem.stage))),
+        ("message", Json::string(&problem.message)),
+        ("labels", Json::Array(labels.collect())),
+        (
+            "notes",
+            Json::Array(problem.notes.iter().map(Json::string).collect()),
+        ),
+    ])
 }
 
 pub fn run(arguments: Arguments) -> ExitCode {
@@ -70,11 +83,14 @@ pub fn run(arguments: Arguments) -> ExitCode {
         let problems = check_file(file, !arguments.no_portability, &arguments.include_dir);
         any_invalid |= !problems.is_empty();
         if arguments.json {
-            results.push(serde_json::json!({
-                "file": file.display().to_string(),
-                "valid": problems.is_empty(),
-                "problems": problems.iter().map(problem_json).collect::<Vec<_>>(),
-            }));
+            results.push(Json::Object(vec![
+                ("file", Json::string(file.display().to_string())),
+                ("valid", Json::Bool(problems.is_empty())),
+                (
+                    "problems",
+                    Json::Array(problems.iter().map(problem_json).collect()),
+                ),
+            ]));
         } else if problems.is_empty() {
             valid_lines.push_str(&format!("{}: valid\n", file.display()));
         } else {
@@ -84,11 +100,8 @@ pub fn run(arguments: Arguments) -> ExitCode {
         }
     }
     let text = if arguments.json {
-        let json = serde_json::json!({ "files": results });
-        format!(
-            "{}\n",
-            serde_json::to_string_pretty(&json).unwrap_or_default()
-        )
+        let json = Json::Object(vec![("files", Json::Array(results))]);
+        format!("{}\n", json.pretty())
     } else {
         valid_lines
     };

@@ -46,15 +46,15 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use serde::Deserialize;
+use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
 use crate::format::{Format, ScalarKind};
 use crate::layout::{Conversions, Field, FieldType, Layout, Storage, Subject, DEFAULT_BUDGET};
+use crate::toml_table::{self, ShapeError, Table};
 use crate::{BitField, Encoding};
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+/// A layout file's keys, as written.
 struct LayoutEntry {
     name: Spanned<String>,
     budget: Option<Spanned<u32>>,
@@ -62,18 +62,65 @@ struct LayoutEntry {
     fields: Spanned<Vec<Spanned<FieldEntry>>>,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+/// A `[[fields]]` entry's keys, as written.
 struct FieldEntry {
     name: Spanned<String>,
     format: Option<Spanned<String>>,
     bits: Option<Spanned<i64>>,
     encoding: Option<Spanned<String>>,
     range: Option<Spanned<f64>>,
-    #[serde(rename = "type")]
+    /// `type`.
     ty: Option<Spanned<String>>,
     components: Option<Spanned<i64>>,
     conversions: Option<Spanned<String>>,
+}
+
+impl LayoutEntry {
+    /// The file's keys, checked for their names and types.
+    fn read(document: &Spanned<DeTable<'_>>) -> Result<LayoutEntry, ShapeError> {
+        let table = Table::root(document, &["name", "budget", "conversions", "fields"])?;
+        let name = table.required("name")?;
+        let budget = table.optional("budget")?;
+        let conversions = table.optional("conversions")?;
+        let fields = table.required_value("fields")?;
+        let entries = toml_table::array(fields)?
+            .iter()
+            .map(|field| Ok(Spanned::new(field.span(), FieldEntry::read(field)?)))
+            .collect::<Result<_, ShapeError>>()?;
+        Ok(LayoutEntry {
+            name,
+            budget,
+            conversions,
+            fields: Spanned::new(fields.span(), entries),
+        })
+    }
+}
+
+impl FieldEntry {
+    /// A `[[fields]]` table's keys, checked for their names and types.
+    fn read(value: &Spanned<DeValue<'_>>) -> Result<FieldEntry, ShapeError> {
+        let keys = [
+            "name",
+            "format",
+            "bits",
+            "encoding",
+            "range",
+            "type",
+            "components",
+            "conversions",
+        ];
+        let table = Table::new(value, &keys)?;
+        Ok(FieldEntry {
+            name: table.required("name")?,
+            format: table.optional("format")?,
+            bits: table.optional("bits")?,
+            encoding: table.optional("encoding")?,
+            range: table.optional("range")?,
+            ty: table.optional("type")?,
+            components: table.optional("components")?,
+            conversions: table.optional("conversions")?,
+        })
+    }
 }
 
 /// A layout file's contents: the layout, and how its WGSL converts values.
@@ -127,19 +174,8 @@ impl FileDiagnostic {
 
 impl FileDiagnostic {
     /// A TOML syntax or shape error, at its span.
-    pub fn from_toml(path: &Path, source: &str, error: &toml::de::Error) -> Self {
-        FileDiagnostic::at(
-            path,
-            source,
-            error.span().unwrap_or(0..0),
-            // serde speaks of fields; in a TOML file they are keys.
-            error
-                .message()
-                .trim_end()
-                .replace('\n', " ")
-                .replace("missing field", "missing key")
-                .replace("unknown field", "unknown key"),
-        )
+    pub fn from_shape(path: &Path, source: &str, error: &ShapeError) -> Self {
+        FileDiagnostic::at(path, source, error.span.clone(), error.message.clone())
     }
 }
 
@@ -223,8 +259,9 @@ pub fn read_layout_file(path: &Path) -> Result<LayoutFile, FileError> {
 
 /// Parses and checks layout-file text; `path` names it in diagnostics.
 pub fn parse_layout(source: &str, path: &Path) -> Result<LayoutFile, Vec<FileDiagnostic>> {
-    let entry: LayoutEntry = toml::from_str(source)
-        .map_err(|error| vec![FileDiagnostic::from_toml(path, source, &error)])?;
+    let entry = toml_table::parse(source)
+        .and_then(|document| LayoutEntry::read(&document))
+        .map_err(|error| vec![FileDiagnostic::from_shape(path, source, &error)])?;
 
     let mut diagnostics = Vec::new();
     let mut conversions_of = |value: &Option<Spanned<String>>| {

@@ -25,6 +25,8 @@ pub mod layout_file;
 pub mod output;
 #[cfg(feature = "tools")]
 pub mod staging;
+#[cfg(feature = "tools")]
+pub mod toml_table;
 
 #[cfg(feature = "tools")]
 pub use builder::{BuildError, Builder};

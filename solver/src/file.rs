@@ -29,7 +29,8 @@ use std::ops::Range;
 use std::path::Path;
 
 use gbuffer_codegen::layout_file::{FileDiagnostic, FileError};
-use serde::Deserialize;
+use gbuffer_codegen::toml_table::{self, ShapeError, Table};
+use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
 use crate::description::{
@@ -37,18 +38,17 @@ use crate::description::{
 };
 use crate::solver::{solve, Solution, SolveError};
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+/// A scene file's keys, as written.
 struct SceneEntry {
     name: Spanned<String>,
     model: Option<Spanned<String>>,
     budget: Option<Spanned<u32>>,
-    features: Option<Spanned<BTreeMap<Spanned<String>, Spanned<bool>>>>,
+    /// `[features]`: each key and whether it is on, in file order.
+    features: Option<Spanned<Vec<(Spanned<String>, Spanned<bool>)>>>,
     precision: Option<Spanned<PrecisionEntry>>,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
+/// The `[precision]` table's keys, as written.
 struct PrecisionEntry {
     normal_degrees: Option<Spanned<f64>>,
     colour_steps: Option<Spanned<u32>>,
@@ -56,6 +56,55 @@ struct PrecisionEntry {
     hdr_max: Option<Spanned<f64>>,
     hdr_min: Option<Spanned<f64>>,
     hdr_relative: Option<Spanned<f64>>,
+}
+
+impl SceneEntry {
+    /// The file's keys, checked for their names and types.
+    fn read(document: &Spanned<DeTable<'_>>) -> Result<SceneEntry, ShapeError> {
+        let keys = ["name", "model", "budget", "features", "precision"];
+        let table = Table::root(document, &keys)?;
+        let features = match table.value("features") {
+            Some(value) => Some(Spanned::new(
+                value.span(),
+                Table::with_any_keys(value)?.entries()?,
+            )),
+            None => None,
+        };
+        let precision = match table.value("precision") {
+            Some(value) => Some(Spanned::new(value.span(), PrecisionEntry::read(value)?)),
+            None => None,
+        };
+        Ok(SceneEntry {
+            name: table.required("name")?,
+            model: table.optional("model")?,
+            budget: table.optional("budget")?,
+            features,
+            precision,
+        })
+    }
+}
+
+impl PrecisionEntry {
+    /// The `[precision]` table's keys, checked for their names and types.
+    fn read(value: &Spanned<DeValue<'_>>) -> Result<PrecisionEntry, ShapeError> {
+        let keys = [
+            "normal_degrees",
+            "colour_steps",
+            "material_steps",
+            "hdr_max",
+            "hdr_min",
+            "hdr_relative",
+        ];
+        let table = Table::new(value, &keys)?;
+        Ok(PrecisionEntry {
+            normal_degrees: table.optional("normal_degrees")?,
+            colour_steps: table.optional("colour_steps")?,
+            material_steps: table.optional("material_steps")?,
+            hdr_max: table.optional("hdr_max")?,
+            hdr_min: table.optional("hdr_min")?,
+            hdr_relative: table.optional("hdr_relative")?,
+        })
+    }
 }
 
 /// A parsed scene file: the description and where each setting was written.
@@ -104,8 +153,9 @@ pub fn parse_and_solve(source: &str, path: &Path) -> Result<Solution, Vec<FileDi
 }
 
 fn parse(source: &str, path: &Path) -> Result<Parsed, Vec<FileDiagnostic>> {
-    let entry: SceneEntry = toml::from_str(source)
-        .map_err(|error| vec![FileDiagnostic::from_toml(path, source, &error)])?;
+    let entry = toml_table::parse(source)
+        .and_then(|document| SceneEntry::read(&document))
+        .map_err(|error| vec![FileDiagnostic::from_shape(path, source, &error)])?;
     let mut diagnostics = Vec::new();
     let mut spans = BTreeMap::new();
     spans.insert("name", entry.name.span());
