@@ -6,7 +6,6 @@ use crate::compilers;
 use crate::measured::Measured;
 use crate::report_plots::WrittenPlot;
 use crate::rows::Row;
-use crate::table::format_time;
 use crate::timing;
 
 /// The rows' tables, a family a section, then the plots.
@@ -45,20 +44,12 @@ pub(crate) fn markdown_report(
         }
         let _ = writeln!(
             out,
-            "| {} | {} | {:.3e} | {:.3e} | {} | {} | {} | {} | {:.2} | {} | {} | {} |",
+            "| {} | {} | {:.3e} | {:.3e} | {} |",
             row.name,
-            row.bits
-                .map_or_else(|| "-".to_string(), |bits| bits.to_string()),
+            row.bits_cell(),
             row.errors.max,
             row.errors.rms,
-            measured.naga_expressions,
-            measured.spirv_instructions,
-            format_time(measured.gpu.compute),
-            format_time(measured.gpu.fragment),
-            measured.cpu_ns_per_eval,
-            compilers::format_figure(measured.compilers[0]),
-            compilers::format_figure(measured.compilers[1]),
-            compilers::format_figure(measured.compilers[2]),
+            measured.cells().join(" | "),
         );
     }
     let _ = writeln!(out, "\n## Plots\n");

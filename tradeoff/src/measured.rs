@@ -24,6 +24,26 @@ pub(crate) struct Measured {
     pub(crate) compilers: Vec<Option<f64>>,
 }
 
+impl Measured {
+    /// The measured columns as the table and `report.md` write them: naga expressions, SPIR-V
+    /// instructions, the compute and fragment times ([`format_time`]), the CPU's nanoseconds
+    /// and the [`ROW_TARGETS`] compilers' figures.
+    pub(crate) fn cells(&self) -> [String; 8] {
+        let [mali, adreno, navi] =
+            [0, 1, 2].map(|column| compilers::format_figure(self.compilers[column]));
+        [
+            self.naga_expressions.to_string(),
+            self.spirv_instructions.to_string(),
+            format_time(self.gpu.compute),
+            format_time(self.gpu.fragment),
+            format!("{:.2}", self.cpu_ns_per_eval),
+            mali,
+            adreno,
+            navi,
+        ]
+    }
+}
+
 /// The GPU compilers the rows are costed on.
 pub(crate) const ROW_TARGETS: [&str; 3] = ["mali-g610", "adreno-740", "amd-navi21"];
 
@@ -96,4 +116,24 @@ pub(crate) fn measure_rows(
         });
     }
     measured
+}
+
+/// A time with three significant digits; `<X` where it is below the harness's resolution (X
+/// the upper bound), "n/r" where the run's times were not trusted, "n/a" where it could not be
+/// measured.
+pub(crate) fn format_time(time: Option<timing::GpuTime>) -> String {
+    match time {
+        None => "n/a".to_string(),
+        Some(time) if time.resolved() => significant(time.median_ns),
+        Some(time) => match time.upper_bound_ns() {
+            Some(bound) => format!("<{}", significant(bound)),
+            None => "n/r".to_string(),
+        },
+    }
+}
+
+/// `value` with three significant digits.
+fn significant(value: f64) -> String {
+    let digits = (2 - value.abs().log10().floor() as i32).max(0) as usize;
+    format!("{value:.digits$}")
 }

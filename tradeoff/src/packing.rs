@@ -144,8 +144,8 @@ fn cells(row: &PackingRow) -> [String; 8] {
         count(|cost| cost.conditional_branches),
         row.deviation.largest_code_error().to_string(),
         format!("{:.3}%", 100.0 * row.deviation.differing_fraction()),
-        crate::table::format_time(row.times.compute),
-        crate::table::format_time(row.times.fragment),
+        crate::measured::format_time(row.times.compute),
+        crate::measured::format_time(row.times.fragment),
     ]
 }
 

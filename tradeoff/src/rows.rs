@@ -66,6 +66,14 @@ pub struct Row {
     pub plot: Option<Plot>,
 }
 
+impl Row {
+    /// Its bits as the tables write them: the number, or `-` where it is not a storage format.
+    pub fn bits_cell(&self) -> String {
+        self.bits
+            .map_or_else(|| "-".to_string(), |bits| bits.to_string())
+    }
+}
+
 /// Helpers every row's WGSL may use.
 const PRELUDE: &str = "
 // Storage in an n-bit unorm channel: what a render target or packing does to a value.

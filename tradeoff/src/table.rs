@@ -1,10 +1,9 @@
-//! The report's table on standard output, and how its times are written.
+//! The report's table on standard output.
 
 use crate::compilers;
 use crate::measured::Measured;
 use crate::rows::Row;
 use crate::stdout::report_line;
-use crate::timing;
 
 /// Prints the rows' table: error, cost and time side by side, after the adapter and the
 /// compilers' provenance.
@@ -34,43 +33,15 @@ pub(crate) fn print_table(
         "navi21"
     );
     for (row, measured) in rows.iter().zip(measured) {
+        let [naga, spirv, compute, fragment, cpu, mali, adreno, navi] = measured.cells();
         report_line!(
-            "{:<17} {:<34} {:>4} {:>11.3e} {:>11.3e} {:<24} {:>5} {:>5} {:>8} {:>8} {:>8.2} {:>7} {:>6} {:>6}",
+            "{:<17} {:<34} {:>4} {:>11.3e} {:>11.3e} {:<24} {naga:>5} {spirv:>5} {compute:>8} {fragment:>8} {cpu:>8} {mali:>7} {adreno:>6} {navi:>6}",
             row.family,
             row.name,
-            row.bits
-                .map_or_else(|| "-".to_string(), |bits| bits.to_string()),
+            row.bits_cell(),
             row.errors.max,
             row.errors.rms,
             row.unit,
-            measured.naga_expressions,
-            measured.spirv_instructions,
-            format_time(measured.gpu.compute),
-            format_time(measured.gpu.fragment),
-            measured.cpu_ns_per_eval,
-            compilers::format_figure(measured.compilers[0]),
-            compilers::format_figure(measured.compilers[1]),
-            compilers::format_figure(measured.compilers[2]),
         );
     }
-}
-
-/// A time with three significant digits; `<X` where it is below the harness's resolution (X
-/// the upper bound), "n/r" where the run's times were not trusted, "n/a" where it could not be
-/// measured.
-pub(crate) fn format_time(time: Option<timing::GpuTime>) -> String {
-    match time {
-        None => "n/a".to_string(),
-        Some(time) if time.resolved() => significant(time.median_ns),
-        Some(time) => match time.upper_bound_ns() {
-            Some(bound) => format!("<{}", significant(bound)),
-            None => "n/r".to_string(),
-        },
-    }
-}
-
-/// `value` with three significant digits.
-fn significant(value: f64) -> String {
-    let digits = (2 - value.abs().log10().floor() as i32).max(0) as usize;
-    format!("{value:.digits$}")
 }
