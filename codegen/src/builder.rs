@@ -22,6 +22,50 @@ use crate::layout_file::{read_layout_file, FileError};
 use crate::output::{generate, write_if_changed, Output};
 
 /// Generates the includes of layout files from a build script.
+///
+/// A layout file (see [`layout_file`](crate::layout_file) for its keys) and the WGSL and bit
+/// report of it, written into a folder of the caller's choosing rather than `OUT_DIR`:
+///
+/// ```
+/// use gbuffer_codegen::output::Output;
+/// use gbuffer_codegen::Builder;
+///
+/// let folder = std::env::temp_dir().join(format!("gbuffer-builder-{}", std::process::id()));
+/// std::fs::create_dir_all(&folder).unwrap();
+/// let layout = folder.join("small.toml");
+/// std::fs::write(&layout, r#"
+/// name = "Small"
+/// budget = 64
+///
+/// [[fields]]
+/// name = "normal"
+/// bits = 24
+/// encoding = "octahedral"
+/// type = "Vec3"
+///
+/// [[fields]]
+/// name = "albedo"
+/// format = "rgba8"
+/// type = "Vec4"
+/// "#).unwrap();
+///
+/// let written = Builder::new()
+///     .layout(&layout)
+///     .out_dir(&folder)
+///     .outputs(&[Output::Wgsl, Output::Report])
+///     .build()
+///     .unwrap();
+/// let names: Vec<_> = written.iter().map(|path| path.file_name().unwrap().to_owned()).collect();
+/// assert_eq!(names, ["small.wgsl", "small.report.txt"]);
+/// let wgsl = std::fs::read_to_string(folder.join("small.wgsl")).unwrap();
+/// assert!(wgsl.contains("fn pack_small("));
+///
+/// // A mistake names the file, line and column, and nothing is written for it.
+/// std::fs::write(&layout, "name = \"Small\"\nbudget = 100\nfields = []\n").unwrap();
+/// let error = Builder::new().layout(&layout).out_dir(&folder).build().unwrap_err();
+/// assert!(error.to_string().contains("small.toml:2:10: error: budget must be a positive multiple of 32"));
+/// # std::fs::remove_dir_all(&folder).unwrap();
+/// ```
 #[derive(Clone, Debug)]
 pub struct Builder {
     layouts: Vec<PathBuf>,

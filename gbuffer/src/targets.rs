@@ -161,6 +161,39 @@ impl std::error::Error for LimitError {}
 /// The wgpu helpers of every [`GBufferLayout`]: its packed targets' formats, colour target
 /// states, textures, bindings for the lighting pass and limits. Implemented for every layout;
 /// `use gbuffer::GBufferTargets` (or `use gbuffer::*`) brings the items into scope.
+///
+/// What needs no device: five words take a four-word target and a one-word one, 20 bytes a
+/// sample, within WebGPU's default limits (32 bytes) and refused by a device that allows 16:
+///
+/// ```
+/// use gbuffer::{GBufferLayout, GBufferTargets, glam::{Vec3, Vec4}, wgpu};
+///
+/// #[derive(GBufferLayout)]
+/// #[gbuffer(budget = 160)]
+/// struct SpecularWorkflow {
+///     #[pls(rgb10_a2)] light: Vec3,
+///     #[pls(r32f)]     depth: f32,
+///     #[pls(rgba8)]    normal_roughness: Vec4,
+///     #[pls(rgba8)]    base_colour: Vec3,
+///     #[pls(rgba8)]    specular_colour: Vec3,
+/// }
+///
+/// use wgpu::TextureFormat::{R32Uint, Rgba32Uint};
+/// assert_eq!(SpecularWorkflow::TARGET_FORMATS, [Rgba32Uint, R32Uint]);
+/// assert_eq!(SpecularWorkflow::bytes_per_sample(), 20);
+/// assert!(SpecularWorkflow::check_limits(&wgpu::Limits::default()).is_ok());
+/// let small = wgpu::Limits {
+///     max_color_attachment_bytes_per_sample: 16,
+///     ..wgpu::Limits::downlevel_webgl2_defaults()
+/// };
+/// let error = SpecularWorkflow::check_limits(&small).unwrap_err();
+/// assert!(error.to_string().contains("20"), "{error}");
+/// // What to request from an adapter whose limits go further than `small`.
+/// let limits = SpecularWorkflow::required_limits(small);
+/// assert_eq!(limits.max_color_attachment_bytes_per_sample, 20);
+/// let lighting = SpecularWorkflow::lighting_wgsl(0, 0);
+/// assert!(lighting.contains("fn read_specular_workflow_targets(pixel: vec2<u32>) -> SpecularWorkflow"));
+/// ```
 pub trait GBufferTargets: GBufferLayout {
     /// The formats of the targets `pack_<snake>_targets` writes, in location order.
     const TARGET_FORMATS: &'static [TextureFormat] = packed_target_formats(Self::WORDS);
