@@ -10,7 +10,8 @@ use gbuffer_codegen::staging::Planned;
 use crate::output;
 
 /// Turns G-buffer layout files (TOML) into shader includes: WGSL, GLSL ES pixel local storage
-/// blocks, framebuffer-fetch and Vulkan subpass-input includes, Rust mirrors and bit reports.
+/// blocks, framebuffer-fetch and Vulkan subpass-input includes, WebGL 2 pixel local storage
+/// (with its JavaScript host module), Rust mirrors and bit reports.
 ///
 /// With no output switch, every output is written. A run writes all its files or none: they
 /// are staged beside the folder and moved in once every one is written (a file whose contents
@@ -38,6 +39,9 @@ pub struct Arguments {
     /// Vulkan GLSL subpass-input include (`<name>.vulkan.glsl`).
     #[arg(long)]
     glsl_vulkan: bool,
+    /// WebGL 2 pixel local storage include and its host module (`<name>.webgl_pls.{glsl,js}`).
+    #[arg(long)]
+    webgl_pls: bool,
     /// Rust mirror source (`<name>.rs`, with the `.wgsl` it includes).
     #[arg(long)]
     rust: bool,
@@ -56,6 +60,7 @@ impl Arguments {
             (self.glsl_pls, Output::GlslPixelLocalStorage),
             (self.glsl_fetch, Output::GlslFramebufferFetch),
             (self.glsl_vulkan, Output::GlslVulkan),
+            (self.webgl_pls, Output::WebGlPixelLocalStorage),
             (self.rust, Output::Rust),
             (self.report, Output::Report),
         ]

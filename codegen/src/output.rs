@@ -24,6 +24,9 @@ pub enum Output {
     /// `<snake>.vulkan.glsl` and `<snake>.vulkan_native.glsl`: Vulkan GLSL subpass inputs and
     /// functions.
     GlslVulkan,
+    /// `<snake>.webgl_pls.glsl` and `<snake>.webgl_pls.js`: WebGL 2's pixel local storage
+    /// (ANGLE's GLSL extension) and the host module that drives it.
+    WebGlPixelLocalStorage,
     /// `<snake>.rs` (and the `.wgsl` it includes): the Rust mirror without the derive.
     Rust,
     /// `<snake>.report.txt`: the bit report.
@@ -32,11 +35,12 @@ pub enum Output {
 
 impl Output {
     /// Every output, in the order the codegen writes them.
-    pub const ALL: [Output; 6] = [
+    pub const ALL: [Output; 7] = [
         Output::Wgsl,
         Output::GlslPixelLocalStorage,
         Output::GlslFramebufferFetch,
         Output::GlslVulkan,
+        Output::WebGlPixelLocalStorage,
         Output::Rust,
         Output::Report,
     ];
@@ -47,6 +51,7 @@ impl Output {
             Include::PixelLocalStorage(_) => self == Output::GlslPixelLocalStorage,
             Include::FetchPacked | Include::FetchNative => self == Output::GlslFramebufferFetch,
             Include::SubpassPacked | Include::SubpassNative => self == Output::GlslVulkan,
+            Include::WebGlPixelLocalStorage => self == Output::WebGlPixelLocalStorage,
         }
     }
 }
@@ -92,6 +97,15 @@ pub fn generate(
                         glsl::include_with(layout, conversions, include, 0)?.0,
                     );
                 }
+            }
+            Output::WebGlPixelLocalStorage => {
+                let include = Include::WebGlPixelLocalStorage;
+                let (text, interface) = glsl::include_with(layout, conversions, include, 0)?;
+                add(format!("{snake}.{}.glsl", include.file_suffix()), text);
+                add(
+                    format!("{snake}.{}.js", include.file_suffix()),
+                    glsl::webgl::host_module(layout, &interface),
+                );
             }
             Output::Rust => {
                 add(

@@ -1,6 +1,7 @@
 //! Shared pieces of the cross-crate tests: a layout with every format, test values with the
 //! hard cases, WGSL harnesses around generated code, and a GPU runner.
 
+pub mod chromium;
 pub mod layouts;
 pub mod shading_cases;
 pub mod texels;

@@ -70,12 +70,14 @@ pub const WGSL_ROUND: &str = "\
 // an exact half a translator may leave to the driver (Tint writes GLSL's round(), which GLSL
 // ES leaves open at ties). No step depends on how the adapter rounds. Each path gives at least
 // the code where the other applies (under 2^-14 the rebias wraps around; from 2^-14 up the
-// scaled value is at least the code, saturating in the conversion), so `min` picks the right
-// one.
+// scaled value is at least the code), so `min` picks the right one. The scaled value is capped
+// at 2^16, above every code, before it becomes an integer: WGSL's conversion saturates, but
+// naga's GLSL and SPIR-V write the bare conversion, which is undefined out of range (SwiftShader
+// gives 0 where lavapipe saturates).
 fn PREFIX_LANES_round_to_NAME(magnitude: UINTS) -> UINTS {
     let odd = (magnitude >> SHIFT) & UINTS(1u);
     let normal = ((magnitude + ROUNDING_AND_REBIAS + odd) >> SHIFT) + SMALLEST_NORMAL;
-    let scaled = bitcast<FLOATS>(magnitude) * DENORMAL_SCALE;
+    let scaled = min(bitcast<FLOATS>(magnitude) * DENORMAL_SCALE, FLOATS(65536.0));
     let whole = floor(scaled);
     let fraction = scaled - whole;
     let up = UINTS(fraction > FLOATS(0.5)) | (UINTS(fraction == FLOATS(0.5)) & UINTS(whole) & UINTS(1u));

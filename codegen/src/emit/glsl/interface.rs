@@ -3,8 +3,9 @@
 //! and the lowest GLSL ES version it compiles under. Host code reads these instead of
 //! repeating them, and each include's header comment says the same.
 
+use super::webgl::Plane;
 use crate::format::{PackedTarget, TargetFormat};
-use crate::layout::Layout;
+use crate::layout::{Conversions, Layout};
 
 /// An include of the GLSL family, by how the G-buffer reaches the shader.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -24,14 +25,18 @@ pub enum Include {
     /// format, the hardware converting; a word of bit fields as `r32ui`, with the functions
     /// and accessors that convert them).
     PixelLocalStorage(super::PlsBlock),
+    /// WebGL 2's pixel local storage (ANGLE's GLSL extension): one plane per word, `r32ui`
+    /// with the packed bits, or `rgba8` for an rgba8 word under fast conversions.
+    WebGlPixelLocalStorage,
 }
 
 impl Include {
     /// Every include, in the order the codegen writes them.
-    pub const ALL: [Include; 7] = [
+    pub const ALL: [Include; 8] = [
         Include::PixelLocalStorage(super::PlsBlock::InOut),
         Include::PixelLocalStorage(super::PlsBlock::In),
         Include::PixelLocalStorage(super::PlsBlock::Out),
+        Include::WebGlPixelLocalStorage,
         Include::FetchPacked,
         Include::FetchNative,
         Include::SubpassPacked,
@@ -56,6 +61,7 @@ impl Include {
             Include::SubpassPacked => "vulkan".into(),
             Include::SubpassNative => "vulkan_native".into(),
             Include::PixelLocalStorage(block) => format!("pls_{}", block.suffix()),
+            Include::WebGlPixelLocalStorage => "webgl_pls".into(),
         }
     }
 
@@ -64,6 +70,7 @@ impl Include {
         match self {
             Include::FetchPacked | Include::FetchNative => &["GL_EXT_shader_framebuffer_fetch"],
             Include::PixelLocalStorage(_) => &["GL_EXT_shader_pixel_local_storage"],
+            Include::WebGlPixelLocalStorage => &["GL_ANGLE_shader_pixel_local_storage"],
             Include::SubpassPacked | Include::SubpassNative => &[],
         }
     }
@@ -74,6 +81,8 @@ impl Include {
             Include::FetchPacked | Include::FetchNative => &["300 es", "310 es", "320 es"],
             // The extension is written against GLSL ES 3.00; its blocks need no more.
             Include::PixelLocalStorage(_) => &["300 es", "310 es", "320 es"],
+            // WebGL 2's shading language.
+            Include::WebGlPixelLocalStorage => &["300 es"],
             // Vulkan GLSL: GL_KHR_vulkan_glsl needs 310 es or desktop 450.
             Include::SubpassPacked | Include::SubpassNative => &["310 es", "320 es", "450"],
         }
@@ -109,15 +118,22 @@ pub struct Interface {
     pub include: Include,
     /// The attachments, in location order. Empty for pixel local storage, which has none.
     pub attachments: Vec<Attachment>,
+    /// WebGL's pixel local storage planes, in binding order (empty for the other includes).
+    pub planes: Vec<Plane>,
 }
 
 impl Interface {
-    /// The interface of `include` for a checked layout, with the GLSL names naga gives its
-    /// fields.
-    pub fn new(layout: &Layout, include: Include, names: &super::GlslNames) -> Interface {
+    /// The interface of `include` for a checked layout with these conversions, with the GLSL
+    /// names naga gives its fields.
+    pub fn new(
+        layout: &Layout,
+        conversions: Conversions,
+        include: Include,
+        names: &super::GlslNames,
+    ) -> Interface {
         let prefix = layout.snake_name();
         let attachments: Vec<Attachment> = match include {
-            Include::PixelLocalStorage(_) => Vec::new(),
+            Include::PixelLocalStorage(_) | Include::WebGlPixelLocalStorage => Vec::new(),
             Include::FetchPacked | Include::SubpassPacked => (0..layout.targets())
                 .map(|target| Attachment {
                     name: format!("{prefix}_target{target}"),
@@ -139,9 +155,14 @@ impl Interface {
                     .collect()
             }
         };
+        let planes = match include {
+            Include::WebGlPixelLocalStorage => super::webgl::planes(layout, conversions, names),
+            _ => Vec::new(),
+        };
         Interface {
             include,
             attachments,
+            planes,
         }
     }
 

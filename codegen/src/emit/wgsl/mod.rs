@@ -451,7 +451,7 @@ fn fast_field_names(layout: &Layout, conversions: Conversions) -> Vec<&str> {
 
 /// What a format's functions add to their names for a field whose conversions differ from
 /// the layout's: `_fast` or `_exact` (nothing otherwise).
-fn mode_suffix(field: &Field, conversions: Conversions) -> &'static str {
+pub(crate) fn mode_suffix(field: &Field, conversions: Conversions) -> &'static str {
     match field.conversions {
         Some(own) if own != conversions => own.name_suffix(),
         _ => "",

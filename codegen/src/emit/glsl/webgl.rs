@@ -1,0 +1,532 @@
+//! WebGL 2's pixel local storage: `WEBGL_shader_pixel_local_storage` on the host, ANGLE's
+//! `GL_ANGLE_shader_pixel_local_storage` in GLSL ES 3.00. It is how the web reaches tile
+//! memory: ANGLE implements it with framebuffer fetch, input attachments or images, on the tile
+//! of Mali, Adreno and PowerVR GPUs where it can.
+//!
+//! Planes are opaque uniforms, one per word of the layout, in the few formats the extension
+//! allows (`rgba8`, `rgba8i`, `rgba8ui`, `r32f`, `r32i`, `r32ui`: no `rgb10_a2`, no
+//! `r11f_g11f_b10f`). So every word is an `r32ui` plane holding its packed bits, converted by
+//! the layout's own functions (translated from its WGSL by naga), except an `rgba8` word under
+//! fast conversions: that is an `rgba8` plane, converted by the GPU, as the fast contract
+//! allows (one code at most from the mirror), which saves the packing arithmetic GLSL ES 3.00
+//! lacks builtins for. An `r32f` word stays `r32ui`: its conversion is a free bit cast, and a
+//! float plane may flush denormals or change a NaN, which the contract keeps.
+//!
+//! Beside the include, [`host_module`] writes the JavaScript (an ES module) that attaches the
+//! planes, begins and ends the pass and checks what the browser offers.
+
+use std::fmt::Write as _;
+
+use super::{bit_field_code, bit_field_function, bit_word_value, declared_type, word_names};
+use super::{GlslNames, Interface, Translation, TranslationError};
+use crate::emit::wgsl::{function_name, mode_suffix, Conversions};
+use crate::format::{Format, ScalarKind};
+use crate::layout::{Field, Layout, Storage};
+
+/// The planes every implementation of the draft extension offers.
+pub const DRAFT_PLANES: usize = 4;
+/// The planes Chromium offers (on SwiftShader and on GPUs): planes and the shader's colour
+/// outputs share this one limit (`MAX_COMBINED_DRAW_BUFFERS_AND_PIXEL_LOCAL_STORAGE_PLANES`).
+pub const CHROMIUM_PLANES: usize = 8;
+
+/// The format of a plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PlaneFormat {
+    /// A word's packed bits, as the layout's functions convert them.
+    R32ui,
+    /// An `rgba8` word under fast conversions, converted by the GPU.
+    Rgba8,
+}
+
+impl PlaneFormat {
+    /// The layout qualifier: `r32ui` or `rgba8`.
+    pub fn qualifier(self) -> &'static str {
+        match self {
+            PlaneFormat::R32ui => "r32ui",
+            PlaneFormat::Rgba8 => "rgba8",
+        }
+    }
+
+    /// The plane's opaque type in GLSL.
+    pub fn glsl_type(self) -> &'static str {
+        match self {
+            PlaneFormat::R32ui => "upixelLocalANGLE",
+            PlaneFormat::Rgba8 => "pixelLocalANGLE",
+        }
+    }
+
+    /// The WebGL 2 sized internal format of the plane's texture, as JavaScript names it.
+    pub fn internal_format(self) -> &'static str {
+        match self {
+            PlaneFormat::R32ui => "R32UI",
+            PlaneFormat::Rgba8 => "RGBA8",
+        }
+    }
+}
+
+/// One plane of the include: a word of the layout.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Plane {
+    /// The GLSL uniform that declares it.
+    pub name: String,
+    /// Its binding: the plane index the host attaches a texture to (the word's index).
+    pub binding: u32,
+    /// Its format.
+    pub format: PlaneFormat,
+    /// The fields it holds, as the layout names them.
+    pub fields: Vec<String>,
+    /// What it holds and who converts it, for comments: `albedo (rgba8, converted by the GPU)`.
+    pub contents: String,
+}
+
+/// `parts` joined by `_` into one GLSL ES identifier: no part's own leading or trailing `_`
+/// doubles one at a seam, since GLSL ES reserves every identifier containing `__` (and ANGLE
+/// refuses them), and naga's names often end in `_` (`field_0_`).
+fn identifier(parts: &[&str]) -> String {
+    let parts: Vec<&str> = parts
+        .iter()
+        .map(|part| part.trim_matches('_'))
+        .filter(|part| !part.is_empty())
+        .collect();
+    let mut joined = parts.join("_");
+    while joined.contains("__") {
+        joined = joined.replace("__", "_");
+    }
+    joined
+}
+
+/// `names` with each one that repeats an earlier one given its index (`_2`), so that every
+/// identifier is declared once.
+fn unique(names: Vec<String>) -> Vec<String> {
+    let mut taken: Vec<String> = Vec::new();
+    for (index, name) in names.into_iter().enumerate() {
+        let name = match taken.contains(&name) {
+            true => identifier(&[&name, &index.to_string()]),
+            false => name,
+        };
+        taken.push(name);
+    }
+    taken
+}
+
+/// What each field's load is called in the include: `load_pls_<layout>_<field>`, with the
+/// field's GLSL name (a name naga gave a trailing `_` loses it).
+pub fn field_loads(layout: &Layout, names: &GlslNames) -> Vec<String> {
+    let prefix = layout.snake_name();
+    unique(
+        names
+            .fields
+            .iter()
+            .map(|field| identifier(&["load_pls", &prefix, field]))
+            .collect(),
+    )
+}
+
+/// What a plane's store is called: `store_pls_<plane without _plane>`.
+fn plane_store(plane: &Plane) -> String {
+    identifier(&["store_pls", plane.name.trim_end_matches("_plane")])
+}
+
+/// The planes of a checked layout with these conversions, in binding order.
+pub fn planes(layout: &Layout, conversions: Conversions, names: &GlslNames) -> Vec<Plane> {
+    let prefix = layout.snake_name();
+    let words = layout.word_contents();
+    let word_names = word_names(&words, names);
+    let plane_names = unique(
+        word_names
+            .iter()
+            .map(|name| identifier(&[&prefix, name, "plane"]))
+            .collect(),
+    );
+    words
+        .iter()
+        .zip(plane_names)
+        .enumerate()
+        .map(|(index, (word, name))| {
+            let first = &layout.fields[word.members[0].field];
+            let fields: Vec<String> = word
+                .members
+                .iter()
+                .map(|member| layout.fields[member.field].name.clone())
+                .collect();
+            let native = !word.is_bit_fields
+                && word.format == Format::Rgba8
+                && !first
+                    .conversions
+                    .unwrap_or(conversions)
+                    .is_exact_for(Format::Rgba8);
+            Plane {
+                name,
+                binding: index as u32,
+                format: if native {
+                    PlaneFormat::Rgba8
+                } else {
+                    PlaneFormat::R32ui
+                },
+                contents: match (word.is_bit_fields, native) {
+                    (true, _) => format!("{} (bit fields)", fields.join(", ")),
+                    (false, true) => format!("{} (rgba8, converted by the GPU)", fields[0]),
+                    (false, false) => format!("{} ({}, packed)", fields[0], word.format),
+                },
+                fields,
+            }
+        })
+        .collect()
+}
+
+/// What a plane count means where the include runs: one line for the header and the report.
+pub fn plane_verdict(planes: usize) -> String {
+    if planes <= DRAFT_PLANES {
+        format!("{planes} plane(s): within the {DRAFT_PLANES} every implementation offers")
+    } else if planes <= CHROMIUM_PLANES {
+        format!(
+            "{planes} planes: over the {DRAFT_PLANES} the draft promises, within Chromium's \
+             {CHROMIUM_PLANES} (planes and colour outputs together)"
+        )
+    } else {
+        format!(
+            "{planes} planes: over Chromium's {CHROMIUM_PLANES}; the include does not link there"
+        )
+    }
+}
+
+/// The include's text: the header, the planes, the translated functions and the accessors.
+pub(super) fn include(
+    layout: &Layout,
+    conversions: Conversions,
+    translation: &Translation,
+    interface: &Interface,
+) -> Result<String, TranslationError> {
+    let names = &translation.names;
+    let prefix = layout.snake_name();
+    let mut out = String::new();
+    let native = interface
+        .planes
+        .iter()
+        .filter(|plane| plane.format == PlaneFormat::Rgba8)
+        .count();
+    super::write_header(
+        &mut out,
+        &format!(
+            "WebGL pixel local storage of G-buffer layout `{}`: {} planes ({} packed r32ui, {native} rgba8 converted by the GPU).",
+            layout.name,
+            interface.planes.len(),
+            interface.planes.len() - native
+        ),
+        interface,
+    );
+    for plane in &interface.planes {
+        let _ = writeln!(
+            out,
+            "layout(binding = {}, {}) uniform highp {} {};",
+            plane.binding,
+            plane.format.qualifier(),
+            plane.format.glsl_type(),
+            plane.name
+        );
+    }
+    out.push('\n');
+    out.push_str(&translation.text);
+
+    let words = layout.word_contents();
+    let locations = layout.field_locations();
+    // Each field's value from the plane it lives in, given as an expression: a `highp uint`
+    // for an r32ui plane, a `highp vec4` for an rgba8 one.
+    let field_value = |index: usize, plane: &str| -> Result<String, TranslationError> {
+        let field = &layout.fields[index];
+        let (word, member) = locations[index];
+        let value = match (field.storage, interface.planes[word].format) {
+            (Storage::Bits(_), _) => {
+                let decode = bit_field_function(layout, "decode", index);
+                return Ok(format!("{decode}({})", bit_field_code(plane, member)));
+            }
+            (Storage::Word(_), PlaneFormat::Rgba8) => plane.to_string(),
+            (Storage::Word(format), PlaneFormat::R32ui) => {
+                let suffix = mode_suffix(field, conversions);
+                let decode = function_name(&prefix, "decode", format, suffix);
+                check_function(&translation.text, &decode)?;
+                format!("{decode}({plane})")
+            }
+        };
+        Ok(narrowed(&value, field))
+    };
+    let load = |plane: &Plane| match plane.format {
+        PlaneFormat::R32ui => format!("pixelLocalLoadANGLE({}).x", plane.name),
+        PlaneFormat::Rgba8 => format!("pixelLocalLoadANGLE({})", plane.name),
+    };
+
+    let _ = writeln!(out, "\n// Each field, loaded from its plane alone.");
+    for (index, (field, name)) in layout
+        .fields
+        .iter()
+        .zip(field_loads(layout, names))
+        .enumerate()
+    {
+        let plane = &interface.planes[locations[index].0];
+        let _ = writeln!(
+            out,
+            "{} {name}() {{\n    return {};\n}}",
+            declared_type(field.ty),
+            field_value(index, &load(plane))?
+        );
+    }
+
+    let _ = writeln!(
+        out,
+        "\n// Each plane, written whole from the fields it holds."
+    );
+    for (word, plane) in words.iter().zip(&interface.planes) {
+        let parameters: Vec<String> = word
+            .members
+            .iter()
+            .map(|member| {
+                let field = &layout.fields[member.field];
+                format!("{} {}", declared_type(field.ty), names.fields[member.field])
+            })
+            .collect();
+        let stored = if word.is_bit_fields {
+            let value = bit_word_value(layout, word, |field| names.fields[field].clone());
+            format!("uvec4({value}, 0u, 0u, 0u)")
+        } else {
+            let index = word.members[0].field;
+            let field = &layout.fields[index];
+            let widened = widened(&names.fields[index], field, word.format);
+            match plane.format {
+                PlaneFormat::Rgba8 => widened,
+                PlaneFormat::R32ui => {
+                    let suffix = mode_suffix(field, conversions);
+                    let encode = function_name(&prefix, "encode", word.format, suffix);
+                    check_function(&translation.text, &encode)?;
+                    format!("uvec4({encode}({widened}), 0u, 0u, 0u)")
+                }
+            }
+        };
+        let _ = writeln!(
+            out,
+            "void {}({}) {{\n    pixelLocalStoreANGLE({}, {stored});\n}}",
+            plane_store(plane),
+            parameters.join(", "),
+            plane.name
+        );
+    }
+
+    let texel = &names.layout;
+    let _ = writeln!(
+        out,
+        "\n// The texel in the planes, unpacked: each plane loaded once."
+    );
+    let _ = writeln!(out, "{texel} load_{prefix}() {{");
+    for (binding, plane) in interface.planes.iter().enumerate() {
+        let ty = match plane.format {
+            PlaneFormat::R32ui => "highp uint",
+            PlaneFormat::Rgba8 => "highp vec4",
+        };
+        let _ = writeln!(out, "    {ty} plane{binding} = {};", load(plane));
+    }
+    let values: Vec<String> = (0..layout.fields.len())
+        .map(|index| field_value(index, &format!("plane{}", locations[index].0)))
+        .collect::<Result<_, _>>()?;
+    let _ = writeln!(out, "    return {texel}({});\n}}", values.join(", "));
+    let _ = writeln!(out, "\n// Writes a texel into the planes.");
+    let _ = writeln!(out, "void store_{prefix}({texel} texel) {{");
+    for (word, plane) in words.iter().zip(&interface.planes) {
+        let arguments: Vec<String> = word
+            .members
+            .iter()
+            .map(|member| format!("texel.{}", names.fields[member.field]))
+            .collect();
+        let _ = writeln!(out, "    {}({});", plane_store(plane), arguments.join(", "));
+    }
+    out.push_str("}\n");
+    Ok(out)
+}
+
+/// A whole word's value narrowed to the field's components (`.xyz` of a `vec4`).
+fn narrowed(value: &str, field: &Field) -> String {
+    let channels = match field.storage {
+        Storage::Word(format) => format.channels().len(),
+        Storage::Bits(_) => return value.to_string(),
+    };
+    if field.ty.components == channels {
+        value.to_string()
+    } else {
+        format!("{value}.{}", &"xyzw"[..field.ty.components])
+    }
+}
+
+/// A field's GLSL value `name` widened with zeros to its format's channels, as the format's
+/// encode function (and an rgba8 plane) takes it.
+fn widened(name: &str, field: &Field, format: Format) -> String {
+    let channels = format.channels().len();
+    if field.ty.components == channels {
+        return name.to_string();
+    }
+    let (vector, zero) = match format.scalar_kind() {
+        ScalarKind::Float => ("vec", "0.0"),
+        ScalarKind::Uint | ScalarKind::Bool => ("uvec", "0u"),
+        ScalarKind::Sint => ("ivec", "0"),
+    };
+    let zeros = vec![zero; channels - field.ty.components].join(", ");
+    format!("{vector}{channels}({name}, {zeros})")
+}
+
+/// The translation must define `name` as the WGSL does (naga renames only reserved words).
+fn check_function(text: &str, name: &str) -> Result<(), TranslationError> {
+    match text.contains(&format!(" {name}(")) {
+        true => Ok(()),
+        false => Err(TranslationError(format!(
+            "the translation has no function `{name}`"
+        ))),
+    }
+}
+
+/// The JavaScript ES module beside the include: the planes as data, and the host calls a WebGL
+/// 2 program makes around a pass that uses them, in the form Chromium ships.
+pub fn host_module(layout: &Layout, interface: &Interface) -> String {
+    let snake = layout.snake_name();
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "// WebGL 2 host code for `{snake}.webgl_pls.glsl`, the pixel local storage of G-buffer layout\n\
+         // `{}`. Generated by gbuffer's codegen: edit the layout, not this file.\n\
+         //\n\
+         // The extension is WEBGL_shader_pixel_local_storage, a draft: Chromium ships it behind\n\
+         // --enable-webgl-draft-extensions (chrome://flags, \"WebGL Draft Extensions\"). Its calls\n\
+         // here are Chromium's, which differ from the Khronos draft where marked; its token values\n\
+         // differ too, so only the extension object's constants are used, never numbers.\n\
+         //\n\
+         // {}.",
+        layout.name,
+        plane_verdict(interface.planes.len())
+    );
+    out.push_str(
+        "\n/** The planes in binding order: the uniform, the texture format, the fields held. */\n",
+    );
+    out.push_str("export const PLANES = Object.freeze([\n");
+    for plane in &interface.planes {
+        let fields: Vec<String> = plane
+            .fields
+            .iter()
+            .map(|field| format!("\"{field}\""))
+            .collect();
+        let _ = writeln!(
+            out,
+            "  Object.freeze({{ name: \"{}\", binding: {}, internalFormat: \"{}\", fields: [{}] }}),",
+            plane.name,
+            plane.binding,
+            plane.format.internal_format(),
+            fields.join(", ")
+        );
+    }
+    out.push_str("]);\n");
+    out.push_str(HOST_FUNCTIONS);
+    out
+}
+
+/// The host functions, the same for every layout: they read [`PLANES`] (the JavaScript
+/// constant) for what differs.
+const HOST_FUNCTIONS: &str = r#"
+/**
+ * The extension, once `gl` is checked: a WebGL 2 context, the extension present, enough planes
+ * for the layout and `colourOutputs` more (planes and colour outputs share one limit). Throws
+ * an Error that names what is missing.
+ */
+export function enablePixelLocalStorage(gl, colourOutputs = 0) {
+  if (typeof WebGL2RenderingContext === "undefined" || !(gl instanceof WebGL2RenderingContext)) {
+    throw new Error("pixel local storage needs a WebGL 2 context");
+  }
+  const pls = gl.getExtension("WEBGL_shader_pixel_local_storage");
+  if (pls === null) {
+    throw new Error(
+      "WEBGL_shader_pixel_local_storage is not offered (Chromium: --enable-webgl-draft-extensions)",
+    );
+  }
+  const planes = gl.getParameter(pls.MAX_PIXEL_LOCAL_STORAGE_PLANES_WEBGL);
+  const combined = gl.getParameter(
+    pls.MAX_COMBINED_DRAW_BUFFERS_AND_PIXEL_LOCAL_STORAGE_PLANES_WEBGL,
+  );
+  if (planes < PLANES.length) {
+    throw new Error(`the layout needs ${PLANES.length} planes; this context offers ${planes}`);
+  }
+  if (combined < PLANES.length + colourOutputs) {
+    throw new Error(
+      `${PLANES.length} planes and ${colourOutputs} colour outputs need ` +
+        `${PLANES.length + colourOutputs}; this context offers ${combined} together`,
+    );
+  }
+  return pls;
+}
+
+/** One texture per plane, `width` x `height`, in its format (immutable storage, one level). */
+export function createPlaneTextures(gl, width, height) {
+  return PLANES.map((plane) => {
+    const texture = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, texture);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl[plane.internalFormat], width, height);
+    return texture;
+  });
+}
+
+/**
+ * Attaches `textures` (one per plane, as createPlaneTextures makes them) as the planes of the
+ * framebuffer bound to DRAW_FRAMEBUFFER. `noncoherent` asks for ANGLE's non-coherent path,
+ * which needs barrier() between draws that overlap.
+ */
+export function attachPlanes(gl, pls, textures, noncoherent = false) {
+  const usage = noncoherent ? pls.PIXEL_LOCAL_USAGE_ALWAYS_NONCOHERENT_BIT_WEBGL : 0;
+  PLANES.forEach((plane, index) => {
+    // Chromium takes a fifth argument, the usage; the draft's call has four
+    // (plane, texture, level, layer).
+    pls.framebufferTexturePixelLocalStorageWEBGL(plane.binding, textures[index], 0, 0, usage);
+  });
+}
+
+/**
+ * Begins pixel local storage on the bound draw framebuffer. `load` is "zero" (every plane
+ * starts at zero), "clear" (at `clearValues[binding]`, four numbers each, unsigned integers for
+ * an R32UI plane and floats for an RGBA8 one) or "load" (what the textures hold). DITHER is
+ * disabled first: begin fails while it is enabled, as it is by default.
+ */
+export function beginPixelLocalStorage(gl, pls, load = "zero", clearValues = []) {
+  gl.disable(gl.DITHER);
+  const operation = {
+    zero: pls.LOAD_OP_ZERO_WEBGL,
+    clear: pls.LOAD_OP_CLEAR_WEBGL,
+    load: pls.LOAD_OP_LOAD_WEBGL,
+  }[load];
+  if (operation === undefined) {
+    throw new Error(`load is "zero", "clear" or "load", not ${JSON.stringify(load)}`);
+  }
+  if (load === "clear") {
+    PLANES.forEach((plane) => {
+      const value = clearValues[plane.binding] ?? [0, 0, 0, 0];
+      if (plane.internalFormat === "R32UI") {
+        pls.framebufferPixelLocalClearValueuivWEBGL(plane.binding, value);
+      } else {
+        pls.framebufferPixelLocalClearValuefvWEBGL(plane.binding, value);
+      }
+    });
+  }
+  pls.beginPixelLocalStorageWEBGL(PLANES.map(() => operation));
+}
+
+/**
+ * Between two draws of one pass where the second reads what the first wrote at the same pixel:
+ * a barrier where the storage is not coherent, nothing where it is.
+ */
+export function pixelLocalStorageBarrier(pls) {
+  if (!pls.isCoherent()) {
+    pls.pixelLocalStorageBarrierWEBGL();
+  }
+}
+
+/**
+ * Ends pixel local storage. `store` true writes the planes back to their textures; false
+ * discards them, which is the point on a tiler: a G-buffer that is cleared on tile and never
+ * stored costs no bandwidth at all.
+ */
+export function endPixelLocalStorage(gl, pls, store = false) {
+  const operation = store ? pls.STORE_OP_STORE_WEBGL : gl.DONT_CARE;
+  pls.endPixelLocalStorageWEBGL(PLANES.map(() => operation));
+}
+"#;
