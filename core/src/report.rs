@@ -15,6 +15,31 @@ pub const WEBGPU_COLOR_ATTACHMENT_LIMIT: usize = 8;
 /// sample are WebGPU's 32.
 pub const WEBGL2_COLOR_ATTACHMENT_LIMIT: usize = 4;
 
+/// The planes every implementation of WebGL's draft pixel local storage offers.
+pub const WEBGL_DRAFT_PLANES: usize = 4;
+/// The planes Chromium offers (on SwiftShader and on GPUs): planes and the shader's colour
+/// outputs share this one limit (`MAX_COMBINED_DRAW_BUFFERS_AND_PIXEL_LOCAL_STORAGE_PLANES`).
+pub const CHROMIUM_PLANES: usize = 8;
+
+/// What WebGL's pixel local storage says to `planes` planes (one per word): one line.
+pub fn webgl_planes(planes: usize) -> String {
+    let plural = if planes == 1 { "" } else { "s" };
+    if planes <= WEBGL_DRAFT_PLANES {
+        format!(
+            "{planes} plane{plural}: within the {WEBGL_DRAFT_PLANES} every implementation offers"
+        )
+    } else if planes <= CHROMIUM_PLANES {
+        format!(
+            "{planes} planes: over the {WEBGL_DRAFT_PLANES} the draft promises, within Chromium's \
+             {CHROMIUM_PLANES} (planes and colour outputs together)"
+        )
+    } else {
+        format!(
+            "{planes} planes: over Chromium's {CHROMIUM_PLANES}; the include does not link there"
+        )
+    }
+}
+
 /// The bytes per sample of a list of render targets, as WebGPU validates it: for each target
 /// in order, round the total up to its alignment, then add its cost.
 pub fn bytes_per_sample(targets: impl IntoIterator<Item = WebGpuTarget>) -> u32 {
@@ -208,7 +233,12 @@ impl fmt::Display for Report {
             "  packed: {} = {packed} bytes per sample: {verdict} the default limit",
             layout.packed_target_formats().join(" + ")
         )?;
-        writeln!(out, "  {}", self.webgl2())
+        writeln!(out, "  {}", self.webgl2())?;
+        writeln!(
+            out,
+            "  WebGL pixel local storage: {}",
+            webgl_planes(self.layout.words())
+        )
     }
 }
 

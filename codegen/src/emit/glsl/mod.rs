@@ -297,7 +297,7 @@ fn write_header(out: &mut String, title: &str, interface: &Interface) {
         let _ = writeln!(
             out,
             "// {}.\n// The shader may not `discard`, `return` from main, or write gl_FragDepth or gl_SampleMask.",
-            webgl::plane_verdict(interface.planes.len())
+            crate::report::webgl_planes(interface.planes.len())
         );
     }
     let host_extensions = interface.host_extensions();

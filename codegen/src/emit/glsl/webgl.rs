@@ -22,12 +22,7 @@ use super::{GlslNames, Interface, Translation, TranslationError};
 use crate::emit::wgsl::{function_name, mode_suffix, Conversions};
 use crate::format::{Format, ScalarKind};
 use crate::layout::{Field, Layout, Storage};
-
-/// The planes every implementation of the draft extension offers.
-pub const DRAFT_PLANES: usize = 4;
-/// The planes Chromium offers (on SwiftShader and on GPUs): planes and the shader's colour
-/// outputs share this one limit (`MAX_COMBINED_DRAW_BUFFERS_AND_PIXEL_LOCAL_STORAGE_PLANES`).
-pub const CHROMIUM_PLANES: usize = 8;
+use crate::report::webgl_planes;
 
 /// The format of a plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -172,22 +167,6 @@ pub fn planes(layout: &Layout, conversions: Conversions, names: &GlslNames) -> V
             }
         })
         .collect()
-}
-
-/// What a plane count means where the include runs: one line for the header and the report.
-pub fn plane_verdict(planes: usize) -> String {
-    if planes <= DRAFT_PLANES {
-        format!("{planes} plane(s): within the {DRAFT_PLANES} every implementation offers")
-    } else if planes <= CHROMIUM_PLANES {
-        format!(
-            "{planes} planes: over the {DRAFT_PLANES} the draft promises, within Chromium's \
-             {CHROMIUM_PLANES} (planes and colour outputs together)"
-        )
-    } else {
-        format!(
-            "{planes} planes: over Chromium's {CHROMIUM_PLANES}; the include does not link there"
-        )
-    }
 }
 
 /// The include's text: the header, the planes, the translated functions and the accessors.
@@ -397,7 +376,7 @@ pub fn host_module(layout: &Layout, interface: &Interface) -> String {
          //\n\
          // {}.",
         layout.name,
-        plane_verdict(interface.planes.len())
+        webgl_planes(interface.planes.len())
     );
     out.push_str(
         "\n/** The planes in binding order: the uniform, the texture format, the fields held. */\n",
