@@ -37,6 +37,9 @@ pub fn parse(source: &str) -> Result<Spanned<DeTable<'_>>, ShapeError> {
     })
 }
 
+/// A key and its value, each with its span.
+pub type Entry<T> = (Spanned<String>, Spanned<T>);
+
 /// A table whose keys are checked against those it allows.
 pub struct Table<'a, 'i> {
     entries: &'a DeTable<'i>,
@@ -116,7 +119,7 @@ impl<'a, 'i> Table<'a, 'i> {
     }
 
     /// The key-value pairs of the table in file order, each value read as a `T`.
-    pub fn entries<T: FromValue>(&self) -> Result<Vec<(Spanned<String>, Spanned<T>)>, ShapeError> {
+    pub fn entries<T: FromValue>(&self) -> Result<Vec<Entry<T>>, ShapeError> {
         let mut pairs: Vec<_> = self.entries.iter().collect();
         pairs.sort_by_key(|(key, _)| key.span().start);
         pairs

@@ -29,7 +29,7 @@ use std::ops::Range;
 use std::path::Path;
 
 use gbuffer_codegen::layout_file::{FileDiagnostic, FileError};
-use gbuffer_codegen::toml_table::{self, ShapeError, Table};
+use gbuffer_codegen::toml_table::{self, Entry, ShapeError, Table};
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
@@ -44,7 +44,7 @@ struct SceneEntry {
     model: Option<Spanned<String>>,
     budget: Option<Spanned<u32>>,
     /// `[features]`: each key and whether it is on, in file order.
-    features: Option<Spanned<Vec<(Spanned<String>, Spanned<bool>)>>>,
+    features: Option<Spanned<Vec<Entry<bool>>>>,
     precision: Option<Spanned<PrecisionEntry>>,
 }
 

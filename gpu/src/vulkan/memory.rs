@@ -17,6 +17,7 @@ pub enum AttachmentMemory {
 }
 
 impl Vulkan {
+    /// Whether the device offers a lazily allocated memory type (on a tiler, memory that an
     /// attachment living only in tile memory never touches).
     pub fn has_lazily_allocated_memory(&self) -> bool {
         self.memory_types.iter().any(|memory| {
@@ -40,7 +41,7 @@ impl Vulkan {
     }
 
     /// Memory for `requirements`, of the first of `preferences` (property flags, best first)
-
+    /// that a memory type the requirements allow has, and the flags it was chosen for; `what`
     /// names the object in the error when none has.
     pub(super) fn allocate(
         &self,
