@@ -19,6 +19,9 @@ pub enum Dialect {
     Gles,
     /// GLSL 450 for Vulkan (compiled to SPIR-V by glslang).
     Vulkan,
+    /// GLSL ES 3.00, WebGL 2's: no binding qualifiers (the host sets each sampler uniform's
+    /// texture unit by name, from [`Translation::samplers`]) and no locations on varyings.
+    WebGl,
 }
 
 /// A translated stage: the GLSL, and the sampler uniforms naga declared with the binding of
@@ -49,6 +52,7 @@ pub fn translate(
     let (module, info) = module(wgsl)?;
     let version = match dialect {
         Dialect::Gles => glsl::Version::new_gles(310),
+        Dialect::WebGl => glsl::Version::new_gles(300),
         Dialect::Vulkan => glsl::Version::Desktop(450),
     };
     let options = naga_glsl::options_keeping_bindings(&module, version);

@@ -27,4 +27,5 @@ pub mod reference;
 pub mod scene;
 pub mod shaders;
 pub mod vulkan;
+pub mod webgl;
 pub mod wgpu;

@@ -97,6 +97,15 @@ pub enum Stage {
     Sky,
 }
 
+/// What a volume's fragment does where its decal or light does not reach.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Unreached {
+    /// `discard`, as framebuffer fetch and subpasses allow.
+    Discard,
+    /// Nothing: it stores no texel (pixel local storage forbids `discard`).
+    StoreNothing,
+}
+
 /// The G-buffer pass's fragment inputs, as naga names `geometry_vertex`'s outputs.
 const GEOMETRY_INPUTS: &str = "layout(location = 0) smooth in highp vec3 _vs2fs_location0;\nlayout(location = 1) smooth in highp vec3 _vs2fs_location1;\nlayout(location = 2) flat in highp uint _vs2fs_location2;\n";
 
@@ -168,27 +177,67 @@ impl Stage {
     /// The GLSL `main` of its fragment stage, over the layout's include (`load_<snake>()`),
     /// the translated stage functions and what the backend declares: `frame_colour` (the
     /// output), `volume_index` (the volume drawn), and `store`, statements writing `texel`.
+    /// A volume's fragments that its decal or light does not reach are discarded.
     pub fn fragment_main(self, texel: &str, snake: &str, store: &str) -> String {
+        self.main(texel, snake, store, Unreached::Discard)
+    }
+
+    /// [`Stage::fragment_main`] for pixel local storage, which forbids `discard`: an unreached
+    /// fragment stores nothing, and the G-buffer's varyings carry no locations (GLSL ES 3.00
+    /// matches them by name).
+    pub fn pixel_local_storage_main(self, texel: &str, snake: &str, store: &str) -> String {
+        self.main(texel, snake, store, Unreached::StoreNothing)
+    }
+
+    fn main(self, texel: &str, snake: &str, store: &str, unreached: Unreached) -> String {
+        // A volume's fragment: when it is not reached (discarded) or when it is (the texel
+        // changed and stored), and the statements that change the texel.
+        let reached = |(not_reached, reached): (&str, &str), change: &str| match unreached {
+            Unreached::Discard => {
+                format!("    if ({not_reached}) {{\n        discard;\n    }}\n{change}{store}")
+            }
+            Unreached::StoreNothing => {
+                let indented: String = format!("{change}{store}")
+                    .lines()
+                    .map(|line| format!("    {line}\n"))
+                    .collect();
+                format!("    if ({reached}) {{\n{indented}    }}\n")
+            }
+        };
         let body = match self {
             Stage::Geometry => format!(
                 "    {texel} texel = geometry_texel(_vs2fs_location2, _vs2fs_location0, _vs2fs_location1);\n{store}"
             ),
             Stage::Decal => format!(
-                "    {texel} texel = load_{snake}();\n    uint decal = volume_index - POINT_LIGHT_COUNT;\n    float weight = decal_weight_at(texel, gl_FragCoord.xy, decal);\n    if (weight <= 0.0) {{\n        discard;\n    }}\n    texel = paint_texel(texel, decal, weight);\n{store}"
+                "    {texel} texel = load_{snake}();\n    uint decal = volume_index - POINT_LIGHT_COUNT;\n    float weight = decal_weight_at(texel, gl_FragCoord.xy, decal);\n{}",
+                reached(
+                    ("weight <= 0.0", "weight > 0.0"),
+                    "    texel = paint_texel(texel, decal, weight);\n"
+                )
             ),
             Stage::SunAndEnvironment => format!(
                 "    {texel} texel = sun_and_environment_texel(load_{snake}(), gl_FragCoord.xy);\n{store}"
             ),
             Stage::PointLight => format!(
-                "    {texel} texel = load_{snake}();\n    if (!point_light_reaches(texel, gl_FragCoord.xy, volume_index)) {{\n        discard;\n    }}\n    texel = point_light_texel(texel, gl_FragCoord.xy, volume_index);\n{store}"
+                "    {texel} texel = load_{snake}();\n{}",
+                reached(
+                    (
+                        "!point_light_reaches(texel, gl_FragCoord.xy, volume_index)",
+                        "point_light_reaches(texel, gl_FragCoord.xy, volume_index)"
+                    ),
+                    "    texel = point_light_texel(texel, gl_FragCoord.xy, volume_index);\n"
+                )
             ),
             Stage::Resolve => format!("    frame_colour = resolve_colour(load_{snake}());\n"),
             Stage::Sky => "    frame_colour = sky_colour(gl_FragCoord.xy);\n".to_string(),
         };
-        let inputs = if self == Stage::Geometry {
-            GEOMETRY_INPUTS
-        } else {
-            ""
+        let inputs = match (self, unreached) {
+            (Stage::Geometry, Unreached::Discard) => GEOMETRY_INPUTS.to_string(),
+            (Stage::Geometry, Unreached::StoreNothing) => GEOMETRY_INPUTS
+                .lines()
+                .map(|line| format!("{}\n", line.split(") ").nth(1).unwrap_or(line)))
+                .collect(),
+            _ => String::new(),
         };
         format!("{inputs}void main() {{\n{body}}}\n")
     }
