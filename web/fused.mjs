@@ -100,7 +100,10 @@ function geometry(gl, scene) {
 
 /**
  * Renders the frame and returns its pixels, RGBA8, the image's top row first (the scene's clip
- * space is flipped in y, so GL's first row is the image's top).
+ * space is flipped in y, so GL's first row is the image's top), and the calls that decide what
+ * the frame moves to and from memory: the pass's attachments and planes with how each starts
+ * (`clear` or `load`), the draws, what is invalidated, and what the pass stores (as
+ * gbuffer_render::recording records the other backends' frames).
  */
 export function renderFrame(gl, host, scene) {
   const pls = host.enablePixelLocalStorage(gl, 1);
@@ -124,8 +127,10 @@ export function renderFrame(gl, host, scene) {
   gl.clearBufferfv(gl.COLOR, 0, [0, 0, 0, 0]);
   gl.clearBufferfv(gl.DEPTH, 0, [1]);
 
+  const calls = [];
   const draw = (stage, how, volume) => {
     const program = programs.get(stage);
+    calls.push({ draw: stage });
     gl.useProgram(program);
     // Only the resolve and the sky write the output; the other draws change the planes alone.
     const output = stage === "resolve" || stage === "sky";
@@ -149,6 +154,14 @@ export function renderFrame(gl, host, scene) {
 
   gl.enable(gl.DEPTH_TEST);
   host.beginPixelLocalStorage(gl, pls, "zero");
+  // Every plane starts at zero and the output and depth cleared: nothing is loaded.
+  calls.push({
+    beginPass: [
+      ...host.PLANES.map((plane) => [plane.name, 4, "clear"]),
+      ["output", 4, "clear"],
+      ["depth", 4, "clear"],
+    ],
+  });
   gl.depthMask(true);
   gl.depthFunc(gl.LESS);
   draw("geometry", "mesh");
@@ -166,14 +179,18 @@ export function renderFrame(gl, host, scene) {
   draw("resolve", "fullscreen");
   gl.depthFunc(gl.EQUAL);
   draw("sky", "fullscreen");
-  // The planes die here, never stored.
+  // The planes die here, never stored, and depth with them.
   host.endPixelLocalStorage(gl, pls, false);
+  gl.invalidateFramebuffer(gl.FRAMEBUFFER, [gl.DEPTH_ATTACHMENT]);
+  calls.push({ invalidate: [...host.PLANES.map((plane) => plane.name), "depth"] });
+  calls.push({ endPass: ["output"] });
   const error = gl.getError();
   if (error !== gl.NO_ERROR) {
     throw new Error(`GL error ${error} while drawing the frame`);
   }
   const pixels = new Uint8Array(width * height * 4);
   gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+  calls.push({ readBack: "output" });
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-  return pixels;
+  return { pixels, calls };
 }
