@@ -1,8 +1,11 @@
-//! JSON for `gbuffer validate --json`, written by hand: a value tree and its pretty printing
-//! (two-space indents, as `serde_json::to_string_pretty` writes), so that the default command
-//! line builds no serde. The tests read what it writes back with serde_json.
+//! JSON for `gbuffer validate --json`, written by hand so that the default command line builds
+//! no serde: a value tree and its pretty printing (two-space indents, as
+//! `serde_json::to_string_pretty` writes; strings as `gbuffer_codegen::emit::json` writes them).
+//! The tests read what it writes back with serde_json.
 
 use std::fmt::Write as _;
+
+use gbuffer_codegen::emit::json::string;
 
 /// A JSON value.
 #[derive(Clone, Debug, PartialEq)]
@@ -42,7 +45,7 @@ impl Json {
             Json::Unsigned(value) => {
                 let _ = write!(out, "{value}");
             }
-            Json::String(text) => write_string(out, text),
+            Json::String(text) => out.push_str(&string(text)),
             Json::Array(items) if items.is_empty() => out.push_str("[]"),
             Json::Array(items) => {
                 out.push_str("[\n");
@@ -59,7 +62,7 @@ impl Json {
                 out.push_str("{\n");
                 for (index, (key, value)) in members.iter().enumerate() {
                     indent(out, depth + 1);
-                    write_string(out, key);
+                    out.push_str(&string(key));
                     out.push_str(": ");
                     value.write(out, depth + 1);
                     out.push_str(if index + 1 < members.len() {
@@ -73,26 +76,6 @@ impl Json {
             }
         }
     }
-}
-
-/// A JSON string (RFC 8259, section 7): quotes, backslashes and control characters escaped,
-/// everything else as it is (JSON text is UTF-8).
-fn write_string(out: &mut String, text: &str) {
-    out.push('"');
-    for character in text.chars() {
-        match character {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            control if u32::from(control) < 0x20 => {
-                let _ = write!(out, "\\u{:04x}", u32::from(control));
-            }
-            other => out.push(other),
-        }
-    }
-    out.push('"');
 }
 
 #[cfg(test)]

@@ -12,6 +12,7 @@
 use std::fmt::Write as _;
 
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
+use gbuffer_codegen::emit::json::string as json_string;
 
 use crate::glsl::{self, Dialect};
 use crate::inputs::{Inputs, Texels};
@@ -183,26 +184,6 @@ fn level(texels: &Texels) -> String {
         texels.height,
         base64(&texels.bytes)
     )
-}
-
-/// A JavaScript string literal (JSON's, which JavaScript reads).
-fn json_string(text: &str) -> String {
-    let mut out = String::from("\"");
-    for character in text.chars() {
-        match character {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            control if (control as u32) < 0x20 => {
-                let _ = write!(out, "\\u{:04x}", control as u32);
-            }
-            other => out.push(other),
-        }
-    }
-    out.push('"');
-    out
 }
 
 /// Standard base64 (RFC 4648), with padding.

@@ -1,7 +1,9 @@
 //! Emitters: each turns a checked [`crate::Layout`] into source text or tokens: WGSL (the
-//! source of truth), the Rust mirror, and (with the `tools` feature) GLSL ES includes.
+//! source of truth), the Rust mirror, and (with the `tools` feature) GLSL ES includes; and the
+//! JSON string literals that generated JavaScript and the tools' JSON share.
 
 #[cfg(feature = "tools")]
 pub mod glsl;
+pub mod json;
 pub mod rust;
 pub mod wgsl;

@@ -19,6 +19,7 @@ use std::fmt::Write as _;
 
 use super::{bit_field_code, bit_field_function, bit_word_value, declared_type, word_names};
 use super::{GlslNames, Interface, Translation, TranslationError};
+use crate::emit::json::string;
 use crate::emit::wgsl::{function_name, mode_suffix, Conversions};
 use crate::format::{Format, ScalarKind};
 use crate::layout::{Field, Layout, Storage};
@@ -383,17 +384,13 @@ pub fn host_module(layout: &Layout, interface: &Interface) -> String {
     );
     out.push_str("export const PLANES = Object.freeze([\n");
     for plane in &interface.planes {
-        let fields: Vec<String> = plane
-            .fields
-            .iter()
-            .map(|field| format!("\"{field}\""))
-            .collect();
+        let fields: Vec<String> = plane.fields.iter().map(|field| string(field)).collect();
         let _ = writeln!(
             out,
-            "  Object.freeze({{ name: \"{}\", binding: {}, internalFormat: \"{}\", fields: [{}] }}),",
-            plane.name,
+            "  Object.freeze({{ name: {}, binding: {}, internalFormat: {}, fields: [{}] }}),",
+            string(&plane.name),
             plane.binding,
-            plane.format.internal_format(),
+            string(plane.format.internal_format()),
             fields.join(", ")
         );
     }
