@@ -143,12 +143,19 @@ impl Interface {
                 .collect(),
             Include::FetchNative | Include::SubpassNative => {
                 let words = layout.word_contents();
+                // Joined without `__`, which GLSL ES reserves (naga's names may end in `_`).
+                let attachment_names = super::unique(
+                    super::word_names(&words, names)
+                        .iter()
+                        .map(|name| super::identifier(&[&prefix, name, "attachment"]))
+                        .collect(),
+                );
                 words
                     .iter()
-                    .zip(super::word_names(&words, names))
+                    .zip(attachment_names)
                     .enumerate()
                     .map(|(index, (word, name))| Attachment {
-                        name: format!("{prefix}_{name}_attachment"),
+                        name,
                         index: index as u32,
                         format: word.format.target(),
                     })

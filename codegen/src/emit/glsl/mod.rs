@@ -138,6 +138,36 @@ pub fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
     taken
 }
 
+/// `parts` joined by `_` into one GLSL ES identifier: no part's own leading or trailing `_`
+/// doubles one at a seam, since GLSL ES reserves every identifier containing `__` (and ANGLE
+/// refuses them), and naga's names often end in `_` (`field_0_`).
+pub(crate) fn identifier(parts: &[&str]) -> String {
+    let parts: Vec<&str> = parts
+        .iter()
+        .map(|part| part.trim_matches('_'))
+        .filter(|part| !part.is_empty())
+        .collect();
+    let mut joined = parts.join("_");
+    while joined.contains("__") {
+        joined = joined.replace("__", "_");
+    }
+    joined
+}
+
+/// `names` with each one that repeats an earlier one given its index (`_2`), so that every
+/// identifier is declared once.
+pub(crate) fn unique(names: Vec<String>) -> Vec<String> {
+    let mut taken: Vec<String> = Vec::new();
+    for (index, name) in names.into_iter().enumerate() {
+        let name = match taken.contains(&name) {
+            true => identifier(&[&name, &index.to_string()]),
+            false => name,
+        };
+        taken.push(name);
+    }
+    taken
+}
+
 /// `(word >> offset) & mask` in GLSL: a bit field's code out of its word.
 fn bit_field_code(word: &str, member: Member) -> String {
     let shifted = match member.offset {

@@ -18,6 +18,7 @@
 use std::fmt::Write as _;
 
 use super::{bit_field_code, bit_field_function, bit_word_value, declared_type, word_names};
+use super::{identifier, unique};
 use super::{GlslNames, Interface, Translation, TranslationError};
 use crate::emit::json::string;
 use crate::emit::wgsl::{function_name, mode_suffix, Conversions};
@@ -73,36 +74,6 @@ pub struct Plane {
     pub fields: Vec<String>,
     /// What it holds and who converts it, for comments: `albedo (rgba8, converted by the GPU)`.
     pub contents: String,
-}
-
-/// `parts` joined by `_` into one GLSL ES identifier: no part's own leading or trailing `_`
-/// doubles one at a seam, since GLSL ES reserves every identifier containing `__` (and ANGLE
-/// refuses them), and naga's names often end in `_` (`field_0_`).
-fn identifier(parts: &[&str]) -> String {
-    let parts: Vec<&str> = parts
-        .iter()
-        .map(|part| part.trim_matches('_'))
-        .filter(|part| !part.is_empty())
-        .collect();
-    let mut joined = parts.join("_");
-    while joined.contains("__") {
-        joined = joined.replace("__", "_");
-    }
-    joined
-}
-
-/// `names` with each one that repeats an earlier one given its index (`_2`), so that every
-/// identifier is declared once.
-fn unique(names: Vec<String>) -> Vec<String> {
-    let mut taken: Vec<String> = Vec::new();
-    for (index, name) in names.into_iter().enumerate() {
-        let name = match taken.contains(&name) {
-            true => identifier(&[&name, &index.to_string()]),
-            false => name,
-        };
-        taken.push(name);
-    }
-    taken
 }
 
 /// What each field's load is called in the include: `load_pls_<layout>_<field>`, with the
