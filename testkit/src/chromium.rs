@@ -186,9 +186,8 @@ impl Server {
         let thread = std::thread::spawn(move || {
             for stream in listener.incoming() {
                 let Ok(stream) = stream else { continue };
-                match serve(stream, &files) {
-                    Served::File | Served::Missing => {}
-                    Served::Stop => return,
+                if serve(stream, &files) == Served::Stop {
+                    return;
                 }
             }
         });
@@ -203,9 +202,12 @@ impl Server {
     }
 }
 
+/// What a request asked for.
+#[derive(PartialEq)]
 enum Served {
+    /// A file, or one that is not there (404).
     File,
-    Missing,
+    /// The server's end.
     Stop,
 }
 
@@ -215,7 +217,7 @@ fn serve(stream: TcpStream, files: &HashMap<String, Vec<u8>>) -> Served {
     let mut reader = BufReader::new(&stream);
     let mut request = String::new();
     if reader.read_line(&mut request).is_err() {
-        return Served::Missing;
+        return Served::File;
     }
     // The headers are read and ignored.
     let mut header = String::new();
@@ -246,9 +248,5 @@ fn serve(stream: TcpStream, files: &HashMap<String, Vec<u8>>) -> Served {
     );
     let _ = stream.write_all(head.as_bytes());
     let _ = stream.write_all(body);
-    if status.starts_with("200") {
-        Served::File
-    } else {
-        Served::Missing
-    }
+    Served::File
 }
