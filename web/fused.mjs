@@ -107,7 +107,13 @@ function geometry(gl, scene) {
  */
 export function renderFrame(gl, host, scene) {
   const pls = host.enablePixelLocalStorage(gl, 1);
-  const programs = new Map(scene.PROGRAMS.map((program) => [program.stage, link(gl, program)]));
+  // Each stage's program, and where its `volume_index` uniform is (null where it has none).
+  const programs = new Map(
+    scene.PROGRAMS.map((source) => {
+      const program = link(gl, source);
+      return [source.stage, { program, volumeIndex: gl.getUniformLocation(program, "volume_index") }];
+    }),
+  );
   upload(gl, scene.TEXTURES);
   const { mesh, volumes, indexBuffer } = geometry(gl, scene);
   const [width, height] = [scene.WIDTH, scene.HEIGHT];
@@ -129,7 +135,7 @@ export function renderFrame(gl, host, scene) {
 
   const calls = [];
   const draw = (stage, how, volume) => {
-    const program = programs.get(stage);
+    const { program, volumeIndex } = programs.get(stage);
     calls.push({ draw: stage });
     gl.useProgram(program);
     // Only the resolve and the sky write the output; the other draws change the planes alone.
@@ -145,7 +151,7 @@ export function renderFrame(gl, host, scene) {
       gl.bindVertexArray(volumes);
       gl.bindBuffer(gl.ARRAY_BUFFER, indexBuffer);
       gl.vertexAttribIPointer(0, 1, gl.UNSIGNED_INT, 4, 4 * volume);
-      gl.uniform1ui(gl.getUniformLocation(program, "volume_index"), volume);
+      gl.uniform1ui(volumeIndex, volume);
       gl.drawArraysInstanced(gl.TRIANGLES, 0, 6, 1);
     }
     // Each draw reads what the last one wrote at the same pixel.

@@ -47,8 +47,10 @@ struct Case {
     /// Where it runs.
     backends: &'static [Backend],
     inputs: Vec<u32>,
-    /// The include, the host module and the case's shaders and inputs as the page's JSON.
-    files: (String, String, String),
+    /// The layout's host module.
+    host: String,
+    /// The case's shaders and inputs, as the page's JSON.
+    json: String,
 }
 
 /// Colour output pixels per texel: four decoded scalars each, and one more scalar for the count
@@ -142,7 +144,8 @@ fn cases(layout: &Layout, conversions: Conversions, seed: u64) -> Vec<Case> {
                 backends,
                 interface: interface.clone(),
                 inputs,
-                files: (text.clone(), host.clone(), json.to_string()),
+                host: host.clone(),
+                json: json.to_string(),
             }
         })
         .collect()
@@ -165,12 +168,12 @@ fn run(chromium: &Chromium, backend: Backend, cases: &[Case]) -> Vec<String> {
     for (index, case) in cases.iter().enumerate() {
         files.insert(
             format!("case{index}.webgl_pls.js"),
-            case.files.1.clone().into_bytes(),
+            case.host.clone().into_bytes(),
         );
         imports.push_str(&format!(
             "import * as host{index} from \"./case{index}.webgl_pls.js\";\n"
         ));
-        entries.push(format!("[host{index}, {}]", case.files.2));
+        entries.push(format!("[host{index}, {}]", case.json));
     }
     let page = format!(
         "<!doctype html>\n<html><body><pre id=\"results\"></pre>\n<script type=\"module\">\n\

@@ -15,13 +15,24 @@ use naga::back::glsl;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Dialect {
     /// GLSL ES 3.10 (the GLES backend runs on GLES 3.2; panfrost, whose compiler the cost model
-    /// runs, offers 3.10 at most).
+    /// runs, offers 3.10 at most; the shaders need nothing of 3.20).
     Gles,
     /// GLSL 450 for Vulkan (compiled to SPIR-V by glslang).
     Vulkan,
     /// GLSL ES 3.00, WebGL 2's: no binding qualifiers (the host sets each sampler uniform's
     /// texture unit by name, from [`Translation::samplers`]) and no locations on varyings.
     WebGl,
+}
+
+impl Dialect {
+    /// The `#version` line a shader of the dialect starts with.
+    pub fn version_line(self) -> &'static str {
+        match self {
+            Dialect::Gles => "#version 310 es",
+            Dialect::Vulkan => "#version 450",
+            Dialect::WebGl => "#version 300 es",
+        }
+    }
 }
 
 /// A translated stage: the GLSL, and the sampler uniforms naga declared with the binding of

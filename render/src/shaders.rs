@@ -83,6 +83,12 @@ pub const CLAMPED_SAMPLER_BINDING: u32 = 6;
 /// The binding of the environment texture.
 pub const ENVIRONMENT_BINDING: u32 = 1;
 
+/// The binding of the split-sum LUT.
+pub const LUT_BINDING: u32 = 2;
+
+/// The binding of the light map.
+pub const LIGHT_MAP_BINDING: u32 = 5;
+
 /// The host functions over the baked inputs that the scene and the lighting read, at group 0:
 /// the environment (1), the LUT (2), the environment's sampler (3), the light map (5), the
 /// sampler of the LUT and the light map (6).

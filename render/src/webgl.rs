@@ -5,8 +5,9 @@
 //! The page (`web/fused.mjs`, plain JavaScript) holds the host's calls; this module makes what
 //! it loads, as files: the six programs in GLSL ES 3.00 (the renderer's WGSL translated by naga,
 //! the layout's WebGL include as generated, the stages' `main`s without `discard`, which pixel
-//! local storage forbids), the texture unit of each sampler uniform (GLSL ES 3.00 has no
-//! binding qualifiers), the mesh and the baked inputs (`scene.mjs`), and the layout's host
+//! local storage forbids: the GLES paths' programs in WebGL's dialect), the texture unit of
+//! each sampler uniform (GLSL ES 3.00 has no binding qualifiers, and the units are the
+//! bindings the WGSL gives the inputs), the mesh and the baked inputs (`scene.mjs`), and the layout's host
 //! module (`layout.webgl_pls.js`).
 
 use std::fmt::Write as _;
@@ -14,76 +15,42 @@ use std::fmt::Write as _;
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
 use gbuffer_codegen::emit::json::string as json_string;
 
-use crate::glsl::{self, Dialect};
+use crate::gles::sources::{program_in, TranslatedProgram};
+use crate::glsl::Dialect;
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
 use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Stage};
 use crate::options::Options;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
-
-/// Texture units of the inputs: the bindings the WGSL gives them, as the GLES backend binds them.
-const ENVIRONMENT_UNIT: u32 = 1;
-const LUT_UNIT: u32 = 2;
-const LIGHT_MAP_UNIT: u32 = 5;
-
-/// One program of the fused frame.
-#[derive(Clone, Debug)]
-pub struct WebGlProgram {
-    /// The stage it draws.
-    pub stage: Stage,
-    /// Its vertex shader.
-    pub vertex: String,
-    /// Its fragment shader.
-    pub fragment: String,
-    /// Each sampler uniform and the texture unit it samples.
-    pub samplers: Vec<(String, u32)>,
-}
+use crate::shaders::{ENVIRONMENT_BINDING, LIGHT_MAP_BINDING, LUT_BINDING};
 
 /// The fused frame's programs for `options`, one per [`Stage`], in drawing order.
-pub fn programs(options: &Options) -> Result<Vec<WebGlProgram>, String> {
+pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, String> {
     let layout = tile_layout(options)?;
     let model = layout.layout();
-    let (include, _) = includes::include(&model, Include::WebGlPixelLocalStorage, 0)
-        .map_err(|error| error.to_string())?;
+    let include = Include::WebGlPixelLocalStorage;
+    let (include_text, _) =
+        includes::include(&model, include, 0).map_err(|error| error.to_string())?;
     let wgsl = fused_wgsl(options, layout, -1.0);
     let snake = model.snake_name();
     let texel = texel_struct_name(&model)?;
-    let stages = glsl::translate(
-        &wgsl,
-        naga::ShaderStage::Fragment,
-        "translation_entry",
-        Dialect::WebGl,
-    )?;
-    let declarations = glsl::declarations(&stages.text, &include);
+    // The output, and the volume drawn, which comes in a uniform.
+    let declarations =
+        "layout(location = 0) out highp vec4 frame_colour;\nuniform highp uint volume_index;\n";
+    let store = format!("    store_{snake}(texel);\n");
     Stage::ALL
         .into_iter()
         .map(|stage| {
-            let vertex = glsl::translate(
-                &wgsl,
-                naga::ShaderStage::Vertex,
-                stage.vertex_entry(),
+            let main = stage.pixel_local_storage_main(&texel, &snake, &store);
+            let program = program_in(
                 Dialect::WebGl,
-            )?;
-            let main = stage.pixel_local_storage_main(
-                &texel,
-                &snake,
-                &format!("    store_{snake}(texel);\n"),
-            );
-            let fragment = format!(
-                "#version 300 es\n#extension GL_ANGLE_shader_pixel_local_storage : require\n\
-                 precision highp float;\nprecision highp int;\n\n{include}\n{declarations}\n\
-                 layout(location = 0) out highp vec4 frame_colour;\nuniform highp uint volume_index;\n{main}"
-            );
-            let mut samplers = stages.samplers.clone();
-            samplers.extend(vertex.samplers);
-            samplers.sort();
-            samplers.dedup();
-            Ok(WebGlProgram {
-                stage,
-                vertex: vertex.text,
-                fragment,
-                samplers,
-            })
+                &wgsl,
+                (&include_text, include),
+                stage.vertex_entry(),
+                &format!("{declarations}{main}"),
+            )
+            .map_err(|error| format!("the {} program: {error}", stage.name()))?;
+            Ok((stage, program))
         })
         .collect()
 }
@@ -112,7 +79,7 @@ pub fn export(options: &Options, inputs: &Inputs) -> Result<Vec<(String, Vec<u8>
     );
     scene
         .push_str("\n/** One program per stage, in drawing order. */\nexport const PROGRAMS = [\n");
-    for program in programs(options)? {
+    for (stage, program) in programs(options)? {
         let samplers: Vec<String> = program
             .samplers
             .iter()
@@ -121,7 +88,7 @@ pub fn export(options: &Options, inputs: &Inputs) -> Result<Vec<(String, Vec<u8>
         let _ = writeln!(
             scene,
             "  {{ stage: {}, vertex: {}, fragment: {}, samplers: [{}] }},",
-            json_string(program.stage.name()),
+            json_string(stage.name()),
             json_string(&program.vertex),
             json_string(&program.fragment),
             samplers.join(", ")
@@ -144,19 +111,19 @@ pub fn export(options: &Options, inputs: &Inputs) -> Result<Vec<(String, Vec<u8>
     );
     for (unit, format, repeat, mips) in [
         (
-            ENVIRONMENT_UNIT,
+            ENVIRONMENT_BINDING,
             "RGBA8",
             true,
             inputs.environment.as_slice(),
         ),
         (
-            LUT_UNIT,
+            LUT_BINDING,
             "RGBA16F",
             false,
             std::slice::from_ref(&inputs.lut),
         ),
         (
-            LIGHT_MAP_UNIT,
+            LIGHT_MAP_BINDING,
             "RGBA8",
             false,
             std::slice::from_ref(&inputs.light_map),

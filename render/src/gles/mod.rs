@@ -28,9 +28,10 @@ use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 
 const FETCH: &str = "GL_EXT_shader_framebuffer_fetch";
 /// Texture units of the inputs: the bindings the WGSL gives them.
-const ENVIRONMENT_UNIT: u32 = 1;
-const LUT_UNIT: u32 = 2;
-const LIGHT_MAP_UNIT: u32 = 5;
+use crate::shaders::{
+    ENVIRONMENT_BINDING as ENVIRONMENT_UNIT, LIGHT_MAP_BINDING as LIGHT_MAP_UNIT,
+    LUT_BINDING as LUT_UNIT,
+};
 /// The two-pass lighting reads the G-buffer from unit 10 on.
 const GBUFFER_UNIT: u32 = 10;
 

@@ -8,10 +8,6 @@ use crate::glsl::{self, Dialect};
 use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage};
 use crate::options::Options;
 
-/// The GLSL ES version of every program: 3.10, the newest panfrost (Mali) offers; the shaders
-/// need nothing of 3.20.
-pub const VERSION: &str = "#version 310 es";
-
 /// One program's shaders.
 #[derive(Clone, Debug)]
 pub struct Program {
@@ -95,22 +91,63 @@ pub fn program(
     vertex: &str,
     main: &str,
 ) -> Result<(String, String), String> {
-    let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
+    let program = program_in(
+        Dialect::Gles,
+        wgsl,
+        (include, interface.include),
+        vertex,
+        main,
+    )?;
+    Ok((program.vertex, program.fragment))
+}
+
+/// A fused program in `dialect` (GLES's or WebGL's GLSL ES), with the sampler uniforms it
+/// declares: `vertex` of the WGSL translated, and a fragment shader of the dialect's preamble
+/// (its version, the `include`'s extensions, highp defaults), the layout's include as
+/// generated, the renderer's translated declarations and `main`.
+pub fn program_in(
+    dialect: Dialect,
+    wgsl: &str,
+    (include_text, include): (&str, Include),
+    vertex: &str,
+    main: &str,
+) -> Result<TranslatedProgram, String> {
+    let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, dialect)?;
     let stages = glsl::translate(
         wgsl,
         naga::ShaderStage::Fragment,
         "translation_entry",
-        Dialect::Gles,
+        dialect,
     )?;
-    let extensions: String = interface
-        .include
+    let extensions: String = include
         .shader_extensions()
         .iter()
         .map(|extension| format!("#extension {extension} : require\n"))
         .collect();
     let fragment = format!(
-        "{VERSION}\n{extensions}precision highp float;\nprecision highp int;\n\n{include}\n{}\n{main}",
-        glsl::declarations(&stages.text, include),
+        "{}\n{extensions}precision highp float;\nprecision highp int;\n\n{include_text}\n{}\n{main}",
+        dialect.version_line(),
+        glsl::declarations(&stages.text, include_text),
     );
-    Ok((vertex.text, fragment))
+    let mut samplers = stages.samplers;
+    samplers.extend(vertex.samplers);
+    samplers.sort();
+    samplers.dedup();
+    Ok(TranslatedProgram {
+        vertex: vertex.text,
+        fragment,
+        samplers,
+    })
+}
+
+/// A program's shaders, and each sampler uniform with the binding (texture unit) of the texture
+/// it samples, which a host without binding qualifiers (GLSL ES 3.00) sets by name.
+#[derive(Clone, Debug)]
+pub struct TranslatedProgram {
+    /// The vertex shader.
+    pub vertex: String,
+    /// The fragment shader.
+    pub fragment: String,
+    /// (uniform name, texture unit).
+    pub samplers: Vec<(String, u32)>,
 }

@@ -190,7 +190,8 @@ impl VulkanRenderer {
             };
             let writes = stage.writes(layout, targets as usize, 4);
             let fragment = format!(
-                "#version 450\n\n{include}\n{outputs}{volume}\n{declarations}\n{}",
+                "{}\n\n{include}\n{outputs}{volume}\n{declarations}\n{}",
+                Dialect::Vulkan.version_line(),
                 stage.fragment_main(texel, &snake, &store)
             );
             let pipeline = self
