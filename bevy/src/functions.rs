@@ -21,7 +21,7 @@ const IMPORTS: &str = "#import bevy_pbr::{
     pbr_types::{PbrInput, pbr_input_new, STANDARD_MATERIAL_FLAGS_UNLIT_BIT},
     pbr_deferred_types as deferred_types,
     pbr_functions,
-    mesh_view_bindings::view,
+    mesh_view_bindings::{view, lights},
     prepass_io::FragmentOutput,
     view_transformations::{position_ndc_to_world, frag_coord_to_ndc},
 }
@@ -67,7 +67,9 @@ fn stored(quantity: Quantity) -> &'static str {
         Quantity::PerceptualRoughness => "in.material.perceptual_roughness",
         Quantity::Metallic => "in.material.metallic",
         Quantity::Reflectance => "reflectance",
+        Quantity::ReflectanceColor => "in.material.reflectance",
         Quantity::DiffuseOcclusion => "diffuse_occlusion",
+        Quantity::DiffuseOcclusionColor => "in.diffuse_occlusion",
         Quantity::Emissive => "emissive",
         Quantity::Normal => "normalize(in.N)",
         Quantity::Flags => "flags",
@@ -75,8 +77,116 @@ fn stored(quantity: Quantity) -> &'static str {
         Quantity::ClearcoatPerceptualRoughness => {
             "saturate(in.material.clearcoat_perceptual_roughness)"
         }
+        Quantity::ClearcoatNormal => "clearcoat_normal",
+        Quantity::AnisotropyStrength => "anisotropy_strength",
+        Quantity::AnisotropyTangent => "anisotropy_tangent",
+        Quantity::DiffuseTransmission => "saturate(in.material.diffuse_transmission)",
+        Quantity::Thickness => "in.material.thickness",
+        Quantity::Lightmapped => "lightmapped",
         Quantity::Depth => "in.frag_coord.z",
     }
+}
+
+/// What the prepass computes before storing, for the quantities Bevy's own module does not
+/// store: each quantity's lines, emitted only when the layout holds it.
+fn prepared(quantity: Quantity) -> &'static str {
+    match quantity {
+        Quantity::ClearcoatNormal => {
+            "    // The clearcoat normal, with its normal map; Bevy leaves it zero where it
+    // computes none.
+    let clearcoat_normal = select(
+        normalize(in.N),
+        normalize(in.clearcoat_N),
+        dot(in.clearcoat_N, in.clearcoat_N) > 0.0,
+    );
+"
+        }
+        Quantity::AnisotropyTangent => {
+            "    // Anisotropy where the material has it (Bevy computes `anisotropy_T` only under
+    // STANDARD_MATERIAL_ANISOTROPY, with tangents); elsewhere none, along a tangent of N (the
+    // patched lighting shades strength 0 with Bevy's isotropic lobe).
+    var anisotropy_strength = 0.0;
+    var anisotropy_tangent = orthonormal_tangent(normalize(in.N));
+#ifdef STANDARD_MATERIAL_ANISOTROPY
+    if (in.anisotropy_strength > 0.0 && dot(in.anisotropy_T, in.anisotropy_T) > 0.0) {
+        anisotropy_strength = in.anisotropy_strength;
+        anisotropy_tangent = in.anisotropy_T;
+    }
+#endif
+"
+        }
+        Quantity::Lightmapped => {
+            "    // The prepass of a mesh with a light map is specialised with LIGHTMAP.
+    var lightmapped = 0u;
+#ifdef LIGHTMAP
+    lightmapped = 1u;
+#endif
+"
+        }
+        _ => "",
+    }
+}
+
+/// A unit vector perpendicular to `n`, emitted with the anisotropy it serves.
+const ORTHONORMAL_TANGENT: &str = "
+// A unit tangent of the unit vector n, continuous but at n.z = 0: the first vector of Duff et
+// al. 2017, \"Building an Orthonormal Basis, Revisited\" (JCGT 6(1)), Listing 3.
+fn orthonormal_tangent(n: vec3<f32>) -> vec3<f32> {
+    let sign = select(-1.0, 1.0, n.z >= 0.0);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    return vec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+}
+";
+
+/// The lines that set what `pbr_input_from_deferred_gbuffer` reads beyond Bevy's own
+/// G-buffer, each quantity's only when the layout holds it; `N` is the unpacked normal.
+fn read_back(quantity: Quantity, field: &str) -> String {
+    match quantity {
+        Quantity::ClearcoatNormal => format!("    pbr.clearcoat_N = normalize(texel.{field});\n"),
+        Quantity::AnisotropyTangent => format!(
+            "    // The bitangent as Bevy's fragment shader builds it, from the normal.
+    pbr.anisotropy_T = normalize(texel.{field});
+    pbr.anisotropy_B = normalize(cross(N, pbr.anisotropy_T));
+"
+        ),
+        Quantity::AnisotropyStrength => format!("    pbr.anisotropy_strength = texel.{field};\n"),
+        Quantity::DiffuseTransmission => {
+            format!("    pbr.material.diffuse_transmission = texel.{field};\n")
+        }
+        Quantity::Thickness => format!("    pbr.material.thickness = texel.{field};\n"),
+        Quantity::Lightmapped => format!(
+            "    // Bevy's forward renderer leaves the ambient light out of a lightmapped mesh
+    // when the light says so (under LIGHTMAP); here its occlusion does, which scales nothing
+    // else that the forward renderer gives a lightmapped mesh (its environment map and
+    // irradiance volumes give it no diffuse light).
+    if (texel.{field} != 0u && lights.ambient_light_affects_lightmapped_meshes == 0u) {{
+        pbr.diffuse_occlusion = vec3(0.0);
+    }}
+"
+        ),
+        _ => String::new(),
+    }
+}
+
+/// The shader defs the deferred prepass and lighting pass need for what the layout holds,
+/// beyond the STANDARD_MATERIAL_CLEARCOAT Bevy's deferred lighting pipeline always has: Bevy's
+/// forward renderer specialises a material's pipeline with them, its deferred pipelines never
+/// (its prepass not even with PBR_ANISOTROPY_TEXTURE_SUPPORTED, under which alone Bevy's
+/// fragment shader computes anisotropy; this crate turns on the Cargo feature that binds the
+/// texture it reads).
+pub fn shader_defs(mapping: &[(String, Quantity)]) -> Vec<&'static str> {
+    let holds = |wanted| mapping.iter().any(|(_, quantity)| *quantity == wanted);
+    let mut defs = Vec::new();
+    if holds(Quantity::AnisotropyStrength) {
+        defs.push("STANDARD_MATERIAL_ANISOTROPY");
+        defs.push("PBR_ANISOTROPY_TEXTURE_SUPPORTED");
+    }
+    if holds(Quantity::DiffuseTransmission) {
+        defs.push("STANDARD_MATERIAL_DIFFUSE_TRANSMISSION");
+        defs.push("STANDARD_MATERIAL_DIFFUSE_OR_SPECULAR_TRANSMISSION");
+    }
+    defs
 }
 
 /// The field that holds `quantity`, if one does.
@@ -97,6 +207,11 @@ fn read(mapping: &[(String, Quantity)], quantity: Quantity, default: &str) -> St
             .map_or_else(|| default.to_string(), |field| format!("texel.{field}.rgb")),
         (None, Quantity::PerceptualRoughness) => field(Quantity::BaseColorRoughness)
             .map_or_else(|| default.to_string(), |field| format!("texel.{field}.a")),
+        // A coloured form read where the monochrome one is asked for: `vec3(x)` takes it whole.
+        (None, Quantity::Reflectance) => field(Quantity::ReflectanceColor)
+            .map_or_else(|| default.to_string(), |field| format!("texel.{field}")),
+        (None, Quantity::DiffuseOcclusion) => field(Quantity::DiffuseOcclusionColor)
+            .map_or_else(|| default.to_string(), |field| format!("texel.{field}")),
         (None, _) => default.to_string(),
     }
 }
@@ -109,10 +224,14 @@ pub fn deferred_functions_wgsl(
     mapping: &[(String, Quantity)],
 ) -> String {
     let (name, snake, words) = (&layout.name, layout.snake_name(), layout.words());
-    let mut stores = String::new();
+    let (mut prepare, mut stores, mut reads) = (String::new(), String::new(), String::new());
     for (field, quantity) in mapping {
+        prepare.push_str(prepared(*quantity));
         let _ = writeln!(stores, "    texel.{field} = {};", stored(*quantity));
+        reads.push_str(&read_back(*quantity, field));
     }
+    let holds_anisotropy = field_of(mapping, Quantity::AnisotropyTangent).is_some();
+    let helpers = if holds_anisotropy { ORTHONORMAL_TANGENT } else { "" };
     let packed: Vec<String> = (0..4)
         .map(|word| {
             if word < words {
@@ -131,7 +250,7 @@ pub fn deferred_functions_wgsl(
 {IMPORTS}
 // The layout, as gbuffer generates it.
 {layout_wgsl}
-
+{helpers}
 // Creates the deferred G-buffer from a PbrInput: Bevy's quantities, packed as `{name}`.
 fn deferred_gbuffer_from_pbr_input(in: PbrInput) -> vec4<u32> {{
     // Monochrome occlusion and reflectance, by Rec. 709 luminance, as Bevy stores them.
@@ -155,7 +274,7 @@ fn deferred_gbuffer_from_pbr_input(in: PbrInput) -> vec4<u32> {{
         in.material.diffuse_transmission,
     );
     emissive += in.lightmap_light * diffuse_color * view.exposure;
-
+{prepare}
     var texel: {name};
 {stores}    let words = pack_{snake}(texel);
     return vec4<u32>({packed});
@@ -198,7 +317,7 @@ fn pbr_input_from_deferred_gbuffer(frag_coord: vec4<f32>, gbuffer: vec4<u32>) ->
     pbr.V = V;
     pbr.clearcoat_N = N;
     pbr.is_orthographic = is_orthographic;
-    return pbr;
+{reads}    return pbr;
 }}
 
 {DEFERRED_OUTPUT}",

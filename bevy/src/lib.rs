@@ -37,17 +37,21 @@
 //! ([`MappingError`]).
 
 pub mod functions;
+mod patch;
 pub mod quantity;
+pub mod solve;
 
 use std::marker::PhantomData;
 
 use bevy::app::{App, Plugin, Update};
+use patch::Patch;
 use bevy::asset::{AssetServer, Assets, Handle};
 use bevy::ecs::prelude::{ResMut, Resource};
-use bevy::shader::Shader;
+use bevy::shader::{Shader, ShaderDefVal};
 use gbuffer::GBufferLayout;
 
 pub use quantity::{MappingError, Quantity};
+pub use solve::{solve, BevyScene, Precision, SolveError, Solution};
 
 /// Where Bevy 0.19 keeps the module the plugin replaces.
 const BEVY_MODULE_PATH: &str = "embedded://bevy_pbr/deferred/pbr_deferred_functions.wgsl";
@@ -75,15 +79,27 @@ impl<L: GBufferLayout> GBufferPlugin<L> {
         self
     }
 
+    /// Each field of `L` with the quantity it holds, or why `L` cannot stand in for Bevy's
+    /// G-buffer.
+    pub fn mapping(&self) -> Result<Vec<(String, Quantity)>, MappingError> {
+        quantity::map_fields(&L::layout(), &self.told)
+    }
+
     /// The module that replaces Bevy's `bevy_pbr::pbr_deferred_functions`, or why `L` cannot.
     pub fn deferred_functions(&self) -> Result<String, MappingError> {
-        let layout = L::layout();
-        let mapping = quantity::map_fields(&layout, &self.told)?;
+        let mapping = self.mapping()?;
         Ok(functions::deferred_functions_wgsl(
-            &layout,
+            &L::layout(),
             L::WGSL,
             &mapping,
         ))
+    }
+
+    /// The shader defs the module gives every shader that imports it (Bevy's deferred prepass
+    /// and lighting pass) for what `L` holds (anisotropy, diffuse transmission), or why `L`
+    /// cannot stand in for Bevy's G-buffer.
+    pub fn shader_defs(&self) -> Result<Vec<&'static str>, MappingError> {
+        Ok(functions::shader_defs(&self.mapping()?))
     }
 }
 
@@ -93,46 +109,77 @@ impl<L: GBufferLayout> Default for GBufferPlugin<L> {
     }
 }
 
-/// The replacement module and Bevy's handle of the module it replaces.
+/// What the plugin puts in Bevy's shader assets once Bevy's have loaded: the layout's module
+/// in the place of Bevy's, and the patches of Bevy's lighting modules the layout needs. Each
+/// entry is removed once done.
 #[derive(Resource)]
 struct Replacement {
-    handle: Handle<Shader>,
-    source: Option<String>,
+    module: Option<(Handle<Shader>, Shader)>,
+    patches: Vec<(Handle<Shader>, Patch)>,
 }
 
 impl<L: GBufferLayout + 'static> Plugin for GBufferPlugin<L> {
     fn build(&self, app: &mut App) {
-        let source = self
+        let (source, defs) = self
             .deferred_functions()
+            .and_then(|source| Ok((source, self.shader_defs()?)))
             .unwrap_or_else(|error| panic!("GBufferPlugin: {error}"));
-        let handle = app
-            .world()
-            .resource::<AssetServer>()
-            .load::<Shader>(BEVY_MODULE_PATH);
+        let mut module = Shader::from_wgsl(source, "gbuffer-bevy/pbr_deferred_functions.wgsl");
+        // naga_oil gives a module's defs to every shader that imports it.
+        module.shader_defs = defs
+            .iter()
+            .map(|def| ShaderDefVal::Bool(def.to_string(), true))
+            .collect();
+        let assets = app.world().resource::<AssetServer>();
+        let patches = if defs.contains(&"STANDARD_MATERIAL_ANISOTROPY") {
+            patch::ISOTROPIC_WITHOUT_ANISOTROPY
+                .iter()
+                .map(|patch| (assets.load::<Shader>(patch.path), *patch))
+                .collect()
+        } else {
+            Vec::new()
+        };
         app.insert_resource(Replacement {
-            handle,
-            source: Some(source),
+            module: Some((assets.load::<Shader>(BEVY_MODULE_PATH), module)),
+            patches,
         })
-        .add_systems(Update, replace_bevy_module);
+        .add_systems(Update, replace_bevy_shaders);
     }
 }
 
-/// Once Bevy's module has loaded, puts the layout's in its place (once): the shader cache sees
-/// the asset change and rebuilds the pipelines that import it.
-fn replace_bevy_module(mut replacement: ResMut<Replacement>, mut shaders: ResMut<Assets<Shader>>) {
-    if replacement.source.is_none() || !shaders.contains(&replacement.handle) {
-        return;
+/// Once each of Bevy's shaders has loaded, puts the layout's module in its place or patches
+/// it (once): the shader cache sees the asset change and rebuilds the pipelines that use it.
+fn replace_bevy_shaders(mut replacement: ResMut<Replacement>, mut shaders: ResMut<Assets<Shader>>) {
+    let loaded = |handle: &Handle<Shader>| shaders.contains(handle);
+    if replacement
+        .module
+        .as_ref()
+        .is_some_and(|(handle, _)| loaded(handle))
+    {
+        if let Some((handle, module)) = replacement.module.take() {
+            let _ = shaders.insert(&handle, module);
+        }
     }
-    if let Some(source) = replacement.source.take() {
-        let shader = Shader::from_wgsl(source, "gbuffer-bevy/pbr_deferred_functions.wgsl");
-        let _ = shaders.insert(&replacement.handle, shader);
+    let (ready, waiting): (Vec<_>, Vec<_>) = replacement
+        .patches
+        .drain(..)
+        .partition(|(handle, _)| shaders.contains(handle));
+    replacement.patches = waiting;
+    for (handle, patch) in ready {
+        let patched = shaders
+            .get(&handle)
+            .map(|shader| patch.apply(shader))
+            .expect("loaded");
+        let _ = shaders.insert(&handle, patched.unwrap_or_else(|error| panic!("{error}")));
     }
 }
 
-/// Whether the layout's module has taken Bevy's place (frames rendered before may still use
-/// Bevy's G-buffer).
+/// Whether the layout's module has taken Bevy's place and Bevy's lighting modules are patched
+/// (frames rendered before may still use Bevy's G-buffer).
 pub fn is_replaced(app: &App) -> bool {
     app.world()
         .get_resource::<Replacement>()
-        .is_some_and(|replacement| replacement.source.is_none())
+        .is_some_and(|replacement| {
+            replacement.module.is_none() && replacement.patches.is_empty()
+        })
 }

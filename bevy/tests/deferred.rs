@@ -6,10 +6,13 @@
 
 mod scene;
 
+use bevy::app::App;
+use scene::{features, spheres};
+
 use gbuffer::engine_layouts::BevyDeferred;
 use gbuffer::glam::{Vec3, Vec4};
 use gbuffer::GBufferLayout;
-use gbuffer_bevy::{GBufferPlugin, MappingError, Quantity};
+use gbuffer_bevy::{solve, BevyScene, GBufferPlugin, MappingError, Precision, Quantity};
 
 /// Bevy's quantities with the normal in 2 x 16 bits and 8-bit metallic, reflectance and
 /// clearcoat; no occlusion, no clearcoat roughness (Bevy's defaults).
@@ -168,11 +171,14 @@ fn layouts_render_in_bevys_deferred_renderer() {
     if !adapter() {
         return;
     }
-    let bevy = scene::render(None);
-    let through_bevy_deferred = scene::render(Some(Box::new(|app| {
+    let render = |plugin| {
+        scene::render(true, spheres::scene(), plugin, spheres::regions).pixels
+    };
+    let bevy = render(None);
+    let through_bevy_deferred = render(Some(Box::new(|app: &mut App| {
         app.add_plugins(GBufferPlugin::<BevyDeferred>::new());
     })));
-    let through_fine_normals = scene::render(Some(Box::new(|app| {
+    let through_fine_normals = render(Some(Box::new(|app: &mut App| {
         app.add_plugins(GBufferPlugin::<FineNormals>::new());
     })));
     write_png("bevy.png", &bevy);
@@ -203,4 +209,128 @@ fn layouts_render_in_bevys_deferred_renderer() {
     // close to Bevy's own.
     assert!(differing_b > 0 && differing_c > 0);
     assert!(psnr_b > 35.0 && psnr_c > 35.0);
+}
+
+/// The features scene in Bevy's terms: what it uses, how precisely. Solved into
+/// [`BevyFeatures`].
+fn features_scene() -> BevyScene {
+    use Precision::{Degrees, Exact, Relative, Steps};
+    BevyScene::new("BevyFeatures")
+        .needs(Quantity::BaseColor, Steps(64))
+        .needs(Quantity::PerceptualRoughness, Steps(32))
+        .needs(Quantity::Normal, Degrees(0.5))
+        .needs(Quantity::Emissive, Relative(0.035))
+        .needs(Quantity::ReflectanceColor, Steps(64))
+        .needs(Quantity::DiffuseOcclusionColor, Steps(8))
+        .needs(Quantity::AnisotropyStrength, Steps(4))
+        .needs(Quantity::AnisotropyTangent, Degrees(4.0))
+        .needs(Quantity::Clearcoat, Steps(2))
+        .needs(Quantity::ClearcoatPerceptualRoughness, Steps(16))
+        .needs(Quantity::ClearcoatNormal, Degrees(4.0))
+        .needs(Quantity::Lightmapped, Exact)
+}
+
+/// The features scene's layout: [`features_scene`] solved (a test holds the two together).
+#[rustfmt::skip]
+#[allow(dead_code)] // the fields are read on the GPU
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 128)]
+struct BevyFeatures {
+    #[bits(27, unsigned_float)] emissive: Vec3,
+    #[bits(5, unorm)] perceptual_roughness: f32,
+    #[bits(18, unorm)] base_color: Vec3,
+    #[bits(12, octahedral)] anisotropy_tangent: Vec3,
+    #[bits(2, unorm)] anisotropy_strength: f32,
+    #[bits(18, octahedral)] normal: Vec3,
+    #[bits(12, octahedral)] clearcoat_normal: Vec3,
+    #[bits(1, unorm)] clearcoat: f32,
+    #[bits(1, uint)] lightmapped: u32,
+    #[bits(18, unorm)] reflectance_color: Vec3,
+    #[bits(9, unorm)] diffuse_occlusion_color: Vec3,
+    #[bits(4, unorm)] clearcoat_perceptual_roughness: f32,
+}
+
+#[test]
+fn the_features_layout_is_the_solvers_answer() {
+    let solution = solve(&features_scene()).unwrap();
+    let layout = BevyFeatures::layout();
+    let solved: Vec<(String, String)> = solution
+        .fields
+        .iter()
+        .map(|field| {
+            (
+                field.quantity.to_string(),
+                format!("{}-bit {}", field.bits, field.encoding),
+            )
+        })
+        .collect();
+    let declared: Vec<(String, String)> = layout
+        .fields
+        .iter()
+        .map(|field| (field.name.clone(), field.storage_name()))
+        .collect();
+    assert_eq!(solved, declared);
+    assert_eq!((solution.bits(), solution.words), (127, 4));
+}
+
+/// PSNR in dB and the largest channel difference of two frames over the pixels in `region`.
+fn region_error(a: &scene::Pixels, b: &scene::Pixels, region: &[bool]) -> (f64, u8) {
+    let (mut squares, mut count, mut largest) = (0.0, 0usize, 0u8);
+    for ((pa, pb), _) in a.iter().zip(b).zip(region).filter(|(_, inside)| **inside) {
+        for channel in 0..3 {
+            let difference = pa[channel].abs_diff(pb[channel]);
+            squares += f64::from(difference).powi(2);
+            largest = largest.max(difference);
+        }
+        count += 3;
+    }
+    let mean = squares / count as f64;
+    (10.0 * (255.0 * 255.0 / mean).log10(), largest)
+}
+
+#[test]
+fn the_features_bevys_g_buffer_drops_render_through_a_layout() {
+    if !adapter() {
+        return;
+    }
+    let render = |deferred, plugin| {
+        scene::render(deferred, features::scene(), plugin, features::regions)
+    };
+    let forward = render(false, None);
+    let bevy = render(true, None).pixels;
+    let layout = render(
+        true,
+        Some(Box::new(|app: &mut App| {
+            app.add_plugins(GBufferPlugin::<BevyFeatures>::new());
+        })),
+    )
+    .pixels;
+    write_png("features-forward.png", &forward.pixels);
+    write_png("features-bevy.png", &bevy);
+    write_png("features-layout.png", &layout);
+    write_png("features-bevy-difference.png", &difference(&forward.pixels, &bevy));
+    write_png("features-layout-difference.png", &difference(&forward.pixels, &layout));
+
+    let whole = vec![true; forward.pixels.len()];
+    let mut table = String::from(
+        "| region | (b) Bevy's G-buffer: PSNR, largest error | (c) `BevyFeatures`: PSNR, largest error |\n\
+         | --- | ---: | ---: |\n",
+    );
+    let mut failures = Vec::new();
+    for (name, region) in std::iter::once(("whole frame", &whole))
+        .chain(forward.regions.iter().map(|(name, region)| (*name, region)))
+    {
+        let (psnr_b, largest_b) = region_error(&forward.pixels, &bevy, region);
+        let (psnr_c, largest_c) = region_error(&forward.pixels, &layout, region);
+        table.push_str(&format!(
+            "| {name} | {psnr_b:.2} dB, {largest_b} | {psnr_c:.2} dB, {largest_c} |\n"
+        ));
+        if psnr_c <= psnr_b {
+            failures.push(format!("{name}: (c) {psnr_c:.2} dB is no closer than (b) {psnr_b:.2} dB"));
+        }
+    }
+    eprintln!("{table}");
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/gbuffer-bevy");
+    std::fs::write(folder.join("features.md"), &table).unwrap();
+    assert!(failures.is_empty(), "{failures:#?}");
 }

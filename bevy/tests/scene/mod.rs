@@ -1,6 +1,9 @@
-//! A small Bevy scene rendered deferred, headless, into an image: spheres across roughness
-//! and metallic, an emissive sphere, a clearcoat sphere, a normal-mapped plane, a directional
-//! and a point light. [`render`] returns its pixels.
+//! Bevy scenes rendered headless into an image: [`render`] runs an app with a scene's setup
+//! and returns the last frame's pixels. The scenes: [`spheres`] (Bevy's own G-buffer's
+//! quantities) and [`features`] (what Bevy's G-buffer drops).
+
+pub mod features;
+pub mod spheres;
 
 use std::sync::{Arc, Mutex};
 
@@ -8,9 +11,7 @@ use bevy::asset::RenderAssetUsages;
 use bevy::camera::RenderTarget;
 use bevy::core_pipeline::prepass::{DeferredPrepass, DepthPrepass};
 use bevy::image::Image;
-use bevy::light::{DirectionalLight, PointLight};
-use bevy::mesh::{Mesh, Mesh3d, VertexAttributeValues};
-use bevy::pbr::{DefaultOpaqueRendererMethod, MeshMaterial3d, StandardMaterial};
+use bevy::pbr::DefaultOpaqueRendererMethod;
 use bevy::prelude::*;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, TextureUsages};
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
@@ -26,11 +27,32 @@ pub type Pixels = Vec<[u8; 4]>;
 /// What a test adds to the app after Bevy's plugins.
 pub type AddPlugins = Box<dyn FnOnce(&mut App)>;
 
-/// Renders the scene with `plugin` added after Bevy's own (none: Bevy's G-buffer), frames
-/// enough for every pipeline and the replaced module to be in place, and returns the last.
-pub fn render(plugin: Option<AddPlugins>) -> Pixels {
+/// A frame and where the scene's regions lie in it.
+pub struct Frame {
+    /// Its pixels.
+    pub pixels: Pixels,
+    /// Each region's name and whether a pixel (x, y) is in it.
+    pub regions: Vec<(&'static str, Vec<bool>)>,
+}
+
+/// Renders a scene (`scene` adds its setup, and its material plugins) deferred or forward,
+/// with `plugin` added after Bevy's own (none: Bevy's G-buffer), frames enough for every
+/// pipeline and the replaced module to be in place, and returns the last. `regions` finds the
+/// scene's regions from the app, once it has rendered.
+pub fn render(
+    deferred: bool,
+    scene: AddPlugins,
+    plugin: Option<AddPlugins>,
+    regions: fn(&mut App) -> Vec<(&'static str, Vec<bool>)>,
+) -> Frame {
     let mut app = App::new();
-    app.insert_resource(DefaultOpaqueRendererMethod::deferred())
+    let method = if deferred {
+        DefaultOpaqueRendererMethod::deferred()
+    } else {
+        DefaultOpaqueRendererMethod::forward()
+    };
+    app.insert_resource(method)
+        .insert_resource(Deferred(deferred))
         .add_plugins(
             DefaultPlugins
                 .set(WindowPlugin {
@@ -48,7 +70,7 @@ pub fn render(plugin: Option<AddPlugins>) -> Pixels {
     if let Some(plugin) = plugin {
         plugin(&mut app);
     }
-    app.add_systems(Startup, setup);
+    scene(&mut app);
     app.finish();
     app.cleanup();
     for _ in 0..20 {
@@ -73,24 +95,88 @@ pub fn render(plugin: Option<AddPlugins>) -> Pixels {
         if let Some(pixels) = captured.lock().unwrap().take() {
             // The frame is the layout's only if its module took Bevy's place before it.
             assert_eq!(gbuffer_bevy::is_replaced(&app), replacing);
-            return pixels;
+            return Frame {
+                pixels,
+                regions: regions(&mut app),
+            };
         }
     }
     panic!("no screenshot after 20 frames");
 }
 
+/// Whether the scene renders deferred.
+#[derive(Resource, Clone, Copy)]
+pub struct Deferred(pub bool);
+
+/// The scene's camera, at `transform`, rendering into the target; deferred, with the
+/// prepasses Bevy's deferred renderer needs.
+pub fn camera(
+    commands: &mut Commands,
+    images: &mut Assets<Image>,
+    deferred: Deferred,
+    transform: Transform,
+) {
+    let target = target(commands, images);
+    let mut camera = commands.spawn((
+        Camera3d::default(),
+        RenderTarget::from(target),
+        transform,
+        Msaa::Off,
+    ));
+    if deferred.0 {
+        camera.insert((DepthPrepass, DeferredPrepass));
+    }
+}
+
 /// The image the camera renders into.
 #[derive(Resource)]
-struct Target(Handle<Image>);
+pub struct Target(pub Handle<Image>);
 
-/// A tangent-space normal map of bumps, `size` x `size`, RGBA8 linear.
-fn bumps(size: u32) -> Image {
+/// The image a scene's camera renders into, `SIZE`, read back after the frame; its handle is
+/// kept as the [`Target`] resource.
+pub fn target(commands: &mut Commands, images: &mut Assets<Image>) -> Handle<Image> {
+    let mut target = Image::new_uninit(
+        Extent3d {
+            width: SIZE.0,
+            height: SIZE.1,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        TextureFormat::Rgba8UnormSrgb,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    target.texture_descriptor.usage |= TextureUsages::RENDER_ATTACHMENT | TextureUsages::COPY_SRC;
+    let target = images.add(target);
+    commands.insert_resource(Target(target.clone()));
+    target
+}
+
+/// Pixels within a disc: the screen-space projection of a sphere at `center` of `radius`,
+/// shrunk by `inset` pixels to leave its silhouette out.
+pub fn disc(app: &mut App, center: Vec3, radius: f32, inset: f32) -> Vec<bool> {
+    let mut cameras = app
+        .world_mut()
+        .query::<(&Camera, &GlobalTransform)>();
+    let (camera, transform) = cameras.single(app.world()).expect("one camera");
+    let centre = camera.world_to_viewport(transform, center).unwrap();
+    let edge = camera
+        .world_to_viewport(transform, center + transform.right() * radius)
+        .unwrap();
+    let reach = centre.distance(edge) - inset;
+    (0..SIZE.1)
+        .flat_map(|y| (0..SIZE.0).map(move |x| (x, y)))
+        .map(|(x, y)| Vec2::new(x as f32 + 0.5, y as f32 + 0.5).distance(centre) < reach)
+        .collect()
+}
+
+/// A tangent-space normal map of bumps, `size` x `size`, RGBA8 linear, `periods` bumps across.
+pub fn bumps(size: u32, periods: f32) -> Image {
     let mut data = Vec::with_capacity((size * size * 4) as usize);
     for y in 0..size {
         for x in 0..size {
             let (u, v) = (
-                (x as f32 / size as f32 * 8.0 * std::f32::consts::TAU).sin(),
-                (y as f32 / size as f32 * 8.0 * std::f32::consts::TAU).sin(),
+                (x as f32 / size as f32 * periods * std::f32::consts::TAU).sin(),
+                (y as f32 / size as f32 * periods * std::f32::consts::TAU).sin(),
             );
             let normal = Vec3::new(0.35 * u, 0.35 * v, 1.0).normalize();
             let encoded = normal * 0.5 + Vec3::splat(0.5);
@@ -110,107 +196,3 @@ fn bumps(size: u32) -> Image {
     )
 }
 
-fn setup(
-    mut commands: Commands,
-    mut meshes: ResMut<Assets<Mesh>>,
-    mut materials: ResMut<Assets<StandardMaterial>>,
-    mut images: ResMut<Assets<Image>>,
-) {
-    let mut target = Image::new_uninit(
-        Extent3d {
-            width: SIZE.0,
-            height: SIZE.1,
-            depth_or_array_layers: 1,
-        },
-        TextureDimension::D2,
-        TextureFormat::Rgba8UnormSrgb,
-        RenderAssetUsages::RENDER_WORLD,
-    );
-    target.texture_descriptor.usage |= TextureUsages::RENDER_ATTACHMENT | TextureUsages::COPY_SRC;
-    let target = images.add(target);
-    commands.insert_resource(Target(target.clone()));
-    commands.spawn((
-        Camera3d::default(),
-        RenderTarget::from(target),
-        Transform::from_xyz(0.0, 2.2, 6.5).looking_at(Vec3::new(0.0, 0.6, 0.0), Vec3::Y),
-        Msaa::Off,
-        DepthPrepass,
-        DeferredPrepass,
-    ));
-    commands.spawn((
-        DirectionalLight {
-            illuminance: 8_000.0,
-            ..default()
-        },
-        Transform::from_xyz(1.0, 2.0, 1.5).looking_at(Vec3::ZERO, Vec3::Y),
-    ));
-    commands.spawn((
-        PointLight {
-            intensity: 400_000.0,
-            range: 8.0,
-            color: Color::srgb(1.0, 0.8, 0.6),
-            ..default()
-        },
-        Transform::from_xyz(-1.5, 1.8, 2.0),
-    ));
-
-    // The plane, normal-mapped: its tangents are +x everywhere.
-    let mut plane = Mesh::from(Plane3d::default().mesh().size(8.0, 8.0));
-    let count = plane.count_vertices();
-    plane.insert_attribute(
-        Mesh::ATTRIBUTE_TANGENT,
-        VertexAttributeValues::Float32x4(vec![[1.0, 0.0, 0.0, 1.0]; count]),
-    );
-    commands.spawn((
-        Mesh3d(meshes.add(plane)),
-        MeshMaterial3d(materials.add(StandardMaterial {
-            base_color: Color::srgb(0.45, 0.42, 0.38),
-            perceptual_roughness: 0.6,
-            normal_map_texture: Some(images.add(bumps(256))),
-            ..default()
-        })),
-    ));
-
-    // Spheres: roughness across, dielectric front row, metal back row.
-    let sphere = meshes.add(Sphere::new(0.35).mesh().uv(48, 24));
-    for column in 0..5 {
-        for row in 0..2 {
-            let material = StandardMaterial {
-                base_color: if row == 0 {
-                    Color::srgb(0.8, 0.1, 0.1)
-                } else {
-                    Color::srgb(0.95, 0.75, 0.35)
-                },
-                perceptual_roughness: 0.1 + 0.2 * column as f32,
-                metallic: row as f32,
-                ..default()
-            };
-            commands.spawn((
-                Mesh3d(sphere.clone()),
-                MeshMaterial3d(materials.add(material)),
-                Transform::from_xyz(-2.0 + column as f32, 0.35, 0.8 - 1.2 * row as f32),
-            ));
-        }
-    }
-    // An emissive sphere and a clearcoat sphere, above the rows.
-    commands.spawn((
-        Mesh3d(sphere.clone()),
-        MeshMaterial3d(materials.add(StandardMaterial {
-            base_color: Color::BLACK,
-            emissive: LinearRgba::rgb(4.0, 1.5, 0.4),
-            ..default()
-        })),
-        Transform::from_xyz(-0.8, 1.4, -0.4),
-    ));
-    commands.spawn((
-        Mesh3d(sphere),
-        MeshMaterial3d(materials.add(StandardMaterial {
-            base_color: Color::srgb(0.1, 0.3, 0.8),
-            perceptual_roughness: 0.7,
-            clearcoat: 1.0,
-            clearcoat_perceptual_roughness: 0.1,
-            ..default()
-        })),
-        Transform::from_xyz(0.8, 1.4, -0.4),
-    ));
-}

@@ -1,0 +1,69 @@
+//! Patches of Bevy 0.19.1's lighting modules, applied to their text once loaded.
+//!
+//! Bevy's forward renderer specialises each material's pipeline: a material without
+//! anisotropy is shaded without STANDARD_MATERIAL_ANISOTROPY, by the isotropic lobe. Bevy's
+//! deferred lighting pass is one pipeline for every pixel, so a layout that holds anisotropy
+//! turns the def on for all of them, and under it Bevy's anisotropic lobe at strength 0 is not
+//! the isotropic one (it squares the roughness the isotropic lobe takes as alpha once more, and
+//! bends the environment map's normal). The patches return early to Bevy's isotropic path where
+//! the strength is 0, so such pixels shade as the forward renderer shades them.
+
+use std::fmt;
+
+use bevy::shader::{Shader, Source};
+
+/// Text inserted after a line of a Bevy shader module.
+#[derive(Clone, Copy, Debug)]
+pub struct Patch {
+    /// The module's asset path.
+    pub path: &'static str,
+    /// The text to insert after (it occurs once).
+    pub after: &'static str,
+    /// The text inserted.
+    pub insert: &'static str,
+}
+
+/// The patches for a layout that holds anisotropy.
+pub const ISOTROPIC_WITHOUT_ANISOTROPY: [Patch; 2] = [
+    Patch {
+        path: "embedded://bevy_pbr/render/pbr_lighting.wgsl",
+        after: "    specular_intensity: f32,\n) -> vec3<f32> {\n    // Unpack.\n    let NdotV = (*input).layers[LAYER_BASE].NdotV;\n    let V = (*input).V;",
+        insert: "\n    // gbuffer-bevy: without anisotropy, Bevy's isotropic lobe, as forward.\n    if ((*input).anisotropy == 0.0) {\n        return specular(input, derived_input, roughness, specular_intensity);\n    }",
+    },
+    Patch {
+        path: "embedded://bevy_pbr/render/pbr_functions.wgsl",
+        after: "fn bend_normal_for_anisotropy(lighting_input: ptr<function, lighting::LightingInput>) {",
+        insert: "\n    // gbuffer-bevy: without anisotropy, the normal unbent, as forward.\n    if ((*lighting_input).anisotropy == 0.0) {\n        return;\n    }",
+    },
+];
+
+/// A patch that does not apply: Bevy's text is not the 0.19.1 text it was written for.
+#[derive(Debug)]
+pub struct PatchError(&'static str);
+
+impl fmt::Display for PatchError {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            out,
+            "GBufferPlugin: {} is not Bevy 0.19.1's (the text the anisotropy patch follows is not \
+             in it once)",
+            self.0
+        )
+    }
+}
+
+impl Patch {
+    /// `shader` with the patch applied.
+    pub fn apply(&self, shader: &Shader) -> Result<Shader, PatchError> {
+        let Source::Wgsl(source) = &shader.source else {
+            return Err(PatchError(self.path));
+        };
+        if source.matches(self.after).count() != 1 {
+            return Err(PatchError(self.path));
+        }
+        let patched = source.replacen(self.after, &format!("{}{}", self.after, self.insert), 1);
+        let mut shader = shader.clone();
+        shader.source = Source::Wgsl(patched.into());
+        Ok(shader)
+    }
+}

@@ -1,0 +1,254 @@
+//! The smallest layout for a Bevy scene: which of `PbrInput`'s quantities the scene uses, at
+//! what precision, solved into bit fields that fill Bevy's one `Rgba32Uint` texel, or the list
+//! of what must give when 128 bits cannot hold them.
+//!
+//! Each quantity takes the narrowest encoding that meets its precision, with the error bounds
+//! the main solver (`gbuffer-solver`'s `representation`) uses: half a step for unorm, `sqrt(18)`
+//! half-steps of a coordinate for octahedral directions, half an ulp of the mantissa for light.
+//! The fields are packed first-fit, largest first, into 32-bit words (no field straddles two,
+//! as gbuffer's layouts place them), and printed as the `#[derive(GBufferLayout)]` to paste.
+
+use std::fmt;
+
+use crate::quantity::{Quantity, Values};
+
+/// How precisely a scene needs a quantity.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Precision {
+    /// Distinct levels per channel over [0, 1]: 256 is what 8 bits give.
+    Steps(u32),
+    /// The largest angle, in degrees, between a direction and the direction read back.
+    Degrees(f64),
+    /// The largest error of a light channel relative to its own value.
+    Relative(f64),
+    /// Exactly (flags).
+    Exact,
+}
+
+/// A scene in Bevy's terms: the quantities it uses and how precisely.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BevyScene {
+    /// The layout's name.
+    pub name: String,
+    /// Each quantity the scene uses, with its precision.
+    pub needs: Vec<(Quantity, Precision)>,
+}
+
+impl BevyScene {
+    /// A scene that uses nothing yet.
+    pub fn new(name: &str) -> Self {
+        BevyScene {
+            name: name.to_string(),
+            needs: Vec::new(),
+        }
+    }
+
+    /// The scene uses `quantity` at `precision`.
+    pub fn needs(mut self, quantity: Quantity, precision: Precision) -> Self {
+        self.needs.push((quantity, precision));
+        self
+    }
+}
+
+/// One field of a solved layout.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolvedField {
+    /// The quantity, whose first name the field takes.
+    pub quantity: Quantity,
+    /// Its width.
+    pub bits: u32,
+    /// Its encoding's name, as `#[bits(...)]` spells it.
+    pub encoding: &'static str,
+    /// The error its encoding makes, in the unit of its precision.
+    pub error: f64,
+}
+
+/// A solved layout: its fields in the order that packs them into `words` words.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solution {
+    /// The layout's name.
+    pub name: String,
+    /// The fields, word by word.
+    pub fields: Vec<SolvedField>,
+    /// The words they fill.
+    pub words: usize,
+}
+
+impl Solution {
+    /// The bits the fields use.
+    pub fn bits(&self) -> u32 {
+        self.fields.iter().map(|field| field.bits).sum()
+    }
+
+    /// The layout as a Rust declaration to paste.
+    pub fn derive_source(&self) -> String {
+        let mut source = format!(
+            "#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]\n\
+             #[gbuffer(budget = {})]\n\
+             struct {} {{\n",
+            self.words * 32,
+            self.name
+        );
+        for field in &self.fields {
+            source.push_str(&format!(
+                "    #[bits({}, {})] {}: {},\n",
+                field.bits,
+                field.encoding,
+                field.quantity,
+                field.quantity.field_type().rust_name()
+            ));
+        }
+        source.push_str("}\n");
+        source
+    }
+}
+
+/// Why a scene's quantities do not fit Bevy's 128 bits: every field with its bits, widest
+/// first, which is the list of what must give.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SolveError {
+    /// The quantities need more than 4 words.
+    TooWide {
+        /// The layout's name.
+        name: String,
+        /// The narrowest field for each quantity, widest first.
+        fields: Vec<SolvedField>,
+        /// The words they would fill.
+        words: usize,
+    },
+    /// A precision no encoding meets, or one of the wrong kind for its quantity.
+    Unmet {
+        /// The quantity.
+        quantity: Quantity,
+        /// Its precision.
+        precision: Precision,
+    },
+}
+
+impl fmt::Display for SolveError {
+    fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SolveError::TooWide {
+                name,
+                fields,
+                words,
+            } => {
+                let bits: u32 = fields.iter().map(|field| field.bits).sum();
+                writeln!(
+                    out,
+                    "`{name}` needs {bits} bits in {words} words; Bevy's G-buffer holds 128 in 4. \
+                     What must give, widest first:"
+                )?;
+                for field in fields {
+                    writeln!(
+                        out,
+                        "  {}: {} bits ({})",
+                        field.quantity, field.bits, field.encoding
+                    )?;
+                }
+                Ok(())
+            }
+            SolveError::Unmet {
+                quantity,
+                precision,
+            } => write!(
+                out,
+                "`{quantity}` at {precision:?}: no encoding meets it (directions take degrees, \
+                 light relative error, flags Exact, the rest steps of 2 to 2^16)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for SolveError {}
+
+/// Half a step of `bits`-bit unorm, and of a coordinate.
+fn half_step(bits: u32) -> f64 {
+    0.5 / f64::from((1u32 << bits) - 1)
+}
+
+/// The narrowest field for `quantity` at `precision`.
+fn narrowest(quantity: Quantity, precision: Precision) -> Result<SolvedField, SolveError> {
+    let components = quantity.field_type().components as u32;
+    let unmet = SolveError::Unmet {
+        quantity,
+        precision,
+    };
+    let field = |bits, encoding, error| SolvedField {
+        quantity,
+        bits,
+        encoding,
+        error,
+    };
+    match (quantity.values(), precision) {
+        (Values::Bits, Precision::Exact) => Ok(field(
+            if quantity == Quantity::Flags { 3 } else { 1 },
+            "uint",
+            0.0,
+        )),
+        (Values::Unit, Precision::Steps(steps)) if (2..=1 << 16).contains(&steps) => {
+            let each = u32::BITS - (steps - 1).leading_zeros();
+            Ok(field(each * components, "unorm", half_step(each)))
+        }
+        (Values::Direction, Precision::Degrees(degrees)) => (2..=16)
+            .map(|each| (each, (18f64.sqrt() * 2.0 * half_step(each)).to_degrees()))
+            .find(|(_, error)| *error <= degrees)
+            .map(|(each, error)| field(2 * each, "octahedral", error))
+            .ok_or(unmet),
+        (Values::Unbounded, Precision::Relative(relative)) => {
+            // Unsigned floats: a 5-bit exponent over m mantissa bits, half an ulp 2^-(m + 1);
+            // rgb9e5's 9-bit mantissas share the brightest channel's exponent.
+            let unsigned = (1..=10)
+                .map(|mantissa| (mantissa, 0.5f64.powi(mantissa + 1)))
+                .find(|(_, error)| *error <= relative)
+                .map(|(mantissa, error)| {
+                    field((5 + mantissa as u32) * components, "unsigned_float", error)
+                });
+            let shared = (components == 3 && 0.5f64.powi(9) <= relative)
+                .then(|| field(32, "rgb9e5", 0.5f64.powi(9)));
+            [unsigned, shared]
+                .into_iter()
+                .flatten()
+                .filter(|field| field.bits <= 32)
+                .min_by_key(|field| field.bits)
+                .ok_or(unmet)
+        }
+        _ => Err(unmet),
+    }
+}
+
+/// The smallest layout for `scene` that fits Bevy's 128 bits, or what must give.
+pub fn solve(scene: &BevyScene) -> Result<Solution, SolveError> {
+    let mut fields = scene
+        .needs
+        .iter()
+        .map(|(quantity, precision)| narrowest(*quantity, *precision))
+        .collect::<Result<Vec<_>, _>>()?;
+    // Widest first (stable: the scene's order among equals), then first fit into words.
+    fields.sort_by_key(|field| std::cmp::Reverse(field.bits));
+    let mut words: Vec<(u32, Vec<SolvedField>)> = Vec::new();
+    for field in &fields {
+        match words.iter_mut().find(|(used, _)| used + field.bits <= 32) {
+            Some((used, members)) => {
+                *used += field.bits;
+                members.push(field.clone());
+            }
+            None => words.push((field.bits, vec![field.clone()])),
+        }
+    }
+    if words.len() > 4 {
+        return Err(SolveError::TooWide {
+            name: scene.name.clone(),
+            fields,
+            words: words.len(),
+        });
+    }
+    Ok(Solution {
+        name: scene.name.clone(),
+        words: words.len(),
+        fields: words
+            .into_iter()
+            .flat_map(|(_, members)| members)
+            .collect(),
+    })
+}
