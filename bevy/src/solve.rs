@@ -252,3 +252,79 @@ pub fn solve(scene: &BevyScene) -> Result<Solution, SolveError> {
             .collect(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_quantity_takes_the_narrowest_encoding_that_meets_its_precision() {
+        let field = |quantity, precision| narrowest(quantity, precision).unwrap();
+        // 8 bits give 256 levels, and 257 need 9.
+        assert_eq!(field(Quantity::Metallic, Precision::Steps(256)).bits, 8);
+        assert_eq!(field(Quantity::Metallic, Precision::Steps(257)).bits, 9);
+        assert_eq!(field(Quantity::BaseColor, Precision::Steps(64)).bits, 18);
+        // Octahedral 2 x 12 bits: sqrt(18) / 4095 radians, 0.059 degrees.
+        let normal = field(Quantity::Normal, Precision::Degrees(0.06));
+        assert_eq!((normal.bits, normal.encoding), (24, "octahedral"));
+        assert!((normal.error - 0.05936).abs() < 1e-4);
+        // Light within 2%: 5 mantissa bits per channel (30) beat rgb9e5 (32); within 0.2%,
+        // only rgb9e5's shared 9-bit mantissas (32) fit a word.
+        let light = field(Quantity::Emissive, Precision::Relative(0.02));
+        assert_eq!((light.bits, light.encoding), (30, "unsigned_float"));
+        let light = field(Quantity::Emissive, Precision::Relative(0.002));
+        assert_eq!((light.bits, light.encoding), (32, "rgb9e5"));
+        assert_eq!(field(Quantity::Lightmapped, Precision::Exact).bits, 1);
+        assert_eq!(field(Quantity::Flags, Precision::Exact).bits, 3);
+    }
+
+    #[test]
+    fn a_precision_of_the_wrong_kind_or_too_fine_is_unmet() {
+        for (quantity, precision) in [
+            (Quantity::Normal, Precision::Steps(256)),
+            (Quantity::Normal, Precision::Degrees(0.0001)),
+            (Quantity::Emissive, Precision::Relative(0.0001)),
+            (Quantity::Metallic, Precision::Steps(1)),
+        ] {
+            assert_eq!(
+                narrowest(quantity, precision),
+                Err(SolveError::Unmet {
+                    quantity,
+                    precision
+                })
+            );
+        }
+    }
+
+    #[test]
+    fn a_scene_over_128_bits_lists_what_must_give() {
+        let scene = BevyScene::new("Everything")
+            .needs(Quantity::BaseColor, Precision::Steps(256))
+            .needs(Quantity::PerceptualRoughness, Precision::Steps(256))
+            .needs(Quantity::Emissive, Precision::Relative(0.002))
+            .needs(Quantity::Normal, Precision::Degrees(0.06))
+            .needs(Quantity::ClearcoatNormal, Precision::Degrees(0.06))
+            .needs(Quantity::ReflectanceColor, Precision::Steps(256));
+        let error = solve(&scene).unwrap_err();
+        assert_eq!(
+            error.to_string(),
+            "`Everything` needs 136 bits in 5 words; Bevy's G-buffer holds 128 in 4. What must \
+             give, widest first:\n  emissive: 32 bits (rgb9e5)\n  base_color: 24 bits (unorm)\n  \
+             normal: 24 bits (octahedral)\n  clearcoat_normal: 24 bits (octahedral)\n  \
+             reflectance_color: 24 bits (unorm)\n  perceptual_roughness: 8 bits (unorm)\n"
+        );
+        // No field straddles two words: a 16-bit clearcoat normal brings the bits to 128, but
+        // beside three 24-bit fields it takes a fifth word. Giving it up fits in four.
+        let mut coarser = scene.clone();
+        coarser.needs[4].1 = Precision::Degrees(1.0);
+        assert!(matches!(solve(&coarser), Err(SolveError::TooWide { words: 5, .. })));
+        let mut fewer = scene.clone();
+        fewer.needs.remove(4);
+        let solution = solve(&fewer).unwrap();
+        assert_eq!((solution.bits(), solution.words), (112, 4));
+        assert!(solution.derive_source().starts_with(
+            "#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]\n#[gbuffer(budget = 128)]\n\
+             struct Everything {\n    #[bits(32, rgb9e5)] emissive: Vec3,\n"
+        ));
+    }
+}
