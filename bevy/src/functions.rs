@@ -231,7 +231,11 @@ pub fn deferred_functions_wgsl(
         reads.push_str(&read_back(*quantity, field));
     }
     let holds_anisotropy = field_of(mapping, Quantity::AnisotropyTangent).is_some();
-    let helpers = if holds_anisotropy { ORTHONORMAL_TANGENT } else { "" };
+    let helpers = if holds_anisotropy {
+        ORTHONORMAL_TANGENT
+    } else {
+        ""
+    };
     let packed: Vec<String> = (0..4)
         .map(|word| {
             if word < words {

@@ -44,14 +44,14 @@ pub mod solve;
 use std::marker::PhantomData;
 
 use bevy::app::{App, Plugin, Update};
-use patch::Patch;
 use bevy::asset::{AssetServer, Assets, Handle};
 use bevy::ecs::prelude::{ResMut, Resource};
 use bevy::shader::{Shader, ShaderDefVal};
 use gbuffer::GBufferLayout;
+use patch::Patch;
 
 pub use quantity::{MappingError, Quantity};
-pub use solve::{solve, BevyScene, Precision, SolveError, Solution};
+pub use solve::{solve, BevyScene, Precision, Solution, SolveError};
 
 /// Where Bevy 0.19 keeps the module the plugin replaces.
 const BEVY_MODULE_PATH: &str = "embedded://bevy_pbr/deferred/pbr_deferred_functions.wgsl";
@@ -179,7 +179,5 @@ fn replace_bevy_shaders(mut replacement: ResMut<Replacement>, mut shaders: ResMu
 pub fn is_replaced(app: &App) -> bool {
     app.world()
         .get_resource::<Replacement>()
-        .is_some_and(|replacement| {
-            replacement.module.is_none() && replacement.patches.is_empty()
-        })
+        .is_some_and(|replacement| replacement.module.is_none() && replacement.patches.is_empty())
 }

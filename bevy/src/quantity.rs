@@ -81,21 +81,13 @@ impl Values {
     pub fn held_by(self, encoding: Encoding) -> bool {
         use Encoding as E;
         match self {
-            Values::Unit => !matches!(
-                encoding,
-                E::Uint | E::Sint | E::Bool | E::Octahedral
-            ),
+            Values::Unit => !matches!(encoding, E::Uint | E::Sint | E::Bool | E::Octahedral),
             Values::Direction => {
                 matches!(encoding, E::Octahedral | E::Snorm | E::Half | E::Float32)
             }
             Values::Unbounded => matches!(
                 encoding,
-                E::Half
-                    | E::Float32
-                    | E::UnsignedFloat
-                    | E::Rgb9e5
-                    | E::Rgbm(_)
-                    | E::LogLuminance
+                E::Half | E::Float32 | E::UnsignedFloat | E::Rgb9e5 | E::Rgbm(_) | E::LogLuminance
             ),
             Values::Bits => encoding == E::Uint,
         }

@@ -246,10 +246,7 @@ pub fn solve(scene: &BevyScene) -> Result<Solution, SolveError> {
     Ok(Solution {
         name: scene.name.clone(),
         words: words.len(),
-        fields: words
-            .into_iter()
-            .flat_map(|(_, members)| members)
-            .collect(),
+        fields: words.into_iter().flat_map(|(_, members)| members).collect(),
     })
 }
 
@@ -317,7 +314,10 @@ mod tests {
         // beside three 24-bit fields it takes a fifth word. Giving it up fits in four.
         let mut coarser = scene.clone();
         coarser.needs[4].1 = Precision::Degrees(1.0);
-        assert!(matches!(solve(&coarser), Err(SolveError::TooWide { words: 5, .. })));
+        assert!(matches!(
+            solve(&coarser),
+            Err(SolveError::TooWide { words: 5, .. })
+        ));
         let mut fewer = scene.clone();
         fewer.needs.remove(4);
         let solution = solve(&fewer).unwrap();

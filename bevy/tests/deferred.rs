@@ -120,7 +120,9 @@ struct Misencoded {
 
 #[test]
 fn quantities_that_do_not_fit_are_named() {
-    let error = GBufferPlugin::<HalfAnisotropy>::new().mapping().unwrap_err();
+    let error = GBufferPlugin::<HalfAnisotropy>::new()
+        .mapping()
+        .unwrap_err();
     assert_eq!(
         error.to_string(),
         "layout `HalfAnisotropy`, field `anisotropy_strength`: `anisotropy_strength` is read \
@@ -132,10 +134,13 @@ fn quantities_that_do_not_fit_are_named() {
         "layout `Misencoded`, field `clearcoat_normal`: `unorm` cannot hold `clearcoat_normal`; \
          use octahedral, snorm, half or float32"
     );
-    let told = GBufferPlugin::<Misencoded>::new().with_field("clearcoat_normal", Quantity::BaseColor);
+    let told =
+        GBufferPlugin::<Misencoded>::new().with_field("clearcoat_normal", Quantity::BaseColor);
     let error = told.mapping().unwrap_err();
     assert!(
-        error.to_string().contains("field `emissive`: `unorm` cannot hold `emissive`"),
+        error
+            .to_string()
+            .contains("field `emissive`: `unorm` cannot hold `emissive`"),
         "{error}"
     );
     let told = told.with_field("emissive", Quantity::DiffuseOcclusionColor);
@@ -164,12 +169,18 @@ fn the_features_module_reads_what_bevys_g_buffer_drops() {
     }
     assert_eq!(
         plugin.shader_defs().unwrap(),
-        ["STANDARD_MATERIAL_ANISOTROPY", "PBR_ANISOTROPY_TEXTURE_SUPPORTED"]
+        [
+            "STANDARD_MATERIAL_ANISOTROPY",
+            "PBR_ANISOTROPY_TEXTURE_SUPPORTED"
+        ]
     );
     // Bevy's own quantities only: no def, no anisotropy helper.
     let fine = GBufferPlugin::<FineNormals>::new();
     assert!(fine.shader_defs().unwrap().is_empty());
-    assert!(!fine.deferred_functions().unwrap().contains("orthonormal_tangent"));
+    assert!(!fine
+        .deferred_functions()
+        .unwrap()
+        .contains("orthonormal_tangent"));
 }
 
 #[test]
@@ -251,9 +262,7 @@ fn layouts_render_in_bevys_deferred_renderer() {
     if !adapter() {
         return;
     }
-    let render = |plugin| {
-        scene::render(true, spheres::scene(), plugin, spheres::regions).pixels
-    };
+    let render = |plugin| scene::render(true, spheres::scene(), plugin, spheres::regions).pixels;
     let bevy = render(None);
     let through_bevy_deferred = render(Some(Box::new(|app: &mut App| {
         app.add_plugins(GBufferPlugin::<BevyDeferred>::new());
@@ -373,9 +382,8 @@ fn the_features_bevys_g_buffer_drops_render_through_a_layout() {
     if !adapter() {
         return;
     }
-    let render = |deferred, plugin| {
-        scene::render(deferred, features::scene(), plugin, features::regions)
-    };
+    let render =
+        |deferred, plugin| scene::render(deferred, features::scene(), plugin, features::regions);
     let forward = render(false, None);
     let bevy = render(true, None).pixels;
     let layout = render(
@@ -388,8 +396,14 @@ fn the_features_bevys_g_buffer_drops_render_through_a_layout() {
     write_png("features-forward.png", &forward.pixels);
     write_png("features-bevy.png", &bevy);
     write_png("features-layout.png", &layout);
-    write_png("features-bevy-difference.png", &difference(&forward.pixels, &bevy));
-    write_png("features-layout-difference.png", &difference(&forward.pixels, &layout));
+    write_png(
+        "features-bevy-difference.png",
+        &difference(&forward.pixels, &bevy),
+    );
+    write_png(
+        "features-layout-difference.png",
+        &difference(&forward.pixels, &layout),
+    );
 
     let whole = vec![true; forward.pixels.len()];
     let mut table = String::from(
@@ -406,7 +420,9 @@ fn the_features_bevys_g_buffer_drops_render_through_a_layout() {
             "| {name} | {psnr_b:.2} dB, {largest_b} | {psnr_c:.2} dB, {largest_c} |\n"
         ));
         if psnr_c <= psnr_b {
-            failures.push(format!("{name}: (c) {psnr_c:.2} dB is no closer than (b) {psnr_b:.2} dB"));
+            failures.push(format!(
+                "{name}: (c) {psnr_c:.2} dB is no closer than (b) {psnr_b:.2} dB"
+            ));
         }
     }
     eprintln!("{table}");
@@ -419,7 +435,9 @@ fn the_features_bevys_g_buffer_drops_render_through_a_layout() {
     for (name, region) in &forward.regions {
         let (psnr, largest) = region_error(&forward.pixels, &layout, region);
         if psnr < 36.0 || largest > 64 {
-            failures.push(format!("(c) on {name}: {psnr:.2} dB, largest error {largest}"));
+            failures.push(format!(
+                "(c) on {name}: {psnr:.2} dB, largest error {largest}"
+            ));
         }
     }
     let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/gbuffer-bevy");

@@ -9,16 +9,13 @@ use bevy::light::{DirectionalLight, GlobalAmbientLight};
 use bevy::math::Rect;
 use bevy::mesh::{Mesh, Mesh3d, VertexAttributeValues};
 use bevy::pbr::{
-    ExtendedMaterial, Lightmap, MaterialExtension, MaterialPlugin, MeshMaterial3d,
-    StandardMaterial,
+    ExtendedMaterial, Lightmap, MaterialExtension, MaterialPlugin, MeshMaterial3d, StandardMaterial,
 };
 use bevy::prelude::*;
-use bevy::render::render_resource::{
-    AsBindGroup, Extent3d, TextureDimension, TextureFormat,
-};
+use bevy::render::render_resource::{AsBindGroup, Extent3d, TextureDimension, TextureFormat};
 use bevy::shader::{Shader, ShaderRef};
 
-use super::{bumps, camera, disc, AddPlugins, Deferred, SIZE};
+use super::{bumps, camera, disc, AddPlugins, Deferred, Regions, SIZE};
 
 /// The spheres' radius.
 const RADIUS: f32 = 0.45;
@@ -57,8 +54,8 @@ pub fn scene() -> AddPlugins {
 }
 
 /// Each sphere's disc (without its silhouette) and the plane's rows in front of the spheres.
-pub fn regions(app: &mut App) -> Vec<(&'static str, Vec<bool>)> {
-    let mut regions: Vec<(&'static str, Vec<bool>)> = SPHERES
+pub fn regions(app: &mut App) -> Regions {
+    let mut regions: Regions = SPHERES
         .iter()
         .map(|(name, centre)| (*name, disc(app, *centre, RADIUS, 2.0)))
         .collect();
@@ -74,7 +71,8 @@ pub fn regions(app: &mut App) -> Vec<(&'static str, Vec<bool>)> {
 
 /// The shader of the coloured-occlusion material: Bevy's standard material with its diffuse
 /// occlusion coloured, forward and deferred, as Bevy's `extended_material` example writes one.
-const COLORED_OCCLUSION_SHADER: Handle<Shader> = uuid_handle!("6b0f7e52-3c4a-4f31-9a57-2d6c1e0b8a41");
+const COLORED_OCCLUSION_SHADER: Handle<Shader> =
+    uuid_handle!("6b0f7e52-3c4a-4f31-9a57-2d6c1e0b8a41");
 
 const COLORED_OCCLUSION_WGSL: &str = r#"
 #import bevy_pbr::pbr_fragment::pbr_input_from_standard_material
@@ -126,7 +124,10 @@ fn image(size: u32, texel: impl Fn(f32, f32) -> [f32; 4]) -> Image {
     let data = (0..size * size)
         .flat_map(|index| {
             let (x, y) = (index % size, index / size);
-            let (u, v) = ((x as f32 + 0.5) / size as f32, (y as f32 + 0.5) / size as f32);
+            let (u, v) = (
+                (x as f32 + 0.5) / size as f32,
+                (y as f32 + 0.5) / size as f32,
+            );
             texel(u, v).map(|channel| (channel.clamp(0.0, 1.0) * 255.0).round() as u8)
         })
         .collect();

@@ -27,12 +27,15 @@ pub type Pixels = Vec<[u8; 4]>;
 /// What a test adds to the app after Bevy's plugins.
 pub type AddPlugins = Box<dyn FnOnce(&mut App)>;
 
+/// A scene's regions: each one's name and whether each pixel, row by row, is in it.
+pub type Regions = Vec<(&'static str, Vec<bool>)>;
+
 /// A frame and where the scene's regions lie in it.
 pub struct Frame {
     /// Its pixels.
     pub pixels: Pixels,
-    /// Each region's name and whether a pixel (x, y) is in it.
-    pub regions: Vec<(&'static str, Vec<bool>)>,
+    /// The scene's regions.
+    pub regions: Regions,
 }
 
 /// Renders a scene (`scene` adds its setup, and its material plugins) deferred or forward,
@@ -43,7 +46,7 @@ pub fn render(
     deferred: bool,
     scene: AddPlugins,
     plugin: Option<AddPlugins>,
-    regions: fn(&mut App) -> Vec<(&'static str, Vec<bool>)>,
+    regions: fn(&mut App) -> Regions,
 ) -> Frame {
     let mut app = App::new();
     let method = if deferred {
@@ -64,7 +67,9 @@ pub fn render(
                     synchronous_pipeline_compilation: true,
                     ..default()
                 })
-                .disable::<bevy::log::LogPlugin>(),
+                .disable::<bevy::log::LogPlugin>()
+                // The example's window needs winit; headless, nothing does.
+                .disable::<bevy::winit::WinitPlugin>(),
         );
     let replacing = plugin.is_some();
     if let Some(plugin) = plugin {
@@ -154,9 +159,7 @@ pub fn target(commands: &mut Commands, images: &mut Assets<Image>) -> Handle<Ima
 /// Pixels within a disc: the screen-space projection of a sphere at `center` of `radius`,
 /// shrunk by `inset` pixels to leave its silhouette out.
 pub fn disc(app: &mut App, center: Vec3, radius: f32, inset: f32) -> Vec<bool> {
-    let mut cameras = app
-        .world_mut()
-        .query::<(&Camera, &GlobalTransform)>();
+    let mut cameras = app.world_mut().query::<(&Camera, &GlobalTransform)>();
     let (camera, transform) = cameras.single(app.world()).expect("one camera");
     let centre = camera.world_to_viewport(transform, center).unwrap();
     let edge = camera
@@ -195,4 +198,3 @@ pub fn bumps(size: u32, periods: f32) -> Image {
         RenderAssetUsages::RENDER_WORLD,
     )
 }
-

@@ -6,7 +6,7 @@ use bevy::mesh::{Mesh, Mesh3d, VertexAttributeValues};
 use bevy::pbr::{MeshMaterial3d, StandardMaterial};
 use bevy::prelude::*;
 
-use super::{bumps, camera, AddPlugins, Deferred};
+use super::{bumps, camera, AddPlugins, Deferred, Regions};
 
 /// The scene's setup.
 pub fn scene() -> AddPlugins {
@@ -16,7 +16,7 @@ pub fn scene() -> AddPlugins {
 }
 
 /// It has no regions: its frames are compared whole.
-pub fn regions(_: &mut App) -> Vec<(&'static str, Vec<bool>)> {
+pub fn regions(_: &mut App) -> Regions {
     Vec::new()
 }
 
