@@ -171,7 +171,9 @@ fn the_features_module_reads_what_bevys_g_buffer_drops() {
         plugin.shader_defs().unwrap(),
         [
             "STANDARD_MATERIAL_ANISOTROPY",
-            "PBR_ANISOTROPY_TEXTURE_SUPPORTED"
+            "PBR_ANISOTROPY_TEXTURE_SUPPORTED",
+            "STANDARD_MATERIAL_DIFFUSE_TRANSMISSION",
+            "STANDARD_MATERIAL_DIFFUSE_OR_SPECULAR_TRANSMISSION",
         ]
     );
     // Bevy's own quantities only: no def, no anisotropy helper.
@@ -309,7 +311,7 @@ fn features_scene() -> BevyScene {
         .needs(Quantity::PerceptualRoughness, Steps(32))
         .needs(Quantity::Normal, Degrees(0.5))
         .needs(Quantity::Emissive, Relative(0.035))
-        .needs(Quantity::ReflectanceColor, Steps(64))
+        .needs(Quantity::ReflectanceColor, Steps(32))
         .needs(Quantity::DiffuseOcclusionColor, Steps(8))
         .needs(Quantity::AnisotropyStrength, Steps(4))
         .needs(Quantity::AnisotropyTangent, Degrees(4.0))
@@ -317,6 +319,7 @@ fn features_scene() -> BevyScene {
         .needs(Quantity::ClearcoatPerceptualRoughness, Steps(16))
         .needs(Quantity::ClearcoatNormal, Degrees(4.0))
         .needs(Quantity::Lightmapped, Exact)
+        .needs(Quantity::DiffuseTransmission, Steps(16))
 }
 
 /// The features scene's layout: [`features_scene`] solved (a test holds the two together).
@@ -334,9 +337,10 @@ struct BevyFeatures {
     #[bits(12, octahedral)] clearcoat_normal: Vec3,
     #[bits(1, unorm)] clearcoat: f32,
     #[bits(1, uint)] lightmapped: u32,
-    #[bits(18, unorm)] reflectance_color: Vec3,
+    #[bits(15, unorm)] reflectance_color: Vec3,
     #[bits(9, unorm)] diffuse_occlusion_color: Vec3,
     #[bits(4, unorm)] clearcoat_perceptual_roughness: f32,
+    #[bits(4, unorm)] diffuse_transmission: f32,
 }
 
 #[test]
@@ -359,7 +363,7 @@ fn the_features_layout_is_the_solvers_answer() {
         .map(|field| (field.name.clone(), field.storage_name()))
         .collect();
     assert_eq!(solved, declared);
-    assert_eq!((solution.bits(), solution.words), (127, 4));
+    assert_eq!((solution.bits(), solution.words), (128, 4));
 }
 
 /// PSNR in dB and the largest channel difference of two frames over the pixels in `region`.

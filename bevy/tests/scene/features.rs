@@ -1,11 +1,13 @@
-//! What Bevy's own G-buffer drops and its forward renderer shades: four spheres in a row, each
+//! What Bevy's own G-buffer drops and its forward renderer shades: five spheres in a row, each
 //! with one feature (specular tint; anisotropy along a swirl of directions from a tangent-space
-//! direction map; a clearcoat with its own normal map; coloured diffuse occlusion), on a
+//! direction map; a clearcoat with its own normal map; coloured diffuse occlusion; diffuse
+//! transmission, deferred where the frame is), on a
 //! lightmapped plane under an ambient light that must leave the plane alone
 //! (`affects_lightmapped_meshes: false`), lit by the sun.
 
 use bevy::asset::{uuid_handle, RenderAssetUsages};
 use bevy::light::{DirectionalLight, GlobalAmbientLight};
+use bevy::material::OpaqueRendererMethod;
 use bevy::math::Rect;
 use bevy::mesh::{Mesh, Mesh3d, VertexAttributeValues};
 use bevy::pbr::{
@@ -21,11 +23,12 @@ use super::{bumps, camera, disc, AddPlugins, Deferred, Regions, SIZE};
 const RADIUS: f32 = 0.45;
 
 /// Each sphere's feature and centre, left to right.
-pub const SPHERES: [(&str, Vec3); 4] = [
-    ("specular tint", Vec3::new(-1.5, RADIUS, 0.0)),
-    ("anisotropy", Vec3::new(-0.5, RADIUS, 0.0)),
-    ("clearcoat normal map", Vec3::new(0.5, RADIUS, 0.0)),
-    ("coloured occlusion", Vec3::new(1.5, RADIUS, 0.0)),
+pub const SPHERES: [(&str, Vec3); 5] = [
+    ("specular tint", Vec3::new(-2.0, RADIUS, 0.0)),
+    ("anisotropy", Vec3::new(-1.0, RADIUS, 0.0)),
+    ("clearcoat normal map", Vec3::new(0.0, RADIUS, 0.0)),
+    ("coloured occlusion", Vec3::new(1.0, RADIUS, 0.0)),
+    ("diffuse transmission", Vec3::new(2.0, RADIUS, 0.0)),
 ];
 
 /// The region of the lightmapped plane: the rows below this point's, in front of the spheres.
@@ -181,7 +184,7 @@ fn setup(
         &mut commands,
         &mut images,
         *deferred,
-        Transform::from_xyz(0.0, 1.3, 4.2).looking_at(Vec3::new(0.0, 0.4, 0.0), Vec3::Y),
+        Transform::from_xyz(0.0, 1.5, 5.2).looking_at(Vec3::new(0.0, 0.4, 0.0), Vec3::Y),
     );
     commands.spawn((
         DirectionalLight {
@@ -260,7 +263,7 @@ fn setup(
     ));
     // Coloured occlusion: bands of orange occlusion, seen in the ambient light.
     commands.spawn((
-        Mesh3d(sphere),
+        Mesh3d(sphere.clone()),
         MeshMaterial3d(occluded.add(ExtendedMaterial {
             base: StandardMaterial {
                 base_color: Color::srgb(0.8, 0.8, 0.8),
@@ -272,5 +275,22 @@ fn setup(
             },
         })),
         at(3),
+    ));
+    // Diffuse transmission: the sun shows through on the side away from it. Bevy renders such
+    // a material forward unless told to render it deferred, as the deferred frames do.
+    commands.spawn((
+        Mesh3d(sphere),
+        MeshMaterial3d(materials.add(StandardMaterial {
+            base_color: Color::srgb(0.9, 0.6, 0.3),
+            perceptual_roughness: 0.6,
+            diffuse_transmission: 0.8,
+            opaque_render_method: if deferred.0 {
+                OpaqueRendererMethod::Deferred
+            } else {
+                OpaqueRendererMethod::Auto
+            },
+            ..default()
+        })),
+        at(4),
     ));
 }
