@@ -26,15 +26,21 @@
 //! The plugin replaces that module's text with one generated from the layout
 //! ([`functions::deferred_functions_wgsl`]): the same functions, storing Bevy's quantities in the
 //! layout's fields through the layout's own `pack_`/`unpack_` WGSL, so the words are the Rust
-//! mirror's. Everything else of Bevy's lighting is unchanged.
+//! mirror's. The module carries the shader defs that what the layout holds needs
+//! ([`GBufferPlugin::shader_defs`]), which naga_oil gives the prepass and the lighting pass that
+//! import it; with anisotropy, two of Bevy's lighting functions are patched so that pixels
+//! without it shade as Bevy's forward renderer shades them.
 //!
-//! Which quantity a field holds is said by its name (`base_color`, `base_color_roughness`,
-//! `perceptual_roughness`, `metallic`, `reflectance`, `diffuse_occlusion`, `emissive`, `normal`,
-//! `flags`, `clearcoat`, `clearcoat_perceptual_roughness`, `depth`) or by
-//! [`GBufferPlugin::with_field`]; what the layout does not store takes Bevy's default. A field
-//! the plugin cannot map, a field of the wrong type, a layout over 128 bits or without a normal
-//! stops the app when the plugin is added, with a message naming the layout and the field
-//! ([`MappingError`]).
+//! Which quantity a field holds is said by its name ([`Quantity::names`]: Bevy's own G-buffer's,
+//! and what it drops: `reflectance_color`, `diffuse_occlusion_color`, `anisotropy_strength` and
+//! `anisotropy_tangent`, `clearcoat_normal`, `diffuse_transmission`, `thickness`, `lightmapped`)
+//! or by [`GBufferPlugin::with_field`]; what the layout does not store takes Bevy's default. A
+//! field the plugin cannot map, of the wrong type or encoding, a quantity stored twice, half of
+//! anisotropy, a layout over 128 bits or without a normal stops the app when the plugin is
+//! added, with a message naming the layout and the field ([`MappingError`]).
+//!
+//! [`solve()`] picks a layout's bits for a scene in Bevy's terms ([`BevyScene`]), or lists what
+//! must give when 128 bits cannot hold it.
 
 pub mod functions;
 mod patch;

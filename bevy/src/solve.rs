@@ -63,6 +63,18 @@ pub struct SolvedField {
     pub error: f64,
 }
 
+impl SolvedField {
+    /// Its largest error as reports write it: `0.48°`, `3.1% relative`, `±0.0323`, `exact`.
+    pub fn error_text(&self) -> String {
+        match self.quantity.values() {
+            Values::Direction => format!("{:.2}°", self.error),
+            Values::Unbounded => format!("{:.1}% relative", self.error * 100.0),
+            Values::Unit => format!("±{:.4}", self.error),
+            Values::Bits => "exact".to_string(),
+        }
+    }
+}
+
 /// A solved layout: its fields in the order that packs them into `words` words.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Solution {
@@ -78,6 +90,24 @@ impl Solution {
     /// The bits the fields use.
     pub fn bits(&self) -> u32 {
         self.fields.iter().map(|field| field.bits).sum()
+    }
+
+    /// Its bit budget as a Markdown table: each quantity's bits, encoding and largest error.
+    pub fn budget_table(&self) -> String {
+        let mut table = String::from(
+            "| quantity | bits | encoding | largest error |\n| --- | ---: | --- | ---: |\n",
+        );
+        for field in &self.fields {
+            table.push_str(&format!(
+                "| `{}` | {} | {} | {} |\n",
+                field.quantity,
+                field.bits,
+                field.encoding,
+                field.error_text()
+            ));
+        }
+        table.push_str(&format!("| total | {} | | |\n", self.bits()));
+        table
     }
 
     /// The layout as a Rust declaration to paste.

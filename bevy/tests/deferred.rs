@@ -230,10 +230,19 @@ fn difference(a: &scene::Pixels, b: &scene::Pixels) -> scene::Pixels {
         .collect()
 }
 
-fn write_png(name: &str, pixels: &scene::Pixels) {
+/// Where the tests write their frames and tables.
+fn output(name: &str) -> std::path::PathBuf {
     let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/gbuffer-bevy");
     std::fs::create_dir_all(&folder).unwrap();
-    let file = std::fs::File::create(folder.join(name)).unwrap();
+    folder.join(name)
+}
+
+fn write_file(name: &str, text: &str) {
+    std::fs::write(output(name), text).unwrap();
+}
+
+fn write_png(name: &str, pixels: &scene::Pixels) {
+    let file = std::fs::File::create(output(name)).unwrap();
     let mut encoder =
         png::Encoder::new(std::io::BufWriter::new(file), scene::SIZE.0, scene::SIZE.1);
     encoder.set_color(png::ColorType::Rgba);
@@ -290,12 +299,28 @@ fn layouts_render_in_bevys_deferred_renderer() {
     );
     let (psnr_b, differing_b) = compare(&bevy, &through_bevy_deferred);
     let (psnr_c, differing_c) = compare(&bevy, &through_fine_normals);
-    eprintln!(
-        "(b) BevyDeferred: PSNR {psnr_b:.2} dB against Bevy's own, {differing_b} pixels differ"
+    // The README's table, which .ci/check-figures holds to this file.
+    let pixels = |count: usize| {
+        let digits = count.to_string();
+        let mut grouped = String::new();
+        for (index, digit) in digits.chars().enumerate() {
+            if index > 0 && (digits.len() - index).is_multiple_of(3) {
+                grouped.push(',');
+            }
+            grouped.push(digit);
+        }
+        grouped
+    };
+    let total = pixels(bevy.len());
+    let table = format!(
+        "| frame | PSNR against (a) | pixels that differ |\n| --- | ---: | ---: |\n\
+         | (b) `BevyDeferred`, Bevy's WebGL2 G-buffer | {psnr_b:.2} dB | {} of {total} |\n\
+         | (c) `FineNormals` | {psnr_c:.2} dB | {} of {total} |\n",
+        pixels(differing_b),
+        pixels(differing_c),
     );
-    eprintln!(
-        "(c) FineNormals: PSNR {psnr_c:.2} dB against Bevy's own, {differing_c} pixels differ"
-    );
+    eprintln!("{table}");
+    write_file("spheres.md", &table);
     // The layouts took Bevy's place (their words differ from Bevy's), and the frames stay
     // close to Bevy's own.
     assert!(differing_b > 0 && differing_c > 0);
@@ -363,6 +388,7 @@ fn the_features_layout_is_the_solvers_answer() {
         .map(|field| (field.name.clone(), field.storage_name()))
         .collect();
     assert_eq!(solved, declared);
+    write_file("features-budget.md", &solution.budget_table());
     assert_eq!((solution.bits(), solution.words), (128, 4));
 }
 
@@ -444,7 +470,6 @@ fn the_features_bevys_g_buffer_drops_render_through_a_layout() {
             ));
         }
     }
-    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/gbuffer-bevy");
-    std::fs::write(folder.join("features.md"), &table).unwrap();
+    write_file("features.md", &table);
     assert!(failures.is_empty(), "{failures:#?}");
 }
