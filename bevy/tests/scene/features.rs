@@ -5,7 +5,7 @@
 //! lightmapped plane under an ambient light that must leave the plane alone
 //! (`affects_lightmapped_meshes: false`), lit by the sun.
 
-use bevy::asset::{uuid_handle, RenderAssetUsages};
+use bevy::asset::uuid_handle;
 use bevy::light::{DirectionalLight, GlobalAmbientLight};
 use bevy::material::OpaqueRendererMethod;
 use bevy::math::Rect;
@@ -14,10 +14,10 @@ use bevy::pbr::{
     ExtendedMaterial, Lightmap, MaterialExtension, MaterialPlugin, MeshMaterial3d, StandardMaterial,
 };
 use bevy::prelude::*;
-use bevy::render::render_resource::{AsBindGroup, Extent3d, TextureDimension, TextureFormat};
+use bevy::render::render_resource::AsBindGroup;
 use bevy::shader::{Shader, ShaderRef};
 
-use super::{bumps, camera, disc, AddPlugins, Deferred, Regions, SIZE};
+use super::{bumps, camera, disc, image, AddPlugins, Deferred, Regions, SIZE};
 
 /// The spheres' radius.
 const RADIUS: f32 = 0.45;
@@ -122,28 +122,11 @@ impl MaterialExtension for ColoredOcclusion {
     }
 }
 
-/// An `size` x `size` RGBA8 linear image, each texel from its centre's (u, v).
-fn image(size: u32, texel: impl Fn(f32, f32) -> [f32; 4]) -> Image {
-    let data = (0..size * size)
-        .flat_map(|index| {
-            let (x, y) = (index % size, index / size);
-            let (u, v) = (
-                (x as f32 + 0.5) / size as f32,
-                (y as f32 + 0.5) / size as f32,
-            );
-            texel(u, v).map(|channel| (channel.clamp(0.0, 1.0) * 255.0).round() as u8)
-        })
-        .collect();
-    Image::new(
-        Extent3d {
-            width: size,
-            height: size,
-            depth_or_array_layers: 1,
-        },
-        TextureDimension::D2,
-        data,
-        TextureFormat::Rgba8Unorm,
-        RenderAssetUsages::RENDER_WORLD,
+/// The texel centre (u, v) of column `x` and row `y` of a `size` x `size` image.
+fn centre(size: u32, x: u32, y: u32) -> (f32, f32) {
+    (
+        (x as f32 + 0.5) / size as f32,
+        (y as f32 + 0.5) / size as f32,
     )
 }
 
@@ -200,7 +183,8 @@ fn setup(
         panic!("a plane has UVs");
     };
     plane.insert_attribute(Mesh::ATTRIBUTE_UV_1, uvs);
-    let light_map = images.add(image(64, |u, v| {
+    let light_map = images.add(image(64, |x, y| {
+        let (u, v) = centre(64, x, y);
         [0.3 + 0.7 * u, 0.35 + 0.4 * v, 0.9 - 0.6 * u, 1.0]
     }));
     commands.spawn((
@@ -233,7 +217,8 @@ fn setup(
         at(0),
     ));
     // Anisotropy: directions swirling around the map's centre, at full strength.
-    let swirl = images.add(image(128, |u, v| {
+    let swirl = images.add(image(128, |x, y| {
+        let (u, v) = centre(128, x, y);
         let angle = (v - 0.5).atan2(u - 0.5) + std::f32::consts::FRAC_PI_2;
         [0.5 + 0.5 * angle.cos(), 0.5 + 0.5 * angle.sin(), 1.0, 1.0]
     }));

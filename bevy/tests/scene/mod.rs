@@ -172,20 +172,15 @@ pub fn disc(app: &mut App, center: Vec3, radius: f32, inset: f32) -> Vec<bool> {
         .collect()
 }
 
-/// A tangent-space normal map of bumps, `size` x `size`, RGBA8 linear, `periods` bumps across.
-pub fn bumps(size: u32, periods: f32) -> Image {
-    let mut data = Vec::with_capacity((size * size * 4) as usize);
-    for y in 0..size {
-        for x in 0..size {
-            let (u, v) = (
-                (x as f32 / size as f32 * periods * std::f32::consts::TAU).sin(),
-                (y as f32 / size as f32 * periods * std::f32::consts::TAU).sin(),
-            );
-            let normal = Vec3::new(0.35 * u, 0.35 * v, 1.0).normalize();
-            let encoded = normal * 0.5 + Vec3::splat(0.5);
-            data.extend([encoded.x, encoded.y, encoded.z, 1.0].map(|c| (c * 255.0).round() as u8));
-        }
-    }
+/// A `size` x `size` RGBA8 linear image, each texel's channels (in [0, 1]) from its column
+/// and row.
+pub fn image(size: u32, texel: impl Fn(u32, u32) -> [f32; 4]) -> Image {
+    let data = (0..size * size)
+        .flat_map(|index| {
+            texel(index % size, index / size)
+                .map(|channel| (channel.clamp(0.0, 1.0) * 255.0).round() as u8)
+        })
+        .collect();
     Image::new(
         Extent3d {
             width: size,
@@ -197,4 +192,14 @@ pub fn bumps(size: u32, periods: f32) -> Image {
         TextureFormat::Rgba8Unorm,
         RenderAssetUsages::RENDER_WORLD,
     )
+}
+
+/// A tangent-space normal map of bumps, `size` x `size`, RGBA8 linear, `periods` bumps across.
+pub fn bumps(size: u32, periods: f32) -> Image {
+    let wave = |at: u32| (at as f32 / size as f32 * periods * std::f32::consts::TAU).sin();
+    image(size, |x, y| {
+        let normal = Vec3::new(0.35 * wave(x), 0.35 * wave(y), 1.0).normalize();
+        let encoded = normal * 0.5 + Vec3::splat(0.5);
+        [encoded.x, encoded.y, encoded.z, 1.0]
+    })
 }
