@@ -67,3 +67,27 @@ impl Patch {
         Ok(shader)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_patch_goes_after_its_text_once_or_names_the_module() {
+        let patch = ISOTROPIC_WITHOUT_ANISOTROPY[1];
+        let source = format!("fn a() {{}}\n{}\n    let N = 1;\n}}\n", patch.after);
+        let shader = Shader::from_wgsl(source, "test.wgsl");
+        let Source::Wgsl(patched) = patch.apply(&shader).unwrap().source else {
+            panic!("WGSL stays WGSL");
+        };
+        assert!(patched.contains(&format!("{}{}\n    let N = 1;", patch.after, patch.insert)));
+        // Bevy's text changed (or repeated): the plugin says which module, not a silent no-op.
+        let other = Shader::from_wgsl("fn a() {}\n", "test.wgsl");
+        let error = patch.apply(&other).unwrap_err().to_string();
+        assert!(
+            error.contains("embedded://bevy_pbr/render/pbr_functions.wgsl is not Bevy 0.19.1's")
+        );
+        let twice = Shader::from_wgsl(format!("{0}\n{0}\n", patch.after), "test.wgsl");
+        assert!(patch.apply(&twice).is_err());
+    }
+}
