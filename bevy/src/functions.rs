@@ -176,17 +176,21 @@ fn read_back(quantity: Quantity, field: &str) -> String {
 /// fragment shader computes anisotropy; this crate turns on the Cargo feature that binds the
 /// texture it reads).
 pub fn shader_defs(mapping: &[(String, Quantity)]) -> Vec<&'static str> {
-    let holds = |wanted| mapping.iter().any(|(_, quantity)| *quantity == wanted);
     let mut defs = Vec::new();
-    if holds(Quantity::AnisotropyStrength) {
+    if holds(mapping, Quantity::AnisotropyStrength) {
         defs.push("STANDARD_MATERIAL_ANISOTROPY");
         defs.push("PBR_ANISOTROPY_TEXTURE_SUPPORTED");
     }
-    if holds(Quantity::DiffuseTransmission) {
+    if holds(mapping, Quantity::DiffuseTransmission) {
         defs.push("STANDARD_MATERIAL_DIFFUSE_TRANSMISSION");
         defs.push("STANDARD_MATERIAL_DIFFUSE_OR_SPECULAR_TRANSMISSION");
     }
     defs
+}
+
+/// Whether a field holds `quantity`.
+pub fn holds(mapping: &[(String, Quantity)], quantity: Quantity) -> bool {
+    field_of(mapping, quantity).is_some()
 }
 
 /// The field that holds `quantity`, if one does.
@@ -230,8 +234,7 @@ pub fn deferred_functions_wgsl(
         let _ = writeln!(stores, "    texel.{field} = {};", stored(*quantity));
         reads.push_str(&read_back(*quantity, field));
     }
-    let holds_anisotropy = field_of(mapping, Quantity::AnisotropyTangent).is_some();
-    let helpers = if holds_anisotropy {
+    let helpers = if holds(mapping, Quantity::AnisotropyTangent) {
         ORTHONORMAL_TANGENT
     } else {
         ""

@@ -126,18 +126,18 @@ struct Replacement {
 
 impl<L: GBufferLayout + 'static> Plugin for GBufferPlugin<L> {
     fn build(&self, app: &mut App) {
-        let (source, defs) = self
-            .deferred_functions()
-            .and_then(|source| Ok((source, self.shader_defs()?)))
+        let mapping = self
+            .mapping()
             .unwrap_or_else(|error| panic!("GBufferPlugin: {error}"));
+        let source = functions::deferred_functions_wgsl(&L::layout(), L::WGSL, &mapping);
         let mut module = Shader::from_wgsl(source, "gbuffer-bevy/pbr_deferred_functions.wgsl");
         // naga_oil gives a module's defs to every shader that imports it.
-        module.shader_defs = defs
-            .iter()
+        module.shader_defs = functions::shader_defs(&mapping)
+            .into_iter()
             .map(|def| ShaderDefVal::Bool(def.to_string(), true))
             .collect();
         let assets = app.world().resource::<AssetServer>();
-        let patches = if defs.contains(&"STANDARD_MATERIAL_ANISOTROPY") {
+        let patches = if functions::holds(&mapping, Quantity::AnisotropyStrength) {
             patch::ISOTROPIC_WITHOUT_ANISOTROPY
                 .iter()
                 .map(|patch| (assets.load::<Shader>(patch.path), *patch))
@@ -156,28 +156,24 @@ impl<L: GBufferLayout + 'static> Plugin for GBufferPlugin<L> {
 /// Once each of Bevy's shaders has loaded, puts the layout's module in its place or patches
 /// it (once): the shader cache sees the asset change and rebuilds the pipelines that use it.
 fn replace_bevy_shaders(mut replacement: ResMut<Replacement>, mut shaders: ResMut<Assets<Shader>>) {
-    let loaded = |handle: &Handle<Shader>| shaders.contains(handle);
-    if replacement
-        .module
-        .as_ref()
-        .is_some_and(|(handle, _)| loaded(handle))
-    {
-        if let Some((handle, module)) = replacement.module.take() {
+    if let Some((handle, module)) = replacement.module.take() {
+        if shaders.contains(&handle) {
             let _ = shaders.insert(&handle, module);
+        } else {
+            replacement.module = Some((handle, module));
         }
     }
-    let (ready, waiting): (Vec<_>, Vec<_>) = replacement
-        .patches
-        .drain(..)
-        .partition(|(handle, _)| shaders.contains(handle));
-    replacement.patches = waiting;
-    for (handle, patch) in ready {
-        let patched = shaders
-            .get(&handle)
-            .map(|shader| patch.apply(shader))
-            .expect("loaded");
-        let _ = shaders.insert(&handle, patched.unwrap_or_else(|error| panic!("{error}")));
+    let mut waiting = Vec::new();
+    for (handle, patch) in replacement.patches.drain(..) {
+        match shaders.get(&handle).map(|shader| patch.apply(shader)) {
+            Some(patched) => {
+                let patched = patched.unwrap_or_else(|error| panic!("{error}"));
+                let _ = shaders.insert(&handle, patched);
+            }
+            None => waiting.push((handle, patch)),
+        }
     }
+    replacement.patches = waiting;
 }
 
 /// Whether the layout's module has taken Bevy's place and Bevy's lighting modules are patched

@@ -17,7 +17,7 @@ use bevy::prelude::*;
 use bevy::render::render_resource::AsBindGroup;
 use bevy::shader::{Shader, ShaderRef};
 
-use super::{bumps, camera, disc, image, AddPlugins, Deferred, Regions, SIZE};
+use super::{bumps, camera, disc, image, region, view, AddPlugins, Deferred, Regions};
 
 /// The spheres' radius.
 const RADIUS: f32 = 0.45;
@@ -62,13 +62,9 @@ pub fn regions(app: &mut App) -> Regions {
         .iter()
         .map(|(name, centre)| (*name, disc(app, *centre, RADIUS, 2.0)))
         .collect();
-    let mut cameras = app.world_mut().query::<(&Camera, &GlobalTransform)>();
-    let (camera, transform) = cameras.single(app.world()).expect("one camera");
-    let front = camera.world_to_viewport(transform, PLANE_FRONT).unwrap();
-    let plane = (0..SIZE.1)
-        .flat_map(|y| (0..SIZE.0).map(move |_| y as f32 + 0.5 > front.y))
-        .collect();
-    regions.push(("lightmapped plane", plane));
+    let (camera, transform) = view(app);
+    let front = camera.world_to_viewport(&transform, PLANE_FRONT).unwrap();
+    regions.push(("lightmapped plane", region(|pixel| pixel.y > front.y)));
     regions
 }
 
@@ -204,51 +200,75 @@ fn setup(
 
     let sphere = meshes.add(sphere());
     let at = |index: usize| Transform::from_translation(SPHERES[index].1);
-    // Specular tint: an orange highlight on a dark dielectric.
-    commands.spawn((
-        Mesh3d(sphere.clone()),
-        MeshMaterial3d(materials.add(StandardMaterial {
-            base_color: Color::srgb(0.12, 0.12, 0.15),
-            perceptual_roughness: 0.3,
-            reflectance: 1.0,
-            specular_tint: Color::srgb(1.0, 0.45, 0.1),
-            ..default()
-        })),
-        at(0),
-    ));
-    // Anisotropy: directions swirling around the map's centre, at full strength.
+    // Anisotropy's directions swirl around the map's centre, at full strength.
     let swirl = images.add(image(128, |x, y| {
         let (u, v) = centre(128, x, y);
         let angle = (v - 0.5).atan2(u - 0.5) + std::f32::consts::FRAC_PI_2;
         [0.5 + 0.5 * angle.cos(), 0.5 + 0.5 * angle.sin(), 1.0, 1.0]
     }));
-    commands.spawn((
-        Mesh3d(sphere.clone()),
-        MeshMaterial3d(materials.add(StandardMaterial {
-            base_color: Color::srgb(0.55, 0.55, 0.6),
-            perceptual_roughness: 0.35,
-            anisotropy_strength: 1.0,
-            anisotropy_texture: Some(swirl),
-            ..default()
-        })),
-        at(1),
-    ));
-    // A bumpy clearcoat over a smooth rough base.
-    commands.spawn((
-        Mesh3d(sphere.clone()),
-        MeshMaterial3d(materials.add(StandardMaterial {
-            base_color: Color::srgb(0.1, 0.35, 0.8),
-            perceptual_roughness: 0.7,
-            clearcoat: 1.0,
-            clearcoat_perceptual_roughness: 0.2,
-            clearcoat_normal_texture: Some(images.add(bumps(256, 6.0))),
-            ..default()
-        })),
-        at(2),
-    ));
+    // The standard materials, each at its sphere's index in SPHERES.
+    let standard = [
+        // Specular tint: an orange highlight on a dark dielectric.
+        (
+            0,
+            StandardMaterial {
+                base_color: Color::srgb(0.12, 0.12, 0.15),
+                perceptual_roughness: 0.3,
+                reflectance: 1.0,
+                specular_tint: Color::srgb(1.0, 0.45, 0.1),
+                ..default()
+            },
+        ),
+        // Anisotropy along the swirl.
+        (
+            1,
+            StandardMaterial {
+                base_color: Color::srgb(0.55, 0.55, 0.6),
+                perceptual_roughness: 0.35,
+                anisotropy_strength: 1.0,
+                anisotropy_texture: Some(swirl),
+                ..default()
+            },
+        ),
+        // A bumpy clearcoat over a smooth rough base.
+        (
+            2,
+            StandardMaterial {
+                base_color: Color::srgb(0.1, 0.35, 0.8),
+                perceptual_roughness: 0.7,
+                clearcoat: 1.0,
+                clearcoat_perceptual_roughness: 0.2,
+                clearcoat_normal_texture: Some(images.add(bumps(256, 6.0))),
+                ..default()
+            },
+        ),
+        // Diffuse transmission: the sun shows through on the side away from it. Bevy renders
+        // such a material forward unless told to render it deferred, as the deferred frames do.
+        (
+            4,
+            StandardMaterial {
+                base_color: Color::srgb(0.9, 0.6, 0.3),
+                perceptual_roughness: 0.6,
+                diffuse_transmission: 0.8,
+                opaque_render_method: if deferred.0 {
+                    OpaqueRendererMethod::Deferred
+                } else {
+                    OpaqueRendererMethod::Auto
+                },
+                ..default()
+            },
+        ),
+    ];
+    for (index, material) in standard {
+        commands.spawn((
+            Mesh3d(sphere.clone()),
+            MeshMaterial3d(materials.add(material)),
+            at(index),
+        ));
+    }
     // Coloured occlusion: bands of orange occlusion, seen in the ambient light.
     commands.spawn((
-        Mesh3d(sphere.clone()),
+        Mesh3d(sphere),
         MeshMaterial3d(occluded.add(ExtendedMaterial {
             base: StandardMaterial {
                 base_color: Color::srgb(0.8, 0.8, 0.8),
@@ -260,22 +280,5 @@ fn setup(
             },
         })),
         at(3),
-    ));
-    // Diffuse transmission: the sun shows through on the side away from it. Bevy renders such
-    // a material forward unless told to render it deferred, as the deferred frames do.
-    commands.spawn((
-        Mesh3d(sphere),
-        MeshMaterial3d(materials.add(StandardMaterial {
-            base_color: Color::srgb(0.9, 0.6, 0.3),
-            perceptual_roughness: 0.6,
-            diffuse_transmission: 0.8,
-            opaque_render_method: if deferred.0 {
-                OpaqueRendererMethod::Deferred
-            } else {
-                OpaqueRendererMethod::Auto
-            },
-            ..default()
-        })),
-        at(4),
     ));
 }

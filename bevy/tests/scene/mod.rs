@@ -156,20 +156,31 @@ pub fn target(commands: &mut Commands, images: &mut Assets<Image>) -> Handle<Ima
     target
 }
 
+/// The scene's camera and where it is, once the app has run.
+pub fn view(app: &mut App) -> (Camera, GlobalTransform) {
+    let mut cameras = app.world_mut().query::<(&Camera, &GlobalTransform)>();
+    let (camera, transform) = cameras.single(app.world()).expect("one camera");
+    (camera.clone(), *transform)
+}
+
+/// Whether each pixel, row by row, is in a region, from its centre in viewport coordinates.
+pub fn region(inside: impl Fn(Vec2) -> bool) -> Vec<bool> {
+    (0..SIZE.1)
+        .flat_map(|y| (0..SIZE.0).map(move |x| Vec2::new(x as f32 + 0.5, y as f32 + 0.5)))
+        .map(inside)
+        .collect()
+}
+
 /// Pixels within a disc: the screen-space projection of a sphere at `center` of `radius`,
 /// shrunk by `inset` pixels to leave its silhouette out.
 pub fn disc(app: &mut App, center: Vec3, radius: f32, inset: f32) -> Vec<bool> {
-    let mut cameras = app.world_mut().query::<(&Camera, &GlobalTransform)>();
-    let (camera, transform) = cameras.single(app.world()).expect("one camera");
-    let centre = camera.world_to_viewport(transform, center).unwrap();
+    let (camera, transform) = view(app);
+    let centre = camera.world_to_viewport(&transform, center).unwrap();
     let edge = camera
-        .world_to_viewport(transform, center + transform.right() * radius)
+        .world_to_viewport(&transform, center + transform.right() * radius)
         .unwrap();
     let reach = centre.distance(edge) - inset;
-    (0..SIZE.1)
-        .flat_map(|y| (0..SIZE.0).map(move |x| (x, y)))
-        .map(|(x, y)| Vec2::new(x as f32 + 0.5, y as f32 + 0.5).distance(centre) < reach)
-        .collect()
+    region(|pixel| pixel.distance(centre) < reach)
 }
 
 /// A `size` x `size` RGBA8 linear image, each texel's channels (in [0, 1]) from its column
