@@ -1,9 +1,13 @@
 //! A shader as each API's compiler sees it. WGSL is translated by naga, to GLSL ES 3.10 for GL
 //! (panfrost's newest) and to SPIR-V for Vulkan; GLSL ES is given to GL drivers as written.
 //! A fragment shader needs a vertex shader to link with: one is made that writes what the
-//! fragment shader reads, each input from the vertex index. Not zero: Mesa's linkers propagate
-//! a constant output into the next stage, and the fragment shader's work on it would fold away
-//! (a pack of zeros costs two Adreno instructions where a pack of varyings costs thirty).
+//! fragment shader reads, as a renderer's would, from values no compiler can know: on GL each
+//! input from a vertex attribute of its own, on Vulkan each from its own words of a storage
+//! buffer. Neither a constant nor one value for every component: Mesa's linkers propagate a
+//! constant output into the next stage (a pack of zeros costs two Adreno instructions where a
+//! pack of varyings costs thirty), and merge outputs that hold the same value, so a
+//! `vec4(gl_VertexID)` input makes the fragment shader compute one channel for four (an rgba8
+//! pack costs 18 Mali-G610 instructions from it, 30 from an attribute).
 
 use std::sync::Arc;
 
@@ -180,11 +184,20 @@ impl Shader {
             .iter()
             .find(|point| &point.name == entry)
             .expect("the entry point was found when the shader was made");
-        let descriptors = descriptors(module);
+        let mut descriptors = descriptors(module);
         let (vertex, colors) = match self.stage {
             Stage::Compute => (None, Vec::new()),
             Stage::Fragment => {
-                let vertex_wgsl = companion_vertex_wgsl(module, &entry_point.function);
+                // The companion's buffer sits in the set after the fragment shader's last.
+                let set = module
+                    .global_variables
+                    .iter()
+                    .filter_map(|(_, global)| global.binding.as_ref())
+                    .map(|binding| binding.group + 1)
+                    .max()
+                    .unwrap_or(0);
+                descriptors.push(format!("{set},0,storage"));
+                let vertex_wgsl = companion_vertex_wgsl(module, &entry_point.function, set);
                 let (vertex_module, vertex_info) =
                     naga_glsl::validate(&vertex_wgsl, naga::valid::Capabilities::empty())
                         .map_err(|error| format!("the companion vertex shader: {error}"))?;
@@ -279,26 +292,39 @@ fn located(
     }
 }
 
-/// The WGSL type of an input, and a value of it made from the vertex index `index`.
-fn wgsl_type_and_value(module: &naga::Module, ty: naga::Handle<naga::Type>) -> (String, String) {
+/// The WGSL type of an input, and a value of it read from the companion's buffer at `word`
+/// (the input's first word for this vertex): one word a component.
+fn wgsl_type_and_value(
+    module: &naga::Module,
+    ty: naga::Handle<naga::Type>,
+    word: &str,
+) -> (String, String, u32) {
     let scalar = |scalar: naga::Scalar| match scalar.kind {
         ScalarKind::Sint => "i32",
         ScalarKind::Uint => "u32",
         _ => "f32",
     };
-    match module.types[ty].inner {
-        TypeInner::Vector { size, scalar: s } => {
-            let ty = format!("vec{}<{}>", size as u8, scalar(s));
-            let value = format!("{ty}({}(index))", scalar(s));
-            (ty, value)
-        }
-        TypeInner::Scalar(s) => (scalar(s).to_string(), format!("{}(index)", scalar(s))),
-        _ => ("f32".to_string(), "f32(index)".to_string()),
+    let (components, s) = match module.types[ty].inner {
+        TypeInner::Vector { size, scalar } => (size as u32, Some(scalar)),
+        TypeInner::Scalar(scalar) => (1, Some(scalar)),
+        _ => (1, None),
+    };
+    let component = s.map_or("f32", scalar);
+    let words: Vec<String> = (0..components)
+        .map(|index| format!("bitcast<{component}>(inputs[{word} + {index}u])"))
+        .collect();
+    if components == 1 {
+        (component.to_string(), words.join(""), 1)
+    } else {
+        let ty = format!("vec{components}<{component}>");
+        let value = format!("{ty}({})", words.join(", "));
+        (ty, value, components)
     }
 }
 
-/// A WGSL vertex shader whose outputs are the fragment shader's inputs, each the vertex index.
-fn companion_vertex_wgsl(module: &naga::Module, function: &naga::Function) -> String {
+/// A WGSL vertex shader whose outputs are the fragment shader's inputs, each component its own
+/// word of a storage buffer at `@group(set) @binding(0)`, per vertex.
+fn companion_vertex_wgsl(module: &naga::Module, function: &naga::Function, set: u32) -> String {
     let inputs: Vec<_> = function
         .arguments
         .iter()
@@ -306,23 +332,27 @@ fn companion_vertex_wgsl(module: &naga::Module, function: &naga::Function) -> St
         .collect();
     let mut members = String::from("    @builtin(position) position: vec4<f32>,\n");
     let mut writes = String::new();
+    let mut words = 0;
     for (location, interpolation, ty) in inputs {
         let flat = match interpolation {
             Some(Interpolation::Flat) => " @interpolate(flat)",
             Some(Interpolation::Linear) => " @interpolate(linear)",
             _ => "",
         };
-        let (ty, value) = wgsl_type_and_value(module, ty);
+        let (ty, value, used) = wgsl_type_and_value(module, ty, &format!("first + {words}u"));
+        words += used;
         members.push_str(&format!(
             "    @location({location}){flat} input{location}: {ty},\n"
         ));
         writes.push_str(&format!("    out.input{location} = {value};\n"));
     }
     format!(
-        "// Writes what the costed fragment shader reads, from the vertex index.\n\
+        "// Writes what the costed fragment shader reads, each component from its own word of a\n\
+         // buffer: values no compiler can fold or merge.\n\
+         @group({set}) @binding(0) var<storage, read> inputs: array<u32>;\n\n\
          struct Varyings {{\n{members}}}\n\n\
          @vertex\nfn main(@builtin(vertex_index) index: u32) -> Varyings {{\n    \
-         var out: Varyings;\n{writes}    \
+         var out: Varyings;\n    let first = index * {words}u;\n{writes}    \
          let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));\n    \
          out.position = vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);\n    \
          return out;\n}}\n"
@@ -362,7 +392,7 @@ fn default_colors(module: &naga::Module, function: &naga::Function) -> Vec<Strin
 /// A GLSL ES vertex shader, under the fragment shader's `#version`, that writes each of the
 /// fragment shader's `in` variables (as declared at the start of a line, naga's
 /// `smooth in highp vec4 _vs2fs_location0;` as a user's `layout(location = 1) flat in uint id;`)
-/// from the vertex index, over a fullscreen triangle.
+/// from a vertex attribute of its own, over a fullscreen triangle.
 fn companion_vertex_glsl(fragment: &str) -> String {
     let version = fragment
         .lines()
@@ -371,18 +401,21 @@ fn companion_vertex_glsl(fragment: &str) -> String {
         .trim();
     let mut declarations = String::new();
     let mut writes = String::new();
-    for line in fragment.lines() {
-        let Some((qualifiers, declaration)) = input_declaration(line) else {
-            continue;
-        };
+    for (attribute, (qualifiers, declaration)) in
+        fragment.lines().filter_map(input_declaration).enumerate()
+    {
         let mut words = declaration.split_whitespace().collect::<Vec<_>>();
         let name = words.pop().unwrap_or_default().trim_end_matches(';');
         let ty = words.last().copied().unwrap_or("float");
-        declarations.push_str(&format!("{qualifiers}out {declaration}\n"));
-        writes.push_str(&format!("    {name} = {ty}(gl_VertexID);\n"));
+        declarations.push_str(&format!(
+            "layout(location = {attribute}) in highp {ty} attribute{attribute};\n\
+             {qualifiers}out {declaration}\n"
+        ));
+        writes.push_str(&format!("    {name} = attribute{attribute};\n"));
     }
     format!(
-        "{version}\n// Writes what the costed fragment shader reads, from the vertex index.\n\
+        "{version}\n// Writes what the costed fragment shader reads, each from a vertex attribute of its\n\
+         // own: values no compiler can fold or merge.\n\
          precision highp float;\nprecision highp int;\n{declarations}\
          void main() {{\n{writes}    \
          vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n    \
@@ -427,7 +460,9 @@ mod tests {
         assert!(vertex.starts_with("#version 310 es\n"));
         assert!(vertex.contains("smooth out highp vec4 _vs2fs_location0;"));
         assert!(vertex.contains("layout(location = 1) flat out highp uint id;"));
-        assert!(vertex.contains("    id = uint(gl_VertexID);"));
+        assert!(vertex.contains("layout(location = 1) in highp uint attribute1;"));
+        assert!(vertex.contains("    id = attribute1;"));
+        assert!(vertex.contains("    _vs2fs_location0 = attribute0;"));
         assert!(!vertex.contains("word"));
     }
 
@@ -443,7 +478,8 @@ mod tests {
         let vertex = gles.vertex.unwrap();
         assert!(vertex.contains("layout(location = 1) flat out uint _vs2fs_location1;"));
         let vulkan = shader.vulkan().unwrap();
-        assert_eq!(vulkan.descriptors, ["0,0,uniform"]);
+        // The companion's buffer, in the set after the fragment shader's.
+        assert_eq!(vulkan.descriptors, ["0,0,uniform", "1,0,storage"]);
         assert_eq!(vulkan.colors, ["r32ui"]);
         assert_eq!(vulkan.shader[0], 0x0723_0203, "SPIR-V's magic number");
         assert!(Shader::wgsl(wgsl, "missing")

@@ -64,9 +64,8 @@ fn the_helper_reports_each_shader_on_every_target() {
                     "gl", "fragment", &good, &vertex, "--", "fragment", &broken, &vertex,
                 ],
             ),
-            Api::Vulkan => helper(
-                &target,
-                &[
+            Api::Vulkan => {
+                let mut arguments = vec![
                     "vulkan",
                     "compute",
                     &compute_spv,
@@ -82,8 +81,13 @@ fn the_helper_reports_each_shader_on_every_target() {
                     "shade",
                     "--color",
                     "r32ui",
-                ],
-            ),
+                ];
+                // The companion vertex shader's buffer.
+                for descriptor in &shade.descriptors {
+                    arguments.extend(["--descriptor", descriptor]);
+                }
+                helper(&target, &arguments)
+            }
         };
         let stdout = String::from_utf8_lossy(&output.stdout);
         let what = format!(
