@@ -15,6 +15,7 @@ use bevy::light::{DirectionalLight, GlobalAmbientLight};
 use bevy::mesh::VertexAttributeValues;
 use bevy::pbr::DefaultOpaqueRendererMethod;
 use bevy::prelude::*;
+use bevy::render::pipelined_rendering::PipelinedRenderingPlugin;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, TextureUsages};
 use bevy::render::view::screenshot::{save_to_disk, Screenshot};
 use bevy::render::RenderPlugin;
@@ -82,15 +83,19 @@ fn main() {
                 synchronous_pipeline_compilation: true,
                 ..default()
             })
+            // The render app stays in the app, where `settle` reads its pipelines.
+            .disable::<PipelinedRenderingPlugin>()
             .disable::<WinitPlugin>(),
         GBufferPlugin::<Features>::new(),
     ))
     .add_systems(Startup, (scene, image_camera));
     app.finish();
     app.cleanup();
-    // Frames enough for the pipelines to compile and the layout's module to take Bevy's place.
-    for _ in 0..20 {
-        app.update();
+    // Until every pipeline is compiled, the layout's module in Bevy's place and nothing new
+    // asked for over five updates: the frame the app will keep drawing.
+    if let Err(reason) = gbuffer_bevy::settle(&mut app, 5, 200) {
+        eprintln!("{reason}");
+        std::process::exit(1);
     }
     let target = app.world().resource::<Target>().0.clone();
     let path = PathBuf::from(OUTPUT);

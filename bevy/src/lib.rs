@@ -45,6 +45,7 @@
 pub mod functions;
 mod patch;
 pub mod quantity;
+pub mod ready;
 pub mod solve;
 
 use std::marker::PhantomData;
@@ -57,6 +58,7 @@ use gbuffer::GBufferLayout;
 use patch::Patch;
 
 pub use quantity::{MappingError, Quantity};
+pub use ready::{readiness, settle, Readiness};
 pub use solve::{solve, BevyScene, Precision, Solution, SolveError};
 
 /// Where Bevy 0.19 keeps the module the plugin replaces.

@@ -13,6 +13,7 @@ use bevy::core_pipeline::prepass::{DeferredPrepass, DepthPrepass};
 use bevy::image::Image;
 use bevy::pbr::DefaultOpaqueRendererMethod;
 use bevy::prelude::*;
+use bevy::render::pipelined_rendering::PipelinedRenderingPlugin;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, TextureUsages};
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy::render::RenderPlugin;
@@ -39,9 +40,10 @@ pub struct Frame {
 }
 
 /// Renders a scene (`scene` adds its setup, and its material plugins) deferred or forward,
-/// with `plugin` added after Bevy's own (none: Bevy's G-buffer), frames enough for every
-/// pipeline and the replaced module to be in place, and returns the last. `regions` finds the
-/// scene's regions from the app, once it has rendered.
+/// with `plugin` added after Bevy's own (none: Bevy's G-buffer), and returns its frame once
+/// the frame is final: every pipeline compiled and the same for [`STEADY`] updates, the
+/// layout's module in Bevy's place, and two captures [`STEADY`] updates apart identical.
+/// `regions` finds the scene's regions from the app, once it has rendered.
 pub fn render(
     deferred: bool,
     scene: AddPlugins,
@@ -68,6 +70,8 @@ pub fn render(
                     ..default()
                 })
                 .disable::<bevy::log::LogPlugin>()
+                // The render app stays in the app, where its pipeline cache can be read.
+                .disable::<PipelinedRenderingPlugin>()
                 // The example's window needs winit; headless, nothing does.
                 .disable::<bevy::winit::WinitPlugin>(),
         );
@@ -78,9 +82,32 @@ pub fn render(
     scene(&mut app);
     app.finish();
     app.cleanup();
-    for _ in 0..20 {
+    let updates =
+        gbuffer_bevy::settle(&mut app, STEADY, 200).unwrap_or_else(|reason| panic!("{reason}"));
+    eprintln!("settled after {updates} updates");
+    // The frame is the layout's only if its module took Bevy's place before it.
+    assert_eq!(gbuffer_bevy::is_replaced(&app), replacing);
+    let pixels = capture(&mut app);
+    for _ in 0..STEADY {
         app.update();
     }
+    let again = capture(&mut app);
+    let changed = pixels.iter().zip(&again).filter(|(a, b)| a != b).count();
+    assert_eq!(
+        changed, 0,
+        "{changed} pixels changed after the frame settled"
+    );
+    Frame {
+        pixels,
+        regions: regions(&mut app),
+    }
+}
+
+/// Updates the rendering must hold still for before its frame counts as final.
+pub const STEADY: usize = 5;
+
+/// The target's pixels, read back by a screenshot a frame or two after this update.
+fn capture(app: &mut App) -> Pixels {
     let captured: Arc<Mutex<Option<Pixels>>> = Arc::default();
     let target = app.world().resource::<Target>().0.clone();
     let sink = captured.clone();
@@ -98,12 +125,12 @@ pub fn render(
     for _ in 0..20 {
         app.update();
         if let Some(pixels) = captured.lock().unwrap().take() {
-            // The frame is the layout's only if its module took Bevy's place before it.
-            assert_eq!(gbuffer_bevy::is_replaced(&app), replacing);
-            return Frame {
-                pixels,
-                regions: regions(&mut app),
-            };
+            assert_eq!(
+                pixels.len(),
+                (SIZE.0 * SIZE.1) as usize,
+                "a frame of another size"
+            );
+            return pixels;
         }
     }
     panic!("no screenshot after 20 frames");
