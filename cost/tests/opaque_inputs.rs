@@ -58,6 +58,10 @@ fn a_fragment_shader_costs_what_it_costs_beside_attributes() {
         ];
         let found = statistics(target, &shaders);
         let (companion, attributes, merged) = (cost(&found[0]), cost(&found[1]), cost(&found[2]));
+        eprintln!(
+            "{target} (instructions, cycles): companion {companion:?}, attribute-fed \
+             {attributes:?}, merged {merged:?}"
+        );
         assert_eq!(
             companion, attributes,
             "{target}: companion against attributes"
