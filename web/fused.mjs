@@ -1,6 +1,6 @@
 // The reference scene's deferred frame in one WebGL 2 pixel local storage pass: the mesh
 // writes the G-buffer into the planes, four decals repaint it in place, a fullscreen draw puts
-// the sun and the environment into its light, 32 point lights add theirs through their volumes,
+// the environment's, the sun's and the 32 point lights' light into its light accumulation,
 // and the resolve tone-maps it (the sky where there is no surface) into the one colour target.
 // The planes start at zero on tile and are never stored: on a tiler the G-buffer costs no
 // bandwidth at all. The same draws, in the same order and depth states, as the GLES renderer's
@@ -178,10 +178,7 @@ export function renderFrame(gl, host, scene) {
   for (let decal = 0; decal < scene.DECAL_COUNT; decal += 1) {
     draw("decal", "volume", scene.POINT_LIGHT_COUNT + decal);
   }
-  draw("sun and environment", "fullscreen");
-  for (let light = 0; light < scene.POINT_LIGHT_COUNT; light += 1) {
-    draw("point light", "volume", light);
-  }
+  draw("lighting", "fullscreen");
   draw("resolve", "fullscreen");
   gl.depthFunc(gl.EQUAL);
   draw("sky", "fullscreen");

@@ -11,7 +11,7 @@
 //!   front end, which is Mesa's alike on every driver and which `gles_includes` runs with every
 //!   preamble on llvmpipe; a compile under qemu costs about a tenth of a second, so the back
 //!   ends get the two that differ most;
-//! - the fused renderer's six GLES programs for every layout it renders, on both fetch paths,
+//! - the fused renderer's five GLES programs for every layout it renders, on both fetch paths,
 //!   exactly as the GLES backend links them, on all four.
 //!
 //! Each must compile and link, and the compiler must report its statistics. No Mesa driver

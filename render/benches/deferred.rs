@@ -4,7 +4,8 @@
 //! Arm's tile-memory article (1 BU = width x height x 4 bytes), and the median frame time at
 //! 1280x720 and 1920x1080 (wgpu: timestamp queries where the adapter has them; GLES and Vulkan:
 //! wall clock around a synchronised frame). Then every wgpu configuration's PSNR against the
-//! CPU reference. Run with `cargo bench -p gbuffer-render --bench deferred`.
+//! CPU reference. Run with `cargo bench -p gbuffer-render --bench deferred`. Between them,
+//! where the Vulkan paths' time goes: each fused stage and each two-pass pass left out in turn.
 //!
 //! On a CPU rasteriser (llvmpipe, lavapipe) there is no tile memory: its times are a CPU's,
 //! and the traffic the fused paths save is counted, not felt.
@@ -13,7 +14,7 @@ use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::compare;
 use gbuffer_render::named::Named;
-use gbuffer_render::on_tile::{Path, TileOptions};
+use gbuffer_render::on_tile::{Path, Stage, TileOptions};
 use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
 use gbuffer_render::recording::Recording;
 use gbuffer_render::reference;
@@ -62,6 +63,65 @@ fn row(name: &str, recording: &Recording, times: [String; 2]) {
         times[0],
         times[1]
     );
+}
+
+/// Where the Vulkan paths' time goes, at 1280x720: each stage of the fused frame (and each
+/// pass of the two-pass frame) timed by leaving it out, its share the whole frame's median less
+/// the median without it.
+fn stages(progress: &dyn Fn(&str)) {
+    let vulkan = match VulkanRenderer::new(progress) {
+        Ok(vulkan) => vulkan,
+        Err(error) => return eprintln!("Vulkan: {error}"),
+    };
+    let median = |times: Result<Vec<f64>, String>| -> Option<f64> {
+        let mut times = times.map_err(|error| eprintln!("{error}")).ok()?;
+        times.sort_by(f64::total_cmp);
+        times.get(times.len() / 2).map(|time| time * 1e3)
+    };
+    println!(
+        "\nVulkan at {}x{}, each stage left out (median of {FRAMES} frames, ms):",
+        SIZES[0].0, SIZES[0].1
+    );
+    println!(
+        "{:<36} {:>10} {:>13} {:>10}",
+        "path / stage", "frame ms", "without ms", "stage ms"
+    );
+    for layout in [PackedLayout::MobileMetallic, PackedLayout::FutureMetallic] {
+        for (path, names) in [
+            (
+                Path::Subpass,
+                Stage::ALL
+                    .iter()
+                    .map(|stage| stage.name())
+                    .collect::<Vec<_>>(),
+            ),
+            (Path::TwoPass, vec!["gbuffer", "lighting and resolve"]),
+        ] {
+            let tile = TileOptions {
+                options: options(GBuffer::Packed(layout), SIZES[0]),
+                path,
+            };
+            let Some(whole) = median(vulkan.time_frames(&tile, FRAMES)) else {
+                continue;
+            };
+            println!(
+                "{:<36} {whole:>10.1}",
+                format!("{} {}", path.name(), layout.name())
+            );
+            for name in names {
+                if let Some(without) =
+                    median(vulkan.time_frames_leaving_out(&tile, FRAMES, &[name]))
+                {
+                    println!(
+                        "{:<36} {:>10} {without:>13.1} {:>10.1}",
+                        format!("  {name}"),
+                        "",
+                        whole - without
+                    );
+                }
+            }
+        }
+    }
 }
 
 fn main() {
@@ -137,6 +197,8 @@ fn main() {
             Err(error) => eprintln!("Vulkan: {error}"),
         }
     }
+
+    stages(&progress);
 
     // Every wgpu configuration against the CPU reference, at a size it renders quickly.
     let (width, height) = (320, 180);

@@ -3,7 +3,7 @@
 //! the G-buffer in planes that are cleared on tile and never stored; only the output is.
 //!
 //! The page (`web/fused.mjs`, plain JavaScript) holds the host's calls; this module makes what
-//! it loads, as files: the six programs in GLSL ES 3.00 (the renderer's WGSL translated by naga,
+//! it loads, as files: the five programs in GLSL ES 3.00 (the renderer's WGSL translated by naga,
 //! the layout's WebGL include as generated, the stages' `main`s without `discard`, which pixel
 //! local storage forbids: the GLES paths' programs in WebGL's dialect), the texture unit of
 //! each sampler uniform (GLSL ES 3.00 has no binding qualifiers, and the units are the

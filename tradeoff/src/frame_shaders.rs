@@ -2,15 +2,14 @@
 //! G-buffer pass and its per-pixel lighting in three forms, compiled as GLES drivers see them
 //! (`gbuffer-cost`):
 //!
-//! - two-pass: the wgpu passes translated to GLSL ES, the G-buffer read back as textures
-//!   (`gbuffer_main`; `lighting_main`, the sun and the environment on every pixel, with
-//!   positions from the texel as on GL);
+//! - two-pass: the on-tile backends' two passes translated to GLSL ES, the G-buffer read back
+//!   as textures (`gbuffer_main`; `lighting_resolve_main`, the environment, the sun, the 32
+//!   point lights and the tone mapping on every pixel, with positions from the texel as on GL);
 //! - fused packed and fused native: the fused GLES programs, the G-buffer read by framebuffer
-//!   fetch as packed words or in its formats (the geometry stage; the sun-and-environment
-//!   stage).
+//!   fetch as packed words or in its formats (the geometry stage; the lighting stage, the same
+//!   light, and the resolve, summed).
 //!
-//! The point lights and decals are left out (they shade only the pixels their volumes cover),
-//! and so is the tone mapping, a pass of its own in every form. A fused native form whose
+//! The decals are left out (they shade only the pixels their volumes cover). A fused native form whose
 //! attachments and output pass the eight draw buffers both drivers offer is left out, as the
 //! renderer refuses it.
 
@@ -20,7 +19,7 @@ use gbuffer_cost::Shader;
 use gbuffer_render::gbuffers::GBuffer;
 use gbuffer_render::gles::sources::fused_programs;
 use gbuffer_render::named::Named;
-use gbuffer_render::on_tile::Path as TilePath;
+use gbuffer_render::on_tile::{Path as TilePath, Stage};
 use gbuffer_render::shaders::{gbuffer_wgsl, lighting_pass_wgsl, Positions};
 
 use crate::compilers::{compile, format_figure, Compiled, MaliCycles};
@@ -67,7 +66,7 @@ pub fn compile_frames() -> FrameShaders {
             Shader::wgsl(wgsl, entry).map_err(|error| format!("{}: {error}", layout.name()))
         };
         let gbuffer = add(translated(&gbuffer_wgsl(&options, -1.0), "gbuffer_main"));
-        let lighting = add(translated(&lighting_wgsl, "lighting_main"));
+        let lighting = add(translated(&lighting_wgsl, "lighting_resolve_main"));
         forms.push(FormShaders {
             layout: layout.name().to_string(),
             form: FORMS[0],
@@ -84,21 +83,24 @@ pub fn compile_frames() -> FrameShaders {
             if fused.interface.attachments.len() + 1 > MAX_DRAW_BUFFERS {
                 continue;
             }
-            // Stage::ALL's order: geometry, decal, sun and environment, point light, resolve,
-            // sky; the first and the third are compiled.
-            let indices = [0, 2].map(|stage| {
-                let program = &fused.programs[stage];
+            // The programs are in Stage::ALL's order.
+            let mut compiled = |stage: Stage| {
+                let at = Stage::ALL
+                    .iter()
+                    .position(|s| *s == stage)
+                    .expect("a stage");
+                let program = &fused.programs[at];
                 add(Ok(Shader::glsl(
                     gbuffer_cost::Stage::Fragment,
                     &program.fragment,
                 )
                 .with_vertex(&program.vertex)))
-            });
+            };
             forms.push(FormShaders {
                 layout: layout.name().to_string(),
                 form,
-                gbuffer: vec![indices[0]],
-                lighting: vec![indices[1]],
+                gbuffer: vec![compiled(Stage::Geometry)],
+                lighting: vec![compiled(Stage::Lighting), compiled(Stage::Resolve)],
             });
         }
     }
@@ -195,7 +197,7 @@ impl FrameShaders {
     /// The table in markdown.
     pub fn markdown(&self) -> String {
         let mut out = String::from("\n## Frames on GPU compilers\n\n");
-        let _ = writeln!(out, "Per layout the on-tile paths keep: the G-buffer pass and the lighting every pixel gets (the sun and the environment; point lights, decals and tone mapping are left out) as GLES drivers compile them. Two-pass: wgpu's passes translated, the G-buffer read as textures; fused: the GLES programs, the G-buffer read by framebuffer fetch as packed words or in its formats. Mali's estimated cycles per pixel with (arithmetic / load-store / texture), Adreno's instructions. The bandwidth units are the frame table's. {}\n", self.compiled.provenance());
+        let _ = writeln!(out, "Per layout the on-tile paths keep: the G-buffer pass and the lighting every pixel gets (the environment, the sun, the 32 point lights and the tone mapping; the decals are left out) as GLES drivers compile them. Two-pass: the on-tile backends' two passes translated, the G-buffer read as textures; fused: the GLES programs, the G-buffer read by framebuffer fetch as packed words or in its formats. Mali's estimated cycles per pixel with (arithmetic / load-store / texture), Adreno's instructions. The bandwidth units are the frame table's. {}\n", self.compiled.provenance());
         out.push_str("| layout | form |");
         for target in TARGETS {
             let _ = write!(out, " G-buffer pass {target} | lighting {target} |");

@@ -336,10 +336,7 @@ impl GlesRenderer {
                         Draw::Volume(POINT_LIGHT_COUNT + decal),
                     );
                 }
-                draw(recording, Stage::SunAndEnvironment.name(), Draw::Fullscreen);
-                for light in 0..POINT_LIGHT_COUNT {
-                    draw(recording, Stage::PointLight.name(), Draw::Volume(light));
-                }
+                draw(recording, Stage::Lighting.name(), Draw::Fullscreen);
                 draw(recording, Stage::Resolve.name(), Draw::Fullscreen);
                 gl.depth_func(glow::EQUAL);
                 draw(recording, Stage::Sky.name(), Draw::Fullscreen);

@@ -1,4 +1,4 @@
-//! The GLES backend's plans: the fused paths' one framebuffer and six programs (after the
+//! The GLES backend's plans: the fused paths' one framebuffer and five programs (after the
 //! checks that name what the driver lacks), the two-pass path's two, and the framebuffers and
 //! programs they are made of.
 
@@ -38,7 +38,7 @@ impl GlesRenderer {
         }
     }
 
-    /// The fused paths: one framebuffer of the G-buffer, the output and depth, six programs.
+    /// The fused paths: one framebuffer of the G-buffer, the output and depth, five programs.
     pub(super) fn fused_plan(
         &self,
         options: &Options,

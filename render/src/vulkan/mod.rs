@@ -66,11 +66,18 @@ enum Draw {
 struct StagePipeline {
     name: &'static str,
     pipeline: vk::Pipeline,
+    /// Whether its draws read what the draws before them wrote in the same subpass (an input
+    /// attachment another draw writes): a by-region barrier goes before each.
+    reads_earlier_draws: bool,
 }
 
 impl StagePipeline {
     fn named(name: &'static str, pipeline: vk::Pipeline) -> StagePipeline {
-        StagePipeline { name, pipeline }
+        StagePipeline {
+            name,
+            pipeline,
+            reads_earlier_draws: false,
+        }
     }
 }
 
@@ -209,7 +216,37 @@ impl VulkanRenderer {
     /// Times `frames` frames (after one that warms up): seconds each, by the wall clock around
     /// a submit and its wait.
     pub fn time_frames(&self, tile: &TileOptions, frames: usize) -> Result<Vec<f64>, String> {
-        let plan = self.plan(tile)?;
+        self.time_frames_leaving_out(tile, frames, &[])
+    }
+
+    /// [`Self::time_frames`] with the draws of the stages or passes named in `left_out` not
+    /// drawn (a fused path's stages: `Stage::name`; the two-pass path's passes: `gbuffer`,
+    /// `lighting and resolve`): what a stage costs is the whole frame's time less the time
+    /// without it. An unknown name is an error.
+    pub fn time_frames_leaving_out(
+        &self,
+        tile: &TileOptions,
+        frames: usize,
+        left_out: &[&str],
+    ) -> Result<Vec<f64>, String> {
+        let mut plan = self.plan(tile)?;
+        for name in left_out {
+            if !plan
+                .passes
+                .iter()
+                .any(|pass| pass.stages.iter().any(|stage| stage.name == *name))
+            {
+                return Err(format!(
+                    "the {} path has no stage `{name}`",
+                    tile.path.name()
+                ));
+            }
+        }
+        for pass in &mut plan.passes {
+            let stages = &pass.stages;
+            pass.draws
+                .retain(|(stage, _)| !left_out.contains(&stages[*stage].name));
+        }
         let mut times = Vec::with_capacity(frames);
         for _ in 0..=frames {
             let start = Instant::now();
@@ -295,8 +332,9 @@ impl VulkanRenderer {
                     );
                     let mut previous: Option<usize> = None;
                     for &(stage, draw) in &pass.draws {
-                        if previous.is_some() && plan.passes.len() == 1 {
-                            // The next draw reads what this one wrote (the self-dependency).
+                        if previous.is_some() && pass.stages[stage].reads_earlier_draws {
+                            // The draw reads what the draws before it wrote (the
+                            // self-dependency); one that reads nothing of theirs needs none.
                             feedback_barrier(device, commands);
                         }
                         if previous != Some(stage) {

@@ -208,18 +208,28 @@ impl VulkanRenderer {
             pipeline_stages.push(StagePipeline {
                 name: stage.name(),
                 pipeline,
+                reads_earlier_draws: stage.reads_gbuffer(),
             });
         }
-        let mut draws = vec![(0, Draw::Mesh)];
+        // Each draw names its stage by its place in `Stage::ALL`, as `pipeline_stages` holds them.
+        let at = |stage: Stage| {
+            Stage::ALL
+                .iter()
+                .position(|s| *s == stage)
+                .expect("a stage")
+        };
+        let mut draws = vec![(at(Stage::Geometry), Draw::Mesh)];
         if !store_gbuffer {
+            draws.extend((0..DECALS.len()).map(|decal| {
+                (
+                    at(Stage::Decal),
+                    Draw::Volume((POINT_LIGHT_COUNT + decal) as u32),
+                )
+            }));
             draws.extend(
-                (0..DECALS.len())
-                    .map(|decal| (1, Draw::Volume((POINT_LIGHT_COUNT + decal) as u32))),
+                [Stage::Lighting, Stage::Resolve, Stage::Sky]
+                    .map(|stage| (at(stage), Draw::Fullscreen)),
             );
-            draws.push((2, Draw::Fullscreen));
-            draws.extend((0..POINT_LIGHT_COUNT).map(|light| (3, Draw::Volume(light as u32))));
-            draws.push((4, Draw::Fullscreen));
-            draws.push((5, Draw::Fullscreen));
         }
 
         let mut attachments: Vec<(Attachment, bool)> = (0..targets)
