@@ -16,8 +16,8 @@ pub struct Arguments {
 pub fn run(subcommand: &str) -> ExitCode {
     eprintln!(
         "gbuffer {subcommand}: this gbuffer was built without the `{subcommand}` feature; \
-         install it with `cargo install gbuffer-cli --features {subcommand}` (or build the \
-         workspace's with `cargo run -p gbuffer-cli --features {subcommand}`)"
+         install it with `cargo install --path cli --features {subcommand}` in a clone of the \
+         repository (or run the workspace's with `cargo run -p gbuffer-cli --features {subcommand}`)"
     );
     ExitCode::from(2)
 }

@@ -203,7 +203,7 @@ impl Codec {
         match self.shape {
             Shape::PerComponent(low, high) => {
                 let components = ty.components as u32;
-                if bits % components != 0 {
+                if !bits.is_multiple_of(components) {
                     return Some(format!(
                         "`{name}` has {components} components, which cannot share {bits} bits \
                          evenly"
@@ -233,7 +233,7 @@ impl Codec {
             Shape::Coordinates if ty.components != 3 => {
                 Some(format!("`{encoding}` stores a unit `Vec3`, not `{name}`"))
             }
-            Shape::Coordinates => (bits % 2 != 0).then(|| {
+            Shape::Coordinates => (!bits.is_multiple_of(2)).then(|| {
                 format!("`{encoding}` splits its bits between two coordinates: {bits} is odd")
             }),
         }

@@ -39,7 +39,7 @@ pub const MAX_FIELDS: usize = 256;
 
 /// Why `budget` bits cannot be a budget, if they cannot: a budget is whole 32-bit words.
 pub fn check_budget(budget: u32) -> Result<(), String> {
-    match budget != 0 && budget % 32 == 0 {
+    match budget != 0 && budget.is_multiple_of(32) {
         true => Ok(()),
         false => Err(format!(
             "budget must be a positive multiple of 32 bits (the fields fill 32-bit words), not \
@@ -120,7 +120,7 @@ impl Layout {
                 }
             }
         }
-        if self.budget > 0 && self.budget % 32 == 0 && self.bits() > self.budget {
+        if self.budget > 0 && self.budget.is_multiple_of(32) && self.bits() > self.budget {
             report(Subject::Budget, self.over_budget_message());
         }
         diagnostics
