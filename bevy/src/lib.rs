@@ -42,6 +42,11 @@
 //! [`solve()`] picks a layout's bits for a scene in Bevy's terms ([`BevyScene`]), or lists what
 //! must give when 128 bits cannot hold it.
 
+// The README's Rust blocks, compiled (and run where they can) as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
+
 pub mod functions;
 mod patch;
 pub mod quantity;

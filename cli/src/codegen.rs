@@ -85,11 +85,11 @@ pub fn run(arguments: Arguments) -> ExitCode {
         match read_layout_file(path) {
             Ok(layout) => layouts.push((path, layout)),
             Err(error @ FileError::Io { .. }) => {
-                eprintln!("gbuffer codegen: {error}");
+                say!("gbuffer codegen: {error}");
                 failed = true;
             }
             Err(error) => {
-                eprintln!("{error}\n");
+                say!("{error}\n");
                 failed = true;
             }
         }
@@ -107,7 +107,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
                 )
             })),
             Err(error) => {
-                eprintln!("gbuffer codegen: {}: {error}", file.layout.name);
+                say!("gbuffer codegen: {}: {error}", file.layout.name);
                 return ExitCode::FAILURE;
             }
         }

@@ -60,7 +60,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
     let shader = match shader(&arguments) {
         Ok(shader) => shader,
         Err(message) => {
-            eprintln!("gbuffer cost: {message}");
+            say!("gbuffer cost: {message}");
             return ExitCode::from(1);
         }
     };
@@ -78,7 +78,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
         match Target::named(name) {
             Ok(target) if is_wgsl || target.api == Api::Gles => targets.push(target),
             Ok(target) if !arguments.targets.is_empty() => {
-                eprintln!(
+                say!(
                     "gbuffer cost: {}: GLSL ES is costed on GL targets only; give WGSL for Vulkan",
                     target.name
                 );
@@ -86,7 +86,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
             }
             Ok(_) => {}
             Err(message) => {
-                eprintln!("gbuffer cost: {message}");
+                say!("gbuffer cost: {message}");
                 return ExitCode::from(2);
             }
         }
@@ -101,14 +101,14 @@ pub fn run(arguments: Arguments) -> ExitCode {
                     match result {
                         Ok(measurement) => measurements.push(measurement),
                         Err(message) => {
-                            eprintln!("gbuffer cost: {}: {message}", target.name);
+                            say!("gbuffer cost: {}: {message}", target.name);
                             failed = true;
                         }
                     }
                 }
             }
             Err(error) => {
-                eprintln!("gbuffer cost: {error}");
+                say!("gbuffer cost: {error}");
                 failed = true;
             }
         }

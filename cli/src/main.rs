@@ -1,8 +1,17 @@
 //! `gbuffer`: one command for the tools around a G-buffer layout. Each subcommand lives in its
 //! own module, with its arguments, its `--help` text and its exit statuses. `report` and
 //! `cost` come with the features of their names (off by default, so that `cargo install
-//! gbuffer-cli` builds no GPU stack); without them, asking for one says which feature to
+//! --path cli` builds no GPU stack); without them, asking for one says which feature to
 //! enable.
+
+/// `eprintln!` without its panic: where standard error cannot be written (`2>/dev/full`), the
+/// exit status is all a command can still say, and it stays 0, 1 or 2, never 101.
+macro_rules! say {
+    ($($message:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($message)*);
+    }};
+}
 
 mod codegen;
 #[cfg(feature = "cost")]
@@ -63,7 +72,17 @@ enum Subcommands {
 const STACK_BYTES: usize = 256 << 20;
 
 fn main() -> ExitCode {
-    let command = Command::parse();
+    let command = match Command::try_parse() {
+        Ok(command) => command,
+        // Help and version (exit 0) and usage errors (exit 2), printed where clap prints them;
+        // a help that cannot be written is a failure, not a success.
+        Err(error) => {
+            return match error.print() {
+                Ok(()) => ExitCode::from(error.exit_code() as u8),
+                Err(_) => ExitCode::FAILURE,
+            };
+        }
+    };
     let run = move || match command.subcommand {
         Subcommands::Codegen(arguments) => codegen::run(arguments),
         Subcommands::Validate(arguments) => validate::run(arguments),
@@ -86,7 +105,7 @@ fn main() -> ExitCode {
             .join()
             .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
         Err(error) => {
-            eprintln!("gbuffer: cannot start: {error}");
+            say!("gbuffer: cannot start: {error}");
             ExitCode::FAILURE
         }
     }

@@ -20,7 +20,7 @@ pub fn print(text: &str) -> Result<(), ()> {
         Ok(()) => Ok(()),
         Err(error) if error.kind() == ErrorKind::BrokenPipe => Ok(()),
         Err(error) => {
-            eprintln!("gbuffer: cannot write standard output: {error}");
+            say!("gbuffer: cannot write standard output: {error}");
             Err(())
         }
     }
@@ -39,7 +39,7 @@ pub fn write_files(
         // The report said why itself.
         Err(StagingError::Report) => ExitCode::FAILURE,
         Err(error) => {
-            eprintln!("gbuffer {command}: {error}; nothing was written");
+            say!("gbuffer {command}: {error}; nothing was written");
             ExitCode::FAILURE
         }
     }

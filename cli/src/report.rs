@@ -21,7 +21,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
     match gbuffer_tradeoff::run(&arguments.out) {
         Ok(()) => ExitCode::SUCCESS,
         Err(error) => {
-            eprintln!("gbuffer report: {error}");
+            say!("gbuffer report: {error}");
             ExitCode::FAILURE
         }
     }

@@ -61,12 +61,12 @@ pub fn run(arguments: Arguments) -> ExitCode {
         let solution = match read_and_solve(path) {
             Ok(solution) => solution,
             Err(error @ FileError::Io { .. }) => {
-                eprintln!("gbuffer solve: {error}");
+                say!("gbuffer solve: {error}");
                 failed = true;
                 continue;
             }
             Err(error) => {
-                eprintln!("{error}");
+                say!("{error}");
                 failed = true;
                 continue;
             }
@@ -80,7 +80,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
         let mut generated = match generate(&solution.layout, Conversions::Exact, &Output::ALL) {
             Ok(generated) => generated,
             Err(error) => {
-                eprintln!("gbuffer solve: {}: {error}", path.display());
+                say!("gbuffer solve: {}: {error}", path.display());
                 failed = true;
                 continue;
             }

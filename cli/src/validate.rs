@@ -95,7 +95,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
             valid_lines.push_str(&format!("{}: valid\n", file.display()));
         } else {
             for problem in &problems {
-                eprintln!("{problem}\n");
+                say!("{problem}\n");
             }
         }
     }

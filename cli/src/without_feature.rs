@@ -14,7 +14,7 @@ pub struct Arguments {
 
 /// Says that `subcommand` needs the `feature` this build lacks.
 pub fn run(subcommand: &str) -> ExitCode {
-    eprintln!(
+    say!(
         "gbuffer {subcommand}: this gbuffer was built without the `{subcommand}` feature; \
          install it with `cargo install --path cli --features {subcommand}` in a clone of the \
          repository (or run the workspace's with `cargo run -p gbuffer-cli --features {subcommand}`)"

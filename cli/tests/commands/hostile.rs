@@ -96,6 +96,34 @@ fn a_full_standard_output_is_an_error_and_writes_nothing() {
 }
 
 #[test]
+fn help_that_cannot_be_written_fails() {
+    for arguments in [["--help"], ["codegen --help"]] {
+        let arguments: Vec<&std::ffi::OsStr> =
+            arguments[0].split(' ').map(|text| text.as_ref()).collect();
+        let (code, stderr) = into_full_device(&arguments);
+        assert_eq!(code, Some(1), "{arguments:?}: {stderr}");
+    }
+}
+
+#[test]
+fn an_error_with_standard_error_unwritable_still_exits_1() {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let folder = tempfile::tempdir().unwrap();
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_gbuffer"))
+        .current_dir(workspace())
+        .args(["codegen", "no/such/layout.toml", "--out"])
+        .arg(folder.path().join("out"))
+        .stdout(Stdio::null())
+        .stderr(full)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+}
+
+#[test]
 fn a_closed_pipe_ends_the_output_quietly() {
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_gbuffer"))
         .current_dir(workspace())
