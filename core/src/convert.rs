@@ -123,6 +123,70 @@ impl Format {
     }
 }
 
+/// Many texels at once: the same conversions as [`Format::encode`] and [`Format::decode`],
+/// lane by lane over `N` texels, one channel at a time. The derived `pack_slice` and
+/// `unpack_slice` call them on eight texels at a time with each channel a constant: the codec
+/// is then known at compile time, its conversion inlined, and the loop over the lanes becomes
+/// vector instructions (the per-texel form converts one texel's channels in turn, in scalar
+/// code). Each lane's result is the per-texel function's, bit for bit: the same code runs on
+/// every lane, and Rust never contracts or reorders float arithmetic.
+impl Channel {
+    /// The channel's bits, in place in the word, of `N` values.
+    #[inline(always)]
+    pub fn encode_lanes<S: Scalar, const N: usize>(self, values: [S; N]) -> [u32; N] {
+        let mut codes = [0; N];
+        for (code, value) in codes.iter_mut().zip(values) {
+            *code = value.encode(self) << self.offset;
+        }
+        codes
+    }
+
+    /// The channel's values in `N` words.
+    #[inline(always)]
+    pub fn decode_lanes<S: Scalar, const N: usize>(self, words: [u32; N]) -> [S; N] {
+        let mut values = [S::default(); N];
+        for (value, word) in values.iter_mut().zip(words) {
+            *value = S::decode((word >> self.offset) & self.mask(), self);
+        }
+        values
+    }
+}
+
+impl crate::BitField {
+    /// The codes of `N` texels' fields, in their low bits: `lanes[c][i]` is texel i's
+    /// component c as [`crate::BitField::encode`] takes it.
+    #[inline(always)]
+    pub fn encode_lanes<const N: usize>(self, lanes: [[u32; N]; 4], components: usize) -> [u32; N] {
+        let mut codes = [0; N];
+        for (index, code) in codes.iter_mut().enumerate() {
+            *code = self.encode(
+                [
+                    lanes[0][index],
+                    lanes[1][index],
+                    lanes[2][index],
+                    lanes[3][index],
+                ],
+                components,
+            );
+        }
+        codes
+    }
+
+    /// The lanes of `N` codes (each in its low bits): `[c][i]` is code i's component c, as
+    /// [`crate::BitField::decode`] gives it.
+    #[inline(always)]
+    pub fn decode_lanes<const N: usize>(self, codes: [u32; N], components: usize) -> [[u32; N]; 4] {
+        let mut lanes = [[0; N]; 4];
+        for (index, code) in codes.into_iter().enumerate() {
+            let decoded = self.decode(code, components);
+            for (component, value) in decoded.into_iter().enumerate() {
+                lanes[component][index] = value;
+            }
+        }
+        lanes
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

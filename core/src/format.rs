@@ -370,7 +370,7 @@ impl Format {
 
     /// The channels, from the least significant bit up.
     #[inline(always)]
-    pub fn channels(self) -> &'static [Channel] {
+    pub const fn channels(self) -> &'static [Channel] {
         self.row().channels
     }
 

@@ -170,6 +170,8 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
         quote!(#field_name: #value)
     });
 
+    let (pack_slice, unpack_slice) = emit_slices(layout, krate);
+
     let described_fields = layout.fields.iter().map(|field| {
         let field_name = &field.name;
         let storage = match field.storage {
@@ -217,11 +219,241 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
                 Self { #(#decoded_fields),* }
             }
 
+            #pack_slice
+
+            #unpack_slice
+
             fn layout() -> #packing::Layout {
                 #packing::Layout::from_parts(#layout_name, #budget, &[#(#described_fields),*])
             }
         }
     }
+}
+
+/// Texels the derived `pack_slice` and `unpack_slice` convert at once: eight f32 lanes fill an
+/// AVX2 register.
+const SLICE_LANES: usize = 8;
+
+/// `pack_slice` and `unpack_slice`, eight texels at a time: each word's channels (or bit
+/// fields) converted over the eight texels' values at once (`Channel::encode_lanes`,
+/// `BitField::encode_lanes` and their decodes, with each channel and bit field a constant),
+/// the same conversions as `pack` and `unpack` lane by lane, which the compiler turns into
+/// vector instructions; the texels left over go through `pack` and `unpack`. The conversions
+/// are static functions of a `Lanes` impl, not closures, so that they inline into the loop's
+/// copy compiled for AVX2.
+fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStream) {
+    let name = Ident::new(&layout.name, Span::call_site());
+    let packing = quote!(#krate::layout);
+    let private = quote!(#krate::__private);
+    let lanes_n = Literal::usize_unsuffixed(SLICE_LANES);
+    let words = Literal::usize_unsuffixed(layout.words());
+    let u32_ = quote!(::core::primitive::u32);
+    let texels = Ident::new("__gbuffer_texels", Span::call_site());
+    let index = Ident::new("__gbuffer_index", Span::call_site());
+    let word_name = |word: usize| format_ident!("__gbuffer_word{}", word);
+    let field_name = |field: usize| format_ident!("__gbuffer_field{}", field);
+    // Component `component` of `field` over the lanes, as the field's scalar (`as_bits`: as a
+    // codec's lane, u32 bits); zeros past its components.
+    let lane = |field: &Field, component: usize, as_bits: bool| {
+        let zero = if as_bits {
+            quote!(0)
+        } else {
+            scalar_zero(field.ty.scalar)
+        };
+        if component >= field.ty.components {
+            return quote!([#zero; #lanes_n]);
+        }
+        let field_ident = Ident::new(&field.name, Span::call_site());
+        let value = if field.ty.components == 1 {
+            quote!(#texels[#index].#field_ident)
+        } else {
+            let axis = format_ident!("{}", &"xyzw"[component..=component]);
+            quote!(#texels[#index].#field_ident.#axis)
+        };
+        let value = match (as_bits, field.ty.scalar) {
+            (false, _) | (true, ScalarKind::Uint) => value,
+            (true, ScalarKind::Float) => quote!(#value.to_bits()),
+            (true, ScalarKind::Sint) => quote!((#value as #u32_)),
+            (true, ScalarKind::Bool) => quote!(#u32_::from(#value)),
+        };
+        quote!({
+            let mut lanes = [#zero; #lanes_n];
+            for (#index, lane) in lanes.iter_mut().enumerate() {
+                *lane = #value;
+            }
+            lanes
+        })
+    };
+
+    let packed_words = layout.word_contents().into_iter().enumerate().map(|(word, contents)| {
+        let word_ident = word_name(word);
+        let members = contents.members.iter().map(|member| {
+            let field = &layout.fields[member.field];
+            match field.storage {
+                Storage::Word(format) => {
+                    let scalar = scalar_path(field.ty.scalar);
+                    let channels = (0..format.channels().len()).map(|channel| {
+                        let values = lane(field, channel, false);
+                        let format = variant(format);
+                        quote! {{
+                            const CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
+                            let codes = CHANNEL.encode_lanes::<#scalar, #lanes_n>(#values);
+                            for (word, code) in #word_ident.iter_mut().zip(codes) {
+                                *word |= code;
+                            }
+                        }}
+                    });
+                    quote!(#(#channels)*)
+                }
+                Storage::Bits(bit_field) => {
+                    let bit_field = bit_field_tokens(bit_field, &packing);
+                    let components = Literal::usize_unsuffixed(field.ty.components);
+                    let offset = Literal::u32_unsuffixed(member.offset);
+                    let values = (0..4).map(|component| lane(field, component, true));
+                    quote! {{
+                        const FIELD: #packing::BitField = #bit_field;
+                        let codes = FIELD.encode_lanes([#(#values),*], #components);
+                        for (word, code) in #word_ident.iter_mut().zip(codes) {
+                            *word |= code << #offset;
+                        }
+                    }}
+                }
+            }
+        });
+        quote! {
+            let mut #word_ident: [#u32_; #lanes_n] = [0; #lanes_n];
+            #(#members)*
+        }
+    });
+    let word_idents: Vec<Ident> = (0..layout.words()).map(word_name).collect();
+    let pack_slice = quote! {
+        fn pack_slice(#texels: &[Self], packed: &mut [[#u32_; #words]]) {
+            struct Pack;
+            impl #private::Lanes<#name, [#u32_; #words], #lanes_n> for Pack {
+                #[inline(always)]
+                fn many(#texels: &[#name; #lanes_n], packed: &mut [[#u32_; #words]; #lanes_n]) {
+                    #(#packed_words)*
+                    for (#index, texel) in packed.iter_mut().enumerate() {
+                        *texel = [#(#word_idents[#index]),*];
+                    }
+                }
+                #[inline(always)]
+                fn one(texel: &#name) -> [#u32_; #words] {
+                    #krate::GBufferLayout::pack(texel)
+                }
+            }
+            #private::check_slice_lengths("pack_slice", #texels.len(), packed.len());
+            #private::convert_lanes::<Pack, _, _, #lanes_n>(#texels, packed);
+        }
+    };
+
+    let words_parameter = Ident::new("__gbuffer_words", Span::call_site());
+    let read_words = (0..layout.words()).map(|word| {
+        let word_ident = word_name(word);
+        let at = Literal::usize_unsuffixed(word);
+        quote! {
+            let mut #word_ident: [#u32_; #lanes_n] = [0; #lanes_n];
+            for (lane, words) in #word_ident.iter_mut().zip(#words_parameter) {
+                *lane = words[#at];
+            }
+        }
+    });
+    // Per field, its components over the lanes, `__gbuffer_field<n>[c][lane]`: a format's
+    // channel values, or a bit field's codec lanes as u32 bits.
+    let locations = layout.field_locations();
+    let decoded = layout.fields.iter().zip(&locations).enumerate().map(|(number, (field, &(word, member)))| {
+        let field_ident = field_name(number);
+        let word_ident = word_name(word);
+        match field.storage {
+            Storage::Word(format) => {
+                let scalar = scalar_path(field.ty.scalar);
+                let zero = scalar_zero(field.ty.scalar);
+                let format = variant(format);
+                let channels = (0..field.ty.components).map(|channel| {
+                    quote! {{
+                        const CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
+                        CHANNEL.decode_lanes::<#scalar, #lanes_n>(#word_ident)
+                    }}
+                });
+                let missing = (field.ty.components..4).map(|_| quote!([#zero; #lanes_n]));
+                quote!(let #field_ident: [[#scalar; #lanes_n]; 4] = [#(#channels,)* #(#missing),*];)
+            }
+            Storage::Bits(bit_field) => {
+                let bit_field = bit_field_tokens(bit_field, &packing);
+                let offset = Literal::u32_unsuffixed(member.offset);
+                let mask = Literal::u32_unsuffixed(crate::codecs::max_code(member.bits));
+                let components = Literal::usize_unsuffixed(field.ty.components);
+                quote! {
+                    let #field_ident: [[#u32_; #lanes_n]; 4] = {
+                        let mut codes: [#u32_; #lanes_n] = #word_ident;
+                        for code in codes.iter_mut() {
+                            *code = (*code >> #offset) & #mask;
+                        }
+                        const FIELD: #packing::BitField = #bit_field;
+                        FIELD.decode_lanes(codes, #components)
+                    };
+                }
+            }
+        }
+    });
+    let built_fields: Vec<TokenStream> = layout
+        .fields
+        .iter()
+        .enumerate()
+        .map(|(number, field)| {
+            let field_ident = Ident::new(&field.name, Span::call_site());
+            let lanes = field_name(number);
+            let component = |component: usize| {
+                let value = quote!(#lanes[#component][#index]);
+                match (field.storage, field.ty.scalar) {
+                    (Storage::Word(_), _) | (Storage::Bits(_), ScalarKind::Uint) => value,
+                    (Storage::Bits(_), ScalarKind::Float) => {
+                        quote!(::core::primitive::f32::from_bits(#value))
+                    }
+                    (Storage::Bits(_), ScalarKind::Sint) => {
+                        quote!((#value as ::core::primitive::i32))
+                    }
+                    (Storage::Bits(_), ScalarKind::Bool) => quote!((#value != 0)),
+                }
+            };
+            let value = if field.ty.components == 1 {
+                component(0)
+            } else {
+                let ty = type_path(field.ty, krate);
+                let each = (0..field.ty.components).map(component);
+                quote!(#ty::new(#(#each),*))
+            };
+            quote!(#field_ident: #value)
+        })
+        .collect();
+    // Lane by lane, unrolled: each texel whole, the layout need not be `Default`.
+    let built_texels = (0..SLICE_LANES).map(|lane| {
+        let lane = Literal::usize_unsuffixed(lane);
+        quote! {{
+            let #index = #lane;
+            #texels[#index] = #name { #(#built_fields),* };
+        }}
+    });
+    let unpack_slice = quote! {
+        fn unpack_slice(packed: &[[#u32_; #words]], #texels: &mut [Self]) {
+            struct Unpack;
+            impl #private::Lanes<[#u32_; #words], #name, #lanes_n> for Unpack {
+                #[inline(always)]
+                fn many(#words_parameter: &[[#u32_; #words]; #lanes_n], #texels: &mut [#name; #lanes_n]) {
+                    #(#read_words)*
+                    #(#decoded)*
+                    #(#built_texels)*
+                }
+                #[inline(always)]
+                fn one(words: &[#u32_; #words]) -> #name {
+                    <#name as #krate::GBufferLayout>::unpack(words)
+                }
+            }
+            #private::check_slice_lengths("unpack_slice", #texels.len(), packed.len());
+            #private::convert_lanes::<Unpack, _, _, #lanes_n>(packed, #texels);
+        }
+    };
+    (pack_slice, unpack_slice)
 }
 
 /// The layout as a struct that derives it: `#[derive(GBufferLayout)]` with `#[gbuffer(...)]`

@@ -39,6 +39,22 @@ use crate::layout::FieldType;
 /// integer, is every negative float's bit pattern).
 pub(crate) const F32_INFINITY_BITS: u32 = 0x7f80_0000;
 
+/// An integer-valued float in `[0, 2^23)` as that integer: adding 2^23 puts it in the low bits of
+/// the sum's significand, exactly. The same as `value as u32` there, and unlike it a conversion
+/// CPUs have in their vector units (AVX2 converts floats only to signed integers, and
+/// `as`'s saturation keeps LLVM from vectorising even that): the slices' lanes stay vectors.
+#[inline(always)]
+pub(crate) fn small_integer_from_f32(value: f32) -> u32 {
+    (value + 8_388_608.0).to_bits() - 0x4B00_0000
+}
+
+/// An integer in `[0, 2^23)` as a float, exactly: the inverse of [`small_integer_from_f32`],
+/// and `code as f32` there, in vector instructions.
+#[inline(always)]
+pub(crate) fn f32_from_small_integer(code: u32) -> f32 {
+    f32::from_bits(code | 0x4B00_0000) - 8_388_608.0
+}
+
 /// The largest code of an unsigned integer of `bits` bits (`bits` from 1 to 32).
 #[inline]
 pub fn max_code(bits: u32) -> u32 {

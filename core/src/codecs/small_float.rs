@@ -7,6 +7,7 @@
 use std::collections::BTreeSet;
 
 use super::wgsl::Lanes;
+use super::{f32_from_small_integer, small_integer_from_f32};
 
 /// The largest finite code of a float with a 5-bit exponent and `mantissa_bits` of mantissa.
 #[inline]
@@ -38,7 +39,16 @@ pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u3
     // CPU rounds to nearest even, and a denormal result is under 2^10); larger values stay
     // large, and the conversion saturates.
     let scaled = f32::from_bits(magnitude_bits) * f32::from_bits((141 + mantissa_bits) << 23);
-    let denormal = ((scaled + 8_388_608.0) - 8_388_608.0) as u32;
+    // Rounded as above, exactly, in a conversion vector units have; at 2^23 and above it is
+    // past every code (the minimum below takes `normal`), and NaN and negative values (the
+    // callers' negative inputs) give 0, as `as` does.
+    let denormal = if (0.0..8_388_608.0).contains(&scaled) {
+        small_integer_from_f32(scaled)
+    } else if scaled >= 8_388_608.0 {
+        u32::MAX
+    } else {
+        0
+    };
     normal
         .min(denormal)
         .min(small_float_max_code(mantissa_bits))
@@ -52,7 +62,7 @@ pub fn f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
     let mantissa = code & ((1 << mantissa_bits) - 1);
     if exponent == 0 {
         // Denormal: mantissa * 2^-(14 + mantissa_bits); the power of two is exact.
-        return mantissa as f32 * f32::from_bits((113 - mantissa_bits) << 23);
+        return f32_from_small_integer(mantissa) * f32::from_bits((113 - mantissa_bits) << 23);
     }
     let f32_exponent = if exponent == 31 { 255 } else { exponent + 112 };
     f32::from_bits((f32_exponent << 23) | (mantissa << (23 - mantissa_bits)))

@@ -9,7 +9,7 @@
 //! alone, one code from the exact one at most.
 
 use super::wgsl::{BitField, Functions};
-use super::{max_code, Codec, F32_INFINITY_BITS};
+use super::{f32_from_small_integer, max_code, small_integer_from_f32, Codec, F32_INFINITY_BITS};
 
 /// Unsigned normalized encode: `floor(0.5 + (2^bits - 1) * clamp(value, 0, 1))`, exact; NaN
 /// gives 0. Valid for `bits` from 1 to 23.
@@ -35,13 +35,15 @@ pub fn unorm_from_f32(value: f32, bits: u32) -> u32 {
     let candidate = (x * max_code(bits) as f32 + 0.5).floor();
     let below = (x * (1u32 << bits) as f32 - candidate) + 0.5;
     let correction = if below < x { 1.0 } else { 0.0 };
-    (candidate - correction) as u32
+    // The code is an integer from 0 to 2^23 - 1.
+    small_integer_from_f32(candidate - correction)
 }
 
 /// Unsigned normalized decode: the exact quotient `code / (2^bits - 1)`, correctly rounded.
 #[inline]
 pub fn f32_from_unorm(code: u32, bits: u32) -> f32 {
-    code as f32 / max_code(bits) as f32
+    // Codes of up to 23 bits, exactly.
+    f32_from_small_integer(code) / max_code(bits) as f32
 }
 
 /// The exact encode, per lane (`PREFIX_LANES_to_unorm`).
