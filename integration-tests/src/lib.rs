@@ -36,3 +36,8 @@ pub struct ShadingLibrary;
 #[cfg(doctest)]
 #[doc = include_str!("../../book/src/solver.md")]
 pub struct Solver;
+
+/// The guide's chapter on the reference renderer (its example splits a slice over threads).
+#[cfg(doctest)]
+#[doc = include_str!("../../book/src/reference-renderer.md")]
+pub struct ReferenceRenderer;
