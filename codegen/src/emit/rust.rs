@@ -277,11 +277,11 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
             (true, ScalarKind::Bool) => quote!(#u32_::from(#value)),
         };
         quote!({
-            let mut lanes = [#zero; #lanes_n];
-            for (#index, lane) in lanes.iter_mut().enumerate() {
-                *lane = #value;
+            let mut __gbuffer_lanes = [#zero; #lanes_n];
+            for #index in 0..#lanes_n {
+                __gbuffer_lanes[#index] = #value;
             }
-            lanes
+            __gbuffer_lanes
         })
     };
 
@@ -296,10 +296,10 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
                         let values = lane(field, channel, false);
                         let format = variant(format);
                         quote! {{
-                            const CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
-                            let codes = CHANNEL.encode_lanes::<#scalar, #lanes_n>(#values);
-                            for (word, code) in #word_ident.iter_mut().zip(codes) {
-                                *word |= code;
+                            const __GBUFFER_CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
+                            let __gbuffer_codes = __GBUFFER_CHANNEL.encode_lanes::<#scalar, #lanes_n>(#values);
+                            for #index in 0..#lanes_n {
+                                #word_ident[#index] |= __gbuffer_codes[#index];
                             }
                         }}
                     });
@@ -311,10 +311,10 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
                     let offset = Literal::u32_unsuffixed(member.offset);
                     let values = (0..4).map(|component| lane(field, component, true));
                     quote! {{
-                        const FIELD: #packing::BitField = #bit_field;
-                        let codes = FIELD.encode_lanes([#(#values),*], #components);
-                        for (word, code) in #word_ident.iter_mut().zip(codes) {
-                            *word |= code << #offset;
+                        const __GBUFFER_FIELD: #packing::BitField = #bit_field;
+                        let __gbuffer_codes = __GBUFFER_FIELD.encode_lanes([#(#values),*], #components);
+                        for #index in 0..#lanes_n {
+                            #word_ident[#index] |= __gbuffer_codes[#index] << #offset;
                         }
                     }}
                 }
@@ -327,23 +327,23 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
     });
     let word_idents: Vec<Ident> = (0..layout.words()).map(word_name).collect();
     let pack_slice = quote! {
-        fn pack_slice(#texels: &[Self], packed: &mut [[#u32_; #words]]) {
-            struct Pack;
-            impl #private::Lanes<#name, [#u32_; #words], #lanes_n> for Pack {
+        fn pack_slice(#texels: &[Self], __gbuffer_packed: &mut [[#u32_; #words]]) {
+            struct __GbufferPack;
+            impl #private::Lanes<#name, [#u32_; #words], #lanes_n> for __GbufferPack {
                 #[inline(always)]
-                fn many(#texels: &[#name; #lanes_n], packed: &mut [[#u32_; #words]; #lanes_n]) {
+                fn many(#texels: &[#name; #lanes_n], __gbuffer_packed: &mut [[#u32_; #words]; #lanes_n]) {
                     #(#packed_words)*
-                    for (#index, texel) in packed.iter_mut().enumerate() {
-                        *texel = [#(#word_idents[#index]),*];
+                    for #index in 0..#lanes_n {
+                        __gbuffer_packed[#index] = [#(#word_idents[#index]),*];
                     }
                 }
                 #[inline(always)]
-                fn one(texel: &#name) -> [#u32_; #words] {
-                    #krate::GBufferLayout::pack(texel)
+                fn one(__gbuffer_texel: &#name) -> [#u32_; #words] {
+                    #krate::GBufferLayout::pack(__gbuffer_texel)
                 }
             }
-            #private::check_slice_lengths("pack_slice", #texels.len(), packed.len());
-            #private::convert_lanes::<Pack, _, _, #lanes_n>(#texels, packed);
+            #private::check_slice_lengths("pack_slice", #texels.len(), __gbuffer_packed.len());
+            #private::convert_lanes::<__GbufferPack, _, _, #lanes_n>(#texels, __gbuffer_packed);
         }
     };
 
@@ -353,8 +353,8 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
         let at = Literal::usize_unsuffixed(word);
         quote! {
             let mut #word_ident: [#u32_; #lanes_n] = [0; #lanes_n];
-            for (lane, words) in #word_ident.iter_mut().zip(#words_parameter) {
-                *lane = words[#at];
+            for #index in 0..#lanes_n {
+                #word_ident[#index] = #words_parameter[#index][#at];
             }
         }
     });
@@ -371,8 +371,8 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
                 let format = variant(format);
                 let channels = (0..field.ty.components).map(|channel| {
                     quote! {{
-                        const CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
-                        CHANNEL.decode_lanes::<#scalar, #lanes_n>(#word_ident)
+                        const __GBUFFER_CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
+                        __GBUFFER_CHANNEL.decode_lanes::<#scalar, #lanes_n>(#word_ident)
                     }}
                 });
                 let missing = (field.ty.components..4).map(|_| quote!([#zero; #lanes_n]));
@@ -385,12 +385,12 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
                 let components = Literal::usize_unsuffixed(field.ty.components);
                 quote! {
                     let #field_ident: [[#u32_; #lanes_n]; 4] = {
-                        let mut codes: [#u32_; #lanes_n] = #word_ident;
-                        for code in codes.iter_mut() {
-                            *code = (*code >> #offset) & #mask;
+                        let mut __gbuffer_codes: [#u32_; #lanes_n] = #word_ident;
+                        for #index in 0..#lanes_n {
+                            __gbuffer_codes[#index] = (__gbuffer_codes[#index] >> #offset) & #mask;
                         }
-                        const FIELD: #packing::BitField = #bit_field;
-                        FIELD.decode_lanes(codes, #components)
+                        const __GBUFFER_FIELD: #packing::BitField = #bit_field;
+                        __GBUFFER_FIELD.decode_lanes(__gbuffer_codes, #components)
                     };
                 }
             }
@@ -402,9 +402,9 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
         .enumerate()
         .map(|(number, field)| {
             let field_ident = Ident::new(&field.name, Span::call_site());
-            let lanes = field_name(number);
+            let field_lanes = field_name(number);
             let component = |component: usize| {
-                let value = quote!(#lanes[#component][#index]);
+                let value = quote!(#field_lanes[#component][#index]);
                 match (field.storage, field.ty.scalar) {
                     (Storage::Word(_), _) | (Storage::Bits(_), ScalarKind::Uint) => value,
                     (Storage::Bits(_), ScalarKind::Float) => {
@@ -435,9 +435,9 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
         }}
     });
     let unpack_slice = quote! {
-        fn unpack_slice(packed: &[[#u32_; #words]], #texels: &mut [Self]) {
-            struct Unpack;
-            impl #private::Lanes<[#u32_; #words], #name, #lanes_n> for Unpack {
+        fn unpack_slice(__gbuffer_packed: &[[#u32_; #words]], #texels: &mut [Self]) {
+            struct __GbufferUnpack;
+            impl #private::Lanes<[#u32_; #words], #name, #lanes_n> for __GbufferUnpack {
                 #[inline(always)]
                 fn many(#words_parameter: &[[#u32_; #words]; #lanes_n], #texels: &mut [#name; #lanes_n]) {
                     #(#read_words)*
@@ -445,12 +445,12 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
                     #(#built_texels)*
                 }
                 #[inline(always)]
-                fn one(words: &[#u32_; #words]) -> #name {
-                    <#name as #krate::GBufferLayout>::unpack(words)
+                fn one(__gbuffer_one: &[#u32_; #words]) -> #name {
+                    <#name as #krate::GBufferLayout>::unpack(__gbuffer_one)
                 }
             }
-            #private::check_slice_lengths("unpack_slice", #texels.len(), packed.len());
-            #private::convert_lanes::<Unpack, _, _, #lanes_n>(packed, #texels);
+            #private::check_slice_lengths("unpack_slice", #texels.len(), __gbuffer_packed.len());
+            #private::convert_lanes::<__GbufferUnpack, _, _, #lanes_n>(__gbuffer_packed, #texels);
         }
     };
     (pack_slice, unpack_slice)
