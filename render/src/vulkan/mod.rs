@@ -1,7 +1,8 @@
 //! The on-tile renderer on Vulkan (`ash`): the subpass path draws the frame in one render pass
 //! whose G-buffer attachments are `TRANSIENT` (in lazily allocated memory where the device
 //! offers it), read back as input attachments by the later draws of the same subpass (a
-//! feedback loop: `GENERAL` layout, a by-region self-dependency and a barrier between draws)
+//! feedback loop: `GENERAL` layout, a by-region self-dependency and a barrier before each draw
+//! that reads what earlier draws wrote)
 //! and never stored (`DONT_CARE`); only the output is stored. The two-pass path stores the
 //! G-buffer to images and samples them in a second render pass, as wgpu does.
 //!
