@@ -223,7 +223,7 @@ fn check_slice_lengths(call: &str, texels: usize, packed: usize) {
 pub mod __private {
     pub use crate::slices::{convert_lanes, Lanes};
 
-    /// [`crate::check_slice_lengths`], for the derived slices.
+    /// Panics, naming the call and the lengths, unless they agree: for the derived slices.
     pub fn check_slice_lengths(call: &str, texels: usize, packed: usize) {
         crate::check_slice_lengths(call, texels, packed);
     }
