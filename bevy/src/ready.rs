@@ -38,9 +38,6 @@ pub fn readiness(app: &App) -> Result<Readiness, String> {
         .world()
         .get_resource::<PipelineCache>()
         .ok_or("the render app has no pipeline cache yet")?;
-    if cache.waiting_pipelines().next().is_some() {
-        return Ok(Readiness::Waiting);
-    }
     let mut pipelines = 0;
     for pipeline in cache.pipelines() {
         match &pipeline.state {

@@ -106,7 +106,7 @@ impl Format {
     pub fn encode<S: Scalar>(self, values: [S; 4]) -> u32 {
         let mut word = 0;
         for (channel, value) in self.channels().iter().zip(values) {
-            word |= value.encode(*channel) << channel.offset;
+            word |= channel.encode_lanes([value])[0];
         }
         word
     }
@@ -117,7 +117,7 @@ impl Format {
     pub fn decode<S: Scalar>(self, word: u32) -> [S; 4] {
         let mut values = [S::default(); 4];
         for (value, channel) in values.iter_mut().zip(self.channels()) {
-            *value = S::decode((word >> channel.offset) & channel.mask(), *channel);
+            *value = channel.decode_lanes([word])[0];
         }
         values
     }

@@ -150,7 +150,7 @@ pub trait GBufferLayout: Sized {
     ///
     /// When the slices' lengths differ.
     fn pack_slice(texels: &[Self], packed: &mut [Self::Packed]) {
-        check_slice_lengths("pack_slice", texels.len(), packed.len());
+        __private::check_slice_lengths("pack_slice", texels.len(), packed.len());
         slices::convert_lanes::<slices::Pack<Self>, _, _, 1>(texels, packed);
     }
 
@@ -161,7 +161,7 @@ pub trait GBufferLayout: Sized {
     ///
     /// When the slices' lengths differ.
     fn unpack_slice(packed: &[Self::Packed], texels: &mut [Self]) {
-        check_slice_lengths("unpack_slice", texels.len(), packed.len());
+        __private::check_slice_lengths("unpack_slice", texels.len(), packed.len());
         slices::convert_lanes::<slices::Unpack<Self>, _, _, 1>(packed, texels);
     }
 
@@ -209,23 +209,18 @@ pub struct WeslModule {
     pub source: String,
 }
 
-/// Panics, naming the call and the lengths, unless they agree.
-fn check_slice_lengths(call: &str, texels: usize, packed: usize) {
-    assert_eq!(
-        texels, packed,
-        "{call}: {texels} texels and {packed} packed texels; the lengths must agree"
-    );
-}
-
 /// What the derive's `pack_slice` and `unpack_slice` call: not an API, and not covered by
 /// semantic versioning.
 #[doc(hidden)]
 pub mod __private {
     pub use crate::slices::{convert_lanes, Lanes};
 
-    /// Panics, naming the call and the lengths, unless they agree: for the derived slices.
+    /// Panics, naming the call and the lengths, unless they agree.
     pub fn check_slice_lengths(call: &str, texels: usize, packed: usize) {
-        crate::check_slice_lengths(call, texels, packed);
+        assert_eq!(
+            texels, packed,
+            "{call}: {texels} texels and {packed} packed texels; the lengths must agree"
+        );
     }
 }
 

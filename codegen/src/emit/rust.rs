@@ -62,6 +62,27 @@ fn components(field: &Field) -> Vec<TokenStream> {
         .collect()
 }
 
+/// `value`, of the field's scalar type, as a codec's lane: an f32's bits, a u32, an i32's two's
+/// complement, a bool as 0 or 1.
+fn lane_bits(value: TokenStream, scalar: ScalarKind) -> TokenStream {
+    match scalar {
+        ScalarKind::Float => quote!(#value.to_bits()),
+        ScalarKind::Uint => value,
+        ScalarKind::Sint => quote!((#value as ::core::primitive::u32)),
+        ScalarKind::Bool => quote!(::core::primitive::u32::from(#value)),
+    }
+}
+
+/// A codec's lane as a value of `scalar`: the inverse of [`lane_bits`].
+fn from_lane_bits(lane: TokenStream, scalar: ScalarKind) -> TokenStream {
+    match scalar {
+        ScalarKind::Float => quote!(::core::primitive::f32::from_bits(#lane)),
+        ScalarKind::Uint => lane,
+        ScalarKind::Sint => quote!((#lane as ::core::primitive::i32)),
+        ScalarKind::Bool => quote!((#lane != 0)),
+    }
+}
+
 /// `<packing>::BitField { bits: 4, encoding: <packing>::Encoding::Unorm }`.
 fn bit_field_tokens(bit_field: BitField, packing: &TokenStream) -> TokenStream {
     let bits = Literal::u32_unsuffixed(bit_field.bits);
@@ -105,12 +126,7 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
                         if index >= field.ty.components {
                             return quote!(0);
                         }
-                        match field.ty.scalar {
-                            ScalarKind::Float => quote!(#value.to_bits()),
-                            ScalarKind::Uint => quote!(#value),
-                            ScalarKind::Sint => quote!((#value as ::core::primitive::u32)),
-                            ScalarKind::Bool => quote!(::core::primitive::u32::from(#value)),
-                        }
+                        lane_bits(value.clone(), field.ty.scalar)
                     });
                     let bit_field = bit_field_tokens(bit_field, &packing);
                     let components = Literal::usize_unsuffixed(field.ty.components);
@@ -149,11 +165,8 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
                 let mask = Literal::u32_unsuffixed(crate::codecs::max_code(member.bits));
                 let components = Literal::usize_unsuffixed(field.ty.components);
                 let lanes = quote!(#bit_field.decode((#words_parameter[#word] >> #offset) & #mask, #components));
-                let scalar = |index: usize| match field.ty.scalar {
-                    ScalarKind::Float => quote!(::core::primitive::f32::from_bits(__gbuffer_lanes[#index])),
-                    ScalarKind::Uint => quote!(__gbuffer_lanes[#index]),
-                    ScalarKind::Sint => quote!((__gbuffer_lanes[#index] as ::core::primitive::i32)),
-                    ScalarKind::Bool => quote!((__gbuffer_lanes[#index] != 0)),
+                let scalar = |index: usize| {
+                    from_lane_bits(quote!(__gbuffer_lanes[#index]), field.ty.scalar)
                 };
                 let value = if field.ty.components == 1 {
                     scalar(0)
@@ -270,11 +283,10 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
             let axis = format_ident!("{}", &"xyzw"[component..=component]);
             quote!(#texels[#index].#field_ident.#axis)
         };
-        let value = match (as_bits, field.ty.scalar) {
-            (false, _) | (true, ScalarKind::Uint) => value,
-            (true, ScalarKind::Float) => quote!(#value.to_bits()),
-            (true, ScalarKind::Sint) => quote!((#value as #u32_)),
-            (true, ScalarKind::Bool) => quote!(#u32_::from(#value)),
+        let value = if as_bits {
+            lane_bits(value, field.ty.scalar)
+        } else {
+            value
         };
         quote!({
             let mut __gbuffer_lanes = [#zero; #lanes_n];
@@ -405,15 +417,9 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
             let field_lanes = field_name(number);
             let component = |component: usize| {
                 let value = quote!(#field_lanes[#component][#index]);
-                match (field.storage, field.ty.scalar) {
-                    (Storage::Word(_), _) | (Storage::Bits(_), ScalarKind::Uint) => value,
-                    (Storage::Bits(_), ScalarKind::Float) => {
-                        quote!(::core::primitive::f32::from_bits(#value))
-                    }
-                    (Storage::Bits(_), ScalarKind::Sint) => {
-                        quote!((#value as ::core::primitive::i32))
-                    }
-                    (Storage::Bits(_), ScalarKind::Bool) => quote!((#value != 0)),
+                match field.storage {
+                    Storage::Word(_) => value,
+                    Storage::Bits(_) => from_lane_bits(value, field.ty.scalar),
                 }
             };
             let value = if field.ty.components == 1 {
