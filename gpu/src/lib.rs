@@ -10,6 +10,7 @@ pub mod fullscreen;
 pub mod gles;
 pub mod harness;
 pub mod timestamps;
+pub mod timing;
 pub mod tools;
 pub mod values;
 pub mod vulkan;

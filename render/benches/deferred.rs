@@ -1,15 +1,18 @@
 //! The renderer's cost: per G-buffer on wgpu, and per path of the on-tile backends (GLES and
 //! Vulkan), the bytes each frame loads and stores, computed from the load and store operations
 //! and formats the frame's passes really used (`gbuffer_render::recording`), in the bandwidth units of
-//! Arm's tile-memory article (1 BU = width x height x 4 bytes), and the median frame time at
-//! 1280x720 and 1920x1080 (wgpu: timestamp queries where the adapter has them; GLES and Vulkan:
-//! wall clock around a synchronised frame). Then every wgpu configuration's PSNR against the
+//! Arm's tile-memory article (1 BU = width x height x 4 bytes), and the frame time at 1280x720
+//! and 1920x1080 (wgpu: timestamp queries where the adapter has them; GLES and Vulkan: wall
+//! clock around a synchronised frame), by the protocol the trade-off study's frame table uses
+//! (`gbuffer_gpu::timing::time_items`: warm-up rounds, then every frame of a table once a
+//! round; the median, and the rounds' spread). Then every wgpu configuration's PSNR against the
 //! CPU reference. Run with `cargo bench -p gbuffer-render --bench deferred`. Between them,
 //! where the Vulkan paths' time goes: each fused stage and each two-pass pass left out in turn.
 //!
 //! On a CPU rasteriser (llvmpipe, lavapipe) there is no tile memory: its times are a CPU's,
 //! and the traffic the fused paths save is counted, not felt.
 
+use gbuffer_gpu::timing::{time_items, Protocol, Spread};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::compare;
@@ -21,8 +24,9 @@ use gbuffer_render::reference;
 use gbuffer_render::vulkan::VulkanRenderer;
 use gbuffer_render::wgpu::Renderer;
 
-const FRAMES: usize = 10;
 const SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];
+/// The report's protocol: its frame table and this bench time frames alike.
+const PROTOCOL: Protocol = Protocol::FULL;
 
 fn options(gbuffer: GBuffer, (width, height): (u32, u32)) -> Options {
     Options {
@@ -34,19 +38,56 @@ fn options(gbuffer: GBuffer, (width, height): (u32, u32)) -> Options {
     }
 }
 
-/// The median of some frame times, in milliseconds, or why there is none.
-fn median_ms(times: Result<Vec<f64>, String>) -> String {
-    match times {
-        Ok(mut times) if !times.is_empty() => {
-            times.sort_by(f64::total_cmp);
-            format!("{:.1}", times[times.len() / 2] * 1e3)
-        }
-        Ok(_) => "n/a".into(),
+/// Times `frames` (each a closure timing one frame, in seconds) by the protocol; per frame,
+/// its median and spread in milliseconds as `12.3 (12.1-12.9)`, or `n/a` where a frame could
+/// not be timed (the reason on stderr).
+fn time_all(frames: &[Result<TimedFrame<'_>, String>]) -> Vec<String> {
+    let timed: Vec<&dyn Fn() -> Result<f64, String>> = frames
+        .iter()
+        .filter_map(|frame| {
+            frame
+                .as_ref()
+                .map_err(|error| eprintln!("{error}"))
+                .ok()
+                .map(|frame| frame.as_ref())
+        })
+        .collect();
+    let spreads = match time_items(&PROTOCOL, timed.len(), &mut |index| timed[index]()) {
+        Ok((_, samples)) => samples.iter().map(|samples| Spread::of(samples)).collect(),
         Err(error) => {
             eprintln!("{error}");
-            "n/a".into()
+            vec![None; timed.len()]
         }
-    }
+    };
+    let mut spreads = spreads.into_iter();
+    frames
+        .iter()
+        .map(|frame| match frame {
+            Ok(_) => spreads.next().flatten().map_or_else(|| "n/a".into(), ms),
+            Err(_) => "n/a".into(),
+        })
+        .collect()
+}
+
+/// A frame that times itself: one frame's seconds each call.
+type TimedFrame<'a> = Box<dyn Fn() -> Result<f64, String> + 'a>;
+
+/// Each of `items`' frames (`frame(item, size)`) timed at both sizes, one table per size: per
+/// size, the times in `items`' order ([`time_all`]).
+fn time_sizes<'a, T>(
+    items: &[T],
+    frame: impl Fn(&T, (u32, u32)) -> Result<TimedFrame<'a>, String>,
+) -> [std::vec::IntoIter<String>; 2] {
+    SIZES.map(|size| {
+        let frames: Vec<_> = items.iter().map(|item| frame(item, size)).collect();
+        time_all(&frames).into_iter()
+    })
+}
+
+/// A spread of seconds as milliseconds: the median, then the least and greatest.
+fn ms(spread: Spread) -> String {
+    let spread = spread.map(|seconds| seconds * 1e3);
+    format!("{:.1} ({:.1}-{:.1})", spread.median, spread.min, spread.max)
 }
 
 /// One row: the traffic of a recorded frame and the times at both sizes.
@@ -54,7 +95,7 @@ fn row(name: &str, recording: &Recording, times: [String; 2]) {
     let (width, height) = SIZES[1];
     let traffic = recording.traffic(width, height);
     println!(
-        "{:<28} {:>6} {:>11.1} {:>11.1} {:>6.1} {:>12} {:>12}",
+        "{:<28} {:>6} {:>11.1} {:>11.1} {:>6.1} {:>18} {:>18}",
         name,
         recording.passes(),
         traffic.loaded as f64 / 1e6,
@@ -67,20 +108,15 @@ fn row(name: &str, recording: &Recording, times: [String; 2]) {
 
 /// Where the Vulkan paths' time goes, at 1280x720: each stage of the fused frame (and each
 /// pass of the two-pass frame) timed by leaving it out, its share the whole frame's median less
-/// the median without it.
+/// the median without it; the whole frame and every frame without a stage timed together.
 fn stages(progress: &dyn Fn(&str)) {
     let vulkan = match VulkanRenderer::new(progress) {
         Ok(vulkan) => vulkan,
         Err(error) => return eprintln!("Vulkan: {error}"),
     };
-    let median = |times: Result<Vec<f64>, String>| -> Option<f64> {
-        let mut times = times.map_err(|error| eprintln!("{error}")).ok()?;
-        times.sort_by(f64::total_cmp);
-        times.get(times.len() / 2).map(|time| time * 1e3)
-    };
     println!(
-        "\nVulkan at {}x{}, each stage left out (median of {FRAMES} frames, ms):",
-        SIZES[0].0, SIZES[0].1
+        "\nVulkan at {}x{}, each stage left out (median of {} rounds, ms):",
+        SIZES[0].0, SIZES[0].1, PROTOCOL.rounds
     );
     println!(
         "{:<36} {:>10} {:>13} {:>10}",
@@ -101,27 +137,57 @@ fn stages(progress: &dyn Fn(&str)) {
                 options: options(GBuffer::Packed(layout), SIZES[0]),
                 path,
             };
-            let Some(whole) = median(vulkan.time_frames(&tile, FRAMES)) else {
-                continue;
+            // The whole frame first, then the frame without each stage.
+            let left_out: Vec<Vec<&str>> = std::iter::once(Vec::new())
+                .chain(names.iter().map(|name| vec![*name]))
+                .collect();
+            let frames = match left_out
+                .iter()
+                .map(|left_out| vulkan.timed_frame(&tile, left_out))
+                .collect::<Result<Vec<_>, String>>()
+            {
+                Ok(frames) => frames,
+                Err(error) => {
+                    eprintln!("{error}");
+                    continue;
+                }
             };
+            let medians: Vec<f64> = match time_items(&PROTOCOL, frames.len(), &mut |index| {
+                frames[index].seconds()
+            }) {
+                Ok((_, samples)) => samples
+                    .iter()
+                    .filter_map(|samples| Spread::of(samples))
+                    .map(|spread| spread.median * 1e3)
+                    .collect(),
+                Err(error) => {
+                    eprintln!("{error}");
+                    continue;
+                }
+            };
+            let whole = medians[0];
             println!(
                 "{:<36} {whole:>10.1}",
                 format!("{} {}", path.name(), layout.name())
             );
-            for name in names {
-                if let Some(without) =
-                    median(vulkan.time_frames_leaving_out(&tile, FRAMES, &[name]))
-                {
-                    println!(
-                        "{:<36} {:>10} {without:>13.1} {:>10.1}",
-                        format!("  {name}"),
-                        "",
-                        whole - without
-                    );
-                }
+            for (name, without) in names.iter().zip(&medians[1..]) {
+                println!(
+                    "{:<36} {:>10} {without:>13.1} {:>10.1}",
+                    format!("  {name}"),
+                    "",
+                    whole - without
+                );
             }
         }
     }
+}
+
+/// Every layout with every path, layout by layout.
+fn configurations(layouts: &[PackedLayout], paths: &[Path]) -> Vec<(PackedLayout, Path)> {
+    layouts
+        .iter()
+        .flat_map(|&layout| paths.iter().map(move |&path| (layout, path)))
+        .collect()
 }
 
 fn main() {
@@ -139,63 +205,74 @@ fn main() {
         "wall clock around a synchronised submit"
     };
     println!(
-        "wgpu adapter: {} ({:?}); frame times from {clock}, median of {FRAMES}",
-        renderer.adapter.name, renderer.adapter.backend
+        "wgpu adapter: {} ({:?}); frame times from {clock}, median (min-max) of {} rounds",
+        renderer.adapter.name, renderer.adapter.backend, PROTOCOL.rounds
     );
     println!("traffic per frame at 1920x1080 from the passes' load and store operations:");
     println!(
-        "{:<28} {:>6} {:>11} {:>11} {:>6} {:>12} {:>12}",
+        "{:<28} {:>6} {:>11} {:>11} {:>6} {:>18} {:>18}",
         "G-buffer / path", "passes", "MB loaded", "MB stored", "BU", "1280x720 ms", "1920x1080 ms"
     );
-    for gbuffer in GBuffer::named() {
+    // Every G-buffer's frame at one size timed together, so no clock change falls on one.
+    let gbuffers: Vec<GBuffer> = GBuffer::named().collect();
+    let mut times = time_sizes(&gbuffers, |gbuffer, size| {
+        let frame = renderer.timed_frame(&options(gbuffer.clone(), size))?;
+        Ok(Box::new(move || frame.seconds()))
+    });
+    for gbuffer in &gbuffers {
         let recorded = renderer.render_recorded(&options(gbuffer.clone(), SIZES[1]));
-        let times = SIZES
-            .map(|size| median_ms(renderer.time_frames(&options(gbuffer.clone(), size), FRAMES)));
+        let row_times = [0, 1].map(|size| times[size].next().unwrap_or_default());
         match recorded {
-            Ok((_, recording)) => row(&format!("wgpu {}", gbuffer.name()), &recording, times),
+            Ok((_, recording)) => row(&format!("wgpu {}", gbuffer.name()), &recording, row_times),
             Err(error) => eprintln!("{}: {error}", gbuffer.name()),
         }
     }
 
-    // The on-tile backends, for the layouts they keep on tile.
-    for layout in [PackedLayout::MobileMetallic, PackedLayout::FutureMetallic] {
-        let tile = |path, size| TileOptions {
-            options: options(GBuffer::Packed(layout), size),
-            path,
-        };
-        match GlesRenderer::new(&progress) {
-            Ok(gles) => {
-                for path in [Path::TwoPass, Path::FetchPacked, Path::FetchNative] {
-                    let name = format!("gles {} {}", path.name(), layout.name());
-                    match gles.render(&tile(path, SIZES[1])) {
-                        Ok((_, recording)) => {
-                            let times = SIZES
-                                .map(|size| median_ms(gles.time_frames(&tile(path, size), FRAMES)));
-                            row(&name, &recording, times);
-                        }
-                        Err(error) => eprintln!("{name}: {error}"),
-                    }
+    // The on-tile backends, for the layouts they keep on tile: each backend's paths and
+    // layouts at one size timed together.
+    let layouts = [PackedLayout::MobileMetallic, PackedLayout::FutureMetallic];
+    let tile = |layout, path, size| TileOptions {
+        options: options(GBuffer::Packed(layout), size),
+        path,
+    };
+    match GlesRenderer::new(&progress) {
+        Ok(gles) => {
+            let configurations = configurations(
+                &layouts,
+                &[Path::TwoPass, Path::FetchPacked, Path::FetchNative],
+            );
+            let mut times = time_sizes(&configurations, |&(layout, path), size| {
+                let frame = gles.timed_frame(&tile(layout, path, size))?;
+                Ok(Box::new(move || frame.seconds()))
+            });
+            for &(layout, path) in &configurations {
+                let name = format!("gles {} {}", path.name(), layout.name());
+                let row_times = [0, 1].map(|size| times[size].next().unwrap_or_default());
+                match gles.render(&tile(layout, path, SIZES[1])) {
+                    Ok((_, recording)) => row(&name, &recording, row_times),
+                    Err(error) => eprintln!("{name}: {error}"),
                 }
             }
-            Err(error) => eprintln!("GLES: {error}"),
         }
-        match VulkanRenderer::new(&progress) {
-            Ok(vulkan) => {
-                for path in [Path::TwoPass, Path::Subpass] {
-                    let name = format!("vulkan {} {}", path.name(), layout.name());
-                    match vulkan.render(&tile(path, SIZES[1])) {
-                        Ok((_, recording)) => {
-                            let times = SIZES.map(|size| {
-                                median_ms(vulkan.time_frames(&tile(path, size), FRAMES))
-                            });
-                            row(&name, &recording, times);
-                        }
-                        Err(error) => eprintln!("{name}: {error}"),
-                    }
+        Err(error) => eprintln!("GLES: {error}"),
+    }
+    match VulkanRenderer::new(&progress) {
+        Ok(vulkan) => {
+            let configurations = configurations(&layouts, &[Path::TwoPass, Path::Subpass]);
+            let mut times = time_sizes(&configurations, |&(layout, path), size| {
+                let frame = vulkan.timed_frame(&tile(layout, path, size), &[])?;
+                Ok(Box::new(move || frame.seconds()))
+            });
+            for &(layout, path) in &configurations {
+                let name = format!("vulkan {} {}", path.name(), layout.name());
+                let row_times = [0, 1].map(|size| times[size].next().unwrap_or_default());
+                match vulkan.render(&tile(layout, path, SIZES[1])) {
+                    Ok((_, recording)) => row(&name, &recording, row_times),
+                    Err(error) => eprintln!("{name}: {error}"),
                 }
             }
-            Err(error) => eprintln!("Vulkan: {error}"),
         }
+        Err(error) => eprintln!("Vulkan: {error}"),
     }
 
     stages(&progress);

@@ -8,14 +8,16 @@
 //! Per layout: bits and words; the bandwidth units (width x height x 4 bytes) its frame moves
 //! on wgpu (the G-buffer through memory) and, for the layouts the on-tile paths keep, on
 //! Vulkan's two-pass and fused (subpass) paths; PSNR, largest error and the share of pixels
-//! more than one 8-bit step off against the lossless frame; the frame time on the adapter
-//! (median of [`TIMED_FRAMES`]); and a heat map of where the error sits. For the solved
-//! presets, also what the solver predicted for each quantity.
+//! more than one 8-bit step off against the lossless frame; the frame time on the adapter (the
+//! median of `gbuffer_gpu::timing`'s rounds, every layout timed once a round after warm-up
+//! rounds, as the renderer's bench times them); and a heat map of where the error sits. For the
+//! solved presets, also what the solver predicted for each quantity.
 
 use crate::stdout::report_line;
 use std::path::Path;
 use std::sync::Arc;
 
+use gbuffer_gpu::timing::{time_items, Protocol, Spread};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::{compare, heatmap, write_png, Comparison};
 use gbuffer_render::named::Named;
@@ -28,8 +30,6 @@ use gbuffer_solver::Solution;
 
 /// The frame size of the table.
 pub const SIZE: (u32, u32) = (1280, 720);
-/// Frames timed per layout; the table gives their median.
-pub const TIMED_FRAMES: usize = 5;
 
 /// One layout's row.
 #[derive(Clone, Debug)]
@@ -50,8 +50,9 @@ pub struct FrameRow {
     pub fused_bandwidth_units: Option<f64>,
     /// Against the lossless frame of the same scene.
     pub comparison: Comparison,
-    /// Median frame time on the wgpu adapter, milliseconds.
-    pub frame_ms: f64,
+    /// Frame times on the wgpu adapter over the protocol's rounds, milliseconds (set once
+    /// every layout has rendered: [`measure_all`] times them together).
+    pub frame_ms: Spread,
     /// The heat map's file name, beside the report.
     pub heatmap: String,
     /// For a solved preset, each quantity's predicted error as the solver words it
@@ -88,8 +89,8 @@ struct Renderers {
     vulkan: Option<VulkanRenderer>,
 }
 
-/// Measures one G-buffer, named `name` in the table, against `lossless`; writes its heat map
-/// into `folder`.
+/// Measures one G-buffer, named `name` in the table, against `lossless` (all but its time);
+/// writes its heat map into `folder`.
 fn measure(
     renderers: &Renderers,
     (name, kind): (String, &'static str),
@@ -121,7 +122,6 @@ fn measure(
                 .bandwidth_units(SIZE.0, SIZE.1),
         ))
     };
-    let mut times = renderers.wgpu.time_frames(&options, TIMED_FRAMES)?;
     let file_stem = name.replace(|c: char| !c.is_ascii_alphanumeric(), "-");
     let heatmap_name = format!("frame-{file_stem}-heatmap.png");
     let heatmap_path = folder.join(&heatmap_name);
@@ -138,7 +138,11 @@ fn measure(
         two_pass_bandwidth_units: tile_bandwidth(TilePath::TwoPass)?,
         fused_bandwidth_units: tile_bandwidth(TilePath::Subpass)?,
         comparison,
-        frame_ms: crate::timing::median(&mut times) * 1e3,
+        frame_ms: Spread {
+            min: f64::NAN,
+            median: f64::NAN,
+            max: f64::NAN,
+        },
         heatmap: heatmap_name,
         predicted: Vec::new(),
     })
@@ -158,7 +162,7 @@ impl FrameRow {
             format!("{:.2}", self.comparison.psnr),
             self.comparison.max_error.to_string(),
             format!("{:.3}%", self.comparison.share_over_one_step * 100.0),
-            format!("{:.2}", self.frame_ms),
+            format!("{:.2}", self.frame_ms.median),
         ]
     }
 }
@@ -181,7 +185,9 @@ fn predictions(solution: &Solution) -> Vec<String> {
         .collect()
 }
 
-/// Renders every layout of the table and measures it, writing the heat maps into `folder`.
+/// Renders every layout of the table and measures it, writing the heat maps into `folder`, then
+/// times every layout's frame together by the protocol (`gbuffer_gpu::timing::time_items`:
+/// warm-up rounds, then each layout once a round), so that no clock change falls on one layout.
 /// The error says what is missing (the wgpu adapter) or what failed.
 pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRow>, String> {
     let renderers = Renderers {
@@ -200,6 +206,7 @@ pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRo
         .wgpu
         .render(&options(GBuffer::Packed(PackedLayout::Lossless)))?;
     let mut rows = Vec::new();
+    let mut gbuffers = Vec::new();
     for (layout, kind) in packed_layouts() {
         progress(&format!("frame table: {}", layout.name()));
         rows.push(measure(
@@ -209,6 +216,7 @@ pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRo
             &lossless,
             folder,
         )?);
+        gbuffers.push(GBuffer::Packed(layout));
     }
     for (preset, _) in PRESETS {
         progress(&format!("frame table: preset {preset}"));
@@ -226,6 +234,29 @@ pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRo
         )?;
         row.predicted = predictions(&solution);
         rows.push(row);
+        gbuffers.push(GBuffer::Solved(solution));
+    }
+    progress(&format!(
+        "frame table: timing {} frames in rounds",
+        gbuffers.len()
+    ));
+    let frames = gbuffers
+        .into_iter()
+        .map(|gbuffer| renderers.wgpu.timed_frame(&options(gbuffer)))
+        .collect::<Result<Vec<_>, String>>()?;
+    let (warm, samples) = time_items(&Protocol::FULL, frames.len(), &mut |index| {
+        frames[index].seconds()
+    })?;
+    if !warm.settled {
+        progress(&format!(
+            "frame table: the frame times did not settle in {} warm-up rounds",
+            warm.runs
+        ));
+    }
+    for (row, samples) in rows.iter_mut().zip(samples) {
+        if let Some(spread) = Spread::of(&samples) {
+            row.frame_ms = spread.map(|seconds| seconds * 1e3);
+        }
     }
     Ok(rows)
 }
@@ -291,7 +322,9 @@ pub fn json(rows: &[FrameRow]) -> serde_json::Value {
                 "psnr_db": row.comparison.psnr,
                 "largest_error_steps": row.comparison.max_error,
                 "share_over_one_step": row.comparison.share_over_one_step,
-                "frame_ms_median": row.frame_ms,
+                "frame_ms_median": row.frame_ms.median,
+                "frame_ms_min": row.frame_ms.min,
+                "frame_ms_max": row.frame_ms.max,
                 "heatmap": row.heatmap,
                 "predicted_errors": row.predicted,
             })
@@ -308,11 +341,14 @@ pub fn markdown(rows: &[FrameRow], adapter: &str) -> String {
          (every quantity an f32, the same passes; for a solved preset, the lossless G-buffer of \
          its scene). Bandwidth in units of width x height x 4 bytes, from the passes' load and \
          store operations; `-` where the on-tile paths do not keep the layout or no Vulkan \
-         was there. Frame time: median of {TIMED_FRAMES} frames on {adapter} (compare ratios, \
+         was there. Frame time: the median of {} rounds on {adapter}, every layout's frame timed once \
+         a round after warm-up rounds (`report.json` has each one's min and max; compare ratios, \
          not absolute times).\n\n\
          | layout | kind | bits | words | BU wgpu | BU two-pass | BU fused | PSNR dB | largest error (steps) | pixels > 1 step | frame ms | heat map |\n\
          | --- | --- | --: | --: | --: | --: | --: | --: | --: | --: | --: | --- |\n",
-        SIZE.0, SIZE.1
+        SIZE.0,
+        SIZE.1,
+        Protocol::FULL.rounds
     );
     for row in rows {
         let cells = row.cells().join(" | ");

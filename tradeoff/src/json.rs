@@ -39,8 +39,8 @@ pub(crate) fn timings_json(times: &timing::StageTimes) -> serde_json::Value {
         .into_iter()
         .filter_map(|stage| times.get(stage))
         .map(|time| {
-            // A time below the harness's resolution has no median of its own (less the
-            // harness's, it may read negative): only its upper bound is written.
+            // A time that does not resolve has no median of its own (less the harness's, it
+            // may read negative): only its upper bound is written.
             let resolved = time.resolved();
             let bound = time.upper_bound_ns();
             serde_json::json!({
@@ -49,7 +49,9 @@ pub(crate) fn timings_json(times: &timing::StageTimes) -> serde_json::Value {
                 "evaluations_per_second": resolved.then(|| time.evaluations_per_second()),
                 "evaluations_per_second_at_least": bound.map(|bound| 1e9 / bound),
                 "evaluations_per_run": time.evaluations_per_run(),
+                "chain": time.chain,
                 "run_ms": time.run_ms,
+                "doubling_ratio": time.doubling_ratio,
                 "median_ns": resolved.then_some(time.median_ns),
                 "min_ns": resolved.then_some(time.min_ns),
                 "max_ns": resolved.then_some(time.max_ns),

@@ -3,7 +3,6 @@
 //! of it.
 
 use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
-use gbuffer_gpu::adapter::Gpu;
 
 use crate::compilers;
 use crate::rows::Row;
@@ -62,46 +61,47 @@ pub(crate) fn compile(row_wgsl: &str) -> Result<(naga::Module, Vec<u32>), String
     gbuffer_validator::cost::compile_compacted(&timing::harness(row_wgsl))
 }
 
-/// Measures every row on `gpu` (less `baseline_gpu`, the harness's own time) and on the CPU,
-/// with its figures on the GPU compilers taken from `row_compilers` (less the baseline's).
-pub(crate) fn measure_rows(
-    gpu: &Gpu,
-    rows: &[Row],
-    baseline_gpu: &timing::StageTimes,
-    row_compilers: &compilers::Compiled,
-) -> Vec<Measured> {
-    let (_, baseline_spirv) = compile(timing::BASELINE_ROW).expect("the baseline harness compiles");
-    let baseline_instructions = gbuffer_validator::cost::spirv_instructions(&baseline_spirv);
+/// Adds every row to `timer`, each with the LUT it samples; their indices in the timer's
+/// times, in the rows' order.
+pub(crate) fn time_rows(timer: &mut timing::Timer, rows: &[Row]) -> Vec<usize> {
     let luts: Vec<(usize, Vec<[f32; 2]>)> = [16, 32]
         .into_iter()
         .map(|size| (size, EnvBrdfLut::bake(size, 1024).texels))
         .collect();
+    rows.iter()
+        .map(|row| {
+            let (lut_size, lut) = match row.lut_size {
+                Some(size) => luts
+                    .iter()
+                    .find(|(lut_size, _)| *lut_size == size)
+                    .map(|(size, texels)| (*size, texels.as_slice()))
+                    .unwrap_or((1, &[])),
+                None => (1, &[][..]),
+            };
+            timer.add(&row.name, &row.wgsl, lut, lut_size)
+        })
+        .collect()
+}
 
+/// Every row's measurements: its times on the adapter (`gpu_times`, one per row, less the
+/// harness's), on the CPU, and on the GPU compilers from `row_compilers` (less the
+/// baseline's).
+pub(crate) fn measure_rows(
+    rows: &[Row],
+    gpu_times: &[timing::StageTimes],
+    row_compilers: &compilers::Compiled,
+) -> Vec<Measured> {
+    let (_, baseline_spirv) = compile(timing::BASELINE_ROW).expect("the baseline harness compiles");
+    let baseline_instructions = gbuffer_validator::cost::spirv_instructions(&baseline_spirv);
     let mut measured = Vec::new();
-    for (index, row) in rows.iter().enumerate() {
-        eprintln!(
-            "[{}/{}] {}: {}",
-            index + 1,
-            rows.len(),
-            row.family,
-            row.name
-        );
+    for (index, (row, gpu_time)) in rows.iter().zip(gpu_times).enumerate() {
         let (module, spirv) =
             compile(&row.wgsl).unwrap_or_else(|error| panic!("{}: {error}", row.name));
-        let (lut_size, lut) = match row.lut_size {
-            Some(size) => luts
-                .iter()
-                .find(|(lut_size, _)| *lut_size == size)
-                .map(|(size, texels)| (*size, texels.as_slice()))
-                .unwrap_or((1, &[])),
-            None => (1, &[][..]),
-        };
-        let gpu_time = timing::StageTimes::measure(gpu, &row.wgsl, lut, lut_size, baseline_gpu);
         measured.push(Measured {
             naga_expressions: gbuffer_validator::cost::naga_expressions(&module, "row_eval"),
             spirv_instructions: gbuffer_validator::cost::spirv_instructions(&spirv)
                 .saturating_sub(baseline_instructions),
-            gpu: gpu_time,
+            gpu: *gpu_time,
             cpu_ns_per_eval: timing::cpu_ns_per_eval(&row.cpu),
             compilers: ROW_TARGETS
                 .iter()
@@ -118,16 +118,14 @@ pub(crate) fn measure_rows(
     measured
 }
 
-/// A time with three significant digits; `<X` where it is below the harness's resolution (X
-/// the upper bound), "n/r" where the run's times were not trusted, "n/a" where it could not be
-/// measured.
+/// A time with three significant digits; `<X` where it does not resolve (X the upper bound),
+/// "n/a" where it could not be measured.
 pub(crate) fn format_time(time: Option<timing::GpuTime>) -> String {
     match time {
         None => "n/a".to_string(),
-        Some(time) if time.resolved() => significant(time.median_ns),
         Some(time) => match time.upper_bound_ns() {
             Some(bound) => format!("<{}", significant(bound)),
-            None => "n/r".to_string(),
+            None => significant(time.median_ns),
         },
     }
 }

@@ -57,34 +57,47 @@ fn row_wgsl(format: Format, conversions: Conversions) -> String {
     )
 }
 
-/// Measures both modes of every format fast conversions change. The error is wgpu's, where it
-/// rejected a harness.
-pub fn measure(gpu: &Gpu, baseline_gpu: &timing::StageTimes) -> Result<Vec<PackingRow>, String> {
-    let mut rows = Vec::new();
-    for format in CONVERTED_FORMATS {
-        for conversions in [Conversions::Exact, Conversions::Fast] {
-            eprintln!("packing: {} ({conversions:?})", format.name());
-            let layout = one_field(format);
-            let cost = layout_cost(&layout, conversions)
-                .map_err(|error| eprintln!("  no instruction count: {error}"))
-                .ok();
-            let wgsl = emit_with(&layout, conversions);
-            let deviation = deviation(gpu, &layout, &wgsl, TEXELS, 91)?;
-            let times = timing::StageTimes::measure(
-                gpu,
+/// Every format and mode the packing table has, in its order.
+fn modes() -> impl Iterator<Item = (Format, Conversions)> {
+    CONVERTED_FORMATS.into_iter().flat_map(|format| {
+        [Conversions::Exact, Conversions::Fast].map(|conversions| (format, conversions))
+    })
+}
+
+/// Adds each format's pack-and-unpack in both modes to `timer`; their indices in the timer's
+/// times, in the table's order.
+pub fn time_rows(timer: &mut timing::Timer) -> Vec<usize> {
+    modes()
+        .map(|(format, conversions)| {
+            timer.add(
+                &format!("{} {}", format.name(), conversions.name()),
                 &row_wgsl(format, conversions),
                 &[],
                 1,
-                baseline_gpu,
-            );
-            rows.push(PackingRow {
-                format,
-                conversions,
-                cost,
-                deviation,
-                times,
-            });
-        }
+            )
+        })
+        .collect()
+}
+
+/// Measures both modes of every format fast conversions change, with their `times` (one per
+/// row, in [`time_rows`]'s order). The error is wgpu's, where it rejected a harness.
+pub fn measure(gpu: &Gpu, times: &[timing::StageTimes]) -> Result<Vec<PackingRow>, String> {
+    let mut rows = Vec::new();
+    for ((format, conversions), times) in modes().zip(times) {
+        eprintln!("packing: {} ({conversions:?})", format.name());
+        let layout = one_field(format);
+        let cost = layout_cost(&layout, conversions)
+            .map_err(|error| eprintln!("  no instruction count: {error}"))
+            .ok();
+        let wgsl = emit_with(&layout, conversions);
+        let deviation = deviation(gpu, &layout, &wgsl, TEXELS, 91)?;
+        rows.push(PackingRow {
+            format,
+            conversions,
+            cost,
+            deviation,
+            times: *times,
+        });
     }
     Ok(rows)
 }
@@ -112,13 +125,6 @@ pub fn timed_groups<'a>(
                 .collect()
         })
         .collect()
-}
-
-/// Marks every row's time untrusted.
-pub fn distrust(rows: &mut [PackingRow]) {
-    for row in rows {
-        row.times.distrust();
-    }
 }
 
 /// What the time column means on this adapter: a software rasteriser's times are a CPU's.

@@ -168,24 +168,14 @@ impl GlesRenderer {
         result.map(|frame| (frame, recording))
     }
 
-    /// Times `frames` frames (after one that warms up): seconds each, by the wall clock around
-    /// the draws and `glFinish` (llvmpipe has no timer queries).
-    pub fn time_frames(&self, tile: &TileOptions, frames: usize) -> Result<Vec<f64>, String> {
+    /// A frame of `tile` ready to time: each [`TimedFrame::seconds`] is one frame; the
+    /// protocol around it is `gbuffer_gpu::timing`'s. Its GL objects go when it is dropped.
+    pub fn timed_frame(&self, tile: &TileOptions) -> Result<TimedFrame<'_>, String> {
         self.gles.make_current()?;
-        let plan = self.plan(tile)?;
-        let mut times = Vec::with_capacity(frames);
-        let result = (0..=frames).try_for_each(|_| {
-            let start = Instant::now();
-            self.draw(&plan, &mut Recording::default())?;
-            // SAFETY: a plain synchronisation of the current context.
-            unsafe { self.gles.gl.finish() };
-            times.push(start.elapsed().as_secs_f64());
-            Ok::<(), String>(())
-        });
-        self.delete(plan);
-        result?;
-        times.remove(0);
-        Ok(times)
+        Ok(TimedFrame {
+            renderer: self,
+            plan: Some(self.plan(tile)?),
+        })
     }
 
     /// The packed words the geometry writes (a debug view: the G-buffer stored, before decals
@@ -539,4 +529,37 @@ unsafe fn upload(
     }
     gl.active_texture(glow::TEXTURE0);
     Ok(texture)
+}
+
+/// A frame ready to time ([`GlesRenderer::timed_frame`]).
+pub struct TimedFrame<'a> {
+    renderer: &'a GlesRenderer,
+    /// Taken by `drop`, which deletes its GL objects.
+    plan: Option<Plan>,
+}
+
+impl TimedFrame<'_> {
+    /// One frame's seconds, by the wall clock around the draws and `glFinish` (llvmpipe has no
+    /// timer queries).
+    pub fn seconds(&self) -> Result<f64, String> {
+        let plan = self.plan.as_ref().ok_or("the frame was deleted")?;
+        self.renderer.gles.make_current()?;
+        let start = Instant::now();
+        self.renderer.draw(plan, &mut Recording::default())?;
+        // SAFETY: a plain synchronisation of the current context.
+        unsafe { self.renderer.gles.gl.finish() };
+        Ok(start.elapsed().as_secs_f64())
+    }
+}
+
+impl Drop for TimedFrame<'_> {
+    fn drop(&mut self) {
+        if let Some(plan) = self.plan.take() {
+            // The context must be current for the deletes; if it cannot be made so, the
+            // objects go with the context.
+            if self.renderer.gles.make_current().is_ok() {
+                self.renderer.delete(plan);
+            }
+        }
+    }
 }

@@ -214,22 +214,16 @@ impl VulkanRenderer {
         ))
     }
 
-    /// Times `frames` frames (after one that warms up): seconds each, by the wall clock around
-    /// a submit and its wait.
-    pub fn time_frames(&self, tile: &TileOptions, frames: usize) -> Result<Vec<f64>, String> {
-        self.time_frames_leaving_out(tile, frames, &[])
-    }
-
-    /// [`Self::time_frames`] with the draws of the stages or passes named in `left_out` not
-    /// drawn (a fused path's stages: `Stage::name`; the two-pass path's passes: `gbuffer`,
-    /// `lighting and resolve`): what a stage costs is the whole frame's time less the time
-    /// without it. An unknown name is an error.
-    pub fn time_frames_leaving_out(
+    /// A frame of `tile` ready to time, without the draws of the stages or passes named in
+    /// `left_out` (a fused path's stages: `Stage::name`; the two-pass path's passes:
+    /// `gbuffer`, `lighting and resolve`): what a stage costs is the whole frame's time less
+    /// the time without it. An unknown name is an error. Each [`TimedFrame::seconds`] is one
+    /// frame; the protocol around it is `gbuffer_gpu::timing`'s.
+    pub fn timed_frame(
         &self,
         tile: &TileOptions,
-        frames: usize,
         left_out: &[&str],
-    ) -> Result<Vec<f64>, String> {
+    ) -> Result<TimedFrame<'_>, String> {
         let mut plan = self.plan(tile)?;
         for name in left_out {
             if !plan
@@ -248,14 +242,10 @@ impl VulkanRenderer {
             pass.draws
                 .retain(|(stage, _)| !left_out.contains(&stages[*stage].name));
         }
-        let mut times = Vec::with_capacity(frames);
-        for _ in 0..=frames {
-            let start = Instant::now();
-            self.submit_frame(&plan, &mut Recording::default())?;
-            times.push(start.elapsed().as_secs_f64());
-        }
-        times.remove(0);
-        Ok(times)
+        Ok(TimedFrame {
+            renderer: self,
+            plan,
+        })
     }
 
     /// The checked plan of a configuration.
@@ -545,4 +535,20 @@ fn buffer_of(
     let buffer = vulkan.host_buffer(words.len(), usage)?;
     vulkan.write_buffer(&buffer, &words)?;
     Ok(buffer)
+}
+
+/// A frame ready to time ([`VulkanRenderer::timed_frame`]).
+pub struct TimedFrame<'a> {
+    renderer: &'a VulkanRenderer,
+    plan: Plan,
+}
+
+impl TimedFrame<'_> {
+    /// One frame's seconds, by the wall clock around its submit and wait.
+    pub fn seconds(&self) -> Result<f64, String> {
+        let start = Instant::now();
+        self.renderer
+            .submit_frame(&self.plan, &mut Recording::default())?;
+        Ok(start.elapsed().as_secs_f64())
+    }
 }

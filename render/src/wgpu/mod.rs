@@ -168,37 +168,14 @@ impl Renderer {
         self.timestamps.is_some()
     }
 
-    /// Times `frames` frames, each submitted and waited for: seconds per frame, from timestamp
-    /// queries where the adapter has them, else from the wall clock around the submit.
-    pub fn time_frames(&self, options: &Options, frames: usize) -> Result<Vec<f64>, String> {
-        let passes = self.passes(options)?;
-        let mut times = Vec::with_capacity(frames);
-        for _ in 0..=frames {
-            let commands = passes.encode(
-                self,
-                self.timestamps
-                    .as_ref()
-                    .map(|timestamps| &timestamps.query_set),
-                &mut Recording::default(),
-            );
-            let start = Instant::now();
-            self.queue.submit([commands]);
-            self.device
-                .poll(wgpu::PollType::wait_indefinitely())
-                .map_err(|error| error.to_string())?;
-            let wall_clock = start.elapsed().as_secs_f64();
-            times.push(match &self.timestamps {
-                Some(timestamps) => {
-                    let mut encoder = self.device.create_command_encoder(&Default::default());
-                    timestamps.resolve(&mut encoder);
-                    self.queue.submit([encoder.finish()]);
-                    timestamps.seconds(&self.device, &self.queue)?
-                }
-                None => wall_clock,
-            });
-        }
-        times.remove(0); // the first frame warms caches and compiles lazily
-        Ok(times)
+    /// A frame of `options` ready to time: its passes built once, each
+    /// [`TimedFrame::seconds`] one frame submitted and waited for. The protocol around it
+    /// (warm-up, rounds) is `gbuffer_gpu::timing`'s.
+    pub fn timed_frame(&self, options: &Options) -> Result<TimedFrame<'_>, String> {
+        Ok(TimedFrame {
+            renderer: self,
+            passes: self.passes(options)?,
+        })
     }
 
     /// A render pipeline of `source`'s entry points (vertex, fragment) writing `formats`;
@@ -411,5 +388,43 @@ impl Renderer {
                 options.gbuffer.name()
             )
         })
+    }
+}
+
+/// A frame ready to time ([`Renderer::timed_frame`]).
+pub struct TimedFrame<'a> {
+    renderer: &'a Renderer,
+    passes: Passes,
+}
+
+impl TimedFrame<'_> {
+    /// One frame's seconds: from timestamp queries around its passes where the adapter has
+    /// them, else from the wall clock around the submit and its wait.
+    pub fn seconds(&self) -> Result<f64, String> {
+        let renderer = self.renderer;
+        let commands = self.passes.encode(
+            renderer,
+            renderer
+                .timestamps
+                .as_ref()
+                .map(|timestamps| &timestamps.query_set),
+            &mut Recording::default(),
+        );
+        let start = Instant::now();
+        renderer.queue.submit([commands]);
+        renderer
+            .device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|error| error.to_string())?;
+        let wall_clock = start.elapsed().as_secs_f64();
+        match &renderer.timestamps {
+            Some(timestamps) => {
+                let mut encoder = renderer.device.create_command_encoder(&Default::default());
+                timestamps.resolve(&mut encoder);
+                renderer.queue.submit([encoder.finish()]);
+                timestamps.seconds(&renderer.device, &renderer.queue)
+            }
+            None => Ok(wall_clock),
+        }
     }
 }

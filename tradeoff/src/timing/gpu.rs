@@ -1,46 +1,156 @@
-//! A row's time on the adapter: the bindings and target a stage's runs share ([`Bench`]), one
-//! run timed by the wall clock and by timestamps, the chain calibrated on the wall clock, then
-//! the timed runs.
+//! The rows' times on the adapter, by the protocol of `gbuffer_gpu::timing`: every row's
+//! pipeline built first, the clock warmed up on the harness alone, each row's chain calibrated
+//! until a run lasts `TARGET_RUN` and doubling the chain doubles the time, then every row timed
+//! once a round for the protocol's rounds.
 
 use std::time::Instant;
 
 use gbuffer_gpu::timestamps::Timestamps;
+use gbuffer_gpu::timing::{doubles, in_rounds, warm_up, Protocol};
 use gbuffer_gpu::Gpu;
 
-use super::harness::{fragment_harness_with_chain, harness_with_chain};
+use super::harness::{compute_harness, fragment_harness_with, Chain, BASELINE_ROW};
 use super::{
-    median, Clock, GpuTime, Stage, CHAIN, FRAGMENT_HEIGHT, FRAGMENT_WIDTH, GPU_RUNS, INVOCATIONS,
-    MAX_CHAIN, TARGET_RUN,
+    Clock, GpuTime, Stage, StageTimes, FRAGMENT_HEIGHT, FRAGMENT_WIDTH, INVOCATIONS, MAX_CHAIN,
+    TARGET_RUN,
 };
 
-/// Times a row's `row_eval` on the adapter in `stage`, with the environment BRDF LUT texture
-/// bound (a `lut_size` square of (scale, bias), or 1x1): the chain of evaluations grows until
-/// one run lasts `TARGET_RUN`, then `GPU_RUNS` runs are timed.
-pub fn gpu_time(
-    gpu: &Gpu,
-    stage: Stage,
-    row_wgsl: &str,
-    lut: &[[f32; 2]],
+/// A row to time: its WGSL (`row_eval`) and the environment BRDF LUT it samples (a `lut_size`
+/// square of (scale, bias), or 1x1 when empty).
+struct TimedRow {
+    name: String,
+    wgsl: String,
+    lut: Vec<[f32; 2]>,
     lut_size: usize,
-) -> Result<GpuTime, String> {
-    let scope = gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
-    let bench = Bench::new(gpu, stage, lut, lut_size);
-    // A fullscreen draw has a hundred times a dispatch's invocations: its chain starts at one.
-    let chain = match stage {
-        Stage::Compute => CHAIN,
-        Stage::Fragment => 1,
-    };
-    let pipeline = bench.pipeline(row_wgsl, chain);
-    if let Some(error) = pollster::block_on(scope.pop()) {
-        return Err(error.to_string());
+}
+
+/// Collects the rows of a report, then times them all together ([`Timer::run`]), the harness's
+/// own time (an empty chain) among them.
+pub struct Timer<'a> {
+    gpu: &'a Gpu,
+    protocol: Protocol,
+    rows: Vec<TimedRow>,
+}
+
+impl<'a> Timer<'a> {
+    /// A timer on `gpu` by `protocol`, holding the harness's baseline row.
+    pub fn new(gpu: &'a Gpu, protocol: Protocol) -> Timer<'a> {
+        Timer {
+            gpu,
+            protocol,
+            rows: vec![TimedRow {
+                name: "the harness".to_string(),
+                wgsl: BASELINE_ROW.to_string(),
+                lut: Vec::new(),
+                lut_size: 1,
+            }],
+        }
     }
-    let (chain, pipeline) = bench.calibrate(row_wgsl, chain, pipeline)?;
-    let (chain, clock, times) = bench.timed_runs(row_wgsl, chain, pipeline)?;
-    let invocations = match stage {
-        Stage::Compute => INVOCATIONS,
-        Stage::Fragment => FRAGMENT_WIDTH * FRAGMENT_HEIGHT,
-    };
-    Ok(GpuTime::of_runs(stage, clock, times, chain, invocations))
+
+    /// Adds a row; its index in [`Timer::run`]'s times.
+    pub fn add(&mut self, name: &str, row_wgsl: &str, lut: &[[f32; 2]], lut_size: usize) -> usize {
+        self.rows.push(TimedRow {
+            name: name.to_string(),
+            wgsl: row_wgsl.to_string(),
+            lut: lut.to_vec(),
+            lut_size,
+        });
+        self.rows.len() - 2
+    }
+
+    /// Every added row's times in both stages, less the harness's in that stage, in the order
+    /// added. A row or stage that fails is reported on stderr and left out.
+    pub fn run(&self) -> Vec<StageTimes> {
+        let mut times = vec![StageTimes::default(); self.rows.len()];
+        for stage in Stage::ALL {
+            let stage_times = self
+                .run_stage(stage)
+                .map_err(|error| eprintln!("{} timing failed: {error}", stage.name()))
+                .unwrap_or_default();
+            let baseline = stage_times.first().copied().flatten();
+            for (row, time) in times.iter_mut().zip(stage_times) {
+                *row.get_mut(stage) = time.map(|time| time.less(baseline));
+            }
+        }
+        times.remove(0);
+        times
+    }
+
+    /// Every row's time in `stage` (the baseline's first), not yet less the baseline's.
+    fn run_stage(&self, stage: Stage) -> Result<Vec<Option<GpuTime>>, String> {
+        let bench = Bench::new(self.gpu, stage);
+        let mut items: Vec<Option<Item>> = self
+            .rows
+            .iter()
+            .map(|row| {
+                bench
+                    .item(row)
+                    .map_err(|error| eprintln!("  {} ({}): {error}", row.name, stage.name()))
+                    .ok()
+            })
+            .collect();
+        let baseline = items[0]
+            .as_mut()
+            .ok_or("the harness's own pipeline failed")?;
+        eprintln!("timing {} rows ({})...", self.rows.len(), stage.name());
+        // The clock first: calibrating on a cold clock would size every chain too short.
+        bench.calibrate(baseline, &self.protocol)?;
+        let warm = warm_up(&self.protocol, &mut || {
+            bench.run(baseline, baseline.chain).map(|run| run.0)
+        })?;
+        if !warm.settled {
+            eprintln!(
+                "  the clock did not settle in {} runs: the spreads show it",
+                warm.runs
+            );
+        }
+        for (row, item) in self.rows.iter().zip(&mut items) {
+            if let Some(found) = item {
+                if let Err(error) = bench.calibrate(found, &self.protocol) {
+                    eprintln!("  {} ({}): {error}", row.name, stage.name());
+                    *item = None;
+                }
+            }
+        }
+        let timed: Vec<&Item> = items.iter().flatten().collect();
+        let samples = in_rounds(&self.protocol, timed.len(), &mut |index| {
+            let item = timed[index];
+            let (wall, stamped) = bench.run(item, item.chain)?;
+            Ok(match item.clock {
+                Clock::Timestamps => stamped.unwrap_or(wall),
+                Clock::Wall => wall,
+            })
+        })?;
+        let mut samples = samples.into_iter();
+        Ok(items
+            .iter()
+            .map(|item| {
+                let item = item.as_ref()?;
+                Some(GpuTime::of_runs(
+                    stage,
+                    item.clock,
+                    samples.next()?,
+                    item.chain,
+                    bench.invocations(),
+                    item.doubling_ratio,
+                    item.doubled,
+                ))
+            })
+            .collect())
+    }
+}
+
+/// A row's pipeline and bindings in one stage, and what calibration found.
+struct Item {
+    pipeline: Pipeline,
+    bind_group: wgpu::BindGroup,
+    /// Evaluations per invocation.
+    chain: u32,
+    clock: Clock,
+    /// A run of twice the chain over a run of the chain (best of two each).
+    doubling_ratio: f64,
+    /// Whether that ratio is 2 within the protocol's tolerance.
+    doubled: bool,
 }
 
 /// A timing harness's pipeline, of either stage.
@@ -49,14 +159,17 @@ enum Pipeline {
     Render(wgpu::RenderPipeline),
 }
 
-/// What every run of one row in one stage shares: the bind group (the LUT and its sampler, and
-/// for compute the input and output buffers), the fragment stage's 1920x1080 target, and the
+/// What every row's runs in one stage share: the bind group layout, the compute stage's input
+/// and output buffers, the fragment stage's 1920x1080 target, the chain's uniform and the
 /// timestamp queries where the device has them.
 struct Bench<'a> {
     gpu: &'a Gpu,
     stage: Stage,
+    layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
-    bind_group: wgpu::BindGroup,
+    buffers: Option<(wgpu::Buffer, wgpu::Buffer)>,
+    chain: wgpu::Buffer,
+    sampler: wgpu::Sampler,
     target_view: wgpu::TextureView,
     timestamps: Option<Timestamps>,
 }
@@ -65,18 +178,19 @@ struct Bench<'a> {
 const TARGET_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 impl<'a> Bench<'a> {
-    /// The bindings and target of `stage`'s runs, with the LUT (`lut_size` square, or 1x1).
-    fn new(gpu: &'a Gpu, stage: Stage, lut: &[[f32; 2]], lut_size: usize) -> Bench<'a> {
+    /// The layout, buffers and target of `stage`'s runs.
+    fn new(gpu: &'a Gpu, stage: Stage) -> Bench<'a> {
         let device = &gpu.device;
         let visibility = match stage {
             Stage::Compute => wgpu::ShaderStages::COMPUTE,
             Stage::Fragment => wgpu::ShaderStages::FRAGMENT,
         };
-        let storage = |read_only| wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
+        let buffer = |ty| wgpu::BindingType::Buffer {
+            ty,
             has_dynamic_offset: false,
             min_binding_size: None,
         };
+        let storage = |read_only| buffer(wgpu::BufferBindingType::Storage { read_only });
         let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
             binding,
             visibility,
@@ -96,6 +210,7 @@ impl<'a> Bench<'a> {
                 3,
                 wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
             ),
+            entry(4, buffer(wgpu::BufferBindingType::Uniform)),
         ];
         if stage == Stage::Compute {
             entries.extend([entry(0, storage(true)), entry(1, storage(false))]);
@@ -109,7 +224,6 @@ impl<'a> Bench<'a> {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let buffers = (stage == Stage::Compute).then(|| compute_buffers(device));
         let target = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("bench target"),
             size: wgpu::Extent3d {
@@ -124,31 +238,95 @@ impl<'a> Bench<'a> {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
             view_formats: &[],
         });
-        let lut = gbuffer_render::inputs::lut_texels(lut_size.max(1) as u32, lut);
+        Bench {
+            gpu,
+            stage,
+            buffers: (stage == Stage::Compute).then(|| compute_buffers(device)),
+            chain: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("bench chain"),
+                size: 16,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                ..Default::default()
+            }),
+            layout,
+            pipeline_layout,
+            target_view: target.create_view(&Default::default()),
+            // Timestamps at the pass's start and end, where the device has them.
+            timestamps: device
+                .features()
+                .contains(wgpu::Features::TIMESTAMP_QUERY)
+                .then(|| Timestamps::new(device, "bench timestamps")),
+        }
+    }
+
+    /// Invocations per run: one per thread of the dispatch, or per pixel of the target.
+    fn invocations(&self) -> u32 {
+        match self.stage {
+            Stage::Compute => INVOCATIONS,
+            Stage::Fragment => FRAGMENT_WIDTH * FRAGMENT_HEIGHT,
+        }
+    }
+
+    /// `row`'s pipeline and bind group in this stage, not yet calibrated. The error is wgpu's.
+    fn item(&self, row: &TimedRow) -> Result<Item, String> {
+        let device = &self.gpu.device;
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let source = match self.stage {
+            Stage::Compute => compute_harness(&row.wgsl, Chain::Uniform),
+            Stage::Fragment => fragment_harness_with(&row.wgsl, Chain::Uniform),
+        };
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("bench"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let pipeline = match self.stage {
+            Stage::Compute => Pipeline::Compute(device.create_compute_pipeline(
+                &wgpu::ComputePipelineDescriptor {
+                    label: Some("bench"),
+                    layout: Some(&self.pipeline_layout),
+                    module: &module,
+                    entry_point: Some("bench"),
+                    compilation_options: Default::default(),
+                    cache: None,
+                },
+            )),
+            Stage::Fragment => Pipeline::Render(gbuffer_gpu::fullscreen::render_pipeline(
+                device,
+                &module,
+                "bench_fragment",
+                Some(&self.pipeline_layout),
+                &[Some(TARGET_FORMAT.into())],
+            )),
+        };
+        let lut = gbuffer_render::inputs::lut_texels(row.lut_size.max(1) as u32, &row.lut);
         let view = gbuffer_render::wgpu::texture_with_data(
             device,
-            &gpu.queue,
+            &self.gpu.queue,
             "lut",
             wgpu::TextureFormat::Rgba16Float,
             &[lut],
         );
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            ..Default::default()
-        });
-        let mut bind_entries = vec![
+        let mut entries = vec![
             wgpu::BindGroupEntry {
                 binding: 2,
                 resource: wgpu::BindingResource::TextureView(&view),
             },
             wgpu::BindGroupEntry {
                 binding: 3,
-                resource: wgpu::BindingResource::Sampler(&sampler),
+                resource: wgpu::BindingResource::Sampler(&self.sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: self.chain.as_entire_binding(),
             },
         ];
-        if let Some((input, output)) = &buffers {
-            bind_entries.extend([
+        if let Some((input, output)) = &self.buffers {
+            entries.extend([
                 wgpu::BindGroupEntry {
                     binding: 0,
                     resource: input.as_entire_binding(),
@@ -161,72 +339,33 @@ impl<'a> Bench<'a> {
         }
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
-            layout: &layout,
-            entries: &bind_entries,
+            layout: &self.layout,
+            entries: &entries,
         });
-        // Timestamps at the pass's start and end, where the device has them.
-        let timestamps = device
-            .features()
-            .contains(wgpu::Features::TIMESTAMP_QUERY)
-            .then(|| Timestamps::new(device, "bench timestamps"));
-        Bench {
-            gpu,
-            stage,
-            pipeline_layout,
+        if let Some(error) = pollster::block_on(scope.pop()) {
+            return Err(error.to_string());
+        }
+        Ok(Item {
+            pipeline,
             bind_group,
-            target_view: target.create_view(&Default::default()),
-            timestamps,
-        }
+            chain: 1,
+            clock: Clock::Wall,
+            doubling_ratio: 0.0,
+            doubled: false,
+        })
     }
 
-    /// The stage's pipeline around `row_wgsl` with `chain` evaluations per invocation.
-    fn pipeline(&self, row_wgsl: &str, chain: u32) -> Pipeline {
-        let device = &self.gpu.device;
-        match self.stage {
-            Stage::Compute => {
-                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("bench"),
-                    source: wgpu::ShaderSource::Wgsl(harness_with_chain(row_wgsl, chain).into()),
-                });
-                Pipeline::Compute(device.create_compute_pipeline(
-                    &wgpu::ComputePipelineDescriptor {
-                        label: Some("bench"),
-                        layout: Some(&self.pipeline_layout),
-                        module: &module,
-                        entry_point: Some("bench"),
-                        compilation_options: Default::default(),
-                        cache: None,
-                    },
-                ))
-            }
-            Stage::Fragment => {
-                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("bench"),
-                    source: wgpu::ShaderSource::Wgsl(
-                        fragment_harness_with_chain(row_wgsl, chain).into(),
-                    ),
-                });
-                Pipeline::Render(gbuffer_gpu::fullscreen::render_pipeline(
-                    device,
-                    &module,
-                    "bench_fragment",
-                    Some(&self.pipeline_layout),
-                    &[Some(TARGET_FORMAT.into())],
-                ))
-            }
-        }
-    }
-
-    /// One run's seconds: (wall clock around a synchronised submit, the timestamps' where the
-    /// device has them).
-    fn run(&self, pipeline: &Pipeline) -> Result<(f64, Option<f64>), String> {
+    /// One run of `item` with `chain` evaluations per invocation: its seconds (wall clock
+    /// around a synchronised submit, the timestamps' where the device has them).
+    fn run(&self, item: &Item, chain: u32) -> Result<(f64, Option<f64>), String> {
         let Gpu { device, queue, .. } = self.gpu;
+        queue.write_buffer(&self.chain, 0, bytemuck::cast_slice(&[chain, 0, 0, 0]));
         let mut encoder = device.create_command_encoder(&Default::default());
         let query_set = self
             .timestamps
             .as_ref()
             .map(|timestamps| &timestamps.query_set);
-        match pipeline {
+        match &item.pipeline {
             Pipeline::Compute(pipeline) => {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some("bench"),
@@ -237,7 +376,7 @@ impl<'a> Bench<'a> {
                     }),
                 });
                 pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &self.bind_group, &[]);
+                pass.set_bind_group(0, &item.bind_group, &[]);
                 pass.dispatch_workgroups(INVOCATIONS / 64, 1, 1);
             }
             Pipeline::Render(pipeline) => {
@@ -262,7 +401,7 @@ impl<'a> Bench<'a> {
                     multiview_mask: None,
                 });
                 pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, &self.bind_group, &[]);
+                pass.set_bind_group(0, &item.bind_group, &[]);
                 pass.draw(0..3, 0..1);
             }
         }
@@ -283,58 +422,49 @@ impl<'a> Bench<'a> {
         Ok((wall, stamped))
     }
 
-    /// Grows the chain until a run lasts `TARGET_RUN` by the wall clock, which a run cannot
-    /// undercut: each run also warms the pipeline up, and the chain grows by twice the factor
-    /// the run fell short (timed runs vary), at least doubling. The chain and its pipeline.
-    fn calibrate(
-        &self,
-        row_wgsl: &str,
-        mut chain: u32,
-        mut pipeline: Pipeline,
-    ) -> Result<(u32, Pipeline), String> {
-        loop {
-            let (time, _) = self.run(&pipeline)?;
-            if time >= TARGET_RUN || chain >= MAX_CHAIN {
-                return Ok((chain, pipeline));
-            }
-            let factor = (2.0 * TARGET_RUN / time.max(1e-7)).max(2.0);
-            chain = ((f64::from(chain) * factor).ceil() as u32).min(MAX_CHAIN);
-            pipeline = self.pipeline(row_wgsl, chain);
-        }
+    /// The faster of two runs of `chain`, by the wall clock and by the timestamps.
+    fn best_of_two(&self, item: &Item, chain: u32) -> Result<(f64, Option<f64>), String> {
+        let (first, second) = (self.run(item, chain)?, self.run(item, chain)?);
+        let stamped = match (first.1, second.1) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            _ => None,
+        };
+        Ok((first.0.min(second.0), stamped))
     }
 
-    /// `GPU_RUNS` timed runs, by timestamps where they bracket the work: a device whose
-    /// timestamps come to less than half the wall clock's time (lavapipe's around a compute
-    /// dispatch) times something else, and the wall clock is used. Should the median fall
-    /// short of the target by the clock used (a first run can be the slowest), the chain grows
-    /// again and they are run again. The final chain, the clock and the runs' seconds.
-    fn timed_runs(
-        &self,
-        row_wgsl: &str,
-        mut chain: u32,
-        mut pipeline: Pipeline,
-    ) -> Result<(u32, Clock, Vec<f64>), String> {
+    /// Sizes `item`'s chain: it grows until a run lasts `TARGET_RUN` by the wall clock (which a
+    /// run cannot undercut), then doubles until a run of twice the chain takes twice as long
+    /// (the protocol's tolerance), or reaches `MAX_CHAIN`. The clock: the timestamps where
+    /// they bracket the work (at least half the wall clock's time; lavapipe's around a compute
+    /// dispatch come to a fraction of it), else the wall clock.
+    fn calibrate(&self, item: &mut Item, protocol: &Protocol) -> Result<(), String> {
+        let mut chain = item.chain.max(1);
         loop {
-            let runs: Vec<(f64, Option<f64>)> = (0..GPU_RUNS)
-                .map(|_| self.run(&pipeline))
-                .collect::<Result<_, _>>()?;
-            let mut walls: Vec<f64> = runs.iter().map(|run| run.0).collect();
-            let stamped: Option<Vec<f64>> = runs.iter().map(|run| run.1).collect();
-            let wall_median = median(&mut walls);
-            let (clock, mut times) = match stamped {
-                Some(stamped) if 2.0 * median(&mut stamped.clone()) >= wall_median => {
-                    (Clock::Timestamps, stamped)
-                }
-                _ => (Clock::Wall, walls),
-            };
-            let median = median(&mut times);
-            if median >= TARGET_RUN || chain >= MAX_CHAIN {
-                return Ok((chain, clock, times));
+            let (wall, _) = self.run(item, chain)?;
+            if wall >= TARGET_RUN || chain >= MAX_CHAIN {
+                break;
             }
-            let factor = (1.5 * TARGET_RUN / median.max(1e-7)).max(1.5);
+            // Twice the factor the run fell short by (runs vary), at least doubling.
+            let factor = (2.0 * TARGET_RUN / wall.max(1e-7)).max(2.0);
             chain = ((f64::from(chain) * factor).ceil() as u32).min(MAX_CHAIN);
-            pipeline = self.pipeline(row_wgsl, chain);
-            self.run(&pipeline)?;
+        }
+        loop {
+            let single = self.best_of_two(item, chain)?;
+            let double = self.best_of_two(item, 2 * chain)?;
+            let (clock, single, double) = match (single.1, double.1) {
+                (Some(stamped), Some(stamped_double)) if 2.0 * stamped >= single.0 => {
+                    (Clock::Timestamps, stamped, stamped_double)
+                }
+                _ => (Clock::Wall, single.0, double.0),
+            };
+            item.clock = clock;
+            item.chain = chain;
+            item.doubling_ratio = double / single;
+            item.doubled = doubles(protocol, single, double);
+            if item.doubled || 2 * chain > MAX_CHAIN {
+                return Ok(());
+            }
+            chain *= 2;
         }
     }
 }

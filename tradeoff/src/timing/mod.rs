@@ -1,25 +1,29 @@
-//! Time per evaluation: on the adapter, in both stages, a shader that feeds each result into
-//! the next evaluation (so nothing is optimised away), its chain grown until a run lasts 10 ms,
-//! timed by timestamp queries at the pass's start and end where the device has them (wall
-//! clock around a synchronised submit otherwise, and the report says which): a compute
-//! dispatch of 2^14 invocations, and a fullscreen draw into a 1920x1080 target whose fragment
-//! shader runs the chain (G-buffer packing and lighting are fragment work, and some GPUs run
-//! fragments on few of their units). On the CPU, the f32 mirror over the same kind of inputs.
-//! All are medians of several runs.
+//! Time per evaluation, by the one timing protocol (`gbuffer_gpu::timing`): on the adapter,
+//! in both stages, a shader that feeds each result into the next evaluation (so nothing is
+//! optimised away), its chain calibrated until a run lasts 10 ms and twice the chain takes
+//! twice the time, timed by timestamp queries at the pass's start and end where the device
+//! has them (wall clock around a synchronised submit otherwise, and the report says which): a
+//! compute dispatch of 2^20 invocations, and a fullscreen draw into a 1920x1080 target whose
+//! fragment shader runs the chain (G-buffer packing and lighting are fragment work, and some
+//! GPUs run fragments on few of their units). Every row, the harness's own among them, is
+//! timed once a round after the clock has warmed up ([`Timer`]). On the CPU, the f32 mirror
+//! over the same kind of inputs.
 
 mod gpu;
 mod harness;
 
-pub use gpu::gpu_time;
+pub use gpu::Timer;
 pub use harness::{fragment_harness, harness, BASELINE_ROW};
 
 use std::time::Instant;
 
 use gbuffer::glam::Vec4;
-use gbuffer_gpu::Gpu;
+use gbuffer_gpu::timing::Spread;
 
-/// Invocations per dispatch, and the evaluations per invocation a calibration starts from.
-const INVOCATIONS: u32 = 1 << 14;
+/// Invocations per dispatch: enough threads to fill a large GPU (an H100 holds 270,000), so
+/// that the time is the device's throughput and not one thread's latency.
+const INVOCATIONS: u32 = 1 << 20;
+/// The static costs' chain (the compute harness as counted).
 const CHAIN: u32 = 64;
 /// The fragment stage's target: one invocation per pixel.
 const FRAGMENT_WIDTH: u32 = 1920;
@@ -27,8 +31,6 @@ const FRAGMENT_HEIGHT: u32 = 1080;
 /// The chain grows until one run lasts this long (seconds), or reaches `MAX_CHAIN`.
 const TARGET_RUN: f64 = 0.010;
 const MAX_CHAIN: u32 = 1 << 16;
-/// Timed runs per row, after the calibration's.
-pub const GPU_RUNS: usize = 7;
 const CPU_RUNS: usize = 5;
 
 /// Where a row's chain runs on the adapter.
@@ -72,7 +74,7 @@ impl Clock {
     }
 }
 
-/// A row's time on the adapter, per evaluation and invocation, over `GPU_RUNS` runs of
+/// A row's time on the adapter, per evaluation and invocation, over the protocol's rounds of
 /// `chain` evaluations in each of `invocations`.
 #[derive(Clone, Copy, Debug)]
 pub struct GpuTime {
@@ -80,23 +82,25 @@ pub struct GpuTime {
     pub stage: Stage,
     /// How it was timed.
     pub clock: Clock,
-    /// The median run's time divided by the evaluations of a run (`chain` x `invocations`),
+    /// The median round's time divided by the evaluations of a run (`chain` x `invocations`),
     /// in nanoseconds: device nanoseconds per evaluation, the whole device's throughput (not
     /// one invocation's latency).
     pub median_ns: f64,
-    /// The fastest run's, likewise.
+    /// The fastest round's, likewise.
     pub min_ns: f64,
-    /// The slowest run's, likewise.
+    /// The slowest round's, likewise.
     pub max_ns: f64,
     /// Evaluations per invocation, as calibrated.
     pub chain: u32,
     /// Invocations per run.
     pub invocations: u32,
-    /// The median run's milliseconds.
+    /// The median round's milliseconds.
     pub run_ms: f64,
-    /// False once the consistency check found the adapter's times out of the order the
-    /// instruction counts predict: no time of the run is then printed.
-    pub trusted: bool,
+    /// A run of twice the chain over a run of the chain, at calibration: 2 where the work
+    /// resolves.
+    pub doubling_ratio: f64,
+    /// Whether that ratio is 2 within the protocol's tolerance.
+    pub doubled: bool,
 }
 
 impl GpuTime {
@@ -112,19 +116,19 @@ impl GpuTime {
         }
     }
 
-    /// Whether the median stands clear of the runs' spread: a time within the spread (or
-    /// under zero, once the harness is taken off) is not a measurement to print.
+    /// Whether the time is a measurement: twice the chain took twice the time, and the median
+    /// (the harness's taken off) stands clear of the rounds' spread. A time within the spread,
+    /// or under zero, is not a measurement to print.
     pub fn resolved(&self) -> bool {
-        self.trusted && self.median_ns > 0.0 && self.median_ns > self.max_ns - self.min_ns
+        self.doubled && self.median_ns > 0.0 && self.median_ns > self.max_ns - self.min_ns
     }
 
-    /// Where the time does not resolve but was trusted: an upper bound on it, in nanoseconds
-    /// per evaluation. The row's own time (the run's less the harness's) is then smaller than
-    /// the runs' spread, so it is at most the median (taken as zero when the harness's time
-    /// exceeded it) plus that spread. Never negative.
+    /// Where the time does not resolve: an upper bound on it, in nanoseconds per evaluation.
+    /// A row's own time (the run's less the harness's) is at most the median (taken as zero
+    /// when the harness's time exceeded it) plus the rounds' spread; a run that did not double
+    /// holds a fixed cost besides the row's, which only adds. Never negative.
     pub fn upper_bound_ns(&self) -> Option<f64> {
-        (self.trusted && !self.resolved())
-            .then(|| self.median_ns.max(0.0) + (self.max_ns - self.min_ns).max(0.0))
+        (!self.resolved()).then(|| self.median_ns.max(0.0) + (self.max_ns - self.min_ns).max(0.0))
     }
 
     /// Evaluations per run, over the whole device.
@@ -142,26 +146,34 @@ impl GpuTime {
     }
 
     /// The time of runs of `chain` evaluations in each of `invocations`, from their durations
-    /// in seconds (any order).
+    /// in seconds (any order, at least one), with the doubling check's ratio and verdict.
     pub fn of_runs(
         stage: Stage,
         clock: Clock,
-        mut run_seconds: Vec<f64>,
+        run_seconds: Vec<f64>,
         chain: u32,
         invocations: u32,
+        doubling_ratio: f64,
+        doubled: bool,
     ) -> GpuTime {
         let ns_per_evaluation = 1e9 / (f64::from(invocations) * f64::from(chain));
-        let median = median(&mut run_seconds);
+        let spread = Spread::of(&run_seconds).unwrap_or(Spread {
+            min: f64::NAN,
+            median: f64::NAN,
+            max: f64::NAN,
+        });
+        let per_evaluation = spread.map(|seconds| seconds * ns_per_evaluation);
         GpuTime {
             stage,
             clock,
-            median_ns: median * ns_per_evaluation,
-            min_ns: run_seconds[0] * ns_per_evaluation,
-            max_ns: run_seconds[run_seconds.len() - 1] * ns_per_evaluation,
+            median_ns: per_evaluation.median,
+            min_ns: per_evaluation.min,
+            max_ns: per_evaluation.max,
             chain,
             invocations,
-            run_ms: median * 1e3,
-            trusted: true,
+            run_ms: spread.median * 1e3,
+            doubling_ratio,
+            doubled,
         }
     }
 }
@@ -177,25 +189,6 @@ pub struct StageTimes {
 }
 
 impl StageTimes {
-    /// Times `row_wgsl` in both stages (see [`gpu_time`]), less `baseline`'s; a stage that
-    /// fails is reported on stderr and left out.
-    pub fn measure(
-        gpu: &Gpu,
-        row_wgsl: &str,
-        lut: &[[f32; 2]],
-        lut_size: usize,
-        baseline: &StageTimes,
-    ) -> StageTimes {
-        let mut times = StageTimes::default();
-        for stage in Stage::ALL {
-            *times.get_mut(stage) = gpu_time(gpu, stage, row_wgsl, lut, lut_size)
-                .map_err(|error| eprintln!("  {} timing failed: {error}", stage.name()))
-                .ok()
-                .map(|time| time.less(baseline.get(stage)));
-        }
-        times
-    }
-
     /// The time in `stage`.
     pub fn get(&self, stage: Stage) -> Option<GpuTime> {
         match stage {
@@ -204,20 +197,10 @@ impl StageTimes {
         }
     }
 
-    fn get_mut(&mut self, stage: Stage) -> &mut Option<GpuTime> {
+    pub(super) fn get_mut(&mut self, stage: Stage) -> &mut Option<GpuTime> {
         match stage {
             Stage::Compute => &mut self.compute,
             Stage::Fragment => &mut self.fragment,
-        }
-    }
-
-    /// Marks both stages' times untrusted.
-    pub fn distrust(&mut self) {
-        for time in [&mut self.compute, &mut self.fragment]
-            .into_iter()
-            .flatten()
-        {
-            time.trusted = false;
         }
     }
 }
@@ -233,8 +216,10 @@ pub struct Timed<'a> {
 }
 
 /// Pairs of one group whose order the instruction counts predict (one has at least twice the
-/// other's instructions) but whose resolved times say the opposite: a line each. Empty when
-/// the adapter's times can be trusted.
+/// other's instructions) but whose resolved times say the opposite, every run of one slower
+/// than every run of the other: a line each. A finding about the adapter, not a failed timing
+/// (the protocol decides what resolves): a software rasteriser emulates the pack builtins, so
+/// a fast conversion can cost it more than the exact one's arithmetic.
 pub fn inconsistencies(group: &[Timed]) -> Vec<String> {
     let mut found = Vec::new();
     for cheap in group {
@@ -277,13 +262,7 @@ pub fn cpu_ns_per_eval(evaluate: &dyn Fn(Vec4) -> Vec4) -> f64 {
         std::hint::black_box(x);
         times.push(start.elapsed().as_secs_f64());
     }
-    median(&mut times) * 1e9 / f64::from(EVALUATIONS)
-}
-
-/// The median of `values` (sorted in place); they must not be empty.
-pub(crate) fn median(values: &mut [f64]) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
+    Spread::of(&times).map_or(f64::NAN, |spread| spread.median) * 1e9 / f64::from(EVALUATIONS)
 }
 
 #[cfg(test)]
@@ -297,35 +276,43 @@ mod tests {
     #[test]
     fn the_units_are_what_their_names_say() {
         let runs = vec![0.011, 0.0095, 0.010, 0.0102, 0.0099, 0.0105, 0.0098];
-        let time = GpuTime::of_runs(Stage::Compute, Clock::Wall, runs, 100, 1000);
+        let time = of_runs(runs);
         assert_eq!(time.evaluations_per_run(), 100_000);
         assert!((time.median_ns - 100.0).abs() < 1e-9, "{}", time.median_ns);
         assert!((time.run_ms - 10.0).abs() < 1e-9);
         assert!((time.min_ns - 95.0).abs() < 1e-9 && (time.max_ns - 110.0).abs() < 1e-9);
         assert!((time.evaluations_per_second() - 1e7).abs() < 1e-3);
-        let harness = GpuTime::of_runs(Stage::Compute, Clock::Wall, vec![0.002; 7], 100, 1000);
+        let harness = of_runs(vec![0.002; 7]);
         let less = time.less(Some(harness));
         assert!((less.median_ns - 80.0).abs() < 1e-9);
         assert!((less.evaluations_per_second() - 1e5 / 0.008).abs() < 1e-3);
     }
 
+    fn of_runs(runs: Vec<f64>) -> GpuTime {
+        GpuTime::of_runs(Stage::Compute, Clock::Wall, runs, 100, 1000, 2.0, true)
+    }
+
     /// A row faster than the harness can tell (its median, less the harness's, below zero: the
     /// "fully rough" row read -0.11 ns on llvmpipe) reports an upper bound, never a negative
-    /// time; a resolved row reports none.
+    /// time; so does a row whose doubled chain did not take twice as long, however clear its
+    /// median; a resolved row reports none.
     #[test]
     fn a_time_below_the_resolution_is_an_upper_bound() {
         let runs = vec![0.0100, 0.0104, 0.0098, 0.0101, 0.0099, 0.0102, 0.0097];
-        let row = GpuTime::of_runs(Stage::Compute, Clock::Wall, runs, 100, 1000);
-        let harness = GpuTime::of_runs(Stage::Compute, Clock::Wall, vec![0.0101; 7], 100, 1000);
-        let less = row.less(Some(harness));
+        let row = of_runs(runs);
+        let less = row.less(Some(of_runs(vec![0.0101; 7])));
         assert!(less.median_ns < 0.0 && !less.resolved());
         let bound = less.upper_bound_ns().unwrap();
         // Spread 7 ns (97 to 104 ns a run), the median taken as zero.
         assert!((bound - 7.0).abs() < 1e-6, "{bound}");
         assert_eq!(time(100.0).upper_bound_ns(), None);
-        let mut untrusted = less;
-        untrusted.trusted = false;
-        assert_eq!(untrusted.upper_bound_ns(), None);
+        let undoubled = GpuTime {
+            doubled: false,
+            doubling_ratio: 1.1,
+            ..time(100.0)
+        };
+        assert!(!undoubled.resolved());
+        assert!((undoubled.upper_bound_ns().unwrap() - 110.0).abs() < 1e-9);
     }
 
     fn time(median_ns: f64) -> GpuTime {
@@ -338,7 +325,8 @@ mod tests {
             chain: 64,
             invocations: INVOCATIONS,
             run_ms: 10.0,
-            trusted: true,
+            doubling_ratio: 2.0,
+            doubled: true,
         }
     }
 
@@ -358,11 +346,15 @@ mod tests {
         ]
     }
 
+    /// The short protocol on the adapter, with timestamps where it has them and without:
+    /// every row's runs last the target and its doubled chain took twice as long, and a row of
+    /// eight square roots chained comes out dearer than the harness alone (the times are the
+    /// row's, less the harness's).
     #[test]
-    fn both_stages_calibrate_their_runs_to_ten_milliseconds_on_the_adapter() {
-        let row =
+    fn the_protocol_sizes_every_run_until_doubling_doubles_the_time() {
+        let cheap =
             "fn row_eval(x: vec4<f32>) -> vec4<f32> {\n    return sqrt(x + vec4<f32>(0.5));\n}\n";
-        // With the timestamp feature where the adapter has it, and without: the wall clock.
+        let dear = "fn row_eval(x: vec4<f32>) -> vec4<f32> {\n    var y = x;\n    for (var i = 0; i < 8; i++) { y = sqrt(y + vec4<f32>(0.5)); }\n    return y;\n}\n";
         let with_timestamps = gbuffer_testkit::gpu_with(None, wgpu::Features::TIMESTAMP_QUERY);
         let Some(with_timestamps) = with_timestamps else {
             return;
@@ -372,24 +364,37 @@ mod tests {
                 .device
                 .features()
                 .contains(wgpu::Features::TIMESTAMP_QUERY);
+            let mut timer = Timer::new(&gpu, gbuffer_gpu::timing::Protocol::SHORT);
+            let rows = [
+                timer.add("cheap", cheap, &[], 1),
+                timer.add("dear", dear, &[], 1),
+            ];
+            let times = timer.run();
+            assert_eq!(times.len(), 2);
             for stage in Stage::ALL {
-                let time = gpu_time(&gpu, stage, row, &[], 1).unwrap();
-                assert_eq!(time.stage, stage);
-                // Timestamps only where the device has them (and they bracket the work).
-                if !timestamps {
-                    assert_eq!(time.clock, Clock::Wall);
+                let [cheap, dear] = rows.map(|row| times[row].get(stage).unwrap());
+                eprintln!("{stage:?}: {cheap:?}\n{dear:?}");
+                for time in [cheap, dear] {
+                    assert_eq!(time.stage, stage);
+                    // Timestamps only where the device has them (and they bracket the work).
+                    if !timestamps {
+                        assert_eq!(time.clock, Clock::Wall);
+                    }
+                    assert!(time.run_ms >= 1e3 * TARGET_RUN || time.chain == MAX_CHAIN);
+                    assert!(time.min_ns <= time.median_ns && time.median_ns <= time.max_ns);
+                    assert_eq!(time.upper_bound_ns().is_some(), !time.resolved());
+                    if let Some(bound) = time.upper_bound_ns() {
+                        assert!(bound >= 0.0);
+                    }
+                    let invocations = match stage {
+                        Stage::Compute => INVOCATIONS,
+                        Stage::Fragment => FRAGMENT_WIDTH * FRAGMENT_HEIGHT,
+                    };
+                    assert_eq!(time.invocations, invocations);
                 }
-                eprintln!("{stage:?}: {} clock, {time:?}", time.clock.name());
-                assert!(
-                    time.run_ms >= 1e3 * TARGET_RUN || time.chain == MAX_CHAIN,
-                    "{stage:?}: {time:?}"
-                );
-                assert!(time.min_ns <= time.median_ns && time.median_ns <= time.max_ns);
-                let invocations = match stage {
-                    Stage::Compute => INVOCATIONS,
-                    Stage::Fragment => FRAGMENT_WIDTH * FRAGMENT_HEIGHT,
-                };
-                assert_eq!(time.invocations, invocations);
+                assert!(dear.doubled, "{stage:?}: {dear:?}");
+                assert!(dear.resolved(), "{stage:?}: {dear:?}");
+                assert!(dear.median_ns > cheap.upper_bound_ns().unwrap_or(cheap.median_ns));
             }
         }
     }
@@ -401,11 +406,11 @@ mod tests {
         let found = inconsistencies(&pair(&slow, &fast));
         assert_eq!(found.len(), 1, "{found:?}");
         assert!(found[0].starts_with("builtin (16 instructions) took 5.000 ns"));
-        // Untrusted or unresolved times are not compared.
-        let untrusted = GpuTime {
-            trusted: false,
+        // Unresolved times are not compared.
+        let unresolved = GpuTime {
+            doubled: false,
             ..slow
         };
-        assert!(inconsistencies(&pair(&untrusted, &fast)).is_empty());
+        assert!(inconsistencies(&pair(&unresolved, &fast)).is_empty());
     }
 }
