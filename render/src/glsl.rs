@@ -33,6 +33,21 @@ impl Dialect {
             Dialect::WebGl => "#version 300 es",
         }
     }
+
+    /// The declaration that runs a fused stage's depth test before its fragment shader, where
+    /// the dialect has it (GLSL ES 3.10 and GLSL 450; GLSL ES 3.00 does not), else nothing.
+    ///
+    /// A fragment shader that reads the attachments it writes (a subpass input, framebuffer
+    /// fetch) is otherwise shaded before its test: lavapipe then ran the whole lighting draw's
+    /// arithmetic for the sky's pixels too, which the test dropped afterwards, a third of that
+    /// draw's time at 1280x720. No fused stage writes depth from its shader, so testing first
+    /// changes no pixel (`discard` after an early test is allowed).
+    pub fn early_fragment_tests(self) -> &'static str {
+        match self {
+            Dialect::Gles | Dialect::Vulkan => "layout(early_fragment_tests) in;\n",
+            Dialect::WebGl => "",
+        }
+    }
 }
 
 /// A translated stage: the GLSL, and the sampler uniforms naga declared with the binding of

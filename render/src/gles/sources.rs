@@ -125,8 +125,9 @@ pub fn program_in(
         .map(|extension| format!("#extension {extension} : require\n"))
         .collect();
     let fragment = format!(
-        "{}\n{extensions}precision highp float;\nprecision highp int;\n\n{include_text}\n{}\n{main}",
+        "{}\n{extensions}{}precision highp float;\nprecision highp int;\n\n{include_text}\n{}\n{main}",
         dialect.version_line(),
+        dialect.early_fragment_tests(),
         glsl::declarations(&stages.text, include_text),
     );
     let mut samplers = stages.samplers;

@@ -190,8 +190,9 @@ impl VulkanRenderer {
             };
             let writes = stage.writes(layout, targets as usize, 4);
             let fragment = format!(
-                "{}\n\n{include}\n{outputs}{volume}\n{declarations}\n{}",
+                "{}\n{}\n{include}\n{outputs}{volume}\n{declarations}\n{}",
                 Dialect::Vulkan.version_line(),
+                Dialect::Vulkan.early_fragment_tests(),
                 stage.fragment_main(texel, &snake, &store)
             );
             let pipeline = self
