@@ -9,7 +9,9 @@
 //!   fetch as packed words or in its formats (the geometry stage; the lighting stage, the same
 //!   light, and the resolve, summed).
 //!
-//! The decals are left out (they shade only the pixels their volumes cover). A fused native form whose
+//! The decals are left out of those sums (they shade only the pixels their volumes cover); a
+//! second table gives each fused stage alone (geometry, decal, lighting, resolve, sky), the
+//! compilers' side of the bench's stage times. A fused native form whose
 //! attachments and output pass the eight draw buffers both drivers offer is left out, as the
 //! renderer refuses it.
 
@@ -40,6 +42,8 @@ struct FormShaders {
     form: &'static str,
     gbuffer: Vec<usize>,
     lighting: Vec<usize>,
+    /// A fused form's stages, each with its shader's index (empty for two-pass).
+    stages: Vec<(Stage, usize)>,
 }
 
 /// The frame's shaders of every layout the on-tile paths keep, compiled.
@@ -72,6 +76,7 @@ pub fn compile_frames() -> FrameShaders {
             form: FORMS[0],
             gbuffer: vec![gbuffer],
             lighting: vec![lighting],
+            stages: Vec::new(),
         });
         for (path, form) in [
             (TilePath::FetchPacked, FORMS[1]),
@@ -84,23 +89,28 @@ pub fn compile_frames() -> FrameShaders {
                 continue;
             }
             // The programs are in Stage::ALL's order.
-            let mut compiled = |stage: Stage| {
-                let at = Stage::ALL
+            let stages: Vec<(Stage, usize)> = Stage::ALL
+                .into_iter()
+                .zip(&fused.programs)
+                .map(|(stage, program)| {
+                    let shader = Shader::glsl(gbuffer_cost::Stage::Fragment, &program.fragment)
+                        .with_vertex(&program.vertex);
+                    (stage, add(Ok(shader)))
+                })
+                .collect();
+            let of = |stage: Stage| {
+                stages
                     .iter()
-                    .position(|s| *s == stage)
-                    .expect("a stage");
-                let program = &fused.programs[at];
-                add(Ok(Shader::glsl(
-                    gbuffer_cost::Stage::Fragment,
-                    &program.fragment,
-                )
-                .with_vertex(&program.vertex)))
+                    .find(|(s, _)| *s == stage)
+                    .map(|(_, index)| *index)
+                    .expect("every stage is compiled")
             };
             forms.push(FormShaders {
                 layout: layout.name().to_string(),
                 form,
-                gbuffer: vec![compiled(Stage::Geometry)],
-                lighting: vec![compiled(Stage::Lighting), compiled(Stage::Resolve)],
+                gbuffer: vec![of(Stage::Geometry)],
+                lighting: vec![of(Stage::Lighting), of(Stage::Resolve)],
+                stages,
             });
         }
     }
@@ -222,6 +232,37 @@ impl FrameShaders {
         for line in self.least() {
             let _ = writeln!(out, "- {line}");
         }
+        out.push_str(&self.stages_markdown());
+        out
+    }
+
+    /// Each fused form's stages alone, a row each: what the bench's stage times are made of on
+    /// the compilers (a decal or a light volume's figure is per pixel it covers).
+    fn stages_markdown(&self) -> String {
+        let mut out = String::from("\n### Fused stages on GPU compilers\n\n");
+        let _ = writeln!(out, "Each stage of the fused GLES programs alone, per pixel it shades: the geometry over the mesh, a decal over its volume, the lighting and the resolve over the surfaces, the sky where there is none. Mali's estimated cycles with (arithmetic / load-store / texture), Adreno's instructions.\n");
+        out.push_str("| layout | form | stage |");
+        for target in TARGETS {
+            let _ = write!(out, " {target} |");
+        }
+        out.push_str("\n| --- | --- | --- |");
+        out.push_str(&" ---: |".repeat(TARGETS.len()));
+        out.push('\n');
+        for form in &self.forms {
+            for (stage, index) in &form.stages {
+                let _ = write!(
+                    out,
+                    "| {} | {} | {} |",
+                    form.layout,
+                    form.form,
+                    stage.name()
+                );
+                for target in TARGETS {
+                    let _ = write!(out, " {} |", self.cell(target, &[*index]));
+                }
+                out.push('\n');
+            }
+        }
         out
     }
 
@@ -245,6 +286,7 @@ impl FrameShaders {
                 "form": form.form,
                 "gbuffer_pass": TARGETS.iter().map(|target| (target.to_string(), serde_json::json!(figure(target, &form.gbuffer)))).collect::<serde_json::Map<_, _>>(),
                 "lighting": TARGETS.iter().map(|target| (target.to_string(), serde_json::json!(figure(target, &form.lighting)))).collect::<serde_json::Map<_, _>>(),
+                "stages": form.stages.iter().map(|(stage, index)| (stage.name().to_string(), serde_json::json!(TARGETS.iter().map(|target| (target.to_string(), serde_json::json!(figure(target, &[*index])))).collect::<serde_json::Map<_, _>>()))).collect::<serde_json::Map<_, _>>(),
             })).collect::<Vec<_>>(),
         })
     }
