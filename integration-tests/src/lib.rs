@@ -12,6 +12,11 @@ pub struct Readme;
 #[doc = include_str!("../../book/src/introduction.md")]
 pub struct Introduction;
 
+/// The guide's quick start (its build-script lines are checked by `examples/build-script`).
+#[cfg(doctest)]
+#[doc = include_str!("../../book/src/quick-start.md")]
+pub struct QuickStart;
+
 /// The guide's chapter on the layout contract.
 #[cfg(doctest)]
 #[doc = include_str!("../../book/src/layout-contract.md")]

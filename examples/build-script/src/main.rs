@@ -53,4 +53,34 @@ mod tests {
             gbuffer::seed_layouts::MobileMetallic::WGSL.to_string() + "\n"
         );
     }
+
+    /// The guide's quick start shows this crate's build script and includes: every line of
+    /// its `rust,ignore` blocks is a line of `build.rs` or of this file, so the page cannot
+    /// drift from the crate that CI runs.
+    #[test]
+    fn the_quick_start_quotes_this_crate() {
+        let root = env!("CARGO_MANIFEST_DIR");
+        let read = |path: &str| {
+            std::fs::read_to_string(format!("{root}/{path}"))
+                .unwrap_or_else(|error| panic!("{path}: {error}"))
+        };
+        let page = read("../../book/src/quick-start.md");
+        let own = [read("build.rs"), read("src/main.rs")];
+        let mut quoted = 0;
+        let mut in_block = false;
+        for line in page.lines() {
+            if line.starts_with("```") {
+                in_block = line == "```rust,ignore";
+                continue;
+            }
+            if in_block && !line.trim().is_empty() {
+                quoted += 1;
+                assert!(
+                    own.iter().any(|file| file.lines().any(|own| own == line)),
+                    "the quick start's line\n{line}\nis not in examples/build-script"
+                );
+            }
+        }
+        assert!(quoted >= 8, "the quick start quotes {quoted} lines");
+    }
 }
