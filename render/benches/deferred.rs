@@ -182,12 +182,34 @@ fn stages(progress: &dyn Fn(&str)) {
     }
 }
 
-/// Every layout with every path, layout by layout.
-fn configurations(layouts: &[PackedLayout], paths: &[Path]) -> Vec<(PackedLayout, Path)> {
-    layouts
-        .iter()
-        .flat_map(|&layout| paths.iter().map(move |&path| (layout, path)))
-        .collect()
+/// One on-tile backend's rows: each layout it keeps on tile on each of `paths`, all of them
+/// timed together at each size (`frame`), with the traffic of the 1920x1080 frame (`render`).
+fn tile_rows<'a>(
+    backend: &str,
+    paths: &[Path],
+    frame: impl Fn(&TileOptions) -> Result<TimedFrame<'a>, String>,
+    render: impl Fn(&TileOptions) -> Result<Recording, String>,
+) {
+    let tile = |layout, path, size| TileOptions {
+        options: options(GBuffer::Packed(layout), size),
+        path,
+    };
+    let configurations: Vec<(PackedLayout, Path)> =
+        [PackedLayout::MobileMetallic, PackedLayout::FutureMetallic]
+            .into_iter()
+            .flat_map(|layout| paths.iter().map(move |&path| (layout, path)))
+            .collect();
+    let mut times = time_sizes(&configurations, |&(layout, path), size| {
+        frame(&tile(layout, path, size))
+    });
+    for &(layout, path) in &configurations {
+        let name = format!("{backend} {} {}", path.name(), layout.name());
+        let row_times = [0, 1].map(|size| times[size].next().unwrap_or_default());
+        match render(&tile(layout, path, SIZES[1])) {
+            Ok(recording) => row(&name, &recording, row_times),
+            Err(error) => eprintln!("{name}: {error}"),
+        }
+    }
 }
 
 fn main() {
@@ -228,50 +250,29 @@ fn main() {
         }
     }
 
-    // The on-tile backends, for the layouts they keep on tile: each backend's paths and
-    // layouts at one size timed together.
-    let layouts = [PackedLayout::MobileMetallic, PackedLayout::FutureMetallic];
-    let tile = |layout, path, size| TileOptions {
-        options: options(GBuffer::Packed(layout), size),
-        path,
-    };
+    // The on-tile backends, for the layouts they keep on tile.
     match GlesRenderer::new(&progress) {
-        Ok(gles) => {
-            let configurations = configurations(
-                &layouts,
-                &[Path::TwoPass, Path::FetchPacked, Path::FetchNative],
-            );
-            let mut times = time_sizes(&configurations, |&(layout, path), size| {
-                let frame = gles.timed_frame(&tile(layout, path, size))?;
+        Ok(gles) => tile_rows(
+            "gles",
+            &[Path::TwoPass, Path::FetchPacked, Path::FetchNative],
+            |tile| {
+                let frame = gles.timed_frame(tile)?;
                 Ok(Box::new(move || frame.seconds()))
-            });
-            for &(layout, path) in &configurations {
-                let name = format!("gles {} {}", path.name(), layout.name());
-                let row_times = [0, 1].map(|size| times[size].next().unwrap_or_default());
-                match gles.render(&tile(layout, path, SIZES[1])) {
-                    Ok((_, recording)) => row(&name, &recording, row_times),
-                    Err(error) => eprintln!("{name}: {error}"),
-                }
-            }
-        }
+            },
+            |tile| gles.render(tile).map(|(_, recording)| recording),
+        ),
         Err(error) => eprintln!("GLES: {error}"),
     }
     match VulkanRenderer::new(&progress) {
-        Ok(vulkan) => {
-            let configurations = configurations(&layouts, &[Path::TwoPass, Path::Subpass]);
-            let mut times = time_sizes(&configurations, |&(layout, path), size| {
-                let frame = vulkan.timed_frame(&tile(layout, path, size), &[])?;
+        Ok(vulkan) => tile_rows(
+            "vulkan",
+            &[Path::TwoPass, Path::Subpass],
+            |tile| {
+                let frame = vulkan.timed_frame(tile, &[])?;
                 Ok(Box::new(move || frame.seconds()))
-            });
-            for &(layout, path) in &configurations {
-                let name = format!("vulkan {} {}", path.name(), layout.name());
-                let row_times = [0, 1].map(|size| times[size].next().unwrap_or_default());
-                match vulkan.render(&tile(layout, path, SIZES[1])) {
-                    Ok((_, recording)) => row(&name, &recording, row_times),
-                    Err(error) => eprintln!("{name}: {error}"),
-                }
-            }
-        }
+            },
+            |tile| vulkan.render(tile).map(|(_, recording)| recording),
+        ),
         Err(error) => eprintln!("Vulkan: {error}"),
     }
 
