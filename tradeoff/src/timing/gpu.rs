@@ -93,7 +93,9 @@ impl<'a> Timer<'a> {
             .as_mut()
             .ok_or("the harness's own pipeline failed")?;
         eprintln!("timing {} rows ({})...", self.rows.len(), stage.name());
-        // The clock first: calibrating on a cold clock would size every chain too short.
+        // The harness is sized first, for the warm-up's runs; every row, the harness again
+        // among them, is sized once the clock has settled (on a cold clock every chain would
+        // come out too short).
         bench.calibrate(baseline, &self.protocol)?;
         let warm = warm_up(&self.protocol, &mut || {
             bench.run(baseline, baseline.chain).map(|run| run.0)
