@@ -6,8 +6,9 @@
 //! with whatever else runs. A time therefore means something only when
 //!
 //! 1. the clock has settled: [`warm_up`] runs the work until consecutive runs agree;
-//! 2. no clock change falls on one item alone: [`in_rounds`] times every item once a round, in
-//!    an order rotated each round, so a change spreads over all of them;
+//! 2. no clock change falls on one item alone: [`in_rounds`] times every item once a round, so
+//!    a change spreads over all of them, and starts each round one item later, so no item is
+//!    always timed first;
 //! 3. the work is large enough to measure: doubling it doubles the time ([`doubles`]), which
 //!    a run hidden under its launch or its memory traffic does not;
 //! 4. each figure carries its spread ([`Spread`]: min, median and max over the rounds).
@@ -126,34 +127,38 @@ pub fn warm_up(
     })
 }
 
-/// Times `items` items in `protocol.rounds` rounds: each round calls `run(item)` once for every
-/// item, starting one item later than the round before (round r times r, r + 1, ... and wraps),
-/// so no item always runs first or after the same one. The samples of each item, in round
-/// order.
+/// Times `items` items in `protocol.rounds` rounds (at least one): each round calls
+/// `run(item)` once for every item, starting one item later than the round before (round r
+/// times r, r + 1, ... and wraps), so no item is always timed first. Each item's spread over
+/// the rounds.
 pub fn in_rounds(
     protocol: &Protocol,
     items: usize,
     run: &mut dyn FnMut(usize) -> Result<f64, String>,
-) -> Result<Vec<Vec<f64>>, String> {
-    let mut samples = vec![Vec::with_capacity(protocol.rounds); items];
-    for round in 0..protocol.rounds {
+) -> Result<Vec<Spread>, String> {
+    let rounds = protocol.rounds.max(1);
+    let mut samples = vec![Vec::with_capacity(rounds); items];
+    for round in 0..rounds {
         for offset in 0..items {
             let item = (round + offset) % items;
             samples[item].push(run(item)?);
         }
     }
-    Ok(samples)
+    Ok(samples
+        .iter()
+        .map(|samples| Spread::of(samples).expect("at least one round"))
+        .collect())
 }
 
 /// The whole protocol over `items` items that need no calibration (frames): warm-up rounds,
 /// each calling `run(item)` once for every item, until two consecutive rounds' totals agree
 /// (so every item has run, compiled and cached before any is timed), then the timed rounds
-/// ([`in_rounds`]). How the warm-up ended, and the samples of each item.
+/// ([`in_rounds`]). How the warm-up ended, and each item's spread.
 pub fn time_items(
     protocol: &Protocol,
     items: usize,
     run: &mut dyn FnMut(usize) -> Result<f64, String>,
-) -> Result<(WarmUp, Vec<Vec<f64>>), String> {
+) -> Result<(WarmUp, Vec<Spread>), String> {
     let warm = warm_up(protocol, &mut || {
         (0..items).try_fold(0.0, |total, item| Ok(total + run(item)?))
     })?;
@@ -227,15 +232,19 @@ mod tests {
             ..Protocol::FULL
         };
         let mut calls = 0;
-        let mut clock = |_item: usize| {
+        let mut samples = vec![Vec::new(); 3];
+        let mut clock = |item: usize| {
             calls += 1;
-            Ok(if calls <= 6 { 1.0 } else { 2.0 })
+            let time = if calls <= 6 { 1.0 } else { 2.0 };
+            samples[item].push(time);
+            Ok(time)
         };
-        let samples = in_rounds(&protocol, 3, &mut clock).unwrap();
-        assert_eq!(samples.len(), 3);
-        for item in &samples {
+        let spreads = in_rounds(&protocol, 3, &mut clock).unwrap();
+        assert_eq!(spreads.len(), 3);
+        for (item, spread) in samples.iter().zip(&spreads) {
             assert_eq!(item.len(), 4);
             assert_eq!(item.iter().sum::<f64>(), 6.0, "{samples:?}");
+            assert_eq!((spread.min, spread.max), (1.0, 2.0), "{spreads:?}");
         }
         // The order rotates: round 1 starts with item 1.
         let mut order = Vec::new();
@@ -252,7 +261,7 @@ mod tests {
     #[test]
     fn every_item_is_warm_before_any_is_timed() {
         let mut runs = [0; 3];
-        let (warm, samples) = time_items(&Protocol::SHORT, 3, &mut |item| {
+        let (warm, spreads) = time_items(&Protocol::SHORT, 3, &mut |item| {
             runs[item] += 1;
             Ok(if runs[item] == 1 { 0.1 } else { 0.01 })
         })
@@ -260,7 +269,7 @@ mod tests {
         assert!(warm.settled);
         // The first round compiles, the second is warm, the third agrees with it.
         assert_eq!(warm.runs, 3);
-        assert!(samples.iter().flatten().all(|&sample| sample == 0.01));
+        assert!(spreads.iter().all(|spread| spread.max == 0.01));
         assert_eq!(runs, [3 + Protocol::SHORT.rounds; 3]);
     }
 

@@ -41,7 +41,7 @@ fn options(gbuffer: GBuffer, (width, height): (u32, u32)) -> Options {
 /// Times `frames` (each a closure timing one frame, in seconds) by the protocol; per frame,
 /// its median and spread in milliseconds as `12.3 (12.1-12.9)`, or `n/a` where a frame could
 /// not be timed (the reason on stderr).
-fn time_all(frames: &[Result<TimedFrame<'_>, String>]) -> Vec<String> {
+fn time_all(frames: &[Result<FrameClock<'_>, String>]) -> Vec<String> {
     let timed: Vec<&dyn Fn() -> Result<f64, String>> = frames
         .iter()
         .filter_map(|frame| {
@@ -52,31 +52,30 @@ fn time_all(frames: &[Result<TimedFrame<'_>, String>]) -> Vec<String> {
                 .map(|frame| frame.as_ref())
         })
         .collect();
-    let spreads = match time_items(&PROTOCOL, timed.len(), &mut |index| timed[index]()) {
-        Ok((_, samples)) => samples.iter().map(|samples| Spread::of(samples)).collect(),
-        Err(error) => {
-            eprintln!("{error}");
-            vec![None; timed.len()]
-        }
-    };
+    // Where the protocol fails (the reason on stderr), every frame reads n/a.
+    let spreads = time_items(&PROTOCOL, timed.len(), &mut |index| timed[index]())
+        .map_err(|error| eprintln!("{error}"))
+        .map(|(_, spreads)| spreads)
+        .unwrap_or_default();
     let mut spreads = spreads.into_iter();
     frames
         .iter()
         .map(|frame| match frame {
-            Ok(_) => spreads.next().flatten().map_or_else(|| "n/a".into(), ms),
+            Ok(_) => spreads.next().map_or_else(|| "n/a".into(), ms),
             Err(_) => "n/a".into(),
         })
         .collect()
 }
 
-/// A frame that times itself: one frame's seconds each call.
-type TimedFrame<'a> = Box<dyn Fn() -> Result<f64, String> + 'a>;
+/// A frame that times itself (a renderer's `TimedFrame::seconds`): one frame's seconds each
+/// call.
+type FrameClock<'a> = Box<dyn Fn() -> Result<f64, String> + 'a>;
 
 /// Each of `items`' frames (`frame(item, size)`) timed at both sizes, one table per size: per
 /// size, the times in `items`' order ([`time_all`]).
 fn time_sizes<'a, T>(
     items: &[T],
-    frame: impl Fn(&T, (u32, u32)) -> Result<TimedFrame<'a>, String>,
+    frame: impl Fn(&T, (u32, u32)) -> Result<FrameClock<'a>, String>,
 ) -> [std::vec::IntoIter<String>; 2] {
     SIZES.map(|size| {
         let frames: Vec<_> = items.iter().map(|item| frame(item, size)).collect();
@@ -155,11 +154,7 @@ fn stages(progress: &dyn Fn(&str)) {
             let medians: Vec<f64> = match time_items(&PROTOCOL, frames.len(), &mut |index| {
                 frames[index].seconds()
             }) {
-                Ok((_, samples)) => samples
-                    .iter()
-                    .filter_map(|samples| Spread::of(samples))
-                    .map(|spread| spread.median * 1e3)
-                    .collect(),
+                Ok((_, spreads)) => spreads.iter().map(|spread| spread.median * 1e3).collect(),
                 Err(error) => {
                     eprintln!("{error}");
                     continue;
@@ -187,7 +182,7 @@ fn stages(progress: &dyn Fn(&str)) {
 fn tile_rows<'a>(
     backend: &str,
     paths: &[Path],
-    frame: impl Fn(&TileOptions) -> Result<TimedFrame<'a>, String>,
+    frame: impl Fn(&TileOptions) -> Result<FrameClock<'a>, String>,
     render: impl Fn(&TileOptions) -> Result<Recording, String>,
 ) {
     let tile = |layout, path, size| TileOptions {

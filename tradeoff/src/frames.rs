@@ -50,8 +50,8 @@ pub struct FrameRow {
     pub fused_bandwidth_units: Option<f64>,
     /// Against the lossless frame of the same scene.
     pub comparison: Comparison,
-    /// Frame times on the wgpu adapter over the protocol's rounds, milliseconds (set once
-    /// every layout has rendered: [`measure_all`] times them together).
+    /// Frame times on the wgpu adapter over the protocol's rounds, milliseconds ([`measure_all`]
+    /// times every layout's together).
     pub frame_ms: Spread,
     /// The heat map's file name, beside the report.
     pub heatmap: String,
@@ -89,13 +89,13 @@ struct Renderers {
     vulkan: Option<VulkanRenderer>,
 }
 
-/// Measures one G-buffer, named `name` in the table, against `lossless` (all but its time);
-/// writes its heat map into `folder`.
+/// Measures one G-buffer, named `name` in the table, against `lossless`, with its frame times
+/// (`frame_ms`, timed with every other layout's); writes its heat map into `folder`.
 fn measure(
     renderers: &Renderers,
     (name, kind): (String, &'static str),
     gbuffer: GBuffer,
-    lossless: &Frame,
+    (lossless, frame_ms): (&Frame, Spread),
     folder: &Path,
 ) -> Result<FrameRow, String> {
     let layout = gbuffer
@@ -138,11 +138,7 @@ fn measure(
         two_pass_bandwidth_units: tile_bandwidth(TilePath::TwoPass)?,
         fused_bandwidth_units: tile_bandwidth(TilePath::Subpass)?,
         comparison,
-        frame_ms: Spread {
-            min: f64::NAN,
-            median: f64::NAN,
-            max: f64::NAN,
-        },
+        frame_ms,
         heatmap: heatmap_name,
         predicted: Vec::new(),
     })
@@ -185,10 +181,10 @@ fn predictions(solution: &Solution) -> Vec<String> {
         .collect()
 }
 
-/// Renders every layout of the table and measures it, writing the heat maps into `folder`, then
-/// times every layout's frame together by the protocol (`gbuffer_gpu::timing::time_items`:
-/// warm-up rounds, then each layout once a round), so that no clock change falls on one layout.
-/// The error says what is missing (the wgpu adapter) or what failed.
+/// Times every layout's frame together by the protocol (`gbuffer_gpu::timing::time_items`:
+/// warm-up rounds, then each layout once a round, so that no clock change falls on one
+/// layout), then renders each and measures it, writing the heat maps into `folder`. The error
+/// says what is missing (the wgpu adapter) or what failed.
 pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRow>, String> {
     let renderers = Renderers {
         wgpu: Renderer::new(progress)?,
@@ -202,61 +198,75 @@ pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRo
             }
         },
     };
-    let lossless = renderers
-        .wgpu
-        .render(&options(GBuffer::Packed(PackedLayout::Lossless)))?;
-    let mut rows = Vec::new();
-    let mut gbuffers = Vec::new();
-    for (layout, kind) in packed_layouts() {
-        progress(&format!("frame table: {}", layout.name()));
-        rows.push(measure(
-            &renderers,
-            (layout.name().to_string(), kind),
-            GBuffer::Packed(layout),
-            &lossless,
-            folder,
-        )?);
-        gbuffers.push(GBuffer::Packed(layout));
-    }
+    // The table's layouts: each one's name, kind, G-buffer and, for a solved preset, its
+    // solution.
+    let mut layouts: Vec<(String, &'static str, GBuffer, Option<Arc<Solution>>)> = packed_layouts()
+        .into_iter()
+        .map(|(layout, kind)| {
+            (
+                layout.name().to_string(),
+                kind,
+                GBuffer::Packed(layout),
+                None,
+            )
+        })
+        .collect();
     for (preset, _) in PRESETS {
-        progress(&format!("frame table: preset {preset}"));
         let solution = Arc::new(solve_preset(preset)?);
-        let features = solution.scene.features;
-        let lossless = renderers
-            .wgpu
-            .render(&options(GBuffer::LosslessScene(features)))?;
-        let mut row = measure(
-            &renderers,
-            (format!("preset {preset}"), "solved"),
+        layouts.push((
+            format!("preset {preset}"),
+            "solved",
             GBuffer::Solved(solution.clone()),
-            &lossless,
-            folder,
-        )?;
-        row.predicted = predictions(&solution);
-        rows.push(row);
-        gbuffers.push(GBuffer::Solved(solution));
+            Some(solution),
+        ));
     }
     progress(&format!(
         "frame table: timing {} frames in rounds",
-        gbuffers.len()
+        layouts.len()
     ));
-    let frames = gbuffers
-        .into_iter()
-        .map(|gbuffer| renderers.wgpu.timed_frame(&options(gbuffer)))
+    let frames = layouts
+        .iter()
+        .map(|(_, _, gbuffer, _)| renderers.wgpu.timed_frame(&options(gbuffer.clone())))
         .collect::<Result<Vec<_>, String>>()?;
-    let (warm, samples) = time_items(&Protocol::FULL, frames.len(), &mut |index| {
+    let (warm, times) = time_items(&Protocol::FULL, frames.len(), &mut |index| {
         frames[index].seconds()
     })?;
+    drop(frames);
     if !warm.settled {
         progress(&format!(
             "frame table: the frame times did not settle in {} warm-up rounds",
             warm.runs
         ));
     }
-    for (row, samples) in rows.iter_mut().zip(samples) {
-        if let Some(spread) = Spread::of(&samples) {
-            row.frame_ms = spread.map(|seconds| seconds * 1e3);
+    let packed_lossless = renderers
+        .wgpu
+        .render(&options(GBuffer::Packed(PackedLayout::Lossless)))?;
+    let mut rows = Vec::new();
+    for ((name, kind, gbuffer, solution), time) in layouts.into_iter().zip(times) {
+        progress(&format!("frame table: {name}"));
+        // A solved preset against the lossless G-buffer of its own scene.
+        let scene_lossless = solution
+            .as_ref()
+            .map(|solution| {
+                let features = solution.scene.features;
+                renderers
+                    .wgpu
+                    .render(&options(GBuffer::LosslessScene(features)))
+            })
+            .transpose()?;
+        let lossless = scene_lossless.as_ref().unwrap_or(&packed_lossless);
+        let frame_ms = time.map(|seconds| seconds * 1e3);
+        let mut row = measure(
+            &renderers,
+            (name, kind),
+            gbuffer,
+            (lossless, frame_ms),
+            folder,
+        )?;
+        if let Some(solution) = &solution {
+            row.predicted = predictions(solution);
         }
+        rows.push(row);
     }
     Ok(rows)
 }

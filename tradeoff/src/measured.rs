@@ -125,7 +125,7 @@ pub(crate) fn format_time(time: Option<timing::GpuTime>) -> String {
         None => "n/a".to_string(),
         Some(time) => match time.upper_bound_ns() {
             Some(bound) => format!("<{}", significant(bound)),
-            None => significant(time.median_ns),
+            None => significant(time.ns.median),
         },
     }
 }

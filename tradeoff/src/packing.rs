@@ -205,7 +205,7 @@ pub fn json(rows: &[PackingRow]) -> serde_json::Value {
             "conditional_branches": row.cost.map(|cost| cost.conditional_branches),
             "largest_code_error": row.deviation.largest_code_error(),
             "differing_fraction": row.deviation.differing_fraction(),
-            "ms_per_million_texels": row.times.compute.filter(timing::GpuTime::resolved).map(|time| time.median_ns),
+            "ms_per_million_texels": row.times.compute.filter(timing::GpuTime::resolved).map(|time| time.ns.median),
             "timings": crate::json::timings_json(&row.times),
         }))
         .collect::<Vec<_>>())

@@ -112,7 +112,7 @@ pub(crate) fn write_time_plots(
                 .filter(|(row, _)| row.family == family)
                 .filter_map(|(row, measured)| {
                     let time = measured.gpu.get(stage).filter(timing::GpuTime::resolved)?;
-                    Some((row, time.median_ns))
+                    Some((row, time.ns.median))
                 })
                 .collect();
             if members.len() < 2 {

@@ -115,7 +115,7 @@ impl<'a> Timer<'a> {
             }
         }
         let timed: Vec<&Item> = items.iter().flatten().collect();
-        let samples = in_rounds(&self.protocol, timed.len(), &mut |index| {
+        let spreads = in_rounds(&self.protocol, timed.len(), &mut |index| {
             let item = timed[index];
             let (wall, stamped) = bench.run(item, item.chain)?;
             Ok(match item.clock {
@@ -123,7 +123,7 @@ impl<'a> Timer<'a> {
                 Clock::Wall => wall,
             })
         })?;
-        let mut samples = samples.into_iter();
+        let mut spreads = spreads.into_iter();
         Ok(items
             .iter()
             .map(|item| {
@@ -131,7 +131,7 @@ impl<'a> Timer<'a> {
                 Some(GpuTime::of_runs(
                     stage,
                     item.clock,
-                    samples.next()?,
+                    spreads.next()?,
                     item.chain,
                     bench.invocations(),
                     item.doubling_ratio,

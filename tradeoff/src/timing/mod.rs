@@ -82,14 +82,10 @@ pub struct GpuTime {
     pub stage: Stage,
     /// How it was timed.
     pub clock: Clock,
-    /// The median round's time divided by the evaluations of a run (`chain` x `invocations`),
-    /// in nanoseconds: device nanoseconds per evaluation, the whole device's throughput (not
-    /// one invocation's latency).
-    pub median_ns: f64,
-    /// The fastest round's, likewise.
-    pub min_ns: f64,
-    /// The slowest round's, likewise.
-    pub max_ns: f64,
+    /// Each round's time divided by the evaluations of a run (`chain` x `invocations`), in
+    /// nanoseconds, over the rounds: device nanoseconds per evaluation, the whole device's
+    /// throughput (not one invocation's latency).
+    pub ns: Spread,
     /// Evaluations per invocation, as calibrated.
     pub chain: u32,
     /// Invocations per run.
@@ -107,11 +103,9 @@ impl GpuTime {
     /// The time less `harness`'s (the baseline row's), each statistic less the harness's
     /// median.
     pub fn less(self, harness: Option<GpuTime>) -> GpuTime {
-        let base = harness.map_or(0.0, |harness| harness.median_ns);
+        let base = harness.map_or(0.0, |harness| harness.ns.median);
         GpuTime {
-            median_ns: self.median_ns - base,
-            min_ns: self.min_ns - base,
-            max_ns: self.max_ns - base,
+            ns: self.ns.map(|ns| ns - base),
             ..self
         }
     }
@@ -120,7 +114,7 @@ impl GpuTime {
     /// (the harness's taken off) stands clear of the rounds' spread. A time within the spread,
     /// or under zero, is not a measurement to print.
     pub fn resolved(&self) -> bool {
-        self.doubled && self.median_ns > 0.0 && self.median_ns > self.max_ns - self.min_ns
+        self.doubled && self.ns.median > 0.0 && self.ns.median > self.ns.width()
     }
 
     /// Where the time does not resolve: an upper bound on it, in nanoseconds per evaluation.
@@ -128,7 +122,7 @@ impl GpuTime {
     /// when the harness's time exceeded it) plus the rounds' spread; a run that did not double
     /// holds a fixed cost besides the row's, which only adds. Never negative.
     pub fn upper_bound_ns(&self) -> Option<f64> {
-        (!self.resolved()).then(|| self.median_ns.max(0.0) + (self.max_ns - self.min_ns).max(0.0))
+        (!self.resolved()).then(|| self.ns.median.max(0.0) + self.ns.width().max(0.0))
     }
 
     /// Evaluations per run, over the whole device.
@@ -138,40 +132,32 @@ impl GpuTime {
 
     /// Evaluations per second over the whole device at the median run: a run's evaluations over
     /// its time, the harness's own time taken off (once [`GpuTime::less`] has), which is
-    /// 1e9 / [`GpuTime::median_ns`].
+    /// 1e9 over the median of [`GpuTime::ns`].
     pub fn evaluations_per_second(&self) -> f64 {
         let evaluations = self.evaluations_per_run() as f64;
-        let run_seconds = self.median_ns * evaluations / 1e9;
+        let run_seconds = self.ns.median * evaluations / 1e9;
         evaluations / run_seconds
     }
 
-    /// The time of runs of `chain` evaluations in each of `invocations`, from their durations
-    /// in seconds (any order, at least one), with the doubling check's ratio and verdict.
+    /// The time of runs of `chain` evaluations in each of `invocations`, from their spread in
+    /// seconds, with the doubling check's ratio and verdict.
     pub fn of_runs(
         stage: Stage,
         clock: Clock,
-        run_seconds: Vec<f64>,
+        seconds: Spread,
         chain: u32,
         invocations: u32,
         doubling_ratio: f64,
         doubled: bool,
     ) -> GpuTime {
         let ns_per_evaluation = 1e9 / (f64::from(invocations) * f64::from(chain));
-        let spread = Spread::of(&run_seconds).unwrap_or(Spread {
-            min: f64::NAN,
-            median: f64::NAN,
-            max: f64::NAN,
-        });
-        let per_evaluation = spread.map(|seconds| seconds * ns_per_evaluation);
         GpuTime {
             stage,
             clock,
-            median_ns: per_evaluation.median,
-            min_ns: per_evaluation.min,
-            max_ns: per_evaluation.max,
+            ns: seconds.map(|seconds| seconds * ns_per_evaluation),
             chain,
             invocations,
-            run_ms: spread.median * 1e3,
+            run_ms: seconds.median * 1e3,
             doubling_ratio,
             doubled,
         }
@@ -231,16 +217,16 @@ pub fn inconsistencies(group: &[Timed]) -> Vec<String> {
             if predicted
                 && cheap_time.resolved()
                 && dear_time.resolved()
-                && cheap_time.min_ns > dear_time.max_ns
+                && cheap_time.ns.min > dear_time.ns.max
             {
                 found.push(format!(
                     "{} ({} instructions) took {:.3} ns, more than {} ({} instructions) at {:.3} ns",
                     cheap.name,
                     cheap.instructions,
-                    cheap_time.median_ns,
+                    cheap_time.ns.median,
                     dear.name,
                     dear.instructions,
-                    dear_time.median_ns
+                    dear_time.ns.median
                 ));
             }
         }
@@ -278,18 +264,19 @@ mod tests {
         let runs = vec![0.011, 0.0095, 0.010, 0.0102, 0.0099, 0.0105, 0.0098];
         let time = of_runs(runs);
         assert_eq!(time.evaluations_per_run(), 100_000);
-        assert!((time.median_ns - 100.0).abs() < 1e-9, "{}", time.median_ns);
+        assert!((time.ns.median - 100.0).abs() < 1e-9, "{}", time.ns.median);
         assert!((time.run_ms - 10.0).abs() < 1e-9);
-        assert!((time.min_ns - 95.0).abs() < 1e-9 && (time.max_ns - 110.0).abs() < 1e-9);
+        assert!((time.ns.min - 95.0).abs() < 1e-9 && (time.ns.max - 110.0).abs() < 1e-9);
         assert!((time.evaluations_per_second() - 1e7).abs() < 1e-3);
         let harness = of_runs(vec![0.002; 7]);
         let less = time.less(Some(harness));
-        assert!((less.median_ns - 80.0).abs() < 1e-9);
+        assert!((less.ns.median - 80.0).abs() < 1e-9);
         assert!((less.evaluations_per_second() - 1e5 / 0.008).abs() < 1e-3);
     }
 
     fn of_runs(runs: Vec<f64>) -> GpuTime {
-        GpuTime::of_runs(Stage::Compute, Clock::Wall, runs, 100, 1000, 2.0, true)
+        let seconds = Spread::of(&runs).unwrap();
+        GpuTime::of_runs(Stage::Compute, Clock::Wall, seconds, 100, 1000, 2.0, true)
     }
 
     /// A row faster than the harness can tell (its median, less the harness's, below zero: the
@@ -301,7 +288,7 @@ mod tests {
         let runs = vec![0.0100, 0.0104, 0.0098, 0.0101, 0.0099, 0.0102, 0.0097];
         let row = of_runs(runs);
         let less = row.less(Some(of_runs(vec![0.0101; 7])));
-        assert!(less.median_ns < 0.0 && !less.resolved());
+        assert!(less.ns.median < 0.0 && !less.resolved());
         let bound = less.upper_bound_ns().unwrap();
         // Spread 7 ns (97 to 104 ns a run), the median taken as zero.
         assert!((bound - 7.0).abs() < 1e-6, "{bound}");
@@ -315,13 +302,15 @@ mod tests {
         assert!((undoubled.upper_bound_ns().unwrap() - 110.0).abs() < 1e-9);
     }
 
-    fn time(median_ns: f64) -> GpuTime {
+    fn time(median: f64) -> GpuTime {
         GpuTime {
             stage: Stage::Compute,
             clock: Clock::Wall,
-            median_ns,
-            min_ns: median_ns * 0.95,
-            max_ns: median_ns * 1.05,
+            ns: Spread {
+                min: median * 0.95,
+                median,
+                max: median * 1.05,
+            },
             chain: 64,
             invocations: INVOCATIONS,
             run_ms: 10.0,
@@ -381,7 +370,7 @@ mod tests {
                         assert_eq!(time.clock, Clock::Wall);
                     }
                     assert!(time.run_ms >= 1e3 * TARGET_RUN || time.chain == MAX_CHAIN);
-                    assert!(time.min_ns <= time.median_ns && time.median_ns <= time.max_ns);
+                    assert!(time.ns.min <= time.ns.median && time.ns.median <= time.ns.max);
                     assert_eq!(time.upper_bound_ns().is_some(), !time.resolved());
                     if let Some(bound) = time.upper_bound_ns() {
                         assert!(bound >= 0.0);
@@ -394,8 +383,34 @@ mod tests {
                 }
                 assert!(dear.doubled, "{stage:?}: {dear:?}");
                 assert!(dear.resolved(), "{stage:?}: {dear:?}");
-                assert!(dear.median_ns > cheap.upper_bound_ns().unwrap_or(cheap.median_ns));
+                assert!(dear.ns.median > cheap.upper_bound_ns().unwrap_or(cheap.ns.median));
             }
+        }
+    }
+
+    /// The speed chapter states the protocol's figures; they are this module's and
+    /// `Protocol::FULL`'s, so changing one without the page fails here.
+    #[test]
+    fn the_guide_states_the_protocol_as_the_code_runs_it() {
+        let chapter = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../book/src/speed-and-accuracy.md"
+        ))
+        .expect("the guide's speed chapter");
+        let flowed = chapter.split_whitespace().collect::<Vec<_>>().join(" ");
+        let full = gbuffer_gpu::timing::Protocol::FULL;
+        for stated in [
+            format!("2^{} invocations", INVOCATIONS.trailing_zeros()),
+            format!("{FRAGMENT_WIDTH}x{FRAGMENT_HEIGHT} target"),
+            format!("until a run lasts {} ms", TARGET_RUN * 1e3),
+            format!("(within {}%)", full.doubling_within * 100.0),
+            format!("within {}% of the one before", full.settled_within * 100.0),
+            format!("{} rounds", full.rounds),
+        ] {
+            assert!(
+                flowed.contains(&stated),
+                "the speed chapter does not say `{stated}`"
+            );
         }
     }
 
