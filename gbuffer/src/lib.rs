@@ -213,7 +213,7 @@ pub struct WeslModule {
 /// semantic versioning.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::slices::{convert_lanes, Lanes};
+    pub use crate::slices::{convert_lanes, Isa, Lanes};
 
     /// Panics, naming the call and the lengths, unless they agree.
     pub fn check_slice_lengths(call: &str, texels: usize, packed: usize) {
@@ -224,90 +224,4 @@ pub mod __private {
     }
 }
 
-/// The loops behind [`GBufferLayout::pack_slice`] and [`GBufferLayout::unpack_slice`], and
-/// their copies compiled for AVX2.
-mod slices {
-    use std::marker::PhantomData;
-
-    use crate::GBufferLayout;
-
-    /// A conversion of texels `N` at a time, and of one: the two must agree on every texel.
-    /// A trait of static functions, not closures: called directly, the `#[inline(always)]`
-    /// implementations inline into the copy of the loop compiled for AVX2 and are compiled for
-    /// AVX2 with it (a closure stays a function of its own, compiled for the baseline).
-    pub trait Lanes<A, B, const N: usize> {
-        /// `N` texels at once, written in place (a returned array would be copied there).
-        fn many(input: &[A; N], output: &mut [B; N]);
-        /// One texel, for the ones left over.
-        fn one(input: &A) -> B;
-    }
-
-    /// Writes `output[i] = L::one(&input[i])` for every i, `N` at a time through `L::many` and
-    /// the rest through `L::one`; on x86-64 CPUs with AVX2 (checked at run time) through a copy
-    /// compiled for AVX2, whose per-lane shifts, rounding and blends the conversions need.
-    #[inline(always)]
-    pub fn convert_lanes<L: Lanes<A, B, N>, A, B, const N: usize>(input: &[A], output: &mut [B]) {
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2, checked just above.
-            unsafe { lanes_with_avx2::<L, A, B, N>(input, output) };
-            return;
-        }
-        lanes::<L, A, B, N>(input, output);
-    }
-
-    #[inline(always)]
-    fn lanes<L: Lanes<A, B, N>, A, B, const N: usize>(input: &[A], output: &mut [B]) {
-        let whole = input.len() / N * N;
-        let (head, tail) = input.split_at(whole);
-        let (out_head, out_tail) = output.split_at_mut(whole);
-        for (from, to) in head.chunks_exact(N).zip(out_head.chunks_exact_mut(N)) {
-            let from: &[A; N] = from.try_into().expect("chunks of N");
-            let to: &mut [B; N] = to.try_into().expect("chunks of N");
-            L::many(from, to);
-        }
-        for (from, to) in tail.iter().zip(out_tail) {
-            *to = L::one(from);
-        }
-    }
-
-    /// # Safety
-    ///
-    /// The CPU must have AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn lanes_with_avx2<L: Lanes<A, B, N>, A, B, const N: usize>(
-        input: &[A],
-        output: &mut [B],
-    ) {
-        lanes::<L, A, B, N>(input, output);
-    }
-
-    /// The trait's own `pack_slice`, for layouts implemented by hand: a texel at a time.
-    pub struct Pack<T>(PhantomData<T>);
-
-    impl<T: GBufferLayout> Lanes<T, T::Packed, 1> for Pack<T> {
-        #[inline(always)]
-        fn many(input: &[T; 1], output: &mut [T::Packed; 1]) {
-            output[0] = input[0].pack();
-        }
-        #[inline(always)]
-        fn one(input: &T) -> T::Packed {
-            input.pack()
-        }
-    }
-
-    /// The trait's own `unpack_slice`.
-    pub struct Unpack<T>(PhantomData<T>);
-
-    impl<T: GBufferLayout> Lanes<T::Packed, T, 1> for Unpack<T> {
-        #[inline(always)]
-        fn many(input: &[T::Packed; 1], output: &mut [T; 1]) {
-            output[0] = T::unpack(&input[0]);
-        }
-        #[inline(always)]
-        fn one(input: &T::Packed) -> T {
-            T::unpack(input)
-        }
-    }
-}
+mod slices;

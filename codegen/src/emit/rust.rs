@@ -247,13 +247,16 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
 /// AVX2 register.
 const SLICE_LANES: usize = 8;
 
-/// `pack_slice` and `unpack_slice`, eight texels at a time: each word's channels (or bit
-/// fields) converted over the eight texels' values at once (`Channel::encode_lanes`,
-/// `BitField::encode_lanes` and their decodes, with each channel and bit field a constant),
-/// the same conversions as `pack` and `unpack` lane by lane, which the compiler turns into
-/// vector instructions; the texels left over go through `pack` and `unpack`. The conversions
-/// are static functions of a `Lanes` impl, not closures, so that they inline into the loop's
-/// copy compiled for AVX2.
+/// `pack_slice` and `unpack_slice`, eight texels at a time. Packing, the eight texels'
+/// components become rows of lane bits (one row per texel, the fields' components in order)
+/// and are transposed to one array of eight lanes per component; each word's channels (or
+/// bit fields) are converted over the eight lanes at once (`Channel::encode_lanes`,
+/// `BitField::encode_lanes`, with each channel and bit field a constant), the same conversions
+/// as `pack` lane by lane, which the compiler turns into vector instructions; the words'
+/// lanes are transposed back to each texel's words. Unpacking runs the same steps backwards.
+/// The texels left over go through `pack` and `unpack`. The conversions are static functions
+/// of a `Lanes` impl, not closures, so that they inline into the loop's copy compiled for
+/// AVX2, whose transposes (`Isa`) it passes them.
 fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStream) {
     let name = Ident::new(&layout.name, Span::call_site());
     let packing = quote!(#krate::layout);
@@ -263,40 +266,73 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
     let u32_ = quote!(::core::primitive::u32);
     let texels = Ident::new("__gbuffer_texels", Span::call_site());
     let index = Ident::new("__gbuffer_index", Span::call_site());
+    let lanes = Ident::new("__gbuffer_lanes", Span::call_site());
+    let rows = Ident::new("__gbuffer_rows", Span::call_site());
     let word_name = |word: usize| format_ident!("__gbuffer_word{}", word);
     let field_name = |field: usize| format_ident!("__gbuffer_field{}", field);
-    // Component `component` of `field` over the lanes, as the field's scalar (`as_bits`: as a
-    // codec's lane, u32 bits); zeros past its components.
-    let lane = |field: &Field, component: usize, as_bits: bool| {
-        let zero = if as_bits {
-            quote!(0)
-        } else {
-            scalar_zero(field.ty.scalar)
-        };
-        if component >= field.ty.components {
-            return quote!([#zero; #lanes_n]);
-        }
+    // Each field's first row column: its components follow one another.
+    let first_column: Vec<usize> = layout
+        .fields
+        .iter()
+        .scan(0, |next, field| {
+            let first = *next;
+            *next += field.ty.components;
+            Some(first)
+        })
+        .collect();
+    let columns =
+        Literal::usize_unsuffixed(layout.fields.iter().map(|field| field.ty.components).sum());
+    // Texel `texel`'s component `component` of `field`.
+    let component_of = |texel: TokenStream, field: &Field, component: usize| {
         let field_ident = Ident::new(&field.name, Span::call_site());
-        let value = if field.ty.components == 1 {
-            quote!(#texels[#index].#field_ident)
+        if field.ty.components == 1 {
+            quote!(#texel.#field_ident)
         } else {
             let axis = format_ident!("{}", &"xyzw"[component..=component]);
-            quote!(#texels[#index].#field_ident.#axis)
-        };
-        let value = if as_bits {
-            lane_bits(value, field.ty.scalar)
-        } else {
-            value
-        };
+            quote!(#texel.#field_ident.#axis)
+        }
+    };
+    // Component `component` of field `number` over the lanes, as the field's scalar
+    // (`as_bits`: as a codec's lane, u32 bits); zeros past its components.
+    let lane = |number: usize, component: usize, as_bits: bool| {
+        let field = &layout.fields[number];
+        if component >= field.ty.components {
+            let zero = if as_bits {
+                quote!(0)
+            } else {
+                scalar_zero(field.ty.scalar)
+            };
+            return quote!([#zero; #lanes_n]);
+        }
+        let column = Literal::usize_unsuffixed(first_column[number] + component);
+        if as_bits {
+            return quote!(#lanes[#column]);
+        }
+        let zero = scalar_zero(field.ty.scalar);
+        let value = from_lane_bits(quote!(#lanes[#column][#index]), field.ty.scalar);
         quote!({
-            let mut __gbuffer_lanes = [#zero; #lanes_n];
+            let mut __gbuffer_values = [#zero; #lanes_n];
             for #index in 0..#lanes_n {
-                __gbuffer_lanes[#index] = #value;
+                __gbuffer_values[#index] = #value;
             }
-            __gbuffer_lanes
+            __gbuffer_values
         })
     };
 
+    let texel_rows = (0..SLICE_LANES).map(|texel| {
+        let texel = Literal::usize_unsuffixed(texel);
+        let texel = quote!(#texels[#texel]);
+        let bits = layout.fields.iter().flat_map(|field| {
+            let texel = &texel;
+            (0..field.ty.components).map(move |component| {
+                lane_bits(
+                    component_of(texel.clone(), field, component),
+                    field.ty.scalar,
+                )
+            })
+        });
+        quote!([#(#bits),*])
+    });
     let packed_words = layout.word_contents().into_iter().enumerate().map(|(word, contents)| {
         let word_ident = word_name(word);
         let members = contents.members.iter().map(|member| {
@@ -305,7 +341,7 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
                 Storage::Word(format) => {
                     let scalar = scalar_path(field.ty.scalar);
                     let channels = (0..format.channels().len()).map(|channel| {
-                        let values = lane(field, channel, false);
+                        let values = lane(member.field, channel, false);
                         let format = variant(format);
                         quote! {{
                             const __GBUFFER_CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
@@ -321,7 +357,7 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
                     let bit_field = bit_field_tokens(bit_field, &packing);
                     let components = Literal::usize_unsuffixed(field.ty.components);
                     let offset = Literal::u32_unsuffixed(member.offset);
-                    let values = (0..4).map(|component| lane(field, component, true));
+                    let values = (0..4).map(|component| lane(member.field, component, true));
                     quote! {{
                         const __GBUFFER_FIELD: #packing::BitField = #bit_field;
                         let __gbuffer_codes = __GBUFFER_FIELD.encode_lanes([#(#values),*], #components);
@@ -343,11 +379,11 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
             struct __GbufferPack;
             impl #private::Lanes<#name, [#u32_; #words], #lanes_n> for __GbufferPack {
                 #[inline(always)]
-                fn many(#texels: &[#name; #lanes_n], __gbuffer_packed: &mut [[#u32_; #words]; #lanes_n]) {
+                fn many<I: #private::Isa>(#texels: &[#name; #lanes_n], __gbuffer_packed: &mut [[#u32_; #words]; #lanes_n]) {
+                    let #rows: [[#u32_; #columns]; #lanes_n] = [#(#texel_rows),*];
+                    let #lanes: [[#u32_; #lanes_n]; #columns] = I::transpose(&#rows);
                     #(#packed_words)*
-                    for #index in 0..#lanes_n {
-                        __gbuffer_packed[#index] = [#(#word_idents[#index]),*];
-                    }
+                    *__gbuffer_packed = I::transpose(&[#(#word_idents),*]);
                 }
                 #[inline(always)]
                 fn one(__gbuffer_texel: &#name) -> [#u32_; #words] {
@@ -360,22 +396,13 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
     };
 
     let words_parameter = Ident::new("__gbuffer_words", Span::call_site());
-    let read_words = (0..layout.words()).map(|word| {
-        let word_ident = word_name(word);
-        let at = Literal::usize_unsuffixed(word);
-        quote! {
-            let mut #word_ident: [#u32_; #lanes_n] = [0; #lanes_n];
-            for #index in 0..#lanes_n {
-                #word_ident[#index] = #words_parameter[#index][#at];
-            }
-        }
-    });
     // Per field, its components over the lanes, `__gbuffer_field<n>[c][lane]`: a format's
     // channel values, or a bit field's codec lanes as u32 bits.
     let locations = layout.field_locations();
     let decoded = layout.fields.iter().zip(&locations).enumerate().map(|(number, (field, &(word, member)))| {
         let field_ident = field_name(number);
-        let word_ident = word_name(word);
+        let word = Literal::usize_unsuffixed(word);
+        let word_lanes = quote!(__gbuffer_word_lanes[#word]);
         match field.storage {
             Storage::Word(format) => {
                 let scalar = scalar_path(field.ty.scalar);
@@ -384,7 +411,7 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
                 let channels = (0..field.ty.components).map(|channel| {
                     quote! {{
                         const __GBUFFER_CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
-                        __GBUFFER_CHANNEL.decode_lanes::<#scalar, #lanes_n>(#word_ident)
+                        __GBUFFER_CHANNEL.decode_lanes::<#scalar, #lanes_n>(#word_lanes)
                     }}
                 });
                 let missing = (field.ty.components..4).map(|_| quote!([#zero; #lanes_n]));
@@ -397,7 +424,7 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
                 let components = Literal::usize_unsuffixed(field.ty.components);
                 quote! {
                     let #field_ident: [[#u32_; #lanes_n]; 4] = {
-                        let mut __gbuffer_codes: [#u32_; #lanes_n] = #word_ident;
+                        let mut __gbuffer_codes: [#u32_; #lanes_n] = #word_lanes;
                         for #index in 0..#lanes_n {
                             __gbuffer_codes[#index] = (__gbuffer_codes[#index] >> #offset) & #mask;
                         }
@@ -408,19 +435,41 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
             }
         }
     });
+    // The decoded components as lanes of u32 bits, in the rows' order.
+    let decoded_lanes = layout
+        .fields
+        .iter()
+        .enumerate()
+        .flat_map(|(number, field)| {
+            let field_lanes = field_name(number);
+            let (index, lanes_n) = (&index, &lanes_n);
+            (0..field.ty.components).map(move |component| {
+                let component = Literal::usize_unsuffixed(component);
+                match field.storage {
+                    Storage::Bits(_) => quote!(#field_lanes[#component]),
+                    Storage::Word(_) => {
+                        let bits =
+                            lane_bits(quote!(#field_lanes[#component][#index]), field.ty.scalar);
+                        quote!({
+                            let mut __gbuffer_bits = [0; #lanes_n];
+                            for #index in 0..#lanes_n {
+                                __gbuffer_bits[#index] = #bits;
+                            }
+                            __gbuffer_bits
+                        })
+                    }
+                }
+            })
+        });
     let built_fields: Vec<TokenStream> = layout
         .fields
         .iter()
         .enumerate()
         .map(|(number, field)| {
             let field_ident = Ident::new(&field.name, Span::call_site());
-            let field_lanes = field_name(number);
             let component = |component: usize| {
-                let value = quote!(#field_lanes[#component][#index]);
-                match field.storage {
-                    Storage::Word(_) => value,
-                    Storage::Bits(_) => from_lane_bits(value, field.ty.scalar),
-                }
+                let column = Literal::usize_unsuffixed(first_column[number] + component);
+                from_lane_bits(quote!(#rows[#index][#column]), field.ty.scalar)
             };
             let value = if field.ty.components == 1 {
                 component(0)
@@ -445,9 +494,11 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
             struct __GbufferUnpack;
             impl #private::Lanes<[#u32_; #words], #name, #lanes_n> for __GbufferUnpack {
                 #[inline(always)]
-                fn many(#words_parameter: &[[#u32_; #words]; #lanes_n], #texels: &mut [#name; #lanes_n]) {
-                    #(#read_words)*
+                fn many<I: #private::Isa>(#words_parameter: &[[#u32_; #words]; #lanes_n], #texels: &mut [#name; #lanes_n]) {
+                    let __gbuffer_word_lanes: [[#u32_; #lanes_n]; #words] = I::transpose(#words_parameter);
                     #(#decoded)*
+                    let #lanes: [[#u32_; #lanes_n]; #columns] = [#(#decoded_lanes),*];
+                    let #rows: [[#u32_; #columns]; #lanes_n] = I::transpose(&#lanes);
                     #(#built_texels)*
                 }
                 #[inline(always)]

@@ -1,0 +1,127 @@
+//! The loops behind [`GBufferLayout::pack_slice`] and [`GBufferLayout::unpack_slice`], and
+//! their copies compiled for AVX2.
+//!
+//! The derived loop converts eight texels at a time in three steps: the texels' components
+//! become rows of lane bits, one row per texel, and are transposed to one array per component
+//! over the eight texels; each channel is converted over its eight lanes at once (vector
+//! instructions); the words are transposed back to one array per texel. The transposes are
+//! the set of [`Isa`] the loop runs on: plain loops anywhere, or AVX2's shuffles, which move
+//! eight lanes in a handful of instructions where the compiler, left alone, inserts and
+//! extracts them one at a time (most of the loop's time before, measured with `perf`).
+
+mod transpose;
+
+use std::marker::PhantomData;
+
+use crate::GBufferLayout;
+
+/// The instructions a loop over texels runs on: how it transposes a matrix of `u32`, rows
+/// to columns. Implemented by this crate alone: the AVX2 form is only ever chosen after a run
+/// time check.
+pub trait Isa {
+    /// `matrix` transposed: `[c][r]` of the result is `[r][c]` of `matrix`.
+    fn transpose<const R: usize, const C: usize>(matrix: &[[u32; C]; R]) -> [[u32; R]; C];
+}
+
+/// Plain loops, for any CPU.
+struct Portable;
+
+impl Isa for Portable {
+    #[inline(always)]
+    fn transpose<const R: usize, const C: usize>(matrix: &[[u32; C]; R]) -> [[u32; R]; C] {
+        transpose::portable(matrix)
+    }
+}
+
+/// AVX2's shuffles. Only [`convert_lanes`] names it, after checking that the CPU has AVX2.
+#[cfg(target_arch = "x86_64")]
+struct Avx2;
+
+#[cfg(target_arch = "x86_64")]
+impl Isa for Avx2 {
+    #[inline(always)]
+    fn transpose<const R: usize, const C: usize>(matrix: &[[u32; C]; R]) -> [[u32; R]; C] {
+        // SAFETY: `Avx2` is private to this module, which runs code generic over it only
+        // inside `lanes_with_avx2`, after `convert_lanes` has checked that the CPU has AVX2.
+        unsafe { transpose::avx2(matrix) }
+    }
+}
+
+/// A conversion of texels `N` at a time, and of one: the two must agree on every texel.
+/// A trait of static functions, not closures: called directly, the `#[inline(always)]`
+/// implementations inline into the copy of the loop compiled for AVX2 and are compiled for
+/// AVX2 with it (a closure stays a function of its own, compiled for the baseline).
+pub trait Lanes<A, B, const N: usize> {
+    /// `N` texels at once, written in place (a returned array would be copied there), with
+    /// the transposes of `I`.
+    fn many<I: Isa>(input: &[A; N], output: &mut [B; N]);
+    /// One texel, for the ones left over.
+    fn one(input: &A) -> B;
+}
+
+/// Writes `output[i] = L::one(&input[i])` for every i, `N` at a time through `L::many` and
+/// the rest through `L::one`; on x86-64 CPUs with AVX2 (checked at run time) through a copy
+/// compiled for AVX2, whose per-lane shifts, rounding, blends and shuffles the conversions and
+/// transposes need.
+#[inline(always)]
+pub fn convert_lanes<L: Lanes<A, B, N>, A, B, const N: usize>(input: &[A], output: &mut [B]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2, checked just above.
+        unsafe { lanes_with_avx2::<L, A, B, N>(input, output) };
+        return;
+    }
+    lanes::<L, Portable, A, B, N>(input, output);
+}
+
+#[inline(always)]
+fn lanes<L: Lanes<A, B, N>, I: Isa, A, B, const N: usize>(input: &[A], output: &mut [B]) {
+    let whole = input.len() / N * N;
+    let (head, tail) = input.split_at(whole);
+    let (out_head, out_tail) = output.split_at_mut(whole);
+    for (from, to) in head.chunks_exact(N).zip(out_head.chunks_exact_mut(N)) {
+        let from: &[A; N] = from.try_into().expect("chunks of N");
+        let to: &mut [B; N] = to.try_into().expect("chunks of N");
+        L::many::<I>(from, to);
+    }
+    for (from, to) in tail.iter().zip(out_tail) {
+        *to = L::one(from);
+    }
+}
+
+/// # Safety
+///
+/// The CPU must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn lanes_with_avx2<L: Lanes<A, B, N>, A, B, const N: usize>(input: &[A], output: &mut [B]) {
+    lanes::<L, Avx2, A, B, N>(input, output);
+}
+
+/// The trait's own `pack_slice`, for layouts implemented by hand: a texel at a time.
+pub struct Pack<T>(PhantomData<T>);
+
+impl<T: GBufferLayout> Lanes<T, T::Packed, 1> for Pack<T> {
+    #[inline(always)]
+    fn many<I: Isa>(input: &[T; 1], output: &mut [T::Packed; 1]) {
+        output[0] = input[0].pack();
+    }
+    #[inline(always)]
+    fn one(input: &T) -> T::Packed {
+        input.pack()
+    }
+}
+
+/// The trait's own `unpack_slice`.
+pub struct Unpack<T>(PhantomData<T>);
+
+impl<T: GBufferLayout> Lanes<T::Packed, T, 1> for Unpack<T> {
+    #[inline(always)]
+    fn many<I: Isa>(input: &[T::Packed; 1], output: &mut [T; 1]) {
+        output[0] = T::unpack(&input[0]);
+    }
+    #[inline(always)]
+    fn one(input: &T::Packed) -> T {
+        T::unpack(input)
+    }
+}
