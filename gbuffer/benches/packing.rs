@@ -1,15 +1,16 @@
 //! The CPU mirror's speed on a whole G-buffer: `pack_slice` and `unpack_slice` of a million
-//! texels, against copying the packed bytes (what an upload or a readback costs at the
-//! least), for Listing 2.2 (`MobileMetallic`), the other seed layouts and a layout of every
-//! format. `pack, plain loop` is the per-texel `pack` in a loop compiled for the default
-//! target, what `pack_slice` does without AVX2. Criterion prints each one's throughput in
-//! texels (elements) per second, and a table of each layout's rates and their shares of
-//! memcpy's closes the run; run with `cargo bench -p gbuffer --bench packing`.
+//! texels, against copying the packed bytes (what an upload or a readback costs at the least),
+//! for Listing 2.2 (`MobileMetallic`), a 256-bit layout of eight formats, the other seed
+//! layouts, and per format a layout of four words of that format alone. Criterion prints each
+//! one's throughput in texels (elements) per second; the run ends with a table of the rates and
+//! of pack's and unpack's shares of memcpy's, which it also writes to
+//! `target/figures/packing.md` for the guide. Run with `cargo bench -p gbuffer --bench packing`.
 
 // criterion_group! defines a public function it cannot document.
 #![allow(missing_docs)]
 
 use std::hint::black_box;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
@@ -19,52 +20,160 @@ use gbuffer::GBufferLayout;
 
 const TEXELS: usize = 1 << 20;
 
-/// One field of each of the twelve formats.
-#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 384)]
-struct EveryFormat {
-    #[pls(r11f_g11f_b10f)]
-    small_floats: Vec3,
-    #[pls(r32f)]
-    single: f32,
-    #[pls(rg16f)]
-    halves: Vec2,
-    #[pls(rgb10_a2)]
-    unorm_10_10_10_2: Vec4,
-    #[pls(rgba8)]
-    unorm_8: Vec4,
-    #[pls(rg16)]
-    unorm_16: Vec2,
-    #[pls(rgba8i)]
-    sint_8: IVec4,
-    #[pls(rg16i)]
-    sint_16: IVec2,
-    #[pls(rgb10_a2ui)]
-    uint_10_10_10_2: UVec4,
-    #[pls(rgba8ui)]
-    uint_8: UVec4,
-    #[pls(rg16ui)]
-    uint_16: UVec2,
-    #[pls(r32ui)]
-    uint_32: u32,
-}
-
 /// Varied values: a deterministic walk over [0, 1) and a little beyond.
 fn value(index: usize, lane: usize) -> f32 {
     ((index * 7919 + lane * 104_729) % 10_007) as f32 / 9_000.0
 }
 
-fn v3(index: usize) -> Vec3 {
-    Vec3::new(value(index, 0), value(index, 1), value(index, 2))
+/// A field's value for texel `index`: floats from [`value`], integers that walk past their
+/// formats' ranges (which saturate) and back.
+trait Sample {
+    fn sample(index: usize) -> Self;
 }
 
-fn v4(index: usize) -> Vec4 {
-    Vec4::new(
-        value(index, 0),
-        value(index, 1),
-        value(index, 2),
-        value(index, 3),
-    )
+impl Sample for f32 {
+    fn sample(index: usize) -> f32 {
+        value(index, 0)
+    }
+}
+
+impl Sample for Vec2 {
+    fn sample(index: usize) -> Vec2 {
+        Vec2::new(value(index, 0), value(index, 1))
+    }
+}
+
+impl Sample for Vec3 {
+    fn sample(index: usize) -> Vec3 {
+        Vec3::new(value(index, 0), value(index, 1), value(index, 2))
+    }
+}
+
+impl Sample for Vec4 {
+    fn sample(index: usize) -> Vec4 {
+        Vec4::new(
+            value(index, 0),
+            value(index, 1),
+            value(index, 2),
+            value(index, 3),
+        )
+    }
+}
+
+fn integer(index: usize, lane: usize) -> i32 {
+    ((index * 31 + lane * 7919) % 140_001) as i32 - 70_000
+}
+
+impl Sample for u32 {
+    fn sample(index: usize) -> u32 {
+        integer(index, 0).unsigned_abs()
+    }
+}
+
+impl Sample for UVec2 {
+    fn sample(index: usize) -> UVec2 {
+        UVec2::new(u32::sample(index), u32::sample(index + 1))
+    }
+}
+
+impl Sample for UVec4 {
+    fn sample(index: usize) -> UVec4 {
+        UVec4::new(
+            u32::sample(index),
+            u32::sample(index + 1),
+            u32::sample(index + 2),
+            u32::sample(index + 3),
+        )
+    }
+}
+
+impl Sample for IVec2 {
+    fn sample(index: usize) -> IVec2 {
+        IVec2::new(integer(index, 0), integer(index, 1))
+    }
+}
+
+impl Sample for IVec4 {
+    fn sample(index: usize) -> IVec4 {
+        IVec4::new(
+            integer(index, 0),
+            integer(index, 1),
+            integer(index, 2),
+            integer(index, 3),
+        )
+    }
+}
+
+/// The 256-bit layout of eight formats the speed goal names.
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 256)]
+struct EightFormats {
+    #[pls(r11f_g11f_b10f)]
+    small_floats: Vec3,
+    #[pls(rg16f)]
+    halves: Vec2,
+    #[pls(rg16)]
+    unorm_16: Vec2,
+    #[pls(rgba8i)]
+    sint_8: IVec4,
+    #[pls(rgb10_a2ui)]
+    uint_10_10_10_2: UVec4,
+    #[pls(rgba8)]
+    unorm_8: Vec4,
+    #[pls(r32f)]
+    single: f32,
+    #[pls(rgb10_a2)]
+    unorm_10_10_10_2: Vec4,
+}
+
+/// A layout of four words of one format, named after it: that format's own rate.
+macro_rules! one_format {
+    ($name:ident, $format:ident, $type:ident) => {
+        #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+        struct $name {
+            #[pls($format)]
+            a: $type,
+            #[pls($format)]
+            b: $type,
+            #[pls($format)]
+            c: $type,
+            #[pls($format)]
+            d: $type,
+        }
+
+        impl Sample for $name {
+            fn sample(index: usize) -> $name {
+                let at = |word: usize| <$type>::sample(index * 4 + word);
+                $name {
+                    a: at(0),
+                    b: at(1),
+                    c: at(2),
+                    d: at(3),
+                }
+            }
+        }
+    };
+}
+
+one_format!(R11fG11fB10f, r11f_g11f_b10f, Vec3);
+one_format!(R32f, r32f, f32);
+one_format!(Rg16f, rg16f, Vec2);
+one_format!(Rgb10A2, rgb10_a2, Vec4);
+one_format!(Rgba8, rgba8, Vec4);
+one_format!(Rg16, rg16, Vec2);
+one_format!(Rgba8i, rgba8i, IVec4);
+one_format!(Rg16i, rg16i, IVec2);
+one_format!(Rgb10A2ui, rgb10_a2ui, UVec4);
+one_format!(Rgba8ui, rgba8ui, UVec4);
+one_format!(Rg16ui, rg16ui, UVec2);
+one_format!(R32ui, r32ui, u32);
+
+/// The functions measured per layout, in the table's order.
+const FUNCTIONS: [&str; 3] = ["pack_slice", "unpack_slice", "memcpy"];
+
+/// Criterion's group name of layout `L`.
+fn group_name<L: GBufferLayout>() -> String {
+    format!("{} ({} words)", L::layout().name, L::WORDS)
 }
 
 /// Pack, unpack and copy `TEXELS` texels of `make(i)`.
@@ -72,27 +181,16 @@ fn layout_group<L: GBufferLayout + Copy>(criterion: &mut Criterion, make: impl F
     let texels: Vec<L> = (0..TEXELS).map(make).collect();
     let mut packed = vec![texels[0].pack(); TEXELS];
     let mut unpacked = texels.clone();
-    let name = L::layout().name;
-    let mut group = criterion.benchmark_group(format!("{name} ({} words)", L::WORDS));
+    let mut group = criterion.benchmark_group(group_name::<L>());
     group.throughput(Throughput::Elements(TEXELS as u64));
-    group.bench_function(BenchmarkId::from_parameter("pack_slice"), |bench| {
+    group.bench_function(BenchmarkId::from_parameter(FUNCTIONS[0]), |bench| {
         bench.iter(|| L::pack_slice(black_box(&texels), black_box(&mut packed)))
     });
-    group.bench_function(BenchmarkId::from_parameter("unpack_slice"), |bench| {
+    group.bench_function(BenchmarkId::from_parameter(FUNCTIONS[1]), |bench| {
         bench.iter(|| L::unpack_slice(black_box(&packed), black_box(&mut unpacked)))
     });
-    group.bench_function(BenchmarkId::from_parameter("pack, plain loop"), |bench| {
-        bench.iter(|| {
-            for (texel, out) in black_box(&texels)
-                .iter()
-                .zip(black_box(&mut packed).iter_mut())
-            {
-                *out = texel.pack();
-            }
-        })
-    });
     let source = packed.clone();
-    group.bench_function(BenchmarkId::from_parameter("memcpy"), |bench| {
+    group.bench_function(BenchmarkId::from_parameter(FUNCTIONS[2]), |bench| {
         bench.iter(|| black_box(&mut packed).copy_from_slice(black_box(&source)))
     });
     group.finish();
@@ -100,17 +198,27 @@ fn layout_group<L: GBufferLayout + Copy>(criterion: &mut Criterion, make: impl F
 
 fn slices(criterion: &mut Criterion) {
     layout_group(criterion, |i| MobileMetallic {
-        light_accumulation: v3(i),
+        light_accumulation: Vec3::sample(i),
         depth: value(i, 4),
-        normals_roughness: v4(i),
-        albedo_metallic: v4(i + 1),
+        normals_roughness: Vec4::sample(i),
+        albedo_metallic: Vec4::sample(i + 1),
+    });
+    layout_group(criterion, |i| EightFormats {
+        small_floats: Vec3::sample(i) * 100.0,
+        halves: Vec2::sample(i) * 300.0,
+        unorm_16: Vec2::sample(i + 1),
+        sint_8: IVec4::sample(i),
+        uint_10_10_10_2: UVec4::sample(i),
+        unorm_8: Vec4::sample(i + 2),
+        single: value(i, 3) - 0.5,
+        unorm_10_10_10_2: Vec4::sample(i + 3),
     });
     layout_group(criterion, |i| SpecularWorkflow {
-        light_accumulation: v3(i),
+        light_accumulation: Vec3::sample(i),
         depth: value(i, 4),
-        normals_roughness: v4(i),
-        base_colour: v3(i + 1),
-        specular_colour: v3(i + 2),
+        normals_roughness: Vec4::sample(i),
+        base_colour: Vec3::sample(i + 1),
+        specular_colour: Vec3::sample(i + 2),
     });
     layout_group(criterion, |i| FutureMetallic {
         position_x: value(i, 0) * 100.0,
@@ -120,31 +228,26 @@ fn slices(criterion: &mut Criterion) {
         light_accumulation_b_normal_x: Vec2::new(value(i, 5), value(i, 6) - 0.5),
         normal_yz: Vec2::new(value(i, 7) - 0.5, value(i, 8) - 0.5),
         roughness_metallic: Vec2::new(value(i, 9), value(i, 10)),
-        albedo_or_reflectance: v3(i + 3),
+        albedo_or_reflectance: Vec3::sample(i + 3),
     });
     layout_group(criterion, |i| ArmTileBlock {
-        light: v3(i) * 4.0,
-        albedo: v3(i + 1),
-        normal: v3(i + 2),
+        light: Vec3::sample(i) * 4.0,
+        albedo: Vec3::sample(i + 1),
+        normal: Vec3::sample(i + 2),
         metallic_roughness: Vec2::new(value(i, 3), value(i, 4)),
     });
-    layout_group(criterion, |i| {
-        let integer = |lane: usize| (i * 31 + lane * 7) as u32;
-        EveryFormat {
-            small_floats: v3(i) * 100.0,
-            single: value(i, 3) - 0.5,
-            halves: Vec2::new(value(i, 4) * 300.0, -value(i, 5)),
-            unorm_10_10_10_2: v4(i + 1),
-            unorm_8: v4(i + 2),
-            unorm_16: Vec2::new(value(i, 6), value(i, 7)),
-            sint_8: IVec4::new(integer(0) as i32 - 300, integer(1) as i32, -7, 100),
-            sint_16: IVec2::new(-(integer(2) as i32), integer(3) as i32),
-            uint_10_10_10_2: UVec4::new(integer(4), integer(5), 1023, 2),
-            uint_8: UVec4::new(integer(6), 255, 0, integer(7)),
-            uint_16: UVec2::new(integer(8), 70_000),
-            uint_32: integer(9),
-        }
-    });
+    layout_group(criterion, R11fG11fB10f::sample);
+    layout_group(criterion, R32f::sample);
+    layout_group(criterion, Rg16f::sample);
+    layout_group(criterion, Rgb10A2::sample);
+    layout_group(criterion, Rgba8::sample);
+    layout_group(criterion, Rg16::sample);
+    layout_group(criterion, Rgba8i::sample);
+    layout_group(criterion, Rg16i::sample);
+    layout_group(criterion, Rgb10A2ui::sample);
+    layout_group(criterion, Rgba8ui::sample);
+    layout_group(criterion, Rg16ui::sample);
+    layout_group(criterion, R32ui::sample);
 }
 
 criterion_group! {
@@ -156,65 +259,105 @@ criterion_group! {
         .sample_size(20);
     targets = slices
 }
-/// The functions measured per layout, in the table's order.
-const FUNCTIONS: [&str; 4] = ["pack_slice", "unpack_slice", "pack, plain loop", "memcpy"];
+
+/// The table's rows: each layout's group and the name it has there.
+fn rows() -> Vec<(String, String)> {
+    let mut rows = vec![
+        (
+            group_name::<MobileMetallic>(),
+            "MobileMetallic (Listing 2.2)".to_owned(),
+        ),
+        (
+            group_name::<EightFormats>(),
+            "eight formats, 256 bits".to_owned(),
+        ),
+        (
+            group_name::<SpecularWorkflow>(),
+            "SpecularWorkflow".to_owned(),
+        ),
+        (group_name::<FutureMetallic>(), "FutureMetallic".to_owned()),
+        (group_name::<ArmTileBlock>(), "ArmTileBlock".to_owned()),
+    ];
+    let format = |group: String, format: &str| (group, format!("4 words of `{format}`"));
+    rows.extend([
+        format(group_name::<R11fG11fB10f>(), "r11f_g11f_b10f"),
+        format(group_name::<R32f>(), "r32f"),
+        format(group_name::<Rg16f>(), "rg16f"),
+        format(group_name::<Rgb10A2>(), "rgb10_a2"),
+        format(group_name::<Rgba8>(), "rgba8"),
+        format(group_name::<Rg16>(), "rg16"),
+        format(group_name::<Rgba8i>(), "rgba8i"),
+        format(group_name::<Rg16i>(), "rg16i"),
+        format(group_name::<Rgb10A2ui>(), "rgb10_a2ui"),
+        format(group_name::<Rgba8ui>(), "rgba8ui"),
+        format(group_name::<Rg16ui>(), "rg16ui"),
+        format(group_name::<R32ui>(), "r32ui"),
+    ]);
+    rows
+}
 
 /// Criterion's mean time of one iteration, in nanoseconds, from the estimates it saved.
-fn mean_nanoseconds(folder: &std::path::Path, group: &str, function: &str) -> Option<f64> {
+fn mean_nanoseconds(folder: &Path, group: &str, function: &str) -> Option<f64> {
     let path = folder.join(group).join(function).join("new/estimates.json");
     let estimates: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()?;
     estimates["mean"]["point_estimate"].as_f64()
 }
 
-/// The side-by-side table: millions of texels a second, and pack's and unpack's shares of
-/// memcpy's rate, for the layouts criterion has measured.
-fn print_table() {
-    // Criterion writes under the target folder; the bench runs from target/<profile>/deps.
-    let folder = std::env::var_os("CRITERION_HOME")
-        .map(std::path::PathBuf::from)
-        .or_else(|| {
-            let exe = std::env::current_exe().ok()?;
-            Some(exe.parent()?.parent()?.parent()?.join("criterion"))
-        });
-    let Some(folder) = folder else { return };
-    println!(
-        "\n{TEXELS} texels, one thread; Mtexel/s (criterion's mean), pack and unpack as shares of memcpy"
+/// The side-by-side table, as Markdown: millions of texels a second, and pack's and unpack's
+/// shares of memcpy's rate, for the layouts criterion has measured.
+fn table(criterion_folder: &Path) -> String {
+    let mut table = String::from(
+        "| layout | pack_slice | unpack_slice | memcpy | pack / memcpy | unpack / memcpy |\n\
+         |---|---|---|---|---|---|\n",
     );
-    println!(
-        "{:<28} {:>10} {:>12} {:>16} {:>8} {:>6} {:>7}",
-        "layout", FUNCTIONS[0], FUNCTIONS[1], FUNCTIONS[2], FUNCTIONS[3], "pack", "unpack"
-    );
-    let groups = [
-        "MobileMetallic (4 words)",
-        "SpecularWorkflow (5 words)",
-        "FutureMetallic (8 words)",
-        "ArmTileBlock (4 words)",
-        "EveryFormat (12 words)",
-    ];
-    for group in groups {
+    for (group, name) in rows() {
         let rates: Option<Vec<f64>> = FUNCTIONS
             .iter()
             .map(|function| {
-                mean_nanoseconds(&folder, group, function).map(|ns| TEXELS as f64 / ns * 1e3)
+                mean_nanoseconds(criterion_folder, &group, function)
+                    .map(|ns| TEXELS as f64 / ns * 1e3)
             })
             .collect();
-        if let Some(rates) = rates {
-            println!(
-                "{group:<28} {:>10.0} {:>12.0} {:>16.0} {:>8.0} {:>5.0}% {:>6.0}%",
-                rates[0],
-                rates[1],
-                rates[2],
-                rates[3],
-                100.0 * rates[0] / rates[3],
-                100.0 * rates[1] / rates[3]
+        if let Some([pack, unpack, memcpy]) = rates.as_deref() {
+            table += &format!(
+                "| {name} | {pack:.0} Mtexel/s | {unpack:.0} Mtexel/s | {memcpy:.0} Mtexel/s | {:.0}% | {:.0}% |\n",
+                100.0 * pack / memcpy,
+                100.0 * unpack / memcpy
             );
         }
     }
+    table
+}
+
+/// The target folder: `CARGO_TARGET_DIR`, or three folders above the bench (target/release/deps).
+fn target_folder() -> Option<PathBuf> {
+    if let Some(folder) = std::env::var_os("CARGO_TARGET_DIR") {
+        return Some(PathBuf::from(folder));
+    }
+    let exe = std::env::current_exe().ok()?;
+    Some(exe.parent()?.parent()?.parent()?.to_path_buf())
 }
 
 fn main() {
     benches();
     Criterion::default().configure_from_args().final_summary();
-    print_table();
+    let Some(target) = target_folder() else {
+        return;
+    };
+    let criterion_folder = std::env::var_os("CRITERION_HOME")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| target.join("criterion"));
+    let table = table(&criterion_folder);
+    println!("\n{TEXELS} texels, one thread; criterion's means\n\n{table}");
+    let figures = target.join("figures");
+    // Written beside and renamed, so that a failed write leaves no half table.
+    let partial = figures.join("packing.md.partial");
+    let written = std::fs::create_dir_all(&figures)
+        .and_then(|()| std::fs::write(&partial, &table))
+        .and_then(|()| std::fs::rename(&partial, figures.join("packing.md")));
+    match written {
+        Ok(()) => println!("written to {}", figures.join("packing.md").display()),
+        Err(error) => eprintln!("cannot write {}: {error}", figures.display()),
+    }
 }

@@ -39,16 +39,11 @@ pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u3
     // CPU rounds to nearest even, and a denormal result is under 2^10); larger values stay
     // large, and the conversion saturates.
     let scaled = f32::from_bits(magnitude_bits) * f32::from_bits((141 + mantissa_bits) << 23);
-    // Rounded as above, exactly, in a conversion vector units have; at 2^23 and above it is
-    // past every code (the minimum below takes `normal`), and NaN and negative values (the
-    // callers' negative inputs) give 0, as `as` does.
-    let denormal = if (0.0..8_388_608.0).contains(&scaled) {
-        small_integer_from_f32(scaled)
-    } else if scaled >= 8_388_608.0 {
-        u32::MAX
-    } else {
-        0
-    };
+    // Rounded as above, exactly, in a conversion vector units have, after clamping in `max` and
+    // `min` (no branch, so that the slices' loops vectorise): NaN and negative values (the
+    // callers' negative inputs) give 0, and at 2^16 and above the value is past every code (the
+    // minimum below takes `normal`).
+    let denormal = small_integer_from_f32(scaled.max(0.0).min(65_536.0));
     normal
         .min(denormal)
         .min(small_float_max_code(mantissa_bits))
@@ -60,12 +55,14 @@ pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u3
 pub fn f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
     let exponent = code >> mantissa_bits;
     let mantissa = code & ((1 << mantissa_bits) - 1);
-    if exponent == 0 {
-        // Denormal: mantissa * 2^-(14 + mantissa_bits); the power of two is exact.
-        return f32_from_small_integer(mantissa) * f32::from_bits((113 - mantissa_bits) << 23);
-    }
+    // Both readings, then a choice (no branch, so that the slices' loops vectorise). Denormal:
+    // mantissa * 2^-(14 + mantissa_bits); the power of two is exact.
+    let denormal = f32_from_small_integer(mantissa) * f32::from_bits((113 - mantissa_bits) << 23);
     let f32_exponent = if exponent == 31 { 255 } else { exponent + 112 };
-    f32::from_bits((f32_exponent << 23) | (mantissa << (23 - mantissa_bits)))
+    let normal = (f32_exponent << 23) | (mantissa << (23 - mantissa_bits));
+    // All ones for a denormal, as a mask: an `if` here stays a branch in the loops.
+    let is_denormal = u32::from(exponent == 0).wrapping_neg();
+    f32::from_bits((denormal.to_bits() & is_denormal) | (normal & !is_denormal))
 }
 
 /// The rounding, per lane (`PREFIX_LANES_round_to_NAME`); the other placeholders are per-lane
