@@ -43,6 +43,7 @@ pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u3
     // `min` (no branch, so that the slices' loops vectorise): NaN and negative values (the
     // callers' negative inputs) give 0, and at 2^16 and above the value is past every code (the
     // minimum below takes `normal`).
+    #[allow(clippy::manual_clamp)] // `clamp` keeps NaN, which must give 0 here.
     let denormal = small_integer_from_f32(scaled.max(0.0).min(65_536.0));
     normal
         .min(denormal)
