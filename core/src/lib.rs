@@ -13,6 +13,8 @@
 //! - [`convert`]: a whole word's channels through their codecs (the CPU side of the generated
 //!   WGSL);
 //! - [`report`]: the bit report and the WebGPU render-target cost;
+//! - [`Named`]: the one trait by which every package's option enums (a format, a path, a
+//!   backend) name their values;
 //! - [`shading_library`]: the WGSL shading library (`wgsl/`), composed by module name, whose
 //!   codec functions are the codecs' own WGSL.
 //!
@@ -23,6 +25,7 @@ pub mod codecs;
 pub mod convert;
 pub mod format;
 pub mod layout;
+mod named;
 pub mod naming;
 pub mod report;
 pub mod shading_library;
@@ -38,4 +41,5 @@ pub use layout::{
     Conversions, Diagnostic, Field, FieldType, Layout, Member, Storage, Subject, Word,
     DEFAULT_BUDGET,
 };
+pub use named::Named;
 pub use report::Report;

@@ -40,6 +40,7 @@ pub use shader::{GlesForm, Shader, ShaderError, VulkanForm};
 pub use statistics::{parse, Cycles, Statistic, Statistics};
 pub use target::{Api, Architecture, Compiler, Target, DEFAULT_TARGETS, TARGETS};
 
+use gbuffer_core::Named;
 use run::Scratch;
 
 /// The stages whose cost is measured.
@@ -52,9 +53,12 @@ pub enum Stage {
     Compute,
 }
 
-impl Stage {
+impl Named for Stage {
+    /// Every value, in declaration order.
+    const ALL: &'static [Self] = &[Stage::Fragment, Stage::Compute];
+
     /// `fragment` or `compute`, as the helper takes it.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
             Stage::Fragment => "fragment",
             Stage::Compute => "compute",

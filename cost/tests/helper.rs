@@ -8,6 +8,7 @@
 
 use std::path::Path;
 
+use gbuffer_core::Named;
 use gbuffer_cost::{Api, Shader, Stage, TARGETS};
 use gbuffer_testkit::{compilers_set_up, shader_stats_by_hand as helper};
 

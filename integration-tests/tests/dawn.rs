@@ -19,10 +19,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use gbuffer::layout::{Conversions, Layout};
 use gbuffer::GBufferLayout;
 use gbuffer_codegen::emit::wgsl::emit_with;
+use gbuffer_core::Named;
 use gbuffer_gpu::harness::{compute_harness, scalars_per_texel};
 use gbuffer_gpu::values::Values;
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
-use gbuffer_render::named::Named;
 use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_render::shaders::{self, Positions};
 use gbuffer_testkit::texels::{compare_harness, inputs};
@@ -236,7 +236,8 @@ fn every_wgsl() -> Vec<Value> {
 /// an adapter is reported by the GPU tests' rule (`or_skip`).
 fn on_each_backend(dawn: &Dawn, jobs: &[Value]) -> Vec<(Backend, Outcome)> {
     Backend::ALL
-        .into_iter()
+        .iter()
+        .copied()
         .filter_map(|backend| {
             let outcome = gbuffer_testkit::or_skip(&backend.to_string(), dawn.run(backend, jobs))?;
             eprintln!("{backend}: {}", outcome.adapter);

@@ -5,9 +5,9 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use gbuffer_core::Named;
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::compare;
-use gbuffer_render::named::Named;
 use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
 use gbuffer_render::wgpu::Renderer;
 

@@ -21,10 +21,10 @@
 
 use gbuffer_codegen::emit::glsl::{self, Include};
 use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_core::Named;
 use gbuffer_cost::{measure, CostError, Shader, Stage, Target};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::sources::fused_programs;
-use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::Path;
 use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_testkit::layouts::seeds_and_every_format;

@@ -24,6 +24,7 @@ use gbuffer::GBufferLayout;
 use gbuffer_codegen::emit::glsl::webgl::PlaneFormat;
 use gbuffer_codegen::emit::glsl::{self, Include, Interface};
 use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_core::Named;
 use gbuffer_gpu::harness::scalars_per_texel;
 use gbuffer_gpu::values::Values;
 use gbuffer_testkit::chromium::{element_text, Backend, Chromium};
@@ -114,7 +115,7 @@ fn cases(layout: &Layout, conversions: Conversions, seed: u64) -> Vec<Case> {
     // lavapipe alone.
     let backends: &'static [Backend] = match conversions {
         Conversions::Fast => &[Backend::Lavapipe],
-        Conversions::Exact => &Backend::ALL,
+        Conversions::Exact => Backend::ALL,
     };
     let include = Include::WebGlPixelLocalStorage;
     let (text, interface) = glsl::include_with(layout, conversions, include, 0).unwrap();
@@ -287,7 +288,7 @@ fn webgl_pixel_local_storage_round_trips_in_chromium_on_swiftshader_and_lavapipe
         .flat_map(|(index, (layout, conversions))| cases(layout, *conversions, index as u64))
         .collect();
     let mut failures = Vec::new();
-    for backend in Backend::ALL {
+    for &backend in Backend::ALL {
         let found = run(&chromium, backend, &cases);
         let unoffered = "WEBGL_shader_pixel_local_storage is not offered";
         if !found.is_empty() && found.iter().all(|failure| failure.contains(unoffered)) {

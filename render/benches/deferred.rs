@@ -12,11 +12,11 @@
 //! On a CPU rasteriser (llvmpipe, lavapipe) there is no tile memory: its times are a CPU's,
 //! and the traffic the fused paths save is counted, not felt.
 
+use gbuffer_core::Named;
 use gbuffer_gpu::timing::{time_items, Protocol, Spread};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::compare;
-use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::{Path, Stage, TileOptions};
 use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
 use gbuffer_render::recording::Recording;

@@ -11,10 +11,10 @@ use std::process::ExitCode;
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Parser;
+use gbuffer_core::Named;
 use gbuffer_render::gbuffers::{GBuffer, LayoutArgument, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::{compare, difference, write_png};
-use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::{Backend, Path, TileOptions};
 use gbuffer_render::options::{parse_size, Frame, IblForm, Options, SunForm};
 use gbuffer_render::reference;

@@ -11,9 +11,9 @@ use std::process::ExitCode;
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::Parser;
+use gbuffer_core::Named;
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::inputs::Inputs;
-use gbuffer_render::named::Named;
 use gbuffer_render::options::{parse_size, IblForm, Options, SunForm};
 use gbuffer_render::webgl;
 

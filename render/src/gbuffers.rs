@@ -18,7 +18,7 @@ use gbuffer_solver::{Features, Solution};
 
 use crate::coarse::CoarseNormals;
 use crate::lossless::Lossless;
-use crate::named::Named;
+use gbuffer_core::Named;
 
 /// Where the G-buffer pass writes.
 #[derive(Clone, Debug, PartialEq)]
@@ -59,6 +59,35 @@ pub enum PackedLayout {
     /// Not a shipped layout: every quantity as an f32 ([`crate::lossless`]), what a layout's
     /// frame is held against.
     Lossless,
+}
+
+impl Named for PackedLayout {
+    /// The seeds, the engines', the coarse one and the lossless one.
+    const ALL: &'static [Self] = &[
+        PackedLayout::MobileMetallic,
+        PackedLayout::SpecularWorkflow,
+        PackedLayout::FutureMetallic,
+        PackedLayout::FutureSpecular,
+        PackedLayout::ArmTileBlock,
+        PackedLayout::BevyDeferred,
+        PackedLayout::HdrpLit,
+        PackedLayout::CoarseNormals,
+        PackedLayout::Lossless,
+    ];
+
+    fn name(self) -> &'static str {
+        match self {
+            PackedLayout::MobileMetallic => "mobile-metallic",
+            PackedLayout::SpecularWorkflow => "specular-workflow",
+            PackedLayout::FutureMetallic => "future-metallic",
+            PackedLayout::FutureSpecular => "future-specular",
+            PackedLayout::ArmTileBlock => "arm-tile-block",
+            PackedLayout::BevyDeferred => "bevy-deferred",
+            PackedLayout::HdrpLit => "hdrp-lit",
+            PackedLayout::CoarseNormals => "coarse-normals",
+            PackedLayout::Lossless => "lossless",
+        }
+    }
 }
 
 /// What the renderer takes of a layout: its model, its generated WGSL, and its convention's
@@ -241,6 +270,27 @@ pub enum LayoutArgument {
     Packed(PackedLayout),
     /// The classic unpacked targets.
     Classic,
+}
+
+impl Named for LayoutArgument {
+    /// Every packed layout, in its order, then the classic targets.
+    const ALL: &'static [Self] = &{
+        const PACKED: &[PackedLayout] = PackedLayout::ALL;
+        let mut all = [LayoutArgument::Classic; PACKED.len() + 1];
+        let mut index = 0;
+        while index < PACKED.len() {
+            all[index] = LayoutArgument::Packed(PACKED[index]);
+            index += 1;
+        }
+        all
+    };
+
+    fn name(self) -> &'static str {
+        match self {
+            LayoutArgument::Packed(layout) => layout.name(),
+            LayoutArgument::Classic => "classic",
+        }
+    }
 }
 
 impl From<LayoutArgument> for GBuffer {

@@ -17,7 +17,6 @@ pub mod image;
 pub mod inputs;
 pub mod lossless;
 pub mod mesh;
-pub mod named;
 pub mod on_tile;
 pub mod options;
 pub mod parallel;

@@ -22,6 +22,7 @@
 //! shading library, the layout's generated WGSL) translated by naga; only the entry points
 //! that fetch are written here, in GLSL, around the layout's generated include.
 
+use gbuffer_core::Named;
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 
 use crate::gbuffers::{GBuffer, PackedLayout};
@@ -39,6 +40,18 @@ pub enum Backend {
     Vulkan,
 }
 
+impl Named for Backend {
+    const ALL: &'static [Self] = &[Backend::Wgpu, Backend::Gles, Backend::Vulkan];
+
+    fn name(self) -> &'static str {
+        match self {
+            Backend::Wgpu => "wgpu",
+            Backend::Gles => "gles",
+            Backend::Vulkan => "vulkan",
+        }
+    }
+}
+
 /// How a backend carries the G-buffer from the geometry to the lighting.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Path {
@@ -52,6 +65,24 @@ pub enum Path {
     Subpass,
     /// GLES or Vulkan: the G-buffer stored to textures and sampled by a second pass.
     TwoPass,
+}
+
+impl Named for Path {
+    const ALL: &'static [Self] = &[
+        Path::FetchNative,
+        Path::FetchPacked,
+        Path::Subpass,
+        Path::TwoPass,
+    ];
+
+    fn name(self) -> &'static str {
+        match self {
+            Path::FetchNative => "fetch-native",
+            Path::FetchPacked => "fetch-packed",
+            Path::Subpass => "subpass",
+            Path::TwoPass => "two-pass",
+        }
+    }
 }
 
 impl Backend {
@@ -110,9 +141,9 @@ enum Unreached {
 /// The G-buffer pass's fragment inputs, as naga names `geometry_vertex`'s outputs.
 const GEOMETRY_INPUTS: &str = "layout(location = 0) smooth in highp vec3 _vs2fs_location0;\nlayout(location = 1) smooth in highp vec3 _vs2fs_location1;\nlayout(location = 2) flat in highp uint _vs2fs_location2;\n";
 
-impl Stage {
+impl Named for Stage {
     /// Every stage, in drawing order.
-    pub const ALL: [Stage; 5] = [
+    const ALL: &'static [Self] = &[
         Stage::Geometry,
         Stage::Decal,
         Stage::Lighting,
@@ -121,7 +152,7 @@ impl Stage {
     ];
 
     /// Its name in recordings and messages.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
             Stage::Geometry => "geometry",
             Stage::Decal => "decal",
@@ -130,7 +161,9 @@ impl Stage {
             Stage::Sky => "sky",
         }
     }
+}
 
+impl Stage {
     /// Whether its fragments read the G-buffer texel under them (every stage but the mesh,
     /// which writes it first, and the sky, drawn where there is no surface): a draw of it must
     /// wait, by region, for the draws before it.

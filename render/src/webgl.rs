@@ -23,6 +23,7 @@ use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Stage};
 use crate::options::Options;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::{ENVIRONMENT_BINDING, LIGHT_MAP_BINDING, LUT_BINDING};
+use gbuffer_core::Named;
 
 /// The fused frame's programs for `options`, one per [`Stage`], in drawing order.
 pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, String> {
@@ -39,7 +40,8 @@ pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, St
         "layout(location = 0) out highp vec4 frame_colour;\nuniform highp uint volume_index;\n";
     let store = format!("    store_{snake}(texel);\n");
     Stage::ALL
-        .into_iter()
+        .iter()
+        .copied()
         .map(|stage| {
             let main = stage.pixel_local_storage_main(&texel, &snake, &store);
             let program = program_in(

@@ -3,10 +3,10 @@
 //! reference and to the wgpu frame; the fused paths' recorded calls show one pass that stores
 //! only the output; the G-buffer's words agree across backends; bad configurations are named.
 
+use gbuffer_core::Named;
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::{compare, is_blank};
-use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::{Path, TileOptions};
 use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
 use gbuffer_render::recording::{Call, Recording};

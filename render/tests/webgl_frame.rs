@@ -6,6 +6,7 @@
 use std::collections::HashMap;
 use std::time::Duration;
 
+use gbuffer_core::Named;
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::{compare, write_png};
 use gbuffer_render::inputs::Inputs;
@@ -118,7 +119,7 @@ fn the_fused_frame_renders_in_chromium_within_40_db_of_the_reference() {
     let reference = reference::render(WIDTH, HEIGHT, reference_features(), &|_| {});
     let mut failures = Vec::new();
     let mut figures = Vec::new();
-    for backend in Backend::ALL {
+    for &backend in Backend::ALL {
         let limit = Duration::from_secs(300);
         let result = chromium
             .dump_dom(files.clone(), "index.html", backend, limit)

@@ -4,6 +4,8 @@
 
 use std::fmt;
 
+use gbuffer_core::Named;
+
 /// How materials give the BRDF its colours.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MaterialModel {
@@ -13,23 +15,16 @@ pub enum MaterialModel {
     Specular,
 }
 
-impl MaterialModel {
+impl Named for MaterialModel {
     /// Both models, in the order scene files list them.
-    pub const ALL: [MaterialModel; 2] = [MaterialModel::Metallic, MaterialModel::Specular];
+    const ALL: &'static [Self] = &[MaterialModel::Metallic, MaterialModel::Specular];
 
     /// The name in scene files.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
             MaterialModel::Metallic => "metallic",
             MaterialModel::Specular => "specular",
         }
-    }
-
-    /// The model a scene file names, if any.
-    pub fn from_name(name: &str) -> Option<MaterialModel> {
-        MaterialModel::ALL
-            .into_iter()
-            .find(|model| model.name() == name)
     }
 }
 
@@ -60,9 +55,9 @@ pub enum Feature {
     FullyRough,
 }
 
-impl Feature {
+impl Named for Feature {
     /// Every feature, in the order reports list them.
-    pub const ALL: [Feature; 10] = [
+    const ALL: &'static [Self] = &[
         Feature::Metals,
         Feature::DielectricSpecular,
         Feature::NormalMaps,
@@ -76,7 +71,7 @@ impl Feature {
     ];
 
     /// The key in a scene file's `[features]` table.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
             Feature::Metals => "metals",
             Feature::DielectricSpecular => "dielectric_specular",
@@ -90,14 +85,9 @@ impl Feature {
             Feature::FullyRough => "fully_rough",
         }
     }
+}
 
-    /// The feature a scene file names, if any.
-    pub fn from_name(name: &str) -> Option<Feature> {
-        Feature::ALL
-            .into_iter()
-            .find(|feature| feature.name() == name)
-    }
-
+impl Feature {
     fn bit(self) -> u16 {
         1 << self as u16
     }
@@ -147,7 +137,8 @@ impl Features {
     /// The features in the set, in [`Feature::ALL`] order.
     pub fn iter(self) -> impl Iterator<Item = Feature> {
         Feature::ALL
-            .into_iter()
+            .iter()
+            .copied()
             .filter(move |feature| self.contains(*feature))
     }
 
@@ -410,10 +401,10 @@ mod tests {
 
     #[test]
     fn feature_names_round_trip() {
-        for feature in Feature::ALL {
+        for &feature in Feature::ALL {
             assert_eq!(Feature::from_name(feature.name()), Some(feature));
         }
-        for model in MaterialModel::ALL {
+        for &model in MaterialModel::ALL {
             assert_eq!(MaterialModel::from_name(model.name()), Some(model));
         }
     }

@@ -37,6 +37,7 @@ use crate::description::{
     Feature, Features, MaterialModel, Precision, SceneDescription, Setting, DEFAULT_BUDGET,
 };
 use crate::solver::{solve, Solution, SolveError};
+use gbuffer_core::Named;
 
 /// A scene file's keys, as written.
 struct SceneEntry {
@@ -184,7 +185,7 @@ fn parse(source: &str, path: &Path) -> Result<Parsed, Vec<FileDiagnostic>> {
                 Some(feature) if *enabled.get_ref() => features = features.with(feature),
                 Some(_) => {}
                 None => {
-                    let names: Vec<&str> = Feature::ALL.iter().map(|f| f.name()).collect();
+                    let names = Feature::names();
                     diagnostics.push(FileDiagnostic::at(
                         path,
                         source,

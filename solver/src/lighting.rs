@@ -19,6 +19,7 @@ use std::fmt::Write as _;
 use crate::description::{Feature, MaterialModel};
 use crate::quantity::Quantity;
 use crate::solver::Solution;
+use gbuffer_core::Named;
 
 /// How the sun and point lights are shaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,6 +30,17 @@ pub enum SunForm {
     Approx,
 }
 
+impl Named for SunForm {
+    const ALL: &'static [Self] = &[SunForm::Ggx, SunForm::Approx];
+
+    fn name(self) -> &'static str {
+        match self {
+            SunForm::Ggx => "ggx",
+            SunForm::Approx => "approx",
+        }
+    }
+}
+
 /// How image-based light is shaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum IblForm {
@@ -36,6 +48,17 @@ pub enum IblForm {
     Lut,
     /// EnvBRDFApprox (`shade_ibl_mobile`; `env_brdf_approx_nonmetal` when f0 is constant).
     Approx,
+}
+
+impl Named for IblForm {
+    const ALL: &'static [Self] = &[IblForm::Lut, IblForm::Approx];
+
+    fn name(self) -> &'static str {
+        match self {
+            IblForm::Lut => "lut",
+            IblForm::Approx => "approx",
+        }
+    }
 }
 
 /// The forms of the lighting terms.

@@ -21,6 +21,7 @@ use gbuffer_codegen::{Conversions, Field, Layout, Storage};
 use crate::description::{DescriptionError, Feature, SceneDescription, Setting};
 use crate::quantity::{stored_quantities, Kind, Quantity, Stored};
 use crate::representation::Representation;
+use gbuffer_core::Named;
 
 /// How the solution stores one quantity.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,6 +1,7 @@
 //! The specialised lighting shader: valid for every combination of features, and an unused
 //! feature costs no instruction (counted with naga after compaction).
 
+use gbuffer_core::Named;
 use gbuffer_solver::lighting::{
     lighting_function_name, lighting_modules, lighting_wgsl, Forms, IblForm, SunForm,
 };
@@ -81,12 +82,13 @@ fn every_feature_combination_lights_with_valid_wgsl() {
     let mut checked = 0;
     for bits in 0u32..1 << Feature::ALL.len() {
         let features: Features = Feature::ALL
-            .into_iter()
+            .iter()
+            .copied()
             .enumerate()
             .filter(|(index, _)| bits & (1 << index) != 0)
             .map(|(_, feature)| feature)
             .collect();
-        for model in MaterialModel::ALL {
+        for &model in MaterialModel::ALL {
             let Ok(solution) = solve(&loose("Combination", model, features)) else {
                 continue; // nothing stored
             };
@@ -130,7 +132,8 @@ fn has_function(module: &naga::Module, name: &str) -> bool {
 #[test]
 fn an_unused_feature_costs_no_instruction() {
     let full: Features = Feature::ALL
-        .into_iter()
+        .iter()
+        .copied()
         .filter(|feature| *feature != Feature::FullyRough)
         .collect();
     // Features the lighting reads, and a function only they bring.

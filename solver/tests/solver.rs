@@ -3,6 +3,7 @@
 //! ones, and WGSL that naga accepts.
 
 use gbuffer::glam::Vec3;
+use gbuffer_core::Named;
 use gbuffer_solver::quantity::{Kind, Quantity};
 use gbuffer_solver::representation::Representation;
 use gbuffer_solver::texel::texel_wgsl;
@@ -14,7 +15,8 @@ use rand::{Rng, SeedableRng};
 
 fn random_scene(random: &mut SmallRng, index: usize) -> SceneDescription {
     let features: Features = Feature::ALL
-        .into_iter()
+        .iter()
+        .copied()
         .filter(|_| random.random_bool(0.5))
         .collect();
     SceneDescription {
@@ -220,7 +222,8 @@ fn the_unmet_requirement_is_named() {
         .model(MaterialModel::Specular)
         .features(
             Feature::ALL
-                .into_iter()
+                .iter()
+                .copied()
                 .filter(|f| *f != Feature::FullyRough),
         )
         .budget(32);

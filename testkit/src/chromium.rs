@@ -8,6 +8,7 @@
 //! is blocklisted") until told to ignore its GPU blocklist and driver workarounds, and which
 //! reads every plane as zero until ANGLE's dynamic rendering is turned off.
 
+use gbuffer_core::Named;
 use std::collections::HashMap;
 use std::io::{BufRead, BufReader, Write};
 use std::net::{TcpListener, TcpStream};
@@ -26,18 +27,20 @@ pub enum Backend {
     Lavapipe,
 }
 
-impl Backend {
+impl Named for Backend {
     /// Both, in the order the tests run them.
-    pub const ALL: [Backend; 2] = [Backend::SwiftShader, Backend::Lavapipe];
+    const ALL: &'static [Self] = &[Backend::SwiftShader, Backend::Lavapipe];
 
     /// The backend's name in messages.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
             Backend::SwiftShader => "SwiftShader",
             Backend::Lavapipe => "lavapipe",
         }
     }
+}
 
+impl Backend {
     /// Chromium's switches that select it.
     fn switches(self) -> &'static [&'static str] {
         match self {

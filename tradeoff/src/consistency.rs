@@ -3,6 +3,7 @@
 use crate::measured::Measured;
 use crate::rows::Row;
 use crate::{packing, timing};
+use gbuffer_core::Named;
 
 /// Holds the adapter's times to the order the instruction counts predict, within each family of
 /// rows and each format's two packing modes, in each stage. The disagreements, a line each:
@@ -15,7 +16,7 @@ pub(crate) fn check_consistency(
     let mut families: Vec<&str> = rows.iter().map(|row| row.family).collect();
     families.dedup();
     let mut found = Vec::new();
-    for stage in timing::Stage::ALL {
+    for &stage in timing::Stage::ALL {
         let times: Vec<Option<timing::GpuTime>> = measured
             .iter()
             .map(|measured| measured.gpu.get(stage))

@@ -17,10 +17,10 @@
 
 use std::fmt::Write as _;
 
+use gbuffer_core::Named;
 use gbuffer_cost::Shader;
 use gbuffer_render::gbuffers::GBuffer;
 use gbuffer_render::gles::sources::fused_programs;
-use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::{Path as TilePath, Stage};
 use gbuffer_render::shaders::{gbuffer_wgsl, lighting_pass_wgsl, Positions};
 
@@ -90,7 +90,8 @@ pub fn compile_frames() -> FrameShaders {
             }
             // The programs are in Stage::ALL's order.
             let stages: Vec<(Stage, usize)> = Stage::ALL
-                .into_iter()
+                .iter()
+                .copied()
                 .zip(&fused.programs)
                 .map(|(stage, program)| {
                     let shader = Shader::glsl(gbuffer_cost::Stage::Fragment, &program.fragment)

@@ -17,10 +17,10 @@ use crate::stdout::report_line;
 use std::path::Path;
 use std::sync::Arc;
 
+use gbuffer_core::Named;
 use gbuffer_gpu::timing::{time_items, Protocol, Spread};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::image::{compare, heatmap, write_png, Comparison};
-use gbuffer_render::named::Named;
 use gbuffer_render::on_tile::{Path as TilePath, TileOptions};
 use gbuffer_render::options::{Frame, IblForm, Options, SunForm};
 use gbuffer_render::vulkan::VulkanRenderer;

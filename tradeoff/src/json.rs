@@ -3,6 +3,7 @@
 use crate::measured::{Measured, ROW_TARGETS};
 use crate::rows::Row;
 use crate::timing;
+use gbuffer_core::Named;
 
 /// The report's JSON: `{"adapter", "rows": [...]}` with the schema of the issue.
 pub(crate) fn json_report(rows: &[Row], measured: &[Measured], adapter: &str) -> serde_json::Value {
@@ -36,7 +37,8 @@ pub(crate) fn json_report(rows: &[Row], measured: &[Measured], adapter: &str) ->
 /// The report's timing objects of a row: one per stage measured.
 pub(crate) fn timings_json(times: &timing::StageTimes) -> serde_json::Value {
     let objects: Vec<serde_json::Value> = timing::Stage::ALL
-        .into_iter()
+        .iter()
+        .copied()
         .filter_map(|stage| times.get(stage))
         .map(|time| {
             // A time that does not resolve has no median of its own (less the harness's, it

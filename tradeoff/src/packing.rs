@@ -13,6 +13,7 @@ use gbuffer_codegen::emit::wgsl::{emit_with, Conversions};
 use gbuffer_gpu::Gpu;
 
 use crate::timing;
+use gbuffer_core::Named;
 
 /// Texels packed on the adapter per row to measure the deviation.
 const TEXELS: usize = 1 << 20;

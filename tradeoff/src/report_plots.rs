@@ -7,6 +7,7 @@ use crate::measured::Measured;
 use crate::plot::{self, Plot};
 use crate::rows::Row;
 use crate::timing;
+use gbuffer_core::Named;
 
 /// A written plot: its file name and what the report says about it.
 pub(crate) struct WrittenPlot {
@@ -105,7 +106,7 @@ pub(crate) fn write_time_plots(
     let mut families: Vec<&str> = rows.iter().map(|row| row.family).collect();
     families.dedup();
     for family in families {
-        for stage in timing::Stage::ALL {
+        for &stage in timing::Stage::ALL {
             let members: Vec<(&Row, f64)> = rows
                 .iter()
                 .zip(measured)

@@ -18,6 +18,7 @@ use naga::back::{glsl, hlsl, msl, spv};
 use naga::valid::{Capabilities, ModuleInfo};
 
 use diagnostic::{Handles, Label};
+use gbuffer_core::Named;
 
 /// A parsed and validated module.
 pub struct Validated {
@@ -53,12 +54,12 @@ pub enum Backend {
     GlslEs,
 }
 
-impl Backend {
+impl Named for Backend {
     /// Every backend the validator translates to.
-    pub const ALL: [Backend; 4] = [Backend::SpirV, Backend::Msl, Backend::Hlsl, Backend::GlslEs];
+    const ALL: &'static [Self] = &[Backend::SpirV, Backend::Msl, Backend::Hlsl, Backend::GlslEs];
 
     /// The backend's usual name: `SPIR-V`, `MSL`, `HLSL`, `GLSL ES`.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
             Backend::SpirV => "SPIR-V",
             Backend::Msl => "MSL",
@@ -446,7 +447,8 @@ fn check_resolved(
         return Vec::new();
     }
     Backend::ALL
-        .into_iter()
+        .iter()
+        .copied()
         .filter_map(|backend| translate(&validated, backend).err())
         .map(place)
         .collect()
@@ -481,7 +483,7 @@ fn place_label(resolved: &include::Resolved, label: &Label) -> Option<PlacedLabe
 /// Validates `source` and translates it to every backend; the first problem, if any.
 pub fn validate_everywhere(source: &str) -> Result<Validated, Problem> {
     let validated = validate_wgsl(source)?;
-    for backend in Backend::ALL {
+    for &backend in Backend::ALL {
         translate(&validated, backend)?;
     }
     Ok(validated)

@@ -12,9 +12,9 @@ use gbuffer_gpu::gles::Backing;
 use super::{GlesRenderer, Plan, Target, FETCH};
 use crate::gbuffers::PackedLayout;
 use crate::glsl::{self, Dialect};
-use crate::named::Named;
 use crate::on_tile::{tile_layout, Path, Stage, TileOptions};
 use crate::options::Options;
+use gbuffer_core::Named;
 
 impl GlesRenderer {
     /// The programs and framebuffers of a configuration, after checking what it needs.
@@ -66,9 +66,10 @@ impl GlesRenderer {
             ));
         }
         let words_per_attachment = if kind == Include::FetchPacked { 4 } else { 1 };
-        let writes = Stage::ALL
+        let writes: Vec<_> = Stage::ALL
+            .iter()
             .map(|stage| stage.writes(layout, interface.attachments.len(), words_per_attachment))
-            .to_vec();
+            .collect();
         let mut programs = Vec::new();
         for source in sources {
             match self.gles.link(&source.vertex, &source.fragment) {

@@ -7,6 +7,7 @@ use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface};
 use crate::glsl::{self, Dialect};
 use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage};
 use crate::options::Options;
+use gbuffer_core::Named;
 
 /// One program's shaders.
 #[derive(Clone, Debug)]
@@ -53,7 +54,8 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
     let declarations = format!("{output}uniform highp uint volume_index;\n");
     let store = format!("    store_{snake}(texel);\n");
     let programs = Stage::ALL
-        .into_iter()
+        .iter()
+        .copied()
         .map(|stage| {
             let main = format!(
                 "{declarations}{}",

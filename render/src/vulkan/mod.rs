@@ -26,11 +26,11 @@ mod plans;
 
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::named::Named;
 use crate::on_tile::{tile_layout, Path, TileOptions};
 use crate::options::{Frame, Options};
 use crate::recording::{Attachment, Call, Load, Recording};
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
+use gbuffer_core::Named;
 
 const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;

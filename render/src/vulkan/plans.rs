@@ -10,13 +10,13 @@ use super::{
     DEPTH_FORMAT, OUTPUT_FORMAT, PACKED_FORMAT,
 };
 use crate::glsl::{self, Dialect};
-use crate::named::Named;
 use crate::on_tile::{fused_wgsl, Stage};
 use crate::options::Options;
 use crate::recording::Attachment;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::used_bindings;
 use crate::shaders::Positions;
+use gbuffer_core::Named;
 
 impl VulkanRenderer {
     /// The subpass path: one render pass, one subpass, six pipelines. With `store_gbuffer`
@@ -182,7 +182,7 @@ impl VulkanRenderer {
         )?;
         let declarations = glsl::declarations(&translation.text, &include);
         let mut pipeline_stages = Vec::new();
-        for stage in Stage::ALL {
+        for &stage in Stage::ALL {
             let depth = match stage {
                 Stage::Geometry => Depth::Write,
                 Stage::Sky => Depth::Sky,

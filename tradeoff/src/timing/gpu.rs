@@ -14,6 +14,7 @@ use super::{
     Clock, GpuTime, Stage, StageTimes, FRAGMENT_HEIGHT, FRAGMENT_WIDTH, INVOCATIONS, MAX_CHAIN,
     TARGET_RUN,
 };
+use gbuffer_core::Named;
 
 /// A row to time: its WGSL (`row_eval`) and the environment BRDF LUT it samples (a `lut_size`
 /// square of (scale, bias), or 1x1 when empty).
@@ -62,7 +63,7 @@ impl<'a> Timer<'a> {
     /// added. A row or stage that fails is reported on stderr and left out.
     pub fn run(&self) -> Vec<StageTimes> {
         let mut times = vec![StageTimes::default(); self.rows.len()];
-        for stage in Stage::ALL {
+        for &stage in Stage::ALL {
             let stage_times = self
                 .run_stage(stage)
                 .map_err(|error| eprintln!("{} timing failed: {error}", stage.name()))

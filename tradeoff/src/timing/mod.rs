@@ -18,6 +18,7 @@ pub use harness::{fragment_harness, harness, BASELINE_ROW};
 use std::time::Instant;
 
 use gbuffer::glam::Vec4;
+use gbuffer_core::Named;
 use gbuffer_gpu::timing::Spread;
 
 /// Invocations per dispatch: enough threads to fill a large GPU (an H100 holds 270,000), so
@@ -42,12 +43,12 @@ pub enum Stage {
     Fragment,
 }
 
-impl Stage {
+impl Named for Stage {
     /// Both stages, in report order.
-    pub const ALL: [Stage; 2] = [Stage::Compute, Stage::Fragment];
+    const ALL: &'static [Self] = &[Stage::Compute, Stage::Fragment];
 
     /// The stage's name in the report: `compute` or `fragment`.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
             Stage::Compute => "compute",
             Stage::Fragment => "fragment",
@@ -64,9 +65,12 @@ pub enum Clock {
     Wall,
 }
 
-impl Clock {
+impl Named for Clock {
+    /// Every value, in declaration order.
+    const ALL: &'static [Self] = &[Clock::Timestamps, Clock::Wall];
+
     /// The clock's name in the report: `timestamps` or `wall`.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
             Clock::Timestamps => "timestamps",
             Clock::Wall => "wall",
@@ -360,7 +364,7 @@ mod tests {
             ];
             let times = timer.run();
             assert_eq!(times.len(), 2);
-            for stage in Stage::ALL {
+            for &stage in Stage::ALL {
                 let [cheap, dear] = rows.map(|row| times[row].get(stage).unwrap());
                 eprintln!("{stage:?}: {cheap:?}\n{dear:?}");
                 for time in [cheap, dear] {
