@@ -49,9 +49,11 @@ use std::path::{Path, PathBuf};
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
-use crate::format::{Format, ScalarKind};
-use crate::layout::{Conversions, Field, FieldType, Layout, Storage, Subject, DEFAULT_BUDGET};
+use crate::format::Format;
+use crate::layout::{Conversions, Field, Layout, Storage, Subject, DEFAULT_BUDGET};
 use crate::toml_table::{self, ShapeError, Table};
+use crate::FieldType;
+use crate::ScalarKind;
 use crate::{BitField, Encoding};
 
 /// A layout file's keys, as written.

@@ -6,8 +6,8 @@
 use std::fmt;
 
 use crate::codecs::Encoding;
-use crate::format::ScalarKind;
-use crate::layout::FieldType;
+use crate::field_type::FieldType;
+use crate::field_type::ScalarKind;
 
 /// A bit field: `bits` bits of a shared `r32ui` word and how they encode the field's value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

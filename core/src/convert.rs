@@ -5,7 +5,8 @@
 //! fields with float and unorm formats and integer fields with their integer formats, and the
 //! other pairings saturate as Rust's `as` does.
 
-use crate::format::{Channel, Format, ScalarKind};
+use crate::field_type::ScalarKind;
+use crate::format::{Channel, Format};
 
 /// A scalar a field can hold: f32, u32 or i32, converted to and from a codec's lane.
 ///

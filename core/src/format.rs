@@ -8,31 +8,6 @@ use std::fmt;
 
 use crate::codecs::Encoding;
 
-/// What a shader sees when it reads a channel: the scalar type of the field that stores it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ScalarKind {
-    /// `f32` (float and unsigned-normalized formats).
-    Float,
-    /// `u32` (the `ui` formats).
-    Uint,
-    /// `i32` (the `i` formats).
-    Sint,
-    /// `bool` (bit fields only).
-    Bool,
-}
-
-impl ScalarKind {
-    /// The WGSL scalar type.
-    pub fn wgsl(self) -> &'static str {
-        match self {
-            ScalarKind::Float => "f32",
-            ScalarKind::Uint => "u32",
-            ScalarKind::Sint => "i32",
-            ScalarKind::Bool => "bool",
-        }
-    }
-}
-
 /// One channel of a format: where its bits sit in the word and what they mean.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Channel {
@@ -175,6 +150,7 @@ pub struct FormatRow {
     pub target: TargetFormat,
 }
 
+use crate::field_type::ScalarKind;
 use Encoding::{Float32, Half, Sint, Uint, Unorm, UnsignedFloat};
 
 /// Channels r, g, b, a of these widths from the least significant bit up, each of `encoding`.

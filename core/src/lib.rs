@@ -4,6 +4,8 @@
 //! [`Layout`] and [`Layout::check`]s it; the emitters of `gbuffer-codegen` write its WGSL, GLSL
 //! and Rust; the derived `pack`/`unpack` call the conversions here. The model, bottom up:
 //!
+//! - [`FieldType`] and [`ScalarKind`]: the types a field can have, the vocabulary below the
+//!   rest (`field_type.rs`);
 //! - [`format`](mod@format): the twelve pixel local storage formats and their channels;
 //! - [`codecs`]: how values become bits, one file per codec (the mirror, the WGSL and the
 //!   tests), and [`Encoding`], the list that names them;
@@ -23,6 +25,7 @@
 pub mod bit_field;
 pub mod codecs;
 pub mod convert;
+mod field_type;
 pub mod format;
 pub mod layout;
 mod named;
@@ -33,13 +36,12 @@ pub mod shading_library;
 pub use bit_field::BitField;
 pub use codecs::rgbm::RgbmRange;
 pub use codecs::{Codec, Encoding, LightStorage};
+pub use field_type::{FieldType, ScalarKind};
 pub use format::{
-    Channel, Format, FormatRow, GlFormat, PackedTarget, ScalarKind, TargetFormat, VulkanFormat,
-    WebGpuTarget,
+    Channel, Format, FormatRow, GlFormat, PackedTarget, TargetFormat, VulkanFormat, WebGpuTarget,
 };
 pub use layout::{
-    Conversions, Diagnostic, Field, FieldType, Layout, Member, Storage, Subject, Word,
-    DEFAULT_BUDGET,
+    Conversions, Diagnostic, Field, Layout, Member, Storage, Subject, Word, DEFAULT_BUDGET,
 };
 pub use named::Named;
 pub use report::Report;

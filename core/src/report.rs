@@ -274,8 +274,9 @@ impl Report {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::field_type::FieldType;
     use crate::format::Format;
-    use crate::layout::{Field, FieldType, Storage};
+    use crate::layout::{Field, Storage};
 
     #[test]
     fn separate_targets_follow_webgpu_alignment_rules() {

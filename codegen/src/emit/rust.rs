@@ -10,8 +10,9 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::format::ScalarKind;
-use crate::layout::{Field, FieldType, Layout, Storage};
+use crate::layout::{Field, Layout, Storage};
+use crate::FieldType;
+use crate::ScalarKind;
 use crate::{BitField, Encoding};
 
 /// The path of the `gbuffer` crate when the user names no other: `::gbuffer`.

@@ -2,7 +2,7 @@
 
 use super::wgsl::{BitField, Functions};
 use super::{Codec, Conversion, Shape};
-use crate::format::ScalarKind;
+use crate::field_type::ScalarKind;
 
 /// The bool codec.
 pub const CODEC: Codec = Codec::new(

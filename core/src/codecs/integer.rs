@@ -4,7 +4,7 @@
 
 use super::wgsl::{BitField, Functions};
 use super::{max_code, Codec, Conversion, Shape};
-use crate::format::ScalarKind;
+use crate::field_type::ScalarKind;
 
 /// Clamps an unsigned integer to `bits` bits.
 #[inline]

@@ -1,6 +1,7 @@
 //! The Rust mirror at run time: field values as lanes of bits, packed into words and back.
 
-use crate::format::{Format, ScalarKind};
+use crate::field_type::ScalarKind;
+use crate::format::Format;
 
 use super::{Layout, Storage};
 

@@ -3,21 +3,20 @@
 //! files both build a [`Layout`]; [`Layout::check`] is the one place that decides what is
 //! valid, and [`Layout::word_contents`] the one place that places fields in words.
 //!
-//! Its parts: the field types (`field_type.rs`), how the WGSL converts (`conversions.rs`), the
-//! checks and their messages (`check.rs`), the Rust mirror's lane packing (`lanes.rs`) and the
-//! packed render targets' cost (`targets.rs`).
+//! Its parts: how the WGSL converts (`conversions.rs`), the checks and their messages
+//! (`check.rs`), the Rust mirror's lane packing (`lanes.rs`) and the packed render targets' cost
+//! (`targets.rs`). A field's type is the crate's [`FieldType`], which the codecs share.
 
 mod check;
 mod conversions;
-mod field_type;
 mod lanes;
 mod targets;
 
 pub use check::{check_budget, fitting_types, Diagnostic, Subject, MAX_FIELDS};
 pub use conversions::Conversions;
-pub use field_type::FieldType;
 
 use crate::bit_field::BitField;
+use crate::field_type::FieldType;
 use crate::format::Format;
 use crate::naming;
 

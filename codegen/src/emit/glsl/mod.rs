@@ -32,8 +32,10 @@ pub use translate::{translate, translate_with, with_explicit_precision, GlslName
 
 use crate::codecs::max_code;
 use crate::emit::wgsl::Conversions;
-use crate::format::{Format, ScalarKind};
-use crate::layout::{FieldType, Layout, Member, Word};
+use crate::format::Format;
+use crate::layout::{Layout, Member, Word};
+use crate::FieldType;
+use crate::ScalarKind;
 
 /// Which of the three pixel local storage block forms to declare.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -22,9 +22,10 @@ use super::{identifier, unique};
 use super::{GlslNames, Interface, Translation, TranslationError};
 use crate::emit::json::string;
 use crate::emit::wgsl::{function_name, mode_suffix, Conversions};
-use crate::format::{Format, ScalarKind};
+use crate::format::Format;
 use crate::layout::{Field, Layout, Storage};
 use crate::report::webgl_planes;
+use crate::ScalarKind;
 
 /// The format of a plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

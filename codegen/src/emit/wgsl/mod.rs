@@ -23,8 +23,9 @@ use std::fmt::Write as _;
 
 use crate::codecs::wgsl::Lanes;
 use crate::codecs::{half, max_code, small_float, unorm, unsigned_float, Encoding};
-use crate::format::{Channel, Format, ScalarKind};
+use crate::format::{Channel, Format};
 use crate::layout::{Field, Layout, Member, Storage};
+use crate::ScalarKind;
 
 pub use crate::layout::Conversions;
 

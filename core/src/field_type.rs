@@ -1,6 +1,31 @@
-//! A field's type: a scalar or a vector of 2 to 4 components, by its Rust and WGSL names.
+//! A field's type: a scalar kind ([`ScalarKind`]) and 1 to 4 components, by its Rust and WGSL
+//! names. The vocabulary the codecs, the formats, the bit fields and the layout share: a leaf of
+//! the crate, which none of them has to import another for.
 
-use crate::format::ScalarKind;
+/// What a shader sees when it reads a channel: the scalar type of the field that stores it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ScalarKind {
+    /// `f32` (float and unsigned-normalized formats).
+    Float,
+    /// `u32` (the `ui` formats).
+    Uint,
+    /// `i32` (the `i` formats).
+    Sint,
+    /// `bool` (bit fields only).
+    Bool,
+}
+
+impl ScalarKind {
+    /// The WGSL scalar type.
+    pub fn wgsl(self) -> &'static str {
+        match self {
+            ScalarKind::Float => "f32",
+            ScalarKind::Uint => "u32",
+            ScalarKind::Sint => "i32",
+            ScalarKind::Bool => "bool",
+        }
+    }
+}
 
 /// The type of a field: a scalar or a vector of 2 to 4 components.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
