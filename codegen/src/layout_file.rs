@@ -55,6 +55,7 @@ use crate::toml_table::{self, ShapeError, Table};
 use crate::FieldType;
 use crate::ScalarKind;
 use crate::{BitField, Encoding};
+use gbuffer_core::Named;
 
 /// A layout file's keys, as written.
 struct LayoutEntry {
@@ -441,7 +442,7 @@ fn storage_of(
                         format!(
                             "unknown pixel local storage format `{wrong}`; did you mean `{}`? The formats are: {}",
                             Format::nearest(wrong),
-                            Format::ALL.map(Format::name).join(", ")
+                            Format::names().join(", ")
                         ),
                     );
                     None

@@ -34,5 +34,6 @@ pub use builder::{BuildError, Builder};
 pub use gbuffer_core::{bit_field, codecs, convert, format, layout, naming, report};
 pub use gbuffer_core::{
     BitField, Channel, Codec, Conversions, Diagnostic, Encoding, Field, FieldType, Format, Layout,
-    LightStorage, Member, Report, RgbmRange, ScalarKind, Storage, Subject, Word, DEFAULT_BUDGET,
+    LightStorage, Member, Named, Report, RgbmRange, ScalarKind, Storage, Subject, Word,
+    DEFAULT_BUDGET,
 };

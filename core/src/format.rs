@@ -151,6 +151,7 @@ pub struct FormatRow {
 }
 
 use crate::field_type::ScalarKind;
+use crate::named::Named;
 use Encoding::{Float32, Half, Sint, Uint, Unorm, UnsignedFloat};
 
 /// Channels r, g, b, a of these widths from the least significant bit up, each of `encoding`.
@@ -286,9 +287,9 @@ impl PackedTarget {
     }
 }
 
-impl Format {
+impl Named for Format {
     /// Every format, in the order of the extension's table.
-    pub const ALL: [Format; 12] = [
+    const ALL: &'static [Self] = &[
         Format::R11fG11fB10f,
         Format::R32f,
         Format::Rg16f,
@@ -303,6 +304,27 @@ impl Format {
         Format::R32ui,
     ];
 
+    /// The layout qualifier of EXT_shader_pixel_local_storage, e.g. `rgb10_a2`.
+    fn name(self) -> &'static str {
+        self.row().qualifier
+    }
+
+    /// Parses a layout qualifier. Also accepts `rgb10a2` and `rgb10a2ui`, the spelling of
+    /// the book chapter's listings.
+    fn from_name(name: &str) -> Option<Format> {
+        match name {
+            "rgb10a2" => return Some(Format::Rgb10A2),
+            "rgb10a2ui" => return Some(Format::Rgb10A2ui),
+            _ => {}
+        }
+        Format::ALL
+            .iter()
+            .copied()
+            .find(|format| format.name() == name)
+    }
+}
+
+impl Format {
     /// Its row of the format table.
     #[inline(always)]
     pub const fn row(self) -> &'static FormatRow {
@@ -314,27 +336,12 @@ impl Format {
         &self.row().target
     }
 
-    /// The layout qualifier of EXT_shader_pixel_local_storage, e.g. `rgb10_a2`.
-    pub fn name(self) -> &'static str {
-        self.row().qualifier
-    }
-
-    /// Parses a layout qualifier. Also accepts `rgb10a2` and `rgb10a2ui`, the spelling of
-    /// the book chapter's listings.
-    pub fn from_name(name: &str) -> Option<Format> {
-        match name {
-            "rgb10a2" => return Some(Format::Rgb10A2),
-            "rgb10a2ui" => return Some(Format::Rgb10A2ui),
-            _ => {}
-        }
-        Format::ALL.into_iter().find(|format| format.name() == name)
-    }
-
     /// The format whose name is closest to `name` (by edit distance; on a tie, one that
     /// `name` begins), for "did you mean".
     pub fn nearest(name: &str) -> Format {
         Format::ALL
-            .into_iter()
+            .iter()
+            .copied()
             .min_by_key(|format| {
                 (
                     edit_distance(name, format.name()),
@@ -398,7 +405,7 @@ mod tests {
 
     #[test]
     fn every_format_fills_exactly_one_word_without_overlap() {
-        for format in Format::ALL {
+        for &format in Format::ALL {
             let mut covered = 0u64;
             for channel in format.channels() {
                 let bits = u64::from(channel.mask()) << channel.offset;
@@ -423,7 +430,7 @@ mod tests {
     /// extension); WebGPU ends its names with the scalar kind.
     #[test]
     fn every_row_describes_its_own_format() {
-        for format in Format::ALL {
+        for &format in Format::ALL {
             let target = format.target();
             let gl = target.gl.name.trim_end_matches("_EXT").to_ascii_lowercase();
             assert_eq!(gl, format!("gl_{}", format.name()), "{format}");
@@ -451,7 +458,7 @@ mod tests {
 
     #[test]
     fn names_round_trip_and_seed_spelling_is_accepted() {
-        for format in Format::ALL {
+        for &format in Format::ALL {
             assert_eq!(Format::from_name(format.name()), Some(format));
         }
         assert_eq!(Format::from_name("rgb10a2"), Some(Format::Rgb10A2));

@@ -98,8 +98,8 @@ pub mod layout {
     pub use gbuffer_core::report::{FieldTable, Report};
     pub use gbuffer_core::{
         BitField, Channel, Codec, Conversions, Encoding, Field, FieldType, Format, FormatRow,
-        GlFormat, Layout, Member, PackedTarget, RgbmRange, ScalarKind, Storage, TargetFormat,
-        VulkanFormat, WebGpuTarget, Word,
+        GlFormat, Layout, Member, Named, PackedTarget, RgbmRange, ScalarKind, Storage,
+        TargetFormat, VulkanFormat, WebGpuTarget, Word,
     };
 }
 

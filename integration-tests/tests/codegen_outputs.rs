@@ -13,6 +13,7 @@ use gbuffer_codegen::emit::glsl::{self, Include, Interface, PlsBlock};
 use gbuffer_codegen::emit::wgsl::Conversions;
 use gbuffer_codegen::layout_file::read_layout_file;
 use gbuffer_codegen::output::{generate, Output};
+use gbuffer_core::Named;
 use gbuffer_gpu::harness::fragment_harness;
 use gbuffer_gpu::tools::{glslang, spirv_val};
 use gbuffer_testkit::user_shaders::{preambles, scalars_of_texel};
@@ -335,7 +336,7 @@ proptest! {
 
 #[test]
 fn every_format_has_the_extension_type() {
-    for format in Format::ALL {
+    for &format in Format::ALL {
         assert_eq!(
             Some(gbuffer_codegen::emit::glsl::pls_member_type(format)),
             extension_type(format.name()),

@@ -7,6 +7,7 @@
 
 use gbuffer::layout::{Format, Layout};
 use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_core::Named;
 use gbuffer_tradeoff::packing_cost::{builtin_form, cost, harness, layout_cost, one_field, Cost};
 
 fn measured(layout: &Layout, conversions: Conversions) -> Cost {

@@ -13,6 +13,7 @@
 //! NaN stores as 0 in every format but r32f, which keeps it.
 
 use gbuffer::layout::{Channel, Encoding, Format, Scalar, ScalarKind};
+use gbuffer_core::Named;
 use gbuffer_gpu::values::{float_edges, sint_edges, uint_edges, Values};
 
 const RANDOM_VALUES_PER_FORMAT: usize = 1_000_000;
@@ -90,7 +91,7 @@ where
 #[test]
 fn every_format_round_trips_within_its_quantization_bound() {
     let mut failures = Vec::new();
-    for (seed, format) in Format::ALL.into_iter().enumerate() {
+    for (seed, format) in Format::ALL.iter().copied().enumerate() {
         let mut values = Values::new(seed as u64);
         let channels = format.channels();
         let count = channels.len();

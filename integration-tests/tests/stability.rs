@@ -13,6 +13,7 @@ use gbuffer::glam::{DVec3, Vec3};
 use gbuffer::layout::{Encoding, Format, ScalarKind};
 use gbuffer::shading::half_precision::{self as h, Half, Half3};
 use gbuffer::shading::mirror as m;
+use gbuffer_core::Named;
 use gbuffer_gpu::values::{float_edges, sint_edges, uint_edges};
 use gbuffer_testkit::shading_cases::{
     cases, compute_harness, output_components, Argument, Case, Output,
@@ -358,7 +359,7 @@ fn composites_stay_finite_on_the_adapter() {
 
 #[test]
 fn packing_gives_finite_output_in_the_formats_range_for_finite_input() {
-    for format in Format::ALL {
+    for &format in Format::ALL {
         match format.scalar_kind() {
             ScalarKind::Float => {
                 for value in float_edges().into_iter().filter(|value| value.is_finite()) {

@@ -12,6 +12,7 @@ use syn::spanned::Spanned;
 use syn::{Data, DeriveInput, Fields};
 
 use crate::combine;
+use gbuffer_codegen::Named;
 
 /// The spans the check's [`Subject`]s refer to.
 pub struct Spans {
@@ -402,7 +403,7 @@ fn parse_bits_attribute(
 }
 
 fn format_list() -> String {
-    Format::ALL.map(Format::name).join(", ")
+    Format::names().join(", ")
 }
 
 /// The field's type, recognised by the last segment of its path.

@@ -14,6 +14,7 @@ use gbuffer_solver::Solution;
 use crate::gbuffers::GBuffer;
 use crate::options::{IblForm, Options, SunForm, EXPOSURE};
 use crate::scene::{self};
+use gbuffer_core::Named;
 
 /// The library modules (`gbuffer::shading::wgsl`) composed, for the passes.
 pub fn library(modules: &[&str]) -> String {

@@ -2,6 +2,7 @@
 //! quantity nobody reads is not stored.
 
 use crate::description::{Feature, MaterialModel, SceneDescription};
+use gbuffer_core::Named;
 
 /// A value the G-buffer pass writes and the lighting pass reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -42,9 +43,22 @@ pub enum Kind {
     Scalar,
 }
 
-impl Quantity {
+impl Named for Quantity {
+    /// Every value, in declaration order.
+    const ALL: &'static [Self] = &[
+        Quantity::Light,
+        Quantity::Depth,
+        Quantity::Normal,
+        Quantity::Roughness,
+        Quantity::BaseColour,
+        Quantity::Metallic,
+        Quantity::Specular,
+        Quantity::Albedo,
+        Quantity::SpecularColour,
+    ];
+
     /// The name of its member in the generated `...Values` struct.
-    pub fn name(self) -> &'static str {
+    fn name(self) -> &'static str {
         match self {
             Quantity::Light => "light",
             Quantity::Depth => "depth",
@@ -57,7 +71,9 @@ impl Quantity {
             Quantity::SpecularColour => "specular_colour",
         }
     }
+}
 
+impl Quantity {
     /// The kind of value it is, which sets the unit of its error.
     pub fn kind(self) -> Kind {
         match self {

@@ -9,6 +9,7 @@
 use std::fmt::Write as _;
 
 use crate::solver::{describe_error, Solution};
+use gbuffer_core::Named;
 
 impl Solution {
     /// The name of the values struct: `<Name>Values`.

@@ -5,6 +5,7 @@
 
 use gbuffer::layout::{BitField, Encoding, Field, FieldType, Format, Layout, RgbmRange, Storage};
 use gbuffer::GBufferLayout;
+use gbuffer_core::Named;
 use proptest::prelude::*;
 
 /// Field names that are valid in WGSL and Rust but that GLSL reserves or that naga renames;

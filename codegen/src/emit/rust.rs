@@ -519,6 +519,8 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
 /// glam types. What the derive reads back as the same layout and WGSL.
 #[cfg(feature = "tools")]
 pub fn derive_source(layout: &Layout, conversions: crate::layout::Conversions) -> String {
+    use gbuffer_core::Named;
+
     use crate::layout::Conversions;
     let mut options = format!("budget = {}", layout.budget);
     if conversions == Conversions::Fast {

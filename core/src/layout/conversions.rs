@@ -3,6 +3,7 @@
 
 use crate::codecs::Encoding;
 use crate::format::Format;
+use crate::named::Named;
 
 /// How the WGSL converts values to and from channel codes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
@@ -25,6 +26,19 @@ pub enum Conversions {
     Fast,
 }
 
+impl Named for Conversions {
+    /// Both, exact first.
+    const ALL: &'static [Self] = &[Conversions::Exact, Conversions::Fast];
+
+    /// The name layout files and `#[gbuffer(conversions = ...)]` give them: `exact` or `fast`.
+    fn name(self) -> &'static str {
+        match self {
+            Conversions::Exact => "exact",
+            Conversions::Fast => "fast",
+        }
+    }
+}
+
 impl Conversions {
     /// Whether a format's encode is the exact one under these conversions (fast conversions
     /// replace it for rgba8, rg16, rg16f, rgb10_a2 and r11f_g11f_b10f).
@@ -38,21 +52,6 @@ impl Conversions {
     /// replace it for unorm, half, octahedral and RGBM).
     pub fn is_exact_for_encoding(self, encoding: Encoding) -> bool {
         self == Conversions::Exact || !encoding.has_fast_form()
-    }
-
-    /// The name layout files and `#[gbuffer(conversions = ...)]` give them: `exact` or `fast`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Conversions::Exact => "exact",
-            Conversions::Fast => "fast",
-        }
-    }
-
-    /// The conversions [`Conversions::name`] names.
-    pub fn from_name(name: &str) -> Option<Conversions> {
-        [Conversions::Exact, Conversions::Fast]
-            .into_iter()
-            .find(|conversions| conversions.name() == name)
     }
 
     /// What the generated functions of a field with these conversions add to their names

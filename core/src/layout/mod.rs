@@ -18,6 +18,7 @@ pub use conversions::Conversions;
 use crate::bit_field::BitField;
 use crate::field_type::FieldType;
 use crate::format::Format;
+use crate::named::Named;
 use crate::naming;
 
 /// Where a field's bits live.

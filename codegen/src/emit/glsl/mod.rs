@@ -36,6 +36,7 @@ use crate::format::Format;
 use crate::layout::{Layout, Member, Word};
 use crate::FieldType;
 use crate::ScalarKind;
+use gbuffer_core::Named;
 
 /// Which of the three pixel local storage block forms to declare.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -26,6 +26,7 @@ use crate::codecs::{half, max_code, small_float, unorm, unsigned_float, Encoding
 use crate::format::{Channel, Format};
 use crate::layout::{Field, Layout, Member, Storage};
 use crate::ScalarKind;
+use gbuffer_core::Named;
 
 pub use crate::layout::Conversions;
 
