@@ -13,7 +13,7 @@ use gbuffer::shading::mirror as m;
 use gbuffer_codegen::codecs::half::half_from_f32;
 use gbuffer_codegen::codecs::unorm::unorm_from_f32;
 
-use crate::reference::prefiltered_sky;
+use crate::reference::{prefiltered_sky, PREFILTER_SAMPLES};
 use crate::scene::{self, ENVIRONMENT_MIPS, ENVIRONMENT_RANGE, LIGHT_MAP_EXTENT, LIGHT_MAP_RANGE};
 
 /// The split-sum LUT's size.
@@ -22,9 +22,6 @@ pub const LUT_SIZE: u32 = 32;
 pub const LIGHT_MAP_SIZE: u32 = 128;
 /// The prefiltered environment's width at mip 0 (its height is half).
 pub const ENVIRONMENT_WIDTH: u32 = 512;
-/// Importance samples per texel of the prefiltered environment and per LUT texel (the CPU
-/// reference integrates with the same estimator).
-pub const PREFILTER_SAMPLES: u32 = 256;
 
 /// One texture's texels, row by row, and its size.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -8,10 +8,8 @@
 
 use gbuffer::glam::DVec3;
 
-use crate::scene::{sphere_centre, COLUMNS, ROWS, SPHERE_RADIUS};
+use crate::scene::{sphere_centre, COLUMNS, GROUND, ROWS, SPHERE_RADIUS};
 
-/// The ground's object index; spheres are `0..GROUND`.
-pub const GROUND: u32 = (ROWS * COLUMNS) as u32;
 /// Segments around a sphere's vertical axis.
 pub const SPHERE_SEGMENTS: u32 = 48;
 /// Rings from pole to pole.

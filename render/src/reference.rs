@@ -6,10 +6,13 @@ use gbuffer::glam::DVec3;
 use gbuffer::shading::reference as r;
 use gbuffer_solver::{Feature, Features};
 
-use crate::inputs::PREFILTER_SAMPLES;
 use crate::mesh::Mesh;
 use crate::options::{Frame, EXPOSURE};
-use crate::scene::{self, sky, trace};
+use crate::scene::{self, sky, Surface};
+
+/// Importance samples per texel of the prefiltered environment and per LUT texel: the baked
+/// inputs ([`crate::inputs`]) and this reference integrate with the same estimator.
+pub const PREFILTER_SAMPLES: u32 = 256;
 
 /// The GGX lobe of `roughness` around `normal` (n = v = r) integrated over the sky with the
 /// renderer's estimator, at the exact roughness and direction (the GPU reads it from mips).
@@ -153,4 +156,17 @@ pub fn display(radiance: DVec3) -> [u8; 4] {
         channel(encoded.z),
         255,
     ]
+}
+
+/// The first surface a ray meets on the scene's mesh, if any.
+pub fn trace(mesh: &Mesh, origin: DVec3, direction: DVec3, features: Features) -> Option<Surface> {
+    let hit = mesh.intersect(origin, direction)?;
+    let point = origin + direction * hit.distance;
+    Some(scene::surface_at(
+        hit.object,
+        point,
+        hit.normal,
+        hit.distance,
+        features,
+    ))
 }

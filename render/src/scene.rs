@@ -16,6 +16,8 @@ use gbuffer_solver::{Feature, Features};
 pub const COLUMNS: usize = 6;
 /// Rows of the sphere grid: one material each.
 pub const ROWS: usize = 4;
+/// The ground's object index; spheres are `0..GROUND`.
+pub const GROUND: u32 = (ROWS * COLUMNS) as u32;
 /// The spheres' radius.
 pub const SPHERE_RADIUS: f64 = 0.32;
 /// (base colour, metallic) per row, bottom to top.
@@ -270,7 +272,7 @@ pub fn ground_normal(x: f64, z: f64) -> DVec3 {
     r::normals::tangent_to_world(tangent_normal, DVec3::Y, DVec4::new(1.0, 0.0, 0.0, 1.0))
 }
 
-/// The surface of `object` (a sphere index or `mesh::GROUND`) at `point`, with the mesh's
+/// The surface of `object` (a sphere index or [`GROUND`]) at `point`, with the mesh's
 /// interpolated `normal`, as a scene of these features shows it: without metals every metallic
 /// is 0, fully rough scenes have roughness 1, normal maps, light maps, image-based light and the
 /// emissive sphere come and go with their features; the decals paint it.
@@ -291,39 +293,38 @@ pub fn surface_at(
         }
     };
     // (normal, roughness, base colour, metallic, irradiance, emission)
-    let (normal, roughness, base_colour, metallic, irradiance, emission) =
-        if object < crate::mesh::GROUND {
-            let (row, column) = (object as usize / COLUMNS, object as usize % COLUMNS);
-            let (base_colour, metallic) = ROW_MATERIALS[row];
-            let glows = has(Feature::Emissive) && (row, column) == EMISSIVE_SPHERE;
-            (
-                normal,
-                sphere_roughness(column),
-                v3(base_colour),
-                metallic * metals,
-                sky_light(normal),
-                if glows { v3(EMISSION) } else { DVec3::ZERO },
-            )
-        } else {
-            let (base_colour, roughness, mask) = ground_material(point.x, point.z);
-            let inside = point.x.abs() < LIGHT_MAP_EXTENT && point.z.abs() < LIGHT_MAP_EXTENT;
-            (
-                if has(Feature::NormalMaps) {
-                    ground_normal(point.x, point.z)
-                } else {
-                    DVec3::Y
-                },
-                roughness,
-                base_colour,
-                mask * metals,
-                if inside && has(Feature::LightMaps) {
-                    light_map(point.x, point.z)
-                } else {
-                    sky_light(DVec3::Y)
-                },
-                DVec3::ZERO,
-            )
-        };
+    let (normal, roughness, base_colour, metallic, irradiance, emission) = if object < GROUND {
+        let (row, column) = (object as usize / COLUMNS, object as usize % COLUMNS);
+        let (base_colour, metallic) = ROW_MATERIALS[row];
+        let glows = has(Feature::Emissive) && (row, column) == EMISSIVE_SPHERE;
+        (
+            normal,
+            sphere_roughness(column),
+            v3(base_colour),
+            metallic * metals,
+            sky_light(normal),
+            if glows { v3(EMISSION) } else { DVec3::ZERO },
+        )
+    } else {
+        let (base_colour, roughness, mask) = ground_material(point.x, point.z);
+        let inside = point.x.abs() < LIGHT_MAP_EXTENT && point.z.abs() < LIGHT_MAP_EXTENT;
+        (
+            if has(Feature::NormalMaps) {
+                ground_normal(point.x, point.z)
+            } else {
+                DVec3::Y
+            },
+            roughness,
+            base_colour,
+            mask * metals,
+            if inside && has(Feature::LightMaps) {
+                light_map(point.x, point.z)
+            } else {
+                sky_light(DVec3::Y)
+            },
+            DVec3::ZERO,
+        )
+    };
     let diffuse =
         r::material::metallic_workflow(base_colour, metallic, r::constants::DIELECTRIC_F0).diffuse;
     let mut surface = Surface {
@@ -339,24 +340,6 @@ pub fn surface_at(
         surface.roughness = 1.0;
     }
     surface
-}
-
-/// The first surface a ray meets on the scene's mesh, if any.
-pub fn trace(
-    mesh: &crate::mesh::Mesh,
-    origin: DVec3,
-    direction: DVec3,
-    features: Features,
-) -> Option<Surface> {
-    let hit = mesh.intersect(origin, direction)?;
-    let point = origin + direction * hit.distance;
-    Some(surface_at(
-        hit.object,
-        point,
-        hit.normal,
-        hit.distance,
-        features,
-    ))
 }
 
 /// The scene in WGSL for the G-buffer pass: the same constants and functions as above, and the
@@ -512,7 +495,7 @@ fn ground_normal(x: f32, z: f32) -> vec3<f32> {{
             .map(|decal| format!("{:?}", decal.roughness as f32))
             .join(", "),
         decal_count = DECALS.len(),
-        ground = crate::mesh::GROUND,
+        ground = GROUND,
         point_light_radius = POINT_LIGHT_RADIUS as f32,
         metals = features.contains(Feature::Metals),
         normal_maps = features.contains(Feature::NormalMaps),
