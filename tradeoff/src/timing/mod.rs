@@ -373,7 +373,18 @@ mod tests {
                     if !timestamps {
                         assert_eq!(time.clock, Clock::Wall);
                     }
-                    assert!(time.run_ms >= 1e3 * TARGET_RUN || time.chain == MAX_CHAIN);
+                    // Calibration sized a run to `TARGET_RUN` by the wall clock, and takes the
+                    // timestamps only where they come to half the wall clock's time or more;
+                    // the rounds after it vary (a fifth here, on two shared cores).
+                    let least = match time.clock {
+                        Clock::Wall => 0.8,
+                        Clock::Timestamps => 0.4,
+                    } * 1e3
+                        * TARGET_RUN;
+                    assert!(
+                        time.run_ms >= least || time.chain == MAX_CHAIN,
+                        "{stage:?}: {time:?}"
+                    );
                     assert!(time.ns.min <= time.ns.median && time.ns.median <= time.ns.max);
                     assert_eq!(time.upper_bound_ns().is_some(), !time.resolved());
                     if let Some(bound) = time.upper_bound_ns() {
