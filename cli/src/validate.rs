@@ -4,11 +4,11 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use gbuffer_core::Named;
 use gbuffer_validator::{check_file, FileProblem, Stage};
 
 use crate::json::Json;
 use crate::output;
-use gbuffer_core::Named;
 
 /// Validates WGSL shaders with naga and checks that they translate to SPIR-V, MSL, HLSL and
 /// GLSL ES. Lines `#include <gbuffer/MODULE>` pull in a module of the shading library with

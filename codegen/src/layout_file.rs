@@ -46,16 +46,14 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
+use gbuffer_core::Named;
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
 use crate::format::Format;
 use crate::layout::{Conversions, Field, Layout, Storage, Subject, DEFAULT_BUDGET};
 use crate::toml_table::{self, ShapeError, Table};
-use crate::FieldType;
-use crate::ScalarKind;
-use crate::{BitField, Encoding};
-use gbuffer_core::Named;
+use crate::{BitField, Encoding, FieldType, ScalarKind};
 
 /// A layout file's keys, as written.
 struct LayoutEntry {

@@ -6,8 +6,7 @@
 use std::fmt;
 
 use crate::codecs::Encoding;
-use crate::field_type::FieldType;
-use crate::field_type::ScalarKind;
+use crate::field_type::{FieldType, ScalarKind};
 
 /// A bit field: `bits` bits of a shared `r32ui` word and how they encode the field's value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

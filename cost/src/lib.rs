@@ -33,6 +33,7 @@ mod target;
 
 use std::fmt;
 
+use gbuffer_core::Named;
 use serde::Serialize;
 
 pub use run::{Setup, DEFAULT_ROOT};
@@ -40,7 +41,6 @@ pub use shader::{GlesForm, Shader, ShaderError, VulkanForm};
 pub use statistics::{parse, Cycles, Statistic, Statistics};
 pub use target::{Api, Architecture, Compiler, Target, DEFAULT_TARGETS, TARGETS};
 
-use gbuffer_core::Named;
 use run::Scratch;
 
 /// The stages whose cost is measured.

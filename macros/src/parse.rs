@@ -2,6 +2,7 @@
 //! part so that the check's diagnostics can point at it.
 
 use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_codegen::Named;
 use gbuffer_codegen::{
     BitField, Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage, Subject,
     DEFAULT_BUDGET,
@@ -12,7 +13,6 @@ use syn::spanned::Spanned;
 use syn::{Data, DeriveInput, Fields};
 
 use crate::combine;
-use gbuffer_codegen::Named;
 
 /// The spans the check's [`Subject`]s refer to.
 pub struct Spans {

@@ -14,11 +14,11 @@ use gbuffer::layout::{Layout, PackedTarget};
 use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
+use gbuffer_core::Named;
 use gbuffer_solver::{Features, Solution};
 
 use crate::coarse::CoarseNormals;
 use crate::lossless::Lossless;
-use gbuffer_core::Named;
 
 /// Where the G-buffer pass writes.
 #[derive(Clone, Debug, PartialEq)]

@@ -6,6 +6,7 @@
 use crate::conventions::seed::SURFACE_WGSL;
 use gbuffer::layout::Layout;
 use gbuffer_codegen::emit::glsl::naga_glsl;
+use gbuffer_core::Named;
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 use gbuffer_solver::lighting::{self, Forms};
 use gbuffer_solver::quantity::Quantity;
@@ -14,7 +15,6 @@ use gbuffer_solver::Solution;
 use crate::gbuffers::GBuffer;
 use crate::options::{IblForm, Options, SunForm, EXPOSURE};
 use crate::scene::{self};
-use gbuffer_core::Named;
 
 /// The library modules (`gbuffer::shading::wgsl`) composed, for the passes.
 pub fn library(modules: &[&str]) -> String {

@@ -14,6 +14,7 @@ use std::fmt::Write as _;
 
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
 use gbuffer_codegen::emit::json::string as json_string;
+use gbuffer_core::Named;
 
 use crate::gles::sources::{program_in, TranslatedProgram};
 use crate::glsl::Dialect;
@@ -23,7 +24,6 @@ use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Stage};
 use crate::options::Options;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::{ENVIRONMENT_BINDING, LIGHT_MAP_BINDING, LUT_BINDING};
-use gbuffer_core::Named;
 
 /// The fused frame's programs for `options`, one per [`Stage`], in drawing order.
 pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, String> {

@@ -30,6 +30,7 @@ use std::path::Path;
 
 use gbuffer_codegen::layout_file::{FileDiagnostic, FileError};
 use gbuffer_codegen::toml_table::{self, Entry, ShapeError, Table};
+use gbuffer_core::Named;
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
@@ -37,7 +38,6 @@ use crate::description::{
     Feature, Features, MaterialModel, Precision, SceneDescription, Setting, DEFAULT_BUDGET,
 };
 use crate::solver::{solve, Solution, SolveError};
-use gbuffer_core::Named;
 
 /// A scene file's keys, as written.
 struct SceneEntry {

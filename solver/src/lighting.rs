@@ -16,10 +16,11 @@
 
 use std::fmt::Write as _;
 
+use gbuffer_core::Named;
+
 use crate::description::{Feature, MaterialModel};
 use crate::quantity::Quantity;
 use crate::solver::Solution;
-use gbuffer_core::Named;
 
 /// How the sun and point lights are shaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,8 +1,9 @@
 //! What a G-buffer must store for a scene: each quantity, and the features that need it. A
 //! quantity nobody reads is not stored.
 
-use crate::description::{Feature, MaterialModel, SceneDescription};
 use gbuffer_core::Named;
+
+use crate::description::{Feature, MaterialModel, SceneDescription};
 
 /// A value the G-buffer pass writes and the lighting pass reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -17,11 +17,11 @@ use std::collections::HashMap;
 use std::fmt;
 
 use gbuffer_codegen::{Conversions, Field, Layout, Storage};
+use gbuffer_core::Named;
 
 use crate::description::{DescriptionError, Feature, SceneDescription, Setting};
 use crate::quantity::{stored_quantities, Kind, Quantity, Stored};
 use crate::representation::Representation;
-use gbuffer_core::Named;
 
 /// How the solution stores one quantity.
 #[derive(Clone, Debug, PartialEq)]

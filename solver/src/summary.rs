@@ -4,9 +4,9 @@
 use std::fmt;
 
 use gbuffer_core::report::FieldTable;
+use gbuffer_core::Named;
 
 use crate::solver::{describe_error, Solution};
-use gbuffer_core::Named;
 
 impl fmt::Display for Solution {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {

@@ -8,8 +8,9 @@
 
 use std::fmt::Write as _;
 
-use crate::solver::{describe_error, Solution};
 use gbuffer_core::Named;
+
+use crate::solver::{describe_error, Solution};
 
 impl Solution {
     /// The name of the values struct: `<Name>Values`.

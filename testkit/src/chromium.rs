@@ -8,7 +8,6 @@
 //! is blocklisted") until told to ignore its GPU blocklist and driver workarounds, and which
 //! reads every plane as zero until ANGLE's dynamic rendering is turned off.
 
-use gbuffer_core::Named;
 use std::collections::HashMap;
 use std::io::{BufRead, BufReader, Write};
 use std::net::{TcpListener, TcpStream};
@@ -17,6 +16,8 @@ use std::process::{Command, Stdio};
 use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
+
+use gbuffer_core::Named;
 
 /// The GPU Chromium's ANGLE renders with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,9 +1,10 @@
 //! The timing's consistency check: times against the order the instruction counts predict.
 
+use gbuffer_core::Named;
+
 use crate::measured::Measured;
 use crate::rows::Row;
 use crate::{packing, timing};
-use gbuffer_core::Named;
 
 /// Holds the adapter's times to the order the instruction counts predict, within each family of
 /// rows and each format's two packing modes, in each stage. The disagreements, a line each:

@@ -1,9 +1,10 @@
 //! The report's `report.json`: every row's figures, timings and compilers' columns.
 
+use gbuffer_core::Named;
+
 use crate::measured::{Measured, ROW_TARGETS};
 use crate::rows::Row;
 use crate::timing;
-use gbuffer_core::Named;
 
 /// The report's JSON: `{"adapter", "rows": [...]}` with the schema of the issue.
 pub(crate) fn json_report(rows: &[Row], measured: &[Measured], adapter: &str) -> serde_json::Value {

@@ -10,10 +10,10 @@ use std::fmt::Write as _;
 use crate::packing_cost::{deviation, layout_cost, one_field, Cost, Deviation, CONVERTED_FORMATS};
 use gbuffer::layout::Format;
 use gbuffer_codegen::emit::wgsl::{emit_with, Conversions};
+use gbuffer_core::Named;
 use gbuffer_gpu::Gpu;
 
 use crate::timing;
-use gbuffer_core::Named;
 
 /// Texels packed on the adapter per row to measure the deviation.
 const TEXELS: usize = 1 << 20;

@@ -3,11 +3,12 @@
 
 use std::path::Path;
 
+use gbuffer_core::Named;
+
 use crate::measured::Measured;
 use crate::plot::{self, Plot};
 use crate::rows::Row;
 use crate::timing;
-use gbuffer_core::Named;
 
 /// A written plot: its file name and what the report says about it.
 pub(crate) struct WrittenPlot {

@@ -14,11 +14,11 @@ use std::path::{Path, PathBuf};
 
 use gbuffer_codegen::emit::glsl::naga_glsl;
 pub use gbuffer_codegen::emit::glsl::naga_glsl::GENERATED_CODE_CAPABILITIES;
+use gbuffer_core::Named;
 use naga::back::{glsl, hlsl, msl, spv};
 use naga::valid::{Capabilities, ModuleInfo};
 
 use diagnostic::{Handles, Label};
-use gbuffer_core::Named;
 
 /// A parsed and validated module.
 pub struct Validated {

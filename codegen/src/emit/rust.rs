@@ -7,13 +7,12 @@
 //! `::core::primitive::f32`) so the code compiles under `#![no_implicit_prelude]` and beside
 //! user types named `Format`, `Vec3` or `u32`.
 
+use gbuffer_core::Named;
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
 use crate::layout::{Field, Layout, Storage};
-use crate::FieldType;
-use crate::ScalarKind;
-use crate::{BitField, Encoding};
+use crate::{BitField, Encoding, FieldType, ScalarKind};
 
 /// The path of the `gbuffer` crate when the user names no other: `::gbuffer`.
 pub fn default_crate_path() -> TokenStream {
@@ -519,8 +518,6 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
 /// glam types. What the derive reads back as the same layout and WGSL.
 #[cfg(feature = "tools")]
 pub fn derive_source(layout: &Layout, conversions: crate::layout::Conversions) -> String {
-    use gbuffer_core::Named;
-
     use crate::layout::Conversions;
     let mut options = format!("budget = {}", layout.budget);
     if conversions == Conversions::Fast {

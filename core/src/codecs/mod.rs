@@ -32,8 +32,7 @@ pub mod unorm;
 pub mod unsigned_float;
 pub mod wgsl;
 
-use crate::field_type::FieldType;
-use crate::field_type::ScalarKind;
+use crate::field_type::{FieldType, ScalarKind};
 
 /// The bits of +infinity as f32; a magnitude above it is a NaN (and so, as an unsigned
 /// integer, is every negative float's bit pattern).

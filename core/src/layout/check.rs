@@ -3,12 +3,11 @@
 
 use std::fmt::Write as _;
 
-use crate::field_type::ScalarKind;
+use crate::field_type::{FieldType, ScalarKind};
 use crate::format::Format;
 use crate::naming;
 
 use super::{Layout, Storage};
-use crate::field_type::FieldType;
 
 /// What a diagnostic is about, so each front end can point at it (a span, a file position).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -11,6 +11,7 @@
 
 use std::time::Instant;
 
+use gbuffer_core::Named;
 use glow::HasContext as _;
 
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
@@ -25,7 +26,6 @@ use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage, Ti
 use crate::options::{Frame, Options};
 use crate::recording::{Attachment, Call, Load, Recording};
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
-use gbuffer_core::Named;
 
 const FETCH: &str = "GL_EXT_shader_framebuffer_fetch";
 /// Texture units of the inputs: the bindings the WGSL gives them.

@@ -2,6 +2,7 @@
 //! checks that name what the driver lacks), the two-pass path's two, and the framebuffers and
 //! programs they are made of.
 
+use gbuffer_core::Named;
 use glow::HasContext as _;
 
 use gbuffer_codegen::emit::glsl::Include;
@@ -14,7 +15,6 @@ use crate::gbuffers::PackedLayout;
 use crate::glsl::{self, Dialect};
 use crate::on_tile::{tile_layout, Path, Stage, TileOptions};
 use crate::options::Options;
-use gbuffer_core::Named;
 
 impl GlesRenderer {
     /// The programs and framebuffers of a configuration, after checking what it needs.

@@ -3,11 +3,11 @@
 //! on Mali's and Adreno's compilers.
 
 use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface};
+use gbuffer_core::Named;
 
 use crate::glsl::{self, Dialect};
 use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage};
 use crate::options::Options;
-use gbuffer_core::Named;
 
 /// One program's shaders.
 #[derive(Clone, Debug)]

@@ -17,6 +17,7 @@ use std::time::Instant;
 
 use ash::vk;
 use gbuffer::layout::PackedTarget;
+use gbuffer_core::Named;
 use gbuffer_gpu::vulkan::{
     feedback_barrier, host_read_barrier, ImageTransition, StorageBuffer, Vulkan,
 };
@@ -30,7 +31,6 @@ use crate::on_tile::{tile_layout, Path, TileOptions};
 use crate::options::{Frame, Options};
 use crate::recording::{Attachment, Call, Load, Recording};
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
-use gbuffer_core::Named;
 
 const OUTPUT_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 const DEPTH_FORMAT: vk::Format = vk::Format::D32_SFLOAT;

@@ -3,6 +3,7 @@
 
 use ash::vk;
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
+use gbuffer_core::Named;
 
 use super::objects::Depth;
 use super::{
@@ -16,7 +17,6 @@ use crate::recording::Attachment;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::used_bindings;
 use crate::shaders::Positions;
-use gbuffer_core::Named;
 
 impl VulkanRenderer {
     /// The subpass path: one render pass, one subpass, six pipelines. With `store_gbuffer`

@@ -5,6 +5,7 @@
 
 use std::time::Instant;
 
+use gbuffer_core::Named;
 use gbuffer_gpu::timestamps::Timestamps;
 use gbuffer_gpu::timing::{doubles, in_rounds, warm_up, Protocol};
 use gbuffer_gpu::Gpu;
@@ -14,7 +15,6 @@ use super::{
     Clock, GpuTime, Stage, StageTimes, FRAGMENT_HEIGHT, FRAGMENT_WIDTH, INVOCATIONS, MAX_CHAIN,
     TARGET_RUN,
 };
-use gbuffer_core::Named;
 
 /// A row to time: its WGSL (`row_eval`) and the environment BRDF LUT it samples (a `lut_size`
 /// square of (scale, bias), or 1x1 when empty).

@@ -30,13 +30,13 @@ use std::fmt::Write as _;
 pub use interface::{subpass_input_type, Attachment, Include, Interface};
 pub use translate::{translate, translate_with, with_explicit_precision, GlslNames, Translation};
 
+use gbuffer_core::Named;
+
 use crate::codecs::max_code;
 use crate::emit::wgsl::Conversions;
 use crate::format::Format;
 use crate::layout::{Layout, Member, Word};
-use crate::FieldType;
-use crate::ScalarKind;
-use gbuffer_core::Named;
+use crate::{FieldType, ScalarKind};
 
 /// Which of the three pixel local storage block forms to declare.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -21,12 +21,13 @@ mod bit_fields;
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 
+use gbuffer_core::Named;
+
 use crate::codecs::wgsl::Lanes;
 use crate::codecs::{half, max_code, small_float, unorm, unsigned_float, Encoding};
 use crate::format::{Channel, Format};
 use crate::layout::{Field, Layout, Member, Storage};
 use crate::ScalarKind;
-use gbuffer_core::Named;
 
 pub use crate::layout::Conversions;
 
