@@ -7,7 +7,6 @@
 //! `::core::primitive::f32`) so the code compiles under `#![no_implicit_prelude]` and beside
 //! user types named `Format`, `Vec3` or `u32`.
 
-use gbuffer_core::Named;
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
@@ -519,6 +518,8 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
 #[cfg(feature = "tools")]
 pub fn derive_source(layout: &Layout, conversions: crate::layout::Conversions) -> String {
     use crate::layout::Conversions;
+    use gbuffer_core::Named;
+
     let mut options = format!("budget = {}", layout.budget);
     if conversions == Conversions::Fast {
         options.push_str(", conversions = fast");
