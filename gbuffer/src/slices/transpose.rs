@@ -10,11 +10,7 @@
 #[inline(always)]
 pub fn portable<const R: usize, const C: usize>(matrix: &[[u32; C]; R]) -> [[u32; R]; C] {
     let mut out = [[0; R]; C];
-    for (r, row) in matrix.iter().enumerate() {
-        for (c, &value) in row.iter().enumerate() {
-            out[c][r] = value;
-        }
-    }
+    by_element(matrix, &mut out, 0..R, 0..C);
     out
 }
 
@@ -55,7 +51,8 @@ pub unsafe fn avx2<const R: usize, const C: usize>(matrix: &[[u32; C]; R]) -> [[
     out
 }
 
-/// The rest of [`avx2`]: what no block covers.
+/// Rows `rows` and columns `columns` of the transpose, element by element: the whole of
+/// [`portable`], and what no block of [`avx2`] covers.
 #[inline(always)]
 fn by_element<const R: usize, const C: usize>(
     matrix: &[[u32; C]; R],
@@ -107,6 +104,21 @@ mod blocks {
         unsafe { _mm_storeu_ps(lanes.as_mut_ptr().cast(), value) }
     }
 
+    /// Rows `row..row + 4`, eight `u32` each from `column`.
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    fn load_rows<const R: usize, const C: usize>(
+        matrix: &[[u32; C]; R],
+        row: usize,
+        column: usize,
+    ) -> [__m256; 4] {
+        let mut rows = [_mm256_setzero_ps(); 4];
+        for (r, value) in rows.iter_mut().enumerate() {
+            *value = load8(&matrix[row + r], column);
+        }
+        rows
+    }
+
     /// Within each 128-bit half, the 4x4 transpose of the four registers' halves.
     #[target_feature(enable = "avx2")]
     #[inline]
@@ -132,12 +144,8 @@ mod blocks {
         row: usize,
         column: usize,
     ) {
-        let mut rows = [_mm256_setzero_ps(); 8];
-        for (r, value) in rows.iter_mut().enumerate() {
-            *value = load8(&matrix[row + r], column);
-        }
-        let top = transpose_halves([rows[0], rows[1], rows[2], rows[3]]);
-        let bottom = transpose_halves([rows[4], rows[5], rows[6], rows[7]]);
+        let top = transpose_halves(load_rows(matrix, row, column));
+        let bottom = transpose_halves(load_rows(matrix, row + 4, column));
         // top[j] holds column j's rows 0-3 in its low half and column j + 4's in its high.
         for j in 0..4 {
             let low = _mm256_permute2f128_ps::<0x20>(top[j], bottom[j]);
@@ -178,11 +186,7 @@ mod blocks {
         row: usize,
         column: usize,
     ) {
-        let mut rows = [_mm256_setzero_ps(); 4];
-        for (r, value) in rows.iter_mut().enumerate() {
-            *value = load8(&matrix[row + r], column);
-        }
-        let halves = transpose_halves(rows);
+        let halves = transpose_halves(load_rows(matrix, row, column));
         // halves[j] holds column j's four rows in its low half and column j + 4's in its high.
         for (j, value) in halves.into_iter().enumerate() {
             store4(&mut out[column + j], row, _mm256_castps256_ps128(value));
