@@ -44,17 +44,17 @@ fn scalar_zero(scalar: ScalarKind) -> TokenStream {
     }
 }
 
-/// `self.<field>`'s components, each as an expression of the field's scalar type; zeros past
-/// its components, up to four.
-fn components(field: &Field) -> Vec<TokenStream> {
+/// `<texel>.<field>`'s components (`texel` is `self`, say), each as an expression of the
+/// field's scalar type; zeros past its components, up to four.
+fn components(texel: &TokenStream, field: &Field) -> Vec<TokenStream> {
     let field_name = Ident::new(&field.name, Span::call_site());
     let zero = scalar_zero(field.ty.scalar);
     (0..4)
         .map(|index| match (field.ty.components, index) {
-            (1, 0) => quote!(self.#field_name),
+            (1, 0) => quote!(#texel.#field_name),
             (components, index) if index < components => {
                 let axis = format_ident!("{}", &"xyzw"[index..=index]);
-                quote!(self.#field_name.#axis)
+                quote!(#texel.#field_name.#axis)
             }
             _ => zero.clone(),
         })
@@ -113,7 +113,7 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
     let encoded_words = layout.word_contents().into_iter().map(|word| {
         let codes = word.members.iter().map(|member| {
             let field = &layout.fields[member.field];
-            let values = components(field);
+            let values = components(&quote!(self), field);
             match field.storage {
                 Storage::Word(format) => {
                     let format = variant(format);
@@ -281,16 +281,6 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
         .collect();
     let columns =
         Literal::usize_unsuffixed(layout.fields.iter().map(|field| field.ty.components).sum());
-    // Texel `texel`'s component `component` of `field`.
-    let component_of = |texel: TokenStream, field: &Field, component: usize| {
-        let field_ident = Ident::new(&field.name, Span::call_site());
-        if field.ty.components == 1 {
-            quote!(#texel.#field_ident)
-        } else {
-            let axis = format_ident!("{}", &"xyzw"[component..=component]);
-            quote!(#texel.#field_ident.#axis)
-        }
-    };
     // Component `component` of field `number` over the lanes, as the field's scalar
     // (`as_bits`: as a codec's lane, u32 bits); zeros past its components.
     let lane = |number: usize, component: usize, as_bits: bool| {
@@ -322,13 +312,10 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
         let texel = Literal::usize_unsuffixed(texel);
         let texel = quote!(#texels[#texel]);
         let bits = layout.fields.iter().flat_map(|field| {
-            let texel = &texel;
-            (0..field.ty.components).map(move |component| {
-                lane_bits(
-                    component_of(texel.clone(), field, component),
-                    field.ty.scalar,
-                )
-            })
+            components(&texel, field)
+                .into_iter()
+                .take(field.ty.components)
+                .map(|value| lane_bits(value, field.ty.scalar))
         });
         quote!([#(#bits),*])
     });
@@ -396,7 +383,7 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
 
     let words_parameter = Ident::new("__gbuffer_words", Span::call_site());
     // Per field, its components over the lanes, `__gbuffer_field<n>[c][lane]`: a format's
-    // channel values, or a bit field's codec lanes as u32 bits.
+    // channel values (its components only), or a bit field's codec lanes as u32 bits (four).
     let locations = layout.field_locations();
     let decoded = layout.fields.iter().zip(&locations).enumerate().map(|(number, (field, &(word, member)))| {
         let field_ident = field_name(number);
@@ -405,16 +392,15 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
         match field.storage {
             Storage::Word(format) => {
                 let scalar = scalar_path(field.ty.scalar);
-                let zero = scalar_zero(field.ty.scalar);
                 let format = variant(format);
+                let components = Literal::usize_unsuffixed(field.ty.components);
                 let channels = (0..field.ty.components).map(|channel| {
                     quote! {{
                         const __GBUFFER_CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
                         __GBUFFER_CHANNEL.decode_lanes::<#scalar, #lanes_n>(#word_lanes)
                     }}
                 });
-                let missing = (field.ty.components..4).map(|_| quote!([#zero; #lanes_n]));
-                quote!(let #field_ident: [[#scalar; #lanes_n]; 4] = [#(#channels,)* #(#missing),*];)
+                quote!(let #field_ident: [[#scalar; #lanes_n]; #components] = [#(#channels),*];)
             }
             Storage::Bits(bit_field) => {
                 let bit_field = bit_field_tokens(bit_field, &packing);
