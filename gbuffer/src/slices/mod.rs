@@ -7,7 +7,7 @@
 //! instructions); the words are transposed back to one array per texel. The transposes are
 //! the set of [`Isa`] the loop runs on: plain loops anywhere, or AVX2's shuffles, which move
 //! eight lanes in a handful of instructions where the compiler, left alone, inserts and
-//! extracts them one at a time (most of the loop's time before, measured with `perf`).
+//! extracts them one at a time.
 
 mod transpose;
 
