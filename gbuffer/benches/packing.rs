@@ -11,6 +11,7 @@
 
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use std::time::Duration;
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
@@ -141,6 +142,11 @@ macro_rules! one_format {
             d: $type,
         }
 
+        impl $name {
+            /// Its row in the table.
+            const LABEL: &str = concat!("4 words of `", stringify!($format), "`");
+        }
+
         impl Sample for $name {
             fn sample(index: usize) -> $name {
                 let at = |word: usize| <$type>::sample(index * 4 + word);
@@ -176,8 +182,19 @@ fn group_name<L: GBufferLayout>() -> String {
     format!("{} ({} words)", L::layout().name, L::WORDS)
 }
 
-/// Pack, unpack and copy `TEXELS` texels of `make(i)`.
-fn layout_group<L: GBufferLayout + Copy>(criterion: &mut Criterion, make: impl Fn(usize) -> L) {
+/// The table's rows, in the order the layouts were measured: each layout's criterion group and
+/// its name in the table.
+static ROWS: Mutex<Vec<(String, &'static str)>> = Mutex::new(Vec::new());
+
+/// Pack, unpack and copy `TEXELS` texels of `make(i)`, the row `label` of the table.
+fn layout_group<L: GBufferLayout + Copy>(
+    criterion: &mut Criterion,
+    label: &'static str,
+    make: impl Fn(usize) -> L,
+) {
+    ROWS.lock()
+        .expect("one thread")
+        .push((group_name::<L>(), label));
     let texels: Vec<L> = (0..TEXELS).map(make).collect();
     let mut packed = vec![texels[0].pack(); TEXELS];
     let mut unpacked = texels.clone();
@@ -197,13 +214,15 @@ fn layout_group<L: GBufferLayout + Copy>(criterion: &mut Criterion, make: impl F
 }
 
 fn slices(criterion: &mut Criterion) {
-    layout_group(criterion, |i| MobileMetallic {
-        light_accumulation: Vec3::sample(i),
-        depth: value(i, 4),
-        normals_roughness: Vec4::sample(i),
-        albedo_metallic: Vec4::sample(i + 1),
+    layout_group(criterion, "MobileMetallic (Listing 2.2)", |i| {
+        MobileMetallic {
+            light_accumulation: Vec3::sample(i),
+            depth: value(i, 4),
+            normals_roughness: Vec4::sample(i),
+            albedo_metallic: Vec4::sample(i + 1),
+        }
     });
-    layout_group(criterion, |i| EightFormats {
+    layout_group(criterion, "eight formats, 256 bits", |i| EightFormats {
         small_floats: Vec3::sample(i) * 100.0,
         halves: Vec2::sample(i) * 300.0,
         unorm_16: Vec2::sample(i + 1),
@@ -213,14 +232,14 @@ fn slices(criterion: &mut Criterion) {
         single: value(i, 3) - 0.5,
         unorm_10_10_10_2: Vec4::sample(i + 3),
     });
-    layout_group(criterion, |i| SpecularWorkflow {
+    layout_group(criterion, "SpecularWorkflow", |i| SpecularWorkflow {
         light_accumulation: Vec3::sample(i),
         depth: value(i, 4),
         normals_roughness: Vec4::sample(i),
         base_colour: Vec3::sample(i + 1),
         specular_colour: Vec3::sample(i + 2),
     });
-    layout_group(criterion, |i| FutureMetallic {
+    layout_group(criterion, "FutureMetallic", |i| FutureMetallic {
         position_x: value(i, 0) * 100.0,
         position_y: value(i, 1) * 100.0,
         position_z: value(i, 2) * 100.0,
@@ -230,24 +249,24 @@ fn slices(criterion: &mut Criterion) {
         roughness_metallic: Vec2::new(value(i, 9), value(i, 10)),
         albedo_or_reflectance: Vec3::sample(i + 3),
     });
-    layout_group(criterion, |i| ArmTileBlock {
+    layout_group(criterion, "ArmTileBlock", |i| ArmTileBlock {
         light: Vec3::sample(i) * 4.0,
         albedo: Vec3::sample(i + 1),
         normal: Vec3::sample(i + 2),
         metallic_roughness: Vec2::new(value(i, 3), value(i, 4)),
     });
-    layout_group(criterion, R11fG11fB10f::sample);
-    layout_group(criterion, R32f::sample);
-    layout_group(criterion, Rg16f::sample);
-    layout_group(criterion, Rgb10A2::sample);
-    layout_group(criterion, Rgba8::sample);
-    layout_group(criterion, Rg16::sample);
-    layout_group(criterion, Rgba8i::sample);
-    layout_group(criterion, Rg16i::sample);
-    layout_group(criterion, Rgb10A2ui::sample);
-    layout_group(criterion, Rgba8ui::sample);
-    layout_group(criterion, Rg16ui::sample);
-    layout_group(criterion, R32ui::sample);
+    layout_group(criterion, R11fG11fB10f::LABEL, R11fG11fB10f::sample);
+    layout_group(criterion, R32f::LABEL, R32f::sample);
+    layout_group(criterion, Rg16f::LABEL, Rg16f::sample);
+    layout_group(criterion, Rgb10A2::LABEL, Rgb10A2::sample);
+    layout_group(criterion, Rgba8::LABEL, Rgba8::sample);
+    layout_group(criterion, Rg16::LABEL, Rg16::sample);
+    layout_group(criterion, Rgba8i::LABEL, Rgba8i::sample);
+    layout_group(criterion, Rg16i::LABEL, Rg16i::sample);
+    layout_group(criterion, Rgb10A2ui::LABEL, Rgb10A2ui::sample);
+    layout_group(criterion, Rgba8ui::LABEL, Rgba8ui::sample);
+    layout_group(criterion, Rg16ui::LABEL, Rg16ui::sample);
+    layout_group(criterion, R32ui::LABEL, R32ui::sample);
 }
 
 criterion_group! {
@@ -258,42 +277,6 @@ criterion_group! {
         .measurement_time(Duration::from_secs(2))
         .sample_size(20);
     targets = slices
-}
-
-/// The table's rows: each layout's group and the name it has there.
-fn rows() -> Vec<(String, String)> {
-    let mut rows = vec![
-        (
-            group_name::<MobileMetallic>(),
-            "MobileMetallic (Listing 2.2)".to_owned(),
-        ),
-        (
-            group_name::<EightFormats>(),
-            "eight formats, 256 bits".to_owned(),
-        ),
-        (
-            group_name::<SpecularWorkflow>(),
-            "SpecularWorkflow".to_owned(),
-        ),
-        (group_name::<FutureMetallic>(), "FutureMetallic".to_owned()),
-        (group_name::<ArmTileBlock>(), "ArmTileBlock".to_owned()),
-    ];
-    let format = |group: String, format: &str| (group, format!("4 words of `{format}`"));
-    rows.extend([
-        format(group_name::<R11fG11fB10f>(), "r11f_g11f_b10f"),
-        format(group_name::<R32f>(), "r32f"),
-        format(group_name::<Rg16f>(), "rg16f"),
-        format(group_name::<Rgb10A2>(), "rgb10_a2"),
-        format(group_name::<Rgba8>(), "rgba8"),
-        format(group_name::<Rg16>(), "rg16"),
-        format(group_name::<Rgba8i>(), "rgba8i"),
-        format(group_name::<Rg16i>(), "rg16i"),
-        format(group_name::<Rgb10A2ui>(), "rgb10_a2ui"),
-        format(group_name::<Rgba8ui>(), "rgba8ui"),
-        format(group_name::<Rg16ui>(), "rg16ui"),
-        format(group_name::<R32ui>(), "r32ui"),
-    ]);
-    rows
 }
 
 /// Criterion's mean time of one iteration, in nanoseconds, from the estimates it saved.
@@ -311,11 +294,11 @@ fn table(criterion_folder: &Path) -> String {
         "| layout | pack_slice | unpack_slice | memcpy | pack / memcpy | unpack / memcpy |\n\
          |---|---|---|---|---|---|\n",
     );
-    for (group, name) in rows() {
+    for (group, name) in ROWS.lock().expect("one thread").iter() {
         let rates: Option<Vec<f64>> = FUNCTIONS
             .iter()
             .map(|function| {
-                mean_nanoseconds(criterion_folder, &group, function)
+                mean_nanoseconds(criterion_folder, group, function)
                     .map(|ns| TEXELS as f64 / ns * 1e3)
             })
             .collect();
