@@ -227,7 +227,9 @@ pub fn deferred_functions_wgsl(
     layout_wgsl: &str,
     mapping: &[(String, Quantity)],
 ) -> String {
-    let (name, snake, words) = (&layout.name, layout.snake_name(), layout.words());
+    let symbols = layout.symbols();
+    let (name, words) = (symbols.texel(), layout.words());
+    let (pack, unpack) = (symbols.pack(), symbols.unpack());
     let (mut prepare, mut stores, mut reads) = (String::new(), String::new(), String::new());
     for (field, quantity) in mapping {
         prepare.push_str(prepared(*quantity));
@@ -283,7 +285,7 @@ fn deferred_gbuffer_from_pbr_input(in: PbrInput) -> vec4<u32> {{
     emissive += in.lightmap_light * diffuse_color * view.exposure;
 {prepare}
     var texel: {name};
-{stores}    let words = pack_{snake}(texel);
+{stores}    let words = {pack}(texel);
     return vec4<u32>({packed});
 }}
 
@@ -291,7 +293,7 @@ fn deferred_gbuffer_from_pbr_input(in: PbrInput) -> vec4<u32> {{
 // default.
 fn pbr_input_from_deferred_gbuffer(frag_coord: vec4<f32>, gbuffer: vec4<u32>) -> PbrInput {{
     var pbr = pbr_input_new();
-    let texel = unpack_{snake}(array<u32, {words}>({channels}));
+    let texel = {unpack}(array<u32, {words}>({channels}));
 
     let deferred_flags = deferred_types::mesh_material_flags_from_deferred_flags({flags});
     pbr.flags = deferred_flags.x;

@@ -76,7 +76,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
             continue;
         }
         let source = format!("{} (scene {})", path.display(), solution.layout.name);
-        let snake = solution.layout.snake_name();
+        let symbols = solution.layout.symbols();
         let mut generated = match generate(&solution.layout, Conversions::Exact, &Output::ALL) {
             Ok(generated) => generated,
             Err(error) => {
@@ -92,7 +92,7 @@ pub fn run(arguments: Arguments) -> ExitCode {
             ("derive.rs", solution.derive_source()),
         ] {
             generated.push(GeneratedFile {
-                name: format!("{snake}.{suffix}"),
+                name: symbols.file(suffix),
                 contents,
             });
         }

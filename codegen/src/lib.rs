@@ -34,6 +34,6 @@ pub use builder::{BuildError, Builder};
 pub use gbuffer_core::{bit_field, codecs, convert, format, layout, naming, report};
 pub use gbuffer_core::{
     BitField, Channel, Codec, Conversions, Diagnostic, Encoding, Field, FieldType, Format, Layout,
-    LightStorage, Member, Named, Report, RgbmRange, ScalarKind, Storage, Subject, Word,
+    LightStorage, Member, Named, Report, RgbmRange, ScalarKind, Storage, Subject, Symbols, Word,
     DEFAULT_BUDGET,
 };

@@ -71,7 +71,7 @@ pub fn generate(
     conversions: Conversions,
     outputs: &[Output],
 ) -> Result<Vec<GeneratedFile>, TranslationError> {
-    let snake = layout.snake_name();
+    let symbols = layout.symbols();
     let mut files = Vec::new();
     let mut add = |name: String, contents: String| {
         if !files.iter().any(|file: &GeneratedFile| file.name == name) {
@@ -84,7 +84,7 @@ pub fn generate(
     {
         match output {
             Output::Wgsl => add(
-                format!("{snake}.wgsl"),
+                symbols.wgsl_file(),
                 wgsl::emit_with(layout, conversions) + "\n",
             ),
             Output::GlslPixelLocalStorage | Output::GlslFramebufferFetch | Output::GlslVulkan => {
@@ -93,7 +93,7 @@ pub fn generate(
                     .filter(|include| output.includes(*include))
                 {
                     add(
-                        format!("{snake}.{}.glsl", include.file_suffix()),
+                        symbols.file(&format!("{}.glsl", include.file_suffix())),
                         glsl::include_with(layout, conversions, include, 0)?.0,
                     );
                 }
@@ -101,26 +101,26 @@ pub fn generate(
             Output::WebGlPixelLocalStorage => {
                 let include = Include::WebGlPixelLocalStorage;
                 let (text, interface) = glsl::include_with(layout, conversions, include, 0)?;
-                add(format!("{snake}.{}.glsl", include.file_suffix()), text);
                 add(
-                    format!("{snake}.{}.js", include.file_suffix()),
+                    symbols.file(&format!("{}.glsl", include.file_suffix())),
+                    text,
+                );
+                add(
+                    symbols.file(&format!("{}.js", include.file_suffix())),
                     glsl::webgl::host_module(layout, &interface),
                 );
             }
             Output::Rust => {
                 add(
-                    format!("{snake}.wgsl"),
+                    symbols.wgsl_file(),
                     wgsl::emit_with(layout, conversions) + "\n",
                 );
                 add(
-                    format!("{snake}.rs"),
-                    rust::emit_source(layout, &format!("{snake}.wgsl")),
+                    symbols.file("rs"),
+                    rust::emit_source(layout, &symbols.wgsl_file()),
                 );
             }
-            Output::Report => add(
-                format!("{snake}.report.txt"),
-                Report::new(layout).to_string(),
-            ),
+            Output::Report => add(symbols.file("report.txt"), Report::new(layout).to_string()),
         }
     }
     Ok(files)

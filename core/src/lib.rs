@@ -32,6 +32,7 @@ mod named;
 pub mod naming;
 pub mod report;
 pub mod shading_library;
+mod symbols;
 
 pub use bit_field::BitField;
 pub use codecs::rgbm::RgbmRange;
@@ -45,3 +46,4 @@ pub use layout::{
 };
 pub use named::Named;
 pub use report::Report;
+pub use symbols::Symbols;

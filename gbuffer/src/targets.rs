@@ -372,27 +372,31 @@ pub fn bind_group_entries(
 
 /// [`GBufferTargets::lighting_wgsl`] for `layout`.
 pub fn lighting_wgsl(layout: &Layout, group: u32, first_binding: u32) -> String {
-    let prefix = layout.snake_name();
-    let name = &layout.name;
+    let symbols = layout.symbols();
+    let name = symbols.texel();
     let mut out =
         format!("// The G-buffer targets of layout `{name}`, read by the lighting pass.\n");
     let mut loads = Vec::new();
     for index in 0..packed_target_formats(layout.words()).len() {
         let binding = first_binding + index as u32;
+        let target = symbols.target(index);
         out.push_str(&format!(
-            "@group({group}) @binding({binding}) var {prefix}_target{index}: texture_2d<u32>;\n"
+            "@group({group}) @binding({binding}) var {target}: texture_2d<u32>;\n"
         ));
-        loads.push(format!("textureLoad({prefix}_target{index}, pixel, 0)"));
+        loads.push(format!("textureLoad({target}, pixel, 0)"));
     }
+    let (targets, load_targets) = (symbols.targets(), symbols.load_targets());
     out.push_str(&format!(
         "\n// The words at `pixel` as stored (channels a narrow target lacks read as 0 or 1 and lie\n\
          // past the layout's words).\n\
-         fn load_{prefix}_targets(pixel: vec2<u32>) -> {name}Targets {{\n    \
-         return {name}Targets({});\n}}\n\n\
+         fn {load_targets}(pixel: vec2<u32>) -> {targets} {{\n    \
+         return {targets}({});\n}}\n\n\
          // The texel at `pixel`, unpacked.\n\
-         fn read_{prefix}_targets(pixel: vec2<u32>) -> {name} {{\n    \
-         return unpack_{prefix}_targets(load_{prefix}_targets(pixel));\n}}\n",
-        loads.join(", ")
+         fn {}(pixel: vec2<u32>) -> {name} {{\n    \
+         return {}({load_targets}(pixel));\n}}\n",
+        loads.join(", "),
+        symbols.read_targets(),
+        symbols.unpack_targets(),
     ));
     out
 }

@@ -106,7 +106,7 @@ fn field_from_scalars(ty: &gbuffer_core::FieldType, first: usize) -> String {
 /// scalars' bits too. Bindings: 0 inputs, 1 packed words, 2 unpacked scalars, 3 loaded
 /// scalars, 4 texel count (in `x`); workgroups of 64.
 pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     let scalars = scalars_per_texel(layout);
     let words = layout.words();
     let mut out = String::from(wgsl);
@@ -122,14 +122,14 @@ pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
     out.push_str("    if index >= harness_count.x {\n        return;\n    }\n");
     let _ = writeln!(out, "    let base = index * {scalars}u;");
     out.push_str(&texel_from_inputs(layout));
-    let _ = writeln!(out, "    let words = pack_{prefix}(texel);");
+    let _ = writeln!(out, "    let words = {}(texel);", symbols.pack());
     for word in 0..words {
         let _ = writeln!(
             out,
             "    harness_packed[index * {words}u + {word}u] = words[{word}];"
         );
     }
-    let _ = writeln!(out, "    let back = unpack_{prefix}(words);");
+    let _ = writeln!(out, "    let back = {}(words);", symbols.unpack());
     out.push_str(&scalars_to_output(
         layout,
         "back",
@@ -140,8 +140,9 @@ pub fn compute_harness(layout: &Layout, wgsl: &str) -> String {
     for field in &layout.fields {
         let _ = writeln!(
             out,
-            "    loaded.{0} = load_{prefix}_{0}(words);",
-            field.name
+            "    loaded.{} = {}(words);",
+            field.name,
+            symbols.load_field(&field.name)
         );
     }
     out.push_str(&scalars_to_output(
@@ -187,13 +188,14 @@ pub fn run_in_batches(
 /// target helpers) on values made from the fragment position: what the backend translation
 /// tests compile. GLSL ES 3.00 (WebGL2) has fragment shaders but no compute ones.
 pub fn fragment_harness(layout: &Layout, wgsl: &str) -> String {
-    let prefix = layout.snake_name();
-    let name = &layout.name;
+    let symbols = layout.symbols();
+    let name = symbols.texel();
     let mut out = String::from(wgsl);
     out.push_str("\n\n// ---- test harness ----\n@fragment\n");
     let _ = writeln!(
         out,
-        "fn harness_fragment(@builtin(position) position: vec4<f32>) -> {name}Targets {{"
+        "fn harness_fragment(@builtin(position) position: vec4<f32>) -> {} {{",
+        symbols.targets()
     );
     let _ = writeln!(out, "    var texel: {name};");
     for field in &layout.fields {
@@ -209,16 +211,17 @@ pub fn fragment_harness(layout: &Layout, wgsl: &str) -> String {
             field.ty.wgsl()
         );
     }
-    let _ = writeln!(out, "    let words = pack_{prefix}(texel);");
-    let _ = writeln!(out, "    var back = unpack_{prefix}(words);");
+    let _ = writeln!(out, "    let words = {}(texel);", symbols.pack());
+    let _ = writeln!(out, "    var back = {}(words);", symbols.unpack());
     for field in &layout.fields {
-        let _ = writeln!(out, "    back.{0} = load_{prefix}_{0}(words);", field.name);
+        let load = symbols.load_field(&field.name);
+        let _ = writeln!(out, "    back.{} = {load}(words);", field.name);
     }
+    let (pack_targets, unpack_targets) = (symbols.pack_targets(), symbols.unpack_targets());
     let _ = writeln!(
         out,
-        "    let again = unpack_{prefix}_targets(pack_{prefix}_targets(back));"
+        "    let again = {unpack_targets}({pack_targets}(back));\n    return {pack_targets}(again);\n}}"
     );
-    let _ = writeln!(out, "    return pack_{prefix}_targets(again);\n}}");
     out
 }
 

@@ -126,9 +126,9 @@ fn check_vulkan_includes(layout: &Layout, conversions: Conversions) -> Result<()
             let user = format!(
                 "layout(location = 0) out highp uvec4 user_output;
 \
-                 void main() {{\n    {} texel = load_{}();\n    user_output = uvec4({});\n}}\n",
+                 void main() {{\n    {} texel = {}();\n    user_output = uvec4({});\n}}\n",
                 names.layout,
-                layout.snake_name(),
+                layout.symbols().load(),
                 scalars_of_texel(layout, &names, "texel")[0]
             );
             let shader = format!("{preamble}{text}\n{user}");

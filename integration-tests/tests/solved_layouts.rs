@@ -21,26 +21,27 @@ mod desktop {
     include!("../solved/desktop_specular_scene.derive.rs");
 }
 
-fn check<L: GBufferLayout>(preset: &str, snake: &str) {
+fn check<L: GBufferLayout>(preset: &str) {
+    let symbols = L::layout().symbols();
     let solution =
         gbuffer_solver::file::read_and_solve(&workspace().join("solver/scenes").join(preset))
             .unwrap();
     let folder = workspace().join("integration-tests/solved");
     let read = |name: String| std::fs::read_to_string(folder.join(name)).unwrap();
     assert_eq!(
-        read(format!("{snake}.derive.rs")),
+        read(symbols.file("derive.rs")),
         solution.derive_source(),
         "the checked-in derive source is stale: regenerate it (see the module's doc)"
     );
     assert_eq!(
-        read(format!("{snake}.layout.toml")),
+        read(symbols.file("layout.toml")),
         solution.layout_file(),
         "the checked-in layout file is stale: regenerate it (see the module's doc)"
     );
     // The derive accepts the source and describes the solved layout.
     assert_eq!(L::layout(), solution.layout);
     // The layout file gives the same layout and, through codegen, the derive's WGSL.
-    let file = read_layout_file(&folder.join(format!("{snake}.layout.toml"))).unwrap();
+    let file = read_layout_file(&folder.join(symbols.file("layout.toml"))).unwrap();
     assert_eq!(file.layout, solution.layout);
     let generated = generate(&file.layout, Conversions::Exact, &[Output::Wgsl]).unwrap();
     assert_eq!(generated[0].contents, format!("{}\n", L::WGSL));
@@ -48,6 +49,6 @@ fn check<L: GBufferLayout>(preset: &str, snake: &str) {
 
 #[test]
 fn solved_layouts_compile_as_derives_and_read_back_as_layout_files() {
-    check::<mobile::MobileMetallicScene>("mobile-metallic.toml", "mobile_metallic_scene");
-    check::<desktop::DesktopSpecularScene>("desktop-256.toml", "desktop_specular_scene");
+    check::<mobile::MobileMetallicScene>("mobile-metallic.toml");
+    check::<desktop::DesktopSpecularScene>("desktop-256.toml");
 }

@@ -112,7 +112,7 @@ fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> UserShader
     );
     let writer = gbuffer_writer(layout, &names, &interface);
     let reads = attachment_reader(&interface);
-    let prefix = layout.snake_name();
+    let load = layout.symbols().load();
     let scalars = output.scalars;
     let texel = texel_from_scalars(layout, &names, |index| {
         format!("harness_inputs[base + {index}]")
@@ -121,7 +121,7 @@ fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> UserShader
         "{common}{writer}\nvoid main() {{\n    highp int base = harness_texel() * {scalars};\n    harness_store({texel});\n}}\n"
     );
     let mut reload = format!(
-        "{common}{writer}{reads}\nvoid main() {{\n    {} texel = load_{prefix}();\n    \
+        "{common}{writer}{reads}\nvoid main() {{\n    {} texel = {load}();\n    \
          highp int base = harness_texel() * {stride};\n    harness_write_attachments(base);\n",
         names.layout
     );

@@ -68,7 +68,8 @@ fn user_shaders(
     preamble: &str,
 ) -> (String, String) {
     let names = glsl::translate_with(layout, conversions).unwrap().names;
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
+    let (load, store_texel) = (symbols.load(), symbols.store());
     let scalars = scalars_per_texel(layout);
     let columns = columns(layout);
     let texel = texel_from_scalars(layout, &names, |index| format!("harness_scalar({index})"));
@@ -77,7 +78,7 @@ fn user_shaders(
          layout(location = 0) out highp uvec4 harness_out;\n\n\
          highp uint harness_scalar(highp int index) {{\n    highp ivec2 pixel = ivec2(gl_FragCoord.xy);\n    \
          return texelFetch(harness_inputs, ivec2((pixel.x / {columns}) * {scalars} + index, pixel.y), 0).x;\n}}\n\n\
-         void main() {{\n    store_{prefix}({texel});\n    harness_out = uvec4(0u);\n}}\n"
+         void main() {{\n    {store_texel}({texel});\n    harness_out = uvec4(0u);\n}}\n"
     );
     let texel_type = &names.layout;
     let per_field: Vec<String> = glsl::webgl::field_loads(layout, &names)
@@ -97,7 +98,7 @@ fn user_shaders(
     outputs.resize(length, "0u".to_string());
     let reload = format!(
         "{preamble}{include}\n// The user's code.\nlayout(location = 0) out highp uvec4 harness_out;\n\n\
-         void main() {{\n    {texel_type} loaded = {texel_type}({});\n    {texel_type} whole = load_{prefix}();\n    \
+         void main() {{\n    {texel_type} loaded = {texel_type}({});\n    {texel_type} whole = {load}();\n    \
          highp uint scalars[{length}] = uint[{length}]({});\n    \
          highp int column = (int(gl_FragCoord.x) % {columns}) * 4;\n    \
          harness_out = uvec4(scalars[column], scalars[column + 1], scalars[column + 2], scalars[column + 3]);\n}}\n",
@@ -226,9 +227,9 @@ fn run(chromium: &Chromium, backend: Backend, cases: &[Case]) -> Vec<String> {
         let fields: Vec<u32> = fields.concat();
         if let Some(texel) = disagreements.iter().position(|&count| count != 0) {
             failures.push(format!(
-                "{what}: texel {texel}: {} per-field loads differ from load_{}()",
+                "{what}: texel {texel}: {} per-field loads differ from {}()",
                 disagreements[texel],
-                layout.snake_name()
+                layout.symbols().load()
             ));
         }
         let native = case

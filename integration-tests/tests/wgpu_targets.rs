@@ -114,7 +114,7 @@ const HEIGHT: u32 = 64;
 /// The G-buffer pass: a fullscreen triangle whose fragments pack the texel of their pixel.
 fn gbuffer_pass_wgsl<T: GBufferTargets>() -> String {
     let layout = T::layout();
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     let scalars = scalars_per_texel(&layout);
     format!(
         "{wgsl}\n\
@@ -122,11 +122,12 @@ fn gbuffer_pass_wgsl<T: GBufferTargets>() -> String {
          @vertex\nfn harness_vertex(@builtin(vertex_index) vertex: u32) -> @builtin(position) vec4<f32> {{\n    \
          let corner = vec2<f32>(f32((vertex << 1u) & 2u), f32(vertex & 2u));\n    \
          return vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);\n}}\n\n\
-         @fragment\nfn harness_fragment(@builtin(position) position: vec4<f32>) -> {name}Targets {{\n    \
+         @fragment\nfn harness_fragment(@builtin(position) position: vec4<f32>) -> {targets} {{\n    \
          let base = (u32(position.y) * {WIDTH}u + u32(position.x)) * {scalars}u;\n\
-         {texel}    return pack_{prefix}_targets(texel);\n}}\n",
+         {texel}    return {pack_targets}(texel);\n}}\n",
         wgsl = T::WGSL,
-        name = layout.name,
+        targets = symbols.targets(),
+        pack_targets = symbols.pack_targets(),
         texel = texel_from_inputs(&layout),
     )
 }
@@ -135,15 +136,15 @@ fn gbuffer_pass_wgsl<T: GBufferTargets>() -> String {
 /// unpacks, into a storage buffer after the targets' bindings.
 fn reading_pass_wgsl<T: GBufferTargets>() -> String {
     let layout = T::layout();
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     let words = layout.words();
     let stride = words + scalars_per_texel(&layout);
     let output_binding = T::TARGET_FORMATS.len();
     let mut raw = String::new();
     for word in 0..words {
         raw.push_str(&format!(
-            "    harness_output[base + {word}u] = textureLoad({prefix}_target{}, id.xy, 0)[{}];\n",
-            word / 4,
+            "    harness_output[base + {word}u] = textureLoad({}, id.xy, 0)[{}];\n",
+            symbols.target(word / 4),
             word % 4
         ));
     }
@@ -152,8 +153,9 @@ fn reading_pass_wgsl<T: GBufferTargets>() -> String {
          @group(0) @binding({output_binding}) var<storage, read_write> harness_output: array<u32>;\n\n\
          @compute @workgroup_size(8, 8)\nfn harness_read(@builtin(global_invocation_id) id: vec3<u32>) {{\n    \
          let base = (id.y * {WIDTH}u + id.x) * {stride}u;\n{raw}    \
-         let texel = read_{prefix}_targets(id.xy);\n{decoded}}}\n",
+         let texel = {read_targets}(id.xy);\n{decoded}}}\n",
         wgsl = T::WGSL,
+        read_targets = symbols.read_targets(),
         bindings = T::lighting_wgsl(0, 0),
         decoded = scalars_to_output(&layout, "texel", "harness_output", &format!("base + {words}u")),
     )

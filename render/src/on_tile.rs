@@ -213,22 +213,23 @@ impl Stage {
         writes
     }
 
-    /// The GLSL `main` of its fragment stage, over the layout's include (`load_<snake>()`),
+    /// The GLSL `main` of its fragment stage, over the layout's include (`load`, its
+    /// [`gbuffer::layout::Symbols::load`]),
     /// the translated stage functions and what the backend declares: `frame_colour` (the
     /// output), `volume_index` (the volume drawn), and `store`, statements writing `texel`.
     /// A decal's fragments that it does not paint are discarded.
-    pub fn fragment_main(self, texel: &str, snake: &str, store: &str) -> String {
-        self.main(texel, snake, store, Unreached::Discard)
+    pub fn fragment_main(self, texel: &str, load: &str, store: &str) -> String {
+        self.main(texel, load, store, Unreached::Discard)
     }
 
     /// [`Stage::fragment_main`] for pixel local storage, which forbids `discard`: an unreached
     /// fragment stores nothing, and the G-buffer's varyings carry no locations (GLSL ES 3.00
     /// matches them by name).
-    pub fn pixel_local_storage_main(self, texel: &str, snake: &str, store: &str) -> String {
-        self.main(texel, snake, store, Unreached::StoreNothing)
+    pub fn pixel_local_storage_main(self, texel: &str, load: &str, store: &str) -> String {
+        self.main(texel, load, store, Unreached::StoreNothing)
     }
 
-    fn main(self, texel: &str, snake: &str, store: &str, unreached: Unreached) -> String {
+    fn main(self, texel: &str, load: &str, store: &str, unreached: Unreached) -> String {
         // A volume's fragment: when it is not reached (discarded) or when it is (the texel
         // changed and stored), and the statements that change the texel.
         let reached = |(not_reached, reached): (&str, &str), change: &str| match unreached {
@@ -248,16 +249,16 @@ impl Stage {
                 "    {texel} texel = geometry_texel(_vs2fs_location2, _vs2fs_location0, _vs2fs_location1);\n{store}"
             ),
             Stage::Decal => format!(
-                "    {texel} texel = load_{snake}();\n    uint decal = volume_index - POINT_LIGHT_COUNT;\n    float weight = decal_weight_at(texel, gl_FragCoord.xy, decal);\n{}",
+                "    {texel} texel = {load}();\n    uint decal = volume_index - POINT_LIGHT_COUNT;\n    float weight = decal_weight_at(texel, gl_FragCoord.xy, decal);\n{}",
                 reached(
                     ("weight <= 0.0", "weight > 0.0"),
                     "    texel = paint_texel(texel, decal, weight);\n"
                 )
             ),
             Stage::Lighting => format!(
-                "    {texel} texel = lit_texel(load_{snake}(), gl_FragCoord.xy);\n{store}"
+                "    {texel} texel = lit_texel({load}(), gl_FragCoord.xy);\n{store}"
             ),
-            Stage::Resolve => format!("    frame_colour = resolve_colour(load_{snake}());\n"),
+            Stage::Resolve => format!("    frame_colour = resolve_colour({load}());\n"),
             Stage::Sky => "    frame_colour = sky_colour(gl_FragCoord.xy);\n".to_string(),
         };
         let inputs = match (self, unreached) {

@@ -180,10 +180,10 @@ pub fn used_bindings(wgsl: &str, entry_point: &str) -> Vec<u32> {
 /// The G-buffer pass's last statement for a packed layout and the type it returns:
 /// `<Name>Targets`. Sky pixels keep the clear value, all ones in every word.
 fn write_packed_targets(layout: &Layout) -> (String, String) {
-    let (name, snake) = (&layout.name, layout.snake_name());
+    let symbols = layout.symbols();
     (
-        format!("return pack_{snake}_targets(encode_texel(surface));"),
-        format!("{name}Targets"),
+        format!("return {}(encode_texel(surface));", symbols.pack_targets()),
+        symbols.targets(),
     )
 }
 
@@ -196,7 +196,7 @@ pub const GBUFFER_FIRST_BINDING: u32 = 10;
 fn read_packed_targets(layout: &Layout) -> (String, String) {
     (
         gbuffer::targets::lighting_wgsl(layout, 0, GBUFFER_FIRST_BINDING),
-        format!("load_{}_targets(vec2<u32>(pixel))", layout.snake_name()),
+        format!("{}(vec2<u32>(pixel))", layout.symbols().load_targets()),
     )
 }
 
@@ -295,7 +295,8 @@ pub fn lighting_pass_wgsl(options: &Options, positions: Positions) -> Result<Str
             let layout = options.gbuffer.packed_layout().expect("a packed layout");
             let model = layout.layout();
             let (bindings, targets) = read_packed_targets(&model);
-            let (name, snake) = (&model.name, model.snake_name());
+            let symbols = model.symbols();
+            let (name, unpack_targets) = (symbols.texel(), symbols.unpack_targets());
             let texel_positions = match positions {
                 Positions::Texel => layout.texel_position_wgsl()?,
                 Positions::DepthBuffer => String::new(),
@@ -307,7 +308,7 @@ pub fn lighting_pass_wgsl(options: &Options, positions: Positions) -> Result<Str
                      // Sky pixels keep the G-buffer's clear value, all ones.\n\
                      fn sample_gbuffer(pixel: vec2<i32>) -> GBufferSample {{\n    \
                      let targets = {targets};\n    \
-                     let texel = unpack_{snake}_targets(targets);\n    \
+                     let texel = {unpack_targets}(targets);\n    \
                      return GBufferSample(targets.first.x != 0xffffffffu, texel, decode_texel(texel));\n}}\n"
                 ),
             )
@@ -437,11 +438,11 @@ fn solved_encode_wgsl(solution: &Solution) -> String {
         "fn encode_texel(surface: Surface) -> {name} {{
     let colours = metallic_workflow(surface.base_colour, surface.metallic, DIELECTRIC_F0);
     var values: {values};
-{members}    return encode_{snake}(values);
+{members}    return {encode}(values);
 }}",
         name = solution.layout.name,
         values = solution.values_type(),
-        snake = solution.layout.snake_name(),
+        encode = solution.layout.symbols().encode_values(),
     )
 }
 
@@ -453,7 +454,7 @@ pub fn solved_lighting_wgsl(solution: &Solution, options: &Options) -> String {
         ibl: options.ibl,
     };
     let layout = &solution.layout;
-    let snake = layout.snake_name();
+    let symbols = layout.symbols();
     let (target_bindings, targets) = read_packed_targets(layout);
     let position = if solution.placement(Quantity::Depth).is_some() {
         "SCENE_EYE + direction * values.depth"
@@ -473,7 +474,7 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
     if targets.first.x == 0xffffffffu {{
         return vec4<f32>(sky(direction), 1.0);
     }}
-    let values = decode_{snake}(unpack_{snake}_targets(targets));
+    let values = {decode}({unpack_targets}(targets));
     let surface_position = {position};
     return vec4<f32>({shade}(values, -direction, surface_position), 1.0);
 }}
@@ -484,6 +485,8 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
         gbuffer_solver::texel::texel_wgsl(solution),
         lighting::lighting_wgsl(solution, forms),
         shade = lighting::lighting_function_name(solution),
+        decode = symbols.decode_values(),
+        unpack_targets = symbols.unpack_targets(),
     )
 }
 

@@ -33,17 +33,17 @@ pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, St
     let (include_text, _) =
         includes::include(&model, include, 0).map_err(|error| error.to_string())?;
     let wgsl = fused_wgsl(options, layout, -1.0);
-    let snake = model.snake_name();
+    let symbols = model.symbols();
     let texel = texel_struct_name(&model)?;
     // The output, and the volume drawn, which comes in a uniform.
     let declarations =
         "layout(location = 0) out highp vec4 frame_colour;\nuniform highp uint volume_index;\n";
-    let store = format!("    store_{snake}(texel);\n");
+    let (load, store) = (symbols.load(), format!("    {}(texel);\n", symbols.store()));
     Stage::ALL
         .iter()
         .copied()
         .map(|stage| {
-            let main = stage.pixel_local_storage_main(&texel, &snake, &store);
+            let main = stage.pixel_local_storage_main(&texel, &load, &store);
             let program = program_in(
                 Dialect::WebGl,
                 &wgsl,

@@ -24,7 +24,7 @@ impl Solution {
 pub fn texel_wgsl(solution: &Solution) -> String {
     let layout = &solution.layout;
     let name = &layout.name;
-    let snake = layout.snake_name();
+    let symbols = layout.symbols();
     let values = solution.values_type();
     let mut out = gbuffer_codegen::emit::wgsl::emit(layout);
 
@@ -73,7 +73,9 @@ pub fn texel_wgsl(solution: &Solution) -> String {
     }
     let _ = write!(
         out,
-        "\n// Stores the values in the {name} layout (pack the result with pack_{snake}).\nfn encode_{snake}(values: {values}) -> {name} {{\n    return {name}({});\n}}\n",
+        "\n// Stores the values in the {name} layout (pack the result with {}).\nfn {}(values: {values}) -> {name} {{\n    return {name}({});\n}}\n",
+        symbols.pack(),
+        symbols.encode_values(),
         fields.join(", ")
     );
     let members: Vec<String> = solution
@@ -93,7 +95,9 @@ pub fn texel_wgsl(solution: &Solution) -> String {
         .collect();
     let _ = write!(
         out,
-        "\n// The values stored in a {name} texel (from unpack_{snake}).\nfn decode_{snake}(texel: {name}) -> {values} {{\n    return {values}({});\n}}\n",
+        "\n// The values stored in a {name} texel (from {}).\nfn {}(texel: {name}) -> {values} {{\n    return {values}({});\n}}\n",
+        symbols.unpack(),
+        symbols.decode_values(),
         members.join(", ")
     );
     out

@@ -57,7 +57,7 @@ fn lighting_main(@builtin(position) pixel: vec4<f32>, @location(0) view: vec3<f3
     for (var index = 0u; index < {words}u; index++) {{
         words[index] = texel[index % 4u];
     }}
-    let values = decode_{snake}(unpack_{snake}(words));
+    let values = {decode}({unpack}(words));
     return vec4<f32>({shade}(values, normalize(view), view), 1.0);
 }}
 ",
@@ -65,7 +65,8 @@ fn lighting_main(@builtin(position) pixel: vec4<f32>, @location(0) view: vec3<f3
         texel_wgsl(solution),
         lighting_wgsl(solution, forms),
         words = solution.layout.words(),
-        snake = solution.layout.snake_name(),
+        decode = solution.layout.symbols().decode_values(),
+        unpack = solution.layout.symbols().unpack(),
         shade = lighting_function_name(solution),
     )
 }

@@ -117,14 +117,15 @@ pub fn fetch_user_shaders(
 ) -> (String, String) {
     let (text, _) = glsl::include_with(layout, conversions, include, 0).unwrap();
     let names = glsl::translate(layout).unwrap().names;
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
+    let (load, store_texel) = (symbols.load(), symbols.store());
     let scalars = scalars_per_texel(layout);
     let texel = texel_from_scalars(layout, &names, |index| format!("harness_scalar({index})"));
     let store = format!(
         "{preamble}{text}\n// The user's code.\nuniform highp usampler2D harness_inputs;\n\n\
          highp uint harness_scalar(highp int index) {{\n    highp ivec2 pixel = ivec2(gl_FragCoord.xy);\n    \
          return texelFetch(harness_inputs, ivec2(pixel.x * {scalars} + index, pixel.y), 0).x;\n}}\n\n\
-         void main() {{\n    store_{prefix}({texel});\n}}\n"
+         void main() {{\n    {store_texel}({texel});\n}}\n"
     );
     let mut reload = format!("{preamble}{text}\n// The user's code.\n");
     let decode = has_storage_buffers(preamble);
@@ -134,7 +135,7 @@ pub fn fetch_user_shaders(
         );
     }
     reload.push_str(&format!(
-        "void main() {{\n    {} texel = load_{prefix}();\n    store_{prefix}(texel);\n",
+        "void main() {{\n    {} texel = {load}();\n    {store_texel}(texel);\n",
         names.layout
     ));
     if decode {

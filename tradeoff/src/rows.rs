@@ -266,7 +266,7 @@ fn normal_rows() -> Vec<Row> {
                 ),
                 NormalStorage::Octahedral { bits } => {
                     let layout = one_field_layout("NormalOctahedral", Storage::Bits(NormalStorage::bit_field(bits)), 3);
-                    ("normal_octahedral_round_trip(normal)".to_string(), layout_round_trip_wgsl(&layout))
+                    layout_round_trip(&layout, "normal")
                 }
             };
             let body = format!(
@@ -315,15 +315,21 @@ fn one_field_layout(name: &str, storage: Storage, components: usize) -> Layout {
     storage_layout(name, &[("value", storage, components)])
 }
 
-/// The generated WGSL of a one-field layout and `fn <snake>_round_trip(value: T) -> T`, the
-/// field packed and unpacked by it.
-fn layout_round_trip_wgsl(layout: &Layout) -> String {
-    let (snake, name) = (layout.snake_name(), &layout.name);
+/// The call of `<snake>_round_trip` on `argument` and what it needs: the generated WGSL of a
+/// one-field layout and `fn <snake>_round_trip(value: T) -> T`, the field packed and unpacked
+/// by it.
+fn layout_round_trip(layout: &Layout, argument: &str) -> (String, String) {
+    let symbols = layout.symbols();
+    let function = format!("{}_round_trip", symbols.snake());
     let ty = layout.fields[0].ty.wgsl();
-    format!(
-        "{}\nfn {snake}_round_trip(value: {ty}) -> {ty} {{\n    return unpack_{snake}(pack_{snake}({name}(value))).value;\n}}\n",
-        gbuffer_codegen::emit::wgsl::emit(layout)
-    )
+    let helpers = format!(
+        "{}\nfn {function}(value: {ty}) -> {ty} {{\n    return {}({}({}(value))).value;\n}}\n",
+        gbuffer_codegen::emit::wgsl::emit(layout),
+        symbols.unpack(),
+        symbols.pack(),
+        symbols.texel()
+    );
+    (format!("{function}({argument})"), helpers)
 }
 
 /// An HDR storage row: its CPU round trip, and the WGSL that does the same to `colour` (an
@@ -333,7 +339,7 @@ struct HdrStorage {
     bits: u32,
     round_trip: Box<dyn Fn(Vec3) -> Vec3>,
     helpers: String,
-    expression: &'static str,
+    expression: String,
     modules: &'static [&'static str],
 }
 
@@ -352,9 +358,18 @@ fn hdr_rows() -> Vec<Row> {
         bits: 30,
         encoding: Encoding::LogLuminance,
     };
+    let (r11f_round_trip, r11f_helpers) = layout_round_trip(&r11f, "colour");
+    let (log_luminance_round_trip, log_luminance_helpers) = layout_round_trip(
+        &one_field_layout("HdrLogLuminance", Storage::Bits(log_luminance), 3),
+        "colour",
+    );
+    let rg16f_symbols = rg16f.symbols();
     let rg16f_helpers = format!(
-        "{}\nfn rg16f_round_trip(colour: vec3<f32>) -> vec3<f32> {{\n    let texel = unpack_hdr_rg16f(pack_hdr_rg16f(HdrRg16f(colour.rg, colour.b)));\n    return vec3<f32>(texel.red_green, texel.blue);\n}}\n",
-        gbuffer_codegen::emit::wgsl::emit(&rg16f)
+        "{}\nfn rg16f_round_trip(colour: vec3<f32>) -> vec3<f32> {{\n    let texel = {}({}({}(colour.rg, colour.b)));\n    return vec3<f32>(texel.red_green, texel.blue);\n}}\n",
+        gbuffer_codegen::emit::wgsl::emit(&rg16f),
+        rg16f_symbols.unpack(),
+        rg16f_symbols.pack(),
+        rg16f_symbols.texel()
     );
     let rgbm_round_trip = |encode: fn(Vec3, f32) -> Vec4,
                            decode: fn(Vec4, f32) -> Vec3|
@@ -378,7 +393,8 @@ fn hdr_rows() -> Vec<Row> {
                 m::hdr::scale_unit_to_hdr(quantize3(m::hdr::scale_hdr_to_unit(c, RANGE), 10), RANGE)
             }),
             helpers: String::new(),
-            expression: "scale_unit_to_hdr(quantize3(scale_hdr_to_unit(colour, 6.0), 1023.0), 6.0)",
+            expression: "scale_unit_to_hdr(quantize3(scale_hdr_to_unit(colour, 6.0), 1023.0), 6.0)"
+                .into(),
             modules: &["hdr"],
         },
         HdrStorage {
@@ -388,8 +404,8 @@ fn hdr_rows() -> Vec<Row> {
                 let word = Format::R11fG11fB10f.encode(c.extend(0.0).to_array());
                 Vec3::from_slice(&Format::R11fG11fB10f.decode::<f32>(word)[..3])
             }),
-            helpers: layout_round_trip_wgsl(&r11f),
-            expression: "hdr_r11f_round_trip(colour)",
+            helpers: r11f_helpers,
+            expression: r11f_round_trip,
             modules: &[],
         },
         HdrStorage {
@@ -402,7 +418,7 @@ fn hdr_rows() -> Vec<Row> {
                 Vec3::new(red_green[0], red_green[1], blue[0])
             }),
             helpers: rg16f_helpers,
-            expression: "rg16f_round_trip(colour)",
+            expression: "rg16f_round_trip(colour)".into(),
             modules: &[],
         },
         HdrStorage {
@@ -410,7 +426,7 @@ fn hdr_rows() -> Vec<Row> {
             bits: 32,
             round_trip: rgbm_round_trip(m::hdr::rgbm_encode, m::hdr::rgbm_decode),
             helpers: String::new(),
-            expression: "rgbm_decode(quantize4(rgbm_encode(colour, 6.0), 255.0), 6.0)",
+            expression: "rgbm_decode(quantize4(rgbm_encode(colour, 6.0), 255.0), 6.0)".into(),
             modules: &["hdr"],
         },
         HdrStorage {
@@ -419,7 +435,8 @@ fn hdr_rows() -> Vec<Row> {
             round_trip: rgbm_round_trip(m::hdr::rgbm_squared_encode, m::hdr::rgbm_squared_decode),
             helpers: String::new(),
             expression:
-                "rgbm_squared_decode(quantize4(rgbm_squared_encode(colour, 6.0), 255.0), 6.0)",
+                "rgbm_squared_decode(quantize4(rgbm_squared_encode(colour, 6.0), 255.0), 6.0)"
+                    .into(),
             modules: &["hdr"],
         },
         HdrStorage {
@@ -427,19 +444,15 @@ fn hdr_rows() -> Vec<Row> {
             bits: 32,
             round_trip: Box::new(|c| m::hdr::rgb9e5_decode(m::hdr::rgb9e5_encode(c))),
             helpers: String::new(),
-            expression: "rgb9e5_decode(rgb9e5_encode(colour))",
+            expression: "rgb9e5_decode(rgb9e5_encode(colour))".into(),
             modules: &["hdr"],
         },
         HdrStorage {
             name: "log luminance 3 x 10 bits",
             bits: 30,
             round_trip: Box::new(move |c| bit_field_round_trip(log_luminance, c)),
-            helpers: layout_round_trip_wgsl(&one_field_layout(
-                "HdrLogLuminance",
-                Storage::Bits(log_luminance),
-                3,
-            )),
-            expression: "hdr_log_luminance_round_trip(colour)",
+            helpers: log_luminance_helpers,
+            expression: log_luminance_round_trip,
             modules: &[],
         },
     ];
@@ -847,14 +860,14 @@ pub(crate) fn layout_rows() -> Vec<Row> {
                     displayed(&round_trip(surface)) - displayed(&Shading::of(surface));
                 errors.add(difference.abs().max_element());
             }
-            let prefix = seed.layout.snake_name();
+            let unpack = seed.layout.symbols().unpack();
             let words = seed.layout.words();
             // The words come from the input's bits: the cost measured is unpack, decode, shade.
             let lanes: Vec<String> = (0..words).map(|word| format!("bitcast<u32>(x[{}]) ^ {word}u", word % 4)).collect();
             let body = format!(
                 "{layout_wgsl}\n{SURFACE_WGSL}\n{decode_wgsl}\n\n\
                  fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n\
-                 \x20   let s = decode_texel(unpack_{prefix}(array<u32, {words}>({lanes})));\n\
+                 \x20   let s = decode_texel({unpack}(array<u32, {words}>({lanes})));\n\
                  \x20   let shaded = shade_directional(s.normal, vec3<f32>(0.0, 0.6, 0.8), vec3<f32>(0.3, -0.4, 0.866), vec3<f32>(3.0), s.diffuse, s.f0, s.roughness, vec2<f32>(0.6, 0.1));\n\
                  \x20   return vec4<f32>(linear_to_srgb(tonemap_reinhard(shaded + s.light)), x.w);\n\
                  }}\n",

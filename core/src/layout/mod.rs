@@ -20,6 +20,7 @@ use crate::field_type::FieldType;
 use crate::format::Format;
 use crate::named::Named;
 use crate::naming;
+use crate::symbols::Symbols;
 
 /// Where a field's bits live.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -248,6 +249,11 @@ impl Layout {
     /// The name in snake_case, used to name the generated WGSL functions.
     pub fn snake_name(&self) -> String {
         naming::snake_case(&self.name)
+    }
+
+    /// The names of what the emitters generate for this layout.
+    pub fn symbols(&self) -> Symbols {
+        Symbols::new(&self.name)
     }
 }
 

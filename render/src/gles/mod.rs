@@ -189,10 +189,13 @@ impl GlesRenderer {
         let (include, interface) = includes::include(&model, Include::FetchPacked, 0)
             .map_err(|error| error.to_string())?;
         let wgsl = fused_wgsl(options, layout, -1.0);
-        let snake = model.snake_name();
+        let symbols = model.symbols();
         let texel = texel_struct_name(&model)?;
-        let main =
-            Stage::Geometry.fragment_main(&texel, &snake, &format!("    store_{snake}(texel);\n"));
+        let main = Stage::Geometry.fragment_main(
+            &texel,
+            &symbols.load(),
+            &format!("    {}(texel);\n", symbols.store()),
+        );
         let (vertex, fragment) = sources::program(
             &wgsl,
             &include,

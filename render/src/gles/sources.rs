@@ -44,7 +44,7 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
     let (include_text, interface) =
         includes::include(&model, include, 0).map_err(|error| error.to_string())?;
     let wgsl = fused_wgsl(options, layout, -1.0);
-    let snake = model.snake_name();
+    let symbols = model.symbols();
     let texel = texel_struct_name(&model)?;
     let output = format!(
         "layout(location = {}) inout highp vec4 frame_colour;\n",
@@ -52,14 +52,14 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
     );
     // The volume drawn comes in a uniform; each draw writes only what it changes.
     let declarations = format!("{output}uniform highp uint volume_index;\n");
-    let store = format!("    store_{snake}(texel);\n");
+    let (load, store) = (symbols.load(), format!("    {}(texel);\n", symbols.store()));
     let programs = Stage::ALL
         .iter()
         .copied()
         .map(|stage| {
             let main = format!(
                 "{declarations}{}",
-                stage.fragment_main(&texel, &snake, &store)
+                stage.fragment_main(&texel, &load, &store)
             );
             let (vertex, fragment) = program(
                 &wgsl,

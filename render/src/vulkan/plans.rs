@@ -156,7 +156,7 @@ impl VulkanRenderer {
             .vulkan
             .pipeline_layout(&[set0_layout, set1_layout], Some(4))?;
 
-        let snake = model.snake_name();
+        let load = model.symbols().load();
         let names = includes::translate(&model)
             .map_err(|error| error.to_string())?
             .names;
@@ -193,7 +193,7 @@ impl VulkanRenderer {
                 "{}\n{}\n{include}\n{outputs}{volume}\n{declarations}\n{}",
                 Dialect::Vulkan.version_line(),
                 Dialect::Vulkan.early_fragment_tests(),
-                stage.fragment_main(texel, &snake, &store)
+                stage.fragment_main(texel, &load, &store)
             );
             let pipeline = self
                 .pipeline(

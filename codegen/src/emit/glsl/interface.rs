@@ -136,7 +136,7 @@ impl Interface {
             Include::PixelLocalStorage(_) | Include::WebGlPixelLocalStorage => Vec::new(),
             Include::FetchPacked | Include::SubpassPacked => (0..layout.targets())
                 .map(|target| Attachment {
-                    name: format!("{prefix}_target{target}"),
+                    name: layout.symbols().target(target),
                     index: target as u32,
                     format: PackedTarget::FourWords.target(),
                 })

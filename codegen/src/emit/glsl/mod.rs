@@ -36,7 +36,7 @@ use crate::codecs::max_code;
 use crate::emit::wgsl::Conversions;
 use crate::format::Format;
 use crate::layout::{Layout, Member, Word};
-use crate::{FieldType, ScalarKind};
+use crate::{FieldType, ScalarKind, Symbols};
 
 /// Which of the three pixel local storage block forms to declare.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -366,9 +366,9 @@ fn pixel_local_storage(
     );
     let _ = writeln!(
         out,
-        "{} {}PixelLocalStorage {{",
+        "{} {} {{",
         block.qualifier(),
-        names.layout
+        Symbols::pixel_local_storage_block(&names.layout)
     );
     let words = layout.word_contents();
     for (word, name) in words.iter().zip(word_names(&words, names)) {
@@ -539,7 +539,7 @@ fn read_attachment(attachment: &Attachment, vulkan: bool) -> String {
 
 /// `load_<snake>()` reading every attachment, and for fetch `store_<snake>()` writing them.
 fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interface: &Interface) {
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     let texel = &names.layout;
     let vulkan = interface.include.is_vulkan();
     let reads: Vec<String> = interface
@@ -551,7 +551,9 @@ fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interfa
     if interface.include.is_packed() {
         let _ = writeln!(
             out,
-            "{texel} load_{prefix}() {{\n    return unpack_{prefix}_targets({}({}));\n}}",
+            "{texel} {}() {{\n    return {}({}({}));\n}}",
+            symbols.load(),
+            symbols.unpack_targets(),
             names.targets,
             reads.join(", ")
         );
@@ -577,7 +579,8 @@ fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interfa
             .collect();
         let _ = writeln!(
             out,
-            "{texel} load_{prefix}() {{\n    return {texel}({});\n}}",
+            "{texel} {}() {{\n    return {texel}({});\n}}",
+            symbols.load(),
             fields.join(", ")
         );
     }
@@ -585,7 +588,7 @@ fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interfa
         return;
     }
     let _ = writeln!(out, "\n// Writes a texel into the attachments.");
-    let _ = writeln!(out, "void store_{prefix}({texel} texel) {{");
+    let _ = writeln!(out, "void {}({texel} texel) {{", symbols.store());
     out.push_str(&store_statements(layout, names, interface, |attachment| {
         attachment.name.clone()
     }));
@@ -602,13 +605,13 @@ pub fn store_statements(
     interface: &Interface,
     output: impl Fn(&Attachment) -> String,
 ) -> String {
-    let prefix = layout.snake_name();
     let mut out = String::new();
     if interface.include.is_packed() {
         let _ = writeln!(
             out,
-            "    {} targets = pack_{prefix}_targets(texel);",
-            names.targets
+            "    {} targets = {}(texel);",
+            names.targets,
+            layout.symbols().pack_targets()
         );
         for (attachment, member) in interface.attachments.iter().zip(&names.target_members) {
             let _ = writeln!(out, "    {} = targets.{member};", output(attachment));

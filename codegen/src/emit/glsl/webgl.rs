@@ -267,7 +267,7 @@ pub(super) fn include(
         out,
         "\n// The texel in the planes, unpacked: each plane loaded once."
     );
-    let _ = writeln!(out, "{texel} load_{prefix}() {{");
+    let _ = writeln!(out, "{texel} {}() {{", layout.symbols().load());
     for (binding, plane) in interface.planes.iter().enumerate() {
         let ty = match plane.format {
             PlaneFormat::R32ui => "highp uint",
@@ -280,7 +280,7 @@ pub(super) fn include(
         .collect::<Result<_, _>>()?;
     let _ = writeln!(out, "    return {texel}({});\n}}", values.join(", "));
     let _ = writeln!(out, "\n// Writes a texel into the planes.");
-    let _ = writeln!(out, "void store_{prefix}({texel} texel) {{");
+    let _ = writeln!(out, "void {}({texel} texel) {{", layout.symbols().store());
     for (word, plane) in words.iter().zip(&interface.planes) {
         let arguments: Vec<String> = word
             .members

@@ -53,8 +53,9 @@ pub(crate) enum Target {
 
 /// The WGSL of a layout with the chosen conversions, for `target`.
 pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target) -> String {
-    let prefix = layout.snake_name();
-    let name = &layout.name;
+    let symbols = layout.symbols();
+    let prefix = symbols.snake();
+    let name = symbols.texel();
     let words = layout.words();
     let words_type = format!("array<u32, {words}>");
     let mut out = String::new();
@@ -80,11 +81,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         out,
         "// The number of 32-bit words in one texel of `{name}`."
     );
-    let _ = writeln!(
-        out,
-        "const {}_WORDS: u32 = {words}u;\n",
-        prefix.to_uppercase()
-    );
+    let _ = writeln!(out, "const {}: u32 = {words}u;\n", symbols.words_constant());
 
     let guarantee = if fast_fields.is_empty() {
         "Exact conversions: the bits match the Rust mirror's on every adapter.".to_string()
@@ -94,13 +91,13 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         format!("Exact conversions but for {}, whose channels are within one code of the Rust mirror's on finite values within f16's range.", fast_fields.join(", "))
     };
     let _ = writeln!(out, "// Packs a texel. {guarantee}");
-    let _ = writeln!(out, "fn pack_{prefix}(v: {name}) -> {words_type} {{");
+    let _ = writeln!(out, "fn {}(v: {name}) -> {words_type} {{", symbols.pack());
     let _ = writeln!(out, "    return {words_type}(");
     for word in layout.word_contents() {
         let _ = writeln!(
             out,
             "        {}, // {}",
-            encode_word(&prefix, layout, &word.members, conversions),
+            encode_word(prefix, layout, &word.members, conversions),
             layout.field_names(&word).join(", ")
         );
     }
@@ -108,13 +105,13 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
 
     let locations = layout.field_locations();
     let _ = writeln!(out, "// Unpacks a texel.");
-    let _ = writeln!(out, "fn unpack_{prefix}(w: {words_type}) -> {name} {{");
+    let _ = writeln!(out, "fn {}(w: {words_type}) -> {name} {{", symbols.unpack());
     let _ = writeln!(out, "    return {name}(");
     for (field, &(word, member)) in layout.fields.iter().zip(&locations) {
         let _ = writeln!(
             out,
             "        {}, // {}",
-            decode_expression(&prefix, field, word, member, conversions),
+            decode_expression(prefix, field, word, member, conversions),
             field.name
         );
     }
@@ -128,14 +125,14 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         let _ = writeln!(out, "// Decodes `{}` alone, from {place}.", field.name);
         let _ = writeln!(
             out,
-            "fn load_{prefix}_{}(w: {words_type}) -> {} {{",
-            field.name,
+            "fn {}(w: {words_type}) -> {} {{",
+            symbols.load_field(&field.name),
             field.ty.wgsl()
         );
         let _ = writeln!(
             out,
             "    return {};\n}}\n",
-            decode_expression(&prefix, field, word, member, conversions)
+            decode_expression(prefix, field, word, member, conversions)
         );
     }
 
@@ -266,8 +263,9 @@ pub fn target_member(target: usize) -> String {
 
 /// The fragment-output struct (one `vec4<u32>` per target of four words) and its converters.
 fn write_targets(out: &mut String, layout: &Layout) {
-    let prefix = layout.snake_name();
-    let name = &layout.name;
+    let symbols = layout.symbols();
+    let name = symbols.texel();
+    let targets_struct = symbols.targets();
     let words = layout.words();
     let targets = layout.targets();
     let _ = writeln!(
@@ -278,7 +276,7 @@ fn write_targets(out: &mut String, layout: &Layout) {
         out,
         "// last as narrow as its words; words 4t to 4t + 3 in target t, past the end zero)."
     );
-    let _ = writeln!(out, "struct {name}Targets {{");
+    let _ = writeln!(out, "struct {targets_struct} {{");
     for target in 0..targets {
         let _ = writeln!(
             out,
@@ -296,9 +294,10 @@ fn write_targets(out: &mut String, layout: &Layout) {
     };
     let _ = writeln!(
         out,
-        "fn pack_{prefix}_targets(v: {name}) -> {name}Targets {{"
+        "fn {}(v: {name}) -> {targets_struct} {{\n    let w = {}(v);",
+        symbols.pack_targets(),
+        symbols.pack()
     );
-    let _ = writeln!(out, "    let w = pack_{prefix}(v);");
     let vectors: Vec<String> = (0..targets)
         .map(|target| {
             let lanes: Vec<String> = (4 * target..4 * target + 4).map(word_or_zero).collect();
@@ -307,13 +306,14 @@ fn write_targets(out: &mut String, layout: &Layout) {
         .collect();
     let _ = writeln!(
         out,
-        "    return {name}Targets({});\n}}\n",
+        "    return {targets_struct}({});\n}}\n",
         vectors.join(", ")
     );
     let _ = writeln!(out, "// Reassembles the words from the targets, e.g. `textureLoad` results of the lighting pass.");
     let _ = writeln!(
         out,
-        "fn {prefix}_words_from_targets(t: {name}Targets) -> array<u32, {words}> {{"
+        "fn {}(t: {targets_struct}) -> array<u32, {words}> {{",
+        symbols.words_from_targets()
     );
     let lanes: Vec<String> = (0..words)
         .map(|word| format!("t.{}[{}]", target_member(word / 4), word % 4))
@@ -325,11 +325,10 @@ fn write_targets(out: &mut String, layout: &Layout) {
     );
     let _ = writeln!(
         out,
-        "fn unpack_{prefix}_targets(t: {name}Targets) -> {name} {{"
-    );
-    let _ = writeln!(
-        out,
-        "    return unpack_{prefix}({prefix}_words_from_targets(t));\n}}\n"
+        "fn {}(t: {targets_struct}) -> {name} {{\n    return {}({}(t));\n}}\n",
+        symbols.unpack_targets(),
+        symbols.unpack(),
+        symbols.words_from_targets()
     );
 }
 

@@ -1,0 +1,196 @@
+//! The names of what the emitters generate for a layout, spelled once.
+//!
+//! The WGSL emitter defines its items under these names, the GLSL includes theirs, and every
+//! package that calls generated code (the wgpu targets, the renderer, the harnesses, the
+//! solver's texel code, the Bevy module) asks a layout's [`Symbols`] for the name it calls.
+//! A rename here renames both sides; `integration-tests/tests/symbols.rs` holds every name
+//! against the items each output defines, so a caller cannot name an item no emitter makes.
+//!
+//! The GLSL includes carry the WGSL functions as naga translates them, under the names
+//! [`Symbols::translated`] gives; the functions the GLSL emitter writes itself ([`Symbols::load`],
+//! [`Symbols::store`]) and the attachments keep the names below.
+
+use crate::naming::snake_case;
+
+/// The generated names of one layout ([`crate::Layout::symbols`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Symbols {
+    texel: String,
+    snake: String,
+}
+
+impl Symbols {
+    /// The names generated for the layout called `layout_name` (`MobileMetallic`).
+    pub fn new(layout_name: &str) -> Symbols {
+        Symbols {
+            texel: layout_name.to_string(),
+            snake: snake_case(layout_name),
+        }
+    }
+
+    /// The layout's name in snake_case (`mobile_metallic`), which prefixes every generated
+    /// function and names the generated files and the WESL module.
+    pub fn snake(&self) -> &str {
+        &self.snake
+    }
+
+    /// The texel struct, WGSL and GLSL: the layout's own name (`MobileMetallic`).
+    pub fn texel(&self) -> &str {
+        &self.texel
+    }
+
+    /// The WGSL constant holding the number of 32-bit words of a texel (`MOBILE_METALLIC_WORDS`).
+    pub fn words_constant(&self) -> String {
+        format!("{}_WORDS", self.snake.to_uppercase())
+    }
+
+    /// `pack_<snake>(texel) -> array<u32, N>`, WGSL (GLSL: [`Symbols::translated`]).
+    pub fn pack(&self) -> String {
+        format!("pack_{}", self.snake)
+    }
+
+    /// `unpack_<snake>(words) -> texel`, WGSL (GLSL: [`Symbols::translated`]).
+    pub fn unpack(&self) -> String {
+        format!("unpack_{}", self.snake)
+    }
+
+    /// `load_<snake>_<field>(words) -> value`, WGSL: one field decoded alone (GLSL:
+    /// [`Symbols::translated`]).
+    pub fn load_field(&self, field: &str) -> String {
+        format!("load_{}_{field}", self.snake)
+    }
+
+    /// The fragment-output struct, one `vec4<u32>` per four words (`MobileMetallicTargets`),
+    /// WGSL and GLSL.
+    pub fn targets(&self) -> String {
+        format!("{}Targets", self.texel)
+    }
+
+    /// `pack_<snake>_targets(texel) -> <Layout>Targets`, WGSL and GLSL.
+    pub fn pack_targets(&self) -> String {
+        format!("pack_{}_targets", self.snake)
+    }
+
+    /// `unpack_<snake>_targets(targets) -> texel`, WGSL and GLSL.
+    pub fn unpack_targets(&self) -> String {
+        format!("unpack_{}_targets", self.snake)
+    }
+
+    /// `<snake>_words_from_targets(targets) -> array<u32, N>`, WGSL and GLSL.
+    pub fn words_from_targets(&self) -> String {
+        format!("{}_words_from_targets", self.snake)
+    }
+
+    /// Packed target `index` as the lighting pass binds it: the WGSL texture of the wgpu
+    /// targets' lighting source and the GLSL attachment of the packed includes
+    /// (`mobile_metallic_target0`).
+    pub fn target(&self, index: usize) -> String {
+        format!("{}_target{index}", self.snake)
+    }
+
+    /// `load_<snake>_targets(pixel) -> <Layout>Targets`, the wgpu targets' lighting source.
+    pub fn load_targets(&self) -> String {
+        format!("load_{}_targets", self.snake)
+    }
+
+    /// `read_<snake>_targets(pixel) -> texel`, the wgpu targets' lighting source.
+    pub fn read_targets(&self) -> String {
+        format!("read_{}_targets", self.snake)
+    }
+
+    /// `load_<snake>() -> texel`, every GLSL include that reads: the texel in the
+    /// attachments, the planes or the pixel local storage.
+    pub fn load(&self) -> String {
+        format!("load_{}", self.snake)
+    }
+
+    /// `store_<snake>(texel)`, every GLSL include that writes.
+    pub fn store(&self) -> String {
+        format!("store_{}", self.snake)
+    }
+
+    /// `encode_<snake>(values) -> texel`, the solver's texel WGSL
+    /// (`gbuffer_solver::texel`): a solved scene's values stored in the layout.
+    pub fn encode_values(&self) -> String {
+        format!("encode_{}", self.snake)
+    }
+
+    /// `decode_<snake>(texel) -> values`, the solver's texel WGSL: the inverse of
+    /// [`Symbols::encode_values`].
+    pub fn decode_values(&self) -> String {
+        format!("decode_{}", self.snake)
+    }
+
+    /// The pixel local storage block of the EXT includes (`MobileMetallicPixelLocalStorage`),
+    /// from the texel struct's GLSL name (naga's, which may differ from [`Symbols::texel`]
+    /// only where that is a GLSL keyword).
+    pub fn pixel_local_storage_block(glsl_texel: &str) -> String {
+        format!("{glsl_texel}PixelLocalStorage")
+    }
+
+    /// The GLSL name naga gives a translated WGSL function: the same, but that a name ending in
+    /// a digit (`pack_layout2`, `load_texel_w19`) takes a `_`, which keeps it apart from the
+    /// numbered names naga makes unique (naga's `proc::Namer::call`). The generated names
+    /// start with a word of their own, so no other rule of naga's namer (keywords, reserved
+    /// prefixes) touches them.
+    pub fn translated(wgsl_function: &str) -> String {
+        match wgsl_function.ends_with(|c: char| c.is_ascii_digit()) {
+            true => format!("{wgsl_function}_"),
+            false => wgsl_function.to_string(),
+        }
+    }
+
+    /// The file the WGSL is written to (`mobile_metallic.wgsl`).
+    pub fn wgsl_file(&self) -> String {
+        format!("{}.wgsl", self.snake)
+    }
+
+    /// A generated file other than the WGSL: `<snake>.<suffix>` (`mobile_metallic.fetch.glsl`).
+    pub fn file(&self, suffix: &str) -> String {
+        format!("{}.{suffix}", self.snake)
+    }
+
+    /// The WESL module path the layout's WGSL is published under (`gbuffer::mobile_metallic`).
+    pub fn module_path(&self) -> String {
+        format!("gbuffer::{}", self.snake)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_follow_the_documented_forms() {
+        let symbols = Symbols::new("MobileMetallic");
+        assert_eq!(symbols.snake(), "mobile_metallic");
+        assert_eq!(symbols.texel(), "MobileMetallic");
+        assert_eq!(symbols.words_constant(), "MOBILE_METALLIC_WORDS");
+        assert_eq!(symbols.pack(), "pack_mobile_metallic");
+        assert_eq!(symbols.unpack(), "unpack_mobile_metallic");
+        assert_eq!(symbols.load_field("albedo"), "load_mobile_metallic_albedo");
+        assert_eq!(symbols.targets(), "MobileMetallicTargets");
+        assert_eq!(symbols.pack_targets(), "pack_mobile_metallic_targets");
+        assert_eq!(symbols.unpack_targets(), "unpack_mobile_metallic_targets");
+        assert_eq!(
+            symbols.words_from_targets(),
+            "mobile_metallic_words_from_targets"
+        );
+        assert_eq!(symbols.target(1), "mobile_metallic_target1");
+        assert_eq!(symbols.load_targets(), "load_mobile_metallic_targets");
+        assert_eq!(symbols.read_targets(), "read_mobile_metallic_targets");
+        assert_eq!(symbols.load(), "load_mobile_metallic");
+        assert_eq!(symbols.store(), "store_mobile_metallic");
+        assert_eq!(symbols.encode_values(), "encode_mobile_metallic");
+        assert_eq!(symbols.decode_values(), "decode_mobile_metallic");
+        assert_eq!(
+            Symbols::pixel_local_storage_block("MobileMetallic"),
+            "MobileMetallicPixelLocalStorage"
+        );
+        assert_eq!(Symbols::translated("pack_layout2"), "pack_layout2_");
+        assert_eq!(Symbols::translated("pack_layout"), "pack_layout");
+        assert_eq!(symbols.wgsl_file(), "mobile_metallic.wgsl");
+        assert_eq!(symbols.file("fetch.glsl"), "mobile_metallic.fetch.glsl");
+        assert_eq!(symbols.module_path(), "gbuffer::mobile_metallic");
+    }
+}

@@ -1,0 +1,215 @@
+//! Every name a layout's `Symbols` gives is an item the outputs define: callers ask
+//! `Symbols` for the names they call, so a name here that no emitter makes would fail only at
+//! run time, in a shader. The WGSL is read back through naga's parser (its functions, types,
+//! constants and globals by name); the GLSL includes, which no parser here reads, by their
+//! definitions' lines (`<type> <name>(<parameters>) {`).
+
+use gbuffer::layout::{Layout, Symbols};
+use gbuffer::GBufferLayout;
+use gbuffer_codegen::emit::glsl::{self, Include};
+use gbuffer_codegen::output::{generate, Output};
+use gbuffer_codegen::Conversions;
+use gbuffer_testkit::layouts::{seeds_and_every_format, AWKWARD_LAYOUT_NAMES};
+
+/// The layouts checked: the seeds, the engines', every format and encoding, and the seed
+/// `MobileMetallic` under every name GLSL reserves.
+fn layouts() -> Vec<Layout> {
+    let mut layouts = seeds_and_every_format();
+    let mobile = gbuffer::seed_layouts::MobileMetallic::layout();
+    layouts.extend(AWKWARD_LAYOUT_NAMES.iter().map(|name| Layout {
+        name: name.to_string(),
+        ..mobile.clone()
+    }));
+    layouts
+}
+
+/// The names of the functions a GLSL text defines.
+fn glsl_functions(text: &str) -> Vec<String> {
+    text.lines()
+        .filter(|line| !line.starts_with(' ') && line.ends_with(") {"))
+        .filter_map(|line| line.split('(').next()?.split_whitespace().last())
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn every_wgsl_name_is_an_item_of_the_wgsl_and_the_lighting_source() {
+    for layout in layouts() {
+        let symbols = layout.symbols();
+        let wgsl = format!(
+            "{}\n{}",
+            gbuffer_codegen::emit::wgsl::emit(&layout),
+            gbuffer::targets::lighting_wgsl(&layout, 0, 0)
+        );
+        let module = naga::front::wgsl::parse_str(&wgsl)
+            .unwrap_or_else(|error| panic!("{}: {}", layout.name, error.emit_to_string(&wgsl)));
+        let functions: Vec<&str> = module
+            .functions
+            .iter()
+            .filter_map(|(_, function)| function.name.as_deref())
+            .collect();
+        let types: Vec<&str> = module
+            .types
+            .iter()
+            .filter_map(|(_, ty)| ty.name.as_deref())
+            .collect();
+        let constants: Vec<&str> = module
+            .constants
+            .iter()
+            .filter_map(|(_, constant)| constant.name.as_deref())
+            .collect();
+        let globals: Vec<&str> = module
+            .global_variables
+            .iter()
+            .filter_map(|(_, global)| global.name.as_deref())
+            .collect();
+
+        let mut wanted_functions = vec![
+            symbols.pack(),
+            symbols.unpack(),
+            symbols.pack_targets(),
+            symbols.unpack_targets(),
+            symbols.words_from_targets(),
+            symbols.load_targets(),
+            symbols.read_targets(),
+        ];
+        wanted_functions.extend(
+            layout
+                .fields
+                .iter()
+                .map(|field| symbols.load_field(&field.name)),
+        );
+        for function in &wanted_functions {
+            assert!(
+                functions.contains(&function.as_str()),
+                "{}: no WGSL function `{function}`",
+                layout.name
+            );
+        }
+        for ty in [symbols.texel().to_string(), symbols.targets()] {
+            assert!(
+                types.contains(&ty.as_str()),
+                "{}: no WGSL struct `{ty}`",
+                layout.name
+            );
+        }
+        let constant = symbols.words_constant();
+        assert!(
+            constants.contains(&constant.as_str()),
+            "{}: no WGSL constant `{constant}`",
+            layout.name
+        );
+        for target in (0..layout.targets()).map(|index| symbols.target(index)) {
+            assert!(
+                globals.contains(&target.as_str()),
+                "{}: no WGSL texture `{target}`",
+                layout.name
+            );
+        }
+    }
+}
+
+#[test]
+fn every_glsl_name_is_defined_by_the_includes_that_read_or_write() {
+    for layout in layouts() {
+        let symbols = layout.symbols();
+        for include in Include::ALL {
+            let (text, interface) = glsl::include(&layout, include, 0)
+                .unwrap_or_else(|error| panic!("{} {include:?}: {error}", layout.name));
+            let functions = glsl_functions(&text);
+            let defined = |name: &str| functions.iter().any(|function| function == name);
+            let (reads, writes) = match include {
+                Include::PixelLocalStorage(_) => (false, false),
+                Include::SubpassPacked | Include::SubpassNative => (true, false),
+                Include::FetchPacked | Include::FetchNative | Include::WebGlPixelLocalStorage => {
+                    (true, true)
+                }
+            };
+            assert_eq!(
+                defined(&symbols.load()),
+                reads,
+                "{} {include:?}: `{}`",
+                layout.name,
+                symbols.load()
+            );
+            assert_eq!(
+                defined(&symbols.store()),
+                writes,
+                "{} {include:?}: `{}`",
+                layout.name,
+                symbols.store()
+            );
+            // The layout's WGSL functions, as naga translates them.
+            if !matches!(
+                include,
+                Include::PixelLocalStorage(_) | Include::WebGlPixelLocalStorage
+            ) {
+                let mut translated = vec![
+                    symbols.pack(),
+                    symbols.unpack(),
+                    symbols.pack_targets(),
+                    symbols.unpack_targets(),
+                    symbols.words_from_targets(),
+                ];
+                translated.extend(
+                    layout
+                        .fields
+                        .iter()
+                        .map(|field| symbols.load_field(&field.name)),
+                );
+                for name in translated.iter().map(|name| Symbols::translated(name)) {
+                    assert!(defined(&name), "{} {include:?}: no `{name}`", layout.name);
+                }
+            }
+            if include.is_packed() {
+                let names: Vec<&str> = interface
+                    .attachments
+                    .iter()
+                    .map(|attachment| attachment.name.as_str())
+                    .collect();
+                let targets: Vec<String> = (0..layout.targets())
+                    .map(|index| symbols.target(index))
+                    .collect();
+                assert_eq!(names, targets, "{} {include:?}", layout.name);
+                assert!(
+                    text.contains(&format!(" {};", symbols.target(0))),
+                    "{} {include:?}",
+                    layout.name
+                );
+            }
+            if let Include::PixelLocalStorage(_) = include {
+                let names = glsl::translate(&layout).unwrap().names;
+                let block = Symbols::pixel_local_storage_block(&names.layout);
+                assert!(
+                    text.contains(&format!(" {block} {{")),
+                    "{} {include:?}: no block `{block}`",
+                    layout.name
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_file_name_is_a_file_the_codegen_writes() {
+    let layout = gbuffer::seed_layouts::MobileMetallic::layout();
+    let symbols = layout.symbols();
+    let files: Vec<String> = generate(&layout, Conversions::Exact, &Output::ALL)
+        .unwrap()
+        .into_iter()
+        .map(|file| file.name)
+        .collect();
+    let mut wanted = vec![
+        symbols.wgsl_file(),
+        symbols.file("rs"),
+        symbols.file("report.txt"),
+    ];
+    wanted.extend(
+        Include::ALL
+            .iter()
+            .map(|include| symbols.file(&format!("{}.glsl", include.file_suffix()))),
+    );
+    for file in wanted {
+        assert!(files.contains(&file), "no file `{file}` in {files:?}");
+    }
+}
