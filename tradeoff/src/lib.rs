@@ -150,10 +150,18 @@ mod tests {
     use super::*;
     use measured::ROW_TARGETS;
 
+    /// Held by the tests that time work on the CPU's Vulkan driver and by those that keep
+    /// every core busy (the GPU compilers under qemu): a time taken while another test fills
+    /// the two cores says nothing about the work.
+    pub(crate) static CORES: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
     /// Every row, every packing harness and every frame shader the report costs compiles on
     /// each GPU compiler and gives a figure (outside CI, a missing setup skips).
     #[test]
     fn the_report_compiles_everything_it_costs_on_the_gpu_compilers() {
+        let _cores = CORES
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
         if !gbuffer_testkit::compilers_set_up() {
             return;
         }

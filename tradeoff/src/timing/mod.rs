@@ -345,6 +345,9 @@ mod tests {
     /// row's, less the harness's).
     #[test]
     fn the_protocol_sizes_every_run_until_doubling_doubles_the_time() {
+        let _cores = crate::tests::CORES
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
         let cheap =
             "fn row_eval(x: vec4<f32>) -> vec4<f32> {\n    return sqrt(x + vec4<f32>(0.5));\n}\n";
         let dear = "fn row_eval(x: vec4<f32>) -> vec4<f32> {\n    var y = x;\n    for (var i = 0; i < 8; i++) { y = sqrt(y + vec4<f32>(0.5)); }\n    return y;\n}\n";
