@@ -24,6 +24,22 @@ pub fn snake_case(name: &str) -> String {
     snake
 }
 
+/// `parts` joined by `_` into one GLSL ES identifier: no part's own leading or trailing `_`
+/// doubles one at a seam, since GLSL ES reserves every identifier containing `__` (and ANGLE
+/// refuses them), and naga's names often end in `_` (`field_0_`).
+pub fn glsl_identifier(parts: &[&str]) -> String {
+    let parts: Vec<&str> = parts
+        .iter()
+        .map(|part| part.trim_matches('_'))
+        .filter(|part| !part.is_empty())
+        .collect();
+    let mut joined = parts.join("_");
+    while joined.contains("__") {
+        joined = joined.replace("__", "_");
+    }
+    joined
+}
+
 /// The longest name a layout, field or scene may have, in characters. Generated names join a
 /// layout's snake_case name, a field's and a suffix, and GLSL ES implementations need accept
 /// identifiers of no more than 1024 characters (GLSL ES 3.20, section 3.7).

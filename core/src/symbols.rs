@@ -10,7 +10,7 @@
 //! [`Symbols::translated`] gives; the functions the GLSL emitter writes itself ([`Symbols::load`],
 //! [`Symbols::store`]) and the attachments keep the names below.
 
-use crate::naming::snake_case;
+use crate::naming::{glsl_identifier, snake_case};
 
 /// The generated names of one layout ([`crate::Layout::symbols`]).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -121,6 +121,29 @@ impl Symbols {
         format!("decode_{}", self.snake)
     }
 
+    /// `load_pls_<snake>_<field>() -> value`, the pixel local storage includes' (EXT and WebGL)
+    /// load of one field, from the field's GLSL name (naga's: a keyword takes a `_`, which the
+    /// join drops).
+    pub fn load_pls(&self, glsl_field: &str) -> String {
+        glsl_identifier(&["load_pls", &self.snake, glsl_field])
+    }
+
+    /// `store_pls_<snake>_<word>(...)`, the EXT pixel local storage includes' write of a word
+    /// of bit fields whole, from the word's GLSL name.
+    pub fn store_pls(&self, glsl_word: &str) -> String {
+        glsl_identifier(&["store_pls", &self.snake, glsl_word])
+    }
+
+    /// `<snake>_<word>_plane`, the WebGL include's pixel local storage plane of a word.
+    pub fn plane(&self, glsl_word: &str) -> String {
+        glsl_identifier(&[&self.snake, glsl_word, "plane"])
+    }
+
+    /// `<snake>_<word>_attachment`, the native fetch and subpass includes' attachment of a word.
+    pub fn attachment(&self, glsl_word: &str) -> String {
+        glsl_identifier(&[&self.snake, glsl_word, "attachment"])
+    }
+
     /// The pixel local storage block of the EXT includes (`MobileMetallicPixelLocalStorage`),
     /// from the texel struct's GLSL name (naga's, which may differ from [`Symbols::texel`]
     /// only where that is a GLSL keyword).
@@ -181,6 +204,16 @@ mod tests {
         assert_eq!(symbols.read_targets(), "read_mobile_metallic_targets");
         assert_eq!(symbols.load(), "load_mobile_metallic");
         assert_eq!(symbols.store(), "store_mobile_metallic");
+        assert_eq!(symbols.load_pls("in_"), "load_pls_mobile_metallic_in");
+        assert_eq!(
+            symbols.store_pls("normal_bits"),
+            "store_pls_mobile_metallic_normal_bits"
+        );
+        assert_eq!(symbols.plane("albedo"), "mobile_metallic_albedo_plane");
+        assert_eq!(
+            symbols.attachment("albedo"),
+            "mobile_metallic_albedo_attachment"
+        );
         assert_eq!(symbols.encode_values(), "encode_mobile_metallic");
         assert_eq!(symbols.decode_values(), "decode_mobile_metallic");
         assert_eq!(

@@ -6,7 +6,7 @@
 
 use gbuffer::layout::{Layout, Symbols};
 use gbuffer::GBufferLayout;
-use gbuffer_codegen::emit::glsl::{self, Include};
+use gbuffer_codegen::emit::glsl::{self, Include, PlsBlock};
 use gbuffer_codegen::output::{generate, Output};
 use gbuffer_codegen::Conversions;
 use gbuffer_testkit::layouts::{seeds_and_every_format, AWKWARD_LAYOUT_NAMES};
@@ -177,8 +177,23 @@ fn every_glsl_name_is_defined_by_the_includes_that_read_or_write() {
                     layout.name
                 );
             }
+            // The pixel local storage includes' loads of one field: the WebGL include's of
+            // every field, a readable EXT block's of each bit field.
+            let names = glsl::translate(&layout).unwrap().names;
+            let loaded: Vec<usize> = match include {
+                Include::WebGlPixelLocalStorage => (0..layout.fields.len()).collect(),
+                Include::PixelLocalStorage(PlsBlock::In | PlsBlock::InOut) => {
+                    (0..layout.fields.len())
+                        .filter(|&index| layout.fields[index].bit_field().is_some())
+                        .collect()
+                }
+                _ => Vec::new(),
+            };
+            for index in loaded {
+                let load = symbols.load_pls(&names.fields[index]);
+                assert!(defined(&load), "{} {include:?}: no `{load}`", layout.name);
+            }
             if let Include::PixelLocalStorage(_) = include {
-                let names = glsl::translate(&layout).unwrap().names;
                 let block = Symbols::pixel_local_storage_block(&names.layout);
                 assert!(
                     text.contains(&format!(" {block} {{")),

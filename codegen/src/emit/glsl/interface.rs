@@ -131,12 +131,12 @@ impl Interface {
         include: Include,
         names: &super::GlslNames,
     ) -> Interface {
-        let prefix = layout.snake_name();
+        let symbols = layout.symbols();
         let attachments: Vec<Attachment> = match include {
             Include::PixelLocalStorage(_) | Include::WebGlPixelLocalStorage => Vec::new(),
             Include::FetchPacked | Include::SubpassPacked => (0..layout.targets())
                 .map(|target| Attachment {
-                    name: layout.symbols().target(target),
+                    name: symbols.target(target),
                     index: target as u32,
                     format: PackedTarget::FourWords.target(),
                 })
@@ -147,7 +147,7 @@ impl Interface {
                 let attachment_names = super::unique(
                     super::word_names(&words, names)
                         .iter()
-                        .map(|name| super::identifier(&[&prefix, name, "attachment"]))
+                        .map(|name| symbols.attachment(name))
                         .collect(),
                 );
                 words

@@ -141,29 +141,13 @@ pub fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
     taken
 }
 
-/// `parts` joined by `_` into one GLSL ES identifier: no part's own leading or trailing `_`
-/// doubles one at a seam, since GLSL ES reserves every identifier containing `__` (and ANGLE
-/// refuses them), and naga's names often end in `_` (`field_0_`).
-pub(crate) fn identifier(parts: &[&str]) -> String {
-    let parts: Vec<&str> = parts
-        .iter()
-        .map(|part| part.trim_matches('_'))
-        .filter(|part| !part.is_empty())
-        .collect();
-    let mut joined = parts.join("_");
-    while joined.contains("__") {
-        joined = joined.replace("__", "_");
-    }
-    joined
-}
-
 /// `names` with each one that repeats an earlier one given its index (`_2`), so that every
 /// identifier is declared once.
 pub(crate) fn unique(names: Vec<String>) -> Vec<String> {
     let mut taken: Vec<String> = Vec::new();
     for (index, name) in names.into_iter().enumerate() {
         let name = match taken.contains(&name) {
-            true => identifier(&[&name, &index.to_string()]),
+            true => crate::naming::glsl_identifier(&[&name, &index.to_string()]),
             false => name,
         };
         taken.push(name);
@@ -420,7 +404,7 @@ fn write_pls_bit_field_accessors(
     (functions, translation): (&str, &Translation),
     words: &[Word],
 ) {
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     let names = &translation.names;
     let _ = writeln!(
         out,
@@ -438,11 +422,11 @@ fn write_pls_bit_field_accessors(
                 let decode = bit_field_function(layout, "decode", member.field);
                 let _ = writeln!(
                     out,
-                    "\n// `{}` from bits {} of `{name}`.\n{} load_pls_{prefix}_{}() {{\n    return {decode}({});\n}}",
+                    "\n// `{}` from bits {} of `{name}`.\n{} {}() {{\n    return {decode}({});\n}}",
                     field.name,
                     member.bit_range(),
                     declared_type(field.ty),
-                    names.fields[member.field],
+                    symbols.load_pls(&names.fields[member.field]),
                     bit_field_code(&name, *member)
                 );
             }
@@ -462,7 +446,8 @@ fn write_pls_bit_field_accessors(
             let value = bit_word_value(layout, word, |field| names.fields[field].clone());
             let _ = writeln!(
                 out,
-                "\n// Writes `{name}` whole: every bit field it holds.\nvoid store_pls_{prefix}_{name}({}) {{\n    {name} = {value};\n}}",
+                "\n// Writes `{name}` whole: every bit field it holds.\nvoid {}({}) {{\n    {name} = {value};\n}}",
+                symbols.store_pls(&name),
                 parameters.join(", ")
             );
         }

@@ -17,8 +17,8 @@
 
 use std::fmt::Write as _;
 
+use super::unique;
 use super::{bit_field_code, bit_field_function, bit_word_value, declared_type, word_names};
-use super::{identifier, unique};
 use super::{GlslNames, Interface, Translation, TranslationError};
 use crate::emit::json::string;
 use crate::emit::wgsl::{function_name, mode_suffix, Conversions};
@@ -67,6 +67,8 @@ impl PlaneFormat {
 pub struct Plane {
     /// The GLSL uniform that declares it.
     pub name: String,
+    /// The include's function that writes it whole from the fields it holds.
+    pub store: String,
     /// Its binding: the plane index the host attaches a texture to (the word's index).
     pub binding: u32,
     /// Its format.
@@ -80,37 +82,33 @@ pub struct Plane {
 /// What each field's load is called in the include: `load_pls_<layout>_<field>`, with the
 /// field's GLSL name (a name naga gave a trailing `_` loses it).
 pub fn field_loads(layout: &Layout, names: &GlslNames) -> Vec<String> {
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     unique(
         names
             .fields
             .iter()
-            .map(|field| identifier(&["load_pls", &prefix, field]))
+            .map(|field| symbols.load_pls(field))
             .collect(),
     )
 }
 
-/// What a plane's store is called: `store_pls_<plane without _plane>`.
-fn plane_store(plane: &Plane) -> String {
-    identifier(&["store_pls", plane.name.trim_end_matches("_plane")])
-}
-
 /// The planes of a checked layout with these conversions, in binding order.
 pub fn planes(layout: &Layout, conversions: Conversions, names: &GlslNames) -> Vec<Plane> {
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     let words = layout.word_contents();
     let word_names = word_names(&words, names);
-    let plane_names = unique(
+    let plane_names = unique(word_names.iter().map(|name| symbols.plane(name)).collect());
+    let stores = unique(
         word_names
             .iter()
-            .map(|name| identifier(&[&prefix, name, "plane"]))
+            .map(|name| symbols.store_pls(name))
             .collect(),
     );
     words
         .iter()
-        .zip(plane_names)
+        .zip(plane_names.into_iter().zip(stores))
         .enumerate()
-        .map(|(index, (word, name))| {
+        .map(|(index, (word, (name, store)))| {
             let first = &layout.fields[word.members[0].field];
             let fields: Vec<String> = word
                 .members
@@ -125,6 +123,7 @@ pub fn planes(layout: &Layout, conversions: Conversions, names: &GlslNames) -> V
                     .is_exact_for(Format::Rgba8);
             Plane {
                 name,
+                store,
                 binding: index as u32,
                 format: if native {
                     PlaneFormat::Rgba8
@@ -256,7 +255,7 @@ pub(super) fn include(
         let _ = writeln!(
             out,
             "void {}({}) {{\n    pixelLocalStoreANGLE({}, {stored});\n}}",
-            plane_store(plane),
+            plane.store,
             parameters.join(", "),
             plane.name
         );
@@ -287,7 +286,7 @@ pub(super) fn include(
             .iter()
             .map(|member| format!("texel.{}", names.fields[member.field]))
             .collect();
-        let _ = writeln!(out, "    {}({});", plane_store(plane), arguments.join(", "));
+        let _ = writeln!(out, "    {}({});", plane.store, arguments.join(", "));
     }
     out.push_str("}\n");
     Ok(out)
