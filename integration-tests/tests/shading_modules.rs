@@ -41,7 +41,8 @@ fn every_function_translates_to_every_backend() {
 
 #[test]
 fn every_wgsl_function_has_a_test_case() {
-    let tested: Vec<&str> = cases().iter().map(|case| case.name()).collect();
+    let cases = cases();
+    let tested: Vec<&str> = cases.iter().map(|case| case.name()).collect();
     // Helpers exercised through the functions that call them, and the f16 forms, which
     // tests/stability.rs runs on the adapter against `shading::half_precision`. The codecs'
     // functions (`shading_library_...`) are the layouts' own, tested with them.

@@ -156,7 +156,7 @@ pub struct Case {
     /// The WGSL module it lives in (composed with its dependencies).
     pub module: &'static str,
     /// The WGSL expression over the arguments `a0`, `a1`, ...
-    pub call: &'static str,
+    pub call: String,
     /// How each argument is sampled.
     pub arguments: &'static [Argument],
     /// What it returns.
@@ -174,45 +174,190 @@ pub struct Case {
 
 impl Case {
     /// The function's name: the call up to its parenthesis.
-    pub fn name(&self) -> &'static str {
-        self.call.split('(').next().unwrap_or(self.call)
+    pub fn name(&self) -> &str {
+        self.call.split('(').next().unwrap_or(&self.call)
     }
 }
 
-// Argument helpers for the mirrors: the flattened bits to f32 values and glam vectors.
-fn f(bits: &[u32], index: usize) -> f32 {
-    f32::from_bits(bits[index])
+/// A type of the f32 mirror's arguments and results, as the bits of its components.
+trait Bits: Sized {
+    /// What a result of this type is, for the harness.
+    const OUTPUT: Output;
+    /// Its components.
+    const COMPONENTS: usize;
+    fn from_bits(bits: &[u32]) -> Self;
+    fn into_bits(self) -> Vec<u32>;
 }
-fn v2(bits: &[u32], index: usize) -> Vec2 {
-    Vec2::new(f(bits, index), f(bits, index + 1))
+
+/// A type of the f64 reference's arguments and results, as f64 components.
+trait Wide: Sized {
+    const COMPONENTS: usize;
+    fn from_wide(values: &[f64]) -> Self;
+    fn into_wide(self) -> Vec<f64>;
 }
-fn v3(bits: &[u32], index: usize) -> Vec3 {
-    Vec3::new(f(bits, index), f(bits, index + 1), f(bits, index + 2))
+
+impl Bits for u32 {
+    const OUTPUT: Output = Output::Unsigned;
+    const COMPONENTS: usize = 1;
+    fn from_bits(bits: &[u32]) -> Self {
+        bits[0]
+    }
+    fn into_bits(self) -> Vec<u32> {
+        vec![self]
+    }
 }
-fn v4(bits: &[u32], index: usize) -> Vec4 {
-    Vec4::new(
-        f(bits, index),
-        f(bits, index + 1),
-        f(bits, index + 2),
-        f(bits, index + 3),
-    )
+
+impl Wide for u32 {
+    const COMPONENTS: usize = 1;
+    fn from_wide(values: &[f64]) -> Self {
+        values[0] as u32
+    }
+    fn into_wide(self) -> Vec<f64> {
+        vec![f64::from(self)]
+    }
 }
-fn out(values: &[f32]) -> Vec<u32> {
-    values.iter().map(|value| value.to_bits()).collect()
+
+impl Bits for f32 {
+    const OUTPUT: Output = Output::Floats(1);
+    const COMPONENTS: usize = 1;
+    fn from_bits(bits: &[u32]) -> Self {
+        f32::from_bits(bits[0])
+    }
+    fn into_bits(self) -> Vec<u32> {
+        vec![self.to_bits()]
+    }
 }
-fn d2(values: &[f64], index: usize) -> DVec2 {
-    DVec2::new(values[index], values[index + 1])
+
+impl Wide for f64 {
+    const COMPONENTS: usize = 1;
+    fn from_wide(values: &[f64]) -> Self {
+        values[0]
+    }
+    fn into_wide(self) -> Vec<f64> {
+        vec![self]
+    }
 }
-fn d3(values: &[f64], index: usize) -> DVec3 {
-    DVec3::new(values[index], values[index + 1], values[index + 2])
+
+/// `Bits` for glam's f32 vectors and `Wide` for its f64 ones, of `n` components.
+macro_rules! float_types {
+    ($($narrow:ty, $wide:ty, $n:literal;)+) => {$(
+        impl Bits for $narrow {
+            const OUTPUT: Output = Output::Floats($n);
+            const COMPONENTS: usize = $n;
+            fn from_bits(bits: &[u32]) -> Self {
+                let components: [f32; $n] = std::array::from_fn(|index| f32::from_bits(bits[index]));
+                <$narrow>::from(components)
+            }
+            fn into_bits(self) -> Vec<u32> {
+                let components: [f32; $n] = self.into();
+                components.map(f32::to_bits).to_vec()
+            }
+        }
+        impl Wide for $wide {
+            const COMPONENTS: usize = $n;
+            fn from_wide(values: &[f64]) -> Self {
+                let components: [f64; $n] = std::array::from_fn(|index| values[index]);
+                <$wide>::from(components)
+            }
+            fn into_wide(self) -> Vec<f64> {
+                let components: [f64; $n] = self.into();
+                components.to_vec()
+            }
+        }
+    )+};
 }
-fn d4(values: &[f64], index: usize) -> DVec4 {
-    DVec4::new(
-        values[index],
-        values[index + 1],
-        values[index + 2],
-        values[index + 3],
-    )
+
+float_types! {
+    Vec2, DVec2, 2;
+    Vec3, DVec3, 3;
+    Vec4, DVec4, 4;
+}
+
+/// The mirror's next argument, from the point's bits at `at`.
+fn take<T: Bits>(bits: &[u32], at: &mut usize) -> T {
+    let value = T::from_bits(&bits[*at..]);
+    *at += T::COMPONENTS;
+    value
+}
+
+/// The reference's next argument, from the widened point at `at`.
+fn take_wide<T: Wide>(values: &[f64], at: &mut usize) -> T {
+    let value = T::from_wide(&values[*at..]);
+    *at += T::COMPONENTS;
+    value
+}
+
+/// What the mirror `function` returns.
+fn output_of<T: Bits>(_function: fn(&[u32]) -> T) -> Output {
+    T::OUTPUT
+}
+
+/// `function(a0, a1, ...)` and the field taken from its result, the harness's WGSL call.
+fn wgsl_call(function: &str, arguments: usize, field: &str) -> String {
+    let names: Vec<String> = (0..arguments).map(|index| format!("a{index}")).collect();
+    format!("{function}({}){field}", names.join(", "))
+}
+
+/// One case, written once: `module::function(ARGUMENT, ...)`, with `.field` where the function
+/// returns a struct, names the WGSL call, the f32 mirror (`mirror::module::function`) and the
+/// f64 reference (`reference::module::function`), each over the arguments in order. Then how
+/// close the adapter must come to the mirror (`ulps N, absolute X`), or `exact` for an integer
+/// function, its own reference; `reference |values| ...` replaces the library's reference.
+macro_rules! case {
+    ($module:ident::$function:ident($($argument:expr),+) $(.$field:ident)?; exact) => {
+        case!(@case $module::$function($($argument),+) $(.$field)?, None, 0, 0.0)
+    };
+    (
+        $module:ident::$function:ident($($argument:expr),+) $(.$field:ident)?;
+        ulps $ulps:literal, absolute $absolute:literal $(; reference $reference:expr)?
+    ) => {
+        case!(
+            @case $module::$function($($argument),+) $(.$field)?,
+            Some(case!(@reference $module::$function($($argument),+) $(.$field)? $(, $reference)?)),
+            $ulps,
+            $absolute
+        )
+    };
+    (@reference $module:ident::$function:ident($($argument:expr),+) $(.$field:ident)?) => {
+        |values| {
+            let mut at = 0;
+            let result = r::$module::$function(
+                $({ let _: Argument = $argument; take_wide(values, &mut at) }),+
+            );
+            Wide::into_wide(result$(.$field)?)
+        }
+    };
+    (@reference $module:ident::$function:ident($($argument:expr),+) $(.$field:ident)?, $reference:expr) => {
+        $reference
+    };
+    (@case $module:ident::$function:ident($($argument:expr),+) $(.$field:ident)?, $reference:expr, $ulps:expr, $absolute:expr) => {
+        Case {
+            module: stringify!($module),
+            call: wgsl_call(
+                stringify!($function),
+                [$(stringify!($argument)),+].len(),
+                concat!($(".", stringify!($field))?),
+            ),
+            arguments: &[$($argument),+],
+            output: output_of(|bits| {
+                let mut at = 0;
+                let result = m::$module::$function(
+                    $({ let _: Argument = $argument; take(bits, &mut at) }),+
+                );
+                result$(.$field)?
+            }),
+            mirror: |bits| {
+                let mut at = 0;
+                let result = m::$module::$function(
+                    $({ let _: Argument = $argument; take(bits, &mut at) }),+
+                );
+                Bits::into_bits(result$(.$field)?)
+            },
+            reference: $reference,
+            ulps: $ulps,
+            absolute: $absolute,
+        }
+    };
 }
 
 use Argument::{Colour, Direction, Pair, Rgbm, Scalar, Tangent, Unsigned};
@@ -242,835 +387,119 @@ const ENV_BRDF: Argument = Pair {
 pub fn cases() -> Vec<Case> {
     vec![
         // colour
-        Case {
-            module: "colour",
-            call: "srgb_to_linear(a0)",
-            arguments: &[COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::colour::srgb_to_linear(v3(a, 0)).to_array()),
-            reference: Some(|a| r::colour::srgb_to_linear(d3(a, 0)).to_array().to_vec()),
-            ulps: 16,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "colour",
-            call: "linear_to_srgb(a0)",
-            arguments: &[COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::colour::linear_to_srgb(v3(a, 0)).to_array()),
-            reference: Some(|a| r::colour::linear_to_srgb(d3(a, 0)).to_array().to_vec()),
-            ulps: 16,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "colour",
-            call: "gamma_2_2_to_linear(a0)",
-            arguments: &[COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::colour::gamma_2_2_to_linear(v3(a, 0)).to_array()),
-            reference: Some(|a| r::colour::gamma_2_2_to_linear(d3(a, 0)).to_array().to_vec()),
-            ulps: 16,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "colour",
-            call: "linear_to_gamma_2_2(a0)",
-            arguments: &[COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::colour::linear_to_gamma_2_2(v3(a, 0)).to_array()),
-            reference: Some(|a| r::colour::linear_to_gamma_2_2(d3(a, 0)).to_array().to_vec()),
-            ulps: 16,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "colour",
-            call: "pseudo_gamma_to_linear(a0)",
-            arguments: &[COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::colour::pseudo_gamma_to_linear(v3(a, 0)).to_array()),
-            reference: Some(|a| {
-                r::colour::pseudo_gamma_to_linear(d3(a, 0))
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 1,
-            absolute: 0.0,
-        },
-        Case {
-            module: "colour",
-            call: "linear_to_pseudo_gamma(a0)",
-            arguments: &[COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::colour::linear_to_pseudo_gamma(v3(a, 0)).to_array()),
-            reference: Some(|a| {
-                r::colour::linear_to_pseudo_gamma(d3(a, 0))
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 4,
-            absolute: 0.0,
-        },
-        Case {
-            module: "colour",
-            call: "luminance(a0)",
-            arguments: &[HDR_COLOUR],
-            output: Output::Floats(1),
-            mirror: |a| out(&[m::colour::luminance(v3(a, 0))]),
-            reference: Some(|a| vec![r::colour::luminance(d3(a, 0))]),
-            ulps: 4,
-            absolute: 1e-7,
-        },
+        case!(colour::srgb_to_linear(COLOUR); ulps 16, absolute 1e-6),
+        case!(colour::linear_to_srgb(COLOUR); ulps 16, absolute 1e-6),
+        case!(colour::gamma_2_2_to_linear(COLOUR); ulps 16, absolute 1e-6),
+        case!(colour::linear_to_gamma_2_2(COLOUR); ulps 16, absolute 1e-6),
+        case!(colour::pseudo_gamma_to_linear(COLOUR); ulps 1, absolute 0.0),
+        case!(colour::linear_to_pseudo_gamma(COLOUR); ulps 4, absolute 0.0),
+        case!(colour::luminance(HDR_COLOUR); ulps 4, absolute 1e-7),
         // hdr
-        Case {
-            module: "hdr",
-            call: "rgbm_encode(a0, a1)",
-            arguments: &[
-                HDR_COLOUR,
-                Scalar {
-                    low: 1.0,
-                    high: 8.0,
-                },
-            ],
-            output: Output::Floats(4),
-            mirror: |a| out(&m::hdr::rgbm_encode(v3(a, 0), f(a, 3)).to_array()),
-            reference: Some(|a| r::hdr::rgbm_encode(d3(a, 0), a[3]).to_array().to_vec()),
-            ulps: 8,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "hdr",
-            call: "rgbm_decode(a0, a1)",
-            arguments: &[
-                Rgbm,
-                Scalar {
-                    low: 1.0,
-                    high: 8.0,
-                },
-            ],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::hdr::rgbm_decode(v4(a, 0), f(a, 4)).to_array()),
-            reference: Some(|a| r::hdr::rgbm_decode(d4(a, 0), a[4]).to_array().to_vec()),
-            ulps: 2,
-            absolute: 0.0,
-        },
-        Case {
-            module: "hdr",
-            call: "rgbm_squared_encode(a0, a1)",
-            arguments: &[
-                HDR_COLOUR,
-                Scalar {
-                    low: 1.0,
-                    high: 8.0,
-                },
-            ],
-            output: Output::Floats(4),
-            mirror: |a| out(&m::hdr::rgbm_squared_encode(v3(a, 0), f(a, 3)).to_array()),
-            reference: Some(|a| {
-                r::hdr::rgbm_squared_encode(d3(a, 0), a[3])
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 8,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "hdr",
-            call: "rgbm_squared_decode(a0, a1)",
-            arguments: &[
-                Rgbm,
-                Scalar {
-                    low: 1.0,
-                    high: 8.0,
-                },
-            ],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::hdr::rgbm_squared_decode(v4(a, 0), f(a, 4)).to_array()),
-            reference: Some(|a| {
-                r::hdr::rgbm_squared_decode(d4(a, 0), a[4])
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 4,
-            absolute: 0.0,
-        },
-        Case {
-            module: "hdr",
-            call: "scale_hdr_to_unit(a0, a1)",
-            arguments: &[
-                HDR_COLOUR,
-                Scalar {
-                    low: 1.0,
-                    high: 16.0,
-                },
-            ],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::hdr::scale_hdr_to_unit(v3(a, 0), f(a, 3)).to_array()),
-            reference: Some(|a| {
-                r::hdr::scale_hdr_to_unit(d3(a, 0), a[3])
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 4,
-            absolute: 0.0,
-        },
-        Case {
-            module: "hdr",
-            call: "scale_unit_to_hdr(a0, a1)",
-            arguments: &[
-                COLOUR,
-                Scalar {
-                    low: 1.0,
-                    high: 16.0,
-                },
-            ],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::hdr::scale_unit_to_hdr(v3(a, 0), f(a, 3)).to_array()),
-            reference: Some(|a| {
-                r::hdr::scale_unit_to_hdr(d3(a, 0), a[3])
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 1,
-            absolute: 0.0,
-        },
-        Case {
-            module: "hdr",
-            call: "rgb9e5_encode(a0)",
-            arguments: &[Colour { scale: 70000.0 }],
-            output: Output::Unsigned,
-            mirror: |a| vec![m::hdr::rgb9e5_encode(v3(a, 0))],
-            reference: None,
-            ulps: 0,
-            absolute: 0.0,
-        },
-        Case {
-            module: "hdr",
-            call: "rgb9e5_decode(a0)",
-            arguments: &[Unsigned {
-                low: 0,
-                high: u32::MAX,
-            }],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::hdr::rgb9e5_decode(a[0]).to_array()),
-            reference: None,
-            ulps: 0,
-            absolute: 0.0,
-        },
+        case!(hdr::rgbm_encode(HDR_COLOUR, Scalar { low: 1.0, high: 8.0 }); ulps 8, absolute 1e-6),
+        case!(hdr::rgbm_decode(Rgbm, Scalar { low: 1.0, high: 8.0 }); ulps 2, absolute 0.0),
+        case!(
+            hdr::rgbm_squared_encode(HDR_COLOUR, Scalar { low: 1.0, high: 8.0 });
+            ulps 8, absolute 1e-6
+        ),
+        case!(hdr::rgbm_squared_decode(Rgbm, Scalar { low: 1.0, high: 8.0 }); ulps 4, absolute 0.0),
+        case!(
+            hdr::scale_hdr_to_unit(HDR_COLOUR, Scalar { low: 1.0, high: 16.0 });
+            ulps 4, absolute 0.0
+        ),
+        case!(
+            hdr::scale_unit_to_hdr(COLOUR, Scalar { low: 1.0, high: 16.0 });
+            ulps 1, absolute 0.0
+        ),
+        case!(hdr::rgb9e5_encode(Colour { scale: 70000.0 }); exact),
+        case!(hdr::rgb9e5_decode(Unsigned { low: 0, high: u32::MAX }); exact),
         // microfacet
-        Case {
-            module: "microfacet",
-            call: "d_ggx(a0, a1)",
-            arguments: &[UNIT, ROUGHNESS],
-            output: Output::Floats(1),
-            mirror: |a| out(&[m::microfacet::d_ggx(f(a, 0), f(a, 1))]),
-            reference: Some(|a| vec![r::microfacet::d_ggx(a[0], a[1])]),
-            ulps: 8,
-            absolute: 0.0,
-        },
-        Case {
-            module: "microfacet",
-            call: "v_smith_ggx_correlated(a0, a1, a2)",
-            arguments: &[COSINE, COSINE, ROUGHNESS],
-            output: Output::Floats(1),
-            mirror: |a| {
-                out(&[m::microfacet::v_smith_ggx_correlated(
-                    f(a, 0),
-                    f(a, 1),
-                    f(a, 2),
-                )])
-            },
-            reference: Some(|a| vec![r::microfacet::v_smith_ggx_correlated(a[0], a[1], a[2])]),
-            ulps: 16,
-            absolute: 0.0,
-        },
-        Case {
-            module: "microfacet",
-            call: "v_schlick_ggx(a0, a1, a2)",
-            arguments: &[UNIT, UNIT, ROUGHNESS],
-            output: Output::Floats(1),
-            mirror: |a| out(&[m::microfacet::v_schlick_ggx(f(a, 0), f(a, 1), f(a, 2))]),
-            reference: Some(|a| vec![r::microfacet::v_schlick_ggx(a[0], a[1], a[2])]),
-            ulps: 8,
-            absolute: 0.0,
-        },
-        Case {
-            module: "microfacet",
-            call: "schlick_weight(a0)",
-            arguments: &[UNIT],
-            output: Output::Floats(1),
-            mirror: |a| out(&[m::microfacet::schlick_weight(f(a, 0))]),
-            reference: Some(|a| vec![(1.0 - a[0]).powi(5)]),
-            ulps: 8,
-            absolute: 1e-7,
-        },
-        Case {
-            module: "microfacet",
-            call: "f_schlick(a0, a1)",
-            arguments: &[COLOUR, UNIT],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::microfacet::f_schlick(v3(a, 0), f(a, 3)).to_array()),
-            reference: Some(|a| r::microfacet::f_schlick(d3(a, 0), a[3]).to_array().to_vec()),
-            ulps: 8,
-            absolute: 1e-7,
-        },
-        Case {
-            module: "microfacet",
-            call: "f_schlick_roughness(a0, a1, a2)",
-            arguments: &[
-                COLOUR,
-                Scalar {
-                    low: -0.5,
-                    high: 1.0,
-                },
-                UNIT,
-            ],
-            output: Output::Floats(3),
-            mirror: |a| {
-                out(&m::microfacet::f_schlick_roughness(v3(a, 0), f(a, 3), f(a, 4)).to_array())
-            },
-            reference: Some(|a| {
-                r::microfacet::f_schlick_roughness(d3(a, 0), a[3], a[4])
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 8,
-            absolute: 1e-7,
-        },
-        Case {
-            module: "microfacet",
-            call: "lambert_diffuse(a0)",
-            arguments: &[COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::microfacet::lambert_diffuse(v3(a, 0)).to_array()),
-            reference: Some(|a| r::microfacet::lambert_diffuse(d3(a, 0)).to_array().to_vec()),
-            ulps: 1,
-            absolute: 0.0,
-        },
+        case!(microfacet::d_ggx(UNIT, ROUGHNESS); ulps 8, absolute 0.0),
+        case!(microfacet::v_smith_ggx_correlated(COSINE, COSINE, ROUGHNESS); ulps 16, absolute 0.0),
+        case!(microfacet::v_schlick_ggx(UNIT, UNIT, ROUGHNESS); ulps 8, absolute 0.0),
+        case!(
+            microfacet::schlick_weight(UNIT);
+            ulps 8, absolute 1e-7; reference |a| vec![(1.0 - a[0]).powi(5)]
+        ),
+        case!(microfacet::f_schlick(COLOUR, UNIT); ulps 8, absolute 1e-7),
+        case!(
+            microfacet::f_schlick_roughness(COLOUR, Scalar { low: -0.5, high: 1.0 }, UNIT);
+            ulps 8, absolute 1e-7
+        ),
+        case!(microfacet::lambert_diffuse(COLOUR); ulps 1, absolute 0.0),
         // mobile
-        Case {
-            module: "mobile",
-            call: "env_brdf_approx(a0, a1, a2)",
-            arguments: &[COLOUR, UNIT, UNIT],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::mobile::env_brdf_approx(v3(a, 0), f(a, 3), f(a, 4)).to_array()),
-            reference: Some(|a| {
-                r::mobile::env_brdf_approx(d3(a, 0), a[3], a[4])
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 16,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "mobile",
-            call: "env_brdf_approx_nonmetal(a0, a1)",
-            arguments: &[UNIT, UNIT],
-            output: Output::Floats(1),
-            mirror: |a| out(&[m::mobile::env_brdf_approx_nonmetal(f(a, 0), f(a, 1))]),
-            reference: Some(|a| vec![r::mobile::env_brdf_approx_nonmetal(a[0], a[1])]),
-            ulps: 16,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "mobile",
-            call: "fully_rough_diffuse_colour(a0, a1)",
-            arguments: &[COLOUR, COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::mobile::fully_rough_diffuse_colour(v3(a, 0), v3(a, 3)).to_array()),
-            reference: Some(|a| {
-                r::mobile::fully_rough_diffuse_colour(d3(a, 0), d3(a, 3))
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 2,
-            absolute: 0.0,
-        },
-        Case {
-            module: "mobile",
-            call: "d_approx(a0, a1)",
-            arguments: &[
-                Scalar {
-                    low: 0.0625,
-                    high: 1.0,
-                },
-                Scalar {
-                    low: -1.0,
-                    high: 1.0,
-                },
-            ],
-            output: Output::Floats(1),
-            mirror: |a| out(&[m::mobile::d_approx(f(a, 0), f(a, 1))]),
-            reference: Some(|a| vec![r::mobile::d_approx(a[0], a[1])]),
-            ulps: 64,
-            absolute: 1e-30,
-        },
+        case!(mobile::env_brdf_approx(COLOUR, UNIT, UNIT); ulps 16, absolute 1e-6),
+        case!(mobile::env_brdf_approx_nonmetal(UNIT, UNIT); ulps 16, absolute 1e-6),
+        case!(mobile::fully_rough_diffuse_colour(COLOUR, COLOUR); ulps 2, absolute 0.0),
+        case!(
+            mobile::d_approx(Scalar { low: 0.0625, high: 1.0 }, Scalar { low: -1.0, high: 1.0 });
+            ulps 64, absolute 1e-30
+        ),
         // environment
-        Case {
-            module: "environment",
-            call: "ibl_mip_level(a0, a1)",
-            arguments: &[
-                UNIT,
-                Scalar {
-                    low: 1.0,
-                    high: 12.0,
-                },
-            ],
-            output: Output::Floats(1),
-            mirror: |a| out(&[m::environment::ibl_mip_level(f(a, 0), f(a, 1))]),
-            reference: Some(|a| vec![r::environment::ibl_mip_level(a[0], a[1])]),
-            ulps: 1,
-            absolute: 0.0,
-        },
-        Case {
-            module: "environment",
-            call: "hammersley(a0, a1)",
-            arguments: &[
-                Unsigned { low: 0, high: 4095 },
-                Unsigned {
-                    low: 4096,
-                    high: 4096,
-                },
-            ],
-            output: Output::Floats(2),
-            mirror: |a| out(&m::environment::hammersley(a[0], a[1]).to_array()),
-            reference: Some(|a| {
-                r::environment::hammersley(a[0] as u32, a[1] as u32)
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 1,
-            absolute: 0.0,
-        },
-        Case {
-            module: "environment",
-            call: "importance_sample_ggx(a0, a1)",
-            arguments: &[
-                Pair {
-                    low: 0.0,
-                    high: 0.999,
-                },
-                ROUGHNESS,
-            ],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::environment::importance_sample_ggx(v2(a, 0), f(a, 2)).to_array()),
-            reference: Some(|a| {
-                r::environment::importance_sample_ggx(d2(a, 0), a[2])
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 64,
-            absolute: 2e-6,
-        },
-        Case {
-            module: "environment",
-            call: "integrate_env_brdf(a0, a1, a2)",
-            arguments: &[UNIT, COSINE, Unsigned { low: 64, high: 64 }],
-            output: Output::Floats(2),
-            mirror: |a| out(&m::environment::integrate_env_brdf(f(a, 0), f(a, 1), a[2]).to_array()),
-            reference: Some(|a| {
-                r::environment::integrate_env_brdf(a[0], a[1], a[2] as u32)
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 256,
-            absolute: 1e-5,
-        },
-        Case {
-            module: "environment",
-            call: "ibl_specular_seed(a0, a1, a2, a3)",
-            arguments: &[HDR_COLOUR, COLOUR, UNIT, UNIT],
-            output: Output::Floats(3),
-            mirror: |a| {
-                out(
-                    &m::environment::ibl_specular_seed(v3(a, 0), v3(a, 3), f(a, 6), f(a, 7))
-                        .to_array(),
-                )
-            },
-            reference: Some(|a| {
-                r::environment::ibl_specular_seed(d3(a, 0), d3(a, 3), a[6], a[7])
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 8,
-            absolute: 1e-6,
-        },
+        case!(
+            environment::ibl_mip_level(UNIT, Scalar { low: 1.0, high: 12.0 });
+            ulps 1, absolute 0.0
+        ),
+        case!(
+            environment::hammersley(Unsigned { low: 0, high: 4095 }, Unsigned { low: 4096, high: 4096 });
+            ulps 1, absolute 0.0
+        ),
+        case!(
+            environment::importance_sample_ggx(Pair { low: 0.0, high: 0.999 }, ROUGHNESS);
+            ulps 64, absolute 2e-6
+        ),
+        case!(
+            environment::integrate_env_brdf(UNIT, COSINE, Unsigned { low: 64, high: 64 });
+            ulps 256, absolute 1e-5
+        ),
+        case!(
+            environment::ibl_specular_seed(HDR_COLOUR, COLOUR, UNIT, UNIT);
+            ulps 8, absolute 1e-6
+        ),
         // material
-        Case {
-            module: "material",
-            call: "metallic_workflow(a0, a1, a2).diffuse",
-            arguments: &[
-                COLOUR,
-                UNIT,
-                Scalar {
-                    low: 0.0,
-                    high: 0.08,
-                },
-            ],
-            output: Output::Floats(3),
-            mirror: |a| {
-                out(&m::material::metallic_workflow(v3(a, 0), f(a, 3), f(a, 4))
-                    .diffuse
-                    .to_array())
-            },
-            reference: Some(|a| {
-                r::material::metallic_workflow(d3(a, 0), a[3], a[4])
-                    .diffuse
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 2,
-            absolute: 0.0,
-        },
-        Case {
-            module: "material",
-            call: "metallic_workflow(a0, a1, a2).f0",
-            arguments: &[
-                COLOUR,
-                UNIT,
-                Scalar {
-                    low: 0.0,
-                    high: 0.08,
-                },
-            ],
-            output: Output::Floats(3),
-            mirror: |a| {
-                out(&m::material::metallic_workflow(v3(a, 0), f(a, 3), f(a, 4))
-                    .f0
-                    .to_array())
-            },
-            reference: Some(|a| {
-                r::material::metallic_workflow(d3(a, 0), a[3], a[4])
-                    .f0
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 4,
-            absolute: 1e-8,
-        },
-        Case {
-            module: "material",
-            call: "dielectric_f0_from_specular(a0)",
-            arguments: &[UNIT],
-            output: Output::Floats(1),
-            mirror: |a| out(&[m::material::dielectric_f0_from_specular(f(a, 0))]),
-            reference: Some(|a| vec![r::material::dielectric_f0_from_specular(a[0])]),
-            ulps: 1,
-            absolute: 0.0,
-        },
-        Case {
-            module: "material",
-            call: "specular_workflow(a0, a1).diffuse",
-            arguments: &[COLOUR, COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| {
-                out(&m::material::specular_workflow(v3(a, 0), v3(a, 3))
-                    .diffuse
-                    .to_array())
-            },
-            reference: Some(|a| {
-                r::material::specular_workflow(d3(a, 0), d3(a, 3))
-                    .diffuse
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 2,
-            absolute: 0.0,
-        },
+        case!(
+            material::metallic_workflow(COLOUR, UNIT, Scalar { low: 0.0, high: 0.08 }).diffuse;
+            ulps 2, absolute 0.0
+        ),
+        case!(
+            material::metallic_workflow(COLOUR, UNIT, Scalar { low: 0.0, high: 0.08 }).f0;
+            ulps 4, absolute 1e-8
+        ),
+        case!(material::dielectric_f0_from_specular(UNIT); ulps 1, absolute 0.0),
+        case!(material::specular_workflow(COLOUR, COLOUR).diffuse; ulps 2, absolute 0.0),
         // normals
-        Case {
-            module: "normals",
-            call: "reconstruct_tangent_z(a0)",
-            arguments: &[Pair {
-                low: -1.0,
-                high: 1.0,
-            }],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::normals::reconstruct_tangent_z(v2(a, 0)).to_array()),
-            reference: Some(|a| {
-                r::normals::reconstruct_tangent_z(d2(a, 0))
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 8,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "normals",
-            call: "tangent_to_world(a0, a1, a2)",
-            arguments: &[Direction, Direction, Tangent],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::normals::tangent_to_world(v3(a, 0), v3(a, 3), v4(a, 6)).to_array()),
-            reference: Some(|a| {
-                r::normals::tangent_to_world(d3(a, 0), d3(a, 3), d4(a, 6))
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 64,
-            absolute: 1e-5,
-        },
-        Case {
-            module: "normals",
-            call: "octahedral_encode(a0)",
-            arguments: &[Direction],
-            output: Output::Floats(2),
-            mirror: |a| out(&m::normals::octahedral_encode(v3(a, 0)).to_array()),
-            reference: Some(|a| r::normals::octahedral_encode(d3(a, 0)).to_array().to_vec()),
-            ulps: 8,
-            absolute: 1e-7,
-        },
-        Case {
-            module: "normals",
-            call: "octahedral_decode(a0)",
-            arguments: &[Pair {
-                low: -1.0,
-                high: 1.0,
-            }],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::normals::octahedral_decode(v2(a, 0)).to_array()),
-            reference: Some(|a| r::normals::octahedral_decode(d2(a, 0)).to_array().to_vec()),
-            ulps: 16,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "normals",
-            call: "normal_to_unorm(a0)",
-            arguments: &[Direction],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::normals::normal_to_unorm(v3(a, 0)).to_array()),
-            reference: Some(|a| r::normals::normal_to_unorm(d3(a, 0)).to_array().to_vec()),
-            ulps: 2,
-            absolute: 1e-7,
-        },
-        Case {
-            module: "normals",
-            call: "unorm_to_normal(a0)",
-            arguments: &[Colour { scale: 1.0 }],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::normals::unorm_to_normal(v3(a, 0)).to_array()),
-            reference: Some(|a| r::normals::unorm_to_normal(d3(a, 0)).to_array().to_vec()),
-            ulps: 16,
-            absolute: 1e-6,
-        },
+        case!(normals::reconstruct_tangent_z(Pair { low: -1.0, high: 1.0 }); ulps 8, absolute 1e-6),
+        case!(normals::tangent_to_world(Direction, Direction, Tangent); ulps 64, absolute 1e-5),
+        case!(normals::octahedral_encode(Direction); ulps 8, absolute 1e-7),
+        case!(normals::octahedral_decode(Pair { low: -1.0, high: 1.0 }); ulps 16, absolute 1e-6),
+        case!(normals::normal_to_unorm(Direction); ulps 2, absolute 1e-7),
+        case!(normals::unorm_to_normal(Colour { scale: 1.0 }); ulps 16, absolute 1e-6),
         // tonemap
-        Case {
-            module: "tonemap",
-            call: "tonemap_reinhard(a0)",
-            arguments: &[HDR_COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::tonemap::tonemap_reinhard(v3(a, 0)).to_array()),
-            reference: Some(|a| r::tonemap::tonemap_reinhard(d3(a, 0)).to_array().to_vec()),
-            ulps: 4,
-            absolute: 0.0,
-        },
-        Case {
-            module: "tonemap",
-            call: "tonemap_aces_fitted(a0)",
-            arguments: &[HDR_COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::tonemap::tonemap_aces_fitted(v3(a, 0)).to_array()),
-            reference: Some(|a| {
-                r::tonemap::tonemap_aces_fitted(d3(a, 0))
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 8,
-            absolute: 1e-7,
-        },
+        case!(tonemap::tonemap_reinhard(HDR_COLOUR); ulps 4, absolute 0.0),
+        case!(tonemap::tonemap_aces_fitted(HDR_COLOUR); ulps 8, absolute 1e-7),
         // shading
-        Case {
-            module: "shading",
-            call: "half_vector_of(a0, a1)",
-            arguments: &[Direction, Direction],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::shading::half_vector_of(v3(a, 0), v3(a, 3)).to_array()),
-            reference: Some(|a| {
-                r::shading::half_vector_of(d3(a, 0), d3(a, 3))
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 8,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "shading",
-            call: "diffuse_share(a0)",
-            arguments: &[Colour { scale: 1.5 }],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::shading::diffuse_share(v3(a, 0)).to_array()),
-            reference: Some(|a| r::shading::diffuse_share(d3(a, 0)).to_array().to_vec()),
-            ulps: 1,
-            absolute: 1e-7,
-        },
-        Case {
-            module: "shading",
-            call: "specular_albedo(a0, a1)",
-            arguments: &[COLOUR, ENV_BRDF],
-            output: Output::Floats(3),
-            mirror: |a| out(&m::shading::specular_albedo(v3(a, 0), v2(a, 3)).to_array()),
-            reference: Some(|a| {
-                r::shading::specular_albedo(d3(a, 0), d2(a, 3))
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 2,
-            absolute: 1e-7,
-        },
-        Case {
-            module: "shading",
-            call: "shade_directional(a0, a1, a2, a3, a4, a5, a6, a7)",
-            arguments: &[
-                Direction,
-                Direction,
-                Direction,
-                LIGHT_COLOUR,
-                COLOUR,
-                COLOUR,
-                ROUGHNESS,
-                ENV_BRDF,
-            ],
-            output: Output::Floats(3),
-            mirror: |a| {
-                out(&m::shading::shade_directional(
-                    v3(a, 0),
-                    v3(a, 3),
-                    v3(a, 6),
-                    v3(a, 9),
-                    v3(a, 12),
-                    v3(a, 15),
-                    f(a, 18),
-                    v2(a, 19),
-                )
-                .to_array())
-            },
-            reference: Some(|a| {
-                r::shading::shade_directional(
-                    d3(a, 0),
-                    d3(a, 3),
-                    d3(a, 6),
-                    d3(a, 9),
-                    d3(a, 12),
-                    d3(a, 15),
-                    a[18],
-                    d2(a, 19),
-                )
-                .to_array()
-                .to_vec()
-            }),
-            ulps: 256,
-            absolute: 1e-5,
-        },
-        Case {
-            module: "shading",
-            call: "shade_directional_mobile(a0, a1, a2, a3, a4, a5, a6)",
-            arguments: &[
-                Direction,
-                Direction,
-                Direction,
-                LIGHT_COLOUR,
-                COLOUR,
-                COLOUR,
-                ROUGHNESS,
-            ],
-            output: Output::Floats(3),
-            mirror: |a| {
-                out(&m::shading::shade_directional_mobile(
-                    v3(a, 0),
-                    v3(a, 3),
-                    v3(a, 6),
-                    v3(a, 9),
-                    v3(a, 12),
-                    v3(a, 15),
-                    f(a, 18),
-                )
-                .to_array())
-            },
-            reference: Some(|a| {
-                r::shading::shade_directional_mobile(
-                    d3(a, 0),
-                    d3(a, 3),
-                    d3(a, 6),
-                    d3(a, 9),
-                    d3(a, 12),
-                    d3(a, 15),
-                    a[18],
-                )
-                .to_array()
-                .to_vec()
-            }),
-            ulps: 256,
-            absolute: 1e-5,
-        },
-        Case {
-            module: "shading",
-            call: "shade_ibl(a0, a1, a2, a3, a4)",
-            arguments: &[
-                COLOUR,
-                COLOUR,
-                HDR_COLOUR,
-                HDR_COLOUR,
-                Pair {
-                    low: 0.0,
-                    high: 1.0,
-                },
-            ],
-            output: Output::Floats(3),
-            mirror: |a| {
-                out(
-                    &m::shading::shade_ibl(v3(a, 0), v3(a, 3), v3(a, 6), v3(a, 9), v2(a, 12))
-                        .to_array(),
-                )
-            },
-            reference: Some(|a| {
-                r::shading::shade_ibl(d3(a, 0), d3(a, 3), d3(a, 6), d3(a, 9), d2(a, 12))
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 8,
-            absolute: 1e-6,
-        },
-        Case {
-            module: "shading",
-            call: "shade_ibl_mobile(a0, a1, a2, a3, a4, a5)",
-            arguments: &[COLOUR, COLOUR, UNIT, UNIT, HDR_COLOUR, HDR_COLOUR],
-            output: Output::Floats(3),
-            mirror: |a| {
-                out(&m::shading::shade_ibl_mobile(
-                    v3(a, 0),
-                    v3(a, 3),
-                    f(a, 6),
-                    f(a, 7),
-                    v3(a, 8),
-                    v3(a, 11),
-                )
-                .to_array())
-            },
-            reference: Some(|a| {
-                r::shading::shade_ibl_mobile(d3(a, 0), d3(a, 3), a[6], a[7], d3(a, 8), d3(a, 11))
-                    .to_array()
-                    .to_vec()
-            }),
-            ulps: 32,
-            absolute: 1e-5,
-        },
-        Case {
-            module: "shading",
-            call: "point_light_falloff(a0, a1)",
-            arguments: &[
-                Scalar {
-                    low: 0.0,
-                    high: 12.0,
-                },
-                Scalar {
-                    low: 0.5,
-                    high: 10.0,
-                },
-            ],
-            output: Output::Floats(1),
-            mirror: |a| out(&[m::shading::point_light_falloff(f(a, 0), f(a, 1))]),
-            reference: Some(|a| vec![r::shading::point_light_falloff(a[0], a[1])]),
-            ulps: 16,
-            absolute: 1e-6,
-        },
+        case!(shading::half_vector_of(Direction, Direction); ulps 8, absolute 1e-6),
+        case!(shading::diffuse_share(Colour { scale: 1.5 }); ulps 1, absolute 1e-7),
+        case!(shading::specular_albedo(COLOUR, ENV_BRDF); ulps 2, absolute 1e-7),
+        case!(
+            shading::shade_directional(Direction, Direction, Direction, LIGHT_COLOUR, COLOUR, COLOUR, ROUGHNESS, ENV_BRDF);
+            ulps 256, absolute 1e-5
+        ),
+        case!(
+            shading::shade_directional_mobile(Direction, Direction, Direction, LIGHT_COLOUR, COLOUR, COLOUR, ROUGHNESS);
+            ulps 256, absolute 1e-5
+        ),
+        case!(
+            shading::shade_ibl(COLOUR, COLOUR, HDR_COLOUR, HDR_COLOUR, Pair { low: 0.0, high: 1.0 });
+            ulps 8, absolute 1e-6
+        ),
+        case!(
+            shading::shade_ibl_mobile(COLOUR, COLOUR, UNIT, UNIT, HDR_COLOUR, HDR_COLOUR);
+            ulps 32, absolute 1e-5
+        ),
+        case!(
+            shading::point_light_falloff(Scalar { low: 0.0, high: 12.0 }, Scalar { low: 0.5, high: 10.0 });
+            ulps 16, absolute 1e-6
+        ),
     ]
 }
 
