@@ -12,7 +12,7 @@ use scene::{features, spheres};
 use gbuffer::engine_layouts::BevyDeferred;
 use gbuffer::glam::{Vec3, Vec4};
 use gbuffer::GBufferLayout;
-use gbuffer_bevy::{solve, BevyScene, GBufferPlugin, MappingError, Precision, Quantity};
+use gbuffer_bevy::{solve, GBufferPlugin, MappingError, Quantity};
 
 /// Bevy's quantities with the normal in 2 x 16 bits and 8-bit metallic, reflectance and
 /// clearcoat; no occlusion, no clearcoat roughness (Bevy's defaults).
@@ -156,7 +156,7 @@ fn quantities_that_do_not_fit_are_named() {
 
 #[test]
 fn the_features_module_reads_what_bevys_g_buffer_drops() {
-    let plugin = GBufferPlugin::<BevyFeatures>::new();
+    let plugin = GBufferPlugin::<features::BevyFeatures>::new();
     let module = plugin.deferred_functions().unwrap();
     for line in [
         "pbr.material.reflectance = vec3(texel.reflectance_color);",
@@ -355,51 +355,38 @@ fn layouts_render_in_bevys_deferred_renderer() {
     );
 }
 
-/// The features scene in Bevy's terms: what it uses, how precisely. Solved into
-/// [`BevyFeatures`].
-fn features_scene() -> BevyScene {
-    use Precision::{Degrees, Exact, Relative, Steps};
-    BevyScene::new("BevyFeatures")
-        .needs(Quantity::BaseColor, Steps(64))
-        .needs(Quantity::PerceptualRoughness, Steps(32))
-        .needs(Quantity::Normal, Degrees(0.5))
-        .needs(Quantity::Emissive, Relative(0.035))
-        .needs(Quantity::ReflectanceColor, Steps(32))
-        .needs(Quantity::DiffuseOcclusionColor, Steps(8))
-        .needs(Quantity::AnisotropyStrength, Steps(4))
-        .needs(Quantity::AnisotropyTangent, Degrees(4.0))
-        .needs(Quantity::Clearcoat, Steps(2))
-        .needs(Quantity::ClearcoatPerceptualRoughness, Steps(16))
-        .needs(Quantity::ClearcoatNormal, Degrees(4.0))
-        .needs(Quantity::Lightmapped, Exact)
-        .needs(Quantity::DiffuseTransmission, Steps(16))
-}
-
-/// The features scene's layout: [`features_scene`] solved (a test holds the two together).
-#[rustfmt::skip]
-#[allow(dead_code)] // the fields are read on the GPU
-#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 128)]
-struct BevyFeatures {
-    #[bits(27, unsigned_float)] emissive: Vec3,
-    #[bits(5, unorm)] perceptual_roughness: f32,
-    #[bits(18, unorm)] base_color: Vec3,
-    #[bits(12, octahedral)] anisotropy_tangent: Vec3,
-    #[bits(2, unorm)] anisotropy_strength: f32,
-    #[bits(18, octahedral)] normal: Vec3,
-    #[bits(12, octahedral)] clearcoat_normal: Vec3,
-    #[bits(1, unorm)] clearcoat: f32,
-    #[bits(1, uint)] lightmapped: u32,
-    #[bits(15, unorm)] reflectance_color: Vec3,
-    #[bits(9, unorm)] diffuse_occlusion_color: Vec3,
-    #[bits(4, unorm)] clearcoat_perceptual_roughness: f32,
-    #[bits(4, unorm)] diffuse_transmission: f32,
+/// The README's first snippet declares the example's layout field for field: `#[bits(N,
+/// encoding)] pub name: Type`, in order.
+#[test]
+fn the_readmes_layout_is_the_examples() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let body = readme
+        .split_once("pub struct BevyFeatures {")
+        .and_then(|(_, rest)| rest.split_once("\n    }"))
+        .expect("the README declares `BevyFeatures`")
+        .0;
+    let declared: Vec<(String, String)> = body
+        .lines()
+        .filter_map(|line| {
+            let (attribute, field) = line.trim().strip_prefix("#[bits(")?.split_once(")]")?;
+            let (bits, encoding) = attribute.split_once(", ")?;
+            let name = field.trim().strip_prefix("pub ")?.split_once(':')?.0;
+            Some((name.to_string(), format!("{bits}-bit {encoding}")))
+        })
+        .collect();
+    let example: Vec<(String, String)> = features::BevyFeatures::layout()
+        .fields
+        .iter()
+        .map(|field| (field.name.clone(), field.storage_name()))
+        .collect();
+    assert_eq!(declared, example);
 }
 
 #[test]
 fn the_features_layout_is_the_solvers_answer() {
-    let solution = solve(&features_scene()).unwrap();
-    let layout = BevyFeatures::layout();
+    let solution = solve(&features::bevy_scene()).unwrap();
+    let layout = features::BevyFeatures::layout();
     let solved: Vec<(String, String)> = solution
         .fields
         .iter()
@@ -432,7 +419,7 @@ fn the_features_bevys_g_buffer_drops_render_through_a_layout() {
     let layout = render(
         true,
         Some(Box::new(|app: &mut App| {
-            app.add_plugins(GBufferPlugin::<BevyFeatures>::new());
+            app.add_plugins(GBufferPlugin::<features::BevyFeatures>::new());
         })),
     )
     .pixels;

@@ -5,6 +5,8 @@
 pub mod features;
 pub mod spheres;
 
+pub use features::{bumps, Deferred};
+
 use std::sync::{Arc, Mutex};
 
 use bevy::asset::RenderAssetUsages;
@@ -136,10 +138,6 @@ fn capture(app: &mut App) -> Pixels {
     panic!("no screenshot after 20 frames");
 }
 
-/// Whether the scene renders deferred.
-#[derive(Resource, Clone, Copy)]
-pub struct Deferred(pub bool);
-
 /// The scene's camera, at `transform`, rendering into the target; deferred, with the
 /// prepasses Bevy's deferred renderer needs.
 pub fn camera(
@@ -208,36 +206,4 @@ pub fn disc(app: &mut App, center: Vec3, radius: f32, inset: f32) -> Vec<bool> {
         .unwrap();
     let reach = centre.distance(edge) - inset;
     region(|pixel| pixel.distance(centre) < reach)
-}
-
-/// A `size` x `size` RGBA8 linear image, each texel's channels (in [0, 1]) from its column
-/// and row.
-pub fn image(size: u32, texel: impl Fn(u32, u32) -> [f32; 4]) -> Image {
-    let data = (0..size * size)
-        .flat_map(|index| {
-            texel(index % size, index / size)
-                .map(|channel| (channel.clamp(0.0, 1.0) * 255.0).round() as u8)
-        })
-        .collect();
-    Image::new(
-        Extent3d {
-            width: size,
-            height: size,
-            depth_or_array_layers: 1,
-        },
-        TextureDimension::D2,
-        data,
-        TextureFormat::Rgba8Unorm,
-        RenderAssetUsages::RENDER_WORLD,
-    )
-}
-
-/// A tangent-space normal map of bumps, `size` x `size`, RGBA8 linear, `periods` bumps across.
-pub fn bumps(size: u32, periods: f32) -> Image {
-    let wave = |at: u32| (at as f32 / size as f32 * periods * std::f32::consts::TAU).sin();
-    image(size, |x, y| {
-        let normal = Vec3::new(0.35 * wave(x), 0.35 * wave(y), 1.0).normalize();
-        let encoded = normal * 0.5 + Vec3::splat(0.5);
-        [encoded.x, encoded.y, encoded.z, 1.0]
-    })
 }
