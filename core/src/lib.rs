@@ -17,8 +17,7 @@
 //! - [`report`]: the bit report and the WebGPU render-target cost;
 //! - [`Named`]: the one trait by which every package's option enums (a format, a path, a
 //!   backend) name their values;
-//! - [`shading_library`]: the WGSL shading library (`wgsl/`), composed by module name, whose
-//!   codec functions are the codecs' own WGSL.
+//! - [`Symbols`]: the names of the items generated for a layout.
 //!
 //! It depends on nothing: a user's runtime links no proc-macro2, quote or syn.
 
@@ -31,7 +30,6 @@ pub mod layout;
 mod named;
 pub mod naming;
 pub mod report;
-pub mod shading_library;
 mod symbols;
 
 pub use bit_field::BitField;

@@ -65,7 +65,6 @@ extern crate self as gbuffer;
 
 pub mod engine_layouts;
 pub mod seed_layouts;
-pub mod shading;
 
 pub use gbuffer_macros::GBufferLayout;
 pub use glam;

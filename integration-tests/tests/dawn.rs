@@ -191,11 +191,11 @@ fn every_wgsl() -> Vec<Value> {
     for (layout, wgsl) in layouts {
         jobs.push(compile(format!("layout {}", layout.name), wgsl));
     }
-    let modules = gbuffer::shading::wgsl::modules();
+    let modules = gbuffer_shading::wgsl::modules();
     for module in modules {
         jobs.push(compile(
             format!("shading module {}", module.name),
-            gbuffer::shading::compose(&[module.name]).unwrap(),
+            gbuffer_shading::compose(&[module.name]).unwrap(),
         ));
     }
     for &layout in PackedLayout::ALL {
@@ -217,7 +217,7 @@ fn every_wgsl() -> Vec<Value> {
     let names: Vec<&str> = modules.iter().map(|module| module.name).collect();
     jobs.push(compile(
         "the shading library composed",
-        gbuffer::shading::compose(&names).unwrap(),
+        gbuffer_shading::compose(&names).unwrap(),
     ));
     // What an adapter without shader-f16 composes: every module but the one that enables it.
     let without_f16: Vec<&str> = modules
@@ -227,7 +227,7 @@ fn every_wgsl() -> Vec<Value> {
         .collect();
     jobs.push(compile(
         "the shading library composed without f16",
-        gbuffer::shading::compose(&without_f16).unwrap(),
+        gbuffer_shading::compose(&without_f16).unwrap(),
     ));
     jobs
 }

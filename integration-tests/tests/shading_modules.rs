@@ -1,7 +1,7 @@
 //! naga validates every module of the WGSL shading library alone and all of them composed,
 //! and the harness of every function translates to every backend.
 
-use gbuffer::shading::wgsl::{compose, modules, CODEC_PREFIX};
+use gbuffer_shading::wgsl::{compose, modules, CODEC_PREFIX};
 use gbuffer_testkit::shading_cases::{cases, compute_harness};
 use gbuffer_validator::{validate_everywhere, validate_wgsl};
 

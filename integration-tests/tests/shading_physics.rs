@@ -2,9 +2,9 @@
 //! where the property is about their numbers).
 
 use gbuffer::glam::{DVec2, DVec3, Vec3};
-use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
-use gbuffer::shading::mirror as m;
-use gbuffer::shading::reference as r;
+use gbuffer_shading::env_brdf_lut::EnvBrdfLut;
+use gbuffer_shading::mirror as m;
+use gbuffer_shading::reference as r;
 use std::f64::consts::PI;
 
 #[test]

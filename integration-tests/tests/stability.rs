@@ -11,10 +11,10 @@
 
 use gbuffer::glam::{DVec3, Vec3};
 use gbuffer::layout::{Encoding, Format, ScalarKind};
-use gbuffer::shading::half_precision::{self as h, Half, Half3};
-use gbuffer::shading::mirror as m;
 use gbuffer_core::Named;
 use gbuffer_gpu::values::{float_edges, sint_edges, uint_edges};
+use gbuffer_shading::half_precision::{self as h, Half, Half3};
+use gbuffer_shading::mirror as m;
 use gbuffer_testkit::shading_cases::{
     cases, compute_harness, output_components, Argument, Case, Output,
 };
@@ -484,7 +484,7 @@ fn half_precision_forms_run_on_an_f16_adapter_and_agree_with_their_mirror() {
         return;
     }
     let extremes = half_extremes();
-    let library = gbuffer::shading::compose(&["mobile_half"]).unwrap();
+    let library = gbuffer_shading::compose(&["mobile_half"]).unwrap();
     let shader = format!(
         "{library}\n\
          @group(0) @binding(0) var<storage, read> inputs: array<f32>;\n\

@@ -3,7 +3,7 @@
 //! angle and material; and how much single-scattering GGX loses at high roughness.
 //! `cargo test -p gbuffer-integration-tests --test white_furnace -- --nocapture` prints the energies.
 
-use gbuffer::shading::reference as r;
+use gbuffer_shading::reference as r;
 use gbuffer_tradeoff::furnace::{accurate, furnace};
 use std::f64::consts::PI;
 

@@ -8,8 +8,8 @@
 
 use crate::conventions::seed::{Shading, Surface, SurfaceConvention, LIGHT_SCALE};
 use gbuffer::glam::{Vec3, Vec4};
-use gbuffer::shading::mirror as m;
 use gbuffer::GBufferLayout;
+use gbuffer_shading::mirror as m;
 
 /// Listing 2.2 with a 16-bit octahedral normal (8 bits a coordinate) and 8-bit roughness in
 /// its third word.

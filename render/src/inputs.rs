@@ -8,10 +8,10 @@
 //!   PREFILTER_SAMPLES importance samples, as the seed stores its PMREM (Listing 2.6).
 
 use gbuffer::glam::DVec3;
-use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
-use gbuffer::shading::mirror as m;
 use gbuffer_codegen::codecs::half::half_from_f32;
 use gbuffer_codegen::codecs::unorm::unorm_from_f32;
+use gbuffer_shading::env_brdf_lut::EnvBrdfLut;
+use gbuffer_shading::mirror as m;
 
 use crate::reference::{prefiltered_sky, PREFILTER_SAMPLES};
 use crate::scene::{self, ENVIRONMENT_MIPS, ENVIRONMENT_RANGE, LIGHT_MAP_EXTENT, LIGHT_MAP_RANGE};

@@ -3,7 +3,7 @@
 //! model a specialised lighting pass is measured against.
 
 use gbuffer::glam::DVec3;
-use gbuffer::shading::reference as r;
+use gbuffer_shading::reference as r;
 use gbuffer_solver::{Feature, Features};
 
 use crate::mesh::Mesh;

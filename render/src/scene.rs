@@ -9,7 +9,7 @@
 //! (for the reference), side by side: the same numbers, the same formulas.
 
 use gbuffer::glam::{DVec2, DVec3, DVec4};
-use gbuffer::shading::reference as r;
+use gbuffer_shading::reference as r;
 use gbuffer_solver::{Feature, Features};
 
 /// Sphere grid: columns of roughness, rows of material.

@@ -16,9 +16,9 @@ use crate::gbuffers::GBuffer;
 use crate::options::{IblForm, Options, SunForm, EXPOSURE};
 use crate::scene::{self};
 
-/// The library modules (`gbuffer::shading::wgsl`) composed, for the passes.
+/// The library modules (`gbuffer_shading::wgsl`) composed, for the passes.
 pub fn library(modules: &[&str]) -> String {
-    gbuffer::shading::compose(modules).expect("the library's modules exist")
+    gbuffer_shading::compose(modules).expect("the library's modules exist")
 }
 
 /// The modules every pass of the renderer draws from.

@@ -61,7 +61,7 @@ fn lighting_main(@builtin(position) pixel: vec4<f32>, @location(0) view: vec3<f3
     return vec4<f32>({shade}(values, normalize(view), view), 1.0);
 }}
 ",
-        gbuffer::shading::compose(&modules).unwrap(),
+        gbuffer_shading::compose(&modules).unwrap(),
         texel_wgsl(solution),
         lighting_wgsl(solution, forms),
         words = solution.layout.words(),

@@ -3,8 +3,8 @@
 //! the adapter must come to the mirror.
 
 use gbuffer::glam::{DVec2, DVec3, DVec4, Vec2, Vec3, Vec4};
-use gbuffer::shading::mirror as m;
-use gbuffer::shading::reference as r;
+use gbuffer_shading::mirror as m;
+use gbuffer_shading::reference as r;
 
 use gbuffer_gpu::values::{fibonacci_sphere, halton};
 
@@ -547,7 +547,7 @@ pub fn grid(case: &Case, target: usize) -> Vec<Vec<u32>> {
 /// A compute shader that evaluates the case at every point of `inputs` (the flattened
 /// arguments' bits) into `outputs`; bindings as [`gbuffer_gpu::Gpu::run_compute`] expects.
 pub fn compute_harness(case: &Case) -> String {
-    let mut wgsl = gbuffer::shading::compose(&[case.module]).expect("the case's module exists");
+    let mut wgsl = gbuffer_shading::compose(&[case.module]).expect("the case's module exists");
     let stride: usize = case
         .arguments
         .iter()

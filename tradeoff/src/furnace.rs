@@ -4,7 +4,7 @@ use std::f64::consts::{FRAC_PI_2, TAU};
 use std::fmt::Write as _;
 
 use gbuffer::glam::DVec3;
-use gbuffer::shading::reference as r;
+use gbuffer_shading::reference as r;
 
 use crate::stdout::report_line;
 

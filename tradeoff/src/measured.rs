@@ -2,7 +2,7 @@
 //! instructions, its time on the adapter and on the CPU, and what the GPUs' own compilers make
 //! of it.
 
-use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
+use gbuffer_shading::env_brdf_lut::EnvBrdfLut;
 
 use crate::compilers;
 use crate::rows::Row;

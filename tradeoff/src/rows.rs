@@ -4,11 +4,11 @@
 use gbuffer::codecs::unorm;
 use gbuffer::glam::{DVec3, Vec2, Vec3, Vec4};
 use gbuffer::layout::{BitField, Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
-use gbuffer::shading::env_brdf_lut::EnvBrdfLut;
-use gbuffer::shading::{mirror as m, reference as r};
 use gbuffer_render::conventions::seed::{
     round_trip, Shading, Surface, SurfaceConvention, LIGHT_SCALE, SURFACE_WGSL,
 };
+use gbuffer_shading::env_brdf_lut::EnvBrdfLut;
+use gbuffer_shading::{mirror as m, reference as r};
 
 use gbuffer_gpu::values::halton;
 
@@ -86,7 +86,7 @@ fn quantize4(value: vec4<f32>, max_code: f32) -> vec4<f32> {
 ";
 
 fn wgsl(modules: &[&str], body: &str) -> String {
-    let library = gbuffer::shading::compose(modules).expect("the library's modules exist");
+    let library = gbuffer_shading::compose(modules).expect("the library's modules exist");
     format!("{library}\n{PRELUDE}\n{body}")
 }
 

@@ -126,7 +126,7 @@ mod tests {
             "-".repeat(9000)
         );
         check(&commented).unwrap();
-        for module in gbuffer_core::shading_library::modules() {
+        for module in gbuffer_shading::wgsl::modules() {
             check(&module.source).unwrap();
         }
     }

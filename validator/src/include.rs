@@ -193,7 +193,7 @@ impl Resolver {
                 .strip_prefix("<gbuffer/")
                 .and_then(|rest| rest.strip_suffix('>'))
             {
-                let modules = gbuffer_core::shading_library::dependency_order(&[module])
+                let modules = gbuffer_shading::wgsl::dependency_order(&[module])
                     .map_err(|problem| error(problem.to_string()))?;
                 for module in modules {
                     if !self.included_modules.contains(&module.name) {

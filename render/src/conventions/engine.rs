@@ -21,7 +21,7 @@
 
 use super::seed::{Shading, Surface, SurfaceConvention};
 use gbuffer::engine_layouts::{BevyDeferred, HdrpLit};
-use gbuffer::shading::mirror as m;
+use gbuffer_shading::mirror as m;
 
 /// Bevy's `reflectance` for dielectrics: f0 = 0.16 x 0.5² = 0.04.
 const BEVY_DIELECTRIC_REFLECTANCE: f32 = 0.5;

@@ -8,14 +8,14 @@
 //! `decode_texel` to the [`Shading`] the lighting pass reads, over the shading library's
 //! `colour`, `hdr`, `normals`, `material` and `constants` modules and [`SURFACE_WGSL`]) and as
 //! its Rust mirror ([`SurfaceConvention::encode`], [`SurfaceConvention::decode`]) over
-//! [`gbuffer::shading::mirror`], in the same order of operations.
+//! [`gbuffer_shading::mirror`], in the same order of operations.
 
 use gbuffer::glam::{Vec2, Vec3};
 use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
-use gbuffer::shading::mirror as m;
 use gbuffer::GBufferLayout;
+use gbuffer_shading::mirror as m;
 
 /// Light accumulation stored in unorm channels (`rgb10_a2`) is stored as light / this, so
 /// light up to 4 (the brightest light map and emissive of the reference scene) survives;
@@ -103,7 +103,7 @@ impl Shading {
     }
 
     /// What a G-buffer that stored `surface` exactly would give back: the metallic workflow
-    /// with dielectrics at [`gbuffer::shading::mirror::constants::DIELECTRIC_F0`].
+    /// with dielectrics at [`gbuffer_shading::mirror::constants::DIELECTRIC_F0`].
     pub fn of(surface: &Surface) -> Shading {
         let colours = metallic_workflow(surface.base_colour, surface.metallic);
         Shading::from_colours(surface.normal, surface.roughness, colours, surface.light)

@@ -1,6 +1,6 @@
 //! The WGSL shading library as composable modules.
 //!
-//! Each file in `core/wgsl/` is one module; its header names the modules it needs:
+//! Each file in `shading/wgsl/` is one module; its header names the modules it needs:
 //!
 //! ```text
 //! // microfacet: the terms of a Cook-Torrance specular BRDF ...
@@ -20,8 +20,8 @@
 use std::fmt;
 use std::sync::LazyLock;
 
-use crate::codecs::wgsl::Lanes;
-use crate::codecs::{octahedral, rgb9e5, rgbm};
+use gbuffer_core::codecs::wgsl::Lanes;
+use gbuffer_core::codecs::{octahedral, rgb9e5, rgbm};
 
 /// The prefix of the codec functions the library's modules call (`shading_library_...`), as a
 /// layout's prefix names its own copies.

@@ -10,7 +10,7 @@
 //! - [`env_brdf_lut`]: the split-sum LUT the image-based lighting reads, baked on the CPU.
 //!
 //! ```
-//! use gbuffer::shading::{compose, mirror};
+//! use gbuffer_shading::{compose, mirror};
 //!
 //! // The GGX terms and their dependencies (the constants), as one WGSL source:
 //! let wgsl = compose(&["microfacet"]).unwrap();
@@ -100,6 +100,6 @@ pub mod reference {
 pub mod env_brdf_lut;
 pub mod half_precision;
 
-/// The library's WGSL, one module per file of `core/wgsl/`.
-pub use gbuffer_core::shading_library as wgsl;
-pub use gbuffer_core::shading_library::compose;
+pub mod wgsl;
+
+pub use wgsl::compose;
