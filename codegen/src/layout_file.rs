@@ -50,10 +50,10 @@ use gbuffer_core::Named;
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
-use crate::format::Format;
-use crate::layout::{Conversions, Field, Layout, Storage, Subject, DEFAULT_BUDGET};
 use crate::toml_table::{self, ShapeError, Table};
-use crate::{BitField, Encoding, FieldType, ScalarKind};
+use gbuffer_core::format::Format;
+use gbuffer_core::layout::{Conversions, Field, Layout, Storage, Subject, DEFAULT_BUDGET};
+use gbuffer_core::{BitField, Encoding, FieldType, ScalarKind};
 
 /// A layout file's keys, as written.
 struct LayoutEntry {

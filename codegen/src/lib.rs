@@ -2,8 +2,8 @@
 //! layout model of [`gbuffer_core`].
 //!
 //! One implementation serves every front end: the `#[derive(GBufferLayout)]` macro and the
-//! `codegen` command both build a [`Layout`], [`Layout::check`] it, and hand it to the
-//! emitters:
+//! `codegen` command both build a [`Layout`](gbuffer_core::Layout),
+//! [`check`](gbuffer_core::Layout::check) it, and hand it to the emitters:
 //!
 //! - [`emit`]: WGSL and Rust mirror emitters;
 //! - with the `tools` feature (on by default): `input` (how every input file is read),
@@ -12,7 +12,8 @@
 //!   or none), the GLSL and
 //!   Rust-source emitters, `Builder` for build scripts (the `gbuffer codegen` command runs them).
 //!
-//! The model's modules are re-exported here, so that the emitters' users name one crate.
+//! The model is named by one path, `gbuffer_core` (users of the facade: `gbuffer::layout`);
+//! this crate re-exports none of it.
 
 #[cfg(feature = "tools")]
 mod builder;
@@ -30,10 +31,3 @@ pub mod toml_table;
 
 #[cfg(feature = "tools")]
 pub use builder::{BuildError, Builder};
-
-pub use gbuffer_core::{bit_field, codecs, convert, format, layout, naming, report};
-pub use gbuffer_core::{
-    BitField, Channel, Codec, Conversions, Diagnostic, Encoding, Field, FieldType, Format, Layout,
-    LightStorage, Member, Named, Report, RgbmRange, ScalarKind, Storage, Subject, Symbols, Word,
-    DEFAULT_BUDGET,
-};

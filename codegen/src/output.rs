@@ -6,10 +6,10 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 use crate::emit::glsl::{self, Include, TranslationError};
-use crate::emit::wgsl::Conversions;
 use crate::emit::{rust, wgsl};
-use crate::layout::Layout;
-use crate::report::Report;
+use gbuffer_core::layout::Layout;
+use gbuffer_core::report::Report;
+use gbuffer_core::Conversions;
 
 /// One kind of output.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -6,7 +6,7 @@
 //! is written to `target/figures/conversion-cost.md` for the guide.
 
 use gbuffer::layout::{Format, Layout};
-use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_core::Conversions;
 use gbuffer_core::Named;
 use gbuffer_tradeoff::packing_cost::{builtin_form, cost, harness, layout_cost, one_field, Cost};
 

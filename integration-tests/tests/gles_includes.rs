@@ -16,7 +16,7 @@
 
 use gbuffer::layout::{Format, Layout, Storage};
 use gbuffer_codegen::emit::glsl::{self, Include, Interface};
-use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_core::Conversions;
 use gbuffer_gpu::gles::{Framebuffer, Gles};
 use gbuffer_gpu::harness::scalars_per_texel;
 use gbuffer_gpu::values::Values;

@@ -8,7 +8,7 @@ use gbuffer::layout::{Layout, Symbols};
 use gbuffer::GBufferLayout;
 use gbuffer_codegen::emit::glsl::{self, Include, PlsBlock};
 use gbuffer_codegen::output::{generate, Output};
-use gbuffer_codegen::Conversions;
+use gbuffer_core::Conversions;
 use gbuffer_testkit::layouts::{seeds_and_every_format, AWKWARD_LAYOUT_NAMES};
 
 /// The layouts checked: the seeds, the engines', every format and encoding, and the seed

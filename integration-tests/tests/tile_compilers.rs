@@ -20,7 +20,7 @@
 //! fails.
 
 use gbuffer_codegen::emit::glsl::{self, Include};
-use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_core::Conversions;
 use gbuffer_core::Named;
 use gbuffer_cost::{measure, CostError, Shader, Stage, Target};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};

@@ -23,7 +23,7 @@ use gbuffer::layout::Layout;
 use gbuffer::GBufferLayout;
 use gbuffer_codegen::emit::glsl::webgl::PlaneFormat;
 use gbuffer_codegen::emit::glsl::{self, Include, Interface};
-use gbuffer_codegen::emit::wgsl::Conversions;
+use gbuffer_core::Conversions;
 use gbuffer_core::Named;
 use gbuffer_gpu::harness::scalars_per_texel;
 use gbuffer_gpu::values::Values;

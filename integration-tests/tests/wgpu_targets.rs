@@ -419,7 +419,7 @@ fn limit_errors_name_what_is_needed_against_what_is_allowed() {
 #[test]
 fn the_report_says_what_webgl2_allows() {
     use gbuffer::layout::Report;
-    use gbuffer_codegen::report::{WEBGL2_COLOR_ATTACHMENT_LIMIT, WEBGPU_BYTES_PER_SAMPLE_LIMIT};
+    use gbuffer_core::report::{WEBGL2_COLOR_ATTACHMENT_LIMIT, WEBGPU_BYTES_PER_SAMPLE_LIMIT};
     let webgl2 = wgpu::Limits::downlevel_webgl2_defaults();
     assert_eq!(
         webgl2.max_color_attachments as usize,

@@ -2,8 +2,8 @@
 //!
 //! A derive in three stages, as serde_derive and thiserror do it:
 //! 1. `parse`: read the struct and its `#[gbuffer]`, `#[pls]` and `#[bits]` attributes into a
-//!    [`gbuffer_codegen::Layout`], remembering the span of everything a message may point at;
-//! 2. check: [`gbuffer_codegen::Layout::check`] judges the layout (budget, types, names), the same
+//!    [`gbuffer_core::Layout`], remembering the span of everything a message may point at;
+//! 2. check: [`gbuffer_core::Layout::check`] judges the layout (budget, types, names), the same
 //!    check `gbuffer codegen` runs on layout files;
 //! 3. expand: [`gbuffer_codegen::emit`] writes the WGSL and the Rust mirror.
 //!

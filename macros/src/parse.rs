@@ -1,9 +1,9 @@
 //! Stage 1 of the derive: the struct and its attributes to a [`Layout`], with the span of each
 //! part so that the check's diagnostics can point at it.
 
-use gbuffer_codegen::emit::wgsl::Conversions;
-use gbuffer_codegen::Named;
-use gbuffer_codegen::{
+use gbuffer_core::Conversions;
+use gbuffer_core::Named;
+use gbuffer_core::{
     BitField, Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage, Subject,
     DEFAULT_BUDGET,
 };

@@ -8,8 +8,8 @@
 //!   PREFILTER_SAMPLES importance samples, as the seed stores its PMREM (Listing 2.6).
 
 use gbuffer::glam::DVec3;
-use gbuffer_codegen::codecs::half::half_from_f32;
-use gbuffer_codegen::codecs::unorm::unorm_from_f32;
+use gbuffer_core::codecs::half::half_from_f32;
+use gbuffer_core::codecs::unorm::unorm_from_f32;
 use gbuffer_shading::env_brdf_lut::EnvBrdfLut;
 use gbuffer_shading::mirror as m;
 

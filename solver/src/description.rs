@@ -201,7 +201,7 @@ impl Default for Precision {
 }
 
 /// The bits a scene may use when its description names none: PowerVR and Mali tile storage.
-pub const DEFAULT_BUDGET: u32 = gbuffer_codegen::DEFAULT_BUDGET;
+pub const DEFAULT_BUDGET: u32 = gbuffer_core::DEFAULT_BUDGET;
 
 /// A scene: what it uses and how precisely, and how much tile memory it may take.
 #[derive(Clone, Debug, PartialEq)]
@@ -344,13 +344,13 @@ impl SceneDescription {
         let mut errors = Vec::new();
         let mut report =
             |setting, message: String| errors.push(DescriptionError { setting, message });
-        if let Err(reason) = gbuffer_codegen::naming::check_identifier(&self.name) {
+        if let Err(reason) = gbuffer_core::naming::check_identifier(&self.name) {
             report(
                 Setting::Name,
                 format!("scene name `{}` {reason}", self.name),
             );
         }
-        if let Err(problem) = gbuffer_codegen::layout::check_budget(self.budget) {
+        if let Err(problem) = gbuffer_core::layout::check_budget(self.budget) {
             report(Setting::Budget, problem);
         }
         let precision = &self.precision;

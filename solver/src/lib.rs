@@ -6,7 +6,7 @@
 //! - [`quantity`]: what the G-buffer must store, and for which features;
 //! - [`representation`]: the ways to store each quantity, their storage and predicted error;
 //! - [`solver`]: the smallest layout that meets the precision within the budget, an ordinary
-//!   [`gbuffer_codegen::Layout`] (the same WGSL, Rust mirror and report as a hand-written one), or
+//!   [`gbuffer_core::Layout`] (the same WGSL, Rust mirror and report as a hand-written one), or
 //!   the requirement that cannot be met;
 //! - [`texel`]: the WGSL that stores the scene's values in that layout and reads them back;
 //! - [`lighting`]: a lighting shader with only the terms the scene uses;

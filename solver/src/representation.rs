@@ -9,7 +9,7 @@
 
 use std::fmt;
 
-use gbuffer_codegen::{
+use gbuffer_core::{
     codecs, BitField, Encoding, FieldType, Format, LightStorage, RgbmRange, ScalarKind, Storage,
 };
 use glam::Vec3;
@@ -52,7 +52,7 @@ pub enum Representation {
         format: Format,
     },
     /// Light as a bit field of any codec that offers light storage
-    /// ([`Codec::light_storage`](gbuffer_codegen::Codec#structfield.light_storage)), `each` bits per
+    /// ([`Codec::light_storage`](gbuffer_core::Codec#structfield.light_storage)), `each` bits per
     /// component: a codec added to the list is in the catalogue by itself.
     Light {
         /// The codec.

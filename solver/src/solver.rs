@@ -16,8 +16,8 @@
 use std::collections::HashMap;
 use std::fmt;
 
-use gbuffer_codegen::{Conversions, Field, Layout, Storage};
 use gbuffer_core::Named;
+use gbuffer_core::{Conversions, Field, Layout, Storage};
 
 use crate::description::{DescriptionError, Feature, SceneDescription, Setting};
 use crate::quantity::{stored_quantities, Kind, Quantity, Stored};
@@ -538,7 +538,7 @@ mod tests {
             (5..=16)
                 .map(|bits| Representation::Unorm { bits })
                 .chain([Representation::UnormWord {
-                    format: gbuffer_codegen::Format::Rgba8,
+                    format: gbuffer_core::Format::Rgba8,
                 }])
                 .collect(),
         );
@@ -547,7 +547,7 @@ mod tests {
             [
                 Representation::Unorm { bits: 5 },
                 Representation::UnormWord {
-                    format: gbuffer_codegen::Format::Rgba8
+                    format: gbuffer_core::Format::Rgba8
                 }
             ]
         );

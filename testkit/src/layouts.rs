@@ -62,12 +62,12 @@ pub const AWKWARD_FIELD_NAMES: &[&str] = &[
     "texel",
 ];
 
-/// [`AWKWARD_FIELD_NAMES`] and every word of [`gbuffer_codegen::naming::GLSL_RESERVED`] that a field
+/// [`AWKWARD_FIELD_NAMES`] and every word of [`gbuffer_core::naming::GLSL_RESERVED`] that a field
 /// may be named (not WGSL's or Rust's too).
 pub fn awkward_field_names() -> Vec<&'static str> {
     let mut names: Vec<&str> = AWKWARD_FIELD_NAMES.to_vec();
-    for name in gbuffer_codegen::naming::GLSL_RESERVED {
-        if gbuffer_codegen::naming::check_identifier(name).is_ok() && !names.contains(name) {
+    for name in gbuffer_core::naming::GLSL_RESERVED {
+        if gbuffer_core::naming::check_identifier(name).is_ok() && !names.contains(name) {
             names.push(name);
         }
     }

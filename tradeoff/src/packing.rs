@@ -9,7 +9,8 @@ use std::fmt::Write as _;
 
 use crate::packing_cost::{deviation, layout_cost, one_field, Cost, Deviation, CONVERTED_FORMATS};
 use gbuffer::layout::Format;
-use gbuffer_codegen::emit::wgsl::{emit_with, Conversions};
+use gbuffer_codegen::emit::wgsl::emit_with;
+use gbuffer_core::Conversions;
 use gbuffer_core::Named;
 use gbuffer_gpu::Gpu;
 

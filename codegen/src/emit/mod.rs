@@ -1,4 +1,4 @@
-//! Emitters: each turns a checked [`crate::Layout`] into source text or tokens: WGSL (the
+//! Emitters: each turns a checked [`gbuffer_core::Layout`] into source text or tokens: WGSL (the
 //! source of truth), the Rust mirror, and (with the `tools` feature) GLSL ES includes; and the
 //! JSON string literals that generated JavaScript and the tools' JSON share.
 

@@ -1,5 +1,5 @@
 //! The Rust mirror emitter: the `GBufferLayout` impl that packs and unpacks a layout on the
-//! CPU with the bit-exact conversions of [`crate::convert`].
+//! CPU with the bit-exact conversions of [`gbuffer_core::convert`].
 //!
 //! The derive expands to these tokens, and `gbuffer codegen` prints them as source for crates
 //! that do not use the proc-macro. Every path is absolute (`::gbuffer::...`, or the path the
@@ -10,8 +10,8 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::layout::{Field, Layout, Storage};
-use crate::{BitField, Encoding, FieldType, ScalarKind};
+use gbuffer_core::layout::{Field, Layout, Storage};
+use gbuffer_core::{BitField, Encoding, FieldType, ScalarKind};
 
 /// The path of the `gbuffer` crate when the user names no other: `::gbuffer`.
 pub fn default_crate_path() -> TokenStream {
@@ -161,7 +161,7 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
             Storage::Bits(bit_field) => {
                 let bit_field = bit_field_tokens(bit_field, &packing);
                 let offset = Literal::u32_unsuffixed(member.offset);
-                let mask = Literal::u32_unsuffixed(crate::codecs::max_code(member.bits));
+                let mask = Literal::u32_unsuffixed(gbuffer_core::codecs::max_code(member.bits));
                 let components = Literal::usize_unsuffixed(field.ty.components);
                 let lanes = quote!(#bit_field.decode((#words_parameter[#word] >> #offset) & #mask, #components));
                 let scalar = |index: usize| {
@@ -405,7 +405,7 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
             Storage::Bits(bit_field) => {
                 let bit_field = bit_field_tokens(bit_field, &packing);
                 let offset = Literal::u32_unsuffixed(member.offset);
-                let mask = Literal::u32_unsuffixed(crate::codecs::max_code(member.bits));
+                let mask = Literal::u32_unsuffixed(gbuffer_core::codecs::max_code(member.bits));
                 let components = Literal::usize_unsuffixed(field.ty.components);
                 quote! {
                     let #field_ident: [[#u32_; #lanes_n]; 4] = {
@@ -502,8 +502,8 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
 /// and a `#[pls(...)]` or `#[bits(...)]` attribute per field, public fields of `gbuffer`'s
 /// glam types. What the derive reads back as the same layout and WGSL.
 #[cfg(feature = "tools")]
-pub fn derive_source(layout: &Layout, conversions: crate::layout::Conversions) -> String {
-    use crate::layout::Conversions;
+pub fn derive_source(layout: &Layout, conversions: gbuffer_core::layout::Conversions) -> String {
+    use gbuffer_core::layout::Conversions;
     use gbuffer_core::Named;
 
     let mut options = format!("budget = {}", layout.budget);

@@ -4,8 +4,8 @@
 //! repeating them, and each include's header comment says the same.
 
 use super::webgl::Plane;
-use crate::format::{PackedTarget, TargetFormat};
-use crate::layout::{Conversions, Layout};
+use gbuffer_core::format::{PackedTarget, TargetFormat};
+use gbuffer_core::layout::{Conversions, Layout};
 
 /// An include of the GLSL family, by how the G-buffer reaches the shader.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -32,11 +32,11 @@ pub use translate::{translate, translate_with, with_explicit_precision, GlslName
 
 use gbuffer_core::Named;
 
-use crate::codecs::max_code;
-use crate::emit::wgsl::Conversions;
-use crate::format::Format;
-use crate::layout::{Layout, Member, Word};
-use crate::{FieldType, ScalarKind, Symbols};
+use gbuffer_core::codecs::max_code;
+use gbuffer_core::format::Format;
+use gbuffer_core::layout::{Layout, Member, Word};
+use gbuffer_core::Conversions;
+use gbuffer_core::{FieldType, ScalarKind, Symbols};
 
 /// Which of the three pixel local storage block forms to declare.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -147,7 +147,7 @@ pub(crate) fn unique(names: Vec<String>) -> Vec<String> {
     let mut taken: Vec<String> = Vec::new();
     for (index, name) in names.into_iter().enumerate() {
         let name = match taken.contains(&name) {
-            true => crate::naming::glsl_identifier(&[&name, &index.to_string()]),
+            true => gbuffer_core::naming::glsl_identifier(&[&name, &index.to_string()]),
             false => name,
         };
         taken.push(name);
@@ -314,7 +314,7 @@ fn write_header(out: &mut String, title: &str, interface: &Interface) {
         let _ = writeln!(
             out,
             "// {}.\n// The shader may not `discard`, `return` from main, or write gl_FragDepth or gl_SampleMask.",
-            crate::report::webgl_planes(interface.planes.len())
+            gbuffer_core::report::webgl_planes(interface.planes.len())
         );
     }
     let host_extensions = interface.host_extensions();

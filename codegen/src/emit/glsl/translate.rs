@@ -13,9 +13,10 @@
 //! attachments, accessors) use the same names as the translated struct.
 
 use super::TranslationError;
-use crate::emit::wgsl::{function_name, Conversions, Target};
-use crate::format::Format;
-use crate::layout::Layout;
+use crate::emit::wgsl::{function_name, Target};
+use gbuffer_core::format::Format;
+use gbuffer_core::layout::Layout;
+use gbuffer_core::Conversions;
 
 /// The GLSL ES version the functions are translated for: the lowest a user can write, so the
 /// text compiles under `#version 300 es`, `310 es` and `320 es` alike.

@@ -1,6 +1,6 @@
 //! The WGSL of bit fields: per field an encode function that returns its code in the low
 //! bits and a decode function that takes it back, their bodies and helpers written by the
-//! field's codec ([`crate::codecs`]). The pack function shifts each code into place and
+//! field's codec ([`gbuffer_core::codecs`]). The pack function shifts each code into place and
 //! combines a word's codes with `|`.
 //!
 //! Exact conversions keep the codecs' contracts bit for bit with integer operations only (the
@@ -9,9 +9,9 @@
 //! (unorm, half, octahedral, RGBM), one code from the exact ones at most (for octahedral and
 //! RGBM, which name some values by two codes, two steps of the decoded value).
 
-use crate::bit_field::BitField;
-use crate::codecs::wgsl::{self, Lanes};
-use crate::layout::{Conversions, Field};
+use gbuffer_core::bit_field::BitField;
+use gbuffer_core::codecs::wgsl::{self, Lanes};
+use gbuffer_core::layout::{Conversions, Field};
 
 /// `<prefix>_<verb>_field_<index>_bits`: the functions of bit field `index` (the field's place
 /// in the layout, not its name: naga's GLSL writer would rename a name with `__` or one that

@@ -10,7 +10,7 @@
 //! way and `pack4x8unorm` lets the adapter pick either neighbour, so exact conversions do not
 //! use them. The channels of a word are converted together, one vector instruction for all of
 //! them; nothing branches on the data, and no `select` works on integer vectors (GLSL ES 3.00
-//! cannot translate it). Their CPU twin is [`crate::convert`]. Fast conversions
+//! cannot translate it). Their CPU twin is [`gbuffer_core::convert`]. Fast conversions
 //! ([`Conversions::Fast`]) use the builtins and the engines' f32 idioms instead.
 //!
 //! Helpers carry the layout's snake_case name as a prefix, so the WGSL of several layouts can
@@ -23,13 +23,13 @@ use std::fmt::Write as _;
 
 use gbuffer_core::Named;
 
-use crate::codecs::wgsl::Lanes;
-use crate::codecs::{half, max_code, small_float, unorm, unsigned_float, Encoding};
-use crate::format::{Channel, Format};
-use crate::layout::{Field, Layout, Member, Storage};
-use crate::ScalarKind;
+use gbuffer_core::codecs::wgsl::Lanes;
+use gbuffer_core::codecs::{half, max_code, small_float, unorm, unsigned_float, Encoding};
+use gbuffer_core::format::{Channel, Format};
+use gbuffer_core::layout::{Field, Layout, Member, Storage};
+use gbuffer_core::ScalarKind;
 
-pub use crate::layout::Conversions;
+use gbuffer_core::Conversions;
 
 /// The WGSL of a layout with exact conversions. The layout must have passed [`Layout::check`].
 pub fn emit(layout: &Layout) -> String {
