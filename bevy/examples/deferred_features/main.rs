@@ -10,23 +10,17 @@
 
 use std::path::PathBuf;
 
-use bevy::asset::RenderAssetUsages;
 use bevy::camera::RenderTarget;
 use bevy::core_pipeline::prepass::{DeferredPrepass, DepthPrepass};
 use bevy::pbr::DefaultOpaqueRendererMethod;
 use bevy::prelude::*;
-use bevy::render::pipelined_rendering::PipelinedRenderingPlugin;
-use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, TextureUsages};
 use bevy::render::view::screenshot::{save_to_disk, Screenshot};
-use bevy::render::RenderPlugin;
-use bevy::window::ExitCondition;
-use bevy::winit::WinitPlugin;
 use gbuffer_bevy::GBufferPlugin;
 
 mod scene;
 
 use scene::layout::BevyFeatures;
-use scene::{camera_transform, Deferred, FeaturesScene};
+use scene::{camera_transform, headless_plugins, headless_target, Deferred, FeaturesScene};
 
 /// The headless frame's size and file.
 const SIZE: (u32, u32) = (640, 360);
@@ -50,20 +44,7 @@ fn main() {
         return;
     }
     app.add_plugins((
-        DefaultPlugins
-            .set(WindowPlugin {
-                primary_window: None,
-                exit_condition: ExitCondition::DontExit,
-                ..default()
-            })
-            // One frame, so every pipeline compiles before it is drawn.
-            .set(RenderPlugin {
-                synchronous_pipeline_compilation: true,
-                ..default()
-            })
-            // The render app stays in the app, where `settle` reads its pipelines.
-            .disable::<PipelinedRenderingPlugin>()
-            .disable::<WinitPlugin>(),
+        headless_plugins(),
         GBufferPlugin::<BevyFeatures>::new(),
         FeaturesScene,
     ))
@@ -110,18 +91,7 @@ fn window_camera(mut commands: Commands) {
 }
 
 fn image_camera(mut commands: Commands, mut images: ResMut<Assets<Image>>) {
-    let mut image = Image::new_uninit(
-        Extent3d {
-            width: SIZE.0,
-            height: SIZE.1,
-            depth_or_array_layers: 1,
-        },
-        TextureDimension::D2,
-        TextureFormat::Rgba8UnormSrgb,
-        RenderAssetUsages::RENDER_WORLD,
-    );
-    image.texture_descriptor.usage |= TextureUsages::RENDER_ATTACHMENT | TextureUsages::COPY_SRC;
-    let image = images.add(image);
+    let image = images.add(headless_target(SIZE.0, SIZE.1));
     commands.insert_resource(Target(image.clone()));
     commands.spawn((camera(), RenderTarget::from(image)));
 }

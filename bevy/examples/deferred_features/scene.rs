@@ -10,6 +10,7 @@
 //! includes this file (`tests/scene/features.rs`) and renders it forward, deferred with Bevy's
 //! G-buffer and deferred through the layout.
 
+use bevy::app::PluginGroupBuilder;
 use bevy::asset::{uuid_handle, RenderAssetUsages};
 use bevy::light::{DirectionalLight, GlobalAmbientLight};
 use bevy::material::OpaqueRendererMethod;
@@ -19,8 +20,14 @@ use bevy::pbr::{
     ExtendedMaterial, Lightmap, MaterialExtension, MaterialPlugin, MeshMaterial3d, StandardMaterial,
 };
 use bevy::prelude::*;
-use bevy::render::render_resource::{AsBindGroup, Extent3d, TextureDimension, TextureFormat};
+use bevy::render::pipelined_rendering::PipelinedRenderingPlugin;
+use bevy::render::render_resource::{
+    AsBindGroup, Extent3d, TextureDimension, TextureFormat, TextureUsages,
+};
+use bevy::render::RenderPlugin;
 use bevy::shader::{Shader, ShaderRef};
+use bevy::window::ExitCondition;
+use bevy::winit::WinitPlugin;
 
 /// The layout, in a module of its own because its `Vec3`s are gbuffer's glam, not Bevy's.
 pub mod layout {
@@ -51,6 +58,40 @@ pub mod layout {
         #[bits(4, unorm)]           pub clearcoat_perceptual_roughness: f32,
         #[bits(4, unorm)]           pub diffuse_transmission: f32,
     }
+}
+
+/// Bevy's default plugins for frames rendered into an image, without a window: every pipeline
+/// compiled before the frame that uses it is drawn, the render app kept in the app (where
+/// `gbuffer_bevy::settle` reads its pipelines), no winit.
+pub fn headless_plugins() -> PluginGroupBuilder {
+    DefaultPlugins
+        .set(WindowPlugin {
+            primary_window: None,
+            exit_condition: ExitCondition::DontExit,
+            ..default()
+        })
+        .set(RenderPlugin {
+            synchronous_pipeline_compilation: true,
+            ..default()
+        })
+        .disable::<PipelinedRenderingPlugin>()
+        .disable::<WinitPlugin>()
+}
+
+/// An sRGB image of `width` x `height` a camera renders into and a screenshot reads back.
+pub fn headless_target(width: u32, height: u32) -> Image {
+    let mut image = Image::new_uninit(
+        Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        TextureFormat::Rgba8UnormSrgb,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    image.texture_descriptor.usage |= TextureUsages::RENDER_ATTACHMENT | TextureUsages::COPY_SRC;
+    image
 }
 
 /// The spheres' radius.

@@ -8,7 +8,7 @@ use bevy::prelude::*;
 use gbuffer_bevy::{BevyScene, Precision, Quantity};
 
 pub use shared::layout::BevyFeatures;
-pub use shared::{bumps, Deferred};
+pub use shared::{bumps, headless_plugins, headless_target, Deferred};
 use shared::{camera_transform, FeaturesScene, RADIUS, SPHERES};
 
 use super::{camera, disc, region, view, AddPlugins, Regions};

@@ -9,17 +9,12 @@ pub use features::{bumps, Deferred};
 
 use std::sync::{Arc, Mutex};
 
-use bevy::asset::RenderAssetUsages;
 use bevy::camera::RenderTarget;
 use bevy::core_pipeline::prepass::{DeferredPrepass, DepthPrepass};
 use bevy::image::Image;
 use bevy::pbr::DefaultOpaqueRendererMethod;
 use bevy::prelude::*;
-use bevy::render::pipelined_rendering::PipelinedRenderingPlugin;
-use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, TextureUsages};
 use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
-use bevy::render::RenderPlugin;
-use bevy::window::ExitCondition;
 
 /// The frame's size.
 pub const SIZE: (u32, u32) = (320, 180);
@@ -60,23 +55,7 @@ pub fn render(
     };
     app.insert_resource(method)
         .insert_resource(Deferred(deferred))
-        .add_plugins(
-            DefaultPlugins
-                .set(WindowPlugin {
-                    primary_window: None,
-                    exit_condition: ExitCondition::DontExit,
-                    ..default()
-                })
-                .set(RenderPlugin {
-                    synchronous_pipeline_compilation: true,
-                    ..default()
-                })
-                .disable::<bevy::log::LogPlugin>()
-                // The render app stays in the app, where its pipeline cache can be read.
-                .disable::<PipelinedRenderingPlugin>()
-                // The example's window needs winit; headless, nothing does.
-                .disable::<bevy::winit::WinitPlugin>(),
-        );
+        .add_plugins(features::headless_plugins().disable::<bevy::log::LogPlugin>());
     let replacing = plugin.is_some();
     if let Some(plugin) = plugin {
         plugin(&mut app);
@@ -165,18 +144,7 @@ pub struct Target(pub Handle<Image>);
 /// The image a scene's camera renders into, `SIZE`, read back after the frame; its handle is
 /// kept as the [`Target`] resource.
 pub fn target(commands: &mut Commands, images: &mut Assets<Image>) -> Handle<Image> {
-    let mut target = Image::new_uninit(
-        Extent3d {
-            width: SIZE.0,
-            height: SIZE.1,
-            depth_or_array_layers: 1,
-        },
-        TextureDimension::D2,
-        TextureFormat::Rgba8UnormSrgb,
-        RenderAssetUsages::RENDER_WORLD,
-    );
-    target.texture_descriptor.usage |= TextureUsages::RENDER_ATTACHMENT | TextureUsages::COPY_SRC;
-    let target = images.add(target);
+    let target = images.add(features::headless_target(SIZE.0, SIZE.1));
     commands.insert_resource(Target(target.clone()));
     target
 }
