@@ -113,6 +113,7 @@ fn every_wgsl_name_is_an_item_of_the_wgsl_and_the_lighting_source() {
 fn every_glsl_name_is_defined_by_the_includes_that_read_or_write() {
     for layout in layouts() {
         let symbols = layout.symbols();
+        let names = glsl::translate(&layout).unwrap().names;
         for include in Include::ALL {
             let (text, interface) = glsl::include(&layout, include, 0)
                 .unwrap_or_else(|error| panic!("{} {include:?}: {error}", layout.name));
@@ -179,7 +180,6 @@ fn every_glsl_name_is_defined_by_the_includes_that_read_or_write() {
             }
             // The pixel local storage includes' loads of one field: the WebGL include's of
             // every field, a readable EXT block's of each bit field.
-            let names = glsl::translate(&layout).unwrap().names;
             let loaded: Vec<usize> = match include {
                 Include::WebGlPixelLocalStorage => (0..layout.fields.len()).collect(),
                 Include::PixelLocalStorage(PlsBlock::In | PlsBlock::InOut) => {
