@@ -320,16 +320,20 @@ macro_rules! case {
     };
     (@reference $module:ident::$function:ident($($argument:expr),+) $(.$field:ident)?) => {
         |values| {
-            let mut at = 0;
-            let result = r::$module::$function(
-                $({ let _: Argument = $argument; take_wide(values, &mut at) }),+
-            );
-            Wide::into_wide(result$(.$field)?)
+            Wide::into_wide(case!(
+                @call r::$module::$function, take_wide, values, ($($argument),+) $(.$field)?
+            ))
         }
     };
     (@reference $module:ident::$function:ident($($argument:expr),+) $(.$field:ident)?, $reference:expr) => {
         $reference
     };
+    // The function at `path` on one argument per `argument`, each taken from `values` in turn
+    // by `take`, and the field of its result.
+    (@call $path:path, $take:ident, $values:ident, ($($argument:expr),+) $(.$field:ident)?) => {{
+        let mut at = 0;
+        $path($({ let _: Argument = $argument; $take($values, &mut at) }),+)$(.$field)?
+    }};
     (@case $module:ident::$function:ident($($argument:expr),+) $(.$field:ident)?, $reference:expr, $ulps:expr, $absolute:expr) => {
         Case {
             module: stringify!($module),
@@ -340,18 +344,12 @@ macro_rules! case {
             ),
             arguments: &[$($argument),+],
             output: output_of(|bits| {
-                let mut at = 0;
-                let result = m::$module::$function(
-                    $({ let _: Argument = $argument; take(bits, &mut at) }),+
-                );
-                result$(.$field)?
+                case!(@call m::$module::$function, take, bits, ($($argument),+) $(.$field)?)
             }),
             mirror: |bits| {
-                let mut at = 0;
-                let result = m::$module::$function(
-                    $({ let _: Argument = $argument; take(bits, &mut at) }),+
-                );
-                Bits::into_bits(result$(.$field)?)
+                Bits::into_bits(case!(
+                    @call m::$module::$function, take, bits, ($($argument),+) $(.$field)?
+                ))
             },
             reference: $reference,
             ulps: $ulps,
