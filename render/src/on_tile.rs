@@ -281,6 +281,12 @@ pub fn texel_struct_name(layout: &gbuffer::layout::Layout) -> Result<String, Str
         .map_err(|error| error.to_string())
 }
 
+/// The statement a stage's `main` writes `texel` with where the include writes it (framebuffer
+/// fetch, WebGL's pixel local storage): the include's own store.
+pub fn store_through_include(layout: &gbuffer::layout::Layout) -> String {
+    format!("    {}(texel);\n", layout.symbols().store())
+}
+
 /// The seed layout of `options`, if it can be kept on tile (the error says why not).
 pub fn tile_layout(options: &Options) -> Result<PackedLayout, String> {
     match &options.gbuffer {

@@ -20,7 +20,7 @@ use crate::gles::sources::{program_in, TranslatedProgram};
 use crate::glsl::Dialect;
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Stage};
+use crate::on_tile::{fused_wgsl, store_through_include, texel_struct_name, tile_layout, Stage};
 use crate::options::Options;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::{ENVIRONMENT_BINDING, LIGHT_MAP_BINDING, LUT_BINDING};
@@ -33,12 +33,11 @@ pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, St
     let (include_text, _) =
         includes::include(&model, include, 0).map_err(|error| error.to_string())?;
     let wgsl = fused_wgsl(options, layout, -1.0);
-    let symbols = model.symbols();
     let texel = texel_struct_name(&model)?;
     // The output, and the volume drawn, which comes in a uniform.
     let declarations =
         "layout(location = 0) out highp vec4 frame_colour;\nuniform highp uint volume_index;\n";
-    let (load, store) = (symbols.load(), format!("    {}(texel);\n", symbols.store()));
+    let (load, store) = (model.symbols().load(), store_through_include(&model));
     Stage::ALL
         .iter()
         .copied()

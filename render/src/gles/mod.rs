@@ -22,7 +22,9 @@ pub mod sources;
 
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage, TileOptions};
+use crate::on_tile::{
+    fused_wgsl, store_through_include, texel_struct_name, tile_layout, Path, Stage, TileOptions,
+};
 use crate::options::{Frame, Options};
 use crate::recording::{Attachment, Call, Load, Recording};
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
@@ -189,12 +191,11 @@ impl GlesRenderer {
         let (include, interface) = includes::include(&model, Include::FetchPacked, 0)
             .map_err(|error| error.to_string())?;
         let wgsl = fused_wgsl(options, layout, -1.0);
-        let symbols = model.symbols();
         let texel = texel_struct_name(&model)?;
         let main = Stage::Geometry.fragment_main(
             &texel,
-            &symbols.load(),
-            &format!("    {}(texel);\n", symbols.store()),
+            &model.symbols().load(),
+            &store_through_include(&model),
         );
         let (vertex, fragment) = sources::program(
             &wgsl,

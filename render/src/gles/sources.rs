@@ -6,7 +6,9 @@ use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface};
 use gbuffer_core::Named;
 
 use crate::glsl::{self, Dialect};
-use crate::on_tile::{fused_wgsl, texel_struct_name, tile_layout, Path, Stage};
+use crate::on_tile::{
+    fused_wgsl, store_through_include, texel_struct_name, tile_layout, Path, Stage,
+};
 use crate::options::Options;
 
 /// One program's shaders.
@@ -44,7 +46,6 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
     let (include_text, interface) =
         includes::include(&model, include, 0).map_err(|error| error.to_string())?;
     let wgsl = fused_wgsl(options, layout, -1.0);
-    let symbols = model.symbols();
     let texel = texel_struct_name(&model)?;
     let output = format!(
         "layout(location = {}) inout highp vec4 frame_colour;\n",
@@ -52,7 +53,7 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
     );
     // The volume drawn comes in a uniform; each draw writes only what it changes.
     let declarations = format!("{output}uniform highp uint volume_index;\n");
-    let (load, store) = (symbols.load(), format!("    {}(texel);\n", symbols.store()));
+    let (load, store) = (model.symbols().load(), store_through_include(&model));
     let programs = Stage::ALL
         .iter()
         .copied()
