@@ -93,7 +93,7 @@ pub fn generate(
                     .filter(|include| output.includes(*include))
                 {
                     add(
-                        symbols.file(&format!("{}.glsl", include.file_suffix())),
+                        include.file_name(&symbols, "glsl"),
                         glsl::include_with(layout, conversions, include, 0)?.0,
                     );
                 }
@@ -101,12 +101,9 @@ pub fn generate(
             Output::WebGlPixelLocalStorage => {
                 let include = Include::WebGlPixelLocalStorage;
                 let (text, interface) = glsl::include_with(layout, conversions, include, 0)?;
+                add(include.file_name(&symbols, "glsl"), text);
                 add(
-                    symbols.file(&format!("{}.glsl", include.file_suffix())),
-                    text,
-                );
-                add(
-                    symbols.file(&format!("{}.js", include.file_suffix())),
+                    include.file_name(&symbols, "js"),
                     glsl::webgl::host_module(layout, &interface),
                 );
             }

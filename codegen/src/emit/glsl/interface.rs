@@ -6,6 +6,7 @@
 use super::webgl::Plane;
 use gbuffer_core::format::{PackedTarget, TargetFormat};
 use gbuffer_core::layout::{Conversions, Layout};
+use gbuffer_core::Symbols;
 
 /// An include of the GLSL family, by how the G-buffer reaches the shader.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -63,6 +64,12 @@ impl Include {
             Include::PixelLocalStorage(block) => format!("pls_{}", block.suffix()),
             Include::WebGlPixelLocalStorage => "webgl_pls".into(),
         }
+    }
+
+    /// The file the include is written to for the layout of `symbols`, with `extension`: the
+    /// GLSL's `glsl` (`mobile_metallic.fetch.glsl`), the WebGL host module's `js`.
+    pub fn file_name(self, symbols: &Symbols, extension: &str) -> String {
+        symbols.file(&format!("{}.{extension}", self.file_suffix()))
     }
 
     /// The `#extension` names the user's shader preamble must enable (`: require`).

@@ -335,8 +335,7 @@ fn check_function(text: &str, name: &str) -> Result<(), TranslationError> {
 /// The JavaScript ES module beside the include: the planes as data, and the host calls a WebGL
 /// 2 program makes around a pass that uses them, in the form Chromium ships.
 pub fn host_module(layout: &Layout, interface: &Interface) -> String {
-    let include = Include::WebGlPixelLocalStorage.file_suffix();
-    let include_file = layout.symbols().file(&format!("{include}.glsl"));
+    let include_file = Include::WebGlPixelLocalStorage.file_name(&layout.symbols(), "glsl");
     let mut out = String::new();
     let _ = writeln!(
         out,
