@@ -127,52 +127,63 @@ struct EightFormats {
     unorm_10_10_10_2: Vec4,
 }
 
-/// A layout of four words of one format, named after it: that format's own rate.
-macro_rules! one_format {
-    ($name:ident, $format:ident, $type:ident) => {
-        #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-        struct $name {
-            #[pls($format)]
-            a: $type,
-            #[pls($format)]
-            b: $type,
-            #[pls($format)]
-            c: $type,
-            #[pls($format)]
-            d: $type,
-        }
+/// Layouts of four words of one format each, named after it: each format's own rate; and
+/// `one_format_groups`, which measures them in the order listed.
+macro_rules! one_formats {
+    ($($name:ident, $format:ident, $type:ident;)+) => {
+        $(
+            #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+            struct $name {
+                #[pls($format)]
+                a: $type,
+                #[pls($format)]
+                b: $type,
+                #[pls($format)]
+                c: $type,
+                #[pls($format)]
+                d: $type,
+            }
 
-        impl $name {
-            /// Its row in the table.
-            const LABEL: &str = concat!("4 words of `", stringify!($format), "`");
-        }
-
-        impl Sample for $name {
-            fn sample(index: usize) -> $name {
-                let at = |word: usize| <$type>::sample(index * 4 + word);
-                $name {
-                    a: at(0),
-                    b: at(1),
-                    c: at(2),
-                    d: at(3),
+            impl Sample for $name {
+                fn sample(index: usize) -> $name {
+                    let at = |word: usize| <$type>::sample(index * 4 + word);
+                    $name {
+                        a: at(0),
+                        b: at(1),
+                        c: at(2),
+                        d: at(3),
+                    }
                 }
             }
+        )+
+
+        /// The one-format layouts' rows of the table.
+        fn one_format_groups(criterion: &mut Criterion) {
+            $(
+                layout_group(
+                    criterion,
+                    concat!("4 words of `", stringify!($format), "`"),
+                    $name::sample,
+                );
+            )+
         }
     };
 }
 
-one_format!(R11fG11fB10f, r11f_g11f_b10f, Vec3);
-one_format!(R32f, r32f, f32);
-one_format!(Rg16f, rg16f, Vec2);
-one_format!(Rgb10A2, rgb10_a2, Vec4);
-one_format!(Rgba8, rgba8, Vec4);
-one_format!(Rg16, rg16, Vec2);
-one_format!(Rgba8i, rgba8i, IVec4);
-one_format!(Rg16i, rg16i, IVec2);
-one_format!(Rgb10A2ui, rgb10_a2ui, UVec4);
-one_format!(Rgba8ui, rgba8ui, UVec4);
-one_format!(Rg16ui, rg16ui, UVec2);
-one_format!(R32ui, r32ui, u32);
+one_formats! {
+    R11fG11fB10f, r11f_g11f_b10f, Vec3;
+    R32f, r32f, f32;
+    Rg16f, rg16f, Vec2;
+    Rgb10A2, rgb10_a2, Vec4;
+    Rgba8, rgba8, Vec4;
+    Rg16, rg16, Vec2;
+    Rgba8i, rgba8i, IVec4;
+    Rg16i, rg16i, IVec2;
+    Rgb10A2ui, rgb10_a2ui, UVec4;
+    Rgba8ui, rgba8ui, UVec4;
+    Rg16ui, rg16ui, UVec2;
+    R32ui, r32ui, u32;
+}
 
 /// The functions measured per layout, in the table's order.
 const FUNCTIONS: [&str; 3] = ["pack_slice", "unpack_slice", "memcpy"];
@@ -255,18 +266,7 @@ fn slices(criterion: &mut Criterion) {
         normal: Vec3::sample(i + 2),
         metallic_roughness: Vec2::new(value(i, 3), value(i, 4)),
     });
-    layout_group(criterion, R11fG11fB10f::LABEL, R11fG11fB10f::sample);
-    layout_group(criterion, R32f::LABEL, R32f::sample);
-    layout_group(criterion, Rg16f::LABEL, Rg16f::sample);
-    layout_group(criterion, Rgb10A2::LABEL, Rgb10A2::sample);
-    layout_group(criterion, Rgba8::LABEL, Rgba8::sample);
-    layout_group(criterion, Rg16::LABEL, Rg16::sample);
-    layout_group(criterion, Rgba8i::LABEL, Rgba8i::sample);
-    layout_group(criterion, Rg16i::LABEL, Rg16i::sample);
-    layout_group(criterion, Rgb10A2ui::LABEL, Rgb10A2ui::sample);
-    layout_group(criterion, Rgba8ui::LABEL, Rgba8ui::sample);
-    layout_group(criterion, Rg16ui::LABEL, Rg16ui::sample);
-    layout_group(criterion, R32ui::LABEL, R32ui::sample);
+    one_format_groups(criterion);
 }
 
 criterion_group! {
