@@ -1,7 +1,8 @@
 //! The CPU mirror's speed on a whole G-buffer: `pack_slice` and `unpack_slice` of a million
 //! texels, against copying the packed bytes (what an upload or a readback costs at the least),
 //! for Listing 2.2 (`MobileMetallic`), a 256-bit layout of eight formats, the other seed
-//! layouts, and per format a layout of four words of that format alone. Criterion prints each
+//! layouts, and per format a layout of four words of that format alone; and, for the first two,
+//! the same bytes moved with no conversion at all (the floor memory sets). Criterion prints each
 //! one's throughput in texels (elements) per second; the run ends with a table of the rates and
 //! of pack's and unpack's shares of memcpy's, which it also writes to
 //! `target/figures/packing.md` for the guide. Run with `cargo bench -p gbuffer --bench packing`.
@@ -105,6 +106,91 @@ impl Sample for IVec4 {
     }
 }
 
+/// A field's bits with no conversion, for the floor of a pack or an unpack: folded into one
+/// word (every component read, each with one exclusive or) and spread back (every component
+/// written, each a copy of the word's bits). What is left is reading and writing the bytes.
+trait Moved {
+    fn fold(self) -> u32;
+    fn spread(word: u32) -> Self;
+}
+
+impl Moved for f32 {
+    fn fold(self) -> u32 {
+        self.to_bits()
+    }
+    fn spread(word: u32) -> f32 {
+        f32::from_bits(word)
+    }
+}
+
+/// [`Moved`] for glam's vectors, component by component.
+macro_rules! moved_vectors {
+    ($($vector:ident of $scalar:ty, $($component:ident)+;)+) => {
+        $(
+            impl Moved for $vector {
+                fn fold(self) -> u32 {
+                    0 $(^ self.$component.fold())+
+                }
+                fn spread(word: u32) -> $vector {
+                    // Each component its own copy of the word.
+                    $vector::new($({ stringify!($component); <$scalar>::spread(word) }),+)
+                }
+            }
+        )+
+    };
+}
+
+impl Moved for u32 {
+    fn fold(self) -> u32 {
+        self
+    }
+    fn spread(word: u32) -> u32 {
+        word
+    }
+}
+
+impl Moved for i32 {
+    fn fold(self) -> u32 {
+        self as u32
+    }
+    fn spread(word: u32) -> i32 {
+        word as i32
+    }
+}
+
+moved_vectors! {
+    Vec2 of f32, x y;
+    Vec3 of f32, x y z;
+    Vec4 of f32, x y z w;
+    IVec4 of i32, x y z w;
+    UVec4 of u32, x y z w;
+}
+
+/// `pack_slice` and `unpack_slice` with no conversion: each word one field's [`Moved::fold`],
+/// each field its word's [`Moved::spread`]. Defined for layouts of one word a field.
+trait BytesOnly: GBufferLayout + Sized {
+    fn move_in(texels: &[Self], packed: &mut [Self::Packed]);
+    fn move_out(packed: &[Self::Packed], texels: &mut [Self]);
+}
+
+macro_rules! bytes_only {
+    ($layout:ident { $($field:ident)+ }) => {
+        impl BytesOnly for $layout {
+            fn move_in(texels: &[$layout], packed: &mut [Self::Packed]) {
+                for (texel, words) in texels.iter().zip(packed) {
+                    *words = [$(texel.$field.fold()),+];
+                }
+            }
+            fn move_out(packed: &[Self::Packed], texels: &mut [$layout]) {
+                for (words, texel) in packed.iter().zip(texels) {
+                    let mut words = words.iter().copied();
+                    *texel = $layout { $($field: Moved::spread(words.next().expect("a word a field"))),+ };
+                }
+            }
+        }
+    };
+}
+
 /// The 256-bit layout of eight formats the speed goal names.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
 #[gbuffer(budget = 256)]
@@ -126,6 +212,9 @@ struct EightFormats {
     #[pls(rgb10_a2)]
     unorm_10_10_10_2: Vec4,
 }
+
+bytes_only!(MobileMetallic { light_accumulation depth normals_roughness albedo_metallic });
+bytes_only!(EightFormats { small_floats halves unorm_16 sint_8 uint_10_10_10_2 unorm_8 single unorm_10_10_10_2 });
 
 /// Layouts of four words of one format each, named after it: each format's own rate; and
 /// `one_format_groups`, which measures them in the order listed.
@@ -188,9 +277,13 @@ one_formats! {
 /// The functions measured per layout, in the table's order.
 const FUNCTIONS: [&str; 3] = ["pack_slice", "unpack_slice", "memcpy"];
 
-/// Criterion's group name of layout `L`.
+/// Criterion's group name of layout `L`, and of its bytes moved alone.
 fn group_name<L: GBufferLayout>() -> String {
     format!("{} ({} words)", L::layout().name, L::WORDS)
+}
+
+fn bytes_group_name<L: GBufferLayout>() -> String {
+    format!("{} bytes only", group_name::<L>())
 }
 
 /// The table's rows, in the order the layouts were measured: each layout's criterion group and
@@ -203,19 +296,43 @@ fn layout_group<L: GBufferLayout + Copy>(
     label: &'static str,
     make: impl Fn(usize) -> L,
 ) {
+    let group = (group_name::<L>(), label);
+    measure(criterion, group, L::pack_slice, L::unpack_slice, make);
+}
+
+/// [`layout_group`] of the layout's bytes moved with no conversion ([`BytesOnly`]): the rates
+/// memory allows its pack and unpack.
+fn bytes_only_group<L: BytesOnly + Copy>(
+    criterion: &mut Criterion,
+    label: &'static str,
+    make: impl Fn(usize) -> L,
+) {
+    let group = (bytes_group_name::<L>(), label);
+    measure(criterion, group, L::move_in, L::move_out, make);
+}
+
+/// Pack through `pack`, unpack through `unpack`, and copy `TEXELS` texels of `make(i)`:
+/// criterion's group `group`, the row `label` of the table.
+fn measure<L: GBufferLayout + Copy>(
+    criterion: &mut Criterion,
+    (group, label): (String, &'static str),
+    pack: fn(&[L], &mut [L::Packed]),
+    unpack: fn(&[L::Packed], &mut [L]),
+    make: impl Fn(usize) -> L,
+) {
     ROWS.lock()
         .expect("one thread")
-        .push((group_name::<L>(), label));
+        .push((group.clone(), label));
     let texels: Vec<L> = (0..TEXELS).map(make).collect();
     let mut packed = vec![texels[0].pack(); TEXELS];
     let mut unpacked = texels.clone();
-    let mut group = criterion.benchmark_group(group_name::<L>());
+    let mut group = criterion.benchmark_group(group);
     group.throughput(Throughput::Elements(TEXELS as u64));
     group.bench_function(BenchmarkId::from_parameter(FUNCTIONS[0]), |bench| {
-        bench.iter(|| L::pack_slice(black_box(&texels), black_box(&mut packed)))
+        bench.iter(|| pack(black_box(&texels), black_box(&mut packed)))
     });
     group.bench_function(BenchmarkId::from_parameter(FUNCTIONS[1]), |bench| {
-        bench.iter(|| L::unpack_slice(black_box(&packed), black_box(&mut unpacked)))
+        bench.iter(|| unpack(black_box(&packed), black_box(&mut unpacked)))
     });
     let source = packed.clone();
     group.bench_function(BenchmarkId::from_parameter(FUNCTIONS[2]), |bench| {
@@ -224,16 +341,17 @@ fn layout_group<L: GBufferLayout + Copy>(
     group.finish();
 }
 
-fn slices(criterion: &mut Criterion) {
-    layout_group(criterion, "MobileMetallic (Listing 2.2)", |i| {
-        MobileMetallic {
-            light_accumulation: Vec3::sample(i),
-            depth: value(i, 4),
-            normals_roughness: Vec4::sample(i),
-            albedo_metallic: Vec4::sample(i + 1),
-        }
-    });
-    layout_group(criterion, "eight formats, 256 bits", |i| EightFormats {
+fn mobile_metallic(i: usize) -> MobileMetallic {
+    MobileMetallic {
+        light_accumulation: Vec3::sample(i),
+        depth: value(i, 4),
+        normals_roughness: Vec4::sample(i),
+        albedo_metallic: Vec4::sample(i + 1),
+    }
+}
+
+fn eight_formats(i: usize) -> EightFormats {
+    EightFormats {
         small_floats: Vec3::sample(i) * 100.0,
         halves: Vec2::sample(i) * 300.0,
         unorm_16: Vec2::sample(i + 1),
@@ -242,7 +360,22 @@ fn slices(criterion: &mut Criterion) {
         unorm_8: Vec4::sample(i + 2),
         single: value(i, 3) - 0.5,
         unorm_10_10_10_2: Vec4::sample(i + 3),
-    });
+    }
+}
+
+fn slices(criterion: &mut Criterion) {
+    layout_group(criterion, "MobileMetallic (Listing 2.2)", mobile_metallic);
+    bytes_only_group(
+        criterion,
+        "Listing 2.2's bytes, no conversion",
+        mobile_metallic,
+    );
+    layout_group(criterion, "eight formats, 256 bits", eight_formats);
+    bytes_only_group(
+        criterion,
+        "eight formats' bytes, no conversion",
+        eight_formats,
+    );
     layout_group(criterion, "SpecularWorkflow", |i| SpecularWorkflow {
         light_accumulation: Vec3::sample(i),
         depth: value(i, 4),
