@@ -47,13 +47,6 @@ pub(crate) fn small_integer_from_f32(value: f32) -> u32 {
     (value + 8_388_608.0).to_bits() - 0x4B00_0000
 }
 
-/// An integer in `[0, 2^23)` as a float, exactly: the inverse of [`small_integer_from_f32`],
-/// and `code as f32` there, in vector instructions.
-#[inline(always)]
-pub(crate) fn f32_from_small_integer(code: u32) -> f32 {
-    f32::from_bits(code | 0x4B00_0000) - 8_388_608.0
-}
-
 /// The largest code of an unsigned integer of `bits` bits (`bits` from 1 to 32).
 #[inline]
 pub fn max_code(bits: u32) -> u32 {

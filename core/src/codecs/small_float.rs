@@ -7,7 +7,7 @@
 use std::collections::BTreeSet;
 
 use super::wgsl::Lanes;
-use super::{f32_from_small_integer, small_integer_from_f32};
+use super::small_integer_from_f32;
 
 /// The largest finite code of a float with a 5-bit exponent and `mantissa_bits` of mantissa.
 #[inline]
@@ -52,17 +52,22 @@ pub fn small_float_from_magnitude(magnitude_bits: u32, mantissa_bits: u32) -> u3
 
 /// Decodes an unsigned small float code, exactly. Exponent 31 decodes to infinity or NaN as
 /// the format defines (the encoders never produce it).
+///
+/// The code's exponent and mantissa are placed where an f32 has them (the five exponent bits
+/// at the bottom of the f32's eight); then both readings, and a choice by masks (no branch, so
+/// that the slices' loops vectorise). A normal code rebiases its exponent from 15 to 127 in one
+/// add, exponent 31 to 255. A denormal one, `m * 2^-(14 + mantissa_bits)`, is `2^-14 (1 + m /
+/// 2^mantissa_bits)` less `2^-14`: two normal f32s, and their difference exact (Sterbenz's
+/// lemma) and normal or zero, so a caller's float unit that flushes denormals cannot change it.
 #[inline]
 pub fn f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
-    let exponent = code >> mantissa_bits;
-    let mantissa = code & ((1 << mantissa_bits) - 1);
-    // Both readings, then a choice (no branch, so that the slices' loops vectorise). Denormal:
-    // mantissa * 2^-(14 + mantissa_bits); the power of two is exact.
-    let denormal = f32_from_small_integer(mantissa) * f32::from_bits((113 - mantissa_bits) << 23);
-    let f32_exponent = if exponent == 31 { 255 } else { exponent + 112 };
-    let normal = (f32_exponent << 23) | (mantissa << (23 - mantissa_bits));
+    const TWO_TO_MINUS_14: u32 = 113 << 23;
+    let placed = code << (23 - mantissa_bits);
+    let is_special = u32::from(placed >= 31 << 23).wrapping_neg();
+    let normal = placed + (112 << 23) + ((112 << 23) & is_special);
+    let denormal = f32::from_bits(placed | TWO_TO_MINUS_14) - f32::from_bits(TWO_TO_MINUS_14);
     // All ones for a denormal, as a mask: an `if` here stays a branch in the loops.
-    let is_denormal = u32::from(exponent == 0).wrapping_neg();
+    let is_denormal = u32::from(placed < 1 << 23).wrapping_neg();
     f32::from_bits((denormal.to_bits() & is_denormal) | (normal & !is_denormal))
 }
 

@@ -176,7 +176,7 @@ mod tests {
         for bits in 1..=23 {
             let max = max_code(bits);
             for code in 0..=max {
-                let quotient = crate::codecs::f32_from_small_integer(code) / max as f32;
+                let quotient = code as f32 / max as f32;
                 assert_eq!(
                     f32_from_unorm(code, bits).to_bits(),
                     quotient.to_bits(),
