@@ -6,8 +6,8 @@
 
 use std::collections::BTreeSet;
 
-use super::wgsl::Lanes;
 use super::small_integer_from_f32;
+use super::wgsl::Lanes;
 
 /// The largest finite code of a float with a 5-bit exponent and `mantissa_bits` of mantissa.
 #[inline]
@@ -179,6 +179,42 @@ mod tests {
         // rounded quotient (which carries into the exponent when it reaches 2^(mantissa + 1)).
         let code = (((exponent + 14.0) as u32) << mantissa_bits) + rounded as u32;
         code.min(small_float_max_code(mantissa_bits))
+    }
+
+    /// Engines often run with x86's MXCSR set to read denormal inputs as zero (DAZ) and flush
+    /// denormal results to zero (FTZ). The decode's denormals are differences of normal f32s,
+    /// so with both set it still decodes every code as IEEE does (the half crate's widening).
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    #[allow(deprecated)] // `_mm_getcsr` and `_mm_setcsr`, for want of a stable replacement.
+    fn decodes_every_code_alike_with_denormals_flushed() {
+        use std::arch::x86_64::{_mm_getcsr, _mm_setcsr};
+        use std::hint::black_box;
+        const DAZ_AND_FTZ: u32 = 0x0040 | 0x8000;
+        for mantissa_bits in 1..=10 {
+            let codes = 0..(32u32 << mantissa_bits);
+            let ieee: Vec<f32> = codes
+                .clone()
+                .map(|code| ::half::f16::from_bits((code << (10 - mantissa_bits)) as u16).to_f32())
+                .collect();
+            // SAFETY: the flags change how this thread treats denormals, nothing else, and
+            // are restored before anything else runs on it.
+            let saved = unsafe { _mm_getcsr() };
+            unsafe { _mm_setcsr(saved | DAZ_AND_FTZ) };
+            // The smallest denormal, read as zero: the flags hold.
+            let flushes = black_box(f32::from_bits(1)) * 2.0 == 0.0;
+            let decoded: Vec<f32> = codes
+                .map(|code| f32_from_small_float(black_box(code), mantissa_bits))
+                .collect();
+            unsafe { _mm_setcsr(saved) };
+            assert!(flushes, "MXCSR's DAZ did not take");
+            for (code, (ieee, decoded)) in ieee.iter().zip(&decoded).enumerate() {
+                assert!(
+                    ieee.to_bits() == decoded.to_bits() || (ieee.is_nan() && decoded.is_nan()),
+                    "code {code:#x} of {mantissa_bits} mantissa bits: {decoded:e}, IEEE {ieee:e}"
+                );
+            }
+        }
     }
 
     #[test]
