@@ -4,8 +4,10 @@
 
 use gbuffer::layout::Layout;
 use gbuffer::{seed_layouts, GBufferLayout};
+use gbuffer_core::{Conversions, Named};
 use gbuffer_gpu::harness::fragment_harness;
-use gbuffer_testkit::AllFormats;
+use gbuffer_testkit::layouts::seeds_and_every_format;
+use gbuffer_testkit::{AllFormats, EveryEncoding};
 use gbuffer_validator::{translate, validate_everywhere, validate_generated, Backend};
 use proptest::prelude::*;
 
@@ -43,6 +45,46 @@ fn layouts_compose_in_one_module() {
         .collect::<Vec<_>>()
         .join("\n\n");
     validate_generated(&all).unwrap_or_else(|problem| panic!("{problem}"));
+}
+
+/// The header says the WGSL needs naga's `SHADER_FLOAT16_IN_FLOAT32` (which the emitter
+/// decides from the fields' codecs, not from its text) exactly where naga's validator refuses
+/// the WGSL without it: for the seeds and engine layouts, and for every field of every format
+/// and bit-field encoding alone, under both conversions.
+#[test]
+fn the_header_names_the_half_float_capability_exactly_where_naga_needs_it() {
+    let mut layouts = seeds_and_every_format();
+    for whole in [AllFormats::layout(), EveryEncoding::layout()] {
+        for field in &whole.fields {
+            layouts.push(Layout {
+                name: "OneField".into(),
+                fields: vec![field.clone()],
+                ..whole.clone()
+            });
+        }
+    }
+    let mut default_capabilities = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::default(),
+    );
+    for layout in layouts {
+        for &conversions in Conversions::ALL {
+            let wgsl = gbuffer_codegen::emit::wgsl::emit_with(&layout, conversions);
+            let says = wgsl.contains("Capabilities::SHADER_FLOAT16_IN_FLOAT32");
+            let module = naga::front::wgsl::parse_str(&wgsl)
+                .unwrap_or_else(|error| panic!("{}", error.emit_to_string(&wgsl)));
+            let needs = default_capabilities.validate(&module).is_err();
+            let field = &layout.fields[0].name;
+            assert_eq!(
+                says,
+                needs,
+                "{} (first field `{field}`), {} conversions: the header {} the capability",
+                layout.name,
+                conversions.name(),
+                if says { "names" } else { "leaves out" }
+            );
+        }
+    }
 }
 
 /// Exact conversions call no builtin whose rounding is the adapter's, nor one that some

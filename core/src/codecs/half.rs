@@ -63,7 +63,8 @@ pub const CODEC: Codec = Codec::floats(
     ),
     wgsl,
 )
-.with_fast_form();
+.with_fast_form()
+.with_binary16_builtins();
 
 /// A half bit field's WGSL: the exact encode, or `pack2x16float`; `unpack2x16float`.
 fn wgsl(field: &BitField) -> Functions {

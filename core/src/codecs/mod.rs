@@ -82,6 +82,10 @@ pub struct Codec {
     /// Whether fast conversions change its WGSL (float arithmetic and builtins in place of
     /// the exact integer algorithm).
     pub has_fast_form: bool,
+    /// Whether its WGSL calls `unpack2x16float` or `pack2x16float` (a decode that widens its
+    /// codes into binary16, a fast encode that rounds through it), which naga validates only
+    /// with `Capabilities::SHADER_FLOAT16_IN_FLOAT32`: the generated WGSL's header says so.
+    pub uses_binary16_builtins: bool,
     /// The Rust mirror.
     pub conversion: Conversion,
     /// The WGSL of a bit field: its encode and decode functions' bodies and the helpers they
@@ -151,6 +155,7 @@ impl Codec {
             scalar_kind,
             shape,
             has_fast_form: false,
+            uses_binary16_builtins: false,
             conversion,
             wgsl,
             light_storage: no_light_storage,
@@ -184,6 +189,14 @@ impl Codec {
     pub const fn with_fast_form(self) -> Codec {
         Codec {
             has_fast_form: true,
+            ..self
+        }
+    }
+
+    /// The codec, its WGSL calling `unpack2x16float` or `pack2x16float`.
+    pub const fn with_binary16_builtins(self) -> Codec {
+        Codec {
+            uses_binary16_builtins: true,
             ..self
         }
     }

@@ -71,7 +71,8 @@ pub const CODEC: Codec = Codec::floats(
         |code, each| f32_from_small_float(code, each - EXPONENT_BITS),
     ),
     wgsl,
-);
+)
+.with_binary16_builtins();
 
 /// An unsigned float bit field's WGSL: the exact rounding per lane; each code widened into a
 /// half.

@@ -16,6 +16,7 @@ pub use check::{check_budget, fitting_types, Diagnostic, Subject, MAX_FIELDS};
 pub use conversions::Conversions;
 
 use crate::bit_field::BitField;
+use crate::codecs::Codec;
 use crate::field_type::FieldType;
 use crate::format::Format;
 use crate::named::Named;
@@ -68,6 +69,18 @@ impl Field {
         match self.storage {
             Storage::Word(_) => None,
             Storage::Bits(field) => Some(field),
+        }
+    }
+
+    /// The codecs of its channels (a format's) or of its bit field, in order.
+    pub fn codecs(&self) -> Vec<&'static Codec> {
+        match self.storage {
+            Storage::Word(format) => format
+                .channels()
+                .iter()
+                .map(|channel| channel.encoding.codec())
+                .collect(),
+            Storage::Bits(field) => vec![field.encoding.codec()],
         }
     }
 

@@ -146,14 +146,20 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
     }
     // The header comes last, as it says what the code below it needs.
     let mut header = String::new();
-    let half_floats = out.contains("pack2x16float(");
+    let half_floats = layout.fields.iter().any(|field| {
+        field
+            .codecs()
+            .iter()
+            .any(|codec| codec.uses_binary16_builtins)
+    });
     write_header(&mut header, layout, fast.as_deref(), half_floats);
     header + &out
 }
 
 /// `fast` is None for exact conversions, or says which fields are fast (empty for all, or
-/// " for a, b"); `half_floats` says whether the code uses `pack2x16float` or `unpack2x16float`,
-/// which naga validates only with a capability `Capabilities::default()` leaves out
+/// " for a, b"); `half_floats` says whether the code uses `pack2x16float` or `unpack2x16float`
+/// (`Codec::uses_binary16_builtins` of a field's codecs), which naga validates only with a
+/// capability `Capabilities::default()` leaves out
 /// (`gbuffer_codegen::emit::glsl::naga_glsl::GENERATED_CODE_CAPABILITIES`).
 fn write_header(out: &mut String, layout: &Layout, fast: Option<&str>, half_floats: bool) {
     let _ = writeln!(
