@@ -129,15 +129,7 @@ pub fn translate_bit_field_functions(
 ) -> Result<String, TranslationError> {
     let wgsl = crate::emit::wgsl::bit_field_functions(layout, conversions);
     let glsl = naga_glsl_of(wgsl)?;
-    let body: Vec<&str> = glsl
-        .lines()
-        .skip_while(|line| {
-            line.is_empty() || line.starts_with('#') || line.starts_with("precision ")
-        })
-        .take_while(|line| !line.starts_with("void main()"))
-        .filter(|line| !line.starts_with("layout("))
-        .collect();
-    Ok(with_explicit_precision(body.join("\n").trim_end()) + "\n")
+    Ok(with_explicit_precision(&declarations(&glsl)))
 }
 
 /// naga's whole GLSL ES shader for the layout's WGSL plus an empty fragment entry point.
