@@ -35,6 +35,24 @@ pub struct Translation {
     pub names: GlslNames,
 }
 
+impl Translation {
+    /// Checks that the translation defines function `name` (naga renames only reserved
+    /// words, which no generated function name is): the includes call it by that name.
+    pub fn check_defines(&self, name: &str) -> Result<(), TranslationError> {
+        defines_function(&self.text, name, &self.names.layout)
+    }
+}
+
+/// [`Translation::check_defines`] of `glsl`, the translation for layout `layout`.
+fn defines_function(glsl: &str, name: &str, layout: &str) -> Result<(), TranslationError> {
+    match glsl.contains(&format!(" {name}(")) {
+        true => Ok(()),
+        false => Err(TranslationError(format!(
+            "naga's GLSL for `{layout}` has no function `{name}`"
+        ))),
+    }
+}
+
 /// What the layout's identifiers are called in GLSL.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct GlslNames {
@@ -177,12 +195,7 @@ fn check_bit_field_functions(glsl: &str, layout: &Layout) -> Result<(), Translat
     {
         for verb in ["encode", "decode"] {
             let name = crate::emit::wgsl::bit_field_function_name(&prefix, verb, index);
-            if !glsl.contains(&format!(" {name}(")) {
-                return Err(TranslationError(format!(
-                    "naga's GLSL for `{}` has no function `{name}`",
-                    layout.name
-                )));
-            }
+            defines_function(glsl, &name, &layout.name)?;
         }
     }
     Ok(())

@@ -196,7 +196,7 @@ pub(super) fn include(
             (Storage::Word(format), PlaneFormat::R32ui) => {
                 let suffix = mode_suffix(field, conversions);
                 let decode = function_name(&prefix, "decode", format, suffix);
-                check_function(&translation.text, &decode)?;
+                translation.check_defines(&decode)?;
                 format!("{decode}({plane})")
             }
         };
@@ -248,7 +248,7 @@ pub(super) fn include(
                 PlaneFormat::R32ui => {
                     let suffix = mode_suffix(field, conversions);
                     let encode = function_name(&prefix, "encode", word.format, suffix);
-                    check_function(&translation.text, &encode)?;
+                    translation.check_defines(&encode)?;
                     format!("uvec4({encode}({widened}), 0u, 0u, 0u)")
                 }
             }
@@ -320,16 +320,6 @@ fn widened(name: &str, field: &Field, format: Format) -> String {
     };
     let zeros = vec![zero; channels - field.ty.components].join(", ");
     format!("{vector}{channels}({name}, {zeros})")
-}
-
-/// The translation must define `name` as the WGSL does (naga renames only reserved words).
-fn check_function(text: &str, name: &str) -> Result<(), TranslationError> {
-    match text.contains(&format!(" {name}(")) {
-        true => Ok(()),
-        false => Err(TranslationError(format!(
-            "the translation has no function `{name}`"
-        ))),
-    }
 }
 
 /// The JavaScript ES module beside the include: the planes as data, and the host calls a WebGL
