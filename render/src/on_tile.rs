@@ -138,8 +138,26 @@ enum Unreached {
     StoreNothing,
 }
 
-/// The G-buffer pass's fragment inputs, as naga names `geometry_vertex`'s outputs.
-const GEOMETRY_INPUTS: &str = "layout(location = 0) smooth in highp vec3 _vs2fs_location0;\nlayout(location = 1) smooth in highp vec3 _vs2fs_location1;\nlayout(location = 2) flat in highp uint _vs2fs_location2;\n";
+/// The G-buffer pass's fragment inputs, as naga names `geometry_vertex`'s outputs: their
+/// interpolation, type and name, at locations 0, 1, 2.
+const GEOMETRY_INPUTS: [(&str, &str, &str); 3] = [
+    ("smooth", "highp vec3", "_vs2fs_location0"),
+    ("smooth", "highp vec3", "_vs2fs_location1"),
+    ("flat", "highp uint", "_vs2fs_location2"),
+];
+
+/// The declarations of [`GEOMETRY_INPUTS`], each with its location or (GLSL ES 3.00, which
+/// matches varyings by name) without.
+fn geometry_inputs(with_locations: bool) -> String {
+    let mut out = String::new();
+    for (location, (interpolation, ty, name)) in GEOMETRY_INPUTS.iter().enumerate() {
+        if with_locations {
+            out += &format!("layout(location = {location}) ");
+        }
+        out += &format!("{interpolation} in {ty} {name};\n");
+    }
+    out
+}
 
 impl Named for Stage {
     /// Every stage, in drawing order.
@@ -262,11 +280,8 @@ impl Stage {
             Stage::Sky => "    frame_colour = sky_colour(gl_FragCoord.xy);\n".to_string(),
         };
         let inputs = match (self, unreached) {
-            (Stage::Geometry, Unreached::Discard) => GEOMETRY_INPUTS.to_string(),
-            (Stage::Geometry, Unreached::StoreNothing) => GEOMETRY_INPUTS
-                .lines()
-                .map(|line| format!("{}\n", line.split(") ").nth(1).unwrap_or(line)))
-                .collect(),
+            (Stage::Geometry, Unreached::Discard) => geometry_inputs(true),
+            (Stage::Geometry, Unreached::StoreNothing) => geometry_inputs(false),
             _ => String::new(),
         };
         format!("{inputs}void main() {{\n{body}}}\n")
