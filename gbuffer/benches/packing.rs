@@ -123,23 +123,6 @@ impl Moved for f32 {
     }
 }
 
-/// [`Moved`] for glam's vectors, component by component.
-macro_rules! moved_vectors {
-    ($($vector:ident of $scalar:ty, $($component:ident)+;)+) => {
-        $(
-            impl Moved for $vector {
-                fn fold(self) -> u32 {
-                    0 $(^ self.$component.fold())+
-                }
-                fn spread(word: u32) -> $vector {
-                    // Each component its own copy of the word.
-                    $vector::new($({ stringify!($component); <$scalar>::spread(word) }),+)
-                }
-            }
-        )+
-    };
-}
-
 impl Moved for u32 {
     fn fold(self) -> u32 {
         self
@@ -156,6 +139,23 @@ impl Moved for i32 {
     fn spread(word: u32) -> i32 {
         word as i32
     }
+}
+
+/// [`Moved`] for glam's vectors, component by component.
+macro_rules! moved_vectors {
+    ($($vector:ident of $scalar:ty, $($component:ident)+;)+) => {
+        $(
+            impl Moved for $vector {
+                fn fold(self) -> u32 {
+                    0 $(^ self.$component.fold())+
+                }
+                fn spread(word: u32) -> $vector {
+                    // Each component its own copy of the word.
+                    $vector::new($({ stringify!($component); <$scalar>::spread(word) }),+)
+                }
+            }
+        )+
+    };
 }
 
 moved_vectors! {
@@ -277,11 +277,12 @@ one_formats! {
 /// The functions measured per layout, in the table's order.
 const FUNCTIONS: [&str; 3] = ["pack_slice", "unpack_slice", "memcpy"];
 
-/// Criterion's group name of layout `L`, and of its bytes moved alone.
+/// Criterion's group name of layout `L`.
 fn group_name<L: GBufferLayout>() -> String {
     format!("{} ({} words)", L::layout().name, L::WORDS)
 }
 
+/// Criterion's group name of layout `L`'s bytes moved alone.
 fn bytes_group_name<L: GBufferLayout>() -> String {
     format!("{} bytes only", group_name::<L>())
 }

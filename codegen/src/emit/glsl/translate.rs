@@ -36,8 +36,9 @@ pub struct Translation {
 }
 
 impl Translation {
-    /// Checks that the translation defines function `name` (naga renames only reserved
-    /// words, which no generated function name is): the includes call it by that name.
+    /// Checks that the translation defines function `name` as the WGSL named it (naga keeps
+    /// a name that is no GLSL keyword and does not end in a digit, as the generated helpers'
+    /// are): the includes call it by that name.
     pub fn check_defines(&self, name: &str) -> Result<(), TranslationError> {
         defines_function(&self.text, name, &self.names.layout)
     }
