@@ -150,8 +150,7 @@ macro_rules! moved_vectors {
                     0 $(^ self.$component.fold())+
                 }
                 fn spread(word: u32) -> $vector {
-                    // Each component its own copy of the word.
-                    $vector::new($({ stringify!($component); <$scalar>::spread(word) }),+)
+                    $vector::splat(<$scalar>::spread(word))
                 }
             }
         )+
@@ -282,11 +281,6 @@ fn group_name<L: GBufferLayout>() -> String {
     format!("{} ({} words)", L::layout().name, L::WORDS)
 }
 
-/// Criterion's group name of layout `L`'s bytes moved alone.
-fn bytes_group_name<L: GBufferLayout>() -> String {
-    format!("{} bytes only", group_name::<L>())
-}
-
 /// The table's rows, in the order the layouts were measured: each layout's criterion group and
 /// its name in the table.
 static ROWS: Mutex<Vec<(String, &'static str)>> = Mutex::new(Vec::new());
@@ -308,7 +302,7 @@ fn bytes_only_group<L: BytesOnly + Copy>(
     label: &'static str,
     make: impl Fn(usize) -> L,
 ) {
-    let group = (bytes_group_name::<L>(), label);
+    let group = (format!("{} bytes only", group_name::<L>()), label);
     measure(criterion, group, L::move_in, L::move_out, make);
 }
 
