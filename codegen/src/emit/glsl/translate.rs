@@ -40,17 +40,13 @@ impl Translation {
     /// a name that is no GLSL keyword and does not end in a digit, as the generated helpers'
     /// are): the includes call it by that name.
     pub fn check_defines(&self, name: &str) -> Result<(), TranslationError> {
-        defines_function(&self.text, name, &self.names.layout)
-    }
-}
-
-/// [`Translation::check_defines`] of `glsl`, the translation for layout `layout`.
-fn defines_function(glsl: &str, name: &str, layout: &str) -> Result<(), TranslationError> {
-    match glsl.contains(&format!(" {name}(")) {
-        true => Ok(()),
-        false => Err(TranslationError(format!(
-            "naga's GLSL for `{layout}` has no function `{name}`"
-        ))),
+        match self.text.contains(&format!(" {name}(")) {
+            true => Ok(()),
+            false => Err(TranslationError(format!(
+                "naga's GLSL for `{}` has no function `{name}`",
+                self.names.layout
+            ))),
+        }
     }
 }
 
@@ -82,7 +78,6 @@ pub fn translate_with(
     let glsl = naga_glsl(layout, conversions)?;
     let body = declarations(&glsl);
     let names = read_names(&body, layout)?;
-    check_bit_field_functions(&body, layout)?;
     let mut text = with_explicit_precision(&body);
     // rgba8's fast functions: the layout's own where its conversions are fast, and those of
     // fields that choose fast conversions against exact ones.
@@ -97,7 +92,9 @@ pub fn translate_with(
             text = with_builtin_from_310(&text, &format!(" {name}("), builtin);
         }
     }
-    Ok(Translation { text, names })
+    let translation = Translation { text, names };
+    check_bit_field_functions(&translation, layout)?;
+    Ok(translation)
 }
 
 /// Wraps the function whose signature contains `signature` (if the text has it) in
@@ -186,7 +183,10 @@ fn naga_glsl_of(mut wgsl: String) -> Result<String, TranslationError> {
 
 /// Checks that naga kept the bit fields' functions' WGSL names, which name no field and hold
 /// no `__` (the includes call them by those names).
-fn check_bit_field_functions(glsl: &str, layout: &Layout) -> Result<(), TranslationError> {
+fn check_bit_field_functions(
+    translation: &Translation,
+    layout: &Layout,
+) -> Result<(), TranslationError> {
     let prefix = layout.snake_name();
     for (index, _) in layout
         .fields
@@ -196,7 +196,7 @@ fn check_bit_field_functions(glsl: &str, layout: &Layout) -> Result<(), Translat
     {
         for verb in ["encode", "decode"] {
             let name = crate::emit::wgsl::bit_field_function_name(&prefix, verb, index);
-            defines_function(glsl, &name, &layout.name)?;
+            translation.check_defines(&name)?;
         }
     }
     Ok(())
