@@ -15,20 +15,23 @@
 //! lists and leaves the user's defaults alone. What it needs from the preamble and the host is
 //! data too: [`Interface`].
 //!
-//! The functions are not written twice: naga's GLSL backend translates the layout's WGSL
-//! ([`translate_with`], exact or fast conversions), so WGSL stays the one source of truth. Where GLSL reserves a name,
-//! naga renames it (`sampler` -> `sampler_`, `main` -> `main_`, a name ending in a digit gets
-//! a `_`); the hand-written parts read those names back and use them too.
+//! The functions are not written twice: naga parses the layout's WGSL and [`printer`] prints
+//! its IR as GLSL ES ([`translate_with`], exact or fast conversions), so WGSL stays the one
+//! source of truth. Where GLSL reserves a name, the printer renames it as naga's GLSL writer
+//! does (`sampler` -> `sampler_`, `main` -> `main_`, a name ending in a digit gets a `_`), and
+//! the hand-written parts take those names from it ([`GlslNames`]).
 
 mod interface;
+mod keywords;
 pub mod naga_glsl;
+pub mod printer;
 mod translate;
 pub mod webgl;
 
 use std::fmt::Write as _;
 
 pub use interface::{subpass_input_type, Attachment, Include, Interface};
-pub use translate::{translate, translate_with, with_explicit_precision, GlslNames, Translation};
+pub use translate::{translate, translate_with, GlslNames, Translation};
 
 use gbuffer_core::Named;
 
