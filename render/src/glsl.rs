@@ -68,13 +68,20 @@ pub fn module(wgsl: &str) -> Result<(naga::Module, naga::valid::ModuleInfo), Str
 
 /// naga's GLSL of entry point `entry` (of `stage`) in `wgsl`. Clip space is left as the WGSL
 /// writes it (no coordinate adjustment: the scene flips y itself, `CLIP_Y_SIGN`), and every
-/// resource of group 0 keeps its binding number.
+/// resource of group 0 keeps its binding number. Vulkan's vertex stages are not GLSL here:
+/// naga writes GL's names of the vertex and instance indices, which Vulkan's GLSL renames, so
+/// the Vulkan backend takes them as naga's SPIR-V.
 pub fn translate(
     wgsl: &str,
     stage: naga::ShaderStage,
     entry: &str,
     dialect: Dialect,
 ) -> Result<Translation, String> {
+    if (dialect, stage) == (Dialect::Vulkan, naga::ShaderStage::Vertex) {
+        return Err(format!(
+            "`{entry}`: Vulkan's vertex stages are naga's SPIR-V, not GLSL (naga's GLSL names GL's vertex index)"
+        ));
+    }
     let (module, info) = module(wgsl)?;
     let version = match dialect {
         Dialect::Gles => glsl::Version::new_gles(310),
@@ -82,7 +89,7 @@ pub fn translate(
         Dialect::Vulkan => glsl::Version::Desktop(450),
     };
     let options = naga_glsl::options_keeping_bindings(&module, version);
-    let (mut text, reflection) = naga_glsl::write((&module, &info), stage, entry, &options)?;
+    let (text, reflection) = naga_glsl::write((&module, &info), stage, entry, &options)?;
     let mut samplers: Vec<(String, u32)> = reflection
         .texture_mapping
         .iter()
@@ -92,11 +99,5 @@ pub fn translate(
         })
         .collect();
     samplers.sort();
-    if dialect == Dialect::Vulkan {
-        // naga writes GL's names; Vulkan GLSL renames the vertex and instance indices.
-        text = text
-            .replace("gl_VertexID", "gl_VertexIndex")
-            .replace("gl_InstanceID", "gl_InstanceIndex");
-    }
     Ok(Translation { text, samplers })
 }

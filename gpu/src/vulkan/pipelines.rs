@@ -13,8 +13,11 @@ pub struct GraphicsPipeline<'a> {
     pub subpass: u32,
     /// Its layout.
     pub layout: vk::PipelineLayout,
-    /// The vertex and fragment modules (entry points `main`).
+    /// The vertex and fragment modules.
     pub shaders: (vk::ShaderModule, vk::ShaderModule),
+    /// The vertex module's entry point: `main` in glslang's SPIR-V, the WGSL function's name
+    /// in naga's (the fragment module's is `main`).
+    pub vertex_entry: &'a std::ffi::CStr,
     /// The vertex buffers' bindings and attributes (none for a fullscreen triangle).
     pub vertex_input: (
         &'a [vk::VertexInputBindingDescription],
@@ -92,6 +95,7 @@ impl Vulkan {
             subpass,
             layout,
             shaders: (vertex, fragment),
+            vertex_entry: c"main",
             vertex_input: (&[], &[]),
             depth: None,
             colour_writes: &vec![true; colour_attachments],
@@ -110,7 +114,7 @@ impl Vulkan {
             vk::PipelineShaderStageCreateInfo::default()
                 .stage(vk::ShaderStageFlags::VERTEX)
                 .module(vertex)
-                .name(c"main"),
+                .name(description.vertex_entry),
             vk::PipelineShaderStageCreateInfo::default()
                 .stage(vk::ShaderStageFlags::FRAGMENT)
                 .module(fragment)

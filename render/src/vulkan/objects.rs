@@ -1,5 +1,6 @@
 //! The Vulkan objects the plans are made of: render passes, framebuffers, descriptor sets,
-//! pipeline layouts and pipelines (naga's GLSL 450 compiled by glslang).
+//! pipeline layouts and pipelines (vertex stages as naga's SPIR-V, fragment stages as naga's or
+//! hand-written GLSL 450 compiled by glslang).
 
 use ash::vk;
 use gbuffer_gpu::tools::glslang;
@@ -99,8 +100,8 @@ impl VulkanRenderer {
         Ok((pipeline, layout, set))
     }
 
-    /// A pipeline: `vertex` of the WGSL translated and `fragment` (GLSL 450), compiled by
-    /// glslang, with the vertex input its vertex stage takes, a depth test, and colour writes
+    /// A pipeline: `vertex` of the WGSL as naga's SPIR-V and `fragment` (GLSL 450) compiled
+    /// by glslang, with the vertex input its vertex stage takes, a depth test, and colour writes
     /// to the attachments `writes` marks.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn pipeline(
@@ -113,11 +114,9 @@ impl VulkanRenderer {
         (depth, writes): (Depth, &[bool]),
         (width, height): (u32, u32),
     ) -> Result<vk::Pipeline, String> {
-        let vertex_glsl =
-            glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Vulkan)?;
-        let vertex_module =
-            self.vulkan
-                .shader_module(&glslang(&vertex_glsl.text, "vert", true)?)?;
+        let vertex_module = self.vulkan.shader_module(&vertex_spirv(wgsl, vertex)?)?;
+        let vertex_entry = std::ffi::CString::new(vertex)
+            .map_err(|_| format!("`{vertex}` is no entry point name"))?;
         let fragment_module = self
             .vulkan
             .shader_module(&glslang(fragment, "frag", true)?)?;
@@ -175,6 +174,7 @@ impl VulkanRenderer {
             subpass: 0,
             layout,
             shaders: (vertex_module, fragment_module),
+            vertex_entry: &vertex_entry,
             vertex_input: (&bindings, &attributes),
             depth,
             colour_writes: writes,
@@ -194,4 +194,25 @@ pub(super) enum Depth {
     Surfaces,
     /// The sky: EQUAL to the cleared far plane.
     Sky,
+}
+
+/// Vertex stage `entry` of the WGSL as naga's SPIR-V, clip space as the WGSL writes it (no
+/// coordinate adjustment, as the GLSL translations): the vertex and instance indices are
+/// SPIR-V's builtins, which GLSL would name differently for Vulkan than naga's GL names.
+fn vertex_spirv(wgsl: &str, entry: &str) -> Result<Vec<u8>, String> {
+    use naga::back::spv;
+    let (module, info) = glsl::module(wgsl)?;
+    let options = spv::Options {
+        flags: spv::WriterFlags::LABEL_VARYINGS,
+        // As the GLSL translations: loops run as written.
+        force_loop_bounding: false,
+        ..spv::Options::default()
+    };
+    let pipeline = spv::PipelineOptions {
+        shader_stage: naga::ShaderStage::Vertex,
+        entry_point: entry.to_string(),
+    };
+    let words = spv::write_vec(&module, &info, &options, Some(&pipeline))
+        .map_err(|error| format!("naga cannot write `{entry}` as SPIR-V: {error}"))?;
+    Ok(words.iter().flat_map(|word| word.to_le_bytes()).collect())
 }
