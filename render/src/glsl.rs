@@ -1,14 +1,15 @@
-//! The renderer's WGSL translated by naga for the on-tile backends: whole vertex shaders, and
-//! the declarations of a fragment stage (types, constants, textures, functions) that a
-//! hand-written `main` wraps with what WGSL cannot say: framebuffer fetch on GLES, subpass
-//! inputs on Vulkan.
+//! The renderer's WGSL as GLSL for the on-tile backends: whole stages translated by naga's
+//! GLSL writer, and the declarations a fragment entry point reaches (types, constants,
+//! textures, functions) printed from naga's IR, which a hand-written `main` wraps with what
+//! WGSL cannot say: framebuffer fetch on GLES, subpass inputs on Vulkan.
 //!
 //! The G-buffer layout's own declarations come from its generated include, pasted verbatim; the
-//! translation of the renderer's WGSL, which declares the layout too (its functions take the
-//! texel struct), leaves those out by name, so each is declared once.
+//! renderer's WGSL declares the layout too (its functions take the texel struct), and its
+//! printed declarations leave out the items the include's translation declares, by their WGSL
+//! names, so each is declared once.
 
 use gbuffer_codegen::emit::glsl::naga_glsl;
-pub use gbuffer_codegen::emit::glsl::naga_glsl::declarations;
+use gbuffer_codegen::emit::glsl::printer::{self, Choice};
 use naga::back::glsl;
 
 /// Which GLSL a translation is for.
@@ -100,4 +101,40 @@ pub fn translate(
         .collect();
     samplers.sort();
     Ok(Translation { text, samplers })
+}
+
+/// The declarations fragment entry point `entry` of `wgsl` reaches, for a hand-written `main`
+/// in `dialect`: its structs, constants, the textures it samples and the functions it calls,
+/// printed from naga's IR, less what the layout's include declares (`include`, the include's
+/// translation).
+pub fn fragment_declarations(
+    wgsl: &str,
+    entry: &str,
+    dialect: Dialect,
+    include: &gbuffer_codegen::emit::glsl::Translation,
+) -> Result<Translation, String> {
+    let (module, info) = module(wgsl)?;
+    let leave_out: Vec<&str> = include
+        .items
+        .iter()
+        .map(|item| item.wgsl.as_str())
+        .collect();
+    let choice = Choice {
+        entry_point: Some((naga::ShaderStage::Fragment, entry)),
+        leave_out: &leave_out,
+        from_310: &[],
+        binding_qualifiers: dialect != Dialect::WebGl,
+    };
+    let printed = printer::print(&module, &info, &choice)
+        .map_err(|error| format!("the declarations `{entry}` reaches: {error}"))?;
+    let mut samplers: Vec<(String, u32)> = printed
+        .texture_bindings
+        .into_iter()
+        .map(|(name, binding)| (name, binding.binding))
+        .collect();
+    samplers.sort();
+    Ok(Translation {
+        text: printed.text,
+        samplers,
+    })
 }

@@ -288,12 +288,13 @@ impl Stage {
     }
 }
 
-/// The GLSL name naga gives the layout's texel struct, which the hand-written entry points
-/// declare their texels with.
-pub fn texel_struct_name(layout: &gbuffer::layout::Layout) -> Result<String, String> {
-    gbuffer_codegen::emit::glsl::translate(layout)
-        .map(|translation| translation.names.layout)
-        .map_err(|error| error.to_string())
+/// The layout's GLSL as its includes declare it: the name of the texel struct, which the
+/// hand-written entry points declare their texels with, and the items a stage's translated
+/// declarations leave to the include ([`crate::glsl::fragment_declarations`]).
+pub fn include_translation(
+    layout: &gbuffer::layout::Layout,
+) -> Result<gbuffer_codegen::emit::glsl::Translation, String> {
+    gbuffer_codegen::emit::glsl::translate(layout).map_err(|error| error.to_string())
 }
 
 /// The statement a stage's `main` writes `texel` with where the include writes it (framebuffer
@@ -320,6 +321,11 @@ pub fn tile_layout(options: &Options) -> Result<PackedLayout, String> {
 /// screen rectangle (`volume_vertex`: point light `volume` below POINT_LIGHT_COUNT, else decal
 /// `volume - POINT_LIGHT_COUNT`), drawn over the surfaces.
 pub const VERTEX_WGSL: &str = include_str!("../wgsl/fused_vertices.wgsl");
+
+/// The fragment entry point that calls every stage's function: the on-tile backends translate
+/// what it reaches ([`crate::glsl::fragment_declarations`]), and their hand-written entry
+/// points replace it.
+pub const TRANSLATION_ENTRY: &str = "translation_entry";
 
 /// The fragment stages' functions, in WGSL, over the layout's texel `T`: what the hand-written
 /// entry points call between reading the G-buffer and writing it.
@@ -366,10 +372,10 @@ fn sky_colour(pixel: vec2<f32>) -> vec4<f32> {{
     return display_colour(sky(camera_ray(pixel, VIEWPORT)));
 }}
 
-// Calls every stage, so that the translation keeps them all (naga writes what an entry point
-// reaches); the hand-written entry points replace it.
+// Calls every stage, so that the translation keeps them all (it declares what this entry
+// point reaches); the hand-written entry points replace it.
 @fragment
-fn translation_entry(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
+fn {TRANSLATION_ENTRY}(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {{
     var texel = geometry_texel(0u, position.xyz, position.xyz);
     texel = paint_texel(texel, 0u, decal_weight_at(texel, position.xy, 0u));
     texel = lit_texel(texel, position.xy);

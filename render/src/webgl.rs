@@ -20,7 +20,7 @@ use crate::gles::sources::{program_in, TranslatedProgram};
 use crate::glsl::Dialect;
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::on_tile::{fused_wgsl, store_through_include, texel_struct_name, tile_layout, Stage};
+use crate::on_tile::{fused_wgsl, include_translation, store_through_include, tile_layout, Stage};
 use crate::options::Options;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::{ENVIRONMENT_BINDING, LIGHT_MAP_BINDING, LUT_BINDING};
@@ -33,7 +33,8 @@ pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, St
     let (include_text, _) =
         includes::include(&model, include, 0).map_err(|error| error.to_string())?;
     let wgsl = fused_wgsl(options, layout, -1.0);
-    let texel = texel_struct_name(&model)?;
+    let translation = include_translation(&model)?;
+    let texel = &translation.names.layout;
     // The output, and the volume drawn, which comes in a uniform.
     let declarations =
         "layout(location = 0) out highp vec4 frame_colour;\nuniform highp uint volume_index;\n";
@@ -42,11 +43,11 @@ pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, St
         .iter()
         .copied()
         .map(|stage| {
-            let main = stage.pixel_local_storage_main(&texel, &load, &store);
+            let main = stage.pixel_local_storage_main(texel, &load, &store);
             let program = program_in(
                 Dialect::WebGl,
                 &wgsl,
-                (&include_text, include),
+                (&include_text, include, &translation),
                 stage.vertex_entry(),
                 &format!("{declarations}{main}"),
             )

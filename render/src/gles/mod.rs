@@ -23,7 +23,7 @@ pub mod sources;
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
 use crate::on_tile::{
-    fused_wgsl, store_through_include, texel_struct_name, tile_layout, Path, Stage, TileOptions,
+    fused_wgsl, include_translation, store_through_include, tile_layout, Path, Stage, TileOptions,
 };
 use crate::options::{Frame, Options};
 use crate::recording::{Attachment, Call, Load, Recording};
@@ -191,15 +191,15 @@ impl GlesRenderer {
         let (include, interface) = includes::include(&model, Include::FetchPacked, 0)
             .map_err(|error| error.to_string())?;
         let wgsl = fused_wgsl(options, layout, -1.0);
-        let texel = texel_struct_name(&model)?;
+        let translation = include_translation(&model)?;
         let main = Stage::Geometry.fragment_main(
-            &texel,
+            &translation.names.layout,
             &model.symbols().load(),
             &store_through_include(&model),
         );
         let (vertex, fragment) = sources::program(
             &wgsl,
-            &include,
+            (&include, &translation),
             &interface,
             Stage::Geometry.vertex_entry(),
             &main,

@@ -2,12 +2,13 @@
 //! them, and the cost model (`gbuffer-cost`) and the tile compilers' test compile the same text
 //! on Mali's and Adreno's compilers.
 
-use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface};
+use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface, Translation};
 use gbuffer_core::Named;
 
 use crate::glsl::{self, Dialect};
 use crate::on_tile::{
-    fused_wgsl, store_through_include, texel_struct_name, tile_layout, Path, Stage,
+    fused_wgsl, include_translation, store_through_include, tile_layout, Path, Stage,
+    TRANSLATION_ENTRY,
 };
 use crate::options::Options;
 
@@ -46,7 +47,8 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
     let (include_text, interface) =
         includes::include(&model, include, 0).map_err(|error| error.to_string())?;
     let wgsl = fused_wgsl(options, layout, -1.0);
-    let texel = texel_struct_name(&model)?;
+    let translation = include_translation(&model)?;
+    let texel = &translation.names.layout;
     let output = format!(
         "layout(location = {}) inout highp vec4 frame_colour;\n",
         interface.attachments.len()
@@ -60,11 +62,11 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
         .map(|stage| {
             let main = format!(
                 "{declarations}{}",
-                stage.fragment_main(&texel, &load, &store)
+                stage.fragment_main(texel, &load, &store)
             );
             let (vertex, fragment) = program(
                 &wgsl,
-                &include_text,
+                (&include_text, &translation),
                 &interface,
                 stage.vertex_entry(),
                 &main,
@@ -85,11 +87,11 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
 }
 
 /// A fused program's shaders: `vertex` of the WGSL translated, and a fragment shader of the
-/// GLES preamble, the layout's include as generated, the renderer's translated declarations
-/// and `main`.
+/// GLES preamble, the layout's include as generated (its text, and its translation:
+/// [`include_translation`]), the renderer's translated declarations and `main`.
 pub fn program(
     wgsl: &str,
-    include: &str,
+    (include, translation): (&str, &Translation),
     interface: &Interface,
     vertex: &str,
     main: &str,
@@ -97,7 +99,7 @@ pub fn program(
     let program = program_in(
         Dialect::Gles,
         wgsl,
-        (include, interface.include),
+        (include, interface.include, translation),
         vertex,
         main,
     )?;
@@ -107,21 +109,17 @@ pub fn program(
 /// A fused program in `dialect` (GLES's or WebGL's GLSL ES), with the sampler uniforms it
 /// declares: `vertex` of the WGSL translated, and a fragment shader of the dialect's preamble
 /// (its version, the `include`'s extensions, highp defaults), the layout's include as
-/// generated, the renderer's translated declarations and `main`.
+/// generated, the declarations the stages' functions need but the include does not make, and
+/// `main`.
 pub fn program_in(
     dialect: Dialect,
     wgsl: &str,
-    (include_text, include): (&str, Include),
+    (include_text, include, translation): (&str, Include, &Translation),
     vertex: &str,
     main: &str,
 ) -> Result<TranslatedProgram, String> {
     let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, dialect)?;
-    let stages = glsl::translate(
-        wgsl,
-        naga::ShaderStage::Fragment,
-        "translation_entry",
-        dialect,
-    )?;
+    let stages = glsl::fragment_declarations(wgsl, TRANSLATION_ENTRY, dialect, translation)?;
     let extensions: String = include
         .shader_extensions()
         .iter()
@@ -131,7 +129,7 @@ pub fn program_in(
         "{}\n{extensions}{}precision highp float;\nprecision highp int;\n\n{include_text}\n{}\n{main}",
         dialect.version_line(),
         dialect.early_fragment_tests(),
-        glsl::declarations(&stages.text, include_text),
+        stages.text,
     );
     let mut samplers = stages.samplers;
     samplers.extend(vertex.samplers);

@@ -11,7 +11,7 @@ use super::{
     DEPTH_FORMAT, OUTPUT_FORMAT, PACKED_FORMAT,
 };
 use crate::glsl::{self, Dialect};
-use crate::on_tile::{fused_wgsl, Stage};
+use crate::on_tile::{fused_wgsl, include_translation, Stage, TRANSLATION_ENTRY};
 use crate::options::Options;
 use crate::recording::Attachment;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
@@ -148,7 +148,7 @@ impl VulkanRenderer {
         // Descriptors: the inputs the stages sample in set 0, the G-buffer inputs in set 1,
         // the volume index as a push constant.
         let wgsl = fused_wgsl(options, layout, -1.0);
-        let sampled = used_bindings(&wgsl, "translation_entry");
+        let sampled = used_bindings(&wgsl, TRANSLATION_ENTRY);
         let (set0_layout, set0) = self.sampled_set(&sampled, &[])?;
         let input_views: Vec<vk::ImageView> = views[..targets as usize].to_vec();
         let (set1_layout, set1) = self.input_attachment_set(&input_views)?;
@@ -157,9 +157,8 @@ impl VulkanRenderer {
             .pipeline_layout(&[set0_layout, set1_layout], Some(4))?;
 
         let load = model.symbols().load();
-        let names = includes::translate(&model)
-            .map_err(|error| error.to_string())?
-            .names;
+        let include_translation = include_translation(&model)?;
+        let names = &include_translation.names;
         let texel = &names.layout;
         let outputs: String = (0..targets)
             .map(|index| {
@@ -169,18 +168,18 @@ impl VulkanRenderer {
                 "layout(location = {targets}) out highp vec4 frame_colour;\n"
             )])
             .collect();
-        let store = includes::store_statements(&model, &names, &interface, |attachment| {
+        let store = includes::store_statements(&model, names, &interface, |attachment| {
             format!("gbuffer_out{}", attachment.index)
         });
         // The volume drawn comes as a push constant; each draw writes only what it changes.
         let volume = "layout(push_constant) uniform Volume {\n    uint volume_index;\n};\n";
-        let translation = glsl::translate(
+        let declarations = glsl::fragment_declarations(
             &wgsl,
-            naga::ShaderStage::Fragment,
-            "translation_entry",
+            TRANSLATION_ENTRY,
             Dialect::Vulkan,
-        )?;
-        let declarations = glsl::declarations(&translation.text, &include);
+            &include_translation,
+        )?
+        .text;
         let mut pipeline_stages = Vec::new();
         for &stage in Stage::ALL {
             let depth = match stage {

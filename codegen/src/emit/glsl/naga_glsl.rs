@@ -1,10 +1,8 @@
-//! The one way WGSL becomes GLSL here: naga parses and validates the WGSL with the capabilities
-//! generated code needs, and its GLSL writer translates one entry point. The includes' emitter,
-//! the validator's portability check and the renderer's on-tile backends all call it, so they
-//! translate alike; and [`declarations`] picks out of naga's GLSL what a hand-written `main`
-//! or an include keeps.
-
-use std::collections::HashSet;
+//! The one way WGSL is taken in here and a whole stage becomes GLSL: naga parses and
+//! validates the WGSL with the capabilities generated code needs, and its GLSL writer
+//! translates one entry point. The includes' emitter, the validator's portability check and
+//! the renderer's on-tile backends all call it, so they translate alike; what a hand-written
+//! `main` or an include declares is printed from the module instead ([`super::printer`]).
 
 use naga::back::glsl;
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
@@ -99,121 +97,4 @@ pub fn write(
     .and_then(|mut writer| writer.write())
     .map_err(|error| format!("naga cannot translate `{entry}` to GLSL: {error}"))?;
     Ok((text, reflection))
-}
-
-/// The declarations of a translated fragment stage for a hand-written `main`: no `#version`,
-/// `#extension` or precision statement, no entry point or its inputs and outputs, and none of
-/// the declarations `include` already makes (the G-buffer layout's, by name).
-pub fn declarations(translation: &str, include: &str) -> String {
-    let declared = declared_names(include);
-    let lines: Vec<&str> = translation.lines().collect();
-    let mut out = String::new();
-    let mut index = 0;
-    while index < lines.len() {
-        let line = lines[index];
-        // A top-level block runs to its closing line at column 0.
-        let end = if line.ends_with('{') && !line.starts_with(' ') {
-            index
-                + lines[index..]
-                    .iter()
-                    .position(|line| *line == "}" || *line == "};")
-                    .unwrap_or(lines.len() - index - 1)
-        } else {
-            index
-        };
-        let skip = line.starts_with('#')
-            || line.starts_with("precision ")
-            || line.starts_with("void main()")
-            || is_entry_point_interface(line)
-            || declared_name(line).is_some_and(|name| declared.contains(name));
-        if !skip {
-            for line in &lines[index..=end] {
-                out.push_str(line);
-                out.push('\n');
-            }
-        }
-        index = end + 1;
-    }
-    out
-}
-
-/// The entry point's own inputs and outputs, which the hand-written `main` declares.
-fn is_entry_point_interface(line: &str) -> bool {
-    let line = line.trim_start_matches("layout(location = ");
-    [
-        "smooth in ",
-        "flat in ",
-        "in ",
-        "out ",
-        "smooth out ",
-        "flat out ",
-    ]
-    .iter()
-    .any(|prefix| {
-        line.starts_with(prefix)
-            || line
-                .split_once(") ")
-                .is_some_and(|(_, rest)| rest.starts_with(prefix))
-    })
-}
-
-/// The names the top-level declarations of `glsl` make.
-fn declared_names(glsl: &str) -> HashSet<&str> {
-    glsl.lines()
-        .filter(|line| !line.starts_with(' ') && !line.starts_with('}'))
-        .filter_map(declared_name)
-        .collect()
-}
-
-/// The name a top-level line declares: `struct Name {`, `const T NAME = ...;`, or a function
-/// `T name(...) {` (precision qualifiers and array return types included).
-fn declared_name(line: &str) -> Option<&str> {
-    if line.starts_with(' ') || line.starts_with('#') || line.starts_with("//") {
-        return None;
-    }
-    if let Some(rest) = line.strip_prefix("struct ") {
-        return rest.split_whitespace().next();
-    }
-    if line.starts_with("const ") {
-        let (left, _) = line.split_once(" = ")?;
-        return left.split_whitespace().last();
-    }
-    if line.ends_with(") {") {
-        let (head, _) = line.split_once('(')?;
-        return head.split_whitespace().last();
-    }
-    None
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_names_of_declarations_are_read() {
-        assert_eq!(
-            declared_name("struct MobileMetallic {"),
-            Some("MobileMetallic")
-        );
-        assert_eq!(
-            declared_name("const highp uint MOBILE_METALLIC_WORDS = 4u;"),
-            Some("MOBILE_METALLIC_WORDS")
-        );
-        assert_eq!(
-            declared_name("highp uint[4] pack_mobile_metallic(MobileMetallic v) {"),
-            Some("pack_mobile_metallic")
-        );
-        assert_eq!(declared_name("    return x;"), None);
-    }
-
-    #[test]
-    fn declarations_leave_out_what_the_include_declares_and_the_entry_point() {
-        let include =
-            "struct Texel {\n    float a;\n};\nfloat decode(uint w) {\n    return 0.0;\n}\n";
-        let translation = "#version 320 es\nprecision highp float;\nstruct Texel {\n    float a;\n};\nstruct Mine {\n    float b;\n};\nfloat decode(uint w) {\n    return 1.0;\n}\nfloat mine(Texel t) {\n    return t.a;\n}\nlayout(location = 0) out vec4 _fs2p_location0;\nvoid main() {\n    _fs2p_location0 = vec4(0.0);\n}\n";
-        assert_eq!(
-            declarations(translation, include),
-            "struct Mine {\n    float b;\n};\nfloat mine(Texel t) {\n    return t.a;\n}\n"
-        );
-    }
 }

@@ -48,13 +48,57 @@ pub struct FromVersion310<'a> {
     pub builtin: &'a str,
 }
 
-/// The printed declarations and the names they were given.
+/// Which items to print, and how.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Choice<'a> {
+    /// Print what this entry point reaches (the functions it calls, directly or not, and the
+    /// textures they sample), not the entry point itself; with none, every function.
+    pub entry_point: Option<(naga::ShaderStage, &'a str)>,
+    /// WGSL names of structs, constants and functions not to print: a shader's include
+    /// declares them.
+    pub leave_out: &'a [&'a str],
+    /// Functions to wrap with a GLSL ES 3.10 builtin.
+    pub from_310: &'a [FromVersion310<'a>],
+    /// Whether textures declare their binding (`layout(binding = N)`: GLSL ES 3.10 and GLSL
+    /// 4.50 have it, WebGL's GLSL ES 3.00 does not).
+    pub binding_qualifiers: bool,
+}
+
+/// What kind of declaration an item is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ItemKind {
+    /// A struct type.
+    Struct,
+    /// A named constant.
+    Constant,
+    /// A texture a function samples (GLSL combines it with its sampler).
+    Texture,
+    /// A function.
+    Function,
+}
+
+/// One printed declaration: its kind, its name in the WGSL and the name it was printed with.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Item {
+    /// What it declares.
+    pub kind: ItemKind,
+    /// Its WGSL name.
+    pub wgsl: String,
+    /// Its GLSL name.
+    pub glsl: String,
+}
+
+/// The printed declarations, what they are and the names they were given.
 #[derive(Debug)]
 pub struct Printed {
-    /// Structs and constants, then the functions, a blank line between.
+    /// Structs and constants, then the textures, then the functions, a blank line between.
     pub text: String,
+    /// The items of the text, in its order.
+    pub items: Vec<Item>,
     /// The GLSL name of every type, struct member, constant, function and parameter.
     pub names: naga::FastHashMap<NameKey, String>,
+    /// For each texture printed, its binding in the WGSL.
+    pub texture_bindings: Vec<(String, naga::ResourceBinding)>,
 }
 
 impl Printed {
@@ -72,23 +116,11 @@ impl Printed {
             .collect();
         Some((self.names[&NameKey::Type(handle)].clone(), members))
     }
-
-    /// Whether a function printed has the GLSL name `name`.
-    pub fn defines_function(&self, module: &Module, name: &str) -> bool {
-        module
-            .functions
-            .iter()
-            .any(|(handle, _)| self.names[&NameKey::Function(handle)] == name)
-    }
 }
 
-/// Prints every struct, named constant and function of `module` (its entry points are not
-/// declarations and are left out), wrapping the functions `from_310` names.
-pub fn print(
-    module: &Module,
-    info: &ModuleInfo,
-    from_310: &[FromVersion310],
-) -> Result<Printed, String> {
+/// Prints the structs, named constants, textures and functions of `module` that `choice`
+/// picks (entry points are not declarations and are left out).
+pub fn print(module: &Module, info: &ModuleInfo, choice: &Choice) -> Result<Printed, String> {
     let mut names = naga::FastHashMap::default();
     let mut namer = Namer::default();
     // The arguments naga's GLSL writer passes: its reserved words and prefixes.
@@ -100,27 +132,108 @@ pub fn print(
         &["gl_", "_group", "_immediates_binding_"],
         &mut names,
     );
+    let functions = chosen_functions(module, choice)?;
     let mut printer = Printer {
         module,
         info,
         names,
         namer,
+        items: Vec::new(),
+        texture_bindings: Vec::new(),
+        leave_out: choice.leave_out,
     };
     let mut blocks = Vec::new();
     let declarations = printer.structs_and_constants()?;
     if !declarations.is_empty() {
         blocks.push(declarations);
     }
-    for (handle, function) in module.functions.iter() {
-        let wrap = from_310
+    blocks.extend(printer.textures(&functions, choice)?);
+    for &handle in &functions {
+        let function = &module.functions[handle];
+        let wrap = choice
+            .from_310
             .iter()
             .find(|wrap| function.name.as_deref() == Some(wrap.function));
         blocks.push(printer.function(handle, function, wrap)?);
     }
     Ok(Printed {
         text: blocks.join("\n"),
+        items: printer.items,
         names: printer.names,
+        texture_bindings: printer.texture_bindings,
     })
+}
+
+/// The functions `choice` picks, in the module's order (a callee before its callers).
+fn chosen_functions(module: &Module, choice: &Choice) -> Result<Vec<Handle<Function>>, String> {
+    let left_out = |function: &Function| {
+        function
+            .name
+            .as_deref()
+            .is_some_and(|name| choice.leave_out.contains(&name))
+    };
+    let Some((stage, name)) = choice.entry_point else {
+        return Ok(module
+            .functions
+            .iter()
+            .filter(|(_, function)| !left_out(function))
+            .map(|(handle, _)| handle)
+            .collect());
+    };
+    let entry = module
+        .entry_points
+        .iter()
+        .find(|entry| entry.stage == stage && entry.name == name)
+        .ok_or_else(|| format!("the WGSL has no {stage:?} entry point `{name}`"))?;
+    let mut reached = HashSet::new();
+    let mut pending = vec![&entry.function];
+    while let Some(function) = pending.pop() {
+        for callee in calls(&function.body) {
+            if reached.insert(callee) {
+                pending.push(&module.functions[callee]);
+            }
+        }
+    }
+    Ok(module
+        .functions
+        .iter()
+        .filter(|(handle, function)| reached.contains(handle) && !left_out(function))
+        .map(|(handle, _)| handle)
+        .collect())
+}
+
+/// The functions `block` calls, at any depth of its statements.
+fn calls(block: &Block) -> Vec<Handle<Function>> {
+    let mut found = Vec::new();
+    for statement in block.iter() {
+        match *statement {
+            Statement::Call { function, .. } => found.push(function),
+            Statement::Block(ref inner) => found.extend(calls(inner)),
+            Statement::If {
+                ref accept,
+                ref reject,
+                ..
+            } => {
+                found.extend(calls(accept));
+                found.extend(calls(reject));
+            }
+            Statement::Loop {
+                ref body,
+                ref continuing,
+                ..
+            } => {
+                found.extend(calls(body));
+                found.extend(calls(continuing));
+            }
+            Statement::Switch { ref cases, .. } => {
+                for case in cases {
+                    found.extend(calls(&case.body));
+                }
+            }
+            _ => {}
+        }
+    }
+    found
 }
 
 struct Printer<'m> {
@@ -128,6 +241,12 @@ struct Printer<'m> {
     info: &'m ModuleInfo,
     names: naga::FastHashMap<NameKey, String>,
     namer: Namer,
+    /// The items printed so far.
+    items: Vec<Item>,
+    /// The textures printed so far, and their bindings.
+    texture_bindings: Vec<(String, naga::ResourceBinding)>,
+    /// WGSL names not to print.
+    leave_out: &'m [&'m str],
 }
 
 /// What one function's expressions print as.
@@ -148,13 +267,18 @@ impl FunctionContext<'_> {
 }
 
 impl Printer<'_> {
-    fn structs_and_constants(&self) -> Result<String, String> {
+    fn structs_and_constants(&mut self) -> Result<String, String> {
         let mut out = String::new();
         for (handle, ty) in self.module.types.iter() {
             let TypeInner::Struct { ref members, .. } = ty.inner else {
                 continue;
             };
-            let _ = writeln!(out, "struct {} {{", self.names[&NameKey::Type(handle)]);
+            let Some(name) =
+                self.chosen(ItemKind::Struct, ty.name.as_deref(), NameKey::Type(handle))
+            else {
+                continue;
+            };
+            let _ = writeln!(out, "struct {name} {{");
             for (index, member) in members.iter().enumerate() {
                 let name = &self.names[&NameKey::StructMember(handle, index as u32)];
                 let _ = writeln!(out, "{INDENT}{};", self.declaration(member.ty, name)?);
@@ -162,19 +286,98 @@ impl Printer<'_> {
             out.push_str("};\n");
         }
         for (handle, constant) in self.module.constants.iter() {
-            if constant.name.is_none() {
+            let Some(name) = constant.name.as_deref().and_then(|wgsl| {
+                self.chosen(ItemKind::Constant, Some(wgsl), NameKey::Constant(handle))
+            }) else {
                 continue;
-            }
-            let name = &self.names[&NameKey::Constant(handle)];
+            };
             let mut init = String::new();
             self.const_expression(&mut init, constant.init)?;
             let _ = writeln!(
                 out,
                 "const {} = {init};",
-                self.declaration(constant.ty, name)?
+                self.declaration(constant.ty, &name)?
             );
         }
         Ok(out)
+    }
+
+    /// The GLSL name of a struct or constant to print, recorded as an item; `None` for one
+    /// the choice leaves out.
+    fn chosen(&mut self, kind: ItemKind, wgsl: Option<&str>, key: NameKey) -> Option<String> {
+        if wgsl.is_some_and(|wgsl| self.leave_out.contains(&wgsl)) {
+            return None;
+        }
+        let glsl = self.names[&key].clone();
+        self.items.push(Item {
+            kind,
+            wgsl: wgsl.unwrap_or_default().to_string(),
+            glsl: glsl.clone(),
+        });
+        Some(glsl)
+    }
+
+    /// The textures `functions` sample, one declaration each: GLSL has no separate samplers,
+    /// a sampler uniform is the texture and the sampler state together. Named as naga's
+    /// writer names a resource (`_group_0_binding_5_fs`), which a host without binding
+    /// qualifiers sets by name.
+    fn textures(
+        &mut self,
+        functions: &[Handle<Function>],
+        choice: &Choice,
+    ) -> Result<Vec<String>, String> {
+        let mut blocks = Vec::new();
+        let suffix = match choice.entry_point {
+            Some((naga::ShaderStage::Vertex, _)) => "vs",
+            Some((naga::ShaderStage::Compute, _)) => "cs",
+            _ => "fs",
+        };
+        for (handle, global) in self.module.global_variables.iter() {
+            if !functions
+                .iter()
+                .any(|function| !self.info[*function][handle].is_empty())
+            {
+                continue;
+            }
+            let TypeInner::Image {
+                dim: naga::ImageDimension::D2,
+                arrayed: false,
+                class: naga::ImageClass::Sampled { kind, multi: false },
+            } = self.module.types[global.ty].inner
+            else {
+                if let TypeInner::Sampler { .. } = self.module.types[global.ty].inner {
+                    continue;
+                }
+                return Err(format!(
+                    "the GLSL printer declares 2D sampled textures only, not `{}`",
+                    global.name.as_deref().unwrap_or("a global")
+                ));
+            };
+            let binding = global.binding.ok_or("a texture without a binding")?;
+            let name = format!(
+                "_group_{}_binding_{}_{suffix}",
+                binding.group, binding.binding
+            );
+            let prefix = value_type(&TypeInner::Vector {
+                size: naga::VectorSize::Quad,
+                scalar: naga::Scalar { kind, width: 4 },
+            })?;
+            let sampler = format!("{}sampler2D", prefix.trim_end_matches("vec4"));
+            let layout = match choice.binding_qualifiers {
+                true => format!("layout(binding = {}) ", binding.binding),
+                false => String::new(),
+            };
+            blocks.push(format!("{layout}uniform highp {sampler} {name};\n"));
+            self.names
+                .insert(NameKey::GlobalVariable(handle), name.clone());
+            self.items.push(Item {
+                kind: ItemKind::Texture,
+                wgsl: global.name.clone().unwrap_or_default(),
+                glsl: name.clone(),
+            });
+            self.texture_bindings.push((name, binding));
+        }
+        Ok(blocks)
     }
 
     /// `highp T name[N]`: a type and a name as a declaration writes them.
@@ -244,6 +447,11 @@ impl Printer<'_> {
             named: HashMap::new(),
         };
         let name = self.names[&NameKey::Function(handle)].clone();
+        self.items.push(Item {
+            kind: ItemKind::Function,
+            wgsl: function.name.clone().unwrap_or_default(),
+            glsl: name.clone(),
+        });
         let result = match function.result {
             Some(ref result) => format!(
                 "{}{}{}",
@@ -615,6 +823,19 @@ impl Printer<'_> {
             Expression::FunctionArgument(index) => {
                 out.push_str(&self.names[&NameKey::FunctionArgument(context.handle, index)]);
             }
+            Expression::GlobalVariable(global) => {
+                out.push_str(&self.names[&NameKey::GlobalVariable(global)]);
+            }
+            Expression::ImageSample {
+                image,
+                coordinate,
+                level,
+                gather: None,
+                array_index: None,
+                offset: None,
+                depth_ref: None,
+                ..
+            } => self.sample(out, image, coordinate, level, context)?,
             Expression::LocalVariable(local) => {
                 out.push_str(&self.names[&NameKey::FunctionLocal(context.handle, local)]);
             }
@@ -696,6 +917,40 @@ impl Printer<'_> {
                 ))
             }
         }
+        Ok(())
+    }
+
+    /// A 2D texture's sample: `texture` at the level the derivatives choose, `textureLod`
+    /// at one given.
+    fn sample(
+        &self,
+        out: &mut String,
+        image: Handle<Expression>,
+        coordinate: Handle<Expression>,
+        level: naga::SampleLevel,
+        context: &FunctionContext,
+    ) -> Result<(), String> {
+        let function = match level {
+            naga::SampleLevel::Auto | naga::SampleLevel::Bias(_) => "texture",
+            naga::SampleLevel::Zero | naga::SampleLevel::Exact(_) => "textureLod",
+            naga::SampleLevel::Gradient { .. } => {
+                return Err("the GLSL printer has no form for a sample by gradients".into())
+            }
+        };
+        let _ = write!(out, "{function}(");
+        self.expression(out, image, context)?;
+        out.push_str(", vec2(");
+        self.expression(out, coordinate, context)?;
+        out.push(')');
+        match level {
+            naga::SampleLevel::Zero => out.push_str(", 0.0"),
+            naga::SampleLevel::Exact(value) | naga::SampleLevel::Bias(value) => {
+                out.push_str(", ");
+                self.expression(out, value, context)?;
+            }
+            _ => {}
+        }
+        out.push(')');
         Ok(())
     }
 
@@ -1036,7 +1291,11 @@ mod tests {
     fn printed(wgsl: &str, from_310: &[FromVersion310]) -> String {
         let (module, info) = naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES)
             .unwrap_or_else(|error| panic!("{error}"));
-        print(&module, &info, from_310).unwrap().text
+        let choice = Choice {
+            from_310,
+            ..Choice::default()
+        };
+        print(&module, &info, &choice).unwrap().text
     }
 
     #[test]
@@ -1100,6 +1359,67 @@ highp uint encode(highp vec4 c) {
 #endif
 ";
         assert_eq!(printed(wgsl, &[wrap]), expected);
+    }
+
+    #[test]
+    fn an_entry_point_gets_what_it_reaches_less_what_is_left_out() {
+        let wgsl = "
+struct Texel { colour: vec3<f32>, }
+@group(0) @binding(1) var lut: texture_2d<f32>;
+@group(0) @binding(2) var lut_sampler: sampler;
+@group(0) @binding(3) var unused: texture_2d<f32>;
+fn from_include(t: Texel) -> vec3<f32> { return t.colour; }
+fn looked_up(x: f32) -> f32 { return textureSampleLevel(lut, lut_sampler, vec2(x, 0.5), 0.0).x; }
+fn lit(t: Texel) -> vec3<f32> { return from_include(t) * looked_up(t.colour.x); }
+fn unreached() -> vec4<f32> { return textureSampleLevel(unused, lut_sampler, vec2(0.0), 0.0); }
+@fragment
+fn entry() -> @location(0) vec4<f32> { return vec4(lit(Texel(vec3(1.0))), 1.0); }
+";
+        let (module, info) =
+            naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES).unwrap();
+        let choice = Choice {
+            entry_point: Some((naga::ShaderStage::Fragment, "entry")),
+            leave_out: &["Texel", "from_include"],
+            from_310: &[],
+            binding_qualifiers: true,
+        };
+        let printed = print(&module, &info, &choice).unwrap();
+        let expected = "\
+layout(binding = 1) uniform highp sampler2D _group_0_binding_1_fs;
+
+highp float looked_up(highp float x) {
+    highp vec4 _e6 = textureLod(_group_0_binding_1_fs, vec2(vec2(x, 0.5)), 0.0);
+    return _e6.x;
+}
+
+highp vec3 lit(Texel t_1) {
+    highp vec3 _e1 = from_include(t_1);
+    highp float _e4 = looked_up(t_1.colour.x);
+    return (_e1 * _e4);
+}
+";
+        assert_eq!(printed.text, expected);
+        let kinds: Vec<(ItemKind, &str)> = printed
+            .items
+            .iter()
+            .map(|item| (item.kind, item.wgsl.as_str()))
+            .collect();
+        assert_eq!(
+            kinds,
+            [
+                (ItemKind::Texture, "lut"),
+                (ItemKind::Function, "looked_up"),
+                (ItemKind::Function, "lit")
+            ]
+        );
+        let webgl = Choice {
+            binding_qualifiers: false,
+            ..choice
+        };
+        let printed = print(&module, &info, &webgl).unwrap();
+        assert!(printed
+            .text
+            .starts_with("uniform highp sampler2D _group_0_binding_1_fs;\n"));
     }
 
     /// GLSL ES 3.20's built-in functions (section 8), which neither keyword list of the test
@@ -1207,7 +1527,7 @@ highp uint encode(highp vec4 c) {
             &options,
         )
         .unwrap();
-        let ours = print(&module, &info, &[]).unwrap();
+        let ours = print(&module, &info, &Choice::default()).unwrap();
         let (_, names) = ours.struct_names(&module, "Probe").unwrap();
         // naga writes the struct first, a member a line: `    float name;`.
         let nagas: Vec<&str> = naga_text
@@ -1232,7 +1552,7 @@ highp uint encode(highp vec4 c) {
         let wgsl = "fn f(x: u32) -> u32 { return countLeadingZeros(x); }";
         let (module, info) =
             naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES).unwrap();
-        let error = print(&module, &info, &[]).unwrap_err();
+        let error = print(&module, &info, &Choice::default()).unwrap_err();
         assert!(
             error.contains("CountLeadingZeros") && error.contains("`f`"),
             "{error}"

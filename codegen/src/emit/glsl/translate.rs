@@ -7,10 +7,8 @@
 //! writer does, and [`GlslNames`] hands the hand-written parts of an include (blocks,
 //! attachments, accessors) the names it gave the layout's structs.
 
-use naga::proc::NameKey;
-
 use super::naga_glsl;
-use super::printer::{self, FromVersion310, Printed};
+use super::printer::{self, Choice, FromVersion310, Item, ItemKind, Printed};
 use super::TranslationError;
 use crate::emit::wgsl::{function_name, Target};
 use gbuffer_core::format::Format;
@@ -24,8 +22,8 @@ pub struct Translation {
     pub text: String,
     /// The names the layout's struct, fields and targets were given.
     pub names: GlslNames,
-    /// The GLSL names of the functions the text defines.
-    pub functions: Vec<String>,
+    /// What the text declares, in its order: each item's kind, WGSL and GLSL name.
+    pub items: Vec<Item>,
 }
 
 impl Translation {
@@ -33,7 +31,11 @@ impl Translation {
     /// keyword and does not end in a digit keeps its name, as the generated helpers' do): the
     /// includes call it by that name.
     pub fn check_defines(&self, name: &str) -> Result<(), TranslationError> {
-        match self.functions.iter().any(|function| function == name) {
+        let defined = self
+            .items
+            .iter()
+            .any(|item| item.kind == ItemKind::Function && item.glsl == name);
+        match defined {
             true => Ok(()),
             false => Err(TranslationError(format!(
                 "the GLSL of `{}` has no function `{name}`",
@@ -97,11 +99,6 @@ pub fn translate_with(
             layout.name
         )));
     };
-    let functions = module
-        .functions
-        .iter()
-        .map(|(handle, _)| printed.names[&NameKey::Function(handle)].clone())
-        .collect();
     let translation = Translation {
         text: printed.text,
         names: GlslNames {
@@ -110,7 +107,7 @@ pub fn translate_with(
             targets,
             target_members,
         },
-        functions,
+        items: printed.items,
     };
     check_bit_field_functions(&translation, layout)?;
     Ok(translation)
@@ -134,7 +131,11 @@ fn print(
 ) -> Result<(naga::Module, Printed), TranslationError> {
     let (module, info) = naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES)
         .map_err(TranslationError)?;
-    let printed = printer::print(&module, &info, from_310).map_err(TranslationError)?;
+    let choice = Choice {
+        from_310,
+        ..Choice::default()
+    };
+    let printed = printer::print(&module, &info, &choice).map_err(TranslationError)?;
     Ok((module, printed))
 }
 
