@@ -22,7 +22,6 @@
 //! the hand-written parts take those names from it ([`GlslNames`]).
 
 mod interface;
-mod keywords;
 pub mod naga_glsl;
 pub mod printer;
 mod translate;

@@ -5,7 +5,7 @@
 //! functions and variables, `main`, and the names of naga's own helpers. The printer gives a
 //! WGSL identifier the name naga's writer gives it only if both reserve the same words: the
 //! renderer's and the user's shaders, translated by naga's writer, call the includes' items by
-//! those names. `printer`'s tests hold the two to agreement.
+//! those names. The printer's tests hold the two to agreement.
 
 use std::sync::LazyLock;
 
