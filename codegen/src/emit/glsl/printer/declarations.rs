@@ -20,12 +20,14 @@ impl Printer<'_> {
             else {
                 continue;
             };
-            let _ = writeln!(out, "struct {name} {{");
+            let mut text = format!("struct {name} {{\n");
             for (index, member) in members.iter().enumerate() {
                 let name = &self.names[&NameKey::StructMember(handle, index as u32)];
-                let _ = writeln!(out, "{INDENT}{};", self.declaration(member.ty, name)?);
+                let _ = writeln!(text, "{INDENT}{};", self.declaration(member.ty, name)?);
             }
-            out.push_str("};\n");
+            text.push_str("};\n");
+            self.item_text(&text);
+            out.push_str(&text);
         }
         for (handle, constant) in self.module.constants.iter() {
             let Some(name) = constant.name.as_deref().and_then(|wgsl| {
@@ -35,11 +37,12 @@ impl Printer<'_> {
             };
             let mut init = String::new();
             self.const_expression(&mut init, constant.init)?;
-            let _ = writeln!(
-                out,
-                "const {} = {init};",
+            let text = format!(
+                "const {} = {init};\n",
                 self.declaration(constant.ty, &name)?
             );
+            self.item_text(&text);
+            out.push_str(&text);
         }
         Ok(out)
     }
@@ -60,8 +63,16 @@ impl Printer<'_> {
             kind,
             wgsl: wgsl.unwrap_or_default().to_string(),
             glsl: glsl.clone(),
+            text: String::new(),
         });
         Some(glsl)
+    }
+
+    /// Gives the item recorded last its printed text.
+    pub(super) fn item_text(&mut self, text: &str) {
+        if let Some(item) = self.items.last_mut() {
+            item.text = text.to_string();
+        }
     }
 
     /// The textures `functions` sample, one declaration each: GLSL has no separate samplers,
@@ -114,14 +125,16 @@ impl Printer<'_> {
                 true => format!("layout(binding = {}) ", binding.binding),
                 false => String::new(),
             };
-            blocks.push(format!("{layout}uniform highp {sampler} {name};\n"));
+            let text = format!("{layout}uniform highp {sampler} {name};\n");
             self.names
                 .insert(NameKey::GlobalVariable(handle), name.clone());
             self.items.push(Item {
                 kind: ItemKind::Texture,
                 wgsl: global.name.clone().unwrap_or_default(),
                 glsl: name.clone(),
+                text: text.clone(),
             });
+            blocks.push(text);
             self.texture_bindings.push((name, binding));
         }
         Ok(blocks)

@@ -73,7 +73,8 @@ pub enum ItemKind {
     Function,
 }
 
-/// One printed declaration: its kind, its name in the WGSL and the name it was printed with.
+/// One printed declaration: its kind, its name in the WGSL, the name it was printed with and
+/// its text.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Item {
     /// What it declares.
@@ -82,6 +83,9 @@ pub struct Item {
     pub wgsl: String,
     /// Its GLSL name.
     pub glsl: String,
+    /// Its declaration, as it stands in the printed text (a function wrapped for GLSL ES 3.10
+    /// with its `#if`).
+    pub text: String,
 }
 
 /// The printed declarations, what they are and the names they were given.

@@ -31,6 +31,7 @@ impl Printer<'_> {
             kind: ItemKind::Function,
             wgsl: function.name.clone().unwrap_or_default(),
             glsl: name.clone(),
+            text: String::new(),
         });
         let result = match function.result {
             Some(ref result) => format!(
@@ -92,6 +93,7 @@ impl Printer<'_> {
         if wrap.is_some() {
             out.push_str("#endif\n");
         }
+        self.item_text(&out);
         Ok(out)
     }
 

@@ -113,6 +113,8 @@ highp vec3 lit(Texel t_1) {
 }
 ";
     assert_eq!(printed.text, expected);
+    let texts: Vec<&str> = printed.items.iter().map(|item| item.text.as_str()).collect();
+    assert_eq!(texts.join("\n"), expected, "each item's text, in order");
     let kinds: Vec<(ItemKind, &str)> = printed
         .items
         .iter()
