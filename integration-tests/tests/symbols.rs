@@ -1,12 +1,14 @@
 //! Every name a layout's `Symbols` gives is an item the outputs define: callers ask
 //! `Symbols` for the names they call, so a name here that no emitter makes would fail only at
-//! run time, in a shader. The WGSL is read back through naga's parser (its functions, types,
-//! constants and globals by name); the GLSL includes, which no parser here reads, by their
+//! run time, in a shader. The WGSL's items are read back through naga's parser
+//! (`gbuffer_codegen::emit::items::wgsl_items`: its functions, structs, constants and textures
+//! by name); the GLSL includes, which no parser here reads, by their
 //! definitions' lines (`<type> <name>(<parameters>) {`).
 
 use gbuffer::layout::{Layout, Symbols};
 use gbuffer::GBufferLayout;
 use gbuffer_codegen::emit::glsl::{self, Include, PlsBlock};
+use gbuffer_codegen::emit::items::{wgsl_items, ItemKind};
 use gbuffer_codegen::output::{generate, Output};
 use gbuffer_core::Conversions;
 use gbuffer_testkit::layouts::{seeds_and_every_format, AWKWARD_LAYOUT_NAMES};
@@ -41,28 +43,16 @@ fn every_wgsl_name_is_an_item_of_the_wgsl_and_the_lighting_source() {
             gbuffer_codegen::emit::wgsl::emit(&layout),
             gbuffer::targets::lighting_wgsl(&layout, 0, 0)
         );
-        let module = naga::front::wgsl::parse_str(&wgsl)
-            .unwrap_or_else(|error| panic!("{}: {}", layout.name, error.emit_to_string(&wgsl)));
-        let functions: Vec<&str> = module
-            .functions
-            .iter()
-            .filter_map(|(_, function)| function.name.as_deref())
-            .collect();
-        let types: Vec<&str> = module
-            .types
-            .iter()
-            .filter_map(|(_, ty)| ty.name.as_deref())
-            .collect();
-        let constants: Vec<&str> = module
-            .constants
-            .iter()
-            .filter_map(|(_, constant)| constant.name.as_deref())
-            .collect();
-        let globals: Vec<&str> = module
-            .global_variables
-            .iter()
-            .filter_map(|(_, global)| global.name.as_deref())
-            .collect();
+        let items = wgsl_items(&wgsl).unwrap_or_else(|error| panic!("{}: {error}", layout.name));
+        let named = |kind: ItemKind| -> Vec<&str> {
+            items
+                .iter()
+                .filter(|item| item.kind == kind)
+                .map(|item| item.name.as_str())
+                .collect()
+        };
+        let (functions, types) = (named(ItemKind::Function), named(ItemKind::Struct));
+        let (constants, globals) = (named(ItemKind::Constant), named(ItemKind::Texture));
 
         let mut wanted_functions = vec![
             symbols.pack(),

@@ -4,6 +4,8 @@
 
 #[cfg(feature = "tools")]
 pub mod glsl;
+#[cfg(feature = "tools")]
+pub mod items;
 pub mod json;
 pub mod rust;
 pub mod wgsl;

@@ -8,8 +8,9 @@
 //! attachments, accessors) the names it gave the layout's structs.
 
 use super::naga_glsl;
-use super::printer::{self, Choice, FromVersion310, Item, ItemKind, Printed};
+use super::printer::{self, Choice, FromVersion310, Item, Printed};
 use super::TranslationError;
+use crate::emit::items::ItemKind;
 use crate::emit::wgsl::{function_name, Target};
 use gbuffer_core::format::Format;
 use gbuffer_core::layout::Layout;

@@ -6,7 +6,9 @@ use std::fmt::Write;
 use naga::proc::NameKey;
 use naga::{ArraySize, Expression, Function, Handle, ScalarKind, Type, TypeInner};
 
-use super::{Choice, FunctionContext, Item, ItemKind, Printer, INDENT};
+use crate::emit::items::ItemKind;
+
+use super::{Choice, FunctionContext, Item, Printer, INDENT};
 
 impl Printer<'_> {
     pub(super) fn structs_and_constants(&mut self) -> Result<String, String> {

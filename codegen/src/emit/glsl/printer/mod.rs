@@ -29,6 +29,8 @@ use naga::proc::{CaseInsensitiveKeywordSet, KeywordSet, NameKey, Namer};
 use naga::valid::{FunctionInfo, ModuleInfo};
 use naga::{Block, Expression, Function, Handle, Module, Statement, TypeInner};
 
+use crate::emit::items::ItemKind;
+
 /// One level of indentation.
 const INDENT: &str = "    ";
 
@@ -58,19 +60,6 @@ pub struct Choice<'a> {
     /// Whether textures declare their binding (`layout(binding = N)`: GLSL ES 3.10 and GLSL
     /// 4.50 have it, WebGL's GLSL ES 3.00 does not).
     pub binding_qualifiers: bool,
-}
-
-/// What kind of declaration an item is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ItemKind {
-    /// A struct type.
-    Struct,
-    /// A named constant.
-    Constant,
-    /// A texture a function samples (GLSL combines it with its sampler).
-    Texture,
-    /// A function.
-    Function,
 }
 
 /// One printed declaration: its kind, its name in the WGSL, the name it was printed with and

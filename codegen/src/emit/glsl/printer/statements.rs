@@ -8,7 +8,9 @@ use naga::proc::NameKey;
 use naga::valid::FunctionInfo;
 use naga::{Block, Expression, Function, Handle, Statement, TypeInner};
 
-use super::{FromVersion310, FunctionContext, Item, ItemKind, Printer, INDENT};
+use crate::emit::items::ItemKind;
+
+use super::{FromVersion310, FunctionContext, Item, Printer, INDENT};
 
 impl Printer<'_> {
     pub(super) fn function(

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::emit::glsl::naga_glsl;
+use crate::emit::items::ItemKind;
 
 fn printed(wgsl: &str, from_310: &[FromVersion310]) -> String {
     let (module, info) = naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES)
