@@ -9,7 +9,7 @@
 //!   compiles under any default precision the user's preamble sets (or none) and never changes
 //!   those defaults. It matters for the integers too: GLSL ES lets a fragment shader's default
 //!   `int` be `mediump`, as narrow as 16 bits, and the packing needs all 32;
-//! - **names**: naga's `Namer` with the words naga's writer reserves ([`keywords`]), so
+//! - **names**: naga's `Namer` with the words naga's writer reserves (`keywords.rs`), so
 //!   every item has the name naga's writer gives it in a whole shader (the renderer's and the
 //!   user's shaders, translated by that writer, call them by it); [`Printed::names`] hands
 //!   them to the hand-written parts of the include;
