@@ -192,7 +192,8 @@ fn bit_word_value(layout: &Layout, word: &Word, value: impl Fn(usize) -> String)
     codes.join(" | ")
 }
 
-/// Why naga could not translate a layout's WGSL (a bug, since the WGSL is generated valid).
+/// Why a layout's WGSL did not become GLSL: naga refused it, or the printer met a construct
+/// it has no form for (a bug either way, since the WGSL is generated valid).
 #[derive(Debug)]
 pub struct TranslationError(pub String);
 
@@ -200,7 +201,7 @@ impl std::fmt::Display for TranslationError {
     fn fmt(&self, out: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             out,
-            "naga could not translate the generated WGSL to GLSL: {}",
+            "the generated WGSL could not be translated to GLSL: {}",
             self.0
         )
     }

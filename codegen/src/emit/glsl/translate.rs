@@ -23,7 +23,7 @@ pub struct Translation {
     pub text: String,
     /// The names the layout's struct, fields and targets were given.
     pub names: GlslNames,
-    /// What the text declares, in its order: each item's kind, WGSL and GLSL name.
+    /// What the text declares, in its order: each item's kind, WGSL and GLSL names and text.
     pub items: Vec<Item>,
 }
 

@@ -1,10 +1,11 @@
-//! GLSL ES declarations printed from naga's IR: the structs, constants and functions of a
-//! validated module, for an include to paste into a user's shader.
+//! GLSL ES declarations printed from naga's IR: the structs, constants, textures and functions
+//! of a validated module (every one, or what an entry point reaches, less what a [`Choice`]
+//! leaves out), for an include to paste into a user's shader or a hand-written `main` to call.
 //!
 //! naga's own GLSL writer writes whole shaders only (a `#version`, default precision, an entry
-//! point it requires) and keeps its names to itself, so an include would have to be cut out of
-//! its text. This printer walks the module instead and writes what an include needs, at the
-//! level each thing belongs to:
+//! point it requires) and keeps its names to itself, so the declarations would have to be cut
+//! out of its text. This printer walks the module instead, chooses the items there, and writes
+//! each at the level it belongs to:
 //! - **precision**: every declaration of a float or integer type says `highp`, so the include
 //!   compiles under any default precision the user's preamble sets (or none) and never changes
 //!   those defaults. It matters for the integers too: GLSL ES lets a fragment shader's default
@@ -13,7 +14,7 @@
 //!   every item has the name naga's writer gives it in a whole shader (the renderer's and the
 //!   user's shaders, translated by that writer, call them by it); [`Printed::names`] hands
 //!   them to the hand-written parts of the include;
-//! - **builtins from 3.10**: a function [`Printed`] is asked to wrap is written twice, under
+//! - **builtins from 3.10**: a function [`Choice::from_310`] names is written twice, under
 //!   `#if __VERSION__ >= 310` as one call of the builtin GLSL ES 3.10 added for it, and after
 //!   `#else` as translated.
 //!
