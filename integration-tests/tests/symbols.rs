@@ -3,7 +3,8 @@
 //! run time, in a shader. The WGSL's items are read back through naga's parser
 //! (`gbuffer_codegen::emit::items::wgsl_items`: its functions, structs, constants and textures
 //! by name); the GLSL includes, which no parser here reads, by their
-//! definitions' lines (`<type> <name>(<parameters>) {`).
+//! definitions' lines (`<type> <name>(<parameters>) {`), which the items each include says it
+//! declares (`Interface::declares`) are held to.
 
 use gbuffer::layout::{Layout, Symbols};
 use gbuffer::GBufferLayout;
@@ -25,7 +26,8 @@ fn layouts() -> Vec<Layout> {
     layouts
 }
 
-/// The names of the functions a GLSL text defines.
+/// The names of the functions a GLSL text defines, by their definitions' lines: a reference
+/// independent of the include's list of what it declares.
 fn glsl_functions(text: &str) -> Vec<String> {
     text.lines()
         .filter(|line| !line.starts_with(' ') && line.ends_with(") {"))
@@ -109,6 +111,46 @@ fn every_glsl_name_is_defined_by_the_includes_that_read_or_write() {
                 .unwrap_or_else(|error| panic!("{} {include:?}: {error}", layout.name));
             let functions = glsl_functions(&text);
             let defined = |name: &str| functions.iter().any(|function| function == name);
+            // What the include says it declares: its functions are the ones its text defines,
+            // and each item's text stands in the include, in order.
+            let declared: Vec<&str> = interface
+                .declares
+                .iter()
+                .filter(|item| item.kind == ItemKind::Function)
+                .map(|item| item.glsl.as_str())
+                .collect();
+            assert_eq!(declared, functions, "{} {include:?}", layout.name);
+            let mut rest = text.as_str();
+            for item in &interface.declares {
+                let at = rest.find(&item.text).unwrap_or_else(|| {
+                    panic!(
+                        "{} {include:?}: `{}` out of order or not in the text",
+                        layout.name, item.glsl
+                    )
+                });
+                rest = &rest[at + item.text.len()..];
+            }
+            let kinds = |kind: ItemKind| {
+                interface
+                    .declares
+                    .iter()
+                    .filter(|item| item.kind == kind)
+                    .count()
+            };
+            let attachments = interface.attachments.len() + interface.planes.len();
+            assert_eq!(
+                kinds(ItemKind::Attachment),
+                attachments,
+                "{} {include:?}",
+                layout.name
+            );
+            let blocks = usize::from(matches!(include, Include::PixelLocalStorage(_)));
+            assert_eq!(
+                kinds(ItemKind::Block),
+                blocks,
+                "{} {include:?}",
+                layout.name
+            );
             let (reads, writes) = match include {
                 Include::PixelLocalStorage(_) => (false, false),
                 Include::SubpassPacked | Include::SubpassNative => (true, false),

@@ -117,7 +117,7 @@ pub fn fragment_declarations(
     let leave_out: Vec<&str> = include
         .items
         .iter()
-        .map(|item| item.wgsl.as_str())
+        .filter_map(|item| item.wgsl.as_deref())
         .collect();
     let choice = Choice {
         entry_point: Some((naga::ShaderStage::Fragment, entry)),

@@ -1,7 +1,9 @@
 //! What the emitters declare, as data: each item's kind, name and text. The GLSL printer
-//! records its items as it prints them ([`crate::emit::glsl::Translation::items`]); the WGSL is
-//! read back through naga's parser ([`wgsl_items`]), so a caller asks for the items by name and
-//! kind instead of searching the text.
+//! records its items as it prints them ([`crate::emit::glsl::Translation::items`]), an include
+//! adds its attachments or block and its accessors as it writes them
+//! ([`crate::emit::glsl::Interface::declares`]); the WGSL is read back through naga's parser
+//! ([`wgsl_items`]). A caller asks for the items by name and kind instead of searching the
+//! text.
 
 /// What kind of declaration an emitted item is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -14,6 +16,11 @@ pub enum ItemKind {
     Texture,
     /// A function.
     Function,
+    /// A G-buffer attachment an include reads or writes: a framebuffer fetch `inout`, a
+    /// subpass input, a WebGL pixel local storage plane.
+    Attachment,
+    /// A pixel local storage block.
+    Block,
 }
 
 /// One declaration of a WGSL text.

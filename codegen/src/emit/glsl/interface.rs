@@ -117,8 +117,9 @@ pub fn subpass_input_type(format: &TargetFormat) -> &'static str {
     }
 }
 
-/// What an include asks of the host and the shader around it: its attachments here, its
-/// `#extension`s and `#version`s from [`Include::shader_extensions`] and [`Include::versions`].
+/// What an include asks of the host and the shader around it (its attachments here, its
+/// `#extension`s and `#version`s from [`Include::shader_extensions`] and [`Include::versions`]),
+/// and what it declares for them.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Interface {
     /// The include this interface belongs to.
@@ -127,6 +128,10 @@ pub struct Interface {
     pub attachments: Vec<Attachment>,
     /// WebGL's pixel local storage planes, in binding order (empty for the other includes).
     pub planes: Vec<Plane>,
+    /// Every declaration of the include's text, in its order: the attachments, planes or
+    /// block, the translated types and functions, the accessors. Empty until the include is
+    /// written ([`super::include_with`] fills it).
+    pub declares: Vec<super::printer::Item>,
 }
 
 impl Interface {
@@ -177,6 +182,7 @@ impl Interface {
             include,
             attachments,
             planes,
+            declares: Vec::new(),
         }
     }
 

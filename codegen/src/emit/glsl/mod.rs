@@ -40,6 +40,9 @@ use gbuffer_core::layout::{Layout, Member, Word};
 use gbuffer_core::Conversions;
 use gbuffer_core::{FieldType, ScalarKind, Symbols};
 
+use crate::emit::items::ItemKind;
+use printer::Item;
+
 /// Which of the three pixel local storage block forms to declare.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum PlsBlock {
@@ -229,7 +232,8 @@ pub fn include_with(
     set: u32,
 ) -> Result<(String, Interface), TranslationError> {
     let translation = translate_with(layout, conversions)?;
-    let interface = Interface::new(layout, conversions, include, &translation.names);
+    let mut interface = Interface::new(layout, conversions, include, &translation.names);
+    let mut items = Vec::new();
     let text = match include {
         Include::PixelLocalStorage(block) => {
             // Bit fields need their conversions beside the block (and nothing else, as the
@@ -237,15 +241,22 @@ pub fn include_with(
             let functions = if layout.has_bit_fields() {
                 translate::translate_bit_field_functions(layout, conversions)?
             } else {
-                String::new()
+                (String::new(), Vec::new())
             };
-            pixel_local_storage(layout, block, (&functions, &translation), &interface)
+            pixel_local_storage(
+                layout,
+                block,
+                (&functions, &translation),
+                &interface,
+                &mut items,
+            )
         }
         Include::WebGlPixelLocalStorage => {
-            webgl::include(layout, conversions, &translation, &interface)?
+            webgl::include(layout, conversions, &translation, &interface, &mut items)?
         }
-        _ => attachments(layout, &translation, &interface, set),
+        _ => attachments(layout, &translation, &interface, set, &mut items),
     };
+    interface.declares = items;
     Ok((text, interface))
 }
 
@@ -336,8 +347,9 @@ fn write_header(out: &mut String, title: &str, interface: &Interface) {
 fn pixel_local_storage(
     layout: &Layout,
     block: PlsBlock,
-    (functions, translation): (&str, &Translation),
+    (functions, translation): (&(String, Vec<Item>), &Translation),
     interface: &Interface,
+    items: &mut Vec<Item>,
 ) -> String {
     let names = &translation.names;
     let mut out = String::new();
@@ -351,12 +363,9 @@ fn pixel_local_storage(
         ),
         interface,
     );
-    let _ = writeln!(
-        out,
-        "{} {} {{",
-        block.qualifier(),
-        Symbols::pixel_local_storage_block(&names.layout)
-    );
+    let block_start = out.len();
+    let block_name = Symbols::pixel_local_storage_block(&names.layout);
+    let _ = writeln!(out, "{} {block_name} {{", block.qualifier());
     let words = layout.word_contents();
     for (word, name) in words.iter().zip(word_names(&words, names)) {
         if word.is_bit_fields {
@@ -390,10 +399,28 @@ fn pixel_local_storage(
         );
     }
     out.push_str("};\n");
+    declare(items, ItemKind::Block, block_name, &out[block_start..]);
     if layout.has_bit_fields() {
-        write_pls_bit_field_accessors(&mut out, layout, block, (functions, translation), &words);
+        write_pls_bit_field_accessors(
+            (&mut out, items),
+            layout,
+            block,
+            (functions, translation),
+            &words,
+        );
     }
     out
+}
+
+/// Records an item the include writes by hand (no WGSL twin): its kind, name and text, from
+/// its comment to its end.
+fn declare(items: &mut Vec<Item>, kind: ItemKind, glsl: String, text: &str) {
+    items.push(Item {
+        kind,
+        wgsl: None,
+        glsl,
+        text: text.trim_start_matches('\n').to_string(),
+    });
 }
 
 /// For a layout with bit fields, after its pixel local storage block: the translated
@@ -401,10 +428,10 @@ fn pixel_local_storage(
 /// `store_pls_<snake>_<word>(...)` per bit word where it is writable (a word is written
 /// whole).
 fn write_pls_bit_field_accessors(
-    out: &mut String,
+    (out, items): (&mut String, &mut Vec<Item>),
     layout: &Layout,
     block: PlsBlock,
-    (functions, translation): (&str, &Translation),
+    ((functions, function_items), translation): (&(String, Vec<Item>), &Translation),
     words: &[Word],
 ) {
     let symbols = layout.symbols();
@@ -414,6 +441,7 @@ fn write_pls_bit_field_accessors(
         "\n// The bit fields' conversions, translated by naga from the layout's WGSL.\n"
     );
     out.push_str(functions);
+    items.extend(function_items.iter().cloned());
     for (word, name) in words
         .iter()
         .zip(word_names(words, names))
@@ -423,15 +451,17 @@ fn write_pls_bit_field_accessors(
             for member in &word.members {
                 let field = &layout.fields[member.field];
                 let decode = bit_field_function(layout, "decode", member.field);
+                let load = symbols.load_pls(&names.fields[member.field]);
+                let start = out.len();
                 let _ = writeln!(
                     out,
-                    "\n// `{}` from bits {} of `{name}`.\n{} {}() {{\n    return {decode}({});\n}}",
+                    "\n// `{}` from bits {} of `{name}`.\n{} {load}() {{\n    return {decode}({});\n}}",
                     field.name,
                     member.bit_range(),
                     declared_type(field.ty),
-                    symbols.load_pls(&names.fields[member.field]),
                     bit_field_code(&name, *member)
                 );
+                declare(items, ItemKind::Function, load, &out[start..]);
             }
         }
         if block != PlsBlock::In {
@@ -447,12 +477,14 @@ fn write_pls_bit_field_accessors(
                 })
                 .collect();
             let value = bit_word_value(layout, word, |field| names.fields[field].clone());
+            let store = symbols.store_pls(&name);
+            let start = out.len();
             let _ = writeln!(
                 out,
-                "\n// Writes `{name}` whole: every bit field it holds.\nvoid {}({}) {{\n    {name} = {value};\n}}",
-                symbols.store_pls(&name),
+                "\n// Writes `{name}` whole: every bit field it holds.\nvoid {store}({}) {{\n    {name} = {value};\n}}",
                 parameters.join(", ")
             );
+            declare(items, ItemKind::Function, store, &out[start..]);
         }
     }
 }
@@ -464,6 +496,7 @@ fn attachments(
     translation: &Translation,
     interface: &Interface,
     set: u32,
+    items: &mut Vec<Item>,
 ) -> String {
     let include = interface.include;
     let what = match include {
@@ -508,10 +541,17 @@ fn attachments(
             )
         };
         let _ = writeln!(out, "{declaration}");
+        declare(
+            items,
+            ItemKind::Attachment,
+            attachment.name.clone(),
+            &format!("{declaration}\n"),
+        );
     }
     out.push('\n');
     out.push_str(&translation.text);
-    write_accessors(&mut out, layout, &translation.names, interface);
+    items.extend(translation.items.iter().cloned());
+    write_accessors((&mut out, items), layout, &translation.names, interface);
     out
 }
 
@@ -526,7 +566,12 @@ fn read_attachment(attachment: &Attachment, vulkan: bool) -> String {
 }
 
 /// `load_<snake>()` reading every attachment, and for fetch `store_<snake>()` writing them.
-fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interface: &Interface) {
+fn write_accessors(
+    (out, items): (&mut String, &mut Vec<Item>),
+    layout: &Layout,
+    names: &GlslNames,
+    interface: &Interface,
+) {
     let symbols = layout.symbols();
     let texel = &names.layout;
     let vulkan = interface.include.is_vulkan();
@@ -535,6 +580,7 @@ fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interfa
         .iter()
         .map(|attachment| read_attachment(attachment, vulkan))
         .collect();
+    let start = out.len();
     let _ = writeln!(out, "\n// The texel in the attachments, unpacked.");
     if interface.include.is_packed() {
         let _ = writeln!(
@@ -572,15 +618,18 @@ fn write_accessors(out: &mut String, layout: &Layout, names: &GlslNames, interfa
             fields.join(", ")
         );
     }
+    declare(items, ItemKind::Function, symbols.load(), &out[start..]);
     if vulkan {
         return;
     }
+    let start = out.len();
     let _ = writeln!(out, "\n// Writes a texel into the attachments.");
     let _ = writeln!(out, "void {}({texel} texel) {{", symbols.store());
     out.push_str(&store_statements(layout, names, interface, |attachment| {
         attachment.name.clone()
     }));
     out.push_str("}\n");
+    declare(items, ItemKind::Function, symbols.store(), &out[start..]);
 }
 
 /// The statements that write the GLSL variable `texel` into the attachments of `interface`:

@@ -120,9 +120,10 @@ pub fn translate_with(
 pub fn translate_bit_field_functions(
     layout: &Layout,
     conversions: Conversions,
-) -> Result<String, TranslationError> {
+) -> Result<(String, Vec<Item>), TranslationError> {
     let wgsl = crate::emit::wgsl::bit_field_functions(layout, conversions);
-    Ok(print(&wgsl, &[])?.1.text)
+    let (_, printed) = print(&wgsl, &[])?;
+    Ok((printed.text, printed.items))
 }
 
 /// The declarations of `wgsl`, validated by naga and printed from its IR.

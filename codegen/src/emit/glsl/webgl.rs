@@ -17,9 +17,11 @@
 
 use std::fmt::Write as _;
 
+use super::printer::Item;
 use super::unique;
 use super::{bit_field_code, bit_field_function, bit_word_value, declared_type, word_names};
-use super::{GlslNames, Include, Interface, Translation, TranslationError};
+use super::{declare, GlslNames, Include, Interface, Translation, TranslationError};
+use crate::emit::items::ItemKind;
 use crate::emit::json::string;
 use crate::emit::wgsl::{function_name, mode_suffix};
 use gbuffer_core::format::Format;
@@ -148,6 +150,7 @@ pub(super) fn include(
     conversions: Conversions,
     translation: &Translation,
     interface: &Interface,
+    items: &mut Vec<Item>,
 ) -> Result<String, TranslationError> {
     let names = &translation.names;
     let prefix = layout.snake_name();
@@ -168,17 +171,24 @@ pub(super) fn include(
         interface,
     );
     for plane in &interface.planes {
-        let _ = writeln!(
-            out,
-            "layout(binding = {}, {}) uniform highp {} {};",
+        let declaration = format!(
+            "layout(binding = {}, {}) uniform highp {} {};\n",
             plane.binding,
             plane.format.qualifier(),
             plane.format.glsl_type(),
             plane.name
         );
+        out.push_str(&declaration);
+        declare(
+            items,
+            ItemKind::Attachment,
+            plane.name.clone(),
+            &declaration,
+        );
     }
     out.push('\n');
     out.push_str(&translation.text);
+    items.extend(translation.items.iter().cloned());
 
     let words = layout.word_contents();
     let locations = layout.field_locations();
@@ -215,12 +225,13 @@ pub(super) fn include(
         .enumerate()
     {
         let plane = &interface.planes[locations[index].0];
-        let _ = writeln!(
-            out,
-            "{} {name}() {{\n    return {};\n}}",
+        let text = format!(
+            "{} {name}() {{\n    return {};\n}}\n",
             declared_type(field.ty),
             field_value(index, &load(plane))?
         );
+        out.push_str(&text);
+        declare(items, ItemKind::Function, name, &text);
     }
 
     let _ = writeln!(
@@ -253,16 +264,18 @@ pub(super) fn include(
                 }
             }
         };
-        let _ = writeln!(
-            out,
-            "void {}({}) {{\n    pixelLocalStoreANGLE({}, {stored});\n}}",
+        let text = format!(
+            "void {}({}) {{\n    pixelLocalStoreANGLE({}, {stored});\n}}\n",
             plane.store,
             parameters.join(", "),
             plane.name
         );
+        out.push_str(&text);
+        declare(items, ItemKind::Function, plane.store.clone(), &text);
     }
 
     let texel = &names.layout;
+    let start = out.len();
     let _ = writeln!(
         out,
         "\n// The texel in the planes, unpacked: each plane loaded once."
@@ -279,6 +292,13 @@ pub(super) fn include(
         .map(|index| field_value(index, &format!("plane{}", locations[index].0)))
         .collect::<Result<_, _>>()?;
     let _ = writeln!(out, "    return {texel}({});\n}}", values.join(", "));
+    declare(
+        items,
+        ItemKind::Function,
+        layout.symbols().load(),
+        &out[start..],
+    );
+    let start = out.len();
     let _ = writeln!(out, "\n// Writes a texel into the planes.");
     let _ = writeln!(out, "void {}({texel} texel) {{", layout.symbols().store());
     for (word, plane) in words.iter().zip(&interface.planes) {
@@ -290,6 +310,12 @@ pub(super) fn include(
         let _ = writeln!(out, "    {}({});", plane.store, arguments.join(", "));
     }
     out.push_str("}\n");
+    declare(
+        items,
+        ItemKind::Function,
+        layout.symbols().store(),
+        &out[start..],
+    );
     Ok(out)
 }
 

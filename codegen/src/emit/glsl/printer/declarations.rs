@@ -63,7 +63,7 @@ impl Printer<'_> {
         let glsl = self.names[&key].clone();
         self.items.push(Item {
             kind,
-            wgsl: wgsl.unwrap_or_default().to_string(),
+            wgsl: wgsl.map(str::to_string),
             glsl: glsl.clone(),
             text: String::new(),
         });
@@ -132,7 +132,7 @@ impl Printer<'_> {
                 .insert(NameKey::GlobalVariable(handle), name.clone());
             self.items.push(Item {
                 kind: ItemKind::Texture,
-                wgsl: global.name.clone().unwrap_or_default(),
+                wgsl: global.name.clone(),
                 glsl: name.clone(),
                 text: text.clone(),
             });

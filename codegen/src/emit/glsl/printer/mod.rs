@@ -69,8 +69,8 @@ pub struct Choice<'a> {
 pub struct Item {
     /// What it declares.
     pub kind: ItemKind,
-    /// Its WGSL name.
-    pub wgsl: String,
+    /// Its WGSL name; none for an item an include writes by hand.
+    pub wgsl: Option<String>,
     /// Its GLSL name.
     pub glsl: String,
     /// Its declaration, as it stands in the printed text (a function wrapped for GLSL ES 3.10

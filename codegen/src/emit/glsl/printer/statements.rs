@@ -31,7 +31,7 @@ impl Printer<'_> {
         let name = self.names[&NameKey::Function(handle)].clone();
         self.items.push(Item {
             kind: ItemKind::Function,
-            wgsl: function.name.clone().unwrap_or_default(),
+            wgsl: function.name.clone(),
             glsl: name.clone(),
             text: String::new(),
         });

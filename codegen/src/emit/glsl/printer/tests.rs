@@ -123,7 +123,7 @@ highp vec3 lit(Texel t_1) {
     let kinds: Vec<(ItemKind, &str)> = printed
         .items
         .iter()
-        .map(|item| (item.kind, item.wgsl.as_str()))
+        .map(|item| (item.kind, item.wgsl.as_deref().unwrap_or_default()))
         .collect();
     assert_eq!(
         kinds,
