@@ -40,41 +40,35 @@ pub struct WgslItem {
 pub fn wgsl_items(wgsl: &str) -> Result<Vec<WgslItem>, String> {
     use crate::emit::glsl::naga_glsl;
     let (module, _) = naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
-    let mut found: Vec<(std::ops::Range<usize>, ItemKind, &str)> = Vec::new();
-    for (handle, ty) in module.types.iter() {
-        if let (naga::TypeInner::Struct { .. }, Some(name)) = (&ty.inner, &ty.name) {
-            found.extend(
-                span(module.types.get_span(handle))
-                    .map(|range| (range, ItemKind::Struct, name.as_str())),
-            );
-        }
-    }
-    for (handle, constant) in module.constants.iter() {
-        if let Some(name) = &constant.name {
-            found.extend(
-                span(module.constants.get_span(handle))
-                    .map(|range| (range, ItemKind::Constant, name.as_str())),
-            );
-        }
-    }
-    for (handle, global) in module.global_variables.iter() {
-        if let (naga::TypeInner::Image { .. }, Some(name)) =
-            (&module.types[global.ty].inner, &global.name)
-        {
-            found.extend(
-                span(module.global_variables.get_span(handle))
-                    .map(|range| (range, ItemKind::Texture, name.as_str())),
-            );
-        }
-    }
-    for (handle, function) in module.functions.iter() {
-        if let Some(name) = &function.name {
-            found.extend(
-                span(module.functions.get_span(handle))
-                    .map(|range| (range, ItemKind::Function, name.as_str())),
-            );
-        }
-    }
+    let structs = module
+        .types
+        .iter()
+        .filter(|(_, ty)| matches!(ty.inner, naga::TypeInner::Struct { .. }))
+        .map(|(handle, ty)| (module.types.get_span(handle), ItemKind::Struct, &ty.name));
+    let constants = module.constants.iter().map(|(handle, constant)| {
+        let span = module.constants.get_span(handle);
+        (span, ItemKind::Constant, &constant.name)
+    });
+    let textures = module
+        .global_variables
+        .iter()
+        .filter(|(_, global)| {
+            matches!(module.types[global.ty].inner, naga::TypeInner::Image { .. })
+        })
+        .map(|(handle, global)| {
+            let span = module.global_variables.get_span(handle);
+            (span, ItemKind::Texture, &global.name)
+        });
+    let functions = module.functions.iter().map(|(handle, function)| {
+        let span = module.functions.get_span(handle);
+        (span, ItemKind::Function, &function.name)
+    });
+    let mut found: Vec<(std::ops::Range<usize>, ItemKind, &str)> = structs
+        .chain(constants)
+        .chain(textures)
+        .chain(functions)
+        .filter_map(|(span, kind, name)| Some((span.to_range()?, kind, name.as_deref()?)))
+        .collect();
     found.sort_by_key(|(range, _, _)| range.start);
     Ok(found
         .into_iter()
@@ -84,10 +78,6 @@ pub fn wgsl_items(wgsl: &str) -> Result<Vec<WgslItem>, String> {
             text: with_comment_and_attributes(wgsl, range),
         })
         .collect())
-}
-
-fn span(span: naga::Span) -> Option<std::ops::Range<usize>> {
-    span.to_range()
 }
 
 /// The text of a declaration spanning `range`, widened to the start of its first line (where

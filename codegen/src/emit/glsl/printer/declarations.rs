@@ -11,70 +11,59 @@ use crate::emit::items::ItemKind;
 use super::{Choice, FunctionContext, Item, Printer, INDENT};
 
 impl Printer<'_> {
-    pub(super) fn structs_and_constants(&mut self) -> Result<String, String> {
-        let mut out = String::new();
+    /// Every struct and named constant the choice does not leave out.
+    pub(super) fn structs_and_constants(&mut self) -> Result<(), String> {
         for (handle, ty) in self.module.types.iter() {
             let TypeInner::Struct { ref members, .. } = ty.inner else {
                 continue;
             };
-            let Some(name) =
-                self.chosen(ItemKind::Struct, ty.name.as_deref(), NameKey::Type(handle))
-            else {
+            if self.left_out(ty.name.as_deref()) {
                 continue;
-            };
+            }
+            let name = self.names[&NameKey::Type(handle)].clone();
             let mut text = format!("struct {name} {{\n");
             for (index, member) in members.iter().enumerate() {
                 let name = &self.names[&NameKey::StructMember(handle, index as u32)];
                 let _ = writeln!(text, "{INDENT}{};", self.declaration(member.ty, name)?);
             }
             text.push_str("};\n");
-            self.item_text(&text);
-            out.push_str(&text);
+            self.record(ItemKind::Struct, ty.name.as_deref(), name, text);
         }
         for (handle, constant) in self.module.constants.iter() {
-            let Some(name) = constant.name.as_deref().and_then(|wgsl| {
-                self.chosen(ItemKind::Constant, Some(wgsl), NameKey::Constant(handle))
-            }) else {
+            if constant.name.is_none() || self.left_out(constant.name.as_deref()) {
                 continue;
-            };
+            }
+            let name = self.names[&NameKey::Constant(handle)].clone();
             let mut init = String::new();
             self.const_expression(&mut init, constant.init)?;
             let text = format!(
                 "const {} = {init};\n",
                 self.declaration(constant.ty, &name)?
             );
-            self.item_text(&text);
-            out.push_str(&text);
+            self.record(ItemKind::Constant, constant.name.as_deref(), name, text);
         }
-        Ok(out)
+        Ok(())
     }
 
-    /// The GLSL name of a struct or constant to print, recorded as an item; `None` for one
-    /// the choice leaves out.
-    pub(super) fn chosen(
+    /// Whether the choice leaves out the item of this WGSL name.
+    pub(super) fn left_out(&self, wgsl: Option<&str>) -> bool {
+        wgsl.is_some_and(|wgsl| self.leave_out.contains(&wgsl))
+    }
+
+    /// Records a printed item.
+    pub(super) fn record(
         &mut self,
         kind: ItemKind,
         wgsl: Option<&str>,
-        key: NameKey,
-    ) -> Option<String> {
-        if wgsl.is_some_and(|wgsl| self.leave_out.contains(&wgsl)) {
-            return None;
-        }
-        let glsl = self.names[&key].clone();
+        glsl: String,
+        text: String,
+    ) {
         self.items.push(Item {
             kind,
             wgsl: wgsl.map(str::to_string),
-            glsl: glsl.clone(),
-            text: String::new(),
+            glsl,
+            text,
         });
-        Some(glsl)
-    }
-
-    /// Gives the item recorded last its printed text.
-    pub(super) fn item_text(&mut self, text: &str) {
-        if let Some(item) = self.items.last_mut() {
-            item.text = text.to_string();
-        }
     }
 
     /// The textures `functions` sample, one declaration each: GLSL has no separate samplers,
@@ -85,8 +74,7 @@ impl Printer<'_> {
         &mut self,
         functions: &[Handle<Function>],
         choice: &Choice,
-    ) -> Result<Vec<String>, String> {
-        let mut blocks = Vec::new();
+    ) -> Result<(), String> {
         let suffix = match choice.entry_point {
             Some((naga::ShaderStage::Vertex, _)) => "vs",
             Some((naga::ShaderStage::Compute, _)) => "cs",
@@ -118,11 +106,12 @@ impl Printer<'_> {
                 "_group_{}_binding_{}_{suffix}",
                 binding.group, binding.binding
             );
-            let prefix = value_type(&TypeInner::Vector {
-                size: naga::VectorSize::Quad,
-                scalar: naga::Scalar { kind, width: 4 },
-            })?;
-            let sampler = format!("{}sampler2D", prefix.trim_end_matches("vec4"));
+            let sampler = match kind {
+                ScalarKind::Float => "sampler2D",
+                ScalarKind::Sint => "isampler2D",
+                ScalarKind::Uint => "usampler2D",
+                other => return Err(format!("GLSL has no texture of {other:?}")),
+            };
             let layout = match choice.binding_qualifiers {
                 true => format!("layout(binding = {}) ", binding.binding),
                 false => String::new(),
@@ -130,16 +119,10 @@ impl Printer<'_> {
             let text = format!("{layout}uniform highp {sampler} {name};\n");
             self.names
                 .insert(NameKey::GlobalVariable(handle), name.clone());
-            self.items.push(Item {
-                kind: ItemKind::Texture,
-                wgsl: global.name.clone(),
-                glsl: name.clone(),
-                text: text.clone(),
-            });
-            blocks.push(text);
-            self.texture_bindings.push((name, binding));
+            self.texture_bindings.push((name.clone(), binding));
+            self.record(ItemKind::Texture, global.name.as_deref(), name, text);
         }
-        Ok(blocks)
+        Ok(())
     }
 
     /// `highp T name[N]`: a type and a name as a declaration writes them.

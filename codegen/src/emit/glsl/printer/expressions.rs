@@ -271,6 +271,23 @@ impl Printer<'_> {
         Ok(())
     }
 
+    /// `pieces[0] operands[0] pieces[1] ... operands[n - 1] pieces[n]`: a GLSL form of an
+    /// operation that takes its operands in a fixed frame (`min(max(x, low), high)`).
+    fn interleaved(
+        &self,
+        out: &mut String,
+        pieces: &[&str],
+        operands: &[Handle<Expression>],
+        context: &FunctionContext,
+    ) -> Result<(), String> {
+        for (piece, operand) in pieces.iter().zip(operands) {
+            out.push_str(piece);
+            self.expression(out, *operand, context)?;
+        }
+        out.push_str(pieces[operands.len()]);
+        Ok(())
+    }
+
     /// A binary operation in parentheses, or the function GLSL has for it: vectors compare
     /// through `lessThan` and its kin, and a float remainder is WGSL's truncated one.
     pub(super) fn binary(
@@ -307,16 +324,9 @@ impl Printer<'_> {
                 out.push(')');
             }
             _ if op == Op::Modulo && floats => {
-                // `e1 - e2 * trunc(e1 / e2)`
-                out.push('(');
-                self.expression(out, left, context)?;
-                out.push_str(" - ");
-                self.expression(out, right, context)?;
-                out.push_str(" * trunc(");
-                self.expression(out, left, context)?;
-                out.push_str(" / ");
-                self.expression(out, right, context)?;
-                out.push_str("))");
+                // WGSL's remainder truncates: `e1 - e2 * trunc(e1 / e2)`.
+                let pieces = ["(", " - ", " * trunc(", " / ", "))"];
+                self.interleaved(out, &pieces, &[left, right, left, right], context)?;
             }
             _ if vectors
                 && kind == Some(ScalarKind::Bool)
@@ -360,14 +370,8 @@ impl Printer<'_> {
             // GLSL's clamp is undefined where the bounds cross, and may then be a median of
             // three: WGSL's integer clamp must be min and max.
             Mf::Clamp if kind != Some(ScalarKind::Float) => {
-                out.push_str("min(max(");
-                self.expression(out, arguments[0], context)?;
-                out.push_str(", ");
-                self.expression(out, arguments[1], context)?;
-                out.push_str("), ");
-                self.expression(out, arguments[2], context)?;
-                out.push(')');
-                return Ok(());
+                let pieces = ["min(max(", ", ", "), ", ")"];
+                return self.interleaved(out, &pieces, arguments, context);
             }
             Mf::Clamp => "clamp",
             Mf::Saturate => {
@@ -408,16 +412,7 @@ impl Printer<'_> {
             Mf::Refract => "refract",
             Mf::Sign => "sign",
             // GLSL ES 3.00 has no `fma`: a product and a sum.
-            Mf::Fma => {
-                out.push('(');
-                self.expression(out, arguments[0], context)?;
-                out.push_str(" * ");
-                self.expression(out, arguments[1], context)?;
-                out.push_str(" + ");
-                self.expression(out, arguments[2], context)?;
-                out.push(')');
-                return Ok(());
-            }
+            Mf::Fma => return self.interleaved(out, &["(", " * ", " + ", ")"], arguments, context),
             Mf::Mix => "mix",
             Mf::Step => "step",
             Mf::SmoothStep => "smoothstep",

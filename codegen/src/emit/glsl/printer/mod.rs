@@ -132,26 +132,37 @@ pub fn print(module: &Module, info: &ModuleInfo, choice: &Choice) -> Result<Prin
         texture_bindings: Vec::new(),
         leave_out: choice.leave_out,
     };
-    let mut blocks = Vec::new();
-    let declarations = printer.structs_and_constants()?;
-    if !declarations.is_empty() {
-        blocks.push(declarations);
-    }
-    blocks.extend(printer.textures(&functions, choice)?);
+    printer.structs_and_constants()?;
+    printer.textures(&functions, choice)?;
     for &handle in &functions {
         let function = &module.functions[handle];
         let wrap = choice
             .from_310
             .iter()
             .find(|wrap| function.name.as_deref() == Some(wrap.function));
-        blocks.push(printer.function(handle, function, wrap)?);
+        printer.function(handle, function, wrap)?;
     }
     Ok(Printed {
-        text: blocks.join("\n"),
+        text: text_of(&printer.items),
         items: printer.items,
         names: printer.names,
         texture_bindings: printer.texture_bindings,
     })
+}
+
+/// The printed text of `items`: the structs and constants together, then each texture and
+/// function, a blank line between.
+fn text_of(items: &[Item]) -> String {
+    let (declarations, others): (Vec<&Item>, Vec<&Item>) = items
+        .iter()
+        .partition(|item| matches!(item.kind, ItemKind::Struct | ItemKind::Constant));
+    let declarations: String = declarations.iter().map(|item| item.text.as_str()).collect();
+    let blocks = (!declarations.is_empty()).then_some(declarations.as_str());
+    blocks
+        .into_iter()
+        .chain(others.iter().map(|item| item.text.as_str()))
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// The functions `choice` picks, in the module's order (a callee before its callers).

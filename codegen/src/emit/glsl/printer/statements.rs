@@ -10,7 +10,7 @@ use naga::{Block, Expression, Function, Handle, Statement, TypeInner};
 
 use crate::emit::items::ItemKind;
 
-use super::{FromVersion310, FunctionContext, Item, Printer, INDENT};
+use super::{FromVersion310, FunctionContext, Printer, INDENT};
 
 impl Printer<'_> {
     pub(super) fn function(
@@ -18,7 +18,7 @@ impl Printer<'_> {
         handle: Handle<Function>,
         function: &Function,
         wrap: Option<&FromVersion310>,
-    ) -> Result<String, String> {
+    ) -> Result<(), String> {
         let module_info = self.info;
         let info = &module_info[handle];
         let mut context = FunctionContext {
@@ -29,12 +29,6 @@ impl Printer<'_> {
             named: HashMap::new(),
         };
         let name = self.names[&NameKey::Function(handle)].clone();
-        self.items.push(Item {
-            kind: ItemKind::Function,
-            wgsl: function.name.clone(),
-            glsl: name.clone(),
-            text: String::new(),
-        });
         let result = match function.result {
             Some(ref result) => format!(
                 "{}{}{}",
@@ -58,16 +52,10 @@ impl Printer<'_> {
         let mut body = String::new();
         for (local_handle, local) in function.local_variables.iter() {
             let name = &self.names[&NameKey::FunctionLocal(handle, local_handle)];
-            let _ = write!(body, "{INDENT}{}", self.declaration(local.ty, name)?);
+            let _ = write!(body, "{INDENT}{} = ", self.declaration(local.ty, name)?);
             match local.init {
-                Some(init) => {
-                    body.push_str(" = ");
-                    self.expression(&mut body, init, &context)?;
-                }
-                None => {
-                    body.push_str(" = ");
-                    self.zero_value(&mut body, local.ty)?;
-                }
+                Some(init) => self.expression(&mut body, init, &context)?,
+                None => self.zero_value(&mut body, local.ty)?,
             }
             body.push_str(";\n");
         }
@@ -95,8 +83,8 @@ impl Printer<'_> {
         if wrap.is_some() {
             out.push_str("#endif\n");
         }
-        self.item_text(&out);
-        Ok(out)
+        self.record(ItemKind::Function, function.name.as_deref(), name, out);
+        Ok(())
     }
 
     pub(super) fn block(
@@ -230,12 +218,7 @@ impl Printer<'_> {
                     context.named.insert(result, name);
                 }
                 let _ = write!(out, "{}(", self.names[&NameKey::Function(function)]);
-                for (index, argument) in arguments.iter().enumerate() {
-                    if index > 0 {
-                        out.push_str(", ");
-                    }
-                    self.expression(out, *argument, context)?;
-                }
+                self.arguments(out, arguments, context)?;
                 out.push_str(");\n");
             }
             ref other => {
