@@ -17,10 +17,12 @@ use gbuffer_codegen::emit::json::string as json_string;
 use gbuffer_core::Named;
 
 use crate::gles::sources::{program_in, TranslatedProgram};
-use crate::glsl::Dialect;
+use crate::glsl::{self, Dialect};
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::on_tile::{fused_wgsl, include_translation, store_through_include, tile_layout, Stage};
+use crate::on_tile::{
+    fused_wgsl, include_translation, store_through_include, tile_layout, Stage, TRANSLATION_ENTRY,
+};
 use crate::options::Options;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::{ENVIRONMENT_BINDING, LIGHT_MAP_BINDING, LUT_BINDING};
@@ -35,6 +37,8 @@ pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, St
     let wgsl = fused_wgsl(options, layout, -1.0);
     let translation = include_translation(&model)?;
     let texel = &translation.names.layout;
+    let stages =
+        glsl::fragment_declarations(&wgsl, TRANSLATION_ENTRY, Dialect::WebGl, &translation)?;
     // The output, and the volume drawn, which comes in a uniform.
     let declarations =
         "layout(location = 0) out highp vec4 frame_colour;\nuniform highp uint volume_index;\n";
@@ -47,7 +51,7 @@ pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, St
             let program = program_in(
                 Dialect::WebGl,
                 &wgsl,
-                (&include_text, include, &translation),
+                (&include_text, include, &stages),
                 stage.vertex_entry(),
                 &format!("{declarations}{main}"),
             )

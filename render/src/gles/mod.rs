@@ -20,10 +20,12 @@ use gbuffer_gpu::gles::Gles;
 mod plans;
 pub mod sources;
 
+use crate::glsl::{self, Dialect};
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
 use crate::on_tile::{
     fused_wgsl, include_translation, store_through_include, tile_layout, Path, Stage, TileOptions,
+    TRANSLATION_ENTRY,
 };
 use crate::options::{Frame, Options};
 use crate::recording::{Attachment, Call, Load, Recording};
@@ -197,9 +199,11 @@ impl GlesRenderer {
             &model.symbols().load(),
             &store_through_include(&model),
         );
+        let stages =
+            glsl::fragment_declarations(&wgsl, TRANSLATION_ENTRY, Dialect::Gles, &translation)?;
         let (vertex, fragment) = sources::program(
             &wgsl,
-            (&include, &translation),
+            (&include, &stages),
             &interface,
             Stage::Geometry.vertex_entry(),
             &main,

@@ -2,7 +2,7 @@
 //! them, and the cost model (`gbuffer-cost`) and the tile compilers' test compile the same text
 //! on Mali's and Adreno's compilers.
 
-use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface, Translation};
+use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface};
 use gbuffer_core::Named;
 
 use crate::glsl::{self, Dialect};
@@ -49,6 +49,8 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
     let wgsl = fused_wgsl(options, layout, -1.0);
     let translation = include_translation(&model)?;
     let texel = &translation.names.layout;
+    let stages =
+        glsl::fragment_declarations(&wgsl, TRANSLATION_ENTRY, Dialect::Gles, &translation)?;
     let output = format!(
         "layout(location = {}) inout highp vec4 frame_colour;\n",
         interface.attachments.len()
@@ -66,7 +68,7 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
             );
             let (vertex, fragment) = program(
                 &wgsl,
-                (&include_text, &translation),
+                (&include_text, &stages),
                 &interface,
                 stage.vertex_entry(),
                 &main,
@@ -87,11 +89,11 @@ pub fn fused_programs(options: &Options, path: Path) -> Result<FusedPrograms, St
 }
 
 /// A fused program's shaders: `vertex` of the WGSL translated, and a fragment shader of the
-/// GLES preamble, the layout's include as generated (its text, and its translation:
-/// [`include_translation`]), the renderer's translated declarations and `main`.
+/// GLES preamble, the layout's include as generated, the stages' declarations
+/// ([`glsl::fragment_declarations`], the same for every stage) and `main`.
 pub fn program(
     wgsl: &str,
-    (include, translation): (&str, &Translation),
+    (include, stages): (&str, &glsl::Translation),
     interface: &Interface,
     vertex: &str,
     main: &str,
@@ -99,7 +101,7 @@ pub fn program(
     let program = program_in(
         Dialect::Gles,
         wgsl,
-        (include, interface.include, translation),
+        (include, interface.include, stages),
         vertex,
         main,
     )?;
@@ -109,17 +111,16 @@ pub fn program(
 /// A fused program in `dialect` (GLES's or WebGL's GLSL ES), with the sampler uniforms it
 /// declares: `vertex` of the WGSL translated, and a fragment shader of the dialect's preamble
 /// (its version, the `include`'s extensions, highp defaults), the layout's include as
-/// generated, the declarations the stages' functions need but the include does not make, and
-/// `main`.
+/// generated, `stages` (the declarations the stages' functions need but the include does not
+/// make, [`glsl::fragment_declarations`] in `dialect`) and `main`.
 pub fn program_in(
     dialect: Dialect,
     wgsl: &str,
-    (include_text, include, translation): (&str, Include, &Translation),
+    (include_text, include, stages): (&str, Include, &glsl::Translation),
     vertex: &str,
     main: &str,
 ) -> Result<TranslatedProgram, String> {
     let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, dialect)?;
-    let stages = glsl::fragment_declarations(wgsl, TRANSLATION_ENTRY, dialect, translation)?;
     let extensions: String = include
         .shader_extensions()
         .iter()
@@ -131,7 +132,7 @@ pub fn program_in(
         dialect.early_fragment_tests(),
         stages.text,
     );
-    let mut samplers = stages.samplers;
+    let mut samplers = stages.samplers.clone();
     samplers.extend(vertex.samplers);
     samplers.sort();
     samplers.dedup();
