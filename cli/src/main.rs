@@ -34,7 +34,7 @@ use clap::{Parser, Subcommand};
 /// speed/accuracy trade of the shading library, and cost shaders on the compilers of Mali,
 /// Adreno, AMD and NVIDIA GPUs.
 ///
-/// `report` and `cost` need the features of their names: `cargo install --path cli --features
+/// `report` and `cost` need the features of their names: `cargo install --locked --path cli --features
 /// report,cost`.
 ///
 /// Exit status: 0 on success, 1 when an input is invalid or unreadable (a layout, a shader, a
@@ -55,13 +55,13 @@ enum Subcommands {
     #[cfg(feature = "report")]
     Report(report::Arguments),
     /// Measures the speed/accuracy trade of the shading library (this build lacks the `report`
-    /// feature: `cargo install --path cli --features report`).
+    /// feature: `cargo install --locked --path cli --features report`).
     #[cfg(not(feature = "report"))]
     Report(without_feature::Arguments),
     #[cfg(feature = "cost")]
     Cost(cost::Arguments),
     /// Costs a shader on the compilers of Mali, Adreno, AMD and NVIDIA GPUs (this build lacks
-    /// the `cost` feature: `cargo install --path cli --features cost`).
+    /// the `cost` feature: `cargo install --locked --path cli --features cost`).
     #[cfg(not(feature = "cost"))]
     Cost(without_feature::Arguments),
 }

@@ -16,7 +16,7 @@ pub struct Arguments {
 pub fn run(subcommand: &str) -> ExitCode {
     say!(
         "gbuffer {subcommand}: this gbuffer was built without the `{subcommand}` feature; \
-         install it with `cargo install --path cli --features {subcommand}` in a clone of the \
+         install it with `cargo install --locked --path cli --features {subcommand}` in a clone of the \
          repository (or run the workspace's with `cargo run -p gbuffer-cli --features {subcommand}`)"
     );
     ExitCode::from(2)

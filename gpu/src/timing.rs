@@ -13,8 +13,9 @@
 //!    a run hidden under its launch or its memory traffic does not;
 //! 4. each figure carries its spread ([`Spread`]: min, median and max over the rounds).
 //!
-//! [`Protocol::FULL`] is what the report and the bench use; [`Protocol::SHORT`] keeps the
-//! tests quick.
+//! [`Protocol::FULL`] is what the report and the benches use; [`Protocol::SHORT`] keeps the
+//! tests quick, and the report and the benches take it where the environment asks for it
+//! ([`Protocol::chosen`]: CI, which checks their tables, not their times).
 
 /// The protocol's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -50,6 +51,30 @@ impl Protocol {
         rounds: 3,
         doubling_within: 0.25,
     };
+
+    /// The environment variable that chooses a timed command's protocol: `full` (or unset)
+    /// for [`Protocol::FULL`], `short` for [`Protocol::SHORT`].
+    pub const VARIABLE: &'static str = "GBUFFER_TIMING";
+
+    /// The protocol a timed command (the report, the benches) runs: [`Protocol::FULL`] unless
+    /// [`Protocol::VARIABLE`] says `short`. Any other value is an error that names the variable
+    /// and the values it takes.
+    pub fn chosen() -> Result<Protocol, String> {
+        Self::named(std::env::var_os(Self::VARIABLE).as_deref())
+    }
+
+    /// The protocol a value of [`Protocol::VARIABLE`] names (`None`: the variable is unset).
+    fn named(value: Option<&std::ffi::OsStr>) -> Result<Protocol, String> {
+        match value {
+            None => Ok(Protocol::FULL),
+            Some(value) if value == "full" => Ok(Protocol::FULL),
+            Some(value) if value == "short" => Ok(Protocol::SHORT),
+            Some(value) => Err(format!(
+                "{}={value:?}: the timing protocol is `full` or `short`",
+                Self::VARIABLE
+            )),
+        }
+    }
 }
 
 /// The least, middle and greatest of some samples, in their unit (the caller's name says it).
@@ -178,6 +203,17 @@ pub fn doubles(protocol: &Protocol, single: f64, double: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_environment_chooses_the_protocol_by_name() {
+        use std::ffi::OsStr;
+        assert_eq!(Protocol::named(None), Ok(Protocol::FULL));
+        assert_eq!(Protocol::named(Some(OsStr::new("full"))), Ok(Protocol::FULL));
+        assert_eq!(Protocol::named(Some(OsStr::new("short"))), Ok(Protocol::SHORT));
+        let error = Protocol::named(Some(OsStr::new("quick"))).unwrap_err();
+        assert!(error.contains("GBUFFER_TIMING=\"quick\""), "{error}");
+        assert!(error.contains("`full` or `short`"), "{error}");
+    }
 
     #[test]
     fn a_spread_is_the_least_middle_and_greatest_sample() {

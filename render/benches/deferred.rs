@@ -12,6 +12,8 @@
 //! On a CPU rasteriser (llvmpipe, lavapipe) there is no tile memory: its times are a CPU's,
 //! and the traffic the fused paths save is counted, not felt.
 
+use std::sync::LazyLock;
+
 use gbuffer_core::Named;
 use gbuffer_gpu::timing::{time_items, Protocol, Spread};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
@@ -25,8 +27,15 @@ use gbuffer_render::vulkan::VulkanRenderer;
 use gbuffer_render::wgpu::Renderer;
 
 const SIZES: [(u32, u32); 2] = [(1280, 720), (1920, 1080)];
-/// The report's protocol: its frame table and this bench time frames alike.
-const PROTOCOL: Protocol = Protocol::FULL;
+/// The report's protocol: its frame table and this bench time frames alike (the full one, or
+/// the short one where `GBUFFER_TIMING=short` asks for it). A bad value ends the bench at its
+/// start, naming the variable.
+static PROTOCOL: LazyLock<Protocol> = LazyLock::new(|| {
+    Protocol::chosen().unwrap_or_else(|error| {
+        eprintln!("{error}");
+        std::process::exit(1)
+    })
+});
 
 fn options(gbuffer: GBuffer, (width, height): (u32, u32)) -> Options {
     Options {
@@ -53,7 +62,7 @@ fn time_all(frames: &[Result<FrameClock<'_>, String>]) -> Vec<String> {
         })
         .collect();
     // Where the protocol fails (the reason on stderr), every frame reads n/a.
-    let spreads = time_items(&PROTOCOL, timed.len(), &mut |index| timed[index]())
+    let spreads = time_items(&*PROTOCOL, timed.len(), &mut |index| timed[index]())
         .map_err(|error| eprintln!("{error}"))
         .map(|(_, spreads)| spreads)
         .unwrap_or_default();
@@ -151,7 +160,7 @@ fn stages(progress: &dyn Fn(&str)) {
                     continue;
                 }
             };
-            let medians: Vec<f64> = match time_items(&PROTOCOL, frames.len(), &mut |index| {
+            let medians: Vec<f64> = match time_items(&*PROTOCOL, frames.len(), &mut |index| {
                 frames[index].seconds()
             }) {
                 Ok((_, spreads)) => spreads.iter().map(|spread| spread.median * 1e3).collect(),
@@ -208,6 +217,7 @@ fn tile_rows<'a>(
 }
 
 fn main() {
+    LazyLock::force(&PROTOCOL);
     let progress = |message: &str| eprintln!("{message}");
     let renderer = match Renderer::new(&progress) {
         Ok(renderer) => renderer,

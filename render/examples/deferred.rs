@@ -1,10 +1,10 @@
 //! The reference deferred renderer, headless: renders the scene with a chosen G-buffer layout,
 //! lighting forms, backend and path to a PNG, and optionally compares it with the CPU reference.
 //!
-//! `cargo run --release --example deferred -- --layout mobile-metallic --size 1280x720 --out frame.png`
-//! `cargo run --release --example deferred -- --backend gles --path fetch-native --reference`
-//! `cargo run --release --example deferred -- --backend vulkan --path subpass --reference`
-//! `cargo run --release --example deferred -- --scene solver/scenes/dielectric-only.toml --reference`
+//! `cargo run --release -p gbuffer-render --example deferred -- --layout mobile-metallic --size 1280x720 --out frame.png`
+//! `cargo run --release -p gbuffer-render --example deferred -- --backend gles --path fetch-native --reference`
+//! `cargo run --release -p gbuffer-render --example deferred -- --backend vulkan --path subpass --reference`
+//! `cargo run --release -p gbuffer-render --example deferred -- --scene solver/scenes/dielectric-only.toml --reference`
 
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -3,7 +3,7 @@
 //! against the full model (the CPU reference). Prints a table and writes
 //! `target/scene-presets/report.md`.
 //!
-//! `cargo run --release --example scene_presets [-- --size 320x180] [--mobile]`
+//! `cargo run --release -p gbuffer-render --example scene_presets [-- --size 320x180] [--mobile]`
 
 use std::fmt::Write as _;
 use std::path::PathBuf;

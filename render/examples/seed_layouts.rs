@@ -1,7 +1,7 @@
 //! Prints the bit report of every seed layout: per field the format, bits and used bits, the
 //! total against the budget, and what the same fields cost as separate WebGPU render targets.
 //!
-//! Run with `cargo run --release --example seed_layouts`; add `-- --wgsl` to print the
+//! Run with `cargo run --release -p gbuffer-render --example seed_layouts`; add `-- --wgsl` to print the
 //! generated WGSL as well.
 
 use gbuffer::layout::Report;

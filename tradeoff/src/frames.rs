@@ -185,7 +185,11 @@ fn predictions(solution: &Solution) -> Vec<String> {
 /// warm-up rounds, then each layout once a round, so that no clock change falls on one
 /// layout), then renders each and measures it, writing the heat maps into `folder`. The error
 /// says what is missing (the wgpu adapter) or what failed.
-pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRow>, String> {
+pub fn measure_all(
+    folder: &Path,
+    protocol: &Protocol,
+    progress: &dyn Fn(&str),
+) -> Result<Vec<FrameRow>, String> {
     let renderers = Renderers {
         wgpu: Renderer::new(progress)?,
         vulkan: match VulkanRenderer::new(progress) {
@@ -228,7 +232,7 @@ pub fn measure_all(folder: &Path, progress: &dyn Fn(&str)) -> Result<Vec<FrameRo
         .iter()
         .map(|(_, _, gbuffer, _)| renderers.wgpu.timed_frame(&options(gbuffer.clone())))
         .collect::<Result<Vec<_>, String>>()?;
-    let (warm, times) = time_items(&Protocol::FULL, frames.len(), &mut |index| {
+    let (warm, times) = time_items(protocol, frames.len(), &mut |index| {
         frames[index].seconds()
     })?;
     drop(frames);
@@ -344,7 +348,7 @@ pub fn json(rows: &[FrameRow]) -> serde_json::Value {
 }
 
 /// The table in `report.md`, with each heat map linked.
-pub fn markdown(rows: &[FrameRow], adapter: &str) -> String {
+pub fn markdown(rows: &[FrameRow], adapter: &str, protocol: &Protocol) -> String {
     let mut out = format!(
         "\n## Frames: what each layout costs the picture\n\n\
          The reference scene at {}x{}, each layout's frame against the lossless G-buffer's \
@@ -358,7 +362,7 @@ pub fn markdown(rows: &[FrameRow], adapter: &str) -> String {
          | --- | --- | --: | --: | --: | --: | --: | --: | --: | --: | --: | --- |\n",
         SIZE.0,
         SIZE.1,
-        Protocol::FULL.rounds
+        protocol.rounds
     );
     for row in rows {
         let cells = row.cells().join(" | ");

@@ -60,6 +60,7 @@ pub fn layout_errors() -> Vec<(String, f64)> {
 pub fn run(folder: &Path) -> Result<(), String> {
     std::fs::create_dir_all(folder)
         .map_err(|error| format!("cannot create {}: {error}", folder.display()))?;
+    let protocol = Protocol::chosen()?;
     let gpu = Gpu::open(&Request {
         label: "trade-off study",
         limits: None,
@@ -72,7 +73,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
     let rows = rows::rows();
 
     // Every row of both tables timed together: one warm-up, the same rounds.
-    let mut timer = timing::Timer::new(&gpu, Protocol::FULL);
+    let mut timer = timing::Timer::new(&gpu, protocol);
     let row_indices = measured::time_rows(&mut timer, &rows);
     let packing_indices = packing::time_rows(&mut timer);
     let times = timer.run();
@@ -95,7 +96,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
     }
     let furnace = white_furnace();
     print_furnace(&furnace);
-    let frames = frames::measure_all(folder, &|message| eprintln!("{message}"))?;
+    let frames = frames::measure_all(folder, &protocol, &|message| eprintln!("{message}"))?;
     frames::print(&frames, &adapter);
     let frame_shaders = frame_shaders::compile_frames();
     report_line!("{}", frame_shaders.markdown());
@@ -114,7 +115,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
     json["frames"] = frames::json(&frames);
     json["frames_on_compilers"] = frame_shaders.json();
     json["white_furnace"] = furnace_json(&furnace);
-    let mut markdown = markdown_report(&rows, &measured, &adapter, &plots, &row_compilers);
+    let mut markdown = markdown_report(&rows, &measured, &adapter, &plots, &row_compilers, &protocol);
     markdown.push_str(&packing::markdown(&packing, &gpu));
     markdown.push_str(&compiled_packing.markdown());
     if !inconsistencies.is_empty() {
@@ -125,7 +126,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
         );
     }
     markdown.push_str(&furnace_markdown(&furnace));
-    markdown.push_str(&frames::markdown(&frames, &adapter));
+    markdown.push_str(&frames::markdown(&frames, &adapter, &protocol));
     markdown.push_str(&frame_shaders.markdown());
     for (name, contents) in [
         (
