@@ -208,8 +208,14 @@ mod tests {
     fn the_environment_chooses_the_protocol_by_name() {
         use std::ffi::OsStr;
         assert_eq!(Protocol::named(None), Ok(Protocol::FULL));
-        assert_eq!(Protocol::named(Some(OsStr::new("full"))), Ok(Protocol::FULL));
-        assert_eq!(Protocol::named(Some(OsStr::new("short"))), Ok(Protocol::SHORT));
+        assert_eq!(
+            Protocol::named(Some(OsStr::new("full"))),
+            Ok(Protocol::FULL)
+        );
+        assert_eq!(
+            Protocol::named(Some(OsStr::new("short"))),
+            Ok(Protocol::SHORT)
+        );
         let error = Protocol::named(Some(OsStr::new("quick"))).unwrap_err();
         assert!(error.contains("GBUFFER_TIMING=\"quick\""), "{error}");
         assert!(error.contains("`full` or `short`"), "{error}");

@@ -232,9 +232,7 @@ pub fn measure_all(
         .iter()
         .map(|(_, _, gbuffer, _)| renderers.wgpu.timed_frame(&options(gbuffer.clone())))
         .collect::<Result<Vec<_>, String>>()?;
-    let (warm, times) = time_items(protocol, frames.len(), &mut |index| {
-        frames[index].seconds()
-    })?;
+    let (warm, times) = time_items(protocol, frames.len(), &mut |index| frames[index].seconds())?;
     drop(frames);
     if !warm.settled {
         progress(&format!(

@@ -115,7 +115,14 @@ pub fn run(folder: &Path) -> Result<(), String> {
     json["frames"] = frames::json(&frames);
     json["frames_on_compilers"] = frame_shaders.json();
     json["white_furnace"] = furnace_json(&furnace);
-    let mut markdown = markdown_report(&rows, &measured, &adapter, &plots, &row_compilers, &protocol);
+    let mut markdown = markdown_report(
+        &rows,
+        &measured,
+        &adapter,
+        &plots,
+        &row_compilers,
+        &protocol,
+    );
     markdown.push_str(&packing::markdown(&packing, &gpu));
     markdown.push_str(&compiled_packing.markdown());
     if !inconsistencies.is_empty() {

@@ -15,7 +15,9 @@ fn a_subcommand_left_out_names_its_feature() {
         let output = gbuffer(subcommand).arg("anything.wgsl").fails_with(2);
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert!(
-            stderr.contains(&format!("cargo install --locked --path cli --features {subcommand}")),
+            stderr.contains(&format!(
+                "cargo install --locked --path cli --features {subcommand}"
+            )),
             "{stderr}"
         );
     }
