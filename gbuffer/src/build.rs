@@ -2,8 +2,8 @@
 //! regenerated when the file changes.
 //!
 //! ```no_run
-//! // build.rs, with `gbuffer = { version = "0.1", features = ["build"] }` in
-//! // [build-dependencies]
+//! // build.rs, with `gbuffer = { path = "../gbuffer/gbuffer", features = ["build"] }` (this
+//! // repository beside the crate; nothing is on crates.io yet) in [build-dependencies]
 //! fn main() {
 //!     if let Err(error) = gbuffer::build::generate(["layouts/mobile_metallic.toml"]) {
 //!         eprintln!("{error}");

@@ -62,7 +62,7 @@ fn time_all(frames: &[Result<FrameClock<'_>, String>]) -> Vec<String> {
         })
         .collect();
     // Where the protocol fails (the reason on stderr), every frame reads n/a.
-    let spreads = time_items(&*PROTOCOL, timed.len(), &mut |index| timed[index]())
+    let spreads = time_items(&PROTOCOL, timed.len(), &mut |index| timed[index]())
         .map_err(|error| eprintln!("{error}"))
         .map(|(_, spreads)| spreads)
         .unwrap_or_default();
@@ -160,7 +160,7 @@ fn stages(progress: &dyn Fn(&str)) {
                     continue;
                 }
             };
-            let medians: Vec<f64> = match time_items(&*PROTOCOL, frames.len(), &mut |index| {
+            let medians: Vec<f64> = match time_items(&PROTOCOL, frames.len(), &mut |index| {
                 frames[index].seconds()
             }) {
                 Ok((_, spreads)) => spreads.iter().map(|spread| spread.median * 1e3).collect(),

@@ -1,6 +1,6 @@
-//! A user's crate: one line in Cargo.toml, a derived layout, its targets created on the
-//! adapter at hand with no format or count written here, and a clear error for a layout the
-//! adapter's limits cannot hold. Run with
+//! A user's crate: the guide's dependency lines in Cargo.toml, a derived layout, its targets
+//! created on the adapter at hand with no format or count written here, and a clear error for a
+//! layout the adapter's limits cannot hold. Run with
 //! `cargo run --manifest-path examples/standalone/Cargo.toml`.
 
 use std::process::ExitCode;
