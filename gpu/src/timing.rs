@@ -1,9 +1,9 @@
 //! The one timing protocol behind every time the project prints: the trade-off study's rows
 //! and packing table, its frame table and the renderer's bench.
 //!
-//! A GPU runs at the clock its recent load asks for: an H100's SM clock idles at 345 MHz and
-//! takes tens of milliseconds of work to reach 1980, and a CPU rasteriser shares its cores
-//! with whatever else runs. A time therefore means something only when
+//! A GPU runs at the clock its recent load asks for: a data-centre GPU's SM clock idles at a
+//! fraction of its loaded rate and takes tens of milliseconds of work to rise, and a CPU
+//! rasteriser shares its cores with whatever else runs. A time therefore means something only when
 //!
 //! 1. the clock has settled: [`warm_up`] runs the work until consecutive runs agree;
 //! 2. no clock change falls on one item alone: [`in_rounds`] times every item once a round, so

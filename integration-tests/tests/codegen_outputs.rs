@@ -362,3 +362,27 @@ fn naga_spirv_of_every_layout_passes_spirv_val() {
             .unwrap_or_else(|error| panic!("{}: {error}", layout.name));
     }
 }
+
+/// README's sample of generated WGSL is what `gbuffer codegen` writes for the layout file it
+/// names: its lines, in order, one stretch of the generated file.
+#[test]
+fn readme_shows_generated_wgsl_as_generated() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let sample = readme
+        .split("```wgsl\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("README shows a ```wgsl block");
+    let named = "codegen/layouts/mobile_metallic.toml";
+    assert!(
+        readme.contains(&format!("(`{named}`)")),
+        "README names {named}"
+    );
+    let layout = read_layout_file(&root.join(named)).unwrap().layout;
+    let generated = &generate(&layout, Conversions::Exact, &[Output::Wgsl]).unwrap()[0].contents;
+    assert!(
+        generated.contains(sample),
+        "README's WGSL is not a stretch of {named}'s:\n{sample}"
+    );
+}

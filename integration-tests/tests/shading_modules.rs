@@ -68,3 +68,50 @@ fn every_wgsl_function_has_a_test_case() {
         }
     }
 }
+
+/// The names a row of the guide's table lists: each backticked name, where `` `_decode` `` after
+/// `` `rgbm_encode` `` stands for `rgbm_decode` (the last word of the name before, replaced).
+fn listed_names(cell: &str) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for name in cell.split('`').skip(1).step_by(2) {
+        let name = match (name.strip_prefix('_'), names.last()) {
+            (Some(_), Some(before)) => format!("{}{name}", &before[..before.rfind('_').unwrap()]),
+            _ => name.to_string(),
+        };
+        names.push(name);
+    }
+    names
+}
+
+#[test]
+fn the_guide_lists_every_module_and_everything_it_declares() {
+    let chapter = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../book/src/shading-library.md"
+    ))
+    .expect("the shading library's chapter");
+    let rows: Vec<(String, Vec<String>)> = chapter
+        .lines()
+        .filter_map(|line| {
+            let cells: Vec<&str> = line.trim().strip_prefix('|')?.split('|').collect();
+            let module = cells.first()?.trim().strip_prefix('`')?.strip_suffix('`')?;
+            Some((module.to_string(), listed_names(cells.get(1)?)))
+        })
+        .collect();
+    let shipped: Vec<&str> = modules().iter().map(|module| module.name).collect();
+    let listed: Vec<&str> = rows.iter().map(|(module, _)| module.as_str()).collect();
+    assert_eq!(
+        listed, shipped,
+        "the chapter's modules, in the library's order"
+    );
+    for ((_, names), module) in rows.iter().zip(modules()) {
+        let declared: Vec<&str> = module
+            .source
+            .lines()
+            .filter_map(|line| line.strip_prefix("fn ").or(line.strip_prefix("const ")))
+            .map(|rest| rest.split(['(', ':', ' ']).next().unwrap())
+            .filter(|name| !name.starts_with(CODEC_PREFIX))
+            .collect();
+        assert_eq!(names, &declared, "module `{}`", module.name);
+    }
+}

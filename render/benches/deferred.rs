@@ -7,7 +7,8 @@
 //! (`gbuffer_gpu::timing::time_items`: warm-up rounds, then every frame of a table once a
 //! round; the median, and the rounds' spread). Then every wgpu configuration's PSNR against the
 //! CPU reference. Run with `cargo bench -p gbuffer-render --bench deferred`. Between them,
-//! where the Vulkan paths' time goes: each fused stage and each two-pass pass left out in turn.
+//! where the Vulkan paths' time goes: the frame built up stage by stage, each fused stage and
+//! each two-pass pass timed by what it adds.
 //!
 //! On a CPU rasteriser (llvmpipe, lavapipe) there is no tile memory: its times are a CPU's,
 //! and the traffic the fused paths save is counted, not felt.
@@ -114,21 +115,25 @@ fn row(name: &str, recording: &Recording, times: [String; 2]) {
     );
 }
 
-/// Where the Vulkan paths' time goes, at 1280x720: each stage of the fused frame (and each
-/// pass of the two-pass frame) timed by leaving it out, its share the whole frame's median less
-/// the median without it; the whole frame and every frame without a stage timed together.
+/// Where the Vulkan paths' time goes, at 1280x720: the frame built up stage by stage (each
+/// fused stage, each two-pass pass) in the frame's order, from the render passes with nothing
+/// drawn to the whole frame, every one of those frames timed together; a stage's time is what it
+/// adds to the frame before it, so the stages' times sum to the whole frame's less the empty
+/// passes'. Where what a stage adds is within the two frames' spread, the table says it cannot
+/// separate the stage from the one before rather than print a figure.
 fn stages(progress: &dyn Fn(&str)) {
     let vulkan = match VulkanRenderer::new(progress) {
         Ok(vulkan) => vulkan,
         Err(error) => return eprintln!("Vulkan: {error}"),
     };
     println!(
-        "\nVulkan at {}x{}, each stage left out (median of {} rounds, ms):",
+        "\nVulkan at {}x{}, the frame built up stage by stage (median of {} rounds, ms; a \
+         stage's time is what it adds to the frame before it):",
         SIZES[0].0, SIZES[0].1, PROTOCOL.rounds
     );
     println!(
-        "{:<36} {:>10} {:>13} {:>10}",
-        "path / stage", "frame ms", "without ms", "stage ms"
+        "{:<36} {:>14} {:>14} {:>8}",
+        "path / stage", "frame so far", "stage adds", "share"
     );
     for layout in [PackedLayout::MobileMetallic, PackedLayout::FutureMetallic] {
         for (path, names) in [
@@ -145,13 +150,9 @@ fn stages(progress: &dyn Fn(&str)) {
                 options: options(GBuffer::Packed(layout), SIZES[0]),
                 path,
             };
-            // The whole frame first, then the frame without each stage.
-            let left_out: Vec<Vec<&str>> = std::iter::once(Vec::new())
-                .chain(names.iter().map(|name| vec![*name]))
-                .collect();
-            let frames = match left_out
-                .iter()
-                .map(|left_out| vulkan.timed_frame(&tile, left_out))
+            // Frame k draws the first k stages: frame 0 none, the last every one.
+            let frames = match (0..=names.len())
+                .map(|drawn| vulkan.timed_frame(&tile, &names[drawn..]))
                 .collect::<Result<Vec<_>, String>>()
             {
                 Ok(frames) => frames,
@@ -160,27 +161,34 @@ fn stages(progress: &dyn Fn(&str)) {
                     continue;
                 }
             };
-            let medians: Vec<f64> = match time_items(&PROTOCOL, frames.len(), &mut |index| {
+            let spreads = match time_items(&PROTOCOL, frames.len(), &mut |index| {
                 frames[index].seconds()
             }) {
-                Ok((_, spreads)) => spreads.iter().map(|spread| spread.median * 1e3).collect(),
+                Ok((_, spreads)) => spreads,
                 Err(error) => {
                     eprintln!("{error}");
                     continue;
                 }
             };
-            let whole = medians[0];
+            let spreads: Vec<Spread> = spreads
+                .iter()
+                .map(|spread| spread.map(|s| s * 1e3))
+                .collect();
+            let (empty, whole) = (spreads[0].median, spreads[names.len()].median);
             println!(
-                "{:<36} {whole:>10.1}",
+                "{:<36} {whole:>14.2}",
                 format!("{} {}", path.name(), layout.name())
             );
-            for (name, without) in names.iter().zip(&medians[1..]) {
-                println!(
-                    "{:<36} {:>10} {without:>13.1} {:>10.1}",
-                    format!("  {name}"),
-                    "",
-                    whole - without
-                );
+            println!("{:<36} {empty:>14.2}", "  render passes, nothing drawn");
+            for (index, name) in names.iter().enumerate() {
+                let (before, after) = (spreads[index], spreads[index + 1]);
+                let adds = after.median - before.median;
+                let cell = if adds > before.width().max(after.width()) {
+                    format!("{adds:>14.2} {:>7.0}%", 100.0 * adds / (whole - empty))
+                } else {
+                    format!("{:>23}", "within the spread")
+                };
+                println!("{:<36} {:>14.2} {cell}", format!("  {name}"), after.median);
             }
         }
     }

@@ -216,8 +216,9 @@ impl VulkanRenderer {
 
     /// A frame of `tile` ready to time, without the draws of the stages or passes named in
     /// `left_out` (a fused path's stages: `Stage::name`; the two-pass path's passes:
-    /// `gbuffer`, `lighting and resolve`): what a stage costs is the whole frame's time less
-    /// the time without it. An unknown name is an error. Each [`TimedFrame::seconds`] is one
+    /// `gbuffer`, `lighting and resolve`): the bench builds the frame up by leaving out every
+    /// stage after the ones it times, so that a stage's time is what it adds to the frame before
+    /// it. An unknown name is an error. Each [`TimedFrame::seconds`] is one
     /// frame; the protocol around it is `gbuffer_gpu::timing`'s.
     pub fn timed_frame(
         &self,
