@@ -7,7 +7,7 @@ use crate::rows::Row;
 use crate::{packing, timing};
 
 /// Holds the adapter's times to the order the instruction counts predict, within each family of
-/// rows and each format's two packing modes, in each stage. The disagreements, a line each:
+/// rows and each format's two packing modes (pack and unpack apart), in each stage. The disagreements, a line each:
 /// the report prints them beside the times, which stand (see [`timing::inconsistencies`]).
 pub(crate) fn check_consistency(
     rows: &[Row],
@@ -36,10 +36,14 @@ pub(crate) fn check_consistency(
                 .collect();
             found.extend(timing::inconsistencies(&group));
         }
-        let packing_times: Vec<Option<timing::GpuTime>> =
-            packing.iter().map(|row| row.time(stage)).collect();
-        for group in packing::timed_groups(packing, &packing_times, stage) {
-            found.extend(timing::inconsistencies(&group));
+        for &direction in packing::Direction::ALL {
+            let packing_times: Vec<Option<timing::GpuTime>> = packing
+                .iter()
+                .map(|row| row.time(direction, stage))
+                .collect();
+            for group in packing::timed_groups(packing, &packing_times, direction, stage) {
+                found.extend(timing::inconsistencies(&group));
+            }
         }
     }
     found

@@ -2,7 +2,8 @@
 //! `spirv-opt -O` and conditional branches (`crate::packing_cost`), the largest error
 //! in codes and the fraction of channel codes that differ from exact, measured on the adapter
 //! over edge cases and random values in fast conversions' domain, and the adapter's time to
-//! pack and unpack a million texels.
+//! pack a million texels and to unpack a million, each timed apart: a renderer packs in one pass
+//! and unpacks in another, so no compiler ever sees the round trip whole.
 
 use crate::stdout::report_line;
 use std::fmt::Write as _;
@@ -26,15 +27,45 @@ pub struct PackingRow {
     /// None where spirv-opt is missing or failed (the reason was printed).
     cost: Option<Cost>,
     deviation: Deviation,
-    /// The adapter's times to pack and unpack a texel in both stages, less the harness's:
-    /// nanoseconds per texel are milliseconds per million.
-    times: timing::StageTimes,
+    /// The adapter's times to pack a texel and to unpack one in both stages, less the
+    /// harness's: nanoseconds per texel are milliseconds per million.
+    pack: timing::StageTimes,
+    unpack: timing::StageTimes,
+}
+
+/// Which half of a conversion a time is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    /// A texel's values into its word.
+    Pack,
+    /// A word into the texel's values.
+    Unpack,
+}
+
+impl Named for Direction {
+    /// Both, in the table's order.
+    const ALL: &'static [Self] = &[Direction::Pack, Direction::Unpack];
+
+    /// `pack` or `unpack`.
+    fn name(self) -> &'static str {
+        match self {
+            Direction::Pack => "pack",
+            Direction::Unpack => "unpack",
+        }
+    }
 }
 
 impl PackingRow {
-    /// The time in `stage`.
-    pub fn time(&self, stage: timing::Stage) -> Option<timing::GpuTime> {
-        self.times.get(stage)
+    /// The time of `direction` in `stage`.
+    pub fn time(&self, direction: Direction, stage: timing::Stage) -> Option<timing::GpuTime> {
+        self.times(direction).get(stage)
+    }
+
+    fn times(&self, direction: Direction) -> &timing::StageTimes {
+        match direction {
+            Direction::Pack => &self.pack,
+            Direction::Unpack => &self.unpack,
+        }
     }
 
     fn mode(&self) -> &'static str {
@@ -42,21 +73,52 @@ impl PackingRow {
     }
 }
 
-/// `row_eval` for the timing harness: the input's components packed as one texel of the
-/// format and unpacked again, padded back to four components.
-fn row_wgsl(format: Format, conversions: Conversions) -> String {
+/// `row_eval` for the timing harness, one direction of the conversion alone in each step of
+/// the harness's dependent chain, so that no compiler can fold a pack into the unpack after it:
+///
+/// - pack: the input's components packed as one texel of the format; the word goes on as a
+///   fraction (`f32(word) / 2^32`), which every bit of it reaches, so no channel's code is
+///   dead;
+/// - unpack: a word the compiler cannot predict, hashed from the input's bits (Knuth's
+///   multiplicative hash, then an exclusive or), with the top exponent bit of each float
+///   channel cleared so that it decodes to a finite value (under 2), unpacked as one texel and
+///   padded back to four components.
+///
+/// Each carries that glue, two or three instructions, in its time.
+fn row_wgsl(format: Format, conversions: Conversions, direction: Direction) -> String {
     let layout = one_field(format);
     let (value, rest) = match layout.fields[0].ty.components {
         2 => ("x.xy", ", x.zw"),
         3 => ("x.xyz", ", x.w"),
         _ => ("x", ""),
     };
+    let body = match direction {
+        Direction::Pack => format!(
+            "let word = pack_texel(Texel({value}))[0];\n    \
+             return vec4<f32>(f32(word) * 2.3283064e-10, x.yzw);"
+        ),
+        Direction::Unpack => format!(
+            "let word = (bitcast<u32>(x.x) * 2654435761u ^ bitcast<u32>(x.y)) & {:#010x}u;\n    \
+             let texel = unpack_texel(array<u32, 1>(word));\n    \
+             return vec4<f32>(texel.value{rest});",
+            finite_mask(format)
+        ),
+    };
     format!(
-        "{}\n\nfn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    \
-         let texel = unpack_texel(pack_texel(Texel({value})));\n    \
-         return vec4<f32>(texel.value{rest});\n}}\n",
+        "{}\n\nfn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    {body}\n}}\n",
         emit_with(&layout, conversions)
     )
+}
+
+/// The bits an unpack row keeps of its hashed word: all, but the top exponent bit of each float
+/// channel (rg16f's two halves at bits 14 and 30; r11f_g11f_b10f's 5-bit exponents, whose top
+/// bits are 10, 21 and 31), so that every word decodes to a finite value.
+fn finite_mask(format: Format) -> u32 {
+    match format {
+        Format::Rg16f => !(1 << 14 | 1 << 30),
+        Format::R11fG11fB10f => !(1 << 10 | 1 << 21 | 1 << 31),
+        _ => u32::MAX,
+    }
 }
 
 /// Every format and mode the packing table has, in its order.
@@ -66,14 +128,24 @@ fn modes() -> impl Iterator<Item = (Format, Conversions)> {
     })
 }
 
-/// Adds each format's pack-and-unpack in both modes to `timer`; their indices in the timer's
-/// times, in the table's order.
+/// Adds each format's pack and unpack, in both modes, to `timer`; their indices in the
+/// timer's times, in the table's order (per row, its pack then its unpack).
 pub fn time_rows(timer: &mut timing::Timer) -> Vec<usize> {
     modes()
-        .map(|(format, conversions)| {
+        .flat_map(|(format, conversions)| {
+            Direction::ALL
+                .iter()
+                .map(move |&direction| (format, conversions, direction))
+        })
+        .map(|(format, conversions, direction)| {
             timer.add(
-                &format!("{} {}", format.name(), conversions.name()),
-                &row_wgsl(format, conversions),
+                &format!(
+                    "{} {} {}",
+                    format.name(),
+                    conversions.name(),
+                    direction.name()
+                ),
+                &row_wgsl(format, conversions, direction),
                 &[],
                 1,
             )
@@ -81,11 +153,12 @@ pub fn time_rows(timer: &mut timing::Timer) -> Vec<usize> {
         .collect()
 }
 
-/// Measures both modes of every format fast conversions change, with their `times` (one per
-/// row, in [`time_rows`]'s order). The error is wgpu's, where it rejected a harness.
+/// Measures both modes of every format fast conversions change, with their `times` (two per
+/// row, pack then unpack, in [`time_rows`]'s order). The error is wgpu's, where it rejected a
+/// harness.
 pub fn measure(gpu: &Gpu, times: &[timing::StageTimes]) -> Result<Vec<PackingRow>, String> {
     let mut rows = Vec::new();
-    for ((format, conversions), times) in modes().zip(times) {
+    for ((format, conversions), times) in modes().zip(times.chunks(2)) {
         eprintln!("packing: {} ({conversions:?})", format.name());
         let layout = one_field(format);
         let cost = layout_cost(&layout, conversions)
@@ -98,17 +171,20 @@ pub fn measure(gpu: &Gpu, times: &[timing::StageTimes]) -> Result<Vec<PackingRow
             conversions,
             cost,
             deviation,
-            times: *times,
+            pack: times[0],
+            unpack: times[1],
         });
     }
     Ok(rows)
 }
 
-/// The rows as the consistency check groups them in `stage`: each format's two modes, with
-/// `times` (one per row, the stage's).
+/// The rows as the consistency check groups them in `stage` and `direction`: each format's two
+/// modes, with `times` (one per row, the stage's and direction's), by the instructions of the
+/// whole conversion (pack and unpack), which exact and fast split alike.
 pub fn timed_groups<'a>(
     rows: &'a [PackingRow],
     times: &'a [Option<timing::GpuTime>],
+    direction: Direction,
     stage: timing::Stage,
 ) -> Vec<Vec<timing::Timed<'a>>> {
     CONVERTED_FORMATS
@@ -119,7 +195,13 @@ pub fn timed_groups<'a>(
                 .filter(|(row, _)| row.format == *format)
                 .filter_map(|(row, time)| {
                     Some(timing::Timed {
-                        name: format!("{} {} ({})", row.format.name(), row.mode(), stage.name()),
+                        name: format!(
+                            "{} {} {} ({})",
+                            row.format.name(),
+                            row.mode(),
+                            direction.name(),
+                            stage.name()
+                        ),
                         instructions: row.cost?.instructions,
                         time: time.as_ref(),
                     })
@@ -139,8 +221,8 @@ fn time_note(gpu: &Gpu) -> &'static str {
 }
 
 /// A row's cells: format, mode, instructions, branches, largest error, differing, and the
-/// compute and fragment times.
-fn cells(row: &PackingRow) -> [String; 8] {
+/// pack and unpack times in compute, then in fragment.
+fn cells(row: &PackingRow) -> [String; 10] {
     let count = |pick: fn(Cost) -> usize| {
         row.cost
             .map_or_else(|| "n/a".to_string(), |cost| pick(cost).to_string())
@@ -152,18 +234,29 @@ fn cells(row: &PackingRow) -> [String; 8] {
         count(|cost| cost.conditional_branches),
         row.deviation.largest_code_error().to_string(),
         format!("{:.3}%", 100.0 * row.deviation.differing_fraction()),
-        crate::measured::format_time(row.times.compute),
-        crate::measured::format_time(row.times.fragment),
+        crate::measured::format_time(row.pack.compute),
+        crate::measured::format_time(row.unpack.compute),
+        crate::measured::format_time(row.pack.fragment),
+        crate::measured::format_time(row.unpack.fragment),
     ]
 }
 
 /// The table on standard output.
 pub fn print(rows: &[PackingRow], gpu: &Gpu) {
     report_line!("\npacking conversions ({})", time_note(gpu));
-    let line = |cells: &[String; 8]| {
+    let line = |cells: &[String; 10]| {
         format!(
-            "{:<16} {:<6} {:>12} {:>8} {:>11} {:>10} {:>13} {:>13}",
-            cells[0], cells[1], cells[2], cells[3], cells[4], cells[5], cells[6], cells[7]
+            "{:<16} {:<6} {:>12} {:>8} {:>11} {:>10} {:>11} {:>11} {:>11} {:>11}",
+            cells[0],
+            cells[1],
+            cells[2],
+            cells[3],
+            cells[4],
+            cells[5],
+            cells[6],
+            cells[7],
+            cells[8],
+            cells[9]
         )
     };
     let header = [
@@ -173,9 +266,12 @@ pub fn print(rows: &[PackingRow], gpu: &Gpu) {
         "branches",
         "max codes",
         "differing",
-        "ms/Mtexel",
-        "frag ms/Mtexel",
+        "pack",
+        "unpack",
+        "frag pack",
+        "frag unpack",
     ];
+    report_line!("(times in ms per million texels, each direction in its own dependent chain)");
     report_line!("{}", line(&header.map(str::to_string)));
     for row in rows {
         report_line!("{}", line(&cells(row)));
@@ -185,11 +281,11 @@ pub fn print(rows: &[PackingRow], gpu: &Gpu) {
 /// The report's section.
 pub fn markdown(rows: &[PackingRow], gpu: &Gpu) -> String {
     let mut out = String::from("\n## Packing conversions\n\n");
-    let _ = writeln!(out, "Per format and mode: SPIR-V instructions of a compute shader that packs one texel and unpacks one (naga, then `spirv-opt -O`; about 14 are the harness's) and its conditional branches; the largest difference between a channel's code and the exact one, and the fraction of channel codes that differ, over {TEXELS} texels packed on the adapter (edge cases, then random values: finite, within f16's range); the adapter's milliseconds to pack and unpack a million texels, in a compute dispatch and in a fullscreen draw's fragment shader. {}\n", time_note(gpu));
+    let _ = writeln!(out, "Per format and mode: SPIR-V instructions of a compute shader that packs one texel and unpacks one (naga, then `spirv-opt -O`; about 14 are the harness's) and its conditional branches; the largest difference between a channel's code and the exact one, and the fraction of channel codes that differ, over {TEXELS} texels packed on the adapter (edge cases, then random values: finite, within f16's range); the adapter's milliseconds to pack a million texels and to unpack a million, each direction timed apart in a dependent chain of its own (a renderer packs in one pass and unpacks in another, so no compiler sees the round trip whole: the packed word goes on as a fraction every bit of it reaches, and unpack is fed words hashed from the chain's values, which no compiler can predict; that glue, two or three instructions, is in each time), in a compute dispatch and in a fullscreen draw's fragment shader. {}\n", time_note(gpu));
     out.push_str(
-        "| format | mode | instructions | branches | largest error (codes) | differing | ms per million texels (compute) | ms per million texels (fragment) |\n",
+        "| format | mode | instructions | branches | largest error (codes) | differing | pack ms per million texels (compute) | unpack ms per million texels (compute) | pack ms per million texels (fragment) | unpack ms per million texels (fragment) |\n",
     );
-    out.push_str("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    out.push_str("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for row in rows {
         let _ = writeln!(out, "| {} |", cells(row).join(" | "));
     }
@@ -207,8 +303,12 @@ pub fn json(rows: &[PackingRow]) -> serde_json::Value {
             "conditional_branches": row.cost.map(|cost| cost.conditional_branches),
             "largest_code_error": row.deviation.largest_code_error(),
             "differing_fraction": row.deviation.differing_fraction(),
-            "ms_per_million_texels": row.times.compute.filter(timing::GpuTime::resolved).map(|time| time.ns.median),
-            "timings": crate::json::timings_json(&row.times),
+            "pack_ms_per_million_texels": row.pack.compute.filter(timing::GpuTime::resolved).map(|time| time.ns.median),
+            "unpack_ms_per_million_texels": row.unpack.compute.filter(timing::GpuTime::resolved).map(|time| time.ns.median),
+            "timings": {
+                "pack": crate::json::timings_json(&row.pack),
+                "unpack": crate::json::timings_json(&row.unpack),
+            },
         }))
         .collect::<Vec<_>>())
 }
@@ -331,5 +431,75 @@ impl CompiledPacking {
                 "compilers": self.compiled.json(index),
             })).collect::<Vec<_>>(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every format, mode and direction makes a valid shader in both of the timer's harnesses.
+    #[test]
+    fn every_direction_of_every_conversion_is_a_valid_harness() {
+        for (format, conversions) in modes() {
+            for &direction in Direction::ALL {
+                let row = row_wgsl(format, conversions, direction);
+                for shader in [timing::harness(&row), timing::fragment_harness(&row)] {
+                    if let Err(problem) = gbuffer_validator::validate_wgsl(&shader) {
+                        panic!("{format:?} {conversions:?} {direction:?}: {problem}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Neither direction's row calls the other direction's function: the chain holds a pack or
+    /// an unpack, never the round trip a compiler could fold.
+    #[test]
+    fn a_row_times_one_direction_alone() {
+        for (format, conversions) in modes() {
+            let layout_text = emit_with(&one_field(format), conversions);
+            let eval = |direction| {
+                let row = row_wgsl(format, conversions, direction);
+                row[layout_text.len()..].to_string()
+            };
+            let (pack, unpack) = (eval(Direction::Pack), eval(Direction::Unpack));
+            assert!(
+                pack.contains("pack_texel(") && !pack.contains("unpack_texel("),
+                "{pack}"
+            );
+            assert!(
+                unpack.contains("unpack_texel(") && !unpack.contains(" pack_texel("),
+                "{unpack}"
+            );
+        }
+    }
+
+    /// The unpack row's words decode to finite values under 2 on every channel, as the Rust
+    /// mirror decodes them, whatever the hash gives: 65,536 words of a pseudo-random walk, and
+    /// the word with every bit the mask keeps.
+    #[test]
+    fn the_unpack_rows_words_decode_finite() {
+        for format in CONVERTED_FORMATS {
+            let mask = finite_mask(format);
+            let mut word = 0x9e37_79b9u32;
+            for _ in 0..1 << 16 {
+                word = word.wrapping_mul(2_654_435_761).rotate_left(7) ^ 0x5bd1_e995;
+                let values: [f32; 4] = format.decode(word & mask);
+                assert!(
+                    values
+                        .iter()
+                        .all(|value| value.is_finite() && value.abs() < 2.0),
+                    "{format:?}: {:#010x} decodes to {values:?}",
+                    word & mask
+                );
+            }
+            // Every bit the mask keeps set at once: the largest exponents it allows.
+            let all: [f32; 4] = format.decode(mask);
+            assert!(
+                all.iter().all(|value| value.is_finite()),
+                "{format:?}: {all:?}"
+            );
+        }
     }
 }

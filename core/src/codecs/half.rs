@@ -102,6 +102,10 @@ mod tests {
     /// On every f32: IEEE's rounding (the half crate's, which overflows to infinity where ours
     /// saturates at the largest finite value, and keeps NaN where ours stores 0).
     #[test]
+    #[cfg_attr(
+        debug_assertions,
+        ignore = "exhaustive: run optimised, `cargo test --release -p gbuffer-core --lib every_f32`"
+    )]
     fn rounds_every_f32_as_ieee_does() {
         let ieee = |value: f32, _| {
             let ieee = u32::from(::half::f16::from_f32(value).to_bits());

@@ -147,6 +147,10 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(
+        debug_assertions,
+        ignore = "exhaustive: run optimised, `cargo test --release -p gbuffer-core --lib every_f32`"
+    )]
     fn encodes_every_f32_as_the_contract_says() {
         assert_every_f32(
             "log luminance",

@@ -424,7 +424,9 @@ codecs! {
 }
 
 /// Encodes every f32 at each of `widths` with `encode`, and asserts that the code is
-/// `reference`'s; the two halves of the f32s run on two threads. The codecs' exhaustive tests.
+/// `reference`'s; the two halves of the f32s run on two threads. The codecs' exhaustive tests,
+/// which a debug build skips (each says how to run it): optimised, `cargo test --release -p
+/// gbuffer-core --lib every_f32` runs them all (CI's `exhaustive` step).
 #[cfg(test)]
 pub(crate) fn assert_every_f32(
     name: &str,

@@ -161,6 +161,10 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(
+        debug_assertions,
+        ignore = "exhaustive: run optimised, `cargo test --release -p gbuffer-core --lib every_f32`"
+    )]
     fn the_algorithm_is_exact_for_every_f32() {
         assert_every_f32(
             "unorm",

@@ -146,6 +146,10 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(
+        debug_assertions,
+        ignore = "exhaustive: run optimised, `cargo test --release -p gbuffer-core --lib every_f32`"
+    )]
     fn rounds_every_f32_as_the_branching_reference_does() {
         let reference = |value: f32, mantissa_bits| match value.is_sign_negative() {
             true => 0,

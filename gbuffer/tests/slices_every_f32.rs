@@ -1,0 +1,110 @@
+//! `pack_slice` and `unpack_slice` against `pack` and `unpack` for every f32 and every word:
+//! the slices' vector code (eight texels at a time) and the texel code, not one bit apart.
+//! Exhaustive, so it runs in an optimised build: `cargo test --release -p gbuffer --test
+//! slices_every_f32` (CI's `exhaustive` step). In a debug build it is ignored, saying so.
+//! `integration-tests/tests/slices.rs` holds the slices to the texels on the edge cases and the
+//! seed layouts in every build.
+
+use gbuffer::GBufferLayout;
+
+/// One field of each unorm and float format, every channel of a texel holding the same value.
+#[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
+#[gbuffer(budget = 256)]
+struct UnormsAndFloats {
+    #[pls(rgba8)]
+    unorm_8: gbuffer::glam::Vec4,
+    #[pls(rg16)]
+    unorm_16: gbuffer::glam::Vec2,
+    #[pls(rgb10_a2)]
+    unorm_10_10_10_2: gbuffer::glam::Vec4,
+    #[pls(rg16f)]
+    halves: gbuffer::glam::Vec2,
+    #[pls(r11f_g11f_b10f)]
+    small_floats: gbuffer::glam::Vec3,
+    #[pls(r32f)]
+    single: f32,
+}
+
+impl UnormsAndFloats {
+    /// Every component's bits.
+    fn bits(&self) -> [u32; 16] {
+        let (a, b, c) = (self.unorm_8, self.unorm_16, self.unorm_10_10_10_2);
+        let (d, e) = (self.halves, self.small_floats);
+        [
+            a.x,
+            a.y,
+            a.z,
+            a.w,
+            b.x,
+            b.y,
+            c.x,
+            c.y,
+            c.z,
+            c.w,
+            d.x,
+            d.y,
+            e.x,
+            e.y,
+            e.z,
+            self.single,
+        ]
+        .map(f32::to_bits)
+    }
+
+    fn splat(value: f32) -> Self {
+        use gbuffer::glam::{Vec2, Vec3, Vec4};
+        UnormsAndFloats {
+            unorm_8: Vec4::splat(value),
+            unorm_16: Vec2::splat(value),
+            unorm_10_10_10_2: Vec4::splat(value),
+            halves: Vec2::splat(value),
+            small_floats: Vec3::splat(value),
+            single: value,
+        }
+    }
+}
+
+/// Every f32 through every channel of every unorm and float format, by the slices (eight texels
+/// at a time, in vector instructions) and by `pack` (a texel at a time): not one bit apart.
+/// Then every 32-bit word through every channel's decode, compared by the bits of the floats.
+/// The f32s run in two halves on two threads.
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "exhaustive: run optimised, `cargo test --release -p gbuffer --test slices_every_f32`"
+)]
+fn the_slices_agree_with_the_texels_on_every_f32_and_every_word() {
+    const CHUNK: u64 = 1 << 20;
+    let half = |first: u64, end: u64| {
+        let mut texels = vec![UnormsAndFloats::splat(0.0); CHUNK as usize];
+        let mut packed = vec![[0; 6]; CHUNK as usize];
+        let mut back = texels.clone();
+        for start in (first..end).step_by(CHUNK as usize) {
+            for (offset, texel) in texels.iter_mut().enumerate() {
+                *texel = UnormsAndFloats::splat(f32::from_bits((start + offset as u64) as u32));
+            }
+            UnormsAndFloats::pack_slice(&texels, &mut packed);
+            for (texel, words) in texels.iter().zip(&packed) {
+                assert_eq!(*words, texel.pack(), "{texel:?}");
+            }
+            for (offset, words) in packed.iter_mut().enumerate() {
+                *words = [(start + offset as u64) as u32; 6];
+            }
+            UnormsAndFloats::unpack_slice(&packed, &mut back);
+            for (words, texel) in packed.iter().zip(&back) {
+                // By their bits, so that NaNs compare too.
+                assert_eq!(
+                    texel.bits(),
+                    UnormsAndFloats::unpack(words).bits(),
+                    "{words:?}"
+                );
+            }
+        }
+    };
+    let middle = 1u64 << 31;
+    std::thread::scope(|scope| {
+        let low = scope.spawn(|| half(0, middle));
+        half(middle, 1 << 32);
+        low.join().expect("the lower half");
+    });
+}
