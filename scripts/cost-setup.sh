@@ -32,13 +32,7 @@ fail() {
 }
 
 # 1. Host packages, from backports where it has them.
-missing=()
-for package in "${host_packages[@]}"; do
-    installed "$package" || missing+=("$package")
-done
-for package in "${mesa_packages[@]}"; do
-    installed "$package" "~bpo12" || missing+=("$package")
-done
+mapfile -t missing < <(missing_packages "${mesa_packages[@]}" -- "${host_packages[@]}")
 if ((${#missing[@]})); then
     add_backports
     retry apt-get update -qq || fail "could not update the package lists"

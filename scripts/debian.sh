@@ -15,6 +15,22 @@ installed() {
     dpkg-query -W -f='${Status} ${Version}' "$1" 2>/dev/null | grep -q "install ok installed.*${2:-}"
 }
 
+# Prints, a line each, those of the packages named after `--` that are not installed; the
+# packages before it must also be at backports' version (Mesa's: the drm-shim's version must be
+# the drivers').
+missing_packages() {
+    local package backports=true
+    for package in "$@"; do
+        if [ "$package" = "--" ]; then
+            backports=false
+        elif $backports; then
+            installed "$package" "~bpo12" || echo "$package"
+        else
+            installed "$package" || echo "$package"
+        fi
+    done
+}
+
 # Adds Debian 12's backports to apt's sources (Mesa 25 and its drm-shim come from there).
 add_backports() {
     local sources=/etc/apt/sources.list.d/bookworm-backports.sources

@@ -14,13 +14,7 @@ source scripts/debian.sh
 
 mesa=(mesa-vulkan-drivers libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libgbm1)
 others=(libvulkan1 libegl1 libgles2 glslang-tools spirv-tools "$@")
-missing=()
-for package in "${others[@]}"; do
-    installed "$package" || missing+=("$package")
-done
-for package in "${mesa[@]}"; do
-    installed "$package" "~bpo12" || missing+=("$package")
-done
+mapfile -t missing < <(missing_packages "${mesa[@]}" -- "${others[@]}")
 if ((${#missing[@]} == 0)); then
     echo "install-drivers: Mesa 25, the loaders, glslang and spirv-tools are in place"
     exit 0
