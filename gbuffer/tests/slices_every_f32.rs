@@ -98,7 +98,12 @@ fn the_slices_agree_with_the_texels_on_every_f32_and_every_word() {
                 *texel = UnormsAndFloats::splat(f32::from_bits((start + offset as u64) as u32));
             }
             UnormsAndFloats::pack_slice(&texels, &mut packed);
-            if differ(texels.iter().zip(&packed).map(|(texel, words)| (texel.pack(), *words))) {
+            if differ(
+                texels
+                    .iter()
+                    .zip(&packed)
+                    .map(|(texel, words)| (texel.pack(), *words)),
+            ) {
                 for (texel, words) in texels.iter().zip(&packed) {
                     assert_eq!(*words, texel.pack(), "{texel:?}");
                 }
@@ -109,7 +114,12 @@ fn the_slices_agree_with_the_texels_on_every_f32_and_every_word() {
             UnormsAndFloats::unpack_slice(&packed, &mut back);
             // By their bits, so that NaNs compare too.
             let unpacked = |words| UnormsAndFloats::unpack(words).bits();
-            if differ(packed.iter().zip(&back).map(|(words, texel)| (unpacked(words), texel.bits()))) {
+            if differ(
+                packed
+                    .iter()
+                    .zip(&back)
+                    .map(|(words, texel)| (unpacked(words), texel.bits())),
+            ) {
                 for (words, texel) in packed.iter().zip(&back) {
                     assert_eq!(texel.bits(), unpacked(words), "{words:?}");
                 }
