@@ -345,25 +345,7 @@ macro_rules! codecs {
             $($(#[$doc])* $variant $(($parameter))?,)*
         }
 
-        /// The exhaustive check itself: one wrong code among the 2^32 f32s fails it, and the failure
-/// names that f32 (not the block it lies in).
-#[cfg(test)]
-#[test]
-#[cfg_attr(
-    debug_assertions,
-    ignore = "exhaustive: run optimised, `cargo test --release -p gbuffer-core --lib every_f32`"
-)]
-#[should_panic(expected = "1.0000001e0 (0x3f800001) as wrong of 8 bits: 0x1, reference 0x0")]
-fn every_f32_names_the_one_value_that_differs() {
-    assert_every_f32(
-        "wrong",
-        &[4, 8],
-        |value, bits| u32::from(bits == 8 && value.to_bits() == 0x3f80_0001),
-        |_, _| 0,
-    );
-}
-
-impl Encoding {
+        impl Encoding {
             /// Its codec.
             #[inline(always)]
             pub fn codec(self) -> &'static Codec {
@@ -495,6 +477,24 @@ pub(crate) fn assert_every_f32(
             .find_map(|worker| worker.join().expect("a worker finishes"))
     });
     assert_eq!(failure, None);
+}
+
+/// The exhaustive check itself: one wrong code among the 2^32 f32s fails it, and the failure
+/// names that f32 (not the block it lies in).
+#[cfg(test)]
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "exhaustive: run optimised, `cargo test --release -p gbuffer-core --lib every_f32`"
+)]
+#[should_panic(expected = "1.0000001e0 (0x3f800001) as wrong of 8 bits: 0x1, reference 0x0")]
+fn every_f32_names_the_one_value_that_differs() {
+    assert_every_f32(
+        "wrong",
+        &[4, 8],
+        |value, bits| u32::from(bits == 8 && value.to_bits() == 0x3f80_0001),
+        |_, _| 0,
+    );
 }
 
 impl Encoding {
