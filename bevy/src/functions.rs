@@ -1,11 +1,17 @@
-//! The module that stands in for Bevy 0.19's `bevy_pbr::pbr_deferred_functions`: the same
-//! import path and functions, whose G-buffer is a layout's. `deferred_gbuffer_from_pbr_input`
-//! computes Bevy's quantities as Bevy's own does (its Rec. 709 monochrome occlusion and
-//! reflectance, the flags, gamma 2.2 base colour, unlit materials' colour in the emissive
-//! slot, the light map's light added to the emissive) and packs them with the layout's own
-//! `pack_<snake>`, so the words are the Rust mirror's; `pbr_input_from_deferred_gbuffer`
-//! unpacks them with `unpack_<snake>` and rebuilds the `PbrInput` as Bevy does, with Bevy's
-//! defaults for what the layout does not store. `deferred_output` is Bevy's.
+//! The module that stands in for Bevy 0.20's `bevy_pbr::deferred::functions` (a WESL module,
+//! `deferred/functions.wesl`): the same module path and functions, whose G-buffer is a
+//! layout's. `deferred_gbuffer_from_pbr_input` computes Bevy's quantities as Bevy's own does (its
+//! Rec. 709 monochrome occlusion and reflectance, the flags, gamma 2.2 base colour, unlit
+//! materials' colour in the emissive slot, the light map's light added to the emissive) and
+//! packs them with the layout's own `pack_<snake>`, so the words are the Rust mirror's;
+//! `pbr_input_from_deferred_gbuffer` unpacks them with `unpack_<snake>` and rebuilds the
+//! `PbrInput` as Bevy does, with Bevy's defaults for what the layout does not store.
+//! `deferred_output` is Bevy's.
+//!
+//! The layout's WGSL is a WESL module of its own (`GBufferLayout::wesl_module`, `gbuffer::<snake>`),
+//! which this one imports as Bevy's modules import each other. WESL is WGSL with imports and
+//! conditional translation (`@if(DEF)` on a declaration or a statement, where naga_oil had
+//! `#ifdef`).
 
 use std::fmt::Write as _;
 
@@ -13,50 +19,50 @@ use gbuffer::layout::Layout;
 
 use crate::quantity::Quantity;
 
-/// The import path the module replaces.
-pub const IMPORT_PATH: &str = "bevy_pbr::pbr_deferred_functions";
+/// The WESL module path the module replaces (Bevy's deferred lighting pass, its prepass's
+/// `deferred_output` and its screen-space reflections import from it).
+pub const MODULE_PATH: &str = "bevy_pbr::deferred::functions";
 
-/// Bevy's imports, as its own module has them.
-const IMPORTS: &str = "#import bevy_pbr::{
-    pbr_types::{PbrInput, pbr_input_new, STANDARD_MATERIAL_FLAGS_UNLIT_BIT},
-    pbr_deferred_types as deferred_types,
-    pbr_functions,
-    mesh_view_bindings::{view, lights},
-    prepass_io::FragmentOutput,
-    view_transformations::{position_ndc_to_world, frag_coord_to_ndc},
-}
+/// The asset Bevy 0.20 loads that module from: the plugin's module takes its place, and from
+/// this path Bevy derives the module path above.
+pub const ASSET_PATH: &str = "embedded://bevy_pbr/deferred/functions.wesl";
 
-#ifdef MESHLET_MESH_MATERIAL_PASS
-#import bevy_pbr::meshlet_visibility_buffer_resolve::VertexOutput
-#else
-#import bevy_pbr::prepass_io::VertexOutput
-#endif
+/// Bevy's imports, as its own module has them (`package` is `bevy_pbr`), and the ambient
+/// light's flags a lightmapped layout reads.
+const IMPORTS: &str = "import package::{
+    render::{
+        pbr_types::{PbrInput, pbr_input_new, STANDARD_MATERIAL_FLAGS_UNLIT_BIT},
+        pbr_functions,
+        mesh_view_bindings::{view, lights},
+        mesh_view_types,
+        view_transformations::{position_ndc_to_world, frag_coord_to_ndc},
+    },
+    deferred::types as deferred_types,
+    prepass::io::FragmentOutput,
+};
 
-#ifdef MOTION_VECTOR_PREPASS
-#import bevy_pbr::pbr_prepass_functions::calculate_motion_vector
-#endif
+@if(MESHLET_MESH_MATERIAL_PASS) import package::meshlet::visibility_buffer_resolve::VertexOutput;
+@else import package::prepass::io::VertexOutput;
+
+@if(MOTION_VECTOR_PREPASS)
+    import package::render::pbr_prepass_functions::calculate_motion_vector;
 ";
 
-/// `deferred_output`, as Bevy 0.19 writes the prepass's outputs.
-const DEFERRED_OUTPUT: &str = "#ifdef PREPASS_PIPELINE
+/// `deferred_output`, as Bevy 0.20 writes the prepass's outputs.
+const DEFERRED_OUTPUT: &str = "@if(PREPASS_PIPELINE)
 fn deferred_output(in: VertexOutput, pbr_input: PbrInput) -> FragmentOutput {
     var out: FragmentOutput;
     out.deferred = deferred_gbuffer_from_pbr_input(pbr_input);
     // Which lighting shader runs for the fragment.
     out.deferred_lighting_pass_id = pbr_input.material.deferred_lighting_pass_id;
-#ifdef NORMAL_PREPASS
+    @if(NORMAL_PREPASS)
     out.normal = vec4(in.world_normal * 0.5 + vec3(0.5), 1.0);
-#endif
-#ifdef MOTION_VECTOR_PREPASS
-#ifdef MESHLET_MESH_MATERIAL_PASS
+    @if(MOTION_VECTOR_PREPASS && MESHLET_MESH_MATERIAL_PASS)
     out.motion_vector = in.motion_vector;
-#else
+    @if(MOTION_VECTOR_PREPASS && !MESHLET_MESH_MATERIAL_PASS)
     out.motion_vector = calculate_motion_vector(in.world_position, in.previous_world_position);
-#endif
-#endif
     return out;
 }
-#endif
 ";
 
 /// The value each quantity is stored from in `deferred_gbuffer_from_pbr_input`.
@@ -107,20 +113,19 @@ fn prepared(quantity: Quantity) -> &'static str {
     // patched lighting shades strength 0 with Bevy's isotropic lobe).
     var anisotropy_strength = 0.0;
     var anisotropy_tangent = orthonormal_tangent(normalize(in.N));
-#ifdef STANDARD_MATERIAL_ANISOTROPY
-    if (in.anisotropy_strength > 0.0 && dot(in.anisotropy_T, in.anisotropy_T) > 0.0) {
-        anisotropy_strength = in.anisotropy_strength;
-        anisotropy_tangent = in.anisotropy_T;
+    @if(STANDARD_MATERIAL_ANISOTROPY) {
+        if (in.anisotropy_strength > 0.0 && dot(in.anisotropy_T, in.anisotropy_T) > 0.0) {
+            anisotropy_strength = in.anisotropy_strength;
+            anisotropy_tangent = in.anisotropy_T;
+        }
     }
-#endif
 "
         }
         Quantity::Lightmapped => {
             "    // The prepass of a mesh with a light map is specialised with LIGHTMAP.
     var lightmapped = 0u;
-#ifdef LIGHTMAP
+    @if(LIGHTMAP)
     lightmapped = 1u;
-#endif
 "
         }
         _ => "",
@@ -160,7 +165,9 @@ fn read_back(quantity: Quantity, field: &str) -> String {
     // when the light says so (under LIGHTMAP); here its occlusion does, which scales nothing
     // else that the forward renderer gives a lightmapped mesh (its environment map and
     // irradiance volumes give it no diffuse light).
-    if (texel.{field} != 0u && lights.ambient_light_affects_lightmapped_meshes == 0u) {{
+    let ambient_flags = lights.ambient_light_flags;
+    let affects = mesh_view_types::AMBIENT_LIGHT_FLAGS_AFFECTS_LIGHTMAPPED_MESHES_BIT;
+    if (texel.{field} != 0u && (ambient_flags & affects) == 0u) {{
         pbr.diffuse_occlusion = vec3(0.0);
     }}
 "
@@ -220,13 +227,15 @@ fn read(mapping: &[(String, Quantity)], quantity: Quantity, default: &str) -> St
     }
 }
 
-/// The module's text for `layout` (whose WGSL is `layout_wgsl`), each field holding its
-/// quantity in `mapping` ([`crate::quantity::map_fields`]).
-pub fn deferred_functions_wgsl(
-    layout: &Layout,
-    layout_wgsl: &str,
-    mapping: &[(String, Quantity)],
-) -> String {
+/// The asset path under which Bevy derives the module path `module_path` (`gbuffer::<snake>`):
+/// `embedded://gbuffer/<snake>.wesl`.
+pub fn asset_path(module_path: &str) -> String {
+    format!("embedded://{}.wesl", module_path.replace("::", "/"))
+}
+
+/// The module's text for `layout`, each field holding its quantity in `mapping`
+/// ([`crate::quantity::map_fields`]); it imports the layout's WESL module.
+pub fn deferred_functions_wesl(layout: &Layout, mapping: &[(String, Quantity)]) -> String {
     let symbols = layout.symbols();
     let (name, words) = (symbols.texel(), layout.words());
     let (pack, unpack) = (symbols.pack(), symbols.unpack());
@@ -254,11 +263,9 @@ pub fn deferred_functions_wgsl(
     format!(
         "// Generated by gbuffer-bevy: Bevy's deferred G-buffer functions, with the G-buffer
 // stored in the layout `{name}` ({bits} bits).
-#define_import_path {IMPORT_PATH}
-
 {IMPORTS}
-// The layout, as gbuffer generates it.
-{layout_wgsl}
+// The layout's texel and its pack and unpack, from the module gbuffer generates for it.
+import {module}::{{{name}, {pack}, {unpack}}};
 {helpers}
 // Creates the deferred G-buffer from a PbrInput: Bevy's quantities, packed as `{name}`.
 fn deferred_gbuffer_from_pbr_input(in: PbrInput) -> vec4<u32> {{
@@ -331,6 +338,7 @@ fn pbr_input_from_deferred_gbuffer(frag_coord: vec4<f32>, gbuffer: vec4<u32>) ->
 
 {DEFERRED_OUTPUT}",
         bits = layout.bits(),
+        module = symbols.module_path(),
         packed = packed.join(", "),
         channels = channels[..words].join(", "),
         flags = read(mapping, Quantity::Flags, "0u"),

@@ -1,4 +1,4 @@
-//! Any gbuffer layout of at most 128 bits in place of Bevy's own G-buffer, in Bevy 0.19's
+//! Any gbuffer layout of at most 128 bits in place of Bevy's own G-buffer, in Bevy 0.20's
 //! deferred renderer.
 //!
 //! ```ignore
@@ -22,14 +22,14 @@
 //!
 //! Bevy's deferred prepass writes its G-buffer, one `Rgba32Uint` texel, with
 //! `deferred_gbuffer_from_pbr_input`, and its lighting pass reads it back with
-//! `pbr_input_from_deferred_gbuffer`, both in the shader module `bevy_pbr::pbr_deferred_functions`.
-//! The plugin replaces that module's text with one generated from the layout
-//! ([`functions::deferred_functions_wgsl`]): the same functions, storing Bevy's quantities in the
-//! layout's fields through the layout's own `pack_`/`unpack_` WGSL, so the words are the Rust
-//! mirror's. The module carries the shader defs that what the layout holds needs
-//! ([`GBufferPlugin::shader_defs`]), which naga_oil gives the prepass and the lighting pass that
-//! import it; with anisotropy, two of Bevy's lighting functions are patched so that pixels
-//! without it shade as Bevy's forward renderer shades them.
+//! `pbr_input_from_deferred_gbuffer`, both in the WESL module `bevy_pbr::deferred::functions`
+//! (its screen-space reflections read the G-buffer through the same function). The plugin puts
+//! a module generated from the layout in that module's place ([`functions::deferred_functions_wesl`]):
+//! the same functions, storing Bevy's quantities in the layout's fields through the layout's
+//! own `pack_`/`unpack_` WGSL, so the words are the Rust mirror's. The module carries the shader
+//! defs that what the layout holds needs ([`GBufferPlugin::shader_defs`]), which Bevy's shader
+//! cache gives every shader that imports it; with anisotropy, two of Bevy's lighting functions
+//! are patched so that pixels without it shade as Bevy's forward renderer shades them.
 //!
 //! Which quantity a field holds is said by its name ([`Quantity::names`]: Bevy's own G-buffer's,
 //! and what it drops: `reflectance_color`, `diffuse_occlusion_color`, `anisotropy_strength` and
@@ -66,9 +66,6 @@ pub use quantity::{MappingError, Quantity};
 pub use ready::{readiness, settle, Readiness};
 pub use solve::{solve, BevyScene, Precision, Solution, SolveError};
 
-/// Where Bevy 0.19 keeps the module the plugin replaces.
-const BEVY_MODULE_PATH: &str = "embedded://bevy_pbr/deferred/pbr_deferred_functions.wgsl";
-
 /// Makes Bevy's deferred renderer store and read the layout `L` instead of its own G-buffer.
 /// Add it after `DefaultPlugins`, with `DefaultOpaqueRendererMethod::deferred()` (or deferred
 /// materials) and a camera with `DepthPrepass` and `DeferredPrepass`.
@@ -98,14 +95,10 @@ impl<L: GBufferLayout> GBufferPlugin<L> {
         quantity::map_fields(&L::layout(), &self.told)
     }
 
-    /// The module that replaces Bevy's `bevy_pbr::pbr_deferred_functions`, or why `L` cannot.
+    /// The module that replaces Bevy's `bevy_pbr::deferred::functions`, or why `L` cannot.
     pub fn deferred_functions(&self) -> Result<String, MappingError> {
         let mapping = self.mapping()?;
-        Ok(functions::deferred_functions_wgsl(
-            &L::layout(),
-            L::WGSL,
-            &mapping,
-        ))
+        Ok(functions::deferred_functions_wesl(&L::layout(), &mapping))
     }
 
     /// The shader defs the module gives every shader that imports it (Bevy's deferred prepass
@@ -136,12 +129,24 @@ impl<L: GBufferLayout + 'static> Plugin for GBufferPlugin<L> {
         let mapping = self
             .mapping()
             .unwrap_or_else(|error| panic!("GBufferPlugin: {error}"));
-        let source = functions::deferred_functions_wgsl(&L::layout(), L::WGSL, &mapping);
-        let mut module = Shader::from_wgsl(source, "gbuffer-bevy/pbr_deferred_functions.wgsl");
-        // naga_oil gives a module's defs to every shader that imports it.
+        // The layout's own WESL module, which the functions' module imports; that module holds
+        // it alive.
+        let layout_module = L::wesl_module();
+        let layout_module = app
+            .world_mut()
+            .resource_mut::<Assets<Shader>>()
+            .add(Shader::from_wesl(
+                layout_module.source,
+                functions::asset_path(&layout_module.path),
+            ));
+        let source = functions::deferred_functions_wesl(&L::layout(), &mapping);
+        // Bevy's own asset path, from which Bevy derives the module path its shaders import.
+        let mut module = Shader::from_wesl(source, functions::ASSET_PATH);
+        module.file_dependencies.push(layout_module);
+        // Bevy's shader cache gives a module's defs to every shader that imports it.
         module.shader_defs = functions::shader_defs(&mapping)
             .into_iter()
-            .map(|def| ShaderDefVal::Bool(def.to_string(), true))
+            .map(|def| ShaderDefVal::Bool(def.into(), true))
             .collect();
         let assets = app.world().resource::<AssetServer>();
         let patches = if functions::holds(&mapping, Quantity::AnisotropyStrength) {
@@ -153,7 +158,7 @@ impl<L: GBufferLayout + 'static> Plugin for GBufferPlugin<L> {
             Vec::new()
         };
         app.insert_resource(Replacement {
-            module: Some((assets.load::<Shader>(BEVY_MODULE_PATH), module)),
+            module: Some((assets.load::<Shader>(functions::ASSET_PATH), module)),
             patches,
         })
         .add_systems(Update, replace_bevy_shaders);

@@ -1,4 +1,4 @@
-//! Patches of Bevy 0.19.1's lighting modules, applied to their text once loaded.
+//! Patches of Bevy 0.20.1's lighting modules, applied to their text once loaded.
 //!
 //! Bevy's forward renderer specialises each material's pipeline: a material without
 //! anisotropy is shaded without STANDARD_MATERIAL_ANISOTROPY, by the isotropic lobe. Bevy's
@@ -26,18 +26,18 @@ pub struct Patch {
 /// The patches for a layout that holds anisotropy.
 pub const ISOTROPIC_WITHOUT_ANISOTROPY: [Patch; 2] = [
     Patch {
-        path: "embedded://bevy_pbr/render/pbr_lighting.wgsl",
+        path: "embedded://bevy_pbr/render/pbr_lighting.wesl",
         after: "    specular_intensity: f32,\n) -> vec3<f32> {\n    // Unpack.\n    let NdotV = (*input).layers[LAYER_BASE].NdotV;\n    let V = (*input).V;",
         insert: "\n    // gbuffer-bevy: without anisotropy, Bevy's isotropic lobe, as forward.\n    if ((*input).anisotropy == 0.0) {\n        return specular(input, derived_input, roughness, specular_intensity);\n    }",
     },
     Patch {
-        path: "embedded://bevy_pbr/render/pbr_functions.wgsl",
+        path: "embedded://bevy_pbr/render/pbr_functions.wesl",
         after: "fn bend_normal_for_anisotropy(lighting_input: ptr<function, lighting::LightingInput>) {",
         insert: "\n    // gbuffer-bevy: without anisotropy, the normal unbent, as forward.\n    if ((*lighting_input).anisotropy == 0.0) {\n        return;\n    }",
     },
 ];
 
-/// A patch that does not apply: Bevy's text is not the 0.19.1 text it was written for.
+/// A patch that does not apply: Bevy's text is not the 0.20.1 text it was written for.
 #[derive(Debug)]
 pub struct PatchError(&'static str);
 
@@ -45,7 +45,7 @@ impl fmt::Display for PatchError {
     fn fmt(&self, out: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             out,
-            "GBufferPlugin: {} is not Bevy 0.19.1's (the text the anisotropy patch follows is not \
+            "GBufferPlugin: {} is not Bevy 0.20.1's (the text the anisotropy patch follows is not \
              in it once)",
             self.0
         )
@@ -55,7 +55,7 @@ impl fmt::Display for PatchError {
 impl Patch {
     /// `shader` with the patch applied.
     pub fn apply(&self, shader: &Shader) -> Result<Shader, PatchError> {
-        let Source::Wgsl(source) = &shader.source else {
+        let Source::Wesl(source) = &shader.source else {
             return Err(PatchError(self.path));
         };
         if source.matches(self.after).count() != 1 {
@@ -63,7 +63,7 @@ impl Patch {
         }
         let patched = source.replacen(self.after, &format!("{}{}", self.after, self.insert), 1);
         let mut shader = shader.clone();
-        shader.source = Source::Wgsl(patched.into());
+        shader.source = Source::Wesl(patched.into());
         Ok(shader)
     }
 }
@@ -76,18 +76,18 @@ mod tests {
     fn a_patch_goes_after_its_text_once_or_names_the_module() {
         let patch = ISOTROPIC_WITHOUT_ANISOTROPY[1];
         let source = format!("fn a() {{}}\n{}\n    let N = 1;\n}}\n", patch.after);
-        let shader = Shader::from_wgsl(source, "test.wgsl");
-        let Source::Wgsl(patched) = patch.apply(&shader).unwrap().source else {
-            panic!("WGSL stays WGSL");
+        let shader = Shader::from_wesl(source, "test.wesl");
+        let Source::Wesl(patched) = patch.apply(&shader).unwrap().source else {
+            panic!("WESL stays WESL");
         };
         assert!(patched.contains(&format!("{}{}\n    let N = 1;", patch.after, patch.insert)));
         // Bevy's text changed (or repeated): the plugin says which module, not a silent no-op.
-        let other = Shader::from_wgsl("fn a() {}\n", "test.wgsl");
+        let other = Shader::from_wesl("fn a() {}\n", "test.wesl");
         let error = patch.apply(&other).unwrap_err().to_string();
         assert!(
-            error.contains("embedded://bevy_pbr/render/pbr_functions.wgsl is not Bevy 0.19.1's")
+            error.contains("embedded://bevy_pbr/render/pbr_functions.wesl is not Bevy 0.20.1's")
         );
-        let twice = Shader::from_wgsl(format!("{0}\n{0}\n", patch.after), "test.wgsl");
+        let twice = Shader::from_wesl(format!("{0}\n{0}\n", patch.after), "test.wesl");
         assert!(patch.apply(&twice).is_err());
     }
 }

@@ -46,6 +46,7 @@ pub fn readiness(app: &App) -> Result<Readiness, String> {
                 let label = match &pipeline.descriptor {
                     PipelineDescriptor::RenderPipelineDescriptor(render) => &render.label,
                     PipelineDescriptor::ComputePipelineDescriptor(compute) => &compute.label,
+                    PipelineDescriptor::MeshPipelineDescriptor(mesh) => &mesh.label,
                 };
                 return Err(format!("pipeline {label:?} failed to compile: {error}"));
             }

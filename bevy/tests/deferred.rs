@@ -12,7 +12,7 @@ use scene::{features, spheres};
 use gbuffer::engine_layouts::BevyDeferred;
 use gbuffer::glam::{Vec3, Vec4};
 use gbuffer::GBufferLayout;
-use gbuffer_bevy::{solve, GBufferPlugin, MappingError, Quantity};
+use gbuffer_bevy::{functions, solve, GBufferPlugin, MappingError, Quantity};
 
 /// Bevy's quantities with the normal in 2 x 16 bits and 8-bit metallic, reflectance and
 /// clearcoat; no occlusion, no clearcoat roughness (Bevy's defaults).
@@ -163,7 +163,7 @@ fn the_features_module_reads_what_bevys_g_buffer_drops() {
         "pbr.diffuse_occlusion = vec3(texel.diffuse_occlusion_color);",
         "pbr.clearcoat_N = normalize(texel.clearcoat_normal);",
         "pbr.anisotropy_B = normalize(cross(N, pbr.anisotropy_T));",
-        "if (texel.lightmapped != 0u && lights.ambient_light_affects_lightmapped_meshes == 0u) {",
+        "if (texel.lightmapped != 0u && (ambient_flags & affects) == 0u) {",
     ] {
         assert!(module.contains(line), "{line}");
     }
@@ -190,8 +190,29 @@ fn the_module_packs_with_the_layouts_own_functions() {
     let module = GBufferPlugin::<BevyDeferred>::new()
         .deferred_functions()
         .unwrap();
-    assert!(module.contains("#define_import_path bevy_pbr::pbr_deferred_functions"));
-    assert!(module.contains(BevyDeferred::WGSL));
+    // Bevy derives the module path its shaders import from the asset the module replaces.
+    let shader = bevy::shader::Shader::from_wesl(module.clone(), functions::ASSET_PATH);
+    assert_eq!(
+        shader.import_path,
+        bevy::shader::ShaderImport::Custom(functions::MODULE_PATH.to_string())
+    );
+    // ...and from its text what it imports: the layout's module among Bevy's own.
+    assert!(shader
+        .imports
+        .contains(&bevy::shader::ShaderImport::Custom("gbuffer::bevy_deferred".to_string())));
+    assert!(module.contains(
+        "import gbuffer::bevy_deferred::{BevyDeferred, pack_bevy_deferred, unpack_bevy_deferred};"
+    ));
+    // Bevy derives the layout module's path from the asset the plugin adds it at.
+    let layout_module = BevyDeferred::wesl_module();
+    let shader = bevy::shader::Shader::from_wesl(
+        layout_module.source,
+        functions::asset_path(&layout_module.path),
+    );
+    assert_eq!(
+        shader.import_path,
+        bevy::shader::ShaderImport::Custom("gbuffer::bevy_deferred".to_string())
+    );
     assert!(module.contains("let words = pack_bevy_deferred(texel);"));
     assert!(module.contains("texel.depth = in.frag_coord.z;"));
     assert!(module.contains("unpack_bevy_deferred(array<u32, 4>("));

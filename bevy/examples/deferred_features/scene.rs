@@ -126,7 +126,7 @@ impl Plugin for FeaturesScene {
             .resource_mut::<Assets<Shader>>()
             .insert(
                 &COLORED_OCCLUSION_SHADER,
-                Shader::from_wgsl(COLORED_OCCLUSION_WGSL, "features/colored_occlusion.wgsl"),
+                Shader::from_wesl(COLORED_OCCLUSION_WESL, "features/colored_occlusion.wesl"),
             )
             .expect("the shader's handle is free");
         app.add_plugins(MaterialPlugin::<
@@ -142,19 +142,19 @@ impl Plugin for FeaturesScene {
 }
 
 /// The shader of the coloured-occlusion material: Bevy's standard material with its diffuse
-/// occlusion coloured, forward and deferred, as Bevy's `extended_material` example writes one.
+/// occlusion coloured, forward and deferred, as Bevy's `extended_material` example writes one
+/// (in WESL, as Bevy 0.20's own shaders are).
 const COLORED_OCCLUSION_SHADER: Handle<Shader> =
     uuid_handle!("6b0f7e52-3c4a-4f31-9a57-2d6c1e0b8a41");
 
-const COLORED_OCCLUSION_WGSL: &str = r#"
-#import bevy_pbr::pbr_fragment::pbr_input_from_standard_material
-#ifdef PREPASS_PIPELINE
-#import bevy_pbr::{prepass_io::{VertexOutput, FragmentOutput}, pbr_deferred_functions::deferred_output}
-#else
-#import bevy_pbr::{forward_io::{VertexOutput, FragmentOutput}, pbr_functions::{apply_pbr_lighting, main_pass_post_lighting_processing}}
-#endif
+const COLORED_OCCLUSION_WESL: &str = r#"
+import bevy_pbr::render::pbr_fragment::pbr_input_from_standard_material;
+@if(PREPASS_PIPELINE)
+import bevy_pbr::{prepass::io::{VertexOutput, FragmentOutput}, deferred::functions::deferred_output};
+@else
+import bevy_pbr::render::{forward_io::{VertexOutput, FragmentOutput}, pbr_functions::{apply_pbr_lighting, main_pass_post_lighting_processing}};
 
-@group(#{MATERIAL_BIND_GROUP}) @binding(100) var<uniform> occlusion_color: vec4<f32>;
+@group(constants::MATERIAL_BIND_GROUP) @binding(100) var<uniform> occlusion_color: vec4<f32>;
 
 @fragment
 fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> FragmentOutput {
@@ -162,13 +162,14 @@ fn fragment(in: VertexOutput, @builtin(front_facing) is_front: bool) -> Fragment
     // Bands of the colour and white around the sphere.
     let band = 0.5 + 0.5 * sin(in.uv.x * 6.2831853 * 4.0);
     pbr_input.diffuse_occlusion = mix(occlusion_color.rgb, vec3(1.0), band * 0.6);
-#ifdef PREPASS_PIPELINE
+    @if(PREPASS_PIPELINE)
     let out = deferred_output(in, pbr_input);
-#else
+    @if(!PREPASS_PIPELINE)
     var out: FragmentOutput;
-    out.color = apply_pbr_lighting(pbr_input);
-    out.color = main_pass_post_lighting_processing(pbr_input, out.color);
-#endif
+    @if(!PREPASS_PIPELINE) {
+        out.color = apply_pbr_lighting(pbr_input);
+        out.color = main_pass_post_lighting_processing(pbr_input, out.color);
+    }
     return out;
 }
 "#;
