@@ -1,10 +1,11 @@
 //! Bevy alone, without gbuffer: its own deferred renderer drawing lit spheres headless, for a
 //! fault that is lavapipe's. Run with `LP_NATIVE_VECTOR_WIDTH=128 cargo run --example
 //! lavapipe_vector_width` on lavapipe (Mesa 25.0.7): the process aborts with a heap corruption
-//! (`malloc(): invalid next size (unsorted)` or `corrupted double-linked list`) in one of
-//! lavapipe's own threads, while it compiles pipelines; with llvmpipe's default vector width it
-//! renders and exits 0. Nothing here is gbuffer's, so the corruption is the driver's (see the
-//! README's "Frames on other machines").
+//! (`malloc(): invalid next size (unsorted)`, `corrupted double-linked list` or `corrupted size
+//! vs. prev_size`) or a segmentation fault in one of lavapipe's own threads, while it compiles
+//! pipelines, on Bevy 0.19.1 as on 0.20.1; with llvmpipe's default vector width it renders and
+//! exits 0. Nothing here is gbuffer's, so the corruption is the driver's (the guide's testing
+//! chapter, "Figures that depend on the machine").
 
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::RenderTarget;

@@ -132,13 +132,13 @@ impl<L: GBufferLayout + 'static> Plugin for GBufferPlugin<L> {
         // The layout's own WESL module, which the functions' module imports; that module holds
         // it alive.
         let layout_module = L::wesl_module();
-        let layout_module = app
-            .world_mut()
-            .resource_mut::<Assets<Shader>>()
-            .add(Shader::from_wesl(
-                layout_module.source,
-                functions::asset_path(&layout_module.path),
-            ));
+        let layout_module =
+            app.world_mut()
+                .resource_mut::<Assets<Shader>>()
+                .add(Shader::from_wesl(
+                    layout_module.source,
+                    functions::asset_path(&layout_module.path),
+                ));
         let source = functions::deferred_functions_wesl(&L::layout(), &mapping);
         // Bevy's own asset path, from which Bevy derives the module path its shaders import.
         let mut module = Shader::from_wesl(source, functions::ASSET_PATH);

@@ -197,9 +197,9 @@ fn the_module_packs_with_the_layouts_own_functions() {
         bevy::shader::ShaderImport::Custom(functions::MODULE_PATH.to_string())
     );
     // ...and from its text what it imports: the layout's module among Bevy's own.
-    assert!(shader
-        .imports
-        .contains(&bevy::shader::ShaderImport::Custom("gbuffer::bevy_deferred".to_string())));
+    assert!(shader.imports.contains(&bevy::shader::ShaderImport::Custom(
+        "gbuffer::bevy_deferred".to_string()
+    )));
     assert!(module.contains(
         "import gbuffer::bevy_deferred::{BevyDeferred, pack_bevy_deferred, unpack_bevy_deferred};"
     ));
