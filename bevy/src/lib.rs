@@ -29,7 +29,8 @@
 //! own `pack_`/`unpack_` WGSL, so the words are the Rust mirror's. The module carries the shader
 //! defs that what the layout holds needs ([`GBufferPlugin::shader_defs`]), which Bevy's shader
 //! cache gives every shader that imports it; with anisotropy, two of Bevy's lighting functions
-//! are patched so that pixels without it shade as Bevy's forward renderer shades them.
+//! are patched so that pixels without it shade as Bevy's forward renderer shades them. A shader
+//! that reads Bevy's G-buffer other than through the decode stops the app ([`readers`]).
 //!
 //! Which quantity a field holds is said by its name ([`Quantity::names`]: Bevy's own G-buffer's,
 //! and what it drops: `reflectance_color`, `diffuse_occlusion_color`, `anisotropy_strength` and
@@ -50,19 +51,22 @@ struct ReadmeDoctests;
 pub mod functions;
 mod patch;
 pub mod quantity;
+pub mod readers;
 pub mod ready;
 pub mod solve;
 
 use std::marker::PhantomData;
 
 use bevy::app::{App, Plugin, Update};
-use bevy::asset::{AssetServer, Assets, Handle};
-use bevy::ecs::prelude::{ResMut, Resource};
-use bevy::shader::{Shader, ShaderDefVal};
+use bevy::asset::{AssetEvent, AssetServer, Assets, Handle};
+use bevy::ecs::message::MessageReader;
+use bevy::ecs::prelude::{Res, ResMut, Resource};
+use bevy::shader::{Shader, ShaderDefVal, Source};
 use gbuffer::GBufferLayout;
 use patch::Patch;
 
 pub use quantity::{MappingError, Quantity};
+pub use readers::{RawRead, Reading};
 pub use ready::{readiness, settle, Readiness};
 pub use solve::{solve, BevyScene, Precision, Solution, SolveError};
 
@@ -161,7 +165,8 @@ impl<L: GBufferLayout + 'static> Plugin for GBufferPlugin<L> {
             module: Some((assets.load::<Shader>(functions::ASSET_PATH), module)),
             patches,
         })
-        .add_systems(Update, replace_bevy_shaders);
+        .init_resource::<LayoutReaders>()
+        .add_systems(Update, (replace_bevy_shaders, check_g_buffer_readers));
     }
 }
 
@@ -186,6 +191,49 @@ fn replace_bevy_shaders(mut replacement: ResMut<Replacement>, mut shaders: ResMu
         }
     }
     replacement.patches = waiting;
+}
+
+/// The shaders that read Bevy's G-buffer texture, all through the layout's decode: their asset
+/// paths, in the order they loaded.
+#[derive(Resource, Default)]
+struct LayoutReaders(Vec<String>);
+
+/// Checks each shader as it loads or changes: one that reads Bevy's G-buffer other than through
+/// `pbr_input_from_deferred_gbuffer` stops the app, naming the module and the line
+/// ([`readers::reading`]); one that reads it through the decode is recorded.
+fn check_g_buffer_readers(
+    mut events: MessageReader<AssetEvent<Shader>>,
+    shaders: Res<Assets<Shader>>,
+    mut readers: ResMut<LayoutReaders>,
+) {
+    for event in events.read() {
+        let (AssetEvent::Added { id } | AssetEvent::Modified { id }) = event else {
+            continue;
+        };
+
+        let Some(shader) = shaders.get(*id) else {
+            continue;
+        };
+        let (Source::Wgsl(source) | Source::Wesl(source)) = &shader.source else {
+            continue;
+        };
+        match readers::reading(&shader.path, source) {
+            Err(raw) => panic!("{raw}"),
+            Ok(Reading::Decodes) if !readers.0.contains(&shader.path) => {
+                readers.0.push(shader.path.clone())
+            }
+            Ok(_) => {}
+        }
+    }
+}
+
+/// The shaders loaded so far that read Bevy's G-buffer texture, each through the layout's decode
+/// (the plugin stops the app at any other): their asset paths. In Bevy 0.20.1, its deferred
+/// lighting pass and its screen-space reflections.
+pub fn layout_readers(app: &App) -> Vec<String> {
+    app.world()
+        .get_resource::<LayoutReaders>()
+        .map_or_else(Vec::new, |readers| readers.0.clone())
 }
 
 /// Whether the layout's module has taken Bevy's place and Bevy's lighting modules are patched

@@ -92,6 +92,39 @@ fn a_layout_the_plugin_cannot_map_is_named() {
     assert!(error.to_string().contains("192 bits"), "{error}");
 }
 
+/// A shader that loads Bevy's G-buffer and reads its words as Bevy's own bits (its emissive,
+/// Bevy's second word in RGB9E5), not through the decode the plugin replaces.
+const RAW_READER: &str = "
+import bevy_pbr::render::{mesh_view_bindings::deferred_prepass_texture, rgb9e5};
+
+@fragment
+fn fragment(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let words = textureLoad(deferred_prepass_texture, vec2<i32>(position.xy), 0);
+    return vec4(rgb9e5::rgb9e5_to_vec3_(words.g), 1.0);
+}
+";
+
+#[test]
+#[should_panic(
+    expected = "GBufferPlugin: raw_reader.wesl, line 7, reads Bevy's G-buffer as Bevy's own bits"
+)]
+fn a_shader_that_reads_bevys_words_stops_the_app() {
+    use bevy::asset::{AssetApp, AssetPlugin, Assets};
+    use bevy::shader::Shader;
+    let mut app = App::new();
+    app.add_plugins((bevy::MinimalPlugins, AssetPlugin::default()))
+        .init_asset::<Shader>()
+        .add_plugins(GBufferPlugin::<FineNormals>::new());
+    // Held, as a pipeline holds its shader: an asset whose last handle drops is removed.
+    let _reader = app
+        .world_mut()
+        .resource_mut::<Assets<Shader>>()
+        .add(Shader::from_wesl(RAW_READER, "raw_reader.wesl"));
+    for _ in 0..3 {
+        app.update();
+    }
+}
+
 /// Anisotropy's strength without its direction.
 #[allow(dead_code)]
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]

@@ -68,6 +68,21 @@ pub fn render(
     eprintln!("settled after {updates} updates");
     // The frame is the layout's only if its module took Bevy's place before it.
     assert_eq!(gbuffer_bevy::is_replaced(&app), replacing);
+    // Bevy 0.20.1's readers of its G-buffer texture read the layout, through its decode: its
+    // deferred lighting pass and its screen-space reflections (the plugin stops the app at a
+    // reader that does not).
+    if replacing {
+        let readers = gbuffer_bevy::layout_readers(&app);
+        for reader in [
+            "embedded://bevy_pbr/deferred/deferred_lighting.wesl",
+            "embedded://bevy_pbr/ssr.wesl",
+        ] {
+            assert!(
+                readers.iter().any(|read| read == reader),
+                "{reader} is not among the layout's readers, {readers:?}"
+            );
+        }
+    }
     let pixels = capture(&mut app);
     for _ in 0..STEADY {
         app.update();
