@@ -8,10 +8,10 @@
 //! `PbrInput` as Bevy does, with Bevy's defaults for what the layout does not store.
 //! `deferred_output` is Bevy's.
 //!
-//! The layout's WGSL is a WESL module of its own (`GBufferLayout::wesl_module`, `gbuffer::<snake>`),
-//! which this one imports as Bevy's modules import each other. WESL is WGSL with imports and
-//! conditional translation (`@if(DEF)` on a declaration or a statement, where naga_oil had
-//! `#ifdef`).
+//! The layout's WGSL is a WESL module of its own (`GBufferLayout::wesl_module`,
+//! `gbuffer::<snake>`), which this one imports as Bevy's modules import each other. WESL is WGSL
+//! with imports and conditional translation (`@if(DEF)` on a declaration or a statement, where
+//! naga_oil had `#ifdef`).
 
 use std::fmt::Write as _;
 

@@ -24,9 +24,10 @@
 //! `deferred_gbuffer_from_pbr_input`, and its lighting pass reads it back with
 //! `pbr_input_from_deferred_gbuffer`, both in the WESL module `bevy_pbr::deferred::functions`
 //! (its screen-space reflections read the G-buffer through the same function). The plugin puts
-//! a module generated from the layout in that module's place ([`functions::deferred_functions_wesl`]):
-//! the same functions, storing Bevy's quantities in the layout's fields through the layout's
-//! own `pack_`/`unpack_` WGSL, so the words are the Rust mirror's. The module carries the shader
+//! a module generated from the layout in that module's place
+//! ([`functions::deferred_functions_wesl`]): the same functions, storing Bevy's quantities in
+//! the layout's fields through the layout's own `pack_`/`unpack_` (its WESL module, which the
+//! generated one imports), so the words are the Rust mirror's. The module carries the shader
 //! defs that what the layout holds needs ([`GBufferPlugin::shader_defs`]), which Bevy's shader
 //! cache gives every shader that imports it; with anisotropy, two of Bevy's lighting functions
 //! are patched so that pixels without it shade as Bevy's forward renderer shades them. A shader
@@ -210,7 +211,6 @@ fn check_g_buffer_readers(
         let (AssetEvent::Added { id } | AssetEvent::Modified { id }) = event else {
             continue;
         };
-
         let Some(shader) = shaders.get(*id) else {
             continue;
         };
