@@ -20,12 +20,10 @@ use gbuffer::layout::Layout;
 use crate::quantity::Quantity;
 
 /// The WESL module path the module replaces (Bevy's deferred lighting pass, its prepass's
-/// `deferred_output` and its screen-space reflections import from it).
+/// `deferred_output` and its screen-space reflections import from it). Bevy 0.20 loads it from
+/// [`asset_path`] of it, `embedded://bevy_pbr/deferred/functions.wesl`, where the plugin's
+/// module takes its place.
 pub const MODULE_PATH: &str = "bevy_pbr::deferred::functions";
-
-/// The asset Bevy 0.20 loads that module from: the plugin's module takes its place, and from
-/// this path Bevy derives the module path above.
-pub const ASSET_PATH: &str = "embedded://bevy_pbr/deferred/functions.wesl";
 
 /// Bevy's imports, as its own module has them (`package` is `bevy_pbr`), and the ambient
 /// light's flags a lightmapped layout reads.
@@ -227,8 +225,8 @@ fn read(mapping: &[(String, Quantity)], quantity: Quantity, default: &str) -> St
     }
 }
 
-/// The asset path under which Bevy derives the module path `module_path` (`gbuffer::<snake>`):
-/// `embedded://gbuffer/<snake>.wesl`.
+/// The asset path from which Bevy derives the module path `module_path` (`gbuffer::<snake>`):
+/// `embedded://gbuffer/<snake>.wesl`; an embedded asset's path, as Bevy's own modules have.
 pub fn asset_path(module_path: &str) -> String {
     format!("embedded://{}.wesl", module_path.replace("::", "/"))
 }

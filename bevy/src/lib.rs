@@ -146,7 +146,8 @@ impl<L: GBufferLayout + 'static> Plugin for GBufferPlugin<L> {
                 ));
         let source = functions::deferred_functions_wesl(&L::layout(), &mapping);
         // Bevy's own asset path, from which Bevy derives the module path its shaders import.
-        let mut module = Shader::from_wesl(source, functions::ASSET_PATH);
+        let bevy_module = functions::asset_path(functions::MODULE_PATH);
+        let mut module = Shader::from_wesl(source, bevy_module.clone());
         module.file_dependencies.push(layout_module);
         // Bevy's shader cache gives a module's defs to every shader that imports it.
         module.shader_defs = functions::shader_defs(&mapping)
@@ -163,7 +164,7 @@ impl<L: GBufferLayout + 'static> Plugin for GBufferPlugin<L> {
             Vec::new()
         };
         app.insert_resource(Replacement {
-            module: Some((assets.load::<Shader>(functions::ASSET_PATH), module)),
+            module: Some((assets.load::<Shader>(bevy_module), module)),
             patches,
         })
         .init_resource::<LayoutReaders>()

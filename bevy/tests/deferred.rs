@@ -223,8 +223,11 @@ fn the_module_packs_with_the_layouts_own_functions() {
     let module = GBufferPlugin::<BevyDeferred>::new()
         .deferred_functions()
         .unwrap();
-    // Bevy derives the module path its shaders import from the asset the module replaces.
-    let shader = bevy::shader::Shader::from_wesl(module.clone(), functions::ASSET_PATH);
+    // Bevy derives the module path its shaders import from the asset the module replaces, Bevy's
+    // own `functions.wesl`.
+    let bevy_module = functions::asset_path(functions::MODULE_PATH);
+    assert_eq!(bevy_module, "embedded://bevy_pbr/deferred/functions.wesl");
+    let shader = bevy::shader::Shader::from_wesl(module.clone(), bevy_module);
     assert_eq!(
         shader.import_path,
         bevy::shader::ShaderImport::Custom(functions::MODULE_PATH.to_string())
