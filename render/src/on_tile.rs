@@ -63,6 +63,13 @@ pub enum Path {
     /// Vulkan: one render pass, the packed words in transient `RGBA32UI` attachments read as
     /// input attachments.
     Subpass,
+    /// Vulkan: the subpass path's attachments and shaders in one dynamic rendering, without
+    /// render pass or framebuffer objects (`VK_KHR_dynamic_rendering_local_read`), with a
+    /// by-region barrier before each draw that reads what earlier draws wrote.
+    LocalRead,
+    /// Vulkan: the local-read path with pipelines that read the attachments in rasterization
+    /// order (`VK_EXT_rasterization_order_attachment_access`): no barrier between the draws.
+    LocalReadOrdered,
     /// GLES or Vulkan: the G-buffer stored to textures and sampled by a second pass.
     TwoPass,
 }
@@ -72,6 +79,8 @@ impl Named for Path {
         Path::FetchNative,
         Path::FetchPacked,
         Path::Subpass,
+        Path::LocalRead,
+        Path::LocalReadOrdered,
         Path::TwoPass,
     ];
 
@@ -80,6 +89,8 @@ impl Named for Path {
             Path::FetchNative => "fetch-native",
             Path::FetchPacked => "fetch-packed",
             Path::Subpass => "subpass",
+            Path::LocalRead => "local-read",
+            Path::LocalReadOrdered => "local-read-ordered",
             Path::TwoPass => "two-pass",
         }
     }
@@ -91,7 +102,12 @@ impl Backend {
         match self {
             Backend::Wgpu => &[],
             Backend::Gles => &[Path::FetchNative, Path::FetchPacked, Path::TwoPass],
-            Backend::Vulkan => &[Path::Subpass, Path::TwoPass],
+            Backend::Vulkan => &[
+                Path::Subpass,
+                Path::LocalRead,
+                Path::LocalReadOrdered,
+                Path::TwoPass,
+            ],
         }
     }
 }

@@ -30,6 +30,9 @@ pub enum Call {
         /// The attachments, with how each starts.
         attachments: Vec<(Attachment, Load)>,
     },
+    /// A barrier inside the pass: the draws after it read what the draws before it wrote
+    /// (Vulkan's by-region barrier between draws).
+    Barrier,
     /// A draw with a program (pipeline) of this name.
     Draw {
         /// The program's name.

@@ -4,6 +4,7 @@
 //! only the output; the G-buffer's words agree across backends; bad configurations are named.
 
 use gbuffer_core::Named;
+use gbuffer_gpu::vulkan::OptionalExtensions;
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
 use gbuffer_render::image::{compare, is_blank};
@@ -66,7 +67,12 @@ fn every_path(layout: PackedLayout) -> Vec<(String, Frame, Recording)> {
             .unwrap_or_else(|error| panic!("gles {}: {error}", path.name()));
         frames.push((format!("gles {}", path.name()), frame, recording));
     }
-    for path in [Path::Subpass, Path::TwoPass] {
+    for path in [
+        Path::Subpass,
+        Path::LocalRead,
+        Path::LocalReadOrdered,
+        Path::TwoPass,
+    ] {
         let (frame, recording) = vulkan
             .render(&tile(layout, path))
             .unwrap_or_else(|error| panic!("vulkan {}: {error}", path.name()));
@@ -165,6 +171,100 @@ fn the_fused_paths_keep_the_gbuffer_in_one_pass_and_store_only_the_output() {
         assert_eq!(count("lighting"), 1, "{name}: {draws:?}");
         assert_eq!(count("resolve"), 1, "{name}: {draws:?}");
     }
+}
+
+/// The draws after each barrier of a recording, in order: what each barrier guards.
+fn draws_after_barriers(recording: &Recording) -> Vec<&str> {
+    let mut guarded = Vec::new();
+    let mut barrier = false;
+    for call in &recording.calls {
+        match call {
+            Call::Barrier => barrier = true,
+            Call::Draw { program } if barrier => {
+                guarded.push(program.as_str());
+                barrier = false;
+            }
+            _ => {}
+        }
+    }
+    guarded
+}
+
+#[test]
+fn the_local_read_paths_draw_the_subpass_frame_bit_for_bit() {
+    let Some(vulkan) = vulkan() else {
+        return;
+    };
+    for layout in [PackedLayout::MobileMetallic, PackedLayout::FutureMetallic] {
+        let render = |path: Path| {
+            vulkan
+                .render(&tile(layout, path))
+                .unwrap_or_else(|error| panic!("{} {}: {error}", layout.name(), path.name()))
+        };
+        let (subpass, subpass_calls) = render(Path::Subpass);
+        let (local_read, local_read_calls) = render(Path::LocalRead);
+        let (ordered, ordered_calls) = render(Path::LocalReadOrdered);
+        for (name, frame) in [
+            ("local-read", &local_read),
+            ("local-read-ordered", &ordered),
+        ] {
+            let differing = frame
+                .pixels
+                .iter()
+                .zip(&subpass.pixels)
+                .filter(|(a, b)| a != b)
+                .count();
+            assert_eq!(
+                differing,
+                0,
+                "{} {name}: {differing} pixels differ from the subpass frame",
+                layout.name()
+            );
+        }
+        // A barrier before every draw that reads what earlier draws wrote (each decal, the
+        // lighting, the resolve), as in the subpass; none at all in rasterization order.
+        let mut guarded = vec!["decal"; DECALS.len()];
+        guarded.extend(["lighting", "resolve"]);
+        assert_eq!(draws_after_barriers(&subpass_calls), guarded);
+        assert_eq!(draws_after_barriers(&local_read_calls), guarded);
+        assert!(
+            !ordered_calls.calls.contains(&Call::Barrier),
+            "{}: {ordered_calls:#?}",
+            layout.name()
+        );
+        for recording in [&local_read_calls, &ordered_calls] {
+            assert_eq!(recording.passes(), 1);
+            assert_eq!(recording.stored(), ["output"]);
+            let traffic = recording.traffic(WIDTH, HEIGHT);
+            assert_eq!(traffic.bandwidth_units(WIDTH, HEIGHT), 1.0);
+        }
+    }
+}
+
+#[test]
+fn a_device_without_local_read_refuses_its_paths_naming_what_it_lacks() {
+    let Some(device) = or_skip(
+        "Vulkan",
+        gbuffer_gpu::vulkan::Vulkan::with(OptionalExtensions::None),
+    ) else {
+        return;
+    };
+    let vulkan = VulkanRenderer::on(device, &quiet).unwrap_or_else(|error| panic!("{error}"));
+    for path in [Path::LocalRead, Path::LocalReadOrdered] {
+        let error = vulkan
+            .render(&tile(PackedLayout::MobileMetallic, path))
+            .expect_err("an error");
+        assert!(
+            error.contains(&format!("--path {}", path.name()))
+                && error.contains("needs dynamic rendering with local read")
+                && error.contains("opened without its optional extensions"),
+            "{error}"
+        );
+    }
+    // The other paths draw as before.
+    vulkan
+        .render(&tile(PackedLayout::MobileMetallic, Path::Subpass))
+        .unwrap_or_else(|error| panic!("{error}"));
 }
 
 #[test]

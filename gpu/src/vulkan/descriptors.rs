@@ -119,9 +119,10 @@ impl Vulkan {
 pub enum Resource {
     /// An image view read as an input attachment, in `SHADER_READ_ONLY_OPTIMAL`.
     InputAttachment(vk::ImageView),
-    /// An image view read as an input attachment by the subpass that also writes it (a
-    /// feedback loop), in `GENERAL`.
-    FeedbackAttachment(vk::ImageView),
+    /// An image view read as an input attachment by the draws that also write it (a feedback
+    /// loop), in this layout: `GENERAL` in a subpass, `RENDERING_LOCAL_READ_KHR` in a dynamic
+    /// rendering.
+    FeedbackAttachment(vk::ImageView, vk::ImageLayout),
     /// An image view sampled with a sampler, in `SHADER_READ_ONLY_OPTIMAL`.
     SampledImage(vk::ImageView, vk::Sampler),
     /// A storage buffer.
@@ -132,7 +133,7 @@ impl Resource {
     /// Its descriptor type.
     pub fn descriptor_type(&self) -> vk::DescriptorType {
         match self {
-            Resource::InputAttachment(_) | Resource::FeedbackAttachment(_) => {
+            Resource::InputAttachment(_) | Resource::FeedbackAttachment(..) => {
                 vk::DescriptorType::INPUT_ATTACHMENT
             }
             Resource::SampledImage(..) => vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
@@ -148,9 +149,7 @@ impl Resource {
                 vk::Sampler::null(),
                 vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
             ),
-            Resource::FeedbackAttachment(view) => {
-                (view, vk::Sampler::null(), vk::ImageLayout::GENERAL)
-            }
+            Resource::FeedbackAttachment(view, layout) => (view, vk::Sampler::null(), layout),
             Resource::SampledImage(view, sampler) => {
                 (view, sampler, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)
             }

@@ -8,12 +8,14 @@
 //!
 //! The device is split along its ideas: opening it and submitting work (here), memory and
 //! images (`memory.rs`), host-visible buffers (`buffers.rs`), render passes and framebuffers
-//! (`render_passes.rs`), descriptors (`descriptors.rs`), pipelines (`pipelines.rs`) and
-//! barriers (`barriers.rs`).
+//! (`render_passes.rs`), drawing without them (`local_read.rs`: dynamic rendering with local
+//! read), descriptors (`descriptors.rs`), pipelines (`pipelines.rs`) and barriers
+//! (`barriers.rs`).
 
 mod barriers;
 mod buffers;
 mod descriptors;
+mod local_read;
 mod memory;
 mod pipelines;
 mod render_passes;
@@ -21,8 +23,9 @@ mod render_passes;
 pub use barriers::{feedback_barrier, host_read_barrier, Access, ImageTransition};
 pub use buffers::StorageBuffer;
 pub use descriptors::Resource;
+pub use local_read::{LocalRead, OptionalExtensions};
 pub use memory::AttachmentMemory;
-pub use pipelines::GraphicsPipeline;
+pub use pipelines::{DrawsIn, GraphicsPipeline, RenderingAttachments};
 pub use render_passes::Subpass;
 
 use std::cell::RefCell;
@@ -48,20 +51,40 @@ pub struct Vulkan {
     command_pool: vk::CommandPool,
     memory_types: Vec<vk::MemoryType>,
     name: String,
+    /// Dynamic rendering with local read, or why the device was opened without it.
+    local_read: Result<LocalRead, String>,
     created: RefCell<Vec<Created>>,
     // Dropped last: it holds the loader the other handles' functions come from.
     _entry: ash::Entry,
 }
 
 impl Vulkan {
-    /// Opens the first device with a graphics queue and fragment-shader stores. The error says
+    /// Opens the first device with a graphics queue and fragment-shader stores, with every
+    /// optional extension it offers enabled ([`OptionalExtensions::Offered`]). The error says
     /// what was missing (the loader, a device, a feature).
     pub fn new() -> Result<Vulkan, String> {
+        Self::with(OptionalExtensions::Offered)
+    }
+
+    /// Opens the first device with a graphics queue and fragment-shader stores, with the
+    /// optional extensions `optional` asks for where the device offers them.
+    pub fn with(optional: OptionalExtensions) -> Result<Vulkan, String> {
         // SAFETY: loading libvulkan runs its initialisers; it is the system's loader.
         let entry = unsafe { ash::Entry::load() }.map_err(|error| {
             format!("cannot load the Vulkan loader ({error}): install Debian's libvulkan1 and mesa-vulkan-drivers")
         })?;
-        let application = vk::ApplicationInfo::default().api_version(vk::API_VERSION_1_1);
+        // Vulkan 1.3 where the loader has it (dynamic rendering is core there), 1.1 otherwise.
+        // SAFETY: a query of the loader.
+        let loader_version = unsafe { entry.try_enumerate_instance_version() }
+            .ok()
+            .flatten()
+            .unwrap_or(vk::API_VERSION_1_0);
+        let api_version = if loader_version >= vk::API_VERSION_1_3 {
+            vk::API_VERSION_1_3
+        } else {
+            vk::API_VERSION_1_1
+        };
+        let application = vk::ApplicationInfo::default().api_version(api_version);
         // SAFETY: a valid create info without layers or extensions.
         let instance = unsafe {
             entry.create_instance(
@@ -70,8 +93,8 @@ impl Vulkan {
             )
         }
         .map_err(|error| format!("vkCreateInstance: {error}"))?;
-        match Self::open_device(&instance) {
-            Ok((physical_device, device, queue_family, name)) => {
+        match Self::open_device(&instance, api_version, optional) {
+            Ok((physical_device, device, queue_family, name, local_read)) => {
                 // SAFETY: the physical device and device are alive; the create infos are valid.
                 unsafe {
                     let properties = instance.get_physical_device_properties(physical_device);
@@ -91,6 +114,7 @@ impl Vulkan {
                         command_pool,
                         memory_types: memory.memory_types_as_slice().to_vec(),
                         name,
+                        local_read,
                         created: RefCell::new(Vec::new()),
                         _entry: entry,
                     })
@@ -105,10 +129,23 @@ impl Vulkan {
     }
 
     /// The first device with a graphics queue that can store from fragment shaders: the
-    /// physical device, the logical device, its queue family and a description.
+    /// physical device, the logical device, its queue family, a description and dynamic
+    /// rendering with local read (or why not).
+    #[allow(clippy::type_complexity)]
     fn open_device(
         instance: &ash::Instance,
-    ) -> Result<(vk::PhysicalDevice, ash::Device, u32, String), String> {
+        api_version: u32,
+        optional: OptionalExtensions,
+    ) -> Result<
+        (
+            vk::PhysicalDevice,
+            ash::Device,
+            u32,
+            String,
+            Result<LocalRead, String>,
+        ),
+        String,
+    > {
         // SAFETY: the instance is alive.
         let physical_devices = unsafe { instance.enumerate_physical_devices() }
             .map_err(|error| format!("vkEnumeratePhysicalDevices: {error}"))?;
@@ -150,18 +187,37 @@ impl Vulkan {
                 .queue_family_index(family as u32)
                 .queue_priorities(&priorities)];
             let enabled = vk::PhysicalDeviceFeatures::default().fragment_stores_and_atomics(true);
-            // SAFETY: the queue family exists and the feature is supported.
+            let offered = local_read::Offered::query(
+                instance,
+                physical_device,
+                api_version.min(properties.api_version),
+                optional,
+            );
+            let mut chain = offered.features();
+            let extensions = offered.extension_names();
+            // SAFETY: the queue family exists; the features and extensions are the device's own.
             let device = unsafe {
                 instance.create_device(
                     physical_device,
-                    &vk::DeviceCreateInfo::default()
-                        .queue_create_infos(&queues)
-                        .enabled_features(&enabled),
+                    &chain
+                        .extend(
+                            vk::DeviceCreateInfo::default()
+                                .queue_create_infos(&queues)
+                                .enabled_features(&enabled),
+                        )
+                        .enabled_extension_names(&extensions),
                     None,
                 )
             }
             .map_err(|error| format!("vkCreateDevice on {name}: {error}"))?;
-            return Ok((physical_device, device, family as u32, description));
+            let local_read = offered.enabled(instance, &device);
+            return Ok((
+                physical_device,
+                device,
+                family as u32,
+                description,
+                local_read,
+            ));
         }
         Err(format!(
             "no Vulkan device has a graphics queue and fragmentStoresAndAtomics (seen: {})",
@@ -172,6 +228,12 @@ impl Vulkan {
     /// The device's name, API version and driver version.
     pub fn describe(&self) -> &str {
         &self.name
+    }
+
+    /// Dynamic rendering with local read as the device was opened with it, or why it was not
+    /// (the device's Vulkan version, a missing extension or feature, or not asked for).
+    pub fn local_read(&self) -> Result<&LocalRead, &str> {
+        self.local_read.as_ref().map_err(String::as_str)
     }
 
     /// The object a `vkCreate*` call (`call`) made, kept to be destroyed by `destroy` at

@@ -5,12 +5,41 @@ use ash::Device;
 
 use super::Vulkan;
 
+/// Where a pipeline draws.
+#[derive(Clone, Copy)]
+pub enum DrawsIn<'a> {
+    /// A subpass (its index) of a render pass object.
+    Subpass(vk::RenderPass, u32),
+    /// A dynamic rendering over these attachments, without a render pass object.
+    Rendering(&'a RenderingAttachments),
+}
+
+/// The attachments of a dynamic rendering, as a pipeline that draws in it must know them, and
+/// how its shaders address them: what `VkPipelineRenderingCreateInfo`,
+/// `VkRenderingAttachmentLocationInfoKHR` and `VkRenderingInputAttachmentIndexInfoKHR` say
+/// at pipeline creation, and the host sets again while drawing
+/// (`vkCmdSetRenderingAttachmentLocationsKHR`, `vkCmdSetRenderingInputAttachmentIndicesKHR`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RenderingAttachments {
+    /// The colour attachments' formats, in `VkRenderingInfo::pColorAttachments` order.
+    pub colour_formats: Vec<vk::Format>,
+    /// The depth attachment's format.
+    pub depth_format: vk::Format,
+    /// Each colour attachment's fragment output `location`.
+    pub locations: Vec<u32>,
+    /// Each colour attachment's `input_attachment_index`, or `vk::ATTACHMENT_UNUSED` for one
+    /// no shader reads.
+    pub input_indices: Vec<u32>,
+    /// Whether pipelines read the attachments in rasterization order
+    /// (`RASTERIZATION_ORDER_ATTACHMENT_ACCESS_EXT`): draws that read what earlier draws wrote
+    /// need no barrier between them.
+    pub rasterization_order: bool,
+}
+
 /// What a graphics pipeline is made of, for [`Vulkan::graphics_pipeline`].
 pub struct GraphicsPipeline<'a> {
-    /// The render pass it draws in.
-    pub render_pass: vk::RenderPass,
-    /// Its subpass there.
-    pub subpass: u32,
+    /// Where it draws.
+    pub draws_in: DrawsIn<'a>,
     /// Its layout.
     pub layout: vk::PipelineLayout,
     /// The vertex and fragment modules.
@@ -91,8 +120,7 @@ impl Vulkan {
         size: (u32, u32),
     ) -> Result<vk::Pipeline, String> {
         self.graphics_pipeline(&GraphicsPipeline {
-            render_pass,
-            subpass,
+            draws_in: DrawsIn::Subpass(render_pass, subpass),
             layout,
             shaders: (vertex, fragment),
             vertex_entry: c"main",
@@ -104,7 +132,8 @@ impl Vulkan {
     }
 
     /// A graphics pipeline as `description` says: triangle lists, no culling, no blending, one
-    /// sample, a viewport and scissor of its size.
+    /// sample, a viewport and scissor of its size; in a dynamic rendering, with its attachments'
+    /// formats, locations and input attachment indices chained to the create info.
     pub fn graphics_pipeline(
         &self,
         description: &GraphicsPipeline,
@@ -160,8 +189,30 @@ impl Vulkan {
                 })
             })
             .collect();
-        let blend =
+        let mut blend =
             vk::PipelineColorBlendStateCreateInfo::default().attachments(&blend_attachments);
+        let rendering = match description.draws_in {
+            DrawsIn::Subpass(..) => None,
+            DrawsIn::Rendering(attachments) => Some(attachments),
+        };
+        if rendering.is_some_and(|attachments| attachments.rasterization_order) {
+            blend = blend.flags(
+                vk::PipelineColorBlendStateCreateFlags::RASTERIZATION_ORDER_ATTACHMENT_ACCESS_EXT,
+            );
+        }
+        let mut formats = rendering.map(|attachments| {
+            vk::PipelineRenderingCreateInfo::default()
+                .color_attachment_formats(&attachments.colour_formats)
+                .depth_attachment_format(attachments.depth_format)
+        });
+        let mut locations = rendering.map(|attachments| {
+            vk::RenderingAttachmentLocationInfoKHR::default()
+                .color_attachment_locations(&attachments.locations)
+        });
+        let mut input_indices = rendering.map(|attachments| {
+            vk::RenderingInputAttachmentIndexInfoKHR::default()
+                .color_attachment_input_indices(&attachments.input_indices)
+        });
         let depth_state = description.depth.map(|(write, compare)| {
             vk::PipelineDepthStencilStateCreateInfo::default()
                 .depth_test_enable(true)
@@ -176,13 +227,23 @@ impl Vulkan {
             .rasterization_state(&rasterization)
             .multisample_state(&multisample)
             .color_blend_state(&blend)
-            .layout(description.layout)
-            .render_pass(description.render_pass)
-            .subpass(description.subpass);
+            .layout(description.layout);
+        if let DrawsIn::Subpass(render_pass, subpass) = description.draws_in {
+            info = info.render_pass(render_pass).subpass(subpass);
+        }
+        if let (Some(formats), Some(locations), Some(input_indices)) =
+            (&mut formats, &mut locations, &mut input_indices)
+        {
+            info = info
+                .push_next(formats)
+                .push_next(locations)
+                .push_next(input_indices);
+        }
         if let Some(depth_state) = &depth_state {
             info = info.depth_stencil_state(depth_state);
         }
-        // SAFETY: the stages, layout and render pass are alive and agree with each other.
+        // SAFETY: the stages, layout and render pass (or rendering attachments) are alive and
+        // agree with each other.
         let pipelines = unsafe {
             self.device
                 .create_graphics_pipelines(vk::PipelineCache::null(), &[info], None)

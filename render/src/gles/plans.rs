@@ -34,7 +34,10 @@ impl GlesRenderer {
                 self.fused_plan(options, layout, tile.path, (width, height))
             }
             Path::TwoPass => self.two_pass_plan(options, (width, height)),
-            Path::Subpass => Err("--path subpass is Vulkan's: use --backend vulkan".into()),
+            Path::Subpass | Path::LocalRead | Path::LocalReadOrdered => Err(format!(
+                "--path {} is Vulkan's: use --backend vulkan",
+                tile.path.name()
+            )),
         }
     }
 

@@ -3,7 +3,12 @@
 //! offers it), read back as input attachments by the later draws of the same subpass (a
 //! feedback loop: `GENERAL` layout, a by-region self-dependency and a barrier before each draw
 //! that reads what earlier draws wrote)
-//! and never stored (`DONT_CARE`); only the output is stored. The two-pass path stores the
+//! and never stored (`DONT_CARE`); only the output is stored. The local-read paths draw the
+//! same frame with the same attachments in one dynamic rendering, without render pass or
+//! framebuffer objects (`VK_KHR_dynamic_rendering_local_read`: the G-buffer in
+//! `RENDERING_LOCAL_READ_KHR`, the same by-region barrier between draws), and the ordered one
+//! without any barrier, its pipelines reading in rasterization order
+//! (`VK_EXT_rasterization_order_attachment_access`). The two-pass path stores the
 //! G-buffer to images and samples them in a second render pass, as wgpu does.
 //!
 //! Shaders are naga's GLSL 450 of the renderer's WGSL compiled by glslang; the fragment stages
@@ -19,11 +24,14 @@ use ash::vk;
 use gbuffer::layout::PackedTarget;
 use gbuffer_core::Named;
 use gbuffer_gpu::vulkan::{
-    feedback_barrier, host_read_barrier, ImageTransition, StorageBuffer, Vulkan,
+    feedback_barrier, host_read_barrier, Access, ImageTransition, RenderingAttachments,
+    StorageBuffer, Vulkan,
 };
 
 mod objects;
 mod plans;
+
+use plans::Fused;
 
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
@@ -82,11 +90,156 @@ impl StagePipeline {
     }
 }
 
-/// A render pass of a plan: its framebuffer, attachments (for the recording), clear values,
-/// the descriptor sets its pipelines bind and its draws.
+/// How a pass begins: a render pass object over a framebuffer, or a dynamic rendering.
+enum Begin {
+    RenderPass {
+        render_pass: vk::RenderPass,
+        framebuffer: vk::Framebuffer,
+    },
+    Rendering(Rendering),
+}
+
+/// A dynamic rendering's attachments: the colour attachments (the G-buffer's, then the
+/// output) and depth, as images (for their layout transitions) and views, and what the
+/// pipelines were told of them.
+struct Rendering {
+    /// The colour attachments' images, then depth's.
+    images: Vec<vk::Image>,
+    /// Their views, in the same order.
+    views: Vec<vk::ImageView>,
+    attachments: RenderingAttachments,
+    /// The commands that map the attachments to the shaders' locations and indices.
+    commands: ash::khr::dynamic_rendering_local_read::Device,
+}
+
+/// Colour attachment writes, where they happen.
+const COLOUR_WRITES: Access = (
+    vk::AccessFlags::COLOR_ATTACHMENT_WRITE,
+    vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT,
+);
+
+/// The layout change of a whole single-mip colour image.
+fn colour_transition(image: vk::Image) -> ImageTransition {
+    image_transition(image, vk::ImageAspectFlags::COLOR)
+}
+
+fn image_transition(image: vk::Image, aspect_mask: vk::ImageAspectFlags) -> ImageTransition {
+    ImageTransition {
+        image,
+        range: vk::ImageSubresourceRange {
+            aspect_mask,
+            base_mip_level: 0,
+            level_count: 1,
+            base_array_layer: 0,
+            layer_count: 1,
+        },
+    }
+}
+
+/// Begins a dynamic rendering over `rendering`'s attachments, each cleared to its value of
+/// `clears`: the G-buffer's in `RENDERING_LOCAL_READ_KHR` (written and read as input
+/// attachments by the draws, never stored), the output in `COLOR_ATTACHMENT_OPTIMAL` (stored),
+/// depth (never stored); then sets the attachments' locations and input attachment indices
+/// the pipelines were created with.
+///
+/// # Safety
+///
+/// `commands` is recording outside a render pass; the rendering's objects are alive.
+unsafe fn begin_rendering(
+    device: &ash::Device,
+    commands: vk::CommandBuffer,
+    rendering: &Rendering,
+    clears: &[vk::ClearValue],
+    area: vk::Rect2D,
+) {
+    let colours = rendering.attachments.colour_formats.len();
+    let gbuffer = colours - 1;
+    let nothing = (
+        vk::ImageLayout::UNDEFINED,
+        (
+            vk::AccessFlags::empty(),
+            vk::PipelineStageFlags::TOP_OF_PIPE,
+        ),
+    );
+    let local_read = (
+        vk::ImageLayout::RENDERING_LOCAL_READ_KHR,
+        (
+            vk::AccessFlags::COLOR_ATTACHMENT_WRITE | vk::AccessFlags::INPUT_ATTACHMENT_READ,
+            vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT
+                | vk::PipelineStageFlags::FRAGMENT_SHADER,
+        ),
+    );
+    let written = (vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, COLOUR_WRITES);
+    let depth = (
+        vk::ImageLayout::DEPTH_ATTACHMENT_OPTIMAL,
+        (
+            vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_READ
+                | vk::AccessFlags::DEPTH_STENCIL_ATTACHMENT_WRITE,
+            vk::PipelineStageFlags::EARLY_FRAGMENT_TESTS
+                | vk::PipelineStageFlags::LATE_FRAGMENT_TESTS,
+        ),
+    );
+    let attachment = |index: usize, layout, store| {
+        vk::RenderingAttachmentInfo::default()
+            .image_view(rendering.views[index])
+            .image_layout(layout)
+            .load_op(vk::AttachmentLoadOp::CLEAR)
+            .store_op(if store {
+                vk::AttachmentStoreOp::STORE
+            } else {
+                vk::AttachmentStoreOp::DONT_CARE
+            })
+            .clear_value(clears[index])
+    };
+    let colour_attachments: Vec<vk::RenderingAttachmentInfo> = (0..colours)
+        .map(|index| {
+            if index < gbuffer {
+                attachment(index, local_read.0, false)
+            } else {
+                attachment(index, written.0, true)
+            }
+        })
+        .collect();
+    let depth_attachment = attachment(colours, depth.0, false);
+    // SAFETY: as the caller promises; the transitions precede the rendering that uses them.
+    unsafe {
+        for (index, &image) in rendering.images.iter().enumerate() {
+            if index < gbuffer {
+                colour_transition(image).record(device, commands, nothing, local_read);
+            } else if index == gbuffer {
+                colour_transition(image).record(device, commands, nothing, written);
+            } else {
+                image_transition(image, vk::ImageAspectFlags::DEPTH)
+                    .record(device, commands, nothing, depth);
+            }
+        }
+        device.cmd_begin_rendering(
+            commands,
+            &vk::RenderingInfo::default()
+                .render_area(area)
+                .layer_count(1)
+                .color_attachments(&colour_attachments)
+                .depth_attachment(&depth_attachment),
+        );
+        rendering.commands.cmd_set_rendering_attachment_locations(
+            commands,
+            &vk::RenderingAttachmentLocationInfoKHR::default()
+                .color_attachment_locations(&rendering.attachments.locations),
+        );
+        rendering
+            .commands
+            .cmd_set_rendering_input_attachment_indices(
+                commands,
+                &vk::RenderingInputAttachmentIndexInfoKHR::default()
+                    .color_attachment_input_indices(&rendering.attachments.input_indices),
+            );
+    }
+}
+
+/// A pass of a plan: how it begins, its attachments (for the recording), clear values, the
+/// descriptor sets its pipelines bind and its draws.
 struct Pass {
-    render_pass: vk::RenderPass,
-    framebuffer: vk::Framebuffer,
+    begin: Begin,
     attachments: Vec<(Attachment, bool)>,
     clears: Vec<vk::ClearValue>,
     layout: vk::PipelineLayout,
@@ -112,8 +265,26 @@ impl VulkanRenderer {
     /// A device (lavapipe here), with the inputs and the mesh uploaded. The error says what is
     /// missing (the loader, a device).
     pub fn new(progress: &dyn Fn(&str)) -> Result<VulkanRenderer, String> {
-        let vulkan = Vulkan::new()?;
+        Self::on(Vulkan::new()?, progress)
+    }
+
+    /// The renderer on an opened device, with the inputs and the mesh uploaded.
+    pub fn on(vulkan: Vulkan, progress: &dyn Fn(&str)) -> Result<VulkanRenderer, String> {
         progress(&format!("Vulkan: {}", vulkan.describe()));
+        progress(&match vulkan.local_read() {
+            Ok(local_read) => match &local_read.rasterization_order {
+                Ok(name) => format!(
+                    "dynamic rendering with local read, and rasterization-order attachment \
+                     access ({})",
+                    name.to_string_lossy()
+                ),
+                Err(why) => format!(
+                    "dynamic rendering with local read; no rasterization-order attachment \
+                     access: {why}"
+                ),
+            },
+            Err(why) => format!("no dynamic rendering with local read: {why}"),
+        });
         progress(if vulkan.has_lazily_allocated_memory() {
             "transient attachments take lazily allocated memory"
         } else {
@@ -254,7 +425,27 @@ impl VulkanRenderer {
         let options = &tile.options;
         let layout = tile_layout(options)?;
         match tile.path {
-            Path::Subpass => self.subpass_plan(options, layout, false),
+            Path::Subpass => self.fused_plan(
+                options,
+                layout,
+                Fused::Subpass {
+                    store_gbuffer: false,
+                },
+            ),
+            Path::LocalRead => self.fused_plan(
+                options,
+                layout,
+                Fused::LocalRead {
+                    rasterization_order: false,
+                },
+            ),
+            Path::LocalReadOrdered => self.fused_plan(
+                options,
+                layout,
+                Fused::LocalRead {
+                    rasterization_order: true,
+                },
+            ),
             Path::TwoPass => self.two_pass_plan(options),
             other => Err(format!(
                 "--path {} is GLES's: use --backend gles",
@@ -267,7 +458,13 @@ impl VulkanRenderer {
     /// and light), `layout.words()` per pixel, row by row.
     pub fn gbuffer_words(&self, options: &Options) -> Result<Vec<u32>, String> {
         let layout = tile_layout(options)?;
-        let plan = self.subpass_plan(options, layout, true)?;
+        let plan = self.fused_plan(
+            options,
+            layout,
+            Fused::Subpass {
+                store_gbuffer: true,
+            },
+        )?;
         self.submit_frame(&plan, &mut Recording::default())?;
         let targets = plan
             .gbuffer
@@ -302,18 +499,27 @@ impl VulkanRenderer {
                     for sample in &pass.samples {
                         recording.push(Call::Sample(sample.clone()));
                     }
-                    device.cmd_begin_render_pass(
-                        commands,
-                        &vk::RenderPassBeginInfo::default()
-                            .render_pass(pass.render_pass)
-                            .framebuffer(pass.framebuffer)
-                            .render_area(vk::Rect2D {
-                                offset: vk::Offset2D::default(),
-                                extent,
-                            })
-                            .clear_values(&pass.clears),
-                        vk::SubpassContents::INLINE,
-                    );
+                    let area = vk::Rect2D {
+                        offset: vk::Offset2D::default(),
+                        extent,
+                    };
+                    match &pass.begin {
+                        Begin::RenderPass {
+                            render_pass,
+                            framebuffer,
+                        } => device.cmd_begin_render_pass(
+                            commands,
+                            &vk::RenderPassBeginInfo::default()
+                                .render_pass(*render_pass)
+                                .framebuffer(*framebuffer)
+                                .render_area(area)
+                                .clear_values(&pass.clears),
+                            vk::SubpassContents::INLINE,
+                        ),
+                        Begin::Rendering(rendering) => {
+                            begin_rendering(device, commands, rendering, &pass.clears, area)
+                        }
+                    }
                     device.cmd_bind_descriptor_sets(
                         commands,
                         vk::PipelineBindPoint::GRAPHICS,
@@ -328,6 +534,7 @@ impl VulkanRenderer {
                             // The draw reads what the draws before it wrote (the
                             // self-dependency); one that reads nothing of theirs needs none.
                             feedback_barrier(device, commands);
+                            recording.push(Call::Barrier);
                         }
                         if previous != Some(stage) {
                             device.cmd_bind_pipeline(
@@ -375,7 +582,26 @@ impl VulkanRenderer {
                             }
                         }
                     }
-                    device.cmd_end_render_pass(commands);
+                    match &pass.begin {
+                        Begin::RenderPass { .. } => device.cmd_end_render_pass(commands),
+                        Begin::Rendering(rendering) => {
+                            device.cmd_end_rendering(commands);
+                            // As the render pass's dependency to the copy does: the output,
+                            // written, becomes the copy's source.
+                            let written =
+                                (vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, COLOUR_WRITES);
+                            let copied = (
+                                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                                (
+                                    vk::AccessFlags::TRANSFER_READ,
+                                    vk::PipelineStageFlags::TRANSFER,
+                                ),
+                            );
+                            let output = rendering.attachments.colour_formats.len() - 1;
+                            colour_transition(rendering.images[output])
+                                .record(device, commands, written, copied);
+                        }
+                    }
                     recording.push(Call::EndPass {
                         stored: pass
                             .attachments

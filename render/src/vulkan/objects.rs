@@ -4,7 +4,7 @@
 
 use ash::vk;
 use gbuffer_gpu::tools::glslang;
-use gbuffer_gpu::vulkan::{GraphicsPipeline, Resource};
+use gbuffer_gpu::vulkan::{DrawsIn, GraphicsPipeline, Resource};
 
 use super::VulkanRenderer;
 use crate::glsl::{self, Dialect};
@@ -54,14 +54,20 @@ impl VulkanRenderer {
         self.descriptor_set(&resources)
     }
 
-    /// A descriptor set (and its layout) of the input attachments `views` at bindings 0, 1...
-    /// (each also written by the subpass that reads it: `GENERAL`).
+    /// A descriptor set (and its layout) of the input attachments `views` at bindings 0, 1...,
+    /// each also written by the draws that read it, in `layout` (`GENERAL` in a subpass,
+    /// `RENDERING_LOCAL_READ_KHR` in a dynamic rendering).
     pub(super) fn input_attachment_set(
         &self,
         views: &[vk::ImageView],
+        layout: vk::ImageLayout,
     ) -> Result<(vk::DescriptorSetLayout, vk::DescriptorSet), String> {
         let resources: Vec<(u32, Resource)> = (0..)
-            .zip(views.iter().map(|&view| Resource::FeedbackAttachment(view)))
+            .zip(
+                views
+                    .iter()
+                    .map(|&view| Resource::FeedbackAttachment(view, layout)),
+            )
             .collect();
         self.descriptor_set(&resources)
     }
@@ -87,7 +93,7 @@ impl VulkanRenderer {
         wgsl: &str,
         (vertex, fragment): (&str, &str),
         frame_textures: &[(u32, vk::ImageView)],
-        render_pass: vk::RenderPass,
+        draws_in: DrawsIn<'_>,
         writes: (Depth, &[bool]),
         size: (u32, u32),
     ) -> Result<(vk::Pipeline, vk::PipelineLayout, vk::DescriptorSet), String> {
@@ -95,8 +101,7 @@ impl VulkanRenderer {
         let (set_layout, set) = self.sampled_set(&bindings, frame_textures)?;
         let layout = self.vulkan.pipeline_layout(&[set_layout], None)?;
         let glsl = glsl::translate(wgsl, naga::ShaderStage::Fragment, fragment, Dialect::Vulkan)?;
-        let pipeline =
-            self.pipeline(wgsl, vertex, &glsl.text, render_pass, layout, writes, size)?;
+        let pipeline = self.pipeline(wgsl, vertex, &glsl.text, draws_in, layout, writes, size)?;
         Ok((pipeline, layout, set))
     }
 
@@ -109,7 +114,7 @@ impl VulkanRenderer {
         wgsl: &str,
         vertex: &str,
         fragment: &str,
-        render_pass: vk::RenderPass,
+        draws_in: DrawsIn<'_>,
         layout: vk::PipelineLayout,
         (depth, writes): (Depth, &[bool]),
         (width, height): (u32, u32),
@@ -170,8 +175,7 @@ impl VulkanRenderer {
             Depth::Sky => Some((false, vk::CompareOp::EQUAL)),
         };
         self.vulkan.graphics_pipeline(&GraphicsPipeline {
-            render_pass,
-            subpass: 0,
+            draws_in,
             layout,
             shaders: (vertex_module, fragment_module),
             vertex_entry: &vertex_entry,

@@ -1,32 +1,77 @@
-//! The two plans of the Vulkan backend: the subpass path's one render pass, and the two-pass
-//! path's two.
+//! The plans of the Vulkan backend: the fused paths' one pass (the subpass path's render pass
+//! object, the local-read paths' dynamic rendering), and the two-pass path's two render passes.
 
 use ash::vk;
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
 use gbuffer_core::Named;
 
+use gbuffer_gpu::vulkan::{DrawsIn, RenderingAttachments};
+
 use super::objects::Depth;
 use super::{
-    clear_depth, clear_float, clear_uint, named, Draw, Pass, Plan, StagePipeline, VulkanRenderer,
-    DEPTH_FORMAT, OUTPUT_FORMAT, PACKED_FORMAT,
+    clear_depth, clear_float, clear_uint, named, Begin, Draw, Pass, Plan, Rendering, StagePipeline,
+    VulkanRenderer, DEPTH_FORMAT, OUTPUT_FORMAT, PACKED_FORMAT,
 };
 use crate::glsl::{self, Dialect};
-use crate::on_tile::{fused_wgsl, include_translation, Stage, TRANSLATION_ENTRY};
+use crate::on_tile::{fused_wgsl, include_translation, Path, Stage, TRANSLATION_ENTRY};
 use crate::options::Options;
 use crate::recording::Attachment;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::used_bindings;
 use crate::shaders::Positions;
 
+/// How a fused plan keeps the G-buffer in its one pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Fused {
+    /// A render pass object of one subpass reading its own attachments (a feedback loop);
+    /// `store_gbuffer` (the debug view) stores the G-buffer and draws only the geometry.
+    Subpass { store_gbuffer: bool },
+    /// A dynamic rendering reading its own attachments (`VK_KHR_dynamic_rendering_local_read`):
+    /// a by-region barrier before each draw that reads earlier draws' writes, or none where the
+    /// pipelines read in rasterization order.
+    LocalRead { rasterization_order: bool },
+}
+
 impl VulkanRenderer {
-    /// The subpass path: one render pass, one subpass, six pipelines. With `store_gbuffer`
-    /// (the debug view) the G-buffer is stored and only the geometry drawn.
-    pub(super) fn subpass_plan(
+    /// A fused path: one render pass (a render pass object's one subpass, or one dynamic
+    /// rendering), six pipelines, the G-buffer in transient attachments read back as input
+    /// attachments by the later draws.
+    pub(super) fn fused_plan(
         &self,
         options: &Options,
         layout: crate::gbuffers::PackedLayout,
-        store_gbuffer: bool,
+        fused: Fused,
     ) -> Result<Plan, String> {
+        let store_gbuffer = fused
+            == Fused::Subpass {
+                store_gbuffer: true,
+            };
+        let rasterization_order = fused
+            == Fused::LocalRead {
+                rasterization_order: true,
+            };
+        let mut local_read_commands = None;
+        if let Fused::LocalRead { .. } = fused {
+            let path = if rasterization_order {
+                Path::LocalReadOrdered
+            } else {
+                Path::LocalRead
+            };
+            let local_read = self.vulkan.local_read().map_err(|why| {
+                format!(
+                    "--path {} needs dynamic rendering with local read: {why}",
+                    path.name()
+                )
+            })?;
+            if let (true, Err(why)) = (rasterization_order, &local_read.rasterization_order) {
+                return Err(format!(
+                    "--path {} needs rasterization-order attachment access: {why} (--path \
+                     local-read draws with barriers instead)",
+                    path.name()
+                ));
+            }
+            local_read_commands = Some(local_read.commands.clone());
+        }
         let model = layout.layout();
         let (include, interface) = includes::include(&model, Include::SubpassPacked, 1)
             .map_err(|error| error.to_string())?;
@@ -37,7 +82,7 @@ impl VulkanRenderer {
             || targets > limits.max_per_stage_descriptor_input_attachments
         {
             return Err(format!(
-                "layout `{}` on --path subpass needs {} colour attachments and {targets} input \
+                "layout `{}` on the fused paths needs {} colour attachments and {targets} input \
                  attachments, but the device offers maxColorAttachments = {}, \
                  maxFragmentOutputAttachments = {} and maxPerStageDescriptorInputAttachments = {}",
                 layout.name(),
@@ -55,6 +100,7 @@ impl VulkanRenderer {
         } else {
             transient
         };
+        let mut images = Vec::new();
         let mut views = Vec::new();
         let mut gbuffer = Vec::new();
         for _ in 0..targets {
@@ -64,6 +110,7 @@ impl VulkanRenderer {
             let (image, view, _) = self
                 .vulkan
                 .image(PACKED_FORMAT, (width, height, 1), usage)?;
+            images.push(image);
             views.push(view);
             if store_gbuffer {
                 let words = (width * height * 4) as usize;
@@ -78,16 +125,179 @@ impl VulkanRenderer {
             (width, height, 1),
             vk::ImageUsageFlags::COLOR_ATTACHMENT | vk::ImageUsageFlags::TRANSFER_SRC,
         )?;
+        images.push(output);
         views.push(output_view);
-        let (_, depth_view, _) = self.vulkan.image(
+        let (depth_image, depth_view, _) = self.vulkan.image(
             DEPTH_FORMAT,
             (width, height, 1),
             vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | transient,
         )?;
+        images.push(depth_image);
         views.push(depth_view);
 
-        // Attachments: the G-buffer targets (cleared, never stored, GENERAL: read and written
-        // in the same subpass), the output (stored), depth (never stored).
+        // The G-buffer attachments are read back as input attachments 0, 1, ... (the include's
+        // indices) at the fragment outputs of the same locations; the output, at the next
+        // location, is read by no shader.
+        let rendering = RenderingAttachments {
+            colour_formats: (0..targets)
+                .map(|_| PACKED_FORMAT)
+                .chain([OUTPUT_FORMAT])
+                .collect(),
+            depth_format: DEPTH_FORMAT,
+            locations: (0..=targets).collect(),
+            input_indices: (0..targets).chain([vk::ATTACHMENT_UNUSED]).collect(),
+            rasterization_order,
+        };
+        let begin = match fused {
+            Fused::Subpass { .. } => {
+                self.feedback_render_pass(targets, store_gbuffer, &views, (width, height))?
+            }
+            Fused::LocalRead { .. } => Begin::Rendering(Rendering {
+                images,
+                views: views.clone(),
+                attachments: rendering.clone(),
+                commands: local_read_commands
+                    .take()
+                    .expect("the local-read paths checked the device"),
+            }),
+        };
+
+        // Descriptors: the inputs the stages sample in set 0, the G-buffer inputs in set 1,
+        // the volume index as a push constant.
+        let wgsl = fused_wgsl(options, layout, -1.0);
+        let sampled = used_bindings(&wgsl, TRANSLATION_ENTRY);
+        let (set0_layout, set0) = self.sampled_set(&sampled, &[])?;
+        let input_views: Vec<vk::ImageView> = views[..targets as usize].to_vec();
+        let input_layout = match fused {
+            Fused::Subpass { .. } => vk::ImageLayout::GENERAL,
+            Fused::LocalRead { .. } => vk::ImageLayout::RENDERING_LOCAL_READ_KHR,
+        };
+        let (set1_layout, set1) = self.input_attachment_set(&input_views, input_layout)?;
+        let layout_handle = self
+            .vulkan
+            .pipeline_layout(&[set0_layout, set1_layout], Some(4))?;
+
+        let load = model.symbols().load();
+        let include_translation = include_translation(&model)?;
+        let names = &include_translation.names;
+        let texel = &names.layout;
+        let outputs: String = (0..targets)
+            .map(|index| {
+                format!("layout(location = {index}) out highp uvec4 gbuffer_out{index};\n")
+            })
+            .chain([format!(
+                "layout(location = {targets}) out highp vec4 frame_colour;\n"
+            )])
+            .collect();
+        let store = includes::store_statements(&model, names, &interface, |attachment| {
+            format!("gbuffer_out{}", attachment.index)
+        });
+        // The volume drawn comes as a push constant; each draw writes only what it changes.
+        let volume = "layout(push_constant) uniform Volume {\n    uint volume_index;\n};\n";
+        let declarations = glsl::fragment_declarations(
+            &wgsl,
+            TRANSLATION_ENTRY,
+            Dialect::Vulkan,
+            &include_translation,
+        )?
+        .text;
+        let draws_in = match &begin {
+            Begin::RenderPass { render_pass, .. } => DrawsIn::Subpass(*render_pass, 0),
+            Begin::Rendering(_) => DrawsIn::Rendering(&rendering),
+        };
+        let mut pipeline_stages = Vec::new();
+        for &stage in Stage::ALL {
+            let depth = match stage {
+                Stage::Geometry => Depth::Write,
+                Stage::Sky => Depth::Sky,
+                _ => Depth::Surfaces,
+            };
+            let writes = stage.writes(layout, targets as usize, 4);
+            let fragment = format!(
+                "{}\n{}\n{include}\n{outputs}{volume}\n{declarations}\n{}",
+                Dialect::Vulkan.version_line(),
+                Dialect::Vulkan.early_fragment_tests(),
+                stage.fragment_main(texel, &load, &store)
+            );
+            let pipeline = self
+                .pipeline(
+                    &wgsl,
+                    stage.vertex_entry(),
+                    &fragment,
+                    draws_in,
+                    layout_handle,
+                    (depth, &writes),
+                    (width, height),
+                )
+                .map_err(|error| format!("the {} pipeline: {error}", stage.name()))?;
+            pipeline_stages.push(StagePipeline {
+                name: stage.name(),
+                pipeline,
+                // In rasterization order a draw sees what the draws before it wrote unasked.
+                reads_earlier_draws: stage.reads_gbuffer() && !rasterization_order,
+            });
+        }
+        // Each draw names its stage by its place in `Stage::ALL`, as `pipeline_stages` holds them.
+        let at = |stage: Stage| {
+            Stage::ALL
+                .iter()
+                .position(|s| *s == stage)
+                .expect("a stage")
+        };
+        let mut draws = vec![(at(Stage::Geometry), Draw::Mesh)];
+        if !store_gbuffer {
+            draws.extend((0..DECALS.len()).map(|decal| {
+                (
+                    at(Stage::Decal),
+                    Draw::Volume((POINT_LIGHT_COUNT + decal) as u32),
+                )
+            }));
+            draws.extend(
+                [Stage::Lighting, Stage::Resolve, Stage::Sky]
+                    .map(|stage| (at(stage), Draw::Fullscreen)),
+            );
+        }
+
+        let mut attachments: Vec<(Attachment, bool)> = (0..targets)
+            .map(|index| (named(&format!("gbuffer{index}"), 16), store_gbuffer))
+            .collect();
+        attachments.push((named("output", 4), true));
+        attachments.push((named("depth", 4), false));
+        let mut clears = vec![clear_uint(0); targets as usize];
+        clears.push(clear_float(0.0));
+        clears.push(clear_depth());
+        Ok(Plan {
+            passes: vec![Pass {
+                begin,
+                attachments,
+                clears,
+                layout: layout_handle,
+                sets: vec![set0, set1],
+                stages: pipeline_stages,
+                draws,
+                samples: Vec::new(),
+            }],
+            output,
+            read_back: self.vulkan.host_buffer(
+                (width * height) as usize,
+                vk::BufferUsageFlags::TRANSFER_DST,
+            )?,
+            gbuffer,
+            width,
+            height,
+        })
+    }
+
+    /// The subpass path's render pass of one subpass over `views` (the G-buffer's `targets`
+    /// attachments, cleared, never stored but for the debug view, `GENERAL`: read and written in
+    /// the same subpass; the output, stored; depth, never stored) and its framebuffer.
+    fn feedback_render_pass(
+        &self,
+        targets: u32,
+        store_gbuffer: bool,
+        views: &[vk::ImageView],
+        (width, height): (u32, u32),
+    ) -> Result<Begin, String> {
         let gbuffer_layout = if store_gbuffer {
             vk::ImageLayout::TRANSFER_SRC_OPTIMAL
         } else {
@@ -141,125 +351,10 @@ impl VulkanRenderer {
         let render_pass = self
             .vulkan
             .render_pass_of(&descriptions, &subpass, &dependencies)?;
-        let framebuffer = self
-            .vulkan
-            .framebuffer(render_pass, &views, width, height)?;
-
-        // Descriptors: the inputs the stages sample in set 0, the G-buffer inputs in set 1,
-        // the volume index as a push constant.
-        let wgsl = fused_wgsl(options, layout, -1.0);
-        let sampled = used_bindings(&wgsl, TRANSLATION_ENTRY);
-        let (set0_layout, set0) = self.sampled_set(&sampled, &[])?;
-        let input_views: Vec<vk::ImageView> = views[..targets as usize].to_vec();
-        let (set1_layout, set1) = self.input_attachment_set(&input_views)?;
-        let layout_handle = self
-            .vulkan
-            .pipeline_layout(&[set0_layout, set1_layout], Some(4))?;
-
-        let load = model.symbols().load();
-        let include_translation = include_translation(&model)?;
-        let names = &include_translation.names;
-        let texel = &names.layout;
-        let outputs: String = (0..targets)
-            .map(|index| {
-                format!("layout(location = {index}) out highp uvec4 gbuffer_out{index};\n")
-            })
-            .chain([format!(
-                "layout(location = {targets}) out highp vec4 frame_colour;\n"
-            )])
-            .collect();
-        let store = includes::store_statements(&model, names, &interface, |attachment| {
-            format!("gbuffer_out{}", attachment.index)
-        });
-        // The volume drawn comes as a push constant; each draw writes only what it changes.
-        let volume = "layout(push_constant) uniform Volume {\n    uint volume_index;\n};\n";
-        let declarations = glsl::fragment_declarations(
-            &wgsl,
-            TRANSLATION_ENTRY,
-            Dialect::Vulkan,
-            &include_translation,
-        )?
-        .text;
-        let mut pipeline_stages = Vec::new();
-        for &stage in Stage::ALL {
-            let depth = match stage {
-                Stage::Geometry => Depth::Write,
-                Stage::Sky => Depth::Sky,
-                _ => Depth::Surfaces,
-            };
-            let writes = stage.writes(layout, targets as usize, 4);
-            let fragment = format!(
-                "{}\n{}\n{include}\n{outputs}{volume}\n{declarations}\n{}",
-                Dialect::Vulkan.version_line(),
-                Dialect::Vulkan.early_fragment_tests(),
-                stage.fragment_main(texel, &load, &store)
-            );
-            let pipeline = self
-                .pipeline(
-                    &wgsl,
-                    stage.vertex_entry(),
-                    &fragment,
-                    render_pass,
-                    layout_handle,
-                    (depth, &writes),
-                    (width, height),
-                )
-                .map_err(|error| format!("the {} pipeline: {error}", stage.name()))?;
-            pipeline_stages.push(StagePipeline {
-                name: stage.name(),
-                pipeline,
-                reads_earlier_draws: stage.reads_gbuffer(),
-            });
-        }
-        // Each draw names its stage by its place in `Stage::ALL`, as `pipeline_stages` holds them.
-        let at = |stage: Stage| {
-            Stage::ALL
-                .iter()
-                .position(|s| *s == stage)
-                .expect("a stage")
-        };
-        let mut draws = vec![(at(Stage::Geometry), Draw::Mesh)];
-        if !store_gbuffer {
-            draws.extend((0..DECALS.len()).map(|decal| {
-                (
-                    at(Stage::Decal),
-                    Draw::Volume((POINT_LIGHT_COUNT + decal) as u32),
-                )
-            }));
-            draws.extend(
-                [Stage::Lighting, Stage::Resolve, Stage::Sky]
-                    .map(|stage| (at(stage), Draw::Fullscreen)),
-            );
-        }
-
-        let mut attachments: Vec<(Attachment, bool)> = (0..targets)
-            .map(|index| (named(&format!("gbuffer{index}"), 16), store_gbuffer))
-            .collect();
-        attachments.push((named("output", 4), true));
-        attachments.push((named("depth", 4), false));
-        let mut clears = vec![clear_uint(0); targets as usize];
-        clears.push(clear_float(0.0));
-        clears.push(clear_depth());
-        Ok(Plan {
-            passes: vec![Pass {
-                render_pass,
-                framebuffer,
-                attachments,
-                clears,
-                layout: layout_handle,
-                sets: vec![set0, set1],
-                stages: pipeline_stages,
-                draws,
-                samples: Vec::new(),
-            }],
-            output,
-            read_back: self.vulkan.host_buffer(
-                (width * height) as usize,
-                vk::BufferUsageFlags::TRANSFER_DST,
-            )?,
-            gbuffer,
-            width,
-            height,
+        let framebuffer = self.vulkan.framebuffer(render_pass, views, width, height)?;
+        Ok(Begin::RenderPass {
+            render_pass,
+            framebuffer,
         })
     }
 
@@ -339,7 +434,7 @@ impl VulkanRenderer {
             &gbuffer_wgsl,
             ("geometry_vertex", "gbuffer_main"),
             &[],
-            first_pass,
+            DrawsIn::Subpass(first_pass, 0),
             (Depth::Write, &vec![true; formats.len()]),
             (width, height),
         )?;
@@ -373,7 +468,7 @@ impl VulkanRenderer {
             &lighting_wgsl,
             ("full_screen", "lighting_resolve_main"),
             &gbuffer_bindings,
-            second_pass,
+            DrawsIn::Subpass(second_pass, 0),
             (Depth::None, &[true]),
             (width, height),
         )?;
@@ -393,8 +488,10 @@ impl VulkanRenderer {
         Ok(Plan {
             passes: vec![
                 Pass {
-                    render_pass: first_pass,
-                    framebuffer: first_framebuffer,
+                    begin: Begin::RenderPass {
+                        render_pass: first_pass,
+                        framebuffer: first_framebuffer,
+                    },
                     attachments: first_attachments,
                     clears,
                     layout: first_layout,
@@ -404,8 +501,10 @@ impl VulkanRenderer {
                     samples: Vec::new(),
                 },
                 Pass {
-                    render_pass: second_pass,
-                    framebuffer: second_framebuffer,
+                    begin: Begin::RenderPass {
+                        render_pass: second_pass,
+                        framebuffer: second_framebuffer,
+                    },
                     attachments: vec![(named("output", 4), true)],
                     clears: vec![clear_float(0.0)],
                     layout: second_layout,
