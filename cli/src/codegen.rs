@@ -36,7 +36,8 @@ pub struct Arguments {
     /// GLSL ES framebuffer-fetch include (`<name>.fetch.glsl`).
     #[arg(long)]
     glsl_fetch: bool,
-    /// Vulkan GLSL subpass-input include (`<name>.vulkan.glsl`).
+    /// Vulkan GLSL subpass-input includes (`<name>.vulkan{,_native}.glsl`), each with what a host
+    /// sets to read it under dynamic rendering local read (`.local_read.json`).
     #[arg(long)]
     glsl_vulkan: bool,
     /// WebGL 2 pixel local storage include and its host module (`<name>.webgl_pls.{glsl,js}`).

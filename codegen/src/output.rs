@@ -5,6 +5,7 @@
 use std::io;
 use std::path::{Path, PathBuf};
 
+use crate::emit::glsl::local_read::LocalRead;
 use crate::emit::glsl::{self, Include, TranslationError};
 use crate::emit::{rust, wgsl};
 use gbuffer_core::layout::Layout;
@@ -22,7 +23,8 @@ pub enum Output {
     /// field): EXT_shader_framebuffer_fetch attachments and functions.
     GlslFramebufferFetch,
     /// `<snake>.vulkan.glsl` and `<snake>.vulkan_native.glsl`: Vulkan GLSL subpass inputs and
-    /// functions.
+    /// functions, each with its `.local_read.json`: what the host sets to read them in one
+    /// dynamic rendering (`VK_KHR_dynamic_rendering_local_read`).
     GlslVulkan,
     /// `<snake>.webgl_pls.glsl` and `<snake>.webgl_pls.js`: WebGL 2's pixel local storage
     /// (ANGLE's GLSL extension) and the host module that drives it.
@@ -92,10 +94,11 @@ pub fn generate(
                     .into_iter()
                     .filter(|include| output.includes(*include))
                 {
-                    add(
-                        include.file_name(&symbols, "glsl"),
-                        glsl::include_with(layout, conversions, include, 0)?.0,
-                    );
+                    let (text, interface) = glsl::include_with(layout, conversions, include, 0)?;
+                    add(include.file_name(&symbols, "glsl"), text);
+                    if let Some(local_read) = LocalRead::of(layout, &interface, 0) {
+                        add(LocalRead::file_name(layout, include), local_read.to_json());
+                    }
                 }
             }
             Output::WebGlPixelLocalStorage => {

@@ -141,6 +141,78 @@ fn check_vulkan_includes(layout: &Layout, conversions: Conversions) -> Result<()
     Ok(())
 }
 
+/// The `(input_attachment_index, set, binding, name)` of every subpass input a Vulkan include
+/// declares, read from its text.
+fn declared_subpass_inputs(text: &str) -> Vec<(u64, u64, u64, String)> {
+    code_lines(text)
+        .filter_map(|line| {
+            let qualifiers = line.strip_prefix("layout(")?.split_once(')')?;
+            let numbers: Vec<u64> = qualifiers
+                .0
+                .split(',')
+                .map(|pair| pair.split_once('=').unwrap().1.trim().parse().unwrap())
+                .collect();
+            let name = qualifiers
+                .1
+                .trim()
+                .trim_end_matches(';')
+                .rsplit(' ')
+                .next()?;
+            Some((numbers[0], numbers[1], numbers[2], name.to_string()))
+        })
+        .collect()
+}
+
+#[test]
+fn vulkan_includes_host_data_names_what_the_include_declares() {
+    for (_, layout) in layout_files() {
+        let files = generate(&layout, Conversions::Exact, &[Output::GlslVulkan]).unwrap();
+        for include in [Include::SubpassPacked, Include::SubpassNative] {
+            let glsl_name = include.file_name(&layout.symbols(), "glsl");
+            let text = &files
+                .iter()
+                .find(|file| file.name == glsl_name)
+                .unwrap()
+                .contents;
+            let json_name = glsl::local_read::LocalRead::file_name(&layout, include);
+            let json = &files
+                .iter()
+                .find(|file| file.name == json_name)
+                .unwrap_or_else(|| panic!("{json_name} is not written"))
+                .contents;
+            let host: serde_json::Value = serde_json::from_str(json)
+                .unwrap_or_else(|error| panic!("{json_name} is no JSON: {error}"));
+            assert_eq!(host["include"], glsl_name.as_str());
+            assert_eq!(
+                host["image_layout"]["name"],
+                "VK_IMAGE_LAYOUT_RENDERING_LOCAL_READ_KHR"
+            );
+            let declared = declared_subpass_inputs(text);
+            let listed: Vec<(u64, u64, u64, String)> = host["colour_attachments"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|attachment| {
+                    // The G-buffer draw writes attachment i at location i: the host's colour
+                    // attachment order.
+                    assert_eq!(attachment["location"], attachment["input_attachment_index"]);
+                    (
+                        attachment["input_attachment_index"].as_u64().unwrap(),
+                        host["descriptor_set"].as_u64().unwrap(),
+                        attachment["binding"].as_u64().unwrap(),
+                        attachment["name"].as_str().unwrap().to_string(),
+                    )
+                })
+                .collect();
+            assert!(
+                !declared.is_empty(),
+                "{glsl_name} declares no subpass input"
+            );
+            assert_eq!(listed, declared, "{json_name} against {glsl_name}");
+        }
+    }
+}
+
 #[test]
 fn vulkan_includes_compile_unedited_to_valid_spirv() {
     for (_, layout) in layout_files() {

@@ -26,6 +26,8 @@ fn writes_every_output_for_the_seed_layouts_and_rewrites_nothing_unchanged() {
         "mobile_metallic.pls_out.glsl",
         "mobile_metallic.fetch.glsl",
         "mobile_metallic.vulkan.glsl",
+        "mobile_metallic.vulkan.local_read.json",
+        "mobile_metallic.vulkan_native.local_read.json",
         "mobile_metallic.rs",
         "mobile_metallic.report.txt",
         "future_specular.wgsl",

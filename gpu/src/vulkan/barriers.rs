@@ -77,8 +77,9 @@ pub unsafe fn feedback_barrier(device: &ash::Device, commands: vk::CommandBuffer
     }
 }
 
-/// A subpass's colour writes, then the next one's input attachment reads.
-pub(super) const FEEDBACK: (Access, Access) = (
+/// A draw's colour writes, then a later one's input attachment reads (in the next subpass, or
+/// in the same subpass or dynamic rendering behind [`feedback_barrier`]).
+pub const FEEDBACK: (Access, Access) = (
     (
         vk::AccessFlags::COLOR_ATTACHMENT_WRITE,
         vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT,

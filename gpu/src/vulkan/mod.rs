@@ -20,7 +20,7 @@ mod memory;
 mod pipelines;
 mod render_passes;
 
-pub use barriers::{feedback_barrier, host_read_barrier, Access, ImageTransition};
+pub use barriers::{feedback_barrier, host_read_barrier, Access, ImageTransition, FEEDBACK};
 pub use buffers::StorageBuffer;
 pub use descriptors::Resource;
 pub use local_read::{LocalRead, OptionalExtensions};

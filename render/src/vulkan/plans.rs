@@ -2,6 +2,7 @@
 //! object, the local-read paths' dynamic rendering), and the two-pass path's two render passes.
 
 use ash::vk;
+use gbuffer_codegen::emit::glsl::local_read::{LocalRead, ATTACHMENT_UNUSED};
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
 use gbuffer_core::Named;
 
@@ -135,17 +136,30 @@ impl VulkanRenderer {
         images.push(depth_image);
         views.push(depth_view);
 
-        // The G-buffer attachments are read back as input attachments 0, 1, ... (the include's
-        // indices) at the fragment outputs of the same locations; the output, at the next
-        // location, is read by no shader.
+        // The G-buffer attachments at the locations and input attachment indices the include's
+        // host data gives (the codegen's `.local_read.json`); the output, at the next location,
+        // is read by no shader.
+        let host = LocalRead::of(&model, &interface, 1).expect("the include is Vulkan's");
         let rendering = RenderingAttachments {
-            colour_formats: (0..targets)
-                .map(|_| PACKED_FORMAT)
+            colour_formats: host
+                .attachments
+                .iter()
+                .map(|attachment| vk::Format::from_raw(attachment.format.value as i32))
                 .chain([OUTPUT_FORMAT])
                 .collect(),
             depth_format: DEPTH_FORMAT,
-            locations: (0..=targets).collect(),
-            input_indices: (0..targets).chain([vk::ATTACHMENT_UNUSED]).collect(),
+            locations: host
+                .attachments
+                .iter()
+                .map(|attachment| attachment.location)
+                .chain([targets])
+                .collect(),
+            input_indices: host
+                .attachments
+                .iter()
+                .map(|attachment| attachment.input_attachment_index)
+                .chain([ATTACHMENT_UNUSED])
+                .collect(),
             rasterization_order,
         };
         let begin = match fused {
@@ -556,4 +570,44 @@ fn output_to_transfer() -> vk::SubpassDependency {
         .dst_stage_mask(vk::PipelineStageFlags::TRANSFER)
         .src_access_mask(vk::AccessFlags::COLOR_ATTACHMENT_WRITE)
         .dst_access_mask(vk::AccessFlags::TRANSFER_READ)
+}
+
+#[cfg(test)]
+mod tests {
+    use ash::vk;
+    use gbuffer_codegen::emit::glsl::local_read::{
+        ATTACHMENT_UNUSED, BARRIER, DESCRIPTOR_TYPE, IMAGE_LAYOUT, RASTERIZATION_ORDER_FLAG,
+    };
+
+    /// The codegen's host data spells each enumerant by hand; `ash`'s, generated from the
+    /// Vulkan registry, are the independent reference, and the barrier is the one the renderer
+    /// records.
+    #[test]
+    fn the_local_read_host_data_has_the_vulkan_registry_values() {
+        assert_eq!(
+            IMAGE_LAYOUT.value as i32,
+            vk::ImageLayout::RENDERING_LOCAL_READ_KHR.as_raw()
+        );
+        assert_eq!(
+            DESCRIPTOR_TYPE.value as i32,
+            vk::DescriptorType::INPUT_ATTACHMENT.as_raw()
+        );
+        assert_eq!(ATTACHMENT_UNUSED, vk::ATTACHMENT_UNUSED);
+        assert_eq!(
+            RASTERIZATION_ORDER_FLAG.value,
+            vk::PipelineColorBlendStateCreateFlags::RASTERIZATION_ORDER_ATTACHMENT_ACCESS_EXT
+                .as_raw()
+        );
+        let ((src_access, src_stage), (dst_access, dst_stage)) = gbuffer_gpu::vulkan::FEEDBACK;
+        assert_eq!(
+            BARRIER.map(|flag| flag.value),
+            [
+                src_stage.as_raw(),
+                src_access.as_raw(),
+                dst_stage.as_raw(),
+                dst_access.as_raw(),
+                vk::DependencyFlags::BY_REGION.as_raw(),
+            ]
+        );
+    }
 }

@@ -5,7 +5,8 @@
 //! - framebuffer fetch (EXT_shader_framebuffer_fetch), over the packed words in `RGBA32UI`
 //!   attachments or over one attachment per word: a whole-word field's in its own format, a
 //!   word of bit fields in `R32UI`;
-//! - Vulkan GLSL subpass inputs, packed or one per word likewise;
+//! - Vulkan GLSL subpass inputs, packed or one per word likewise, with what a host sets to read
+//!   them in one dynamic rendering ([`local_read`]);
 //! - WebGL 2's pixel local storage (ANGLE's `GL_ANGLE_shader_pixel_local_storage`), one plane
 //!   per word, with the JavaScript that drives it ([`webgl`]).
 //!
@@ -22,6 +23,7 @@
 //! the hand-written parts take those names from it ([`GlslNames`]).
 
 mod interface;
+pub mod local_read;
 pub mod naga_glsl;
 pub mod printer;
 mod translate;
