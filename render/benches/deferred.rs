@@ -279,7 +279,12 @@ fn main() {
     match VulkanRenderer::new(&progress) {
         Ok(vulkan) => tile_rows(
             "vulkan",
-            &[Path::TwoPass, Path::Subpass],
+            &[
+                Path::TwoPass,
+                Path::Subpass,
+                Path::LocalRead,
+                Path::LocalReadOrdered,
+            ],
             |tile| {
                 let frame = vulkan.timed_frame(tile, &[])?;
                 Ok(Box::new(move || frame.seconds()))

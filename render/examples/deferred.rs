@@ -4,6 +4,7 @@
 //! `cargo run --release -p gbuffer-render --example deferred -- --layout mobile-metallic --size 1280x720 --out frame.png`
 //! `cargo run --release -p gbuffer-render --example deferred -- --backend gles --path fetch-native --reference`
 //! `cargo run --release -p gbuffer-render --example deferred -- --backend vulkan --path subpass --reference`
+//! `cargo run --release -p gbuffer-render --example deferred -- --backend vulkan --path local-read --reference`
 //! `cargo run --release -p gbuffer-render --example deferred -- --scene solver/scenes/dielectric-only.toml --reference`
 
 use std::path::PathBuf;
@@ -47,8 +48,9 @@ struct Arguments {
     #[arg(long, value_parser = named::<Backend>(), default_value = "wgpu")]
     backend: Backend,
     /// How the G-buffer travels: for gles `fetch-native` (default), `fetch-packed` or
-    /// `two-pass`; for vulkan `subpass` (default) or `two-pass`. The fused paths keep it in the
-    /// render pass and never store it.
+    /// `two-pass`; for vulkan `subpass` (default), `local-read` (dynamic rendering local read),
+    /// `local-read-ordered` (the same in rasterization order, without barriers) or `two-pass`.
+    /// The fused paths keep it in the render pass and never store it.
     #[arg(long, value_parser = named::<Path>())]
     path: Option<Path>,
     /// Frame size, WIDTHxHEIGHT (at most 8192 each).
