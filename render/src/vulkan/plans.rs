@@ -74,7 +74,7 @@ impl VulkanRenderer {
             local_read_commands = Some(local_read.commands.clone());
         }
         let model = layout.layout();
-        let (include, interface) = includes::include(&model, Include::SubpassPacked, 1)
+        let (_, interface) = includes::include(&model, Include::SubpassPacked, 1)
             .map_err(|error| error.to_string())?;
         let targets = interface.attachments.len() as u32;
         let limits = &self.vulkan.limits;
@@ -178,9 +178,9 @@ impl VulkanRenderer {
 
         // Descriptors: the inputs the stages sample in set 0, the G-buffer inputs in set 1,
         // the volume index as a push constant.
-        let wgsl = fused_wgsl(options, layout, -1.0);
-        let sampled = used_bindings(&wgsl, TRANSLATION_ENTRY);
-        let (set0_layout, set0) = self.sampled_set(&sampled, &[])?;
+        let shaders = fused_shaders(options, layout)?;
+        let wgsl = &shaders.wgsl;
+        let (set0_layout, set0) = self.sampled_set(&shaders.sampled, &[])?;
         let input_views: Vec<vk::ImageView> = views[..targets as usize].to_vec();
         let input_layout = match fused {
             Fused::Subpass { .. } => vk::ImageLayout::GENERAL,
@@ -191,53 +191,24 @@ impl VulkanRenderer {
             .vulkan
             .pipeline_layout(&[set0_layout, set1_layout], Some(4))?;
 
-        let load = model.symbols().load();
-        let include_translation = include_translation(&model)?;
-        let names = &include_translation.names;
-        let texel = &names.layout;
-        let outputs: String = (0..targets)
-            .map(|index| {
-                format!("layout(location = {index}) out highp uvec4 gbuffer_out{index};\n")
-            })
-            .chain([format!(
-                "layout(location = {targets}) out highp vec4 frame_colour;\n"
-            )])
-            .collect();
-        let store = includes::store_statements(&model, names, &interface, |attachment| {
-            format!("gbuffer_out{}", attachment.index)
-        });
-        // The volume drawn comes as a push constant; each draw writes only what it changes.
-        let volume = "layout(push_constant) uniform Volume {\n    uint volume_index;\n};\n";
-        let declarations = glsl::fragment_declarations(
-            &wgsl,
-            TRANSLATION_ENTRY,
-            Dialect::Vulkan,
-            &include_translation,
-        )?
-        .text;
         let draws_in = match &begin {
             Begin::RenderPass { render_pass, .. } => DrawsIn::Subpass(*render_pass, 0),
             Begin::Rendering(_) => DrawsIn::Rendering(&rendering),
         };
         let mut pipeline_stages = Vec::new();
-        for &stage in Stage::ALL {
+        for (stage, fragment) in &shaders.fragments {
+            let stage = *stage;
             let depth = match stage {
                 Stage::Geometry => Depth::Write,
                 Stage::Sky => Depth::Sky,
                 _ => Depth::Surfaces,
             };
             let writes = stage.writes(layout, targets as usize, 4);
-            let fragment = format!(
-                "{}\n{}\n{include}\n{outputs}{volume}\n{declarations}\n{}",
-                Dialect::Vulkan.version_line(),
-                Dialect::Vulkan.early_fragment_tests(),
-                stage.fragment_main(texel, &load, &store)
-            );
             let pipeline = self
                 .pipeline(
-                    &wgsl,
+                    wgsl,
                     stage.vertex_entry(),
-                    &fragment,
+                    fragment,
                     draws_in,
                     layout_handle,
                     (depth, &writes),
@@ -538,6 +509,71 @@ impl VulkanRenderer {
             height,
         })
     }
+}
+
+/// The fused paths' shaders for a layout, as the Vulkan plans build their pipelines from them.
+struct FusedShaders {
+    /// The renderer's WGSL (the vertex stages are its entry points, as naga's SPIR-V).
+    wgsl: String,
+    /// The bindings of descriptor set 0 the fragment stages sample (combined image samplers).
+    sampled: Vec<u32>,
+    /// Each stage's Vulkan GLSL fragment shader, in `Stage::ALL` order: the layout's Vulkan
+    /// include (packed, set 1) unedited, the outputs, the volume's push constant, the
+    /// declarations the stage calls and its `main`.
+    fragments: Vec<(Stage, String)>,
+}
+
+/// The fused paths' shaders for `layout` under `options` (the same for the subpass and the
+/// local-read paths: what differs is the pipeline and the pass, not the shaders).
+fn fused_shaders(
+    options: &Options,
+    layout: crate::gbuffers::PackedLayout,
+) -> Result<FusedShaders, String> {
+    let model = layout.layout();
+    let (include, interface) =
+        includes::include(&model, Include::SubpassPacked, 1).map_err(|error| error.to_string())?;
+    let targets = interface.attachments.len() as u32;
+    let wgsl = fused_wgsl(options, layout, -1.0);
+    let sampled = used_bindings(&wgsl, TRANSLATION_ENTRY);
+    let load = model.symbols().load();
+    let include_translation = include_translation(&model)?;
+    let names = &include_translation.names;
+    let texel = &names.layout;
+    let outputs: String = (0..targets)
+        .map(|index| format!("layout(location = {index}) out highp uvec4 gbuffer_out{index};\n"))
+        .chain([format!(
+            "layout(location = {targets}) out highp vec4 frame_colour;\n"
+        )])
+        .collect();
+    let store = includes::store_statements(&model, names, &interface, |attachment| {
+        format!("gbuffer_out{}", attachment.index)
+    });
+    // The volume drawn comes as a push constant; each draw writes only what it changes.
+    let volume = "layout(push_constant) uniform Volume {\n    uint volume_index;\n};\n";
+    let declarations = glsl::fragment_declarations(
+        &wgsl,
+        TRANSLATION_ENTRY,
+        Dialect::Vulkan,
+        &include_translation,
+    )?
+    .text;
+    let fragments = Stage::ALL
+        .iter()
+        .map(|&stage| {
+            let fragment = format!(
+                "{}\n{}\n{include}\n{outputs}{volume}\n{declarations}\n{}",
+                Dialect::Vulkan.version_line(),
+                Dialect::Vulkan.early_fragment_tests(),
+                stage.fragment_main(texel, &load, &store)
+            );
+            (stage, fragment)
+        })
+        .collect();
+    Ok(FusedShaders {
+        wgsl,
+        sampled,
+        fragments,
+    })
 }
 
 /// An attachment cleared at the start of the render pass, stored at its end or not.
