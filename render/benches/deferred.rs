@@ -104,7 +104,7 @@ fn row(name: &str, recording: &Recording, times: [String; 2]) {
     let (width, height) = SIZES[1];
     let traffic = recording.traffic(width, height);
     println!(
-        "{:<28} {:>6} {:>11.1} {:>11.1} {:>6.1} {:>18} {:>18}",
+        "{:<42} {:>6} {:>11.1} {:>11.1} {:>6.1} {:>18} {:>18}",
         name,
         recording.passes(),
         traffic.loaded as f64 / 1e6,
@@ -245,7 +245,7 @@ fn main() {
     );
     println!("traffic per frame at 1920x1080 from the passes' load and store operations:");
     println!(
-        "{:<28} {:>6} {:>11} {:>11} {:>6} {:>18} {:>18}",
+        "{:<42} {:>6} {:>11} {:>11} {:>6} {:>18} {:>18}",
         "G-buffer / path", "passes", "MB loaded", "MB stored", "BU", "1280x720 ms", "1920x1080 ms"
     );
     // Every G-buffer's frame at one size timed together, so no clock change falls on one.
