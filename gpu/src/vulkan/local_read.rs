@@ -71,6 +71,14 @@ impl FeatureChain {
 }
 
 impl Offered {
+    /// Neither, for this reason.
+    fn without(why: String) -> Offered {
+        Offered {
+            local_read: Err(why.clone()),
+            rasterization_order: Err(why),
+        }
+    }
+
     /// What `physical_device` offers at `api_version` (the instance's and the device's lower),
     /// of what `optional` asks for.
     pub(super) fn query(
@@ -81,10 +89,7 @@ impl Offered {
     ) -> Offered {
         if optional == OptionalExtensions::None {
             let why = "the device was opened without its optional extensions".to_string();
-            return Offered {
-                local_read: Err(why.clone()),
-                rasterization_order: Err(why),
-            };
+            return Offered::without(why);
         }
         // SAFETY: the physical device comes from the instance.
         let extensions = unsafe { instance.enumerate_device_extension_properties(physical_device) }
@@ -101,20 +106,14 @@ impl Offered {
                 vk::api_version_major(api_version),
                 vk::api_version_minor(api_version)
             );
-            return Offered {
-                local_read: Err(why.clone()),
-                rasterization_order: Err(why),
-            };
+            return Offered::without(why);
         }
         if !has(local_read_name) {
             let why = format!(
                 "the device does not offer {}",
                 local_read_name.to_string_lossy()
             );
-            return Offered {
-                local_read: Err(why.clone()),
-                rasterization_order: Err(why),
-            };
+            return Offered::without(why);
         }
         let mut vulkan_13 = vk::PhysicalDeviceVulkan13Features::default();
         let mut local_read = vk::PhysicalDeviceDynamicRenderingLocalReadFeaturesKHR::default();
@@ -142,10 +141,7 @@ impl Offered {
             let why = "the device lists VK_KHR_dynamic_rendering_local_read but not the \
                        dynamicRendering and dynamicRenderingLocalRead features"
                 .to_string();
-            return Offered {
-                local_read: Err(why.clone()),
-                rasterization_order: Err(why),
-            };
+            return Offered::without(why);
         }
         let rasterization_order = match order_name {
             None => Err(format!(

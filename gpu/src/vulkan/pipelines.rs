@@ -200,18 +200,17 @@ impl Vulkan {
                 vk::PipelineColorBlendStateCreateFlags::RASTERIZATION_ORDER_ATTACHMENT_ACCESS_EXT,
             );
         }
-        let mut formats = rendering.map(|attachments| {
-            vk::PipelineRenderingCreateInfo::default()
-                .color_attachment_formats(&attachments.colour_formats)
-                .depth_attachment_format(attachments.depth_format)
-        });
-        let mut locations = rendering.map(|attachments| {
-            vk::RenderingAttachmentLocationInfoKHR::default()
-                .color_attachment_locations(&attachments.locations)
-        });
-        let mut input_indices = rendering.map(|attachments| {
-            vk::RenderingInputAttachmentIndexInfoKHR::default()
-                .color_attachment_input_indices(&attachments.input_indices)
+        // What a pipeline for a dynamic rendering is told of its attachments.
+        let mut rendering_infos = rendering.map(|attachments| {
+            (
+                vk::PipelineRenderingCreateInfo::default()
+                    .color_attachment_formats(&attachments.colour_formats)
+                    .depth_attachment_format(attachments.depth_format),
+                vk::RenderingAttachmentLocationInfoKHR::default()
+                    .color_attachment_locations(&attachments.locations),
+                vk::RenderingInputAttachmentIndexInfoKHR::default()
+                    .color_attachment_input_indices(&attachments.input_indices),
+            )
         });
         let depth_state = description.depth.map(|(write, compare)| {
             vk::PipelineDepthStencilStateCreateInfo::default()
@@ -231,9 +230,7 @@ impl Vulkan {
         if let DrawsIn::Subpass(render_pass, subpass) = description.draws_in {
             info = info.render_pass(render_pass).subpass(subpass);
         }
-        if let (Some(formats), Some(locations), Some(input_indices)) =
-            (&mut formats, &mut locations, &mut input_indices)
-        {
+        if let Some((formats, locations, input_indices)) = &mut rendering_infos {
             info = info
                 .push_next(formats)
                 .push_next(locations)

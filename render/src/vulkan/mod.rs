@@ -25,7 +25,7 @@ use gbuffer::layout::PackedTarget;
 use gbuffer_core::Named;
 use gbuffer_gpu::vulkan::{
     feedback_barrier, host_read_barrier, Access, ImageTransition, RenderingAttachments,
-    StorageBuffer, Vulkan,
+    StorageBuffer, Vulkan, FEEDBACK,
 };
 
 mod objects;
@@ -112,11 +112,8 @@ struct Rendering {
     commands: ash::khr::dynamic_rendering_local_read::Device,
 }
 
-/// Colour attachment writes, where they happen.
-const COLOUR_WRITES: Access = (
-    vk::AccessFlags::COLOR_ATTACHMENT_WRITE,
-    vk::PipelineStageFlags::COLOR_ATTACHMENT_OUTPUT,
-);
+/// Colour attachment writes, where they happen: the first half of the feedback barrier.
+const COLOUR_WRITES: Access = FEEDBACK.0;
 
 /// The layout change of a whole single-mip colour image.
 fn colour_transition(image: vk::Image) -> ImageTransition {

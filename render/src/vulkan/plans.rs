@@ -3,7 +3,7 @@
 
 use ash::vk;
 use gbuffer_codegen::emit::glsl::local_read::{LocalRead, ATTACHMENT_UNUSED};
-use gbuffer_codegen::emit::glsl::{self as includes, Include};
+use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface};
 use gbuffer_core::Named;
 
 use gbuffer_gpu::vulkan::{DrawsIn, RenderingAttachments};
@@ -51,31 +51,34 @@ impl VulkanRenderer {
             == Fused::LocalRead {
                 rasterization_order: true,
             };
-        let mut local_read_commands = None;
-        if let Fused::LocalRead { .. } = fused {
-            let path = if rasterization_order {
-                Path::LocalReadOrdered
-            } else {
-                Path::LocalRead
-            };
-            let local_read = self.vulkan.local_read().map_err(|why| {
-                format!(
-                    "--path {} needs dynamic rendering with local read: {why}",
-                    path.name()
-                )
-            })?;
-            if let (true, Err(why)) = (rasterization_order, &local_read.rasterization_order) {
-                return Err(format!(
-                    "--path {} needs rasterization-order attachment access: {why} (--path \
-                     local-read draws with barriers instead)",
-                    path.name()
-                ));
+        // The local-read paths' commands, checked before anything is made for them.
+        let local_read = match fused {
+            Fused::Subpass { .. } => None,
+            Fused::LocalRead { .. } => {
+                let path = if rasterization_order {
+                    Path::LocalReadOrdered
+                } else {
+                    Path::LocalRead
+                };
+                let local_read = self.vulkan.local_read().map_err(|why| {
+                    format!(
+                        "--path {} needs dynamic rendering with local read: {why}",
+                        path.name()
+                    )
+                })?;
+                if let (true, Err(why)) = (rasterization_order, &local_read.rasterization_order) {
+                    return Err(format!(
+                        "--path {} needs rasterization-order attachment access: {why} (--path \
+                         local-read draws with barriers instead)",
+                        path.name()
+                    ));
+                }
+                Some(local_read.commands.clone())
             }
-            local_read_commands = Some(local_read.commands.clone());
-        }
+        };
         let model = layout.layout();
-        let (_, interface) = includes::include(&model, Include::SubpassPacked, 1)
-            .map_err(|error| error.to_string())?;
+        let shaders = fused_shaders(options, layout)?;
+        let interface = &shaders.interface;
         let targets = interface.attachments.len() as u32;
         let limits = &self.vulkan.limits;
         if targets + 1 > limits.max_color_attachments
@@ -139,7 +142,7 @@ impl VulkanRenderer {
         // The G-buffer attachments at the locations and input attachment indices the include's
         // host data gives (the codegen's `.local_read.json`); the output, at the next location,
         // is read by no shader.
-        let host = LocalRead::of(&model, &interface, 1).expect("the include is Vulkan's");
+        let host = LocalRead::of(&model, interface, 1).expect("the include is Vulkan's");
         let rendering = RenderingAttachments {
             colour_formats: host
                 .attachments
@@ -162,23 +165,18 @@ impl VulkanRenderer {
                 .collect(),
             rasterization_order,
         };
-        let begin = match fused {
-            Fused::Subpass { .. } => {
-                self.feedback_render_pass(targets, store_gbuffer, &views, (width, height))?
-            }
-            Fused::LocalRead { .. } => Begin::Rendering(Rendering {
+        let begin = match local_read {
+            None => self.feedback_render_pass(targets, store_gbuffer, &views, (width, height))?,
+            Some(commands) => Begin::Rendering(Rendering {
                 images,
                 views: views.clone(),
                 attachments: rendering.clone(),
-                commands: local_read_commands
-                    .take()
-                    .expect("the local-read paths checked the device"),
+                commands,
             }),
         };
 
         // Descriptors: the inputs the stages sample in set 0, the G-buffer inputs in set 1,
         // the volume index as a push constant.
-        let shaders = fused_shaders(options, layout)?;
         let wgsl = &shaders.wgsl;
         let (set0_layout, set0) = self.sampled_set(&shaders.sampled, &[])?;
         let input_views: Vec<vk::ImageView> = views[..targets as usize].to_vec();
@@ -517,6 +515,8 @@ struct FusedShaders {
     wgsl: String,
     /// The bindings of descriptor set 0 the fragment stages sample (combined image samplers).
     sampled: Vec<u32>,
+    /// The layout's packed Vulkan include's interface (set 1): the G-buffer's attachments.
+    interface: Interface,
     /// Each stage's Vulkan GLSL fragment shader, in `Stage::ALL` order: the layout's Vulkan
     /// include (packed, set 1) unedited, the outputs, the volume's push constant, the
     /// declarations the stage calls and its `main`.
@@ -572,6 +572,7 @@ fn fused_shaders(
     Ok(FusedShaders {
         wgsl,
         sampled,
+        interface,
         fragments,
     })
 }
