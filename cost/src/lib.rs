@@ -53,18 +53,13 @@ pub enum Stage {
     Compute,
 }
 
-impl Named for Stage {
-    /// Every value, in declaration order.
-    const ALL: &'static [Self] = &[Stage::Fragment, Stage::Compute];
-
+gbuffer_core::named!(
     /// `fragment` or `compute`, as the helper takes it.
-    fn name(self) -> &'static str {
-        match self {
-            Stage::Fragment => "fragment",
-            Stage::Compute => "compute",
-        }
+    Stage {
+        Fragment => "fragment",
+        Compute => "compute",
     }
-}
+);
 
 /// Why a target could not cost anything.
 #[derive(Clone, Debug, PartialEq)]

@@ -61,34 +61,20 @@ pub enum PackedLayout {
     Lossless,
 }
 
-impl Named for PackedLayout {
-    /// The seeds, the engines', the coarse one and the lossless one.
-    const ALL: &'static [Self] = &[
-        PackedLayout::MobileMetallic,
-        PackedLayout::SpecularWorkflow,
-        PackedLayout::FutureMetallic,
-        PackedLayout::FutureSpecular,
-        PackedLayout::ArmTileBlock,
-        PackedLayout::BevyDeferred,
-        PackedLayout::HdrpLit,
-        PackedLayout::CoarseNormals,
-        PackedLayout::Lossless,
-    ];
-
-    fn name(self) -> &'static str {
-        match self {
-            PackedLayout::MobileMetallic => "mobile-metallic",
-            PackedLayout::SpecularWorkflow => "specular-workflow",
-            PackedLayout::FutureMetallic => "future-metallic",
-            PackedLayout::FutureSpecular => "future-specular",
-            PackedLayout::ArmTileBlock => "arm-tile-block",
-            PackedLayout::BevyDeferred => "bevy-deferred",
-            PackedLayout::HdrpLit => "hdrp-lit",
-            PackedLayout::CoarseNormals => "coarse-normals",
-            PackedLayout::Lossless => "lossless",
-        }
+// The seeds, the engines', the coarse one and the lossless one.
+gbuffer_core::named!(
+    PackedLayout {
+        MobileMetallic => "mobile-metallic",
+        SpecularWorkflow => "specular-workflow",
+        FutureMetallic => "future-metallic",
+        FutureSpecular => "future-specular",
+        ArmTileBlock => "arm-tile-block",
+        BevyDeferred => "bevy-deferred",
+        HdrpLit => "hdrp-lit",
+        CoarseNormals => "coarse-normals",
+        Lossless => "lossless",
     }
-}
+);
 
 /// What the renderer takes of a layout: its model, its generated WGSL, and its convention's
 /// `encode_texel` and `decode_texel`.

@@ -22,7 +22,6 @@
 //! shading library, the layout's generated WGSL) translated by naga; only the entry points
 //! that fetch are written here, in GLSL, around the layout's generated include.
 
-use gbuffer_core::Named;
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 
 use crate::gbuffers::{GBuffer, PackedLayout};
@@ -40,17 +39,13 @@ pub enum Backend {
     Vulkan,
 }
 
-impl Named for Backend {
-    const ALL: &'static [Self] = &[Backend::Wgpu, Backend::Gles, Backend::Vulkan];
-
-    fn name(self) -> &'static str {
-        match self {
-            Backend::Wgpu => "wgpu",
-            Backend::Gles => "gles",
-            Backend::Vulkan => "vulkan",
-        }
+gbuffer_core::named!(
+    Backend {
+        Wgpu => "wgpu",
+        Gles => "gles",
+        Vulkan => "vulkan",
     }
-}
+);
 
 /// How a backend carries the G-buffer from the geometry to the lighting.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -74,27 +69,16 @@ pub enum Path {
     TwoPass,
 }
 
-impl Named for Path {
-    const ALL: &'static [Self] = &[
-        Path::FetchNative,
-        Path::FetchPacked,
-        Path::Subpass,
-        Path::LocalRead,
-        Path::LocalReadOrdered,
-        Path::TwoPass,
-    ];
-
-    fn name(self) -> &'static str {
-        match self {
-            Path::FetchNative => "fetch-native",
-            Path::FetchPacked => "fetch-packed",
-            Path::Subpass => "subpass",
-            Path::LocalRead => "local-read",
-            Path::LocalReadOrdered => "local-read-ordered",
-            Path::TwoPass => "two-pass",
-        }
+gbuffer_core::named!(
+    Path {
+        FetchNative => "fetch-native",
+        FetchPacked => "fetch-packed",
+        Subpass => "subpass",
+        LocalRead => "local-read",
+        LocalReadOrdered => "local-read-ordered",
+        TwoPass => "two-pass",
     }
-}
+);
 
 impl Backend {
     /// The paths the backend offers, the default first.
@@ -175,27 +159,17 @@ fn geometry_inputs(with_locations: bool) -> String {
     out
 }
 
-impl Named for Stage {
-    /// Every stage, in drawing order.
-    const ALL: &'static [Self] = &[
-        Stage::Geometry,
-        Stage::Decal,
-        Stage::Lighting,
-        Stage::Resolve,
-        Stage::Sky,
-    ];
-
+// Every stage, in drawing order.
+gbuffer_core::named!(
     /// Its name in recordings and messages.
-    fn name(self) -> &'static str {
-        match self {
-            Stage::Geometry => "geometry",
-            Stage::Decal => "decal",
-            Stage::Lighting => "lighting",
-            Stage::Resolve => "resolve",
-            Stage::Sky => "sky",
-        }
+    Stage {
+        Geometry => "geometry",
+        Decal => "decal",
+        Lighting => "lighting",
+        Resolve => "resolve",
+        Sky => "sky",
     }
-}
+);
 
 impl Stage {
     /// Whether its fragments read the G-buffer texel under them (every stage but the mesh,

@@ -15,18 +15,14 @@ pub enum MaterialModel {
     Specular,
 }
 
-impl Named for MaterialModel {
-    /// Both models, in the order scene files list them.
-    const ALL: &'static [Self] = &[MaterialModel::Metallic, MaterialModel::Specular];
-
+// Both models, in the order scene files list them.
+gbuffer_core::named!(
     /// The name in scene files.
-    fn name(self) -> &'static str {
-        match self {
-            MaterialModel::Metallic => "metallic",
-            MaterialModel::Specular => "specular",
-        }
+    MaterialModel {
+        Metallic => "metallic",
+        Specular => "specular",
     }
-}
+);
 
 /// Something a scene may use. Each one brings what only it needs: stored quantities, terms of
 /// the lighting shader, work in the G-buffer pass.
@@ -55,37 +51,22 @@ pub enum Feature {
     FullyRough,
 }
 
-impl Named for Feature {
-    /// Every feature, in the order reports list them.
-    const ALL: &'static [Self] = &[
-        Feature::Metals,
-        Feature::DielectricSpecular,
-        Feature::NormalMaps,
-        Feature::Emissive,
-        Feature::ImageBasedLighting,
-        Feature::LightMaps,
-        Feature::Sun,
-        Feature::PointLights,
-        Feature::Decals,
-        Feature::FullyRough,
-    ];
-
+// Every feature, in the order reports list them.
+gbuffer_core::named!(
     /// The key in a scene file's `[features]` table.
-    fn name(self) -> &'static str {
-        match self {
-            Feature::Metals => "metals",
-            Feature::DielectricSpecular => "dielectric_specular",
-            Feature::NormalMaps => "normal_maps",
-            Feature::Emissive => "emissive",
-            Feature::ImageBasedLighting => "image_based_lighting",
-            Feature::LightMaps => "light_maps",
-            Feature::Sun => "sun",
-            Feature::PointLights => "point_lights",
-            Feature::Decals => "decals",
-            Feature::FullyRough => "fully_rough",
-        }
+    Feature {
+        Metals => "metals",
+        DielectricSpecular => "dielectric_specular",
+        NormalMaps => "normal_maps",
+        Emissive => "emissive",
+        ImageBasedLighting => "image_based_lighting",
+        LightMaps => "light_maps",
+        Sun => "sun",
+        PointLights => "point_lights",
+        Decals => "decals",
+        FullyRough => "fully_rough",
     }
-}
+);
 
 impl Feature {
     fn bit(self) -> u16 {

@@ -16,8 +16,6 @@
 
 use std::fmt::Write as _;
 
-use gbuffer_core::Named;
-
 use crate::description::{Feature, MaterialModel};
 use crate::quantity::Quantity;
 use crate::solver::Solution;
@@ -31,16 +29,12 @@ pub enum SunForm {
     Approx,
 }
 
-impl Named for SunForm {
-    const ALL: &'static [Self] = &[SunForm::Ggx, SunForm::Approx];
-
-    fn name(self) -> &'static str {
-        match self {
-            SunForm::Ggx => "ggx",
-            SunForm::Approx => "approx",
-        }
+gbuffer_core::named!(
+    SunForm {
+        Ggx => "ggx",
+        Approx => "approx",
     }
-}
+);
 
 /// How image-based light is shaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -51,16 +45,12 @@ pub enum IblForm {
     Approx,
 }
 
-impl Named for IblForm {
-    const ALL: &'static [Self] = &[IblForm::Lut, IblForm::Approx];
-
-    fn name(self) -> &'static str {
-        match self {
-            IblForm::Lut => "lut",
-            IblForm::Approx => "approx",
-        }
+gbuffer_core::named!(
+    IblForm {
+        Lut => "lut",
+        Approx => "approx",
     }
-}
+);
 
 /// The forms of the lighting terms.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

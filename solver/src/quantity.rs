@@ -1,8 +1,6 @@
 //! What a G-buffer must store for a scene: each quantity, and the features that need it. A
 //! quantity nobody reads is not stored.
 
-use gbuffer_core::Named;
-
 use crate::description::{Feature, MaterialModel, SceneDescription};
 
 /// A value the G-buffer pass writes and the lighting pass reads.
@@ -44,35 +42,20 @@ pub enum Kind {
     Scalar,
 }
 
-impl Named for Quantity {
-    /// Every value, in declaration order.
-    const ALL: &'static [Self] = &[
-        Quantity::Light,
-        Quantity::Depth,
-        Quantity::Normal,
-        Quantity::Roughness,
-        Quantity::BaseColour,
-        Quantity::Metallic,
-        Quantity::Specular,
-        Quantity::Albedo,
-        Quantity::SpecularColour,
-    ];
-
+gbuffer_core::named!(
     /// The name of its member in the generated `...Values` struct.
-    fn name(self) -> &'static str {
-        match self {
-            Quantity::Light => "light",
-            Quantity::Depth => "depth",
-            Quantity::Normal => "normal",
-            Quantity::Roughness => "roughness",
-            Quantity::BaseColour => "base_colour",
-            Quantity::Metallic => "metallic",
-            Quantity::Specular => "specular",
-            Quantity::Albedo => "albedo",
-            Quantity::SpecularColour => "specular_colour",
-        }
+    Quantity {
+        Light => "light",
+        Depth => "depth",
+        Normal => "normal",
+        Roughness => "roughness",
+        BaseColour => "base_colour",
+        Metallic => "metallic",
+        Specular => "specular",
+        Albedo => "albedo",
+        SpecularColour => "specular_colour",
     }
-}
+);
 
 impl Quantity {
     /// The kind of value it is, which sets the unit of its error.

@@ -28,18 +28,14 @@ pub enum Backend {
     Lavapipe,
 }
 
-impl Named for Backend {
-    /// Both, in the order the tests run them.
-    const ALL: &'static [Self] = &[Backend::SwiftShader, Backend::Lavapipe];
-
+// Both, in the order the tests run them.
+gbuffer_core::named!(
     /// The backend's name in messages.
-    fn name(self) -> &'static str {
-        match self {
-            Backend::SwiftShader => "SwiftShader",
-            Backend::Lavapipe => "lavapipe",
-        }
+    Backend {
+        SwiftShader => "SwiftShader",
+        Lavapipe => "lavapipe",
     }
-}
+);
 
 impl Backend {
     /// Chromium's switches that select it.

@@ -42,18 +42,14 @@ pub enum Direction {
     Unpack,
 }
 
-impl Named for Direction {
-    /// Both, in the table's order.
-    const ALL: &'static [Self] = &[Direction::Pack, Direction::Unpack];
-
+// Both, in the table's order.
+gbuffer_core::named!(
     /// `pack` or `unpack`.
-    fn name(self) -> &'static str {
-        match self {
-            Direction::Pack => "pack",
-            Direction::Unpack => "unpack",
-        }
+    Direction {
+        Pack => "pack",
+        Unpack => "unpack",
     }
-}
+);
 
 impl PackingRow {
     /// The time of `direction` in `stage`.

@@ -54,20 +54,16 @@ pub enum Backend {
     GlslEs,
 }
 
-impl Named for Backend {
-    /// Every backend the validator translates to.
-    const ALL: &'static [Self] = &[Backend::SpirV, Backend::Msl, Backend::Hlsl, Backend::GlslEs];
-
+// Every backend the validator translates to.
+gbuffer_core::named!(
     /// The backend's usual name: `SPIR-V`, `MSL`, `HLSL`, `GLSL ES`.
-    fn name(self) -> &'static str {
-        match self {
-            Backend::SpirV => "SPIR-V",
-            Backend::Msl => "MSL",
-            Backend::Hlsl => "HLSL",
-            Backend::GlslEs => "GLSL ES",
-        }
+    Backend {
+        SpirV => "SPIR-V",
+        Msl => "MSL",
+        Hlsl => "HLSL",
+        GlslEs => "GLSL ES",
     }
-}
+);
 
 /// One problem with a shader.
 #[derive(Clone, Debug, PartialEq, Eq)]

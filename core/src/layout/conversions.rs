@@ -3,7 +3,6 @@
 
 use crate::codecs::Encoding;
 use crate::format::Format;
-use crate::named::Named;
 
 /// How the WGSL converts values to and from channel codes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
@@ -26,18 +25,14 @@ pub enum Conversions {
     Fast,
 }
 
-impl Named for Conversions {
-    /// Both, exact first.
-    const ALL: &'static [Self] = &[Conversions::Exact, Conversions::Fast];
-
+// Both, exact first.
+crate::named!(
     /// The name layout files and `#[gbuffer(conversions = ...)]` give them: `exact` or `fast`.
-    fn name(self) -> &'static str {
-        match self {
-            Conversions::Exact => "exact",
-            Conversions::Fast => "fast",
-        }
+    Conversions {
+        Exact => "exact",
+        Fast => "fast",
     }
-}
+);
 
 impl Conversions {
     /// Whether a format's encode is the exact one under these conversions (fast conversions
@@ -77,6 +72,7 @@ impl Conversions {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Named;
 
     #[test]
     fn conversions_are_found_by_their_names_only() {

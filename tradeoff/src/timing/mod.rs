@@ -18,7 +18,6 @@ pub use harness::{fragment_harness, harness, BASELINE_ROW};
 use std::time::Instant;
 
 use gbuffer::glam::Vec4;
-use gbuffer_core::Named;
 use gbuffer_gpu::timing::Spread;
 
 /// Invocations per dispatch: enough threads to fill a large GPU (an H100 holds 270,000), so
@@ -43,18 +42,14 @@ pub enum Stage {
     Fragment,
 }
 
-impl Named for Stage {
-    /// Both stages, in report order.
-    const ALL: &'static [Self] = &[Stage::Compute, Stage::Fragment];
-
+// Both stages, in report order.
+gbuffer_core::named!(
     /// The stage's name in the report: `compute` or `fragment`.
-    fn name(self) -> &'static str {
-        match self {
-            Stage::Compute => "compute",
-            Stage::Fragment => "fragment",
-        }
+    Stage {
+        Compute => "compute",
+        Fragment => "fragment",
     }
-}
+);
 
 /// How a run was timed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -65,18 +60,13 @@ pub enum Clock {
     Wall,
 }
 
-impl Named for Clock {
-    /// Every value, in declaration order.
-    const ALL: &'static [Self] = &[Clock::Timestamps, Clock::Wall];
-
+gbuffer_core::named!(
     /// The clock's name in the report: `timestamps` or `wall`.
-    fn name(self) -> &'static str {
-        match self {
-            Clock::Timestamps => "timestamps",
-            Clock::Wall => "wall",
-        }
+    Clock {
+        Timestamps => "timestamps",
+        Wall => "wall",
     }
-}
+);
 
 /// A row's time on the adapter, per evaluation and invocation, over the protocol's rounds of
 /// `chain` evaluations in each of `invocations`.
@@ -258,6 +248,7 @@ pub fn cpu_ns_per_eval(evaluate: &dyn Fn(Vec4) -> Vec4) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use gbuffer_core::Named;
 
     /// Runs whose evaluations and times are known: 7 runs of 100 evaluations in each of 1000
     /// invocations (1e5 a run), the median lasting 10 ms, give 100 ns per evaluation and 1e7
