@@ -18,6 +18,8 @@ mod consistency;
 pub mod frame_shaders;
 pub mod frames;
 pub mod furnace;
+#[cfg(test)]
+mod independent_harness;
 mod json;
 mod markdown;
 mod measured;

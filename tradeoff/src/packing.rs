@@ -28,7 +28,7 @@ pub struct PackingRow {
     cost: Option<Cost>,
     deviation: Deviation,
     /// The adapter's times to pack a texel and to unpack one in both stages, less the
-    /// harness's: nanoseconds per texel are milliseconds per million.
+    /// harness's and the direction's glue: nanoseconds per texel are milliseconds per million.
     pack: timing::StageTimes,
     unpack: timing::StageTimes,
 }
@@ -80,7 +80,7 @@ impl PackingRow {
 ///   channel cleared so that it decodes to a finite value (under 2), unpacked as one texel and
 ///   padded back to four components.
 ///
-/// Each carries that glue, two or three instructions, in its time.
+/// Each direction's glue alone is timed too ([`glue_wgsl`]) and taken off its rows' times.
 fn row_wgsl(format: Format, conversions: Conversions, direction: Direction) -> String {
     let layout = one_field(format);
     let (value, rest) = match layout.fields[0].ty.components {
@@ -106,10 +106,27 @@ fn row_wgsl(format: Format, conversions: Conversions, direction: Direction) -> S
     )
 }
 
+/// `row_eval` for the glue of `direction`'s rows with no conversion, whose time is taken off
+/// theirs: the pack rows' word, here the input's first component's bits, on as a fraction; the
+/// unpack rows' hashed word, masked to a finite float under 2, as the first component.
+fn glue_wgsl(direction: Direction) -> String {
+    let body = match direction {
+        Direction::Pack => {
+            "let word = bitcast<u32>(x.x);\n    \
+             return vec4<f32>(f32(word) * 2.3283064e-10, x.yzw);"
+        }
+        Direction::Unpack => {
+            "let word = (bitcast<u32>(x.x) * 2654435761u ^ bitcast<u32>(x.y)) & 0x3fffffffu;\n    \
+             return vec4<f32>(bitcast<f32>(word), x.yzw);"
+        }
+    };
+    format!("fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    {body}\n}}\n")
+}
+
 /// The bits an unpack row keeps of its hashed word: all, but the top exponent bit of each float
 /// channel (rg16f's two halves at bits 14 and 30; r11f_g11f_b10f's 5-bit exponents, whose top
 /// bits are 10, 21 and 31), so that every word decodes to a finite value.
-fn finite_mask(format: Format) -> u32 {
+pub(crate) fn finite_mask(format: Format) -> u32 {
     match format {
         Format::Rg16f => !(1 << 14 | 1 << 30),
         Format::R11fG11fB10f => !(1 << 10 | 1 << 21 | 1 << 31),
@@ -118,16 +135,26 @@ fn finite_mask(format: Format) -> u32 {
 }
 
 /// Every format and mode the packing table has, in its order.
-fn modes() -> impl Iterator<Item = (Format, Conversions)> {
+pub(crate) fn modes() -> impl Iterator<Item = (Format, Conversions)> {
     CONVERTED_FORMATS.into_iter().flat_map(|format| {
         [Conversions::Exact, Conversions::Fast].map(|conversions| (format, conversions))
     })
 }
 
-/// Adds each format's pack and unpack, in both modes, to `timer`; their indices in the
-/// timer's times, in the table's order (per row, its pack then its unpack).
+/// Adds each direction's glue, then each format's pack and unpack in both modes, to `timer`;
+/// their indices in the timer's times, in that order (the glue's pack and unpack, then per
+/// row of the table its pack and its unpack), for [`conversion_times`].
 pub fn time_rows(timer: &mut timing::Timer) -> Vec<usize> {
-    modes()
+    let glue = Direction::ALL.iter().map(|&direction| {
+        timer.add(
+            &format!("{} glue", direction.name()),
+            &glue_wgsl(direction),
+            &[],
+            1,
+        )
+    });
+    let glue: Vec<usize> = glue.collect();
+    let rows = modes()
         .flat_map(|(format, conversions)| {
             Direction::ALL
                 .iter()
@@ -145,16 +172,33 @@ pub fn time_rows(timer: &mut timing::Timer) -> Vec<usize> {
                 &[],
                 1,
             )
-        })
+        });
+    glue.into_iter().chain(rows.collect::<Vec<_>>()).collect()
+}
+
+/// Per row of the table, in [`modes`]' order, its pack's and its unpack's times less their
+/// glue's, from `times` in [`time_rows`]' order.
+pub(crate) fn conversion_times(
+    times: &[timing::StageTimes],
+) -> Vec<(timing::StageTimes, timing::StageTimes)> {
+    let (glue, rows) = times.split_at(2);
+    let less_glue = |row: &timing::StageTimes, glue: &timing::StageTimes| {
+        let mut times = *row;
+        for &stage in timing::Stage::ALL {
+            *times.get_mut(stage) = row.get(stage).map(|time| time.less(glue.get(stage)));
+        }
+        times
+    };
+    rows.chunks(2)
+        .map(|pair| (less_glue(&pair[0], &glue[0]), less_glue(&pair[1], &glue[1])))
         .collect()
 }
 
-/// Measures both modes of every format fast conversions change, with their `times` (two per
-/// row, pack then unpack, in [`time_rows`]'s order). The error is wgpu's, where it rejected a
-/// harness.
+/// Measures both modes of every format fast conversions change, with their `times` (in
+/// [`time_rows`]'s order). The error is wgpu's, where it rejected a harness.
 pub fn measure(gpu: &Gpu, times: &[timing::StageTimes]) -> Result<Vec<PackingRow>, String> {
     let mut rows = Vec::new();
-    for ((format, conversions), times) in modes().zip(times.chunks(2)) {
+    for ((format, conversions), (pack, unpack)) in modes().zip(conversion_times(times)) {
         eprintln!("packing: {} ({conversions:?})", format.name());
         let layout = one_field(format);
         let cost = layout_cost(&layout, conversions)
@@ -167,8 +211,8 @@ pub fn measure(gpu: &Gpu, times: &[timing::StageTimes]) -> Result<Vec<PackingRow
             conversions,
             cost,
             deviation,
-            pack: times[0],
-            unpack: times[1],
+            pack,
+            unpack,
         });
     }
     Ok(rows)
@@ -277,7 +321,7 @@ pub fn print(rows: &[PackingRow], gpu: &Gpu) {
 /// The report's section.
 pub fn markdown(rows: &[PackingRow], gpu: &Gpu) -> String {
     let mut out = String::from("\n## Packing conversions\n\n");
-    let _ = writeln!(out, "Per format and mode: SPIR-V instructions of a compute shader that packs one texel and unpacks one (naga, then `spirv-opt -O`; about 14 are the harness's) and its conditional branches; the largest difference between a channel's code and the exact one, and the fraction of channel codes that differ, over {TEXELS} texels packed on the adapter (edge cases, then random values: finite, within f16's range); the adapter's milliseconds to pack a million texels and to unpack a million, each direction timed apart in a dependent chain of its own (a renderer packs in one pass and unpacks in another, so no compiler sees the round trip whole: the packed word goes on as a fraction every bit of it reaches, and unpack is fed words hashed from the chain's values, which no compiler can predict; that glue, two or three instructions, is in each time), in a compute dispatch and in a fullscreen draw's fragment shader. {}\n", time_note(gpu));
+    let _ = writeln!(out, "Per format and mode: SPIR-V instructions of a compute shader that packs one texel and unpacks one (naga, then `spirv-opt -O`; about 14 are the harness's) and its conditional branches; the largest difference between a channel's code and the exact one, and the fraction of channel codes that differ, over {TEXELS} texels packed on the adapter (edge cases, then random values: finite, within f16's range); the adapter's milliseconds to pack a million texels and to unpack a million, each direction timed apart in a dependent chain of its own (a renderer packs in one pass and unpacks in another, so no compiler sees the round trip whole: the packed word goes on as a fraction every bit of it reaches, and unpack is fed words hashed from the chain's values, which no compiler can predict; that glue, two or three instructions, is timed alone and taken off each time), in a compute dispatch and in a fullscreen draw's fragment shader. {}\n", time_note(gpu));
     out.push_str(
         "| format | mode | instructions | branches | largest error (codes) | differing | pack ms per million texels (compute) | unpack ms per million texels (compute) | pack ms per million texels (fragment) | unpack ms per million texels (fragment) |\n",
     );
@@ -434,12 +478,26 @@ impl CompiledPacking {
 mod tests {
     use super::*;
 
-    /// Every format, mode and direction makes a valid shader in both of the timer's harnesses.
+    /// Every format, mode and direction, and each direction's glue, makes a valid shader in
+    /// both of the timer's harnesses.
     #[test]
     fn every_direction_of_every_conversion_is_a_valid_harness() {
-        for (format, conversions) in modes() {
-            for &direction in Direction::ALL {
+        let glue = Direction::ALL.iter().map(|&direction| {
+            (
+                Format::Rgba8,
+                Conversions::Exact,
+                direction,
+                glue_wgsl(direction),
+            )
+        });
+        let rows = modes().flat_map(|(format, conversions)| {
+            Direction::ALL.iter().map(move |&direction| {
                 let row = row_wgsl(format, conversions, direction);
+                (format, conversions, direction, row)
+            })
+        });
+        for (format, conversions, direction, row) in glue.chain(rows) {
+            {
                 for shader in [timing::harness(&row), timing::fragment_harness(&row)] {
                     if let Err(problem) = gbuffer_validator::validate_wgsl(&shader) {
                         panic!("{format:?} {conversions:?} {direction:?}: {problem}");

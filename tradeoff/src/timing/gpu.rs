@@ -1,19 +1,20 @@
 //! The rows' times on the adapter, by the protocol of `gbuffer_gpu::timing`: every row's
 //! pipeline built first, the clock warmed up on the harness alone, each row's chain calibrated
-//! until a run lasts `TARGET_RUN` and doubling the chain doubles the time, then every row timed
-//! once a round for the protocol's rounds.
+//! until a run lasts `TARGET_RUN` and doubling the chain doubles the time and adds at least
+//! `TARGET_ADDED`, then every row timed once a round for the protocol's rounds, at its chain and
+//! at twice it: its time is what the second chain adds.
 
 use std::time::Instant;
 
 use gbuffer_core::Named;
 use gbuffer_gpu::timestamps::Timestamps;
-use gbuffer_gpu::timing::{doubles, in_rounds, warm_up, Protocol};
+use gbuffer_gpu::timing::{doubles, in_rounds, warm_up, Protocol, Spread};
 use gbuffer_gpu::Gpu;
 
 use super::harness::{compute_harness, fragment_harness_with, Chain, BASELINE_ROW};
 use super::{
-    Clock, GpuTime, Stage, StageTimes, FRAGMENT_HEIGHT, FRAGMENT_WIDTH, INVOCATIONS, MAX_CHAIN,
-    TARGET_RUN,
+    Calibration, Clock, GpuTime, Stage, StageTimes, FRAGMENT_HEIGHT, FRAGMENT_WIDTH, INVOCATIONS,
+    MAX_CHAIN, TARGET_ADDED, TARGET_RUN,
 };
 
 /// A row to time: its WGSL (`row_eval`) and the environment BRDF LUT it samples (a `lut_size`
@@ -62,8 +63,13 @@ impl<'a> Timer<'a> {
     /// Every added row's times in both stages, less the harness's in that stage, in the order
     /// added. A row or stage that fails is reported on stderr and left out.
     pub fn run(&self) -> Vec<StageTimes> {
+        self.run_in(Stage::ALL)
+    }
+
+    /// As [`Timer::run`], in `stages` only (the others' times left `None`).
+    pub fn run_in(&self, stages: &[Stage]) -> Vec<StageTimes> {
         let mut times = vec![StageTimes::default(); self.rows.len()];
-        for &stage in Stage::ALL {
+        for &stage in stages {
             let stage_times = self
                 .run_stage(stage)
                 .map_err(|error| eprintln!("{} timing failed: {error}", stage.name()))
@@ -99,7 +105,9 @@ impl<'a> Timer<'a> {
         // come out too short).
         bench.calibrate(baseline, &self.protocol)?;
         let warm = warm_up(&self.protocol, &mut || {
-            bench.run(baseline, baseline.chain).map(|run| run.0)
+            bench
+                .run(baseline, baseline.calibration.chain)
+                .map(|run| run.0)
         })?;
         if !warm.settled {
             eprintln!(
@@ -115,28 +123,33 @@ impl<'a> Timer<'a> {
                 }
             }
         }
+        // Each round times a row at its chain and at twice it: the difference is what the chain
+        // costs, without the run's fixed part (the launch, each invocation's loads and
+        // stores), which a short chain (2 to 16 steps on lavapipe) would otherwise carry. Each
+        // is the faster of two runs: another process's load only adds to a run, and one slow
+        // run would move the difference by all of its delay.
         let timed: Vec<&Item> = items.iter().flatten().collect();
-        let spreads = in_rounds(&self.protocol, timed.len(), &mut |index| {
+        let mut runs = vec![Vec::new(); timed.len()];
+        let added = in_rounds(&self.protocol, timed.len(), &mut |index| {
             let item = timed[index];
-            let (wall, stamped) = bench.run(item, item.chain)?;
-            Ok(match item.clock {
-                Clock::Timestamps => stamped.unwrap_or(wall),
-                Clock::Wall => wall,
-            })
+            let chain = item.calibration.chain;
+            let (single, double) = (bench.seconds(item, chain)?, bench.seconds(item, 2 * chain)?);
+            runs[index].push(single);
+            Ok(double - single)
         })?;
-        let mut spreads = spreads.into_iter();
+        let mut timed = added.into_iter().zip(&runs);
         Ok(items
             .iter()
             .map(|item| {
                 let item = item.as_ref()?;
+                let (added, runs) = timed.next()?;
                 Some(GpuTime::of_runs(
                     stage,
                     item.clock,
-                    spreads.next()?,
-                    item.chain,
+                    added,
+                    Spread::of(runs)?.median,
                     bench.invocations(),
-                    item.doubling_ratio,
-                    item.doubled,
+                    item.calibration,
                 ))
             })
             .collect())
@@ -147,13 +160,9 @@ impl<'a> Timer<'a> {
 struct Item {
     pipeline: Pipeline,
     bind_group: wgpu::BindGroup,
-    /// Evaluations per invocation.
-    chain: u32,
     clock: Clock,
-    /// A run of twice the chain over a run of the chain (best of two each).
-    doubling_ratio: f64,
-    /// Whether that ratio is 2 within the protocol's tolerance.
-    doubled: bool,
+    /// The chain, and a run of twice the chain over a run of the chain (best of two each).
+    calibration: Calibration,
 }
 
 /// A timing harness's pipeline, of either stage.
@@ -351,10 +360,12 @@ impl<'a> Bench<'a> {
         Ok(Item {
             pipeline,
             bind_group,
-            chain: 1,
             clock: Clock::Wall,
-            doubling_ratio: 0.0,
-            doubled: false,
+            calibration: Calibration {
+                chain: 1,
+                doubling_ratio: 0.0,
+                doubled: false,
+            },
         })
     }
 
@@ -425,6 +436,16 @@ impl<'a> Bench<'a> {
         Ok((wall, stamped))
     }
 
+    /// The seconds of the faster of two runs of `item` with `chain` evaluations per
+    /// invocation, by its clock.
+    fn seconds(&self, item: &Item, chain: u32) -> Result<f64, String> {
+        let (wall, stamped) = self.best_of_two(item, chain)?;
+        Ok(match item.clock {
+            Clock::Timestamps => stamped.unwrap_or(wall),
+            Clock::Wall => wall,
+        })
+    }
+
     /// The faster of two runs of `chain`, by the wall clock and by the timestamps.
     fn best_of_two(&self, item: &Item, chain: u32) -> Result<(f64, Option<f64>), String> {
         let (first, second) = (self.run(item, chain)?, self.run(item, chain)?);
@@ -437,11 +458,12 @@ impl<'a> Bench<'a> {
 
     /// Sizes `item`'s chain: it grows until a run lasts `TARGET_RUN` by the wall clock (which a
     /// run cannot undercut), then doubles until a run of twice the chain takes twice as long
-    /// (the protocol's tolerance), or reaches `MAX_CHAIN`. The clock: the timestamps where
+    /// (the protocol's tolerance) and the second chain adds at least `TARGET_ADDED` to the
+    /// run, or reaches `MAX_CHAIN`. The clock: the timestamps where
     /// they bracket the work (at least half the wall clock's time; lavapipe's around a compute
     /// dispatch come to a fraction of it), else the wall clock.
     fn calibrate(&self, item: &mut Item, protocol: &Protocol) -> Result<(), String> {
-        let mut chain = item.chain.max(1);
+        let mut chain = item.calibration.chain.max(1);
         loop {
             let (wall, _) = self.run(item, chain)?;
             if wall >= TARGET_RUN || chain >= MAX_CHAIN {
@@ -461,10 +483,15 @@ impl<'a> Bench<'a> {
                 _ => (Clock::Wall, single.0, double.0),
             };
             item.clock = clock;
-            item.chain = chain;
-            item.doubling_ratio = double / single;
-            item.doubled = doubles(protocol, single, double);
-            if item.doubled || 2 * chain > MAX_CHAIN {
+            item.calibration = Calibration {
+                chain,
+                doubling_ratio: double / single,
+                doubled: doubles(protocol, single, double),
+            };
+            // The time is what the chain adds to a run (`Timer::run_stage`): it must itself
+            // last the target, or a short chain's few milliseconds drown in a run's noise.
+            let resolves = item.calibration.doubled && double - single >= TARGET_ADDED;
+            if resolves || 2 * chain > MAX_CHAIN {
                 return Ok(());
             }
             chain *= 2;

@@ -6,8 +6,10 @@
 //! compute dispatch of 2^20 invocations, and a fullscreen draw into a 1920x1080 target whose
 //! fragment shader runs the chain (G-buffer packing and lighting are fragment work, and some
 //! GPUs run fragments on few of their units). Every row, the harness's own among them, is
-//! timed once a round after the clock has warmed up ([`Timer`]). On the CPU, the f32 mirror
-//! over the same kind of inputs.
+//! timed once a round after the clock has warmed up ([`Timer`]), each round at its chain and
+//! at twice its chain: a row's time is what the second chain adds, so a run's fixed cost (the
+//! launch, each invocation's loads and stores) is charged to no row however short its chain.
+//! On the CPU, the f32 mirror over the same kind of inputs.
 
 mod gpu;
 mod harness;
@@ -30,6 +32,10 @@ const FRAGMENT_WIDTH: u32 = 1920;
 const FRAGMENT_HEIGHT: u32 = 1080;
 /// The chain grows until one run lasts this long (seconds), or reaches `MAX_CHAIN`.
 const TARGET_RUN: f64 = 0.010;
+/// What doubling the chain must then add to a run (seconds), a row's time being that
+/// difference: twice a run's least, so that a run slowed by a few milliseconds of another
+/// process's work cannot swamp it.
+const TARGET_ADDED: f64 = 0.020;
 const MAX_CHAIN: u32 = 1 << 16;
 const CPU_RUNS: usize = 5;
 
@@ -76,15 +82,16 @@ pub struct GpuTime {
     pub stage: Stage,
     /// How it was timed.
     pub clock: Clock,
-    /// Each round's time divided by the evaluations of a run (`chain` x `invocations`), in
-    /// nanoseconds, over the rounds: device nanoseconds per evaluation, the whole device's
-    /// throughput (not one invocation's latency).
+    /// What each round's run of twice the chain took beyond its run of the chain, divided by
+    /// the evaluations the chain adds (`chain` x `invocations`), in nanoseconds, over the
+    /// rounds: device nanoseconds per evaluation, the whole device's throughput (not one
+    /// invocation's latency), with no share of the run's fixed cost.
     pub ns: Spread,
     /// Evaluations per invocation, as calibrated.
     pub chain: u32,
     /// Invocations per run.
     pub invocations: u32,
-    /// The median round's milliseconds.
+    /// The median round's milliseconds for a run of the chain.
     pub run_ms: f64,
     /// A run of twice the chain over a run of the chain, at calibration: 2 where the work
     /// resolves.
@@ -133,29 +140,40 @@ impl GpuTime {
         evaluations / run_seconds
     }
 
-    /// The time of runs of `chain` evaluations in each of `invocations`, from their spread in
-    /// seconds, with the doubling check's ratio and verdict.
+    /// The time of runs of `calibration.chain` evaluations in each of `invocations`, from the
+    /// spread of the seconds that doubling the chain added to a run (`added`) and the median
+    /// run's seconds.
     pub fn of_runs(
         stage: Stage,
         clock: Clock,
-        seconds: Spread,
-        chain: u32,
+        added: Spread,
+        run_seconds: f64,
         invocations: u32,
-        doubling_ratio: f64,
-        doubled: bool,
+        calibration: Calibration,
     ) -> GpuTime {
-        let ns_per_evaluation = 1e9 / (f64::from(invocations) * f64::from(chain));
+        let ns_per_evaluation = 1e9 / (f64::from(invocations) * f64::from(calibration.chain));
         GpuTime {
             stage,
             clock,
-            ns: seconds.map(|seconds| seconds * ns_per_evaluation),
-            chain,
+            ns: added.map(|seconds| seconds * ns_per_evaluation),
+            chain: calibration.chain,
             invocations,
-            run_ms: seconds.median * 1e3,
-            doubling_ratio,
-            doubled,
+            run_ms: run_seconds * 1e3,
+            doubling_ratio: calibration.doubling_ratio,
+            doubled: calibration.doubled,
         }
     }
+}
+
+/// What calibration found for a row in one stage.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Calibration {
+    /// Evaluations per invocation.
+    pub chain: u32,
+    /// A run of twice the chain over a run of the chain: 2 where the work resolves.
+    pub doubling_ratio: f64,
+    /// Whether that ratio is 2 within the protocol's tolerance.
+    pub doubled: bool,
 }
 
 /// A row's times in both stages, each less the harness's own (the baseline row's) in that
@@ -177,7 +195,7 @@ impl StageTimes {
         }
     }
 
-    pub(super) fn get_mut(&mut self, stage: Stage) -> &mut Option<GpuTime> {
+    pub(crate) fn get_mut(&mut self, stage: Stage) -> &mut Option<GpuTime> {
         match stage {
             Stage::Compute => &mut self.compute,
             Stage::Fragment => &mut self.fragment,
@@ -250,17 +268,18 @@ mod tests {
     use super::*;
     use gbuffer_core::Named;
 
-    /// Runs whose evaluations and times are known: 7 runs of 100 evaluations in each of 1000
-    /// invocations (1e5 a run), the median lasting 10 ms, give 100 ns per evaluation and 1e7
-    /// evaluations a second; with a harness whose median run lasts 2 ms taken off, 80 ns and
-    /// 1e5 evaluations in 8 ms.
+    /// Runs whose evaluations and times are known: 7 rounds whose doubled chain of 100
+    /// evaluations in each of 1000 invocations (1e5 a run) added 10 ms at the median give 100
+    /// ns per evaluation and 1e7 evaluations a second, whatever the run itself took (15 ms:
+    /// 5 of them fixed); with a harness whose chain adds 2 ms taken off, 80 ns and 1e5
+    /// evaluations in 8 ms.
     #[test]
     fn the_units_are_what_their_names_say() {
         let runs = vec![0.011, 0.0095, 0.010, 0.0102, 0.0099, 0.0105, 0.0098];
         let time = of_runs(runs);
         assert_eq!(time.evaluations_per_run(), 100_000);
         assert!((time.ns.median - 100.0).abs() < 1e-9, "{}", time.ns.median);
-        assert!((time.run_ms - 10.0).abs() < 1e-9);
+        assert!((time.run_ms - 15.0).abs() < 1e-9);
         assert!((time.ns.min - 95.0).abs() < 1e-9 && (time.ns.max - 110.0).abs() < 1e-9);
         assert!((time.evaluations_per_second() - 1e7).abs() < 1e-3);
         let harness = of_runs(vec![0.002; 7]);
@@ -269,9 +288,23 @@ mod tests {
         assert!((less.evaluations_per_second() - 1e5 / 0.008).abs() < 1e-3);
     }
 
+    /// Runs of 100 evaluations in each of 1000 invocations, whose doubled chain added `runs`
+    /// seconds, a run of the chain lasting half as long again.
     fn of_runs(runs: Vec<f64>) -> GpuTime {
-        let seconds = Spread::of(&runs).unwrap();
-        GpuTime::of_runs(Stage::Compute, Clock::Wall, seconds, 100, 1000, 2.0, true)
+        let added = Spread::of(&runs).unwrap();
+        let calibration = Calibration {
+            chain: 100,
+            doubling_ratio: 2.0,
+            doubled: true,
+        };
+        GpuTime::of_runs(
+            Stage::Compute,
+            Clock::Wall,
+            added,
+            1.5 * added.median,
+            1000,
+            calibration,
+        )
     }
 
     /// A row faster than the harness can tell (its median, less the harness's, below zero: the
@@ -412,6 +445,10 @@ mod tests {
             format!("2^{} invocations", INVOCATIONS.trailing_zeros()),
             format!("{FRAGMENT_WIDTH}x{FRAGMENT_HEIGHT} target"),
             format!("until a run lasts {} ms", TARGET_RUN * 1e3),
+            format!(
+                "until that difference itself lasts {} ms",
+                TARGET_ADDED * 1e3
+            ),
             format!("(within {}%)", full.doubling_within * 100.0),
             format!("within {}% of the one before", full.settled_within * 100.0),
             format!("{} rounds", full.rounds),

@@ -1,0 +1,286 @@
+//! An independent formulation of what the packing table times, held against it on the
+//! machine's adapter: a row that a compiler folded, or a protocol that charged a row with
+//! something else's cost, reads apart from it.
+//!
+//! The packing table times pack and unpack apart, each in the timing harness's chain with a
+//! few instructions of glue that carry its output to the next step, and takes the glue's own
+//! time off (`crate::packing`). Here nothing of that is reused but the generated conversions:
+//! one compute shader of its own chains the round trip a renderer makes across its passes,
+//! `texel = unpack(pack(texel) with its word perturbed)`, where the perturbation (an
+//! exclusive or with the step's index and the invocation's, then the mask that keeps float
+//! channels finite) is a value the compiler cannot fold into either call; its own dispatch,
+//! timed by the wall clock around a synchronised submit, its chain doubled until doubling it
+//! adds [`TARGET_RUN_S`] to a run, a step's time what doubling adds to the fastest of
+//! [`ROUNDS`] runs, less the same chain with the conversions left out. The report's pack time
+//! plus its unpack time must come within [`TOLERANCE`] of that step, or within the report's
+//! spreads where the adapter's noise makes them wider.
+
+use std::time::Instant;
+
+use gbuffer::layout::Format;
+use gbuffer_codegen::emit::wgsl::emit_with;
+use gbuffer_core::{Conversions, Named};
+use gbuffer_gpu::Gpu;
+
+use crate::packing_cost::one_field;
+
+/// Invocations of the dispatch: as many as the report's, enough to fill a large GPU.
+const INVOCATIONS: u32 = 1 << 20;
+const WORKGROUP_SIZE: u32 = 64;
+/// What doubling the chain must add to a run, once sized, in seconds.
+const TARGET_RUN_S: f64 = 0.040;
+const MAX_STEPS: u32 = 1 << 16;
+/// Runs of the chain and of twice it; the fastest of each is taken.
+const ROUNDS: usize = 7;
+/// How far the report's round trip may stand from this one's, as a fraction of this one's.
+const TOLERANCE: f64 = 0.15;
+/// Measurements of a conversion that reads apart, before the test fails.
+const ATTEMPTS: usize = 3;
+
+/// The round-trip chain on one adapter: its buffers, shared by every conversion's pipeline.
+struct RoundTrip<'a> {
+    gpu: &'a Gpu,
+    texels: wgpu::Buffer,
+    steps: wgpu::Buffer,
+}
+
+impl<'a> RoundTrip<'a> {
+    fn new(gpu: &'a Gpu) -> RoundTrip<'a> {
+        use wgpu::util::DeviceExt;
+        // Values in [0, 1), a different texel in every invocation.
+        let texels: Vec<[f32; 4]> = (0..INVOCATIONS)
+            .map(|index| {
+                let t = (index as f32 + 0.5) / INVOCATIONS as f32;
+                [t, (t * 5.3).fract(), (t * 11.7).fract(), (t * 2.9).fract()]
+            })
+            .collect();
+        RoundTrip {
+            gpu,
+            texels: gpu
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("round trip texels"),
+                    contents: bytemuck::cast_slice(&texels),
+                    usage: wgpu::BufferUsages::STORAGE,
+                }),
+            steps: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("round trip steps"),
+                size: 16,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+        }
+    }
+
+    /// Nanoseconds per step of `shader`'s chain, over the whole device.
+    fn ns_per_step(&self, shader: &str) -> f64 {
+        let device = &self.gpu.device;
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("round trip"),
+            source: wgpu::ShaderSource::Wgsl(shader.into()),
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("round trip"),
+            layout: None,
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: self.texels.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: self.steps.as_entire_binding(),
+                },
+            ],
+        });
+        let run = |steps: u32| {
+            self.gpu
+                .queue
+                .write_buffer(&self.steps, 0, bytemuck::cast_slice(&[steps, 0, 0, 0]));
+            let mut encoder = device.create_command_encoder(&Default::default());
+            {
+                let mut pass = encoder.begin_compute_pass(&Default::default());
+                pass.set_pipeline(&pipeline);
+                pass.set_bind_group(0, &bind_group, &[]);
+                pass.dispatch_workgroups(INVOCATIONS / WORKGROUP_SIZE, 1, 1);
+            }
+            let start = Instant::now();
+            self.gpu.queue.submit([encoder.finish()]);
+            device
+                .poll(wgpu::PollType::wait_indefinitely())
+                .expect("the round trip's run");
+            start.elapsed().as_secs_f64()
+        };
+        // The first run compiles and warms the clock; the chain doubles until doubling it adds
+        // long enough to a run (lavapipe's runs hold 15 ms of their own, the buffer's loads
+        // and stores, whatever the chain).
+        let mut steps = 1;
+        run(steps);
+        while run(2 * steps) - run(steps) < TARGET_RUN_S && steps < MAX_STEPS {
+            steps *= 2;
+        }
+        // Another process's load only ever adds to a run: the fastest of the rounds' runs of
+        // each length is the closest to the work's own time.
+        let fastest = |steps: u32| {
+            (0..ROUNDS)
+                .map(|_| run(steps))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let (single, double) = (fastest(steps), fastest(2 * steps));
+        (double - single) * 1e9 / (f64::from(steps) * f64::from(INVOCATIONS))
+    }
+}
+
+/// The round trip's shader for one format and mode, or with `None` the same chain without the
+/// conversions (the perturbation alone).
+fn round_trip_wgsl(conversion: Option<(Format, Conversions)>) -> String {
+    // The bare chain perturbs rgba8's full word, as r11f_g11f_b10f's exact form would.
+    let (format, conversions) = conversion.unwrap_or((Format::Rgba8, Conversions::Exact));
+    let layout = one_field(format);
+    let (swizzle, pad) = match layout.fields[0].ty.components {
+        2 => (".xy", ", 0.0, 0.0"),
+        3 => (".xyz", ", 0.0"),
+        _ => ("", ""),
+    };
+    let mask = crate::packing::finite_mask(format);
+    let (declarations, start, step, end) = match conversion {
+        Some(_) => (
+            emit_with(&layout, conversions),
+            format!("var texel = Texel(start{swizzle});"),
+            format!(
+                "let words = pack_texel(texel);\n        \
+                 texel = unpack_texel(array<u32, 1>((words[0] ^ (step + id.x)) & {mask:#010x}u));"
+            ),
+            format!("texels[id.x] = vec4<f32>(texel.value{pad});"),
+        ),
+        None => (
+            String::new(),
+            "var word = bitcast<u32>(start.x);".to_string(),
+            format!("word = (word ^ (step + id.x)) & {mask:#010x}u;"),
+            "texels[id.x] = vec4<f32>(bitcast<f32>(word), start.yzw);".to_string(),
+        ),
+    };
+    format!(
+        "{declarations}\n\
+         @group(0) @binding(0) var<storage, read_write> texels: array<vec4<f32>>;\n\
+         @group(0) @binding(1) var<uniform> steps: vec4<u32>;\n\n\
+         @compute @workgroup_size({WORKGROUP_SIZE})\n\
+         fn main(@builtin(global_invocation_id) id: vec3<u32>) {{\n    \
+             let start = texels[id.x];\n    \
+             {start}\n    \
+             for (var step = 0u; step < steps.x; step++) {{\n        \
+                 {step}\n    \
+             }}\n    \
+             {end}\n\
+         }}\n"
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::timing::{Stage, Timer};
+    use std::fmt::Write as _;
+
+    /// Both shaders of every conversion are valid WGSL, and only the conversion's chain calls
+    /// the conversions.
+    #[test]
+    fn every_round_trip_is_a_valid_shader() {
+        for (format, conversions) in crate::packing::modes() {
+            let shader = round_trip_wgsl(Some((format, conversions)));
+            gbuffer_validator::validate_wgsl(&shader)
+                .unwrap_or_else(|problem| panic!("{format:?} {conversions:?}: {problem}"));
+            assert!(shader.contains("unpack_texel(array<u32, 1>((words[0] ^ (step + id.x))"));
+        }
+        let bare = round_trip_wgsl(None);
+        gbuffer_validator::validate_wgsl(&bare).unwrap_or_else(|problem| panic!("{problem}"));
+        assert!(!bare.contains("pack_texel"), "{bare}");
+    }
+
+    /// On the machine's adapter, for every format and mode, the report's pack time plus its
+    /// unpack time (compute stage, the full protocol, less the glue) within 15% of the
+    /// independent round trip's step, or within the report's spreads where they are wider. A
+    /// folded row, or a fixed cost charged to a short chain, reads apart. Another process's
+    /// load can move one measurement and not the other (CI builds Bevy beside the tests), so
+    /// a conversion that reads apart is measured again, up to [`ATTEMPTS`] times: one that
+    /// is apart every time fails.
+    #[test]
+    fn the_packing_times_agree_with_an_independent_round_trip() {
+        let _cores = crate::tests::CORES
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        let Some(gpu) = gbuffer_testkit::gpu() else {
+            return;
+        };
+        let round_trip = RoundTrip::new(&gpu);
+        let mut apart: Vec<(Format, Conversions)> = crate::packing::modes().collect();
+        let mut tables = String::new();
+        for attempt in 1..=ATTEMPTS {
+            let (still_apart, table) = compare(&gpu, &round_trip, &apart);
+            let _ = writeln!(tables, "attempt {attempt}:\n{table}");
+            apart = still_apart;
+            if apart.is_empty() {
+                break;
+            }
+        }
+        eprintln!("{tables}");
+        assert!(
+            apart.is_empty(),
+            "more than {}% from the independent round trip in {ATTEMPTS} attempts: {apart:?}\n{tables}",
+            TOLERANCE * 100.0
+        );
+    }
+
+    /// Times the report's rows and the round trips of `conversions`: those that read apart,
+    /// and a table of the figures.
+    fn compare(
+        gpu: &Gpu,
+        round_trip: &RoundTrip,
+        conversions: &[(Format, Conversions)],
+    ) -> (Vec<(Format, Conversions)>, String) {
+        // The report's own protocol: 7 rounds, whose median one slow round cannot move.
+        let mut timer = Timer::new(gpu, gbuffer_gpu::timing::Protocol::FULL);
+        crate::packing::time_rows(&mut timer);
+        let times = crate::packing::conversion_times(&timer.run_in(&[Stage::Compute]));
+        let bare = round_trip.ns_per_step(&round_trip_wgsl(None));
+        let mut table = format!("bare chain {bare:.4} ns a step\n");
+        let mut apart = Vec::new();
+        for (conversion, (pack, unpack)) in crate::packing::modes().zip(times) {
+            if !conversions.contains(&conversion) {
+                continue;
+            }
+            let name = format!("{} {}", conversion.0.name(), conversion.1.name());
+            let [pack, unpack] = [pack, unpack].map(|times| {
+                let time = times.compute.expect("a compute time");
+                assert!(time.doubled, "{name}: {time:?}");
+                time.ns
+            });
+            let report = pack.median + unpack.median;
+            let own = round_trip.ns_per_step(&round_trip_wgsl(Some(conversion))) - bare;
+            let _ = writeln!(
+                table,
+                "{name:<22} report {report:.4} ({:.4} + {:.4}, spreads {:.4}, {:.4}) independent {own:.4} ({:+.1}%)",
+                pack.median,
+                unpack.median,
+                pack.width(),
+                unpack.width(),
+                100.0 * (report / own - 1.0)
+            );
+            // The rounds' spread, where the adapter's noise is wider than the tolerance (a
+            // software rasteriser on two shared cores).
+            let allowed = (TOLERANCE * own).max(pack.width() + unpack.width());
+            if (report - own).abs() > allowed {
+                apart.push(conversion);
+            }
+        }
+        (apart, table)
+    }
+}
