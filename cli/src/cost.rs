@@ -141,7 +141,7 @@ fn shader(arguments: &Arguments) -> Result<Shader, String> {
         };
         return shader.map_err(|message| format!("{}: {message}", file.display()));
     }
-    let text = gbuffer_codegen::input::read_input(file)
+    let text = gbuffer_files::input::read_input(file)
         .map_err(|error| format!("{}: cannot read: {error}", file.display()))?;
     let stage = match arguments.stage.as_deref() {
         Some("compute") => Stage::Compute,

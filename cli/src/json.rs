@@ -1,11 +1,11 @@
 //! JSON for `gbuffer validate --json`, written by hand so that the default command line builds
 //! no serde: a value tree and its pretty printing (two-space indents, as
-//! `serde_json::to_string_pretty` writes; strings as `gbuffer_codegen::emit::json` writes them).
+//! `serde_json::to_string_pretty` writes; strings as `gbuffer_files::json` writes them).
 //! The tests read what it writes back with serde_json.
 
 use std::fmt::Write as _;
 
-use gbuffer_codegen::emit::json::string;
+use gbuffer_files::json::string;
 
 /// A JSON value.
 #[derive(Clone, Debug, PartialEq)]

@@ -50,10 +50,10 @@ use gbuffer_core::Named;
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
-use crate::toml_table::{self, ShapeError, Table};
 use gbuffer_core::format::Format;
 use gbuffer_core::layout::{Conversions, Field, Layout, Storage, Subject, DEFAULT_BUDGET};
 use gbuffer_core::{BitField, Encoding, FieldType, ScalarKind};
+use gbuffer_files::toml_table::{self, ShapeError, Table};
 
 /// A layout file's keys, as written.
 struct LayoutEntry {
@@ -228,7 +228,7 @@ impl FileError {
         kind: &'static str,
         parse: impl FnOnce(&str, &Path) -> Result<T, Vec<FileDiagnostic>>,
     ) -> Result<T, FileError> {
-        let source = crate::input::read_input(path).map_err(|error| FileError::Io {
+        let source = gbuffer_files::input::read_input(path).map_err(|error| FileError::Io {
             kind,
             path: path.to_path_buf(),
             error,

@@ -6,8 +6,8 @@
 //! [`check`](gbuffer_core::Layout::check) it, and hand it to the emitters:
 //!
 //! - [`emit`]: WGSL and Rust mirror emitters;
-//! - with the `tools` feature (on by default): `input` (how every input file is read),
-//!   `layout_file` (layouts in TOML), `output` (the
+//! - with the `tools` feature (on by default): `layout_file` (layouts in TOML, read through
+//!   `gbuffer-files`), `output` (the
 //!   files the tool writes, atomically and only when changed), `staging` (a run's files, all
 //!   or none), the GLSL and
 //!   Rust-source emitters, `Builder` for build scripts (the `gbuffer codegen` command runs them).
@@ -19,15 +19,11 @@
 mod builder;
 pub mod emit;
 #[cfg(feature = "tools")]
-pub mod input;
-#[cfg(feature = "tools")]
 pub mod layout_file;
 #[cfg(feature = "tools")]
 pub mod output;
 #[cfg(feature = "tools")]
 pub mod staging;
-#[cfg(feature = "tools")]
-pub mod toml_table;
 
 #[cfg(feature = "tools")]
 pub use builder::{BuildError, Builder};

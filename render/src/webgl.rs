@@ -13,8 +13,8 @@
 use std::fmt::Write as _;
 
 use gbuffer_codegen::emit::glsl::{self as includes, Include};
-use gbuffer_codegen::emit::json::string as json_string;
 use gbuffer_core::Named;
+use gbuffer_files::json::string as json_string;
 
 use crate::gles::sources::{program_in, TranslatedProgram};
 use crate::glsl::{self, Dialect};

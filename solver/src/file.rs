@@ -29,8 +29,8 @@ use std::ops::Range;
 use std::path::Path;
 
 use gbuffer_codegen::layout_file::{FileDiagnostic, FileError};
-use gbuffer_codegen::toml_table::{self, Entry, ShapeError, Table};
 use gbuffer_core::Named;
+use gbuffer_files::toml_table::{self, Entry, ShapeError, Table};
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 

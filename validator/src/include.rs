@@ -6,15 +6,15 @@
 //! any folder the caller adds (`gbuffer validate --include-dir`), so that a shader cannot
 //! read files elsewhere on the machine. Each module and file is included once; files nest at
 //! most [`MAX_INCLUDE_DEPTH`] deep. Files are read as every input is
-//! ([`gbuffer_codegen::input::read_input`]).
+//! ([`gbuffer_files::input::read_input`]).
 //!
 //! The result keeps a map from its lines back to where they came from, so a problem in the
 //! combined source is reported at its file and line.
 
 use std::path::{Path, PathBuf};
 
-use gbuffer_codegen::input::read_input;
 use gbuffer_codegen::layout_file::read_layout_file;
+use gbuffer_files::input::read_input;
 
 use crate::{FileProblem, Stage};
 

@@ -1,11 +1,9 @@
 //! Emitters: each turns a checked [`gbuffer_core::Layout`] into source text or tokens: WGSL (the
-//! source of truth), the Rust mirror, and (with the `tools` feature) GLSL ES includes; and the
-//! JSON string literals that generated JavaScript and the tools' JSON share.
+//! source of truth), the Rust mirror, and (with the `tools` feature) GLSL ES includes.
 
 #[cfg(feature = "tools")]
 pub mod glsl;
 #[cfg(feature = "tools")]
 pub mod items;
-pub mod json;
 pub mod rust;
 pub mod wgsl;

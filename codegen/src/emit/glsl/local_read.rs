@@ -36,8 +36,8 @@
 use std::fmt::Write as _;
 
 use super::{Include, Interface};
-use crate::emit::json::string;
 use gbuffer_core::layout::Layout;
+use gbuffer_files::json::string;
 
 /// A Vulkan enumerant or flag: its name in the C API and its value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -22,13 +22,13 @@ use super::unique;
 use super::{bit_field_code, bit_field_function, bit_word_value, declared_type, word_names};
 use super::{declare, GlslNames, Include, Interface, Translation, TranslationError};
 use crate::emit::items::ItemKind;
-use crate::emit::json::string;
 use crate::emit::wgsl::{function_name, mode_suffix};
 use gbuffer_core::format::Format;
 use gbuffer_core::layout::{Field, Layout, Storage};
 use gbuffer_core::report::webgl_planes;
 use gbuffer_core::Conversions;
 use gbuffer_core::ScalarKind;
+use gbuffer_files::json::string;
 
 /// The format of a plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
