@@ -10,7 +10,7 @@
 //! exclusive or with the step's index and the invocation's, then the mask that keeps float
 //! channels finite) is a value the compiler cannot fold into either call; its own dispatch,
 //! timed by the wall clock around a synchronised submit, its chain doubled until doubling it
-//! adds [`TARGET_RUN_S`] to a run, a step's time what doubling adds to the fastest of
+//! adds [`TARGET_ADDED_S`] to a run, a step's time what doubling adds to the fastest of
 //! [`ROUNDS`] runs, less the same chain with the conversions left out. The report's pack time
 //! plus its unpack time must come within [`TOLERANCE`] of that step, or within the report's
 //! spreads where the adapter's noise makes them wider.
@@ -28,7 +28,7 @@ use crate::packing_cost::one_field;
 const INVOCATIONS: u32 = 1 << 20;
 const WORKGROUP_SIZE: u32 = 64;
 /// What doubling the chain must add to a run, once sized, in seconds.
-const TARGET_RUN_S: f64 = 0.040;
+const TARGET_ADDED_S: f64 = 0.040;
 const MAX_STEPS: u32 = 1 << 16;
 /// Runs of the chain and of twice it; the fastest of each is taken.
 const ROUNDS: usize = 7;
@@ -38,10 +38,12 @@ const TOLERANCE: f64 = 0.15;
 const ATTEMPTS: usize = 3;
 
 /// The round-trip chain on one adapter: its buffers, shared by every conversion's pipeline.
+/// Every run starts from the same texels (`starts`), so that no run's values are another's.
 struct RoundTrip<'a> {
     gpu: &'a Gpu,
-    texels: wgpu::Buffer,
+    starts: wgpu::Buffer,
     steps: wgpu::Buffer,
+    ends: wgpu::Buffer,
 }
 
 impl<'a> RoundTrip<'a> {
@@ -56,10 +58,10 @@ impl<'a> RoundTrip<'a> {
             .collect();
         RoundTrip {
             gpu,
-            texels: gpu
+            starts: gpu
                 .device
                 .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("round trip texels"),
+                    label: Some("round trip starts"),
                     contents: bytemuck::cast_slice(&texels),
                     usage: wgpu::BufferUsages::STORAGE,
                 }),
@@ -67,6 +69,12 @@ impl<'a> RoundTrip<'a> {
                 label: Some("round trip steps"),
                 size: 16,
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            ends: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("round trip ends"),
+                size: std::mem::size_of_val(texels.as_slice()) as u64,
+                usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             }),
         }
@@ -93,11 +101,15 @@ impl<'a> RoundTrip<'a> {
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
-                    resource: self.texels.as_entire_binding(),
+                    resource: self.starts.as_entire_binding(),
                 },
                 wgpu::BindGroupEntry {
                     binding: 1,
                     resource: self.steps.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: self.ends.as_entire_binding(),
                 },
             ],
         });
@@ -124,7 +136,7 @@ impl<'a> RoundTrip<'a> {
         // and stores, whatever the chain).
         let mut steps = 1;
         run(steps);
-        while run(2 * steps) - run(steps) < TARGET_RUN_S && steps < MAX_STEPS {
+        while run(2 * steps) - run(steps) < TARGET_ADDED_S && steps < MAX_STEPS {
             steps *= 2;
         }
         // Another process's load only ever adds to a run: the fastest of the rounds' runs of
@@ -159,22 +171,23 @@ fn round_trip_wgsl(conversion: Option<(Format, Conversions)>) -> String {
                 "let words = pack_texel(texel);\n        \
                  texel = unpack_texel(array<u32, 1>((words[0] ^ (step + id.x)) & {mask:#010x}u));"
             ),
-            format!("texels[id.x] = vec4<f32>(texel.value{pad});"),
+            format!("ends[id.x] = vec4<f32>(texel.value{pad});"),
         ),
         None => (
             String::new(),
             "var word = bitcast<u32>(start.x);".to_string(),
             format!("word = (word ^ (step + id.x)) & {mask:#010x}u;"),
-            "texels[id.x] = vec4<f32>(bitcast<f32>(word), start.yzw);".to_string(),
+            "ends[id.x] = vec4<f32>(bitcast<f32>(word), start.yzw);".to_string(),
         ),
     };
     format!(
         "{declarations}\n\
-         @group(0) @binding(0) var<storage, read_write> texels: array<vec4<f32>>;\n\
-         @group(0) @binding(1) var<uniform> steps: vec4<u32>;\n\n\
+         @group(0) @binding(0) var<storage, read> starts: array<vec4<f32>>;\n\
+         @group(0) @binding(1) var<uniform> steps: vec4<u32>;\n\
+         @group(0) @binding(2) var<storage, read_write> ends: array<vec4<f32>>;\n\n\
          @compute @workgroup_size({WORKGROUP_SIZE})\n\
          fn main(@builtin(global_invocation_id) id: vec3<u32>) {{\n    \
-             let start = texels[id.x];\n    \
+             let start = starts[id.x];\n    \
              {start}\n    \
              for (var step = 0u; step < steps.x; step++) {{\n        \
                  {step}\n    \

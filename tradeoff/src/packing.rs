@@ -108,7 +108,8 @@ fn row_wgsl(format: Format, conversions: Conversions, direction: Direction) -> S
 
 /// `row_eval` for the glue of `direction`'s rows with no conversion, whose time is taken off
 /// theirs: the pack rows' word, here the input's first component's bits, on as a fraction; the
-/// unpack rows' hashed word, masked to a finite float under 2, as the first component.
+/// unpack rows' hashed word as the first component, its low 23 bits the mantissa of a float in
+/// [1, 2) (never a denormal, which a CPU's float unit may take a hundred cycles over).
 fn glue_wgsl(direction: Direction) -> String {
     let body = match direction {
         Direction::Pack => {
@@ -116,8 +117,8 @@ fn glue_wgsl(direction: Direction) -> String {
              return vec4<f32>(f32(word) * 2.3283064e-10, x.yzw);"
         }
         Direction::Unpack => {
-            "let word = (bitcast<u32>(x.x) * 2654435761u ^ bitcast<u32>(x.y)) & 0x3fffffffu;\n    \
-             return vec4<f32>(bitcast<f32>(word), x.yzw);"
+            "let word = (bitcast<u32>(x.x) * 2654435761u ^ bitcast<u32>(x.y)) & 0x007fffffu;\n    \
+             return vec4<f32>(bitcast<f32>(word | 0x3f800000u), x.yzw);"
         }
     };
     format!("fn row_eval(x: vec4<f32>) -> vec4<f32> {{\n    {body}\n}}\n")
@@ -176,9 +177,9 @@ pub fn time_rows(timer: &mut timing::Timer) -> Vec<usize> {
     glue.into_iter().chain(rows.collect::<Vec<_>>()).collect()
 }
 
-/// Per row of the table, in [`modes`]' order, its pack's and its unpack's times less their
-/// glue's, from `times` in [`time_rows`]' order.
-pub(crate) fn conversion_times(
+/// Per row of the table, in its order (each format's exact, then fast), its pack's and its
+/// unpack's times less their glue's, from `times` in [`time_rows`]' order.
+pub fn conversion_times(
     times: &[timing::StageTimes],
 ) -> Vec<(timing::StageTimes, timing::StageTimes)> {
     let (glue, rows) = times.split_at(2);
