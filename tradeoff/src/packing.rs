@@ -146,35 +146,35 @@ pub(crate) fn modes() -> impl Iterator<Item = (Format, Conversions)> {
 /// their indices in the timer's times, in that order (the glue's pack and unpack, then per
 /// row of the table its pack and its unpack), for [`conversion_times`].
 pub fn time_rows(timer: &mut timing::Timer) -> Vec<usize> {
-    let glue = Direction::ALL.iter().map(|&direction| {
-        timer.add(
-            &format!("{} glue", direction.name()),
-            &glue_wgsl(direction),
-            &[],
-            1,
-        )
-    });
-    let glue: Vec<usize> = glue.collect();
-    let rows = modes()
-        .flat_map(|(format, conversions)| {
-            Direction::ALL
-                .iter()
-                .map(move |&direction| (format, conversions, direction))
+    let mut indices: Vec<usize> = Direction::ALL
+        .iter()
+        .map(|&direction| {
+            let name = format!("{} glue", direction.name());
+            timer.add(&name, &glue_wgsl(direction), &[], 1)
         })
-        .map(|(format, conversions, direction)| {
-            timer.add(
-                &format!(
-                    "{} {} {}",
-                    format.name(),
-                    conversions.name(),
-                    direction.name()
-                ),
-                &row_wgsl(format, conversions, direction),
-                &[],
-                1,
-            )
-        });
-    glue.into_iter().chain(rows.collect::<Vec<_>>()).collect()
+        .collect();
+    indices.extend(
+        modes()
+            .flat_map(|(format, conversions)| {
+                Direction::ALL
+                    .iter()
+                    .map(move |&direction| (format, conversions, direction))
+            })
+            .map(|(format, conversions, direction)| {
+                timer.add(
+                    &format!(
+                        "{} {} {}",
+                        format.name(),
+                        conversions.name(),
+                        direction.name()
+                    ),
+                    &row_wgsl(format, conversions, direction),
+                    &[],
+                    1,
+                )
+            }),
+    );
+    indices
 }
 
 /// Per row of the table, in its order (each format's exact, then fast), its pack's and its
@@ -183,15 +183,8 @@ pub fn conversion_times(
     times: &[timing::StageTimes],
 ) -> Vec<(timing::StageTimes, timing::StageTimes)> {
     let (glue, rows) = times.split_at(2);
-    let less_glue = |row: &timing::StageTimes, glue: &timing::StageTimes| {
-        let mut times = *row;
-        for &stage in timing::Stage::ALL {
-            *times.get_mut(stage) = row.get(stage).map(|time| time.less(glue.get(stage)));
-        }
-        times
-    };
     rows.chunks(2)
-        .map(|pair| (less_glue(&pair[0], &glue[0]), less_glue(&pair[1], &glue[1])))
+        .map(|pair| (pair[0].less(&glue[0]), pair[1].less(&glue[1])))
         .collect()
 }
 

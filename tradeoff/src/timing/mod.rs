@@ -20,6 +20,7 @@ pub use harness::{fragment_harness, harness, BASELINE_ROW};
 use std::time::Instant;
 
 use gbuffer::glam::Vec4;
+use gbuffer_core::Named;
 use gbuffer_gpu::timing::Spread;
 
 /// Invocations per dispatch: enough threads to fill a large GPU (an H100 holds 270,000), so
@@ -195,7 +196,16 @@ impl StageTimes {
         }
     }
 
-    pub(crate) fn get_mut(&mut self, stage: Stage) -> &mut Option<GpuTime> {
+    /// Each stage's time less `base`'s in that stage ([`GpuTime::less`]).
+    pub fn less(&self, base: &StageTimes) -> StageTimes {
+        let mut times = *self;
+        for &stage in Stage::ALL {
+            *times.get_mut(stage) = self.get(stage).map(|time| time.less(base.get(stage)));
+        }
+        times
+    }
+
+    pub(super) fn get_mut(&mut self, stage: Stage) -> &mut Option<GpuTime> {
         match stage {
             Stage::Compute => &mut self.compute,
             Stage::Fragment => &mut self.fragment,
