@@ -14,7 +14,10 @@ use gbuffer_validator::include::resolve_file;
 /// A `.wgsl` file is translated by naga as a backend would see it: to GLSL ES 3.10 for GL
 /// targets, to SPIR-V for Vulkan ones (`#include`s resolved as `gbuffer validate` does). Any
 /// other file is GLSL ES (with its `#version` line) and is costed on GL targets only. A fragment
-/// shader is linked with a vertex shader that writes its inputs.
+/// shader is linked with a vertex shader that writes its inputs, each from a vertex attribute
+/// of its own (on Vulkan, from a buffer): for WGSL built from naga's IR; for GLSL ES from its
+/// `in` declarations, read one a line (a declaration split over lines, or two on one line,
+/// is not seen: write one a line, or give WGSL).
 ///
 /// The compilers are Mesa's (panfrost, freedreno, turnip, RADV/ACO, nouveau), run through
 /// Mesa's drm-shim, the arm64 ones under qemu-user: `scripts/cost-setup.sh` installs them (the

@@ -6,6 +6,9 @@
 //! [`check`](gbuffer_core::Layout::check) it, and hand it to the emitters:
 //!
 //! - [`emit`]: WGSL and Rust mirror emitters;
+//! - with the `tools` feature: `wgsl_module`, the one front door for WGSL (naga's parse and
+//!   validation, used by every package that takes WGSL in), and `glsl_stage`, a whole stage
+//!   of a validated module as GLSL by naga's writer;
 //! - with the `tools` feature (on by default): `layout_file` (layouts in TOML, read through
 //!   `gbuffer-files`), `output` (the
 //!   files the tool writes, atomically and only when changed), `staging` (a run's files, all
@@ -17,13 +20,21 @@
 
 #[cfg(feature = "tools")]
 mod builder;
+#[cfg(feature = "tools")]
+mod compiled;
 pub mod emit;
+#[cfg(feature = "tools")]
+pub mod glsl_stage;
 #[cfg(feature = "tools")]
 pub mod layout_file;
 #[cfg(feature = "tools")]
 pub mod output;
 #[cfg(feature = "tools")]
 pub mod staging;
+#[cfg(feature = "tools")]
+pub mod wgsl_module;
 
 #[cfg(feature = "tools")]
 pub use builder::{BuildError, Builder};
+#[cfg(feature = "tools")]
+pub use compiled::CompiledLayout;

@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 
 use crate::emit::glsl::local_read::LocalRead;
 use crate::emit::glsl::{self, Include, TranslationError};
-use crate::emit::{rust, wgsl};
+use crate::emit::rust;
+use crate::CompiledLayout;
 use gbuffer_core::layout::Layout;
 use gbuffer_core::report::Report;
 use gbuffer_core::Conversions;
@@ -74,6 +75,9 @@ pub fn generate(
     outputs: &[Output],
 ) -> Result<Vec<GeneratedFile>, TranslationError> {
     let symbols = layout.symbols();
+    // Compiled once, for every output: its WGSL is the file's, its translation every include's.
+    let compiled = CompiledLayout::new(layout, conversions)?;
+    let wgsl_file = compiled.wgsl().to_string() + "\n";
     let mut files = Vec::new();
     let mut add = |name: String, contents: String| {
         if !files.iter().any(|file: &GeneratedFile| file.name == name) {
@@ -85,16 +89,13 @@ pub fn generate(
         .filter(|output| outputs.contains(output))
     {
         match output {
-            Output::Wgsl => add(
-                symbols.wgsl_file(),
-                wgsl::emit_with(layout, conversions) + "\n",
-            ),
+            Output::Wgsl => add(symbols.wgsl_file(), wgsl_file.clone()),
             Output::GlslPixelLocalStorage | Output::GlslFramebufferFetch | Output::GlslVulkan => {
                 for include in Include::ALL
                     .into_iter()
                     .filter(|include| output.includes(*include))
                 {
-                    let (text, interface) = glsl::include_with(layout, conversions, include, 0)?;
+                    let (text, interface) = compiled.include(include, 0)?;
                     add(include.file_name(&symbols, "glsl"), text);
                     if let Some(local_read) = LocalRead::of(layout, &interface, 0) {
                         add(LocalRead::file_name(layout, include), local_read.to_json());
@@ -103,7 +104,7 @@ pub fn generate(
             }
             Output::WebGlPixelLocalStorage => {
                 let include = Include::WebGlPixelLocalStorage;
-                let (text, interface) = glsl::include_with(layout, conversions, include, 0)?;
+                let (text, interface) = compiled.include(include, 0)?;
                 add(include.file_name(&symbols, "glsl"), text);
                 add(
                     include.file_name(&symbols, "js"),
@@ -111,10 +112,7 @@ pub fn generate(
                 );
             }
             Output::Rust => {
-                add(
-                    symbols.wgsl_file(),
-                    wgsl::emit_with(layout, conversions) + "\n",
-                );
+                add(symbols.wgsl_file(), wgsl_file.clone());
                 add(
                     symbols.file("rs"),
                     rust::emit_source(layout, &symbols.wgsl_file()),

@@ -3,7 +3,11 @@
 //! A fragment shader needs a vertex shader to link with: one is made that writes what the
 //! fragment shader reads, as a renderer's would, from values no compiler can know: on GL each
 //! input from a vertex attribute of its own, on Vulkan each from its own words of a storage
-//! buffer. Neither a constant nor one value for every component: Mesa's linkers propagate a
+//! buffer. For WGSL it is built from naga's IR of the fragment shader (its inputs' locations,
+//! types and interpolation) as WGSL, and translated as the fragment shader is; for GLSL ES
+//! input it is built from the fragment shader's `in` declarations, read one a line (the form
+//! naga and most shaders write; a declaration split over lines, or two on one line, is not
+//! seen: `gbuffer cost`'s help says so). Neither a constant nor one value for every component: Mesa's linkers propagate a
 //! constant output into the next stage (a pack of zeros costs two Adreno instructions where a
 //! pack of varyings costs thirty), and merge outputs that hold the same value, so a
 //! `vec4(gl_VertexID)` input makes the fragment shader compute one channel for four (an rgba8
@@ -12,10 +16,10 @@
 use std::sync::Arc;
 
 use naga::back::{glsl, spv};
-use naga::valid::ModuleInfo;
+use naga::valid::{Capabilities, ModuleInfo};
 use naga::{AddressSpace, Binding, ImageClass, Interpolation, ScalarKind, ShaderStage, TypeInner};
 
-use gbuffer_codegen::emit::glsl::naga_glsl;
+use gbuffer_codegen::{glsl_stage, wgsl_module};
 
 use crate::Stage;
 
@@ -80,13 +84,13 @@ impl Shader {
 
     /// WGSL's entry point `entry`; the stage is the entry point's. The module must validate.
     pub fn wgsl(text: &str, entry: &str) -> Result<Shader, ShaderError> {
-        let validated = naga_glsl::validate(text, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
+        let validated = wgsl_module::validate(text, wgsl_module::GENERATED_CODE_CAPABILITIES)?;
         Shader::of_entry_point(Arc::new(validated), entry)
     }
 
     /// WGSL's one fragment or compute entry point; an error names them where there are several.
     pub fn wgsl_only_entry_point(text: &str) -> Result<Shader, ShaderError> {
-        let validated = naga_glsl::validate(text, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
+        let validated = wgsl_module::validate(text, wgsl_module::GENERATED_CODE_CAPABILITIES)?;
         let names: Vec<String> = validated
             .0
             .entry_points
@@ -161,14 +165,28 @@ impl Shader {
             Source::Wgsl { module, entry } => {
                 let (module, info) = &**module;
                 let options =
-                    naga_glsl::options_keeping_bindings(module, glsl::Version::new_gles(310));
-                naga_glsl::write((module, info), naga_stage(self.stage), entry, &options)?.0
+                    glsl_stage::options_keeping_bindings(module, glsl::Version::new_gles(310));
+                glsl_stage::write((module, info), naga_stage(self.stage), entry, &options)?.0
             }
         };
-        let vertex = (self.stage == Stage::Fragment).then(|| match &self.vertex {
-            Some(vertex) => vertex.clone(),
-            None => companion_vertex_glsl(&shader),
-        });
+        let vertex = match (self.stage, &self.vertex, &self.source) {
+            (Stage::Compute, _, _) => None,
+            (Stage::Fragment, Some(vertex), _) => Some(vertex.clone()),
+            (Stage::Fragment, None, Source::Glsl(text)) => Some(companion_vertex_glsl(text)),
+            (Stage::Fragment, None, Source::Wgsl { module, entry }) => {
+                let (module, _) = &**module;
+                let function = &entry_point(module, entry).function;
+                let vertex_wgsl = companion_vertex_wgsl(module, function, Inputs::Attributes);
+                let validated = wgsl_module::validate(&vertex_wgsl, Capabilities::empty())
+                    .map_err(|error| format!("the companion vertex shader: {error}"))?;
+                let options = glsl_stage::options_keeping_bindings(
+                    &validated.0,
+                    glsl::Version::new_gles(310),
+                );
+                let (module, info) = (&validated.0, &validated.1);
+                Some(glsl_stage::write((module, info), ShaderStage::Vertex, "main", &options)?.0)
+            }
+        };
         Ok(GlesForm { shader, vertex })
     }
 
@@ -179,11 +197,7 @@ impl Shader {
         };
         let (module, info) = &**module;
         let shader = spirv(module, info, naga_stage(self.stage), entry)?;
-        let entry_point = module
-            .entry_points
-            .iter()
-            .find(|point| &point.name == entry)
-            .expect("the entry point was found when the shader was made");
+        let entry_point = entry_point(module, entry);
         let mut descriptors = descriptors(module);
         let (vertex, colors) = match self.stage {
             Stage::Compute => (None, Vec::new()),
@@ -197,9 +211,10 @@ impl Shader {
                     .max()
                     .unwrap_or(0);
                 descriptors.push(format!("{set},0,storage"));
-                let vertex_wgsl = companion_vertex_wgsl(module, &entry_point.function, set);
+                let vertex_wgsl =
+                    companion_vertex_wgsl(module, &entry_point.function, Inputs::Buffer(set));
                 let (vertex_module, vertex_info) =
-                    naga_glsl::validate(&vertex_wgsl, naga::valid::Capabilities::empty())
+                    wgsl_module::validate(&vertex_wgsl, Capabilities::empty())
                         .map_err(|error| format!("the companion vertex shader: {error}"))?;
                 let vertex = spirv(&vertex_module, &vertex_info, ShaderStage::Vertex, "main")?;
                 let colors = match &self.colors {
@@ -217,6 +232,15 @@ impl Shader {
             colors,
         })
     }
+}
+
+/// The entry point `entry` of a module (found when the shader was made).
+fn entry_point<'a>(module: &'a naga::Module, entry: &str) -> &'a naga::EntryPoint {
+    module
+        .entry_points
+        .iter()
+        .find(|point| point.name == entry)
+        .expect("the entry point was found when the shader was made")
 }
 
 fn naga_stage(stage: Stage) -> ShaderStage {
@@ -292,67 +316,116 @@ fn located(
     }
 }
 
-/// The WGSL type of an input, and a value of it read from the companion's buffer at `word`
-/// (the input's first word for this vertex): one word a component.
-fn wgsl_type_and_value(
+/// Where the companion vertex shader reads the values it writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Inputs {
+    /// Each output from a vertex attribute of its own, at the output's location (GL: a vertex
+    /// shader's storage buffers are optional in GLES 3.1, and Mali's older drivers offer none).
+    Attributes,
+    /// Each component from its own word of a storage buffer at `@group(set) @binding(0)`, per
+    /// vertex (Vulkan: the helper binds a buffer, not vertex attributes).
+    Buffer(u32),
+}
+
+/// The WGSL type of an input: its scalar's name and its number of components.
+fn wgsl_scalar_and_components(
     module: &naga::Module,
     ty: naga::Handle<naga::Type>,
-    word: &str,
-) -> (String, String, u32) {
-    let scalar = |scalar: naga::Scalar| match scalar.kind {
-        ScalarKind::Sint => "i32",
-        ScalarKind::Uint => "u32",
-        _ => "f32",
-    };
-    let (components, s) = match module.types[ty].inner {
+) -> (&'static str, u32) {
+    let (components, scalar) = match module.types[ty].inner {
         TypeInner::Vector { size, scalar } => (size as u32, Some(scalar)),
         TypeInner::Scalar(scalar) => (1, Some(scalar)),
         _ => (1, None),
     };
-    let component = s.map_or("f32", scalar);
-    let words: Vec<String> = (0..components)
-        .map(|index| format!("bitcast<{component}>(inputs[{word} + {index}u])"))
-        .collect();
-    if components == 1 {
-        (component.to_string(), words.join(""), 1)
-    } else {
-        let ty = format!("vec{components}<{component}>");
-        let value = format!("{ty}({})", words.join(", "));
-        (ty, value, components)
+    let scalar = match scalar.map(|scalar| scalar.kind) {
+        Some(ScalarKind::Sint) => "i32",
+        Some(ScalarKind::Uint) => "u32",
+        _ => "f32",
+    };
+    (scalar, components)
+}
+
+/// The WGSL type of `components` of `scalar`.
+fn wgsl_type((scalar, components): (&str, u32)) -> String {
+    match components {
+        1 => scalar.to_string(),
+        _ => format!("vec{components}<{scalar}>"),
     }
 }
 
-/// A WGSL vertex shader whose outputs are the fragment shader's inputs, each component its own
-/// word of a storage buffer at `@group(set) @binding(0)`, per vertex.
-fn companion_vertex_wgsl(module: &naga::Module, function: &naga::Function, set: u32) -> String {
-    let inputs: Vec<_> = function
+/// A value of `components` of `scalar` read from the companion's buffer at `word` (the
+/// input's first word for this vertex): one word a component.
+fn buffer_value((scalar, components): (&str, u32), word: &str) -> String {
+    let words: Vec<String> = (0..components)
+        .map(|index| format!("bitcast<{scalar}>(inputs[{word} + {index}u])"))
+        .collect();
+    match components {
+        1 => words.join(""),
+        _ => format!("{}({})", wgsl_type((scalar, components)), words.join(", ")),
+    }
+}
+
+/// A WGSL vertex shader, built from the fragment shader's IR, whose outputs are the fragment
+/// shader's inputs (the same locations, types and interpolation), each read from `inputs`,
+/// over a fullscreen triangle.
+fn companion_vertex_wgsl(
+    module: &naga::Module,
+    function: &naga::Function,
+    inputs: Inputs,
+) -> String {
+    let located: Vec<_> = function
         .arguments
         .iter()
         .flat_map(|argument| located(module, argument.ty, argument.binding.as_ref()))
         .collect();
     let mut members = String::from("    @builtin(position) position: vec4<f32>,\n");
+    let mut attributes = String::new();
     let mut writes = String::new();
     let mut words = 0;
-    for (location, interpolation, ty) in inputs {
+    for (location, interpolation, ty) in located {
         let flat = match interpolation {
             Some(Interpolation::Flat) => " @interpolate(flat)",
             Some(Interpolation::Linear) => " @interpolate(linear)",
             _ => "",
         };
-        let (ty, value, used) = wgsl_type_and_value(module, ty, &format!("first + {words}u"));
-        words += used;
+        let scalar_and_components = wgsl_scalar_and_components(module, ty);
+        let ty = wgsl_type(scalar_and_components);
+        let value = match inputs {
+            Inputs::Attributes => {
+                attributes.push_str(&format!(
+                    ", @location({location}) attribute{location}: {ty}"
+                ));
+                format!("attribute{location}")
+            }
+            Inputs::Buffer(_) => {
+                let value = buffer_value(scalar_and_components, &format!("first + {words}u"));
+                words += scalar_and_components.1;
+                value
+            }
+        };
         members.push_str(&format!(
             "    @location({location}){flat} input{location}: {ty},\n"
         ));
         writes.push_str(&format!("    out.input{location} = {value};\n"));
     }
+    let (source, buffer, first) = match inputs {
+        Inputs::Attributes => (
+            "a vertex attribute of its own",
+            String::new(),
+            String::new(),
+        ),
+        Inputs::Buffer(set) => (
+            "its own word of a\n// buffer",
+            format!("@group({set}) @binding(0) var<storage, read> inputs: array<u32>;\n\n"),
+            format!("    let first = index * {words}u;\n"),
+        ),
+    };
     format!(
-        "// Writes what the costed fragment shader reads, each component from its own word of a\n\
-         // buffer: values no compiler can fold or merge.\n\
-         @group({set}) @binding(0) var<storage, read> inputs: array<u32>;\n\n\
-         struct Varyings {{\n{members}}}\n\n\
-         @vertex\nfn main(@builtin(vertex_index) index: u32) -> Varyings {{\n    \
-         var out: Varyings;\n    let first = index * {words}u;\n{writes}    \
+        "// Writes what the costed fragment shader reads, each component from {source}: values\n\
+         // no compiler can fold or merge.\n\
+         {buffer}struct Varyings {{\n{members}}}\n\n\
+         @vertex\nfn main(@builtin(vertex_index) index: u32{attributes}) -> Varyings {{\n    \
+         var out: Varyings;\n{first}{writes}    \
          let corner = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));\n    \
          out.position = vec4<f32>(corner * 2.0 - 1.0, 0.0, 1.0);\n    \
          return out;\n}}\n"
@@ -389,7 +462,8 @@ fn default_colors(module: &naga::Module, function: &naga::Function) -> Vec<Strin
         .collect()
 }
 
-/// A GLSL ES vertex shader, under the fragment shader's `#version`, that writes each of the
+/// For GLSL ES input (WGSL's companion is built from the IR, [`companion_vertex_wgsl`]): a
+/// GLSL ES vertex shader, under the fragment shader's `#version`, that writes each of the
 /// fragment shader's `in` variables (as declared at the start of a line, naga's
 /// `smooth in highp vec4 _vs2fs_location0;` as a user's `layout(location = 1) flat in uint id;`)
 /// from a vertex attribute of its own, over a fullscreen triangle.
@@ -476,7 +550,11 @@ mod tests {
         let gles = shader.gles().unwrap();
         assert!(gles.shader.starts_with("#version 310 es"));
         let vertex = gles.vertex.unwrap();
+        // Built from the IR: naga's names for the fragment shader's inputs, each from an
+        // attribute of its own at the same location.
         assert!(vertex.contains("layout(location = 1) flat out uint _vs2fs_location1;"));
+        assert!(vertex.contains("layout(location = 0) smooth out vec4 _vs2fs_location0;"));
+        assert!(vertex.contains("layout(location = 1) in uint _p2vs_location1;"));
         let vulkan = shader.vulkan().unwrap();
         // The companion's buffer, in the set after the fragment shader's.
         assert_eq!(vulkan.descriptors, ["0,0,uniform", "1,0,storage"]);

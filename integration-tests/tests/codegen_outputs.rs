@@ -12,6 +12,7 @@ use gbuffer::layout::{Format, Layout};
 use gbuffer_codegen::emit::glsl::{self, Include, Interface, PlsBlock};
 use gbuffer_codegen::layout_file::read_layout_file;
 use gbuffer_codegen::output::{generate, Output};
+use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
 use gbuffer_core::Named;
 use gbuffer_gpu::harness::fragment_harness;
@@ -119,9 +120,10 @@ fn includes_leave_the_preamble_to_the_user_and_list_what_it_needs() {
 /// Compiles the Vulkan includes unedited under every preamble they allow, inside a user
 /// shader that loads the texel, and checks the SPIR-V.
 fn check_vulkan_includes(layout: &Layout, conversions: Conversions) -> Result<(), String> {
-    let names = glsl::translate(layout).unwrap().names;
+    let compiled = CompiledLayout::new(layout, conversions).unwrap();
+    let names = compiled.names();
     for include in [Include::SubpassPacked, Include::SubpassNative] {
-        let (text, _) = glsl::include_with(layout, conversions, include, 0).unwrap();
+        let (text, _) = compiled.include(include, 0).unwrap();
         for preamble in preambles(include) {
             let user = format!(
                 "layout(location = 0) out highp uvec4 user_output;
@@ -129,7 +131,7 @@ fn check_vulkan_includes(layout: &Layout, conversions: Conversions) -> Result<()
                  void main() {{\n    {} texel = {}();\n    user_output = uvec4({});\n}}\n",
                 names.layout,
                 layout.symbols().load(),
-                scalars_of_texel(layout, &names, "texel")[0]
+                scalars_of_texel(layout, names, "texel")[0]
             );
             let shader = format!("{preamble}{text}\n{user}");
             let spirv = glslang(&shader, "frag", true).map_err(|error| {
@@ -339,17 +341,19 @@ fn call_with_zeros(name: &str, line: &str) -> String {
 /// compiles a shader that uses its members as plain globals (no driver here has the
 /// extension, and glslang does not know it).
 fn check_pls_blocks(layout: &Layout) -> Result<(), String> {
-    let names = glsl::translate(layout).unwrap().names;
+    let compiled = CompiledLayout::new(layout, Conversions::Exact).unwrap();
     for block in PlsBlock::ALL {
-        let (text, _) = glsl::include(layout, Include::PixelLocalStorage(block), 0).unwrap();
+        let (text, _) = compiled
+            .include(Include::PixelLocalStorage(block), 0)
+            .unwrap();
         let members = check_pls_block(&text, block, layout.budget)
             .map_err(|error| format!("{} {block:?}: {error}\n{text}", layout.name))?;
         let words = layout.word_contents();
         assert_eq!(members.len(), words.len());
-        let word_names = glsl::word_names(&words, &names);
+        let word_names = compiled.word_names();
         for (((_, ty, name), word), word_name) in members.iter().zip(&words).zip(word_names) {
             assert_eq!(
-                *name, word_name,
+                name, word_name,
                 "a member is named as its field is in the functions (bit words, as their fields)"
             );
             assert_eq!(Some(ty.as_str()), extension_type(word.format.name()));

@@ -8,9 +8,10 @@
 
 use gbuffer::layout::{Layout, Symbols};
 use gbuffer::GBufferLayout;
-use gbuffer_codegen::emit::glsl::{self, Include, PlsBlock};
+use gbuffer_codegen::emit::glsl::{Include, PlsBlock};
 use gbuffer_codegen::emit::items::{wgsl_items, ItemKind};
 use gbuffer_codegen::output::{generate, Output};
+use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
 use gbuffer_testkit::layouts::{seeds_and_every_format, AWKWARD_LAYOUT_NAMES};
 
@@ -105,9 +106,11 @@ fn every_wgsl_name_is_an_item_of_the_wgsl_and_the_lighting_source() {
 fn every_glsl_name_is_defined_by_the_includes_that_read_or_write() {
     for layout in layouts() {
         let symbols = layout.symbols();
-        let names = glsl::translate(&layout).unwrap().names;
+        let compiled = CompiledLayout::new(&layout, Conversions::Exact).unwrap();
+        let names = compiled.names();
         for include in Include::ALL {
-            let (text, interface) = glsl::include(&layout, include, 0)
+            let (text, interface) = compiled
+                .include(include, 0)
                 .unwrap_or_else(|error| panic!("{} {include:?}: {error}", layout.name));
             let functions = glsl_functions(&text);
             let defined = |name: &str| functions.iter().any(|function| function == name);

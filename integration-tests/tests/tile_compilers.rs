@@ -23,8 +23,8 @@ use gbuffer_codegen::emit::glsl::{self, Include};
 use gbuffer_core::Conversions;
 use gbuffer_core::Named;
 use gbuffer_cost::{measure, CostError, Shader, Stage, Target};
+use gbuffer_render::fused_programs::{fused_programs, FusedDialect};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
-use gbuffer_render::gles::sources::fused_programs;
 use gbuffer_render::on_tile::Path;
 use gbuffer_render::options::{IblForm, Options, SunForm};
 use gbuffer_testkit::layouts::seeds_and_every_format;
@@ -139,16 +139,20 @@ fn fused_renderer_compiles_on_mali_and_adreno() {
             if layout.on_tile_wgsl().is_err() {
                 continue;
             }
-            let fused = fused_programs(&options, path)
+            let dialect = FusedDialect::of(path).expect("a fused path");
+            let fused = fused_programs(&options, dialect)
                 .unwrap_or_else(|error| panic!("{}: {error}", layout.name()));
             if fused.interface.attachments.len() + 1 > MAX_DRAW_BUFFERS {
                 continue;
             }
             for program in fused.programs {
-                let shader =
-                    Shader::glsl(Stage::Fragment, &program.fragment).with_vertex(&program.vertex);
+                let vertex = program
+                    .vertex
+                    .as_deref()
+                    .expect("GLES translates its vertex stages");
+                let shader = Shader::glsl(Stage::Fragment, &program.fragment).with_vertex(vertex);
                 shaders.push((
-                    format!("{} {} {}", layout.name(), path.name(), program.name),
+                    format!("{} {} {}", layout.name(), path.name(), program.stage.name()),
                     shader,
                 ));
             }

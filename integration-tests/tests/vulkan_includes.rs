@@ -19,7 +19,9 @@ use std::collections::BTreeSet;
 
 use ash::vk;
 use gbuffer::layout::Layout;
-use gbuffer_codegen::emit::glsl::{self, GlslNames, Include, Interface};
+use gbuffer_codegen::emit::glsl::{self, Include, Interface};
+use gbuffer_codegen::CompiledLayout;
+use gbuffer_core::Conversions;
 use gbuffer_gpu::fullscreen::fullscreen_vertex_glsl;
 use gbuffer_gpu::harness::scalars_per_texel;
 use gbuffer_gpu::tools::glslang;
@@ -100,8 +102,9 @@ struct UserShaders {
 }
 
 fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> UserShaders {
-    let (text, interface) = glsl::include(layout, include, 0).unwrap();
-    let names = glsl::translate(layout).unwrap().names;
+    let compiled = CompiledLayout::new(layout, Conversions::Exact).unwrap();
+    let (text, interface) = compiled.include(include, 0).unwrap();
+    let names = compiled.names();
     let output = OutputLayout::of(layout, &interface);
     let stride = output.stride();
     let common = format!(
@@ -110,11 +113,11 @@ fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> UserShader
          layout(std430, set = 1, binding = 1) buffer HarnessOutputs {{\n    highp uint harness_outputs[];\n}};\n\n\
          highp int harness_texel() {{\n    highp ivec2 pixel = ivec2(gl_FragCoord.xy);\n    return pixel.y * {WIDTH} + pixel.x;\n}}\n"
     );
-    let writer = gbuffer_writer(layout, &names, &interface);
+    let writer = gbuffer_writer(&compiled, &interface);
     let reads = attachment_reader(&interface);
     let load = layout.symbols().load();
     let scalars = output.scalars;
-    let texel = texel_from_scalars(layout, &names, |index| {
+    let texel = texel_from_scalars(layout, names, |index| {
         format!("harness_inputs[base + {index}]")
     });
     let store = format!(
@@ -125,7 +128,7 @@ fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> UserShader
          highp int base = harness_texel() * {stride};\n    harness_write_attachments(base);\n",
         names.layout
     );
-    for (index, scalar) in scalars_of_texel(layout, &names, "texel").iter().enumerate() {
+    for (index, scalar) in scalars_of_texel(layout, names, "texel").iter().enumerate() {
         reload.push_str(&format!(
             "    harness_outputs[base + {}] = {scalar};\n",
             output.components + index
@@ -145,7 +148,7 @@ fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> UserShader
 
 /// The user's colour outputs over the G-buffer attachments and `harness_store(texel)`, which
 /// writes a texel to them with the statements the fetch include's `store_<layout>()` has.
-fn gbuffer_writer(layout: &Layout, names: &GlslNames, interface: &Interface) -> String {
+fn gbuffer_writer(compiled: &CompiledLayout, interface: &Interface) -> String {
     let mut out = String::new();
     for attachment in &interface.attachments {
         out.push_str(&format!(
@@ -155,14 +158,11 @@ fn gbuffer_writer(layout: &Layout, names: &GlslNames, interface: &Interface) -> 
     }
     out.push_str(&format!(
         "\nvoid harness_store({} texel) {{\n",
-        names.layout
+        compiled.names().layout
     ));
-    out.push_str(&glsl::store_statements(
-        layout,
-        names,
-        interface,
-        |attachment| format!("harness_gbuffer{}", attachment.index),
-    ));
+    out.push_str(&glsl::store_statements(compiled, interface, |attachment| {
+        format!("harness_gbuffer{}", attachment.index)
+    }));
     out.push_str("}\n");
     out
 }

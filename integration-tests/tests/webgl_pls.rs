@@ -23,6 +23,7 @@ use gbuffer::layout::Layout;
 use gbuffer::GBufferLayout;
 use gbuffer_codegen::emit::glsl::webgl::PlaneFormat;
 use gbuffer_codegen::emit::glsl::{self, Include, Interface};
+use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
 use gbuffer_core::Named;
 use gbuffer_gpu::harness::scalars_per_texel;
@@ -61,18 +62,13 @@ fn columns(layout: &Layout) -> usize {
 }
 
 /// The two fragment shaders of a case: store, then load and decode.
-fn user_shaders(
-    layout: &Layout,
-    conversions: Conversions,
-    include: &str,
-    preamble: &str,
-) -> (String, String) {
-    let names = glsl::translate_with(layout, conversions).unwrap().names;
+fn user_shaders(compiled: &CompiledLayout, include: &str, preamble: &str) -> (String, String) {
+    let (layout, names) = (compiled.layout(), compiled.names());
     let symbols = layout.symbols();
     let (load, store_texel) = (symbols.load(), symbols.store());
     let scalars = scalars_per_texel(layout);
     let columns = columns(layout);
-    let texel = texel_from_scalars(layout, &names, |index| format!("harness_scalar({index})"));
+    let texel = texel_from_scalars(layout, names, |index| format!("harness_scalar({index})"));
     let store = format!(
         "{preamble}{include}\n// The user's code.\nuniform highp usampler2D harness_inputs;\n\
          layout(location = 0) out highp uvec4 harness_out;\n\n\
@@ -81,12 +77,12 @@ fn user_shaders(
          void main() {{\n    {store_texel}({texel});\n    harness_out = uvec4(0u);\n}}\n"
     );
     let texel_type = &names.layout;
-    let per_field: Vec<String> = glsl::webgl::field_loads(layout, &names)
+    let per_field: Vec<String> = glsl::webgl::field_loads(compiled)
         .iter()
         .map(|load| format!("{load}()"))
         .collect();
-    let loaded = scalars_of_texel(layout, &names, "loaded");
-    let whole = scalars_of_texel(layout, &names, "whole");
+    let loaded = scalars_of_texel(layout, names, "loaded");
+    let whole = scalars_of_texel(layout, names, "whole");
     let differences: Vec<String> = loaded
         .iter()
         .zip(&whole)
@@ -119,7 +115,8 @@ fn cases(layout: &Layout, conversions: Conversions, seed: u64) -> Vec<Case> {
         Conversions::Exact => Backend::ALL,
     };
     let include = Include::WebGlPixelLocalStorage;
-    let (text, interface) = glsl::include_with(layout, conversions, include, 0).unwrap();
+    let compiled = CompiledLayout::new(layout, conversions).unwrap();
+    let (text, interface) = compiled.include(include, 0).unwrap();
     let host = glsl::webgl::host_module(layout, &interface);
     let texels = TEXELS_PER_ROW * ROWS;
     preambles(include)
@@ -127,7 +124,7 @@ fn cases(layout: &Layout, conversions: Conversions, seed: u64) -> Vec<Case> {
         .enumerate()
         .map(|(index, preamble)| {
             let inputs = inputs(layout, 0, texels, &mut Values::new(seed + index as u64));
-            let (store, reload) = user_shaders(layout, conversions, &text, &preamble);
+            let (store, reload) = user_shaders(&compiled, &text, &preamble);
             let name = format!("{} ({conversions:?}, preamble {index})", layout.name);
             let json = serde_json::json!({
                 "name": name,

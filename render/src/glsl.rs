@@ -5,11 +5,11 @@
 //!
 //! The G-buffer layout's own declarations come from its generated include, pasted verbatim; the
 //! renderer's WGSL declares the layout too (its functions take the texel struct), and its
-//! printed declarations leave out the items the include's translation declares, by their WGSL
+//! printed declarations leave out the items the include declares (its interface's list), by their WGSL
 //! names, so each is declared once.
 
-use gbuffer_codegen::emit::glsl::naga_glsl;
 use gbuffer_codegen::emit::glsl::printer::{self, Choice};
+use gbuffer_codegen::{glsl_stage, wgsl_module};
 use naga::back::glsl;
 
 /// Which GLSL a translation is for.
@@ -63,7 +63,7 @@ pub struct Translation {
 
 /// Parses and validates WGSL, naming the problem with the source when it does not.
 pub fn module(wgsl: &str) -> Result<(naga::Module, naga::valid::ModuleInfo), String> {
-    naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES)
+    wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES)
         .map_err(|error| format!("the renderer's WGSL: {error}"))
 }
 
@@ -89,8 +89,8 @@ pub fn translate(
         Dialect::WebGl => glsl::Version::new_gles(300),
         Dialect::Vulkan => glsl::Version::Desktop(450),
     };
-    let options = naga_glsl::options_keeping_bindings(&module, version);
-    let (text, reflection) = naga_glsl::write((&module, &info), stage, entry, &options)?;
+    let options = glsl_stage::options_keeping_bindings(&module, version);
+    let (text, reflection) = glsl_stage::write((&module, &info), stage, entry, &options)?;
     let mut samplers: Vec<(String, u32)> = reflection
         .texture_mapping
         .iter()
@@ -105,17 +105,16 @@ pub fn translate(
 
 /// The declarations fragment entry point `entry` of `wgsl` reaches, for a hand-written `main`
 /// in `dialect`: its structs, constants, the textures it samples and the functions it calls,
-/// printed from naga's IR, less what the layout's include declares (`include`, the include's
-/// translation).
+/// printed from naga's IR, less what the layout's include declares (`include`, its interface).
 pub fn fragment_declarations(
     wgsl: &str,
     entry: &str,
     dialect: Dialect,
-    include: &gbuffer_codegen::emit::glsl::Translation,
+    include: &gbuffer_codegen::emit::glsl::Interface,
 ) -> Result<Translation, String> {
     let (module, info) = module(wgsl)?;
     let leave_out: Vec<&str> = include
-        .items
+        .declares
         .iter()
         .filter_map(|item| item.wgsl.as_deref())
         .collect();

@@ -10,6 +10,7 @@
 
 pub mod coarse;
 pub mod conventions;
+pub mod fused_programs;
 pub mod gbuffers;
 pub mod gles;
 pub mod glsl;

@@ -278,21 +278,6 @@ impl Stage {
     }
 }
 
-/// The layout's GLSL as its includes declare it: the name of the texel struct, which the
-/// hand-written entry points declare their texels with, and the items a stage's translated
-/// declarations leave to the include ([`crate::glsl::fragment_declarations`]).
-pub fn include_translation(
-    layout: &gbuffer::layout::Layout,
-) -> Result<gbuffer_codegen::emit::glsl::Translation, String> {
-    gbuffer_codegen::emit::glsl::translate(layout).map_err(|error| error.to_string())
-}
-
-/// The statement a stage's `main` writes `texel` with where the include writes it (framebuffer
-/// fetch, WebGL's pixel local storage): the include's own store.
-pub fn store_through_include(layout: &gbuffer::layout::Layout) -> String {
-    format!("    {}(texel);\n", layout.symbols().store())
-}
-
 /// The seed layout of `options`, if it can be kept on tile (the error says why not).
 pub fn tile_layout(options: &Options) -> Result<PackedLayout, String> {
     match &options.gbuffer {

@@ -12,62 +12,24 @@
 
 use std::fmt::Write as _;
 
-use gbuffer_codegen::emit::glsl::{self as includes, Include};
+use gbuffer_codegen::emit::glsl as includes;
 use gbuffer_core::Named;
 use gbuffer_files::json::string as json_string;
 
-use crate::gles::sources::{program_in, TranslatedProgram};
-use crate::glsl::{self, Dialect};
+use crate::fused_programs::{fused_programs, FusedDialect};
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::on_tile::{
-    fused_wgsl, include_translation, store_through_include, tile_layout, Stage, TRANSLATION_ENTRY,
-};
+use crate::on_tile::tile_layout;
 use crate::options::Options;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::{ENVIRONMENT_BINDING, LIGHT_MAP_BINDING, LUT_BINDING};
-
-/// The fused frame's programs for `options`, one per [`Stage`], in drawing order.
-pub fn programs(options: &Options) -> Result<Vec<(Stage, TranslatedProgram)>, String> {
-    let layout = tile_layout(options)?;
-    let model = layout.layout();
-    let include = Include::WebGlPixelLocalStorage;
-    let (include_text, _) =
-        includes::include(&model, include, 0).map_err(|error| error.to_string())?;
-    let wgsl = fused_wgsl(options, layout, -1.0);
-    let translation = include_translation(&model)?;
-    let texel = &translation.names.layout;
-    let stages =
-        glsl::fragment_declarations(&wgsl, TRANSLATION_ENTRY, Dialect::WebGl, &translation)?;
-    // The output, and the volume drawn, which comes in a uniform.
-    let declarations =
-        "layout(location = 0) out highp vec4 frame_colour;\nuniform highp uint volume_index;\n";
-    let (load, store) = (model.symbols().load(), store_through_include(&model));
-    Stage::ALL
-        .iter()
-        .copied()
-        .map(|stage| {
-            let main = stage.pixel_local_storage_main(texel, &load, &store);
-            let program = program_in(
-                Dialect::WebGl,
-                &wgsl,
-                (&include_text, include, &stages),
-                stage.vertex_entry(),
-                &format!("{declarations}{main}"),
-            )
-            .map_err(|error| format!("the {} program: {error}", stage.name()))?;
-            Ok((stage, program))
-        })
-        .collect()
-}
 
 /// The files the page loads for `options`: `scene.mjs` (the programs, the mesh, the inputs and
 /// the frame's size and draws) and `layout.webgl_pls.js` (the layout's host module).
 pub fn export(options: &Options, inputs: &Inputs) -> Result<Vec<(String, Vec<u8>)>, String> {
     let layout = tile_layout(options)?.layout();
-    let (_, interface) = includes::include(&layout, Include::WebGlPixelLocalStorage, 0)
-        .map_err(|error| error.to_string())?;
-    let host = includes::webgl::host_module(&layout, &interface);
+    let fused = fused_programs(options, FusedDialect::WebGlPixelLocalStorage)?;
+    let host = includes::webgl::host_module(&layout, &fused.interface);
     let mesh = Mesh::scene();
     let mut scene = String::from(
         "// The fused frame's scene for web/fused.mjs, exported by gbuffer-render (render/src/webgl.rs):\n\
@@ -85,7 +47,7 @@ pub fn export(options: &Options, inputs: &Inputs) -> Result<Vec<(String, Vec<u8>
     );
     scene
         .push_str("\n/** One program per stage, in drawing order. */\nexport const PROGRAMS = [\n");
-    for (stage, program) in programs(options)? {
+    for program in &fused.programs {
         let samplers: Vec<String> = program
             .samplers
             .iter()
@@ -94,8 +56,8 @@ pub fn export(options: &Options, inputs: &Inputs) -> Result<Vec<(String, Vec<u8>
         let _ = writeln!(
             scene,
             "  {{ stage: {}, vertex: {}, fragment: {}, samplers: [{}] }},",
-            json_string(stage.name()),
-            json_string(&program.vertex),
+            json_string(program.stage.name()),
+            json_string(program.vertex.as_deref().unwrap_or_default()),
             json_string(&program.fragment),
             samplers.join(", ")
         );

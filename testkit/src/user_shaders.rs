@@ -6,7 +6,8 @@
 use std::fmt::Write as _;
 
 use gbuffer::layout::{Layout, ScalarKind};
-use gbuffer_codegen::emit::glsl::{self, GlslNames, Include};
+use gbuffer_codegen::emit::glsl::{GlslNames, Include};
+use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
 use gbuffer_gpu::harness::scalars_per_texel;
 
@@ -115,12 +116,13 @@ pub fn fetch_user_shaders(
     preamble: &str,
     width: i32,
 ) -> (String, String) {
-    let (text, _) = glsl::include_with(layout, conversions, include, 0).unwrap();
-    let names = glsl::translate(layout).unwrap().names;
+    let compiled = CompiledLayout::new(layout, conversions).unwrap();
+    let (text, _) = compiled.include(include, 0).unwrap();
+    let names = compiled.names();
     let symbols = layout.symbols();
     let (load, store_texel) = (symbols.load(), symbols.store());
     let scalars = scalars_per_texel(layout);
-    let texel = texel_from_scalars(layout, &names, |index| format!("harness_scalar({index})"));
+    let texel = texel_from_scalars(layout, names, |index| format!("harness_scalar({index})"));
     let store = format!(
         "{preamble}{text}\n// The user's code.\nuniform highp usampler2D harness_inputs;\n\n\
          highp uint harness_scalar(highp int index) {{\n    highp ivec2 pixel = ivec2(gl_FragCoord.xy);\n    \
@@ -142,7 +144,7 @@ pub fn fetch_user_shaders(
         reload.push_str(&format!(
             "    highp int base = (int(gl_FragCoord.y) * {width} + int(gl_FragCoord.x)) * {scalars};\n"
         ));
-        for (index, scalar) in scalars_of_texel(layout, &names, "texel").iter().enumerate() {
+        for (index, scalar) in scalars_of_texel(layout, names, "texel").iter().enumerate() {
             reload.push_str(&format!(
                 "    harness_decoded[base + {index}] = {scalar};\n"
             ));

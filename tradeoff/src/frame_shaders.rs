@@ -19,8 +19,8 @@ use std::fmt::Write as _;
 
 use gbuffer_core::Named;
 use gbuffer_cost::Shader;
+use gbuffer_render::fused_programs::{fused_programs, FusedDialect};
 use gbuffer_render::gbuffers::GBuffer;
-use gbuffer_render::gles::sources::fused_programs;
 use gbuffer_render::on_tile::{Path as TilePath, Stage};
 use gbuffer_render::shaders::{gbuffer_wgsl, lighting_pass_wgsl, Positions};
 
@@ -82,21 +82,21 @@ pub fn compile_frames() -> FrameShaders {
             (TilePath::FetchPacked, FORMS[1]),
             (TilePath::FetchNative, FORMS[2]),
         ] {
-            let Ok(fused) = fused_programs(&options, path) else {
+            let Some(Ok(fused)) =
+                FusedDialect::of(path).map(|dialect| fused_programs(&options, dialect))
+            else {
                 continue;
             };
             if fused.interface.attachments.len() + 1 > MAX_DRAW_BUFFERS {
                 continue;
             }
-            // The programs are in Stage::ALL's order.
-            let stages: Vec<(Stage, usize)> = Stage::ALL
+            let stages: Vec<(Stage, usize)> = fused
+                .programs
                 .iter()
-                .copied()
-                .zip(&fused.programs)
-                .map(|(stage, program)| {
+                .map(|program| {
                     let shader = Shader::glsl(gbuffer_cost::Stage::Fragment, &program.fragment)
-                        .with_vertex(&program.vertex);
-                    (stage, add(Ok(shader)))
+                        .with_vertex(program.vertex.as_deref().unwrap_or_default());
+                    (program.stage, add(Ok(shader)))
                 })
                 .collect();
             let of = |stage: Stage| {

@@ -12,8 +12,8 @@ pub mod include;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use gbuffer_codegen::emit::glsl::naga_glsl;
-pub use gbuffer_codegen::emit::glsl::naga_glsl::GENERATED_CODE_CAPABILITIES;
+pub use gbuffer_codegen::wgsl_module::GENERATED_CODE_CAPABILITIES;
+use gbuffer_codegen::{glsl_stage, wgsl_module};
 use gbuffer_core::Named;
 use naga::back::{glsl, hlsl, msl, spv};
 use naga::valid::{Capabilities, ModuleInfo};
@@ -123,10 +123,10 @@ pub fn validate_generated(source: &str) -> Result<Validated, Problem> {
 fn validate_with(source: &str, extra: Capabilities) -> Result<Validated, Problem> {
     // Before naga, whose recursion a huge statement would overflow.
     expression_size::check(source)?;
-    match naga_glsl::parse_and_validate(source, extra) {
+    match wgsl_module::parse_and_validate(source, extra) {
         Ok((module, info)) => Ok(Validated { module, info }),
-        Err(naga_glsl::WgslError::Parse(error)) => Err(parse_problem(&error, source)),
-        Err(naga_glsl::WgslError::Validate(refused)) => {
+        Err(wgsl_module::WgslError::Parse(error)) => Err(parse_problem(&error, source)),
+        Err(wgsl_module::WgslError::Validate(refused)) => {
             let (module, error) = *refused;
             Err(validation_problem(&module, &error, source))
         }
@@ -244,7 +244,7 @@ pub fn translate(validated: &Validated, backend: Backend) -> Result<String, Prob
                     version: glsl::Version::new_gles(version),
                     ..glsl::Options::default()
                 };
-                let (text, _) = naga_glsl::write(
+                let (text, _) = glsl_stage::write(
                     (module, info),
                     entry_point.stage,
                     &entry_point.name,

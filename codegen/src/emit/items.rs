@@ -38,8 +38,14 @@ pub struct WgslItem {
 /// back through naga's parser and validator (with the capabilities generated code needs).
 /// Entry points are not items: a shader has them, an emitted module does not.
 pub fn wgsl_items(wgsl: &str) -> Result<Vec<WgslItem>, String> {
-    use crate::emit::glsl::naga_glsl;
-    let (module, _) = naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES)?;
+    use crate::wgsl_module;
+    let (module, _) = wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES)?;
+    Ok(module_items(&module, wgsl))
+}
+
+/// The items of `module`, parsed from `wgsl` (their spans point into it), as [`wgsl_items`]
+/// lists them.
+pub(crate) fn module_items(module: &naga::Module, wgsl: &str) -> Vec<WgslItem> {
     let structs = module
         .types
         .iter()
@@ -70,14 +76,14 @@ pub fn wgsl_items(wgsl: &str) -> Result<Vec<WgslItem>, String> {
         .filter_map(|(span, kind, name)| Some((span.to_range()?, kind, name.as_deref()?)))
         .collect();
     found.sort_by_key(|(range, _, _)| range.start);
-    Ok(found
+    found
         .into_iter()
         .map(|(range, kind, name)| WgslItem {
             kind,
             name: name.to_string(),
             text: with_comment_and_attributes(wgsl, range),
         })
-        .collect())
+        .collect()
 }
 
 /// The text of a declaration spanning `range`, widened to the start of its first line (where

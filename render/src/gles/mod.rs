@@ -14,19 +14,15 @@ use std::time::Instant;
 use gbuffer_core::Named;
 use glow::HasContext as _;
 
-use gbuffer_codegen::emit::glsl::{self as includes, Include};
+use gbuffer_codegen::emit::glsl::Include;
 use gbuffer_gpu::gles::Gles;
 
 mod plans;
-pub mod sources;
 
-use crate::glsl::{self, Dialect};
+use crate::fused_programs::{fused_programs, FusedDialect};
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::on_tile::{
-    fused_wgsl, include_translation, store_through_include, tile_layout, Path, Stage, TileOptions,
-    TRANSLATION_ENTRY,
-};
+use crate::on_tile::{tile_layout, Path, Stage, TileOptions};
 use crate::options::{Frame, Options};
 use crate::recording::{Attachment, Call, Load, Recording};
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
@@ -190,25 +186,12 @@ impl GlesRenderer {
         let layout = tile_layout(options)?;
         let (width, height) = (options.width as i32, options.height as i32);
         let model = layout.layout();
-        let (include, interface) = includes::include(&model, Include::FetchPacked, 0)
-            .map_err(|error| error.to_string())?;
-        let wgsl = fused_wgsl(options, layout, -1.0);
-        let translation = include_translation(&model)?;
-        let main = Stage::Geometry.fragment_main(
-            &translation.names.layout,
-            &model.symbols().load(),
-            &store_through_include(&model),
-        );
-        let stages =
-            glsl::fragment_declarations(&wgsl, TRANSLATION_ENTRY, Dialect::Gles, &translation)?;
-        let (vertex, fragment) = sources::program(
-            &wgsl,
-            (&include, &stages),
-            &interface,
-            Stage::Geometry.vertex_entry(),
-            &main,
-        )?;
-        let program = self.gles.link(&vertex, &fragment)?;
+        // The packed fetch path's geometry program: it writes the words the layout packs.
+        let fused = fused_programs(options, FusedDialect::Fetch(Include::FetchPacked))?;
+        let interface = fused.interface;
+        let geometry = &fused.programs[0];
+        let vertex = geometry.vertex.as_deref().unwrap_or_default();
+        let program = self.gles.link(vertex, &geometry.fragment)?;
         let targets = interface.attachments.len();
         let formats: Vec<(u32, u32)> = interface
             .attachments

@@ -7,7 +7,7 @@ use glow::HasContext as _;
 
 use gbuffer_codegen::emit::glsl::Include;
 
-use super::sources::{fused_programs, FusedPrograms};
+use crate::fused_programs::{fused_programs, FusedDialect, FusedPrograms};
 use gbuffer_gpu::gles::Backing;
 
 use super::{GlesRenderer, Plan, Target, FETCH};
@@ -49,11 +49,13 @@ impl GlesRenderer {
         path: Path,
         (width, height): (i32, i32),
     ) -> Result<Plan, String> {
+        let dialect = FusedDialect::of(path).ok_or("the two-pass path is not fused")?;
         let FusedPrograms {
             include: kind,
             interface,
             programs: sources,
-        } = fused_programs(options, path)?;
+            ..
+        } = fused_programs(options, dialect)?;
         let colour_attachments = interface.attachments.len() as i32 + 1;
         let draw_buffers = self.gles.limit(glow::MAX_DRAW_BUFFERS);
         let attachments_limit = self.gles.limit(glow::MAX_COLOR_ATTACHMENTS);
@@ -75,8 +77,9 @@ impl GlesRenderer {
             .collect();
         let mut programs = Vec::new();
         for source in sources {
-            match self.gles.link(&source.vertex, &source.fragment) {
-                Ok(program) => programs.push((source.name, program)),
+            let vertex = source.vertex.as_deref().unwrap_or_default();
+            match self.gles.link(vertex, &source.fragment) {
+                Ok(program) => programs.push((source.stage.name(), program)),
                 Err(error) => {
                     // SAFETY: programs of the current context.
                     unsafe {
@@ -84,7 +87,7 @@ impl GlesRenderer {
                             .iter()
                             .for_each(|(_, p)| self.gles.gl.delete_program(*p))
                     };
-                    return Err(format!("the {} program: {error}", source.name));
+                    return Err(format!("the {} program: {error}", source.stage.name()));
                 }
             }
         }

@@ -3,7 +3,6 @@
 
 use ash::vk;
 use gbuffer_codegen::emit::glsl::local_read::{LocalRead, ATTACHMENT_UNUSED};
-use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface};
 use gbuffer_core::Named;
 
 use gbuffer_gpu::vulkan::{DrawsIn, RenderingAttachments};
@@ -13,8 +12,8 @@ use super::{
     clear_depth, clear_float, clear_uint, named, Begin, Draw, Pass, Plan, Rendering, StagePipeline,
     VulkanRenderer, DEPTH_FORMAT, OUTPUT_FORMAT, PACKED_FORMAT,
 };
-use crate::glsl::{self, Dialect};
-use crate::on_tile::{fused_wgsl, include_translation, Path, Stage, TRANSLATION_ENTRY};
+use crate::fused_programs::{fused_programs, FusedDialect};
+use crate::on_tile::{Path, Stage, TRANSLATION_ENTRY};
 use crate::options::Options;
 use crate::recording::Attachment;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
@@ -77,7 +76,9 @@ impl VulkanRenderer {
             }
         };
         let model = layout.layout();
-        let shaders = fused_shaders(options, layout)?;
+        // The same shaders for the subpass and the local-read paths: what differs is the
+        // pipeline and the pass.
+        let shaders = fused_programs(options, FusedDialect::VulkanSubpass)?;
         let interface = &shaders.interface;
         let targets = interface.attachments.len() as u32;
         let limits = &self.vulkan.limits;
@@ -178,7 +179,8 @@ impl VulkanRenderer {
         // Descriptors: the inputs the stages sample in set 0, the G-buffer inputs in set 1,
         // the volume index as a push constant.
         let wgsl = &shaders.wgsl;
-        let (set0_layout, set0) = self.sampled_set(&shaders.sampled, &[])?;
+        let sampled = used_bindings(wgsl, TRANSLATION_ENTRY);
+        let (set0_layout, set0) = self.sampled_set(&sampled, &[])?;
         let input_views: Vec<vk::ImageView> = views[..targets as usize].to_vec();
         let input_layout = match fused {
             Fused::Subpass { .. } => vk::ImageLayout::GENERAL,
@@ -194,8 +196,8 @@ impl VulkanRenderer {
             Begin::Rendering(_) => DrawsIn::Rendering(&rendering),
         };
         let mut pipeline_stages = Vec::new();
-        for (stage, fragment) in &shaders.fragments {
-            let stage = *stage;
+        for program in &shaders.programs {
+            let (stage, fragment) = (program.stage, &program.fragment);
             let depth = match stage {
                 Stage::Geometry => Depth::Write,
                 Stage::Sky => Depth::Sky,
@@ -507,74 +509,6 @@ impl VulkanRenderer {
             height,
         })
     }
-}
-
-/// The fused paths' shaders for a layout, as the Vulkan plans build their pipelines from them.
-struct FusedShaders {
-    /// The renderer's WGSL (the vertex stages are its entry points, as naga's SPIR-V).
-    wgsl: String,
-    /// The bindings of descriptor set 0 the fragment stages sample (combined image samplers).
-    sampled: Vec<u32>,
-    /// The layout's packed Vulkan include's interface (set 1): the G-buffer's attachments.
-    interface: Interface,
-    /// Each stage's Vulkan GLSL fragment shader, in `Stage::ALL` order: the layout's Vulkan
-    /// include (packed, set 1) unedited, the outputs, the volume's push constant, the
-    /// declarations the stage calls and its `main`.
-    fragments: Vec<(Stage, String)>,
-}
-
-/// The fused paths' shaders for `layout` under `options` (the same for the subpass and the
-/// local-read paths: what differs is the pipeline and the pass, not the shaders).
-fn fused_shaders(
-    options: &Options,
-    layout: crate::gbuffers::PackedLayout,
-) -> Result<FusedShaders, String> {
-    let model = layout.layout();
-    let (include, interface) =
-        includes::include(&model, Include::SubpassPacked, 1).map_err(|error| error.to_string())?;
-    let targets = interface.attachments.len() as u32;
-    let wgsl = fused_wgsl(options, layout, -1.0);
-    let sampled = used_bindings(&wgsl, TRANSLATION_ENTRY);
-    let load = model.symbols().load();
-    let include_translation = include_translation(&model)?;
-    let names = &include_translation.names;
-    let texel = &names.layout;
-    let outputs: String = (0..targets)
-        .map(|index| format!("layout(location = {index}) out highp uvec4 gbuffer_out{index};\n"))
-        .chain([format!(
-            "layout(location = {targets}) out highp vec4 frame_colour;\n"
-        )])
-        .collect();
-    let store = includes::store_statements(&model, names, &interface, |attachment| {
-        format!("gbuffer_out{}", attachment.index)
-    });
-    // The volume drawn comes as a push constant; each draw writes only what it changes.
-    let volume = "layout(push_constant) uniform Volume {\n    uint volume_index;\n};\n";
-    let declarations = glsl::fragment_declarations(
-        &wgsl,
-        TRANSLATION_ENTRY,
-        Dialect::Vulkan,
-        &include_translation,
-    )?
-    .text;
-    let fragments = Stage::ALL
-        .iter()
-        .map(|&stage| {
-            let fragment = format!(
-                "{}\n{}\n{include}\n{outputs}{volume}\n{declarations}\n{}",
-                Dialect::Vulkan.version_line(),
-                Dialect::Vulkan.early_fragment_tests(),
-                stage.fragment_main(texel, &load, &store)
-            );
-            (stage, fragment)
-        })
-        .collect();
-    Ok(FusedShaders {
-        wgsl,
-        sampled,
-        interface,
-        fragments,
-    })
 }
 
 /// An attachment cleared at the start of the render pass, stored at its end or not.

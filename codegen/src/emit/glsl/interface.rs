@@ -5,7 +5,6 @@
 
 use super::webgl::Plane;
 use gbuffer_core::format::{PackedTarget, TargetFormat};
-use gbuffer_core::layout::{Conversions, Layout};
 use gbuffer_core::Symbols;
 
 /// An include of the GLSL family, by how the G-buffer reaches the shader.
@@ -130,19 +129,15 @@ pub struct Interface {
     pub planes: Vec<Plane>,
     /// Every declaration of the include's text, in its order: the attachments, planes or
     /// block, the translated types and functions, the accessors. Empty until the include is
-    /// written ([`super::include_with`] fills it).
+    /// written ([`crate::CompiledLayout::include`] fills it).
     pub declares: Vec<super::printer::Item>,
 }
 
 impl Interface {
-    /// The interface of `include` for a checked layout with these conversions, with the GLSL
-    /// names naga gives its fields.
-    pub fn new(
-        layout: &Layout,
-        conversions: Conversions,
-        include: Include,
-        names: &super::GlslNames,
-    ) -> Interface {
+    /// The interface of `include` for a compiled layout, with the GLSL names its words and
+    /// fields were given.
+    pub fn new(compiled: &crate::CompiledLayout, include: Include) -> Interface {
+        let layout = compiled.layout();
         let symbols = layout.symbols();
         let attachments: Vec<Attachment> = match include {
             Include::PixelLocalStorage(_) | Include::WebGlPixelLocalStorage => Vec::new(),
@@ -157,7 +152,8 @@ impl Interface {
                 let words = layout.word_contents();
                 // Joined without `__`, which GLSL ES reserves (naga's names may end in `_`).
                 let attachment_names = super::unique(
-                    super::word_names(&words, names)
+                    compiled
+                        .word_names()
                         .iter()
                         .map(|name| symbols.attachment(name))
                         .collect(),
@@ -175,7 +171,7 @@ impl Interface {
             }
         };
         let planes = match include {
-            Include::WebGlPixelLocalStorage => super::webgl::planes(layout, conversions, names),
+            Include::WebGlPixelLocalStorage => super::webgl::planes(compiled),
             _ => Vec::new(),
         };
         Interface {

@@ -16,23 +16,23 @@
 //! lists and leaves the user's defaults alone. What it needs from the preamble and the host is
 //! data too: [`Interface`].
 //!
-//! The functions are not written twice: naga parses the layout's WGSL and [`printer`] prints
-//! its IR as GLSL ES ([`translate_with`], exact or fast conversions), so WGSL stays the one
+//! The functions are not written twice: the compiled layout ([`crate::CompiledLayout`]) holds
+//! naga's module of the layout's WGSL and its IR printed as GLSL ES by [`printer`] (exact or
+//! fast conversions), and every include pastes that one translation, so WGSL stays the one
 //! source of truth. Where GLSL reserves a name, the printer renames it as naga's GLSL writer
 //! does (`sampler` -> `sampler_`, `main` -> `main_`, a name ending in a digit gets a `_`), and
 //! the hand-written parts take those names from it ([`GlslNames`]).
 
 mod interface;
 pub mod local_read;
-pub mod naga_glsl;
 pub mod printer;
-mod translate;
+pub(crate) mod translate;
 pub mod webgl;
 
 use std::fmt::Write as _;
 
 pub use interface::{subpass_input_type, Attachment, Include, Interface};
-pub use translate::{translate, translate_with, GlslNames, Translation};
+pub use translate::{GlslNames, Translation};
 
 use gbuffer_core::Named;
 
@@ -43,6 +43,7 @@ use gbuffer_core::Conversions;
 use gbuffer_core::{FieldType, ScalarKind, Symbols};
 
 use crate::emit::items::ItemKind;
+use crate::CompiledLayout;
 use printer::Item;
 
 /// Which of the three pixel local storage block forms to declare.
@@ -118,7 +119,7 @@ fn declared_type(ty: FieldType) -> String {
 /// can meet another word's (fields `a_1` and `a_`, trimmed, both give `a_1_bits`; a field may be
 /// called `a_bits`): such a word is called `<joined>_word<index>_bits` instead, so every name is
 /// declared once.
-pub fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
+pub(crate) fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
     let whole: Vec<&str> = words
         .iter()
         .filter(|word| !word.is_bit_fields)
@@ -216,7 +217,8 @@ impl std::error::Error for TranslationError {}
 
 /// The include's text and its interface, for a checked layout, with exact conversions.
 /// Vulkan includes put their input attachments in descriptor set `set` (binding = input
-/// attachment index).
+/// attachment index). It compiles the layout for this one include: a caller that writes
+/// several compiles it once ([`CompiledLayout::include`]).
 pub fn include(
     layout: &Layout,
     include: Include,
@@ -225,7 +227,7 @@ pub fn include(
     include_with(layout, Conversions::Exact, include, set)
 }
 
-/// The include with the chosen conversions (pixel local storage blocks have none: the hardware
+/// [`include`] with the chosen conversions (pixel local storage blocks have none: the hardware
 /// converts).
 pub fn include_with(
     layout: &Layout,
@@ -233,30 +235,24 @@ pub fn include_with(
     include: Include,
     set: u32,
 ) -> Result<(String, Interface), TranslationError> {
-    let translation = translate_with(layout, conversions)?;
-    let mut interface = Interface::new(layout, conversions, include, &translation.names);
+    CompiledLayout::new(layout, conversions)?.include(include, set)
+}
+
+/// The include's text and its interface, around the compiled layout's translation
+/// ([`CompiledLayout::include`]).
+pub(crate) fn write_include(
+    compiled: &CompiledLayout,
+    include: Include,
+    set: u32,
+) -> Result<(String, Interface), TranslationError> {
+    let mut interface = Interface::new(compiled, include);
     let mut items = Vec::new();
     let text = match include {
         Include::PixelLocalStorage(block) => {
-            // Bit fields need their conversions beside the block (and nothing else, as the
-            // block's members share the global namespace).
-            let functions = if layout.has_bit_fields() {
-                translate::translate_bit_field_functions(layout, conversions)?
-            } else {
-                (String::new(), Vec::new())
-            };
-            pixel_local_storage(
-                layout,
-                block,
-                (&functions, &translation),
-                &interface,
-                &mut items,
-            )
+            pixel_local_storage(compiled, block, &interface, &mut items)
         }
-        Include::WebGlPixelLocalStorage => {
-            webgl::include(layout, conversions, &translation, &interface, &mut items)?
-        }
-        _ => attachments(layout, &translation, &interface, set, &mut items),
+        Include::WebGlPixelLocalStorage => webgl::include(compiled, &interface, &mut items)?,
+        _ => attachments(compiled, &interface, set, &mut items),
     };
     interface.declares = items;
     Ok((text, interface))
@@ -347,13 +343,12 @@ fn write_header(out: &mut String, title: &str, interface: &Interface) {
 /// The pixel local storage block: one member per field, named as the field is in GLSL, with
 /// the format's layout qualifier and type. Channels the field does not use are noted.
 fn pixel_local_storage(
-    layout: &Layout,
+    compiled: &CompiledLayout,
     block: PlsBlock,
-    (functions, translation): (&(String, Vec<Item>), &Translation),
     interface: &Interface,
     items: &mut Vec<Item>,
 ) -> String {
-    let names = &translation.names;
+    let (layout, names) = (compiled.layout(), compiled.names());
     let mut out = String::new();
     write_header(
         &mut out,
@@ -369,7 +364,7 @@ fn pixel_local_storage(
     let block_name = Symbols::pixel_local_storage_block(&names.layout);
     let _ = writeln!(out, "{} {block_name} {{", block.qualifier());
     let words = layout.word_contents();
-    for (word, name) in words.iter().zip(word_names(&words, names)) {
+    for (word, name) in words.iter().zip(compiled.word_names()) {
         if word.is_bit_fields {
             let fields: Vec<String> = word
                 .members
@@ -402,14 +397,8 @@ fn pixel_local_storage(
     }
     out.push_str("};\n");
     declare(items, ItemKind::Block, block_name, &out[block_start..]);
-    if layout.has_bit_fields() {
-        write_pls_bit_field_accessors(
-            (&mut out, items),
-            layout,
-            block,
-            (functions, translation),
-            &words,
-        );
+    if let Some(functions) = compiled.bit_field_glsl() {
+        write_pls_bit_field_accessors((&mut out, items), compiled, block, functions, &words);
     }
     out
 }
@@ -431,13 +420,13 @@ fn declare(items: &mut Vec<Item>, kind: ItemKind, glsl: String, text: &str) {
 /// whole).
 fn write_pls_bit_field_accessors(
     (out, items): (&mut String, &mut Vec<Item>),
-    layout: &Layout,
+    compiled: &CompiledLayout,
     block: PlsBlock,
-    ((functions, function_items), translation): (&(String, Vec<Item>), &Translation),
+    (functions, function_items): &(String, Vec<Item>),
     words: &[Word],
 ) {
+    let (layout, names) = (compiled.layout(), compiled.names());
     let symbols = layout.symbols();
-    let names = &translation.names;
     let _ = writeln!(
         out,
         "\n// The bit fields' conversions, translated by naga from the layout's WGSL.\n"
@@ -446,7 +435,7 @@ fn write_pls_bit_field_accessors(
     items.extend(function_items.iter().cloned());
     for (word, name) in words
         .iter()
-        .zip(word_names(words, names))
+        .zip(compiled.word_names())
         .filter(|(word, _)| word.is_bit_fields)
     {
         if block != PlsBlock::Out {
@@ -461,7 +450,7 @@ fn write_pls_bit_field_accessors(
                     field.name,
                     member.bit_range(),
                     declared_type(field.ty),
-                    bit_field_code(&name, *member)
+                    bit_field_code(name, *member)
                 );
                 declare(items, ItemKind::Function, load, &out[start..]);
             }
@@ -479,7 +468,7 @@ fn write_pls_bit_field_accessors(
                 })
                 .collect();
             let value = bit_word_value(layout, word, |field| names.fields[field].clone());
-            let store = symbols.store_pls(&name);
+            let store = symbols.store_pls(name);
             let start = out.len();
             let _ = writeln!(
                 out,
@@ -494,12 +483,12 @@ fn write_pls_bit_field_accessors(
 /// A framebuffer-fetch or subpass-input include: the header, one declaration per attachment,
 /// the translated functions, and `load_<snake>()` (and for fetch `store_<snake>()`).
 fn attachments(
-    layout: &Layout,
-    translation: &Translation,
+    compiled: &CompiledLayout,
     interface: &Interface,
     set: u32,
     items: &mut Vec<Item>,
 ) -> String {
+    let (layout, translation) = (compiled.layout(), compiled.glsl());
     let include = interface.include;
     let what = match include {
         Include::FetchPacked | Include::FetchNative => "Framebuffer-fetch",
@@ -553,7 +542,7 @@ fn attachments(
     out.push('\n');
     out.push_str(&translation.text);
     items.extend(translation.items.iter().cloned());
-    write_accessors((&mut out, items), layout, &translation.names, interface);
+    write_accessors((&mut out, items), compiled, interface);
     out
 }
 
@@ -570,10 +559,10 @@ fn read_attachment(attachment: &Attachment, vulkan: bool) -> String {
 /// `load_<snake>()` reading every attachment, and for fetch `store_<snake>()` writing them.
 fn write_accessors(
     (out, items): (&mut String, &mut Vec<Item>),
-    layout: &Layout,
-    names: &GlslNames,
+    compiled: &CompiledLayout,
     interface: &Interface,
 ) {
+    let (layout, names) = (compiled.layout(), compiled.names());
     let symbols = layout.symbols();
     let texel = &names.layout;
     let vulkan = interface.include.is_vulkan();
@@ -627,7 +616,7 @@ fn write_accessors(
     let start = out.len();
     let _ = writeln!(out, "\n// Writes a texel into the attachments.");
     let _ = writeln!(out, "void {}({texel} texel) {{", symbols.store());
-    out.push_str(&store_statements(layout, names, interface, |attachment| {
+    out.push_str(&store_statements(compiled, interface, |attachment| {
         attachment.name.clone()
     }));
     out.push_str("}\n");
@@ -639,11 +628,11 @@ fn write_accessors(
 /// attachment's four components. `output` names the variable written for each attachment: the
 /// `inout` itself for fetch, the user's own `out` for a Vulkan G-buffer subpass.
 pub fn store_statements(
-    layout: &Layout,
-    names: &GlslNames,
+    compiled: &CompiledLayout,
     interface: &Interface,
     output: impl Fn(&Attachment) -> String,
 ) -> String {
+    let (layout, names) = (compiled.layout(), compiled.names());
     let mut out = String::new();
     if interface.include.is_packed() {
         let _ = writeln!(

@@ -7,14 +7,15 @@
 //! writer does, and [`GlslNames`] hands the hand-written parts of an include (blocks,
 //! attachments, accessors) the names it gave the layout's structs.
 
-use super::naga_glsl;
 use super::printer::{self, Choice, FromVersion310, Item, Printed};
 use super::TranslationError;
 use crate::emit::items::ItemKind;
-use crate::emit::wgsl::{function_name, Target};
+use crate::emit::wgsl::function_name;
+use crate::wgsl_module;
 use gbuffer_core::format::Format;
 use gbuffer_core::layout::Layout;
 use gbuffer_core::Conversions;
+use naga::valid::ModuleInfo;
 
 /// The layout's types and functions in GLSL ES, and the names they were given.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -59,19 +60,14 @@ pub struct GlslNames {
     pub target_members: Vec<String>,
 }
 
-/// Translates the layout's exact WGSL to GLSL ES declarations with explicit precision.
-pub fn translate(layout: &Layout) -> Result<Translation, TranslationError> {
-    translate_with(layout, Conversions::Exact)
-}
-
-/// Translates the layout's WGSL with the chosen conversions. GLSL ES 3.00 has no
-/// `packUnorm4x8`: under fast conversions rgba8 is translated from f32 arithmetic, and the
-/// builtins take over from GLSL ES 3.10 up (`#if __VERSION__ >= 310`).
-pub fn translate_with(
+/// Prints the layout's WGSL for GLSL ES 3.00 (`module`, validated) as GLSL ES declarations.
+/// GLSL ES 3.00 has no `packUnorm4x8`: under fast conversions that WGSL writes rgba8 in f32
+/// arithmetic, and the builtins take over from GLSL ES 3.10 up (`#if __VERSION__ >= 310`).
+pub(crate) fn translate(
     layout: &Layout,
     conversions: Conversions,
+    (module, info): (&naga::Module, &ModuleInfo),
 ) -> Result<Translation, TranslationError> {
-    let wgsl = crate::emit::wgsl::emit_for(layout, conversions, Target::GlslEs300);
     // rgba8's fast functions: the layout's own where its conversions are fast, and those of
     // fields that choose fast conversions against exact ones.
     let prefix = layout.snake_name();
@@ -89,11 +85,11 @@ pub fn translate_with(
         .iter()
         .map(|(function, builtin)| FromVersion310 { function, builtin })
         .collect();
-    let (module, printed) = print(&wgsl, &from_310)?;
+    let printed = print((module, info), &from_310)?;
     let symbols = layout.symbols();
     let (Some((layout_name, fields)), Some((targets, target_members))) = (
-        printed.struct_names(&module, symbols.texel()),
-        printed.struct_names(&module, &symbols.targets()),
+        printed.struct_names(module, symbols.texel()),
+        printed.struct_names(module, &symbols.targets()),
     ) else {
         return Err(TranslationError(format!(
             "the WGSL of `{}` declares no texel or targets struct",
@@ -117,28 +113,27 @@ pub fn translate_with(
 /// The bit fields' functions and their helpers alone, in GLSL ES declarations with explicit
 /// precision (for pixel local storage includes, whose block members share the global
 /// namespace with whatever the include declares).
-pub fn translate_bit_field_functions(
+pub(crate) fn translate_bit_field_functions(
     layout: &Layout,
     conversions: Conversions,
 ) -> Result<(String, Vec<Item>), TranslationError> {
     let wgsl = crate::emit::wgsl::bit_field_functions(layout, conversions);
-    let (_, printed) = print(&wgsl, &[])?;
+    let (module, info) = wgsl_module::validate(&wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES)
+        .map_err(TranslationError)?;
+    let printed = print((&module, &info), &[])?;
     Ok((printed.text, printed.items))
 }
 
-/// The declarations of `wgsl`, validated by naga and printed from its IR.
+/// The declarations of a validated module, printed from its IR.
 fn print(
-    wgsl: &str,
+    (module, info): (&naga::Module, &ModuleInfo),
     from_310: &[FromVersion310],
-) -> Result<(naga::Module, Printed), TranslationError> {
-    let (module, info) = naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES)
-        .map_err(TranslationError)?;
+) -> Result<Printed, TranslationError> {
     let choice = Choice {
         from_310,
         ..Choice::default()
     };
-    let printed = printer::print(&module, &info, &choice).map_err(TranslationError)?;
-    Ok((module, printed))
+    printer::print(module, info, &choice).map_err(TranslationError)
 }
 
 /// Checks that the bit fields' functions kept their WGSL names, which name no field and hold

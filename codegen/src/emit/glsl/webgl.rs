@@ -19,14 +19,14 @@ use std::fmt::Write as _;
 
 use super::printer::Item;
 use super::unique;
-use super::{bit_field_code, bit_field_function, bit_word_value, declared_type, word_names};
-use super::{declare, GlslNames, Include, Interface, Translation, TranslationError};
+use super::{bit_field_code, bit_field_function, bit_word_value, declared_type};
+use super::{declare, Include, Interface, TranslationError};
 use crate::emit::items::ItemKind;
 use crate::emit::wgsl::{function_name, mode_suffix};
+use crate::CompiledLayout;
 use gbuffer_core::format::Format;
 use gbuffer_core::layout::{Field, Layout, Storage};
 use gbuffer_core::report::webgl_planes;
-use gbuffer_core::Conversions;
 use gbuffer_core::ScalarKind;
 use gbuffer_files::json::string;
 
@@ -84,10 +84,11 @@ pub struct Plane {
 
 /// What each field's load is called in the include: `load_pls_<layout>_<field>`, with the
 /// field's GLSL name (a name naga gave a trailing `_` loses it).
-pub fn field_loads(layout: &Layout, names: &GlslNames) -> Vec<String> {
-    let symbols = layout.symbols();
+pub fn field_loads(compiled: &CompiledLayout) -> Vec<String> {
+    let symbols = compiled.layout().symbols();
     unique(
-        names
+        compiled
+            .names()
             .fields
             .iter()
             .map(|field| symbols.load_pls(field))
@@ -95,11 +96,12 @@ pub fn field_loads(layout: &Layout, names: &GlslNames) -> Vec<String> {
     )
 }
 
-/// The planes of a checked layout with these conversions, in binding order.
-pub fn planes(layout: &Layout, conversions: Conversions, names: &GlslNames) -> Vec<Plane> {
+/// The planes of a compiled layout, in binding order.
+pub fn planes(compiled: &CompiledLayout) -> Vec<Plane> {
+    let (layout, conversions) = (compiled.layout(), compiled.conversions());
     let symbols = layout.symbols();
     let words = layout.word_contents();
-    let word_names = word_names(&words, names);
+    let word_names = compiled.word_names();
     let plane_names = unique(word_names.iter().map(|name| symbols.plane(name)).collect());
     let stores = unique(
         word_names
@@ -146,13 +148,12 @@ pub fn planes(layout: &Layout, conversions: Conversions, names: &GlslNames) -> V
 
 /// The include's text: the header, the planes, the translated functions and the accessors.
 pub(super) fn include(
-    layout: &Layout,
-    conversions: Conversions,
-    translation: &Translation,
+    compiled: &CompiledLayout,
     interface: &Interface,
     items: &mut Vec<Item>,
 ) -> Result<String, TranslationError> {
-    let names = &translation.names;
+    let (layout, conversions) = (compiled.layout(), compiled.conversions());
+    let (translation, names) = (compiled.glsl(), compiled.names());
     let prefix = layout.snake_name();
     let mut out = String::new();
     let native = interface
@@ -218,12 +219,7 @@ pub(super) fn include(
     };
 
     let _ = writeln!(out, "\n// Each field, loaded from its plane alone.");
-    for (index, (field, name)) in layout
-        .fields
-        .iter()
-        .zip(field_loads(layout, names))
-        .enumerate()
-    {
+    for (index, (field, name)) in layout.fields.iter().zip(field_loads(compiled)).enumerate() {
         let plane = &interface.planes[locations[index].0];
         let text = format!(
             "{} {name}() {{\n    return {};\n}}\n",

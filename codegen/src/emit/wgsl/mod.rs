@@ -160,7 +160,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
 /// " for a, b"); `half_floats` says whether the code uses `pack2x16float` or `unpack2x16float`
 /// (`Codec::uses_binary16_builtins` of a field's codecs), which naga validates only with a
 /// capability `Capabilities::default()` leaves out
-/// (`gbuffer_codegen::emit::glsl::naga_glsl::GENERATED_CODE_CAPABILITIES`).
+/// (`gbuffer_codegen::wgsl_module::GENERATED_CODE_CAPABILITIES`).
 fn write_header(out: &mut String, layout: &Layout, fast: Option<&str>, half_floats: bool) {
     let _ = writeln!(
         out,

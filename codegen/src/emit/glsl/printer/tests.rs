@@ -1,11 +1,11 @@
 //! The printer against exact text, and its names against naga's GLSL writer's.
 
 use super::*;
-use crate::emit::glsl::naga_glsl;
 use crate::emit::items::ItemKind;
+use crate::{glsl_stage, wgsl_module};
 
 fn printed(wgsl: &str, from_310: &[FromVersion310]) -> String {
-    let (module, info) = naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES)
+    let (module, info) = wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES)
         .unwrap_or_else(|error| panic!("{error}"));
     let choice = Choice {
         from_310,
@@ -91,7 +91,8 @@ fn unreached() -> vec4<f32> { return textureSampleLevel(unused, lut_sampler, vec
 @fragment
 fn entry() -> @location(0) vec4<f32> { return vec4(lit(Texel(vec3(1.0))), 1.0); }
 ";
-    let (module, info) = naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES).unwrap();
+    let (module, info) =
+        wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES).unwrap();
     let choice = Choice {
         entry_point: Some((naga::ShaderStage::Fragment, "entry")),
         leave_out: &["Texel", "from_include"],
@@ -183,10 +184,10 @@ fn names_are_the_ones_nagas_writer_gives() {
         words[0]
     );
     let (module, info) =
-        naga_glsl::validate(&wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES).unwrap();
+        wgsl_module::validate(&wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES).unwrap();
     let options =
-        naga_glsl::options_keeping_bindings(&module, naga::back::glsl::Version::new_gles(300));
-    let (naga_text, _) = naga_glsl::write(
+        glsl_stage::options_keeping_bindings(&module, naga::back::glsl::Version::new_gles(300));
+    let (naga_text, _) = glsl_stage::write(
         (&module, &info),
         naga::ShaderStage::Fragment,
         "probe_entry",
@@ -216,7 +217,8 @@ fn names_are_the_ones_nagas_writer_gives() {
 #[test]
 fn what_it_cannot_print_is_named() {
     let wgsl = "fn f(x: u32) -> u32 { return countLeadingZeros(x); }";
-    let (module, info) = naga_glsl::validate(wgsl, naga_glsl::GENERATED_CODE_CAPABILITIES).unwrap();
+    let (module, info) =
+        wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES).unwrap();
     let error = print(&module, &info, &Choice::default()).unwrap_err();
     assert!(
         error.contains("CountLeadingZeros") && error.contains("`f`"),

@@ -1,0 +1,135 @@
+//! A layout compiled once: what every include, the renderer and the tools take from the
+//! codegen, made in one place and handed on, so that nothing parses or translates the same
+//! layout twice.
+//!
+//! The flow is layout -> compiled layout -> emitters -> consumers: [`CompiledLayout::new`]
+//! writes the layout's WGSL with the chosen conversions, takes it in through the front door
+//! ([`crate::wgsl_module`]: naga's module and validation info), and prints its GLSL ES
+//! declarations from that module with the names GLSL gives them; the include emitters
+//! ([`CompiledLayout::include`]) write their attachments, blocks and accessors around that
+//! translation; the renderer, the cost model and the tests take the same value.
+
+use naga::valid::ModuleInfo;
+
+use crate::emit::glsl::{self, GlslNames, Include, Interface, Translation, TranslationError};
+use crate::emit::items::{self, WgslItem};
+use crate::emit::wgsl::{self, Target};
+use gbuffer_core::layout::Layout;
+use gbuffer_core::Conversions;
+
+/// A checked layout with its conversions, compiled: its WGSL and naga's module of it, its GLSL
+/// ES translation with the names and items it declares, and the GLSL names of its words.
+#[derive(Debug)]
+pub struct CompiledLayout {
+    layout: Layout,
+    conversions: Conversions,
+    /// The WGSL users include ([`wgsl::emit_with`]).
+    wgsl: String,
+    /// naga's module of [`Self::wgsl`], validated.
+    module: (naga::Module, ModuleInfo),
+    /// Its GLSL ES declarations, from the WGSL written for GLSL ES 3.00 (the same text but
+    /// where fast rgba8 needs builtins GLSL ES 3.00 lacks).
+    glsl: Translation,
+    /// The bit fields' functions alone in GLSL ES (pixel local storage blocks put them
+    /// beside their members), when the layout has bit fields.
+    bit_field_glsl: Option<(String, Vec<glsl::printer::Item>)>,
+    /// What each word is called in GLSL ([`glsl::word_names`]).
+    word_names: Vec<String>,
+}
+
+impl CompiledLayout {
+    /// Compiles a checked layout with `conversions`. An error is a bug of the emitters (the
+    /// WGSL is generated valid), named with naga's message.
+    pub fn new(layout: &Layout, conversions: Conversions) -> Result<Self, TranslationError> {
+        let wgsl = wgsl::emit_with(layout, conversions);
+        let module = validated(&wgsl)?;
+        let for_glsl = wgsl::emit_for(layout, conversions, Target::GlslEs300);
+        let glsl = match for_glsl == wgsl {
+            true => glsl::translate::translate(layout, conversions, (&module.0, &module.1))?,
+            false => {
+                let (module, info) = validated(&for_glsl)?;
+                glsl::translate::translate(layout, conversions, (&module, &info))?
+            }
+        };
+        let bit_field_glsl = match layout.has_bit_fields() {
+            true => Some(glsl::translate::translate_bit_field_functions(
+                layout,
+                conversions,
+            )?),
+            false => None,
+        };
+        let word_names = glsl::word_names(&layout.word_contents(), &glsl.names);
+        Ok(CompiledLayout {
+            layout: layout.clone(),
+            conversions,
+            wgsl,
+            module,
+            glsl,
+            bit_field_glsl,
+            word_names,
+        })
+    }
+
+    /// The layout.
+    pub fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    /// The conversions it was compiled with.
+    pub fn conversions(&self) -> Conversions {
+        self.conversions
+    }
+
+    /// Its WGSL, as the derive and `gbuffer codegen` write it (without the file's trailing
+    /// newline).
+    pub fn wgsl(&self) -> &str {
+        &self.wgsl
+    }
+
+    /// naga's module of [`Self::wgsl`] and its validation info.
+    pub fn module(&self) -> (&naga::Module, &ModuleInfo) {
+        (&self.module.0, &self.module.1)
+    }
+
+    /// The structs, constants and functions the WGSL declares, each with its text.
+    pub fn wgsl_items(&self) -> Vec<WgslItem> {
+        items::module_items(&self.module.0, &self.wgsl)
+    }
+
+    /// Its GLSL ES declarations, the names they were given and the items they declare.
+    pub fn glsl(&self) -> &Translation {
+        &self.glsl
+    }
+
+    /// What the layout's struct, fields and targets are called in GLSL.
+    pub fn names(&self) -> &GlslNames {
+        &self.glsl.names
+    }
+
+    /// What each word is called in GLSL (its pixel local storage member, its native
+    /// attachment), in word order.
+    pub fn word_names(&self) -> &[String] {
+        &self.word_names
+    }
+
+    /// The bit fields' functions alone in GLSL ES, when the layout has bit fields.
+    pub(crate) fn bit_field_glsl(&self) -> Option<&(String, Vec<glsl::printer::Item>)> {
+        self.bit_field_glsl.as_ref()
+    }
+
+    /// The include's text and its interface. Vulkan includes put their input attachments in
+    /// descriptor set `set` (binding = input attachment index).
+    pub fn include(
+        &self,
+        include: Include,
+        set: u32,
+    ) -> Result<(String, Interface), TranslationError> {
+        glsl::write_include(self, include, set)
+    }
+}
+
+/// `wgsl` through the front door, naga's message as the error.
+fn validated(wgsl: &str) -> Result<(naga::Module, ModuleInfo), TranslationError> {
+    crate::wgsl_module::validate(wgsl, crate::wgsl_module::GENERATED_CODE_CAPABILITIES)
+        .map_err(TranslationError)
+}
