@@ -44,4 +44,4 @@ pub use layout::{
 };
 pub use named::Named;
 pub use report::Report;
-pub use symbols::Symbols;
+pub use symbols::{Direction, Symbols};

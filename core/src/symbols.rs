@@ -10,7 +10,25 @@
 //! [`Symbols::translated`] gives; the functions the GLSL emitter writes itself ([`Symbols::load`],
 //! [`Symbols::store`]) and the attachments keep the names below.
 
+use crate::format::Format;
 use crate::naming::{glsl_identifier, snake_case};
+use crate::Named;
+
+/// Which way a generated conversion goes: a value to its code or word, or back.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    /// A value to its code (a bit field's) or word (a format's).
+    Encode,
+    /// A code or word back to the value.
+    Decode,
+}
+
+crate::named!(
+    Direction {
+        Encode => "encode",
+        Decode => "decode",
+    }
+);
 
 /// The generated names of one layout ([`crate::Layout::symbols`]).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -96,6 +114,34 @@ impl Symbols {
     /// `read_<snake>_targets(pixel) -> texel`, the wgpu targets' lighting source.
     pub fn read_targets(&self) -> String {
         format!("read_{}_targets", self.snake)
+    }
+
+    /// `<snake>_<direction>_<format><suffix>_word`, WGSL (`mobile_metallic_encode_rgba8_word`):
+    /// a whole word of `format` from a field's value or back, what the pack and unpack
+    /// functions, the WebGL include's planes and GLSL ES 3.10's builtin wrappers call.
+    /// `suffix` is a field's own conversions (`_fast`, `_exact`) where they differ from the
+    /// layout's, else empty.
+    pub fn format_word(&self, direction: Direction, format: Format, suffix: &str) -> String {
+        format!(
+            "{}_{}_{}{suffix}_word",
+            self.snake,
+            direction.name(),
+            format.name()
+        )
+    }
+
+    /// `<snake>_<direction>_field_<index>_bits`, WGSL (`bevy_like_decode_field_6_bits`): bit
+    /// field `index`'s value to its code in the low bits, or back. Named by the field's place
+    /// in the layout, not its name: naga's GLSL writer would rename a name with `__` or one
+    /// that another collapses into, and the GLSL includes call these by their WGSL names.
+    pub fn bit_field(&self, direction: Direction, index: usize) -> String {
+        format!("{}_{}_field_{index}_bits", self.snake, direction.name())
+    }
+
+    /// `shade_<snake>(values, view, position) -> vec3<f32>`, the solver's lighting WGSL
+    /// (`gbuffer_solver::lighting`): a solved scene's shading with only the terms it uses.
+    pub fn shade(&self) -> String {
+        format!("shade_{}", self.snake)
     }
 
     /// `load_<snake>() -> texel`, every GLSL include that reads: the texel in the
@@ -214,6 +260,19 @@ mod tests {
             symbols.attachment("albedo"),
             "mobile_metallic_albedo_attachment"
         );
+        assert_eq!(
+            symbols.format_word(Direction::Encode, Format::Rgba8, ""),
+            "mobile_metallic_encode_rgba8_word"
+        );
+        assert_eq!(
+            symbols.format_word(Direction::Decode, Format::Rg16f, "_fast"),
+            "mobile_metallic_decode_rg16f_fast_word"
+        );
+        assert_eq!(
+            symbols.bit_field(Direction::Decode, 6),
+            "mobile_metallic_decode_field_6_bits"
+        );
+        assert_eq!(symbols.shade(), "shade_mobile_metallic");
         assert_eq!(symbols.encode_values(), "encode_mobile_metallic");
         assert_eq!(symbols.decode_values(), "decode_mobile_metallic");
         assert_eq!(

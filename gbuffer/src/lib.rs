@@ -96,9 +96,9 @@ pub mod layout {
     pub use gbuffer_core::convert::Scalar;
     pub use gbuffer_core::report::{FieldTable, Report};
     pub use gbuffer_core::{
-        BitField, Channel, Codec, Conversions, Encoding, Field, FieldType, Format, FormatRow,
-        GlFormat, Layout, Member, Named, PackedTarget, RgbmRange, ScalarKind, Storage, Symbols,
-        TargetFormat, VulkanFormat, WebGpuTarget, Word,
+        BitField, Channel, Codec, Conversions, Direction, Encoding, Field, FieldType, Format,
+        FormatRow, GlFormat, Layout, Member, Named, PackedTarget, RgbmRange, ScalarKind, Storage,
+        Symbols, TargetFormat, VulkanFormat, WebGpuTarget, Word,
     };
 }
 

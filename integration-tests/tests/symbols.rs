@@ -6,7 +6,7 @@
 //! definitions' lines (`<type> <name>(<parameters>) {`), which the items each include says it
 //! declares (`Interface::declares`) are held to.
 
-use gbuffer::layout::{Layout, Symbols};
+use gbuffer::layout::{Direction, Layout, Symbols};
 use gbuffer::GBufferLayout;
 use gbuffer_codegen::emit::glsl::{Include, PlsBlock};
 use gbuffer_codegen::emit::items::{wgsl_items, ItemKind};
@@ -72,6 +72,16 @@ fn every_wgsl_name_is_an_item_of_the_wgsl_and_the_lighting_source() {
                 .iter()
                 .map(|field| symbols.load_field(&field.name)),
         );
+        // Each word's and bit field's conversions, both ways (these layouts set no field's
+        // own conversions, so no name has a mode suffix).
+        for direction in [Direction::Encode, Direction::Decode] {
+            for (index, field) in layout.fields.iter().enumerate() {
+                wanted_functions.push(match field.format() {
+                    Some(format) => symbols.format_word(direction, format, ""),
+                    None => symbols.bit_field(direction, index),
+                });
+            }
+        }
         for function in &wanted_functions {
             assert!(
                 functions.contains(&function.as_str()),

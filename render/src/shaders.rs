@@ -484,7 +484,7 @@ fn lighting_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f3
         scene::scene_wgsl(solution.scene.features),
         gbuffer_solver::texel::texel_wgsl(solution),
         lighting::lighting_wgsl(solution, forms),
-        shade = lighting::lighting_function_name(solution),
+        shade = solution.layout.symbols().shade(),
         decode = symbols.decode_values(),
         unpack_targets = symbols.unpack_targets(),
     )

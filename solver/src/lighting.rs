@@ -80,11 +80,6 @@ pub fn lighting_modules() -> Vec<&'static str> {
     vec!["shading", "material"]
 }
 
-/// The name of the generated function: `shade_<snake>`.
-pub fn lighting_function_name(solution: &Solution) -> String {
-    format!("shade_{}", solution.layout.snake_name())
-}
-
 /// What the lighting function reads from the host beyond constants.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct HostInputs {
@@ -278,7 +273,7 @@ pub fn lighting_wgsl(solution: &Solution, forms: Forms) -> String {
     let _ = write!(
         out,
         "fn {}(values: {}, view: vec3<f32>, position: vec3<f32>) -> vec3<f32> {{\n{body}}}\n",
-        lighting_function_name(solution),
+        solution.layout.symbols().shade(),
         solution.values_type()
     );
     out

@@ -2,9 +2,7 @@
 //! feature costs no instruction (counted with naga after compaction).
 
 use gbuffer_core::Named;
-use gbuffer_solver::lighting::{
-    lighting_function_name, lighting_modules, lighting_wgsl, Forms, IblForm, SunForm,
-};
+use gbuffer_solver::lighting::{lighting_modules, lighting_wgsl, Forms, IblForm, SunForm};
 use gbuffer_solver::texel::texel_wgsl;
 use gbuffer_solver::{solve, Feature, Features, MaterialModel, SceneDescription, Solution};
 use gbuffer_validator::cost::{compile_compacted, spirv_instructions};
@@ -67,7 +65,7 @@ fn lighting_main(@builtin(position) pixel: vec4<f32>, @location(0) view: vec3<f3
         words = solution.layout.words(),
         decode = solution.layout.symbols().decode_values(),
         unpack = solution.layout.symbols().unpack(),
-        shade = lighting_function_name(solution),
+        shade = solution.layout.symbols().shade(),
     )
 }
 

@@ -33,6 +33,9 @@ pub fn f32_from_half(code: u32) -> f32 {
     f32::from_bits(magnitude.to_bits() | ((code & 0x8000) << 16))
 }
 
+/// The name of [`WGSL_ENCODE`]'s function, for [`Lanes::helper`](super::wgsl::Lanes::helper).
+pub const ENCODE_HELPER: &str = "to_half";
+
 /// The exact encode, per lane (`PREFIX_LANES_to_half`): the sign beside the magnitude's
 /// rounding (`PREFIX_LANES_round_to_unsigned_half`, from [`small_float::wgsl_helpers`]).
 ///
@@ -74,9 +77,8 @@ fn wgsl(field: &BitField) -> Functions {
         (true, true) => "    return pack2x16float(vec2<f32>(value, 0.0));\n".to_string(),
         (true, false) => "    return pack2x16float(value);\n".to_string(),
         (false, _) => format!(
-            "    let codes = {}_{}_to_half(value);\n    return {};\n",
-            field.prefix,
-            lanes.name(),
+            "    let codes = {}(value);\n    return {};\n",
+            lanes.helper(field.prefix, ENCODE_HELPER),
             field.joined("codes")
         ),
     };

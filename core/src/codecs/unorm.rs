@@ -53,6 +53,9 @@ pub fn f32_from_unorm(code: u32, bits: u32) -> f32 {
     (f64::from(code) * (1.0 / f64::from(max_code(bits)))) as f32
 }
 
+/// The name of [`WGSL_ENCODE`]'s function, for [`Lanes::helper`](super::wgsl::Lanes::helper).
+pub const ENCODE_HELPER: &str = "to_unorm";
+
 /// The exact encode, per lane (`PREFIX_LANES_to_unorm`).
 pub const WGSL_ENCODE: &str = "\
 // Unsigned normalized encode, per lane: floor(0.5 + max_code * clamp(value, 0, 1)), exact.
@@ -130,8 +133,8 @@ fn wgsl(field: &BitField) -> Functions {
         )
     } else {
         format!(
-            "    let codes = {prefix}_{}_to_unorm(value, {}, {});\n    return {};\n",
-            lanes.name(),
+            "    let codes = {}(value, {}, {});\n    return {};\n",
+            lanes.helper(prefix, ENCODE_HELPER),
             lanes.splat_f32(max as f32),
             lanes.splat_f32((1u32 << each) as f32),
             field.joined("codes")

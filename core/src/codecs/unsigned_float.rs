@@ -28,6 +28,10 @@ pub fn unsigned_float_from_f32(value: f32, mantissa_bits: u32) -> u32 {
     }
 }
 
+/// The name of [`WGSL_ENCODE`]'s function for this format's `NAME`, for
+/// [`Lanes::helper`](super::wgsl::Lanes::helper).
+pub const ENCODE_HELPER: &str = "to_unsigned_float";
+
 /// The exact encode, per lane (`PREFIX_LANES_to_NAME`), around the rounding
 /// `PREFIX_LANES_round_to_NAME` of [`small_float::wgsl_helpers`]. The format's `NAME` is
 /// `unsigned_float`.

@@ -21,6 +21,14 @@ impl Lanes {
         }
     }
 
+    /// The name of helper `name` (`to_unorm`) for these lanes, as a template spells it
+    /// `PREFIX_LANES_<name>` and [`Lanes::fill`] fills it: `<prefix>_<lanes>_<name>`
+    /// (`mobile_metallic_f32x4_to_unorm`). What calls a template's helper from outside it names
+    /// it here, with the helper's constant beside its template (`unorm::ENCODE_HELPER`).
+    pub fn helper(self, prefix: &str, name: &str) -> String {
+        format!("{prefix}_{}_{name}", self.name())
+    }
+
     /// The WGSL type with `scalar` in every lane.
     pub fn of(self, scalar: &str) -> String {
         match self.0 {
@@ -138,5 +146,34 @@ impl BitField<'_> {
     /// The splat of the correctly rounded reciprocal of a `bits`-bit code's largest value.
     pub fn reciprocal(&self, bits: u32) -> String {
         self.lanes.splat_f32(1.0 / max_code(bits) as f32)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{half, small_float, unorm, unsigned_float};
+    use super::Lanes;
+
+    /// The helpers' names that callers outside the templates use are the ones the templates
+    /// define, once filled.
+    #[test]
+    fn the_named_helpers_are_the_ones_the_templates_define() {
+        for lanes in (1..=4).map(Lanes) {
+            let defines = |text: &str, name: &str| {
+                let definition = format!("fn {}(", lanes.helper("p", name));
+                assert!(text.contains(&definition), "{definition} in:\n{text}");
+            };
+            defines(&lanes.fill(unorm::WGSL_ENCODE, "p"), unorm::ENCODE_HELPER);
+            let mantissas = vec![10; lanes.0];
+            let helpers = |name, wrapper| small_float::wgsl_helpers("p", name, wrapper, &mantissas);
+            defines(
+                &helpers("unsigned_half", half::WGSL_ENCODE).concat(),
+                half::ENCODE_HELPER,
+            );
+            defines(
+                &helpers("unsigned_float", unsigned_float::WGSL_ENCODE).concat(),
+                unsigned_float::ENCODE_HELPER,
+            );
+        }
     }
 }

@@ -10,11 +10,10 @@
 use super::printer::{self, Choice, FromVersion310, Item, Printed};
 use super::TranslationError;
 use crate::emit::items::ItemKind;
-use crate::emit::wgsl::function_name;
 use crate::wgsl_module;
 use gbuffer_core::format::Format;
 use gbuffer_core::layout::Layout;
-use gbuffer_core::Conversions;
+use gbuffer_core::{Conversions, Direction};
 use naga::valid::ModuleInfo;
 
 /// The layout's types and functions in GLSL ES, and the names they were given.
@@ -70,15 +69,21 @@ pub(crate) fn translate(
 ) -> Result<Translation, TranslationError> {
     // rgba8's fast functions: the layout's own where its conversions are fast, and those of
     // fields that choose fast conversions against exact ones.
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     let fast_suffixes: &[&str] = match conversions {
         Conversions::Fast => &[""],
         Conversions::Exact => &["_fast"],
     };
     let mut wrapped = Vec::new();
     for suffix in fast_suffixes {
-        for (verb, builtin) in [("encode", "packUnorm4x8"), ("decode", "unpackUnorm4x8")] {
-            wrapped.push((function_name(&prefix, verb, Format::Rgba8, suffix), builtin));
+        for (direction, builtin) in [
+            (Direction::Encode, "packUnorm4x8"),
+            (Direction::Decode, "unpackUnorm4x8"),
+        ] {
+            wrapped.push((
+                symbols.format_word(direction, Format::Rgba8, suffix),
+                builtin,
+            ));
         }
     }
     let from_310: Vec<FromVersion310> = wrapped
@@ -86,7 +91,6 @@ pub(crate) fn translate(
         .map(|(function, builtin)| FromVersion310 { function, builtin })
         .collect();
     let printed = print((module, info), &from_310)?;
-    let symbols = layout.symbols();
     let (Some((layout_name, fields)), Some((targets, target_members))) = (
         printed.struct_names(module, symbols.texel()),
         printed.struct_names(module, &symbols.targets()),
@@ -142,16 +146,15 @@ fn check_bit_field_functions(
     translation: &Translation,
     layout: &Layout,
 ) -> Result<(), TranslationError> {
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     for (index, _) in layout
         .fields
         .iter()
         .enumerate()
         .filter(|(_, field)| field.bit_field().is_some())
     {
-        for verb in ["encode", "decode"] {
-            let name = crate::emit::wgsl::bit_field_function_name(&prefix, verb, index);
-            translation.check_defines(&name)?;
+        for direction in [Direction::Encode, Direction::Decode] {
+            translation.check_defines(&symbols.bit_field(direction, index))?;
         }
     }
     Ok(())

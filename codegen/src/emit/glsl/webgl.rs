@@ -22,12 +22,12 @@ use super::unique;
 use super::{bit_field_code, bit_field_function, bit_word_value, declared_type};
 use super::{declare, Include, Interface, TranslationError};
 use crate::emit::items::ItemKind;
-use crate::emit::wgsl::{function_name, mode_suffix};
+use crate::emit::wgsl::mode_suffix;
 use crate::CompiledLayout;
 use gbuffer_core::format::Format;
 use gbuffer_core::layout::{Field, Layout, Storage};
 use gbuffer_core::report::webgl_planes;
-use gbuffer_core::ScalarKind;
+use gbuffer_core::{Direction, ScalarKind};
 use gbuffer_files::json::string;
 
 /// The format of a plane.
@@ -154,7 +154,7 @@ pub(super) fn include(
 ) -> Result<String, TranslationError> {
     let (layout, conversions) = (compiled.layout(), compiled.conversions());
     let (translation, names) = (compiled.glsl(), compiled.names());
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     let mut out = String::new();
     let native = interface
         .planes
@@ -200,13 +200,13 @@ pub(super) fn include(
         let (word, member) = locations[index];
         let value = match (field.storage, interface.planes[word].format) {
             (Storage::Bits(_), _) => {
-                let decode = bit_field_function(layout, "decode", index);
+                let decode = bit_field_function(layout, Direction::Decode, index);
                 return Ok(format!("{decode}({})", bit_field_code(plane, member)));
             }
             (Storage::Word(_), PlaneFormat::Rgba8) => plane.to_string(),
             (Storage::Word(format), PlaneFormat::R32ui) => {
                 let suffix = mode_suffix(field, conversions);
-                let decode = function_name(&prefix, "decode", format, suffix);
+                let decode = symbols.format_word(Direction::Decode, format, suffix);
                 translation.check_defines(&decode)?;
                 format!("{decode}({plane})")
             }
@@ -254,7 +254,7 @@ pub(super) fn include(
                 PlaneFormat::Rgba8 => widened,
                 PlaneFormat::R32ui => {
                     let suffix = mode_suffix(field, conversions);
-                    let encode = function_name(&prefix, "encode", word.format, suffix);
+                    let encode = symbols.format_word(Direction::Encode, word.format, suffix);
                     translation.check_defines(&encode)?;
                     format!("uvec4({encode}({widened}), 0u, 0u, 0u)")
                 }

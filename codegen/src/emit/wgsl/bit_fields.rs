@@ -12,13 +12,7 @@
 use gbuffer_core::bit_field::BitField;
 use gbuffer_core::codecs::wgsl::{self, Lanes};
 use gbuffer_core::layout::{Conversions, Field};
-
-/// `<prefix>_<verb>_field_<index>_bits`: the functions of bit field `index` (the field's place
-/// in the layout, not its name: naga's GLSL writer would rename a name with `__` or one that
-/// another collapses into, and the GLSL includes call these by name).
-pub(super) fn function_name(prefix: &str, verb: &str, index: usize) -> String {
-    format!("{prefix}_{verb}_field_{index}_bits")
-}
+use gbuffer_core::{Direction, Symbols};
 
 /// The field's WGSL as its codec writes it, under `conversions`.
 fn codec_functions(
@@ -39,7 +33,7 @@ fn codec_functions(
 
 /// The encode and decode functions of a bit field, under `conversions`.
 pub(super) fn functions(
-    prefix: &str,
+    symbols: &Symbols,
     index: usize,
     field: &Field,
     bit_field: BitField,
@@ -47,9 +41,9 @@ pub(super) fn functions(
 ) -> String {
     let ty = field.ty.wgsl();
     let wgsl::Functions { encode, decode, .. } =
-        codec_functions(prefix, field, bit_field, conversions);
-    let encode_name = function_name(prefix, "encode", index);
-    let decode_name = function_name(prefix, "decode", index);
+        codec_functions(symbols.snake(), field, bit_field, conversions);
+    let encode_name = symbols.bit_field(Direction::Encode, index);
+    let decode_name = symbols.bit_field(Direction::Decode, index);
     let fast = !conversions.is_exact_for_encoding(bit_field.encoding);
     let mode = if fast { ", fast conversions" } else { "" };
     format!(

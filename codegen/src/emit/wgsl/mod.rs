@@ -27,7 +27,7 @@ use gbuffer_core::codecs::wgsl::Lanes;
 use gbuffer_core::codecs::{half, max_code, small_float, unorm, unsigned_float, Encoding};
 use gbuffer_core::format::{Channel, Format};
 use gbuffer_core::layout::{Field, Layout, Member, Storage};
-use gbuffer_core::ScalarKind;
+use gbuffer_core::{Direction, ScalarKind, Symbols};
 
 use gbuffer_core::Conversions;
 
@@ -54,7 +54,6 @@ pub(crate) enum Target {
 /// The WGSL of a layout with the chosen conversions, for `target`.
 pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target) -> String {
     let symbols = layout.symbols();
-    let prefix = symbols.snake();
     let name = symbols.texel();
     let words = layout.words();
     let words_type = format!("array<u32, {words}>");
@@ -97,7 +96,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         let _ = writeln!(
             out,
             "        {}, // {}",
-            encode_word(prefix, layout, &word.members, conversions),
+            encode_word(&symbols, layout, &word.members, conversions),
             layout.field_names(&word).join(", ")
         );
     }
@@ -111,7 +110,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         let _ = writeln!(
             out,
             "        {}, // {}",
-            decode_expression(prefix, field, word, member, conversions),
+            decode_expression(&symbols, field, word, member, conversions),
             field.name
         );
     }
@@ -132,7 +131,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         let _ = writeln!(
             out,
             "    return {};\n}}\n",
-            decode_expression(prefix, field, word, member, conversions)
+            decode_expression(&symbols, field, word, member, conversions)
         );
     }
 
@@ -350,7 +349,7 @@ fn format_vector_type(format: Format) -> String {
 /// The expression of one packed word: a whole-word field's encode call, or its bit fields'
 /// codes shifted into place and combined.
 fn encode_word(
-    prefix: &str,
+    symbols: &Symbols,
     layout: &Layout,
     members: &[Member],
     conversions: Conversions,
@@ -360,11 +359,11 @@ fn encode_word(
         .map(|member| {
             let field = &layout.fields[member.field];
             match field.storage {
-                Storage::Word(format) => encode_call(prefix, field, format, conversions),
+                Storage::Word(format) => encode_call(symbols, field, format, conversions),
                 Storage::Bits(_) => {
                     let call = format!(
                         "{}(v.{})",
-                        bit_fields::function_name(prefix, "encode", member.field),
+                        symbols.bit_field(Direction::Encode, member.field),
                         field.name
                     );
                     match member.offset {
@@ -380,7 +379,12 @@ fn encode_word(
 
 /// `prefix_encode_rgb10_a2_word(vec4<f32>(v.field, 0.0))`: the field widened with zeros to the
 /// format's channel count, so padding channels encode as zero bits.
-fn encode_call(prefix: &str, field: &Field, format: Format, conversions: Conversions) -> String {
+fn encode_call(
+    symbols: &Symbols,
+    field: &Field,
+    format: Format,
+    conversions: Conversions,
+) -> String {
     let channels = format.channels().len();
     let value = format!("v.{}", field.name);
     let widened = if field.ty.components == channels {
@@ -394,14 +398,14 @@ fn encode_call(prefix: &str, field: &Field, format: Format, conversions: Convers
         let zeros = vec![zero; channels - field.ty.components].join(", ");
         format!("{}({value}, {zeros})", format_vector_type(format))
     };
-    let function = function_name(prefix, "encode", format, mode_suffix(field, conversions));
+    let function = symbols.format_word(Direction::Encode, format, mode_suffix(field, conversions));
     format!("{function}({widened})")
 }
 
 /// Decodes a field from word `word`: a whole word's channels narrowed to the field's
 /// components, or a bit field's code taken out of its word.
 fn decode_expression(
-    prefix: &str,
+    symbols: &Symbols,
     field: &Field,
     word: usize,
     member: Member,
@@ -420,11 +424,11 @@ fn decode_expression(
             };
             return format!(
                 "{}({code})",
-                bit_fields::function_name(prefix, "decode", member.field)
+                symbols.bit_field(Direction::Decode, member.field)
             );
         }
     };
-    let function = function_name(prefix, "decode", format, mode_suffix(field, conversions));
+    let function = symbols.format_word(Direction::Decode, format, mode_suffix(field, conversions));
     let call = format!("{function}(w[{word}])");
     if field.ty.components == format.channels().len() {
         call
@@ -466,17 +470,6 @@ pub(crate) fn mode_suffix(field: &Field, conversions: Conversions) -> &'static s
     }
 }
 
-/// `<prefix>_<verb>_field_<index>_bits`, e.g. `bevy_like_decode_field_6_bits`: the encode
-/// (value to code) or decode (code to value) of bit field `index`.
-pub fn bit_field_function_name(prefix: &str, verb: &str, index: usize) -> String {
-    bit_fields::function_name(prefix, verb, index)
-}
-
-/// `<prefix>_<verb>_<format><suffix>_word`, e.g. `mobile_metallic_encode_rgba8_word`.
-pub(crate) fn function_name(prefix: &str, verb: &str, format: Format, suffix: &str) -> String {
-    format!("{prefix}_{verb}_{}{suffix}_word", format.name())
-}
-
 /// A literal with one `u32` per channel of `format`.
 fn per_channel(format: Format, value: impl Fn(&Channel) -> u32) -> String {
     channel_literal(format, "u32", |channel| format!("{}u", value(channel)))
@@ -495,7 +488,8 @@ fn write_format_helpers(
     conversions: Conversions,
     target: Target,
 ) {
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
+    let prefix = symbols.snake();
     // Each format once per name suffix, with the conversions the suffix stands for.
     let functions: BTreeSet<(Format, &str, Conversions)> = layout
         .fields
@@ -511,8 +505,8 @@ fn write_format_helpers(
     for (format, suffix, conversions) in functions {
         let name = format.name();
         let vector = format_vector_type(format);
-        let encode = function_name(&prefix, "encode", format, suffix);
-        let decode = function_name(&prefix, "decode", format, suffix);
+        let encode = symbols.format_word(Direction::Encode, format, suffix);
+        let decode = symbols.format_word(Direction::Decode, format, suffix);
         let builtins = conversions
             .builtins(format)
             .filter(|_| !(target == Target::GlslEs300 && format == Format::Rgba8));
@@ -552,7 +546,7 @@ fn write_format_helpers(
                 let _ = writeln!(
                     out,
                     "fn {encode}(c: {vector}) -> u32 {{\n{}}}\n",
-                    encode_body(&prefix, format)
+                    encode_body(prefix, format)
                 );
             }
         }
@@ -592,14 +586,14 @@ fn encode_body(prefix: &str, format: Format) -> String {
             )
         }
         Encoding::Unorm => format!(
-            "{prefix}_{}_to_unorm(c, {}, {})",
-            lanes.name(),
+            "{}(c, {}, {})",
+            lanes.helper(prefix, unorm::ENCODE_HELPER),
             channel_literal(format, "f32", |c| format!("{:?}", max_code(c.bits) as f32)),
             channel_literal(format, "f32", |c| format!("{:?}", (1u32 << c.bits) as f32))
         ),
-        Encoding::Half => format!("{prefix}_{}_to_half(c)", lanes.name()),
+        Encoding::Half => format!("{}(c)", lanes.helper(prefix, half::ENCODE_HELPER)),
         Encoding::UnsignedFloat => {
-            format!("{prefix}_{}_to_unsigned_float(c)", lanes.name())
+            format!("{}(c)", lanes.helper(prefix, unsigned_float::ENCODE_HELPER))
         }
         other => unreachable!("a format's channels use per-component codecs, not {other}"),
     };
@@ -693,11 +687,11 @@ pub(crate) fn bit_field_functions(layout: &Layout, conversions: Conversions) -> 
 
 /// Each bit field's encode and decode functions.
 fn write_bit_field_functions(out: &mut String, layout: &Layout, conversions: Conversions) {
-    let prefix = layout.snake_name();
+    let symbols = layout.symbols();
     for (index, field) in layout.fields.iter().enumerate() {
         if let Storage::Bits(bit_field) = field.storage {
             out.push_str(&bit_fields::functions(
-                &prefix,
+                &symbols,
                 index,
                 field,
                 bit_field,

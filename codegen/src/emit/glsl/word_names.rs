@@ -1,0 +1,55 @@
+//! What the words of a layout are called in GLSL: a pixel local storage member, a native
+//! attachment, a WebGL plane is named after the word's fields, each name declared once.
+
+use gbuffer_core::layout::Word;
+
+use super::GlslNames;
+
+/// What each word is called in GLSL (its PLS member, its native attachment): a whole word its
+/// field's name, a word of bit fields its fields' names joined, ending in `_bits`. Joined names
+/// can meet another word's (fields `a_1` and `a_`, trimmed, both give `a_1_bits`; a field may be
+/// called `a_bits`): such a word is called `<joined>_word<index>_bits` instead, so every name is
+/// declared once.
+pub(crate) fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
+    let whole: Vec<&str> = words
+        .iter()
+        .filter(|word| !word.is_bit_fields)
+        .map(|word| names.fields[word.members[0].field].as_str())
+        .collect();
+    let mut taken: Vec<String> = Vec::new();
+    for (index, word) in words.iter().enumerate() {
+        if !word.is_bit_fields {
+            taken.push(names.fields[word.members[0].field].clone());
+            continue;
+        }
+        // naga's names may end in `_` (`field_0_`): trimmed, so that no `__` appears.
+        let fields: Vec<&str> = word
+            .members
+            .iter()
+            .map(|member| names.fields[member.field].trim_end_matches('_'))
+            .collect();
+        let joined = fields.join("_");
+        let name = format!("{joined}_bits");
+        let clashes = whole.contains(&name.as_str()) || taken.contains(&name);
+        taken.push(if clashes {
+            format!("{joined}_word{index}_bits")
+        } else {
+            name
+        });
+    }
+    taken
+}
+
+/// `names` with each one that repeats an earlier one given its index (`_2`), so that every
+/// identifier is declared once.
+pub(crate) fn unique(names: Vec<String>) -> Vec<String> {
+    let mut taken: Vec<String> = Vec::new();
+    for (index, name) in names.into_iter().enumerate() {
+        let name = match taken.contains(&name) {
+            true => gbuffer_core::naming::glsl_identifier(&[&name, &index.to_string()]),
+            false => name,
+        };
+        taken.push(name);
+    }
+    taken
+}
