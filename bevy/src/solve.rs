@@ -2,13 +2,17 @@
 //! what precision, solved into bit fields that fill Bevy's one `Rgba32Uint` texel, or the list
 //! of what must give when 128 bits cannot hold them.
 //!
-//! Each quantity takes the narrowest encoding that meets its precision, with the error bounds
-//! the main solver (`gbuffer-solver`'s `representation`) uses: half a step for unorm, `sqrt(18)`
-//! half-steps of a coordinate for octahedral directions, half an ulp of the mantissa for light.
+//! Each quantity takes the narrowest encoding that meets its precision, by the codecs' own
+//! error bounds, which the main solver (`gbuffer-solver`'s `representation`) reads too:
+//! half a step for unorm (`unorm::max_error`), `sqrt(18)` half-steps of a coordinate for
+//! octahedral directions (`octahedral::max_error_degrees`), half an ulp of the mantissa for
+//! light (`small_float::max_relative_error`, `rgb9e5::MAX_RELATIVE_ERROR`).
 //! The fields are packed first-fit, largest first, into 32-bit words (no field straddles two,
 //! as gbuffer's layouts place them), and printed as the `#[derive(GBufferLayout)]` to paste.
 
 use std::fmt;
+
+use gbuffer::codecs::{octahedral, rgb9e5, small_float, unorm};
 
 use crate::quantity::{Quantity, Values};
 
@@ -192,11 +196,6 @@ impl fmt::Display for SolveError {
 
 impl std::error::Error for SolveError {}
 
-/// Half a step of `bits`-bit unorm, and of a coordinate.
-fn half_step(bits: u32) -> f64 {
-    0.5 / f64::from((1u32 << bits) - 1)
-}
-
 /// The narrowest field for `quantity` at `precision`.
 fn narrowest(quantity: Quantity, precision: Precision) -> Result<SolvedField, SolveError> {
     let components = quantity.field_type().components as u32;
@@ -218,24 +217,24 @@ fn narrowest(quantity: Quantity, precision: Precision) -> Result<SolvedField, So
         )),
         (Values::Unit, Precision::Steps(steps)) if (2..=1 << 16).contains(&steps) => {
             let each = u32::BITS - (steps - 1).leading_zeros();
-            Ok(field(each * components, "unorm", half_step(each)))
+            Ok(field(each * components, "unorm", unorm::max_error(each)))
         }
         (Values::Direction, Precision::Degrees(degrees)) => (2..=16)
-            .map(|each| (each, (18f64.sqrt() * 2.0 * half_step(each)).to_degrees()))
+            .map(|each| (each, octahedral::max_error_degrees(each)))
             .find(|(_, error)| *error <= degrees)
             .map(|(each, error)| field(2 * each, "octahedral", error))
             .ok_or(unmet),
         (Values::Unbounded, Precision::Relative(relative)) => {
-            // Unsigned floats: a 5-bit exponent over m mantissa bits, half an ulp 2^-(m + 1);
-            // rgb9e5's 9-bit mantissas share the brightest channel's exponent.
+            // Unsigned floats: a 5-bit exponent over m mantissa bits; rgb9e5's 9-bit
+            // mantissas share the brightest channel's exponent. The bounds are the codecs'.
             let unsigned = (1..=10)
-                .map(|mantissa| (mantissa, 0.5f64.powi(mantissa + 1)))
+                .map(|mantissa| (mantissa, small_float::max_relative_error(mantissa)))
                 .find(|(_, error)| *error <= relative)
                 .map(|(mantissa, error)| {
-                    field((5 + mantissa as u32) * components, "unsigned_float", error)
+                    field((5 + mantissa) * components, "unsigned_float", error)
                 });
-            let shared = (components == 3 && 0.5f64.powi(9) <= relative)
-                .then(|| field(32, "rgb9e5", 0.5f64.powi(9)));
+            let shared = (components == 3 && rgb9e5::MAX_RELATIVE_ERROR <= relative)
+                .then(|| field(32, "rgb9e5", rgb9e5::MAX_RELATIVE_ERROR));
             [unsigned, shared]
                 .into_iter()
                 .flatten()

@@ -9,8 +9,9 @@
 
 use std::fmt;
 
+use gbuffer_core::codecs::{octahedral, rgb9e5, small_float, unorm};
 use gbuffer_core::{
-    codecs, BitField, Encoding, FieldType, Format, LightStorage, RgbmRange, ScalarKind, Storage,
+    BitField, Encoding, FieldType, Format, LightStorage, RgbmRange, ScalarKind, Storage,
 };
 use glam::Vec3;
 
@@ -163,28 +164,31 @@ impl Representation {
 
     /// The bound on its error for light, normals, colours and unorm scalars.
     fn bound(self, precision: &Precision) -> f64 {
-        let step = |bits: u32| 1.0 / f64::from(codecs::max_code(bits));
         let floor = precision.hdr_min;
         match self {
             // A 24-bit significand rounded to nearest.
             Representation::Float32 => 0.5f64.powi(24),
             // Half an ulp of the 5-bit mantissa, or half the b10f denormal step 2^-19.
-            Representation::PackedFloat => 0.5f64.powi(6).max(0.5f64.powi(20) / floor),
+            Representation::PackedFloat => {
+                small_float::max_relative_error(5).max(0.5f64.powi(20) / floor)
+            }
             // Half a step of the brightest channel's mantissa (>= 256 of 512), or half the
             // smallest step 2^-24.
-            Representation::SharedExponent => 0.5f64.powi(9).max(0.5f64.powi(25) / floor),
+            Representation::SharedExponent => {
+                rgb9e5::MAX_RELATIVE_ERROR.max(0.5f64.powi(25) / floor)
+            }
             // Channel error <= half a code times m range, with m range < brightest + range /
             // 255; and the fixed point's 2^-22 range.
             Representation::Rgbm { range } => {
                 0.5 / 255.0 * (1.0 + range / (255.0 * floor)) + range * 0.5f64.powi(21) / floor
             }
             // Light: half an ulp of a 10-bit mantissa, or half the denormal step 2^-24.
-            Representation::Half => 0.5f64.powi(11).max(0.5f64.powi(25) / floor),
-            // Proven in integration-tests/tests/shading_physics.rs and `convert`'s tests: sqrt(18)
-            // half-steps of a coordinate.
-            Representation::Octahedral { bits } => (18f64.sqrt() * step(bits)).to_degrees(),
-            Representation::Unorm { bits } => 0.5 * step(bits),
-            Representation::UnormWord { format } => 0.5 * step(format.channels()[0].bits),
+            Representation::Half => {
+                small_float::max_relative_error(10).max(0.5f64.powi(25) / floor)
+            }
+            Representation::Octahedral { bits } => octahedral::max_error_degrees(bits),
+            Representation::Unorm { bits } => unorm::max_error(bits),
+            Representation::UnormWord { format } => unorm::max_error(format.channels()[0].bits),
             Representation::Light { encoding, each } => {
                 light_storage(encoding, each, floor).relative_error
             }

@@ -20,6 +20,14 @@ use super::unorm::f32_from_unorm;
 use super::wgsl::{BitField, Functions, Lanes};
 use super::{max_code, significand_and_exponent, Codec, Shape, F32_INFINITY_BITS};
 
+/// The largest angle, in degrees, between a unit normal and its `bits`-per-coordinate
+/// octahedral round trip: `sqrt(18)` half-steps of a coordinate (proven in
+/// `integration-tests/tests/shading_physics.rs` and `convert`'s tests). The bound the solvers
+/// hold a normal's precision to.
+pub fn max_error_degrees(bits: u32) -> f64 {
+    (18f64.sqrt() * (1.0 / f64::from(max_code(bits)))).to_degrees()
+}
+
 /// The exact encode at `bits` per coordinate (1 to 16), x in the low bits.
 #[inline(always)]
 pub fn octahedral_from_f32(normal: [f32; 3], bits: u32) -> u32 {

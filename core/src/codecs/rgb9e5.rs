@@ -12,6 +12,10 @@
 use super::wgsl::{BitField, Functions, Lanes};
 use super::{Codec, Shape, F32_INFINITY_BITS};
 
+/// The largest relative error of the brightest channel of rgb9e5 above the denormals: half a
+/// step of its 9-bit mantissa (at least 256 of 512), 2^-9.
+pub const MAX_RELATIVE_ERROR: f64 = 1.0 / 512.0;
+
 /// The largest value rgb9e5 holds, as f32 bits: (511 / 512) 2^16 = 65408.
 const MAX_BITS: u32 = 0x477f_8000;
 

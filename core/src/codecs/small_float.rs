@@ -9,6 +9,13 @@ use std::collections::BTreeSet;
 use super::small_integer_from_f32;
 use super::wgsl::Lanes;
 
+/// The largest relative error of an unsigned float with `mantissa_bits` of mantissa above its
+/// denormals: half an ulp, `2^-(mantissa_bits + 1)` (r11f: 2^-7, b10f: 2^-6, half: 2^-11).
+/// The bound the solvers hold a light's precision to.
+pub fn max_relative_error(mantissa_bits: u32) -> f64 {
+    0.5f64.powi(mantissa_bits as i32 + 1)
+}
+
 /// The largest finite code of a float with a 5-bit exponent and `mantissa_bits` of mantissa.
 #[inline]
 pub fn small_float_max_code(mantissa_bits: u32) -> u32 {

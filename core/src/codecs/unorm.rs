@@ -53,6 +53,12 @@ pub fn f32_from_unorm(code: u32, bits: u32) -> f32 {
     (f64::from(code) * (1.0 / f64::from(max_code(bits)))) as f32
 }
 
+/// The largest error of a `bits`-bit unorm over [0, 1]: half a step, `0.5 / (2^bits - 1)`.
+/// The bound the solvers (`gbuffer-solver`, the Bevy plugin's) hold a precision to.
+pub fn max_error(bits: u32) -> f64 {
+    0.5 * (1.0 / f64::from(max_code(bits)))
+}
+
 /// The name of [`WGSL_ENCODE`]'s function, for [`Lanes::helper`](super::wgsl::Lanes::helper).
 pub const ENCODE_HELPER: &str = "to_unorm";
 
