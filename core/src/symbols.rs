@@ -6,9 +6,12 @@
 //! A rename here renames both sides; `integration-tests/tests/symbols.rs` holds every name
 //! against the items each output defines, so a caller cannot name an item no emitter makes.
 //!
-//! The GLSL includes carry the WGSL functions as naga translates them, under the names
-//! [`Symbols::translated`] gives; the functions the GLSL emitter writes itself ([`Symbols::load`],
-//! [`Symbols::store`]) and the attachments keep the names below.
+//! The GLSL includes carry the WGSL functions as naga translates them, under the names the
+//! GLSL printer gives (the one GLSL naming view: naga's writer's rules, which rename a GLSL
+//! keyword or a name ending in a digit; the compiled layout's translation maps each WGSL name
+//! to its GLSL one, `Translation::glsl_name` in `gbuffer-codegen`); the functions the GLSL
+//! emitter writes itself ([`Symbols::load`], [`Symbols::store`]) and the attachments keep the
+//! names below.
 
 use crate::format::Format;
 use crate::naming::{glsl_identifier, snake_case};
@@ -62,18 +65,18 @@ impl Symbols {
         format!("{}_WORDS", self.snake.to_uppercase())
     }
 
-    /// `pack_<snake>(texel) -> array<u32, N>`, WGSL (GLSL: [`Symbols::translated`]).
+    /// `pack_<snake>(texel) -> array<u32, N>`, WGSL (GLSL: as the printer names it).
     pub fn pack(&self) -> String {
         format!("pack_{}", self.snake)
     }
 
-    /// `unpack_<snake>(words) -> texel`, WGSL (GLSL: [`Symbols::translated`]).
+    /// `unpack_<snake>(words) -> texel`, WGSL (GLSL: as the printer names it).
     pub fn unpack(&self) -> String {
         format!("unpack_{}", self.snake)
     }
 
-    /// `load_<snake>_<field>(words) -> value`, WGSL: one field decoded alone (GLSL:
-    /// [`Symbols::translated`]).
+    /// `load_<snake>_<field>(words) -> value`, WGSL: one field decoded alone (GLSL: as the
+    /// printer names it).
     pub fn load_field(&self, field: &str) -> String {
         format!("load_{}_{field}", self.snake)
     }
@@ -197,18 +200,6 @@ impl Symbols {
         format!("{glsl_texel}PixelLocalStorage")
     }
 
-    /// The GLSL name naga gives a translated WGSL function: the same, but that a name ending in
-    /// a digit (`pack_layout2`, `load_texel_w19`) takes a `_`, which keeps it apart from the
-    /// numbered names naga makes unique (naga's `proc::Namer::call`). The generated names
-    /// start with a word of their own, so no other rule of naga's namer (keywords, reserved
-    /// prefixes) touches them.
-    pub fn translated(wgsl_function: &str) -> String {
-        match wgsl_function.ends_with(|c: char| c.is_ascii_digit()) {
-            true => format!("{wgsl_function}_"),
-            false => wgsl_function.to_string(),
-        }
-    }
-
     /// The file the WGSL is written to (`mobile_metallic.wgsl`).
     pub fn wgsl_file(&self) -> String {
         format!("{}.wgsl", self.snake)
@@ -279,8 +270,6 @@ mod tests {
             Symbols::pixel_local_storage_block("MobileMetallic"),
             "MobileMetallicPixelLocalStorage"
         );
-        assert_eq!(Symbols::translated("pack_layout2"), "pack_layout2_");
-        assert_eq!(Symbols::translated("pack_layout"), "pack_layout");
         assert_eq!(symbols.wgsl_file(), "mobile_metallic.wgsl");
         assert_eq!(symbols.file("fetch.glsl"), "mobile_metallic.fetch.glsl");
         assert_eq!(symbols.module_path(), "gbuffer::mobile_metallic");

@@ -129,7 +129,7 @@ pub fn include(
     include_with(layout, Conversions::Exact, include, set)
 }
 
-/// [`include`] with the chosen conversions (pixel local storage blocks have none: the hardware
+/// [`include()`] with the chosen conversions (pixel local storage blocks have none: the hardware
 /// converts).
 pub fn include_with(
     layout: &Layout,

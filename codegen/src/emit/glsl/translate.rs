@@ -28,6 +28,16 @@ pub struct Translation {
 }
 
 impl Translation {
+    /// The GLSL name of the struct, constant or function called `wgsl` in the WGSL: the
+    /// printer's, as naga's GLSL writer names it (a GLSL keyword, or a name ending in a digit,
+    /// takes a `_`). None for a name the translation does not declare.
+    pub fn glsl_name(&self, wgsl: &str) -> Option<&str> {
+        self.items
+            .iter()
+            .find(|item| item.wgsl.as_deref() == Some(wgsl))
+            .map(|item| item.glsl.as_str())
+    }
+
     /// Checks that the translation defines function `name` (a WGSL name that is no GLSL
     /// keyword and does not end in a digit keeps its name, as the generated helpers' do): the
     /// includes call it by that name.
