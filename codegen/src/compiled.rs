@@ -12,7 +12,6 @@
 use naga::valid::ModuleInfo;
 
 use crate::emit::glsl::{self, GlslNames, Include, Interface, Translation, TranslationError};
-use crate::emit::items::{self, WgslItem};
 use crate::emit::wgsl::{self, Target};
 use gbuffer_core::layout::Layout;
 use gbuffer_core::Conversions;
@@ -91,11 +90,6 @@ impl CompiledLayout {
         (&self.module.0, &self.module.1)
     }
 
-    /// The structs, constants and functions the WGSL declares, each with its text.
-    pub fn wgsl_items(&self) -> Vec<WgslItem> {
-        items::module_items(&self.module.0, &self.wgsl)
-    }
-
     /// Its GLSL ES declarations, the names they were given and the items they declare.
     pub fn glsl(&self) -> &Translation {
         &self.glsl
@@ -132,4 +126,48 @@ impl CompiledLayout {
 fn validated(wgsl: &str) -> Result<(naga::Module, ModuleInfo), TranslationError> {
     crate::wgsl_module::validate(wgsl, crate::wgsl_module::GENERATED_CODE_CAPABILITIES)
         .map_err(TranslationError)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::layout_file::read_layout_file;
+    use gbuffer_core::Direction;
+
+    /// The compiled value holds what its parts say: naga's module of the WGSL declares the
+    /// layout's functions, the translation names them in GLSL (`mobile_metallic` keeps its
+    /// names: no keyword, no trailing digit), and the words are named as the fields are.
+    #[test]
+    fn the_compiled_layout_holds_the_module_the_translation_and_the_names() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("layouts/mobile_metallic.toml");
+        let layout = read_layout_file(&path).unwrap().layout;
+        let compiled = CompiledLayout::new(&layout, Conversions::Exact).unwrap();
+        let symbols = layout.symbols();
+        let (module, _) = compiled.module();
+        let rgba8 = symbols.format_word(Direction::Encode, gbuffer_core::Format::Rgba8, "");
+        for function in [symbols.pack(), symbols.unpack(), rgba8] {
+            assert!(
+                module
+                    .functions
+                    .iter()
+                    .any(|(_, f)| f.name.as_deref() == Some(function.as_str())),
+                "no `{function}` in the module"
+            );
+            assert_eq!(
+                compiled.glsl().glsl_name(&function),
+                Some(function.as_str())
+            );
+        }
+        assert_eq!(compiled.names().layout, "MobileMetallic");
+        let fields: Vec<&str> = layout
+            .fields
+            .iter()
+            .map(|field| field.name.as_str())
+            .collect();
+        assert_eq!(compiled.word_names(), fields);
+        assert!(compiled
+            .wgsl()
+            .starts_with("// G-buffer layout `MobileMetallic`"));
+    }
 }

@@ -93,17 +93,29 @@ pub mod targets;
 /// assert!(matches!(normal.storage, Storage::Bits(bits) if bits.bits == 24));
 /// ```
 pub mod layout {
-    pub use gbuffer_core::convert::Scalar;
-    pub use gbuffer_core::report::{FieldTable, Report};
+    pub use gbuffer_core::report::Report;
     pub use gbuffer_core::{
-        BitField, Channel, Codec, Conversions, Direction, Encoding, Field, FieldType, Format,
-        FormatRow, GlFormat, Layout, Member, Named, PackedTarget, RgbmRange, ScalarKind, Storage,
-        Symbols, TargetFormat, VulkanFormat, WebGpuTarget, Word,
+        BitField, Conversions, Direction, Encoding, Field, FieldType, Format, Layout, Named,
+        PackedTarget, RgbmRange, ScalarKind, Storage, Symbols,
+    };
+    // The format table's rows, a word's members, a scalar's conversion and the report's
+    // parts: what the tools and the derive read, reachable by these paths but kept out of the
+    // documented surface (`gbuffer_core` documents them).
+    #[doc(hidden)]
+    pub use gbuffer_core::convert::Scalar;
+    #[doc(hidden)]
+    pub use gbuffer_core::report::FieldTable;
+    #[doc(hidden)]
+    pub use gbuffer_core::{
+        Channel, Codec, FormatRow, GlFormat, Member, TargetFormat, VulkanFormat, WebGpuTarget, Word,
     };
 }
 
-/// The codecs: how a value becomes bits, one module each with its contract, its exact Rust
-/// conversions and its WGSL.
+/// The codecs (how a value becomes bits, one module each with its contract, its exact Rust
+/// conversions, its WGSL templates and its error bounds): what the derive, the emitters and the
+/// solvers (the Bevy plugin's among them) read. Reachable by this path, kept out of the
+/// documented surface (`gbuffer_core::codecs` documents them).
+#[doc(hidden)]
 pub use gbuffer_core::codecs;
 
 /// A pixel local storage G-buffer layout. Derive it with `#[derive(GBufferLayout)]`.

@@ -5,8 +5,8 @@
 //!
 //! The G-buffer layout's own declarations come from its generated include, pasted verbatim; the
 //! renderer's WGSL declares the layout too (its functions take the texel struct), and its
-//! printed declarations leave out the items the include declares (its interface's list), by their WGSL
-//! names, so each is declared once.
+//! printed declarations leave out the items the include declares (its interface lists them),
+//! by their WGSL names, so each is declared once.
 
 use gbuffer_codegen::emit::glsl::printer::{self, Choice};
 use gbuffer_codegen::{glsl_stage, wgsl_module};

@@ -40,12 +40,6 @@ pub struct WgslItem {
 pub fn wgsl_items(wgsl: &str) -> Result<Vec<WgslItem>, String> {
     use crate::wgsl_module;
     let (module, _) = wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES)?;
-    Ok(module_items(&module, wgsl))
-}
-
-/// The items of `module`, parsed from `wgsl` (their spans point into it), as [`wgsl_items`]
-/// lists them.
-pub(crate) fn module_items(module: &naga::Module, wgsl: &str) -> Vec<WgslItem> {
     let structs = module
         .types
         .iter()
@@ -76,14 +70,14 @@ pub(crate) fn module_items(module: &naga::Module, wgsl: &str) -> Vec<WgslItem> {
         .filter_map(|(span, kind, name)| Some((span.to_range()?, kind, name.as_deref()?)))
         .collect();
     found.sort_by_key(|(range, _, _)| range.start);
-    found
+    Ok(found
         .into_iter()
         .map(|(range, kind, name)| WgslItem {
             kind,
             name: name.to_string(),
             text: with_comment_and_attributes(wgsl, range),
         })
-        .collect()
+        .collect())
 }
 
 /// The text of a declaration spanning `range`, widened to the start of its first line (where
