@@ -43,13 +43,11 @@ impl CompiledLayout {
         let wgsl = wgsl::emit_with(layout, conversions);
         let module = validated(&wgsl)?;
         let for_glsl = wgsl::emit_for(layout, conversions, Target::GlslEs300);
-        let glsl = match for_glsl == wgsl {
-            true => glsl::translate::translate(layout, conversions, (&module.0, &module.1))?,
-            false => {
-                let (module, info) = validated(&for_glsl)?;
-                glsl::translate::translate(layout, conversions, (&module, &info))?
-            }
-        };
+        let own_module = (for_glsl != wgsl)
+            .then(|| validated(&for_glsl))
+            .transpose()?;
+        let (glsl_module, glsl_info) = own_module.as_ref().unwrap_or(&module);
+        let glsl = glsl::translate::translate(layout, conversions, (glsl_module, glsl_info))?;
         let bit_field_glsl = match layout.has_bit_fields() {
             true => Some(glsl::translate::translate_bit_field_functions(
                 layout,

@@ -1,17 +1,17 @@
 //! A shader as each API's compiler sees it. WGSL is translated by naga, to GLSL ES 3.10 for GL
 //! (panfrost's newest) and to SPIR-V for Vulkan; GLSL ES is given to GL drivers as written.
-//! A fragment shader needs a vertex shader to link with: one is made that writes what the
-//! fragment shader reads, as a renderer's would, from values no compiler can know: on GL each
-//! input from a vertex attribute of its own, on Vulkan each from its own words of a storage
-//! buffer. For WGSL it is built from naga's IR of the fragment shader (its inputs' locations,
-//! types and interpolation) as WGSL, and translated as the fragment shader is; for GLSL ES
-//! input it is built from the fragment shader's `in` declarations, read one a line (the form
-//! naga and most shaders write; a declaration split over lines, or two on one line, is not
-//! seen: `gbuffer cost`'s help says so). Neither a constant nor one value for every component: Mesa's linkers propagate a
-//! constant output into the next stage (a pack of zeros costs two Adreno instructions where a
-//! pack of varyings costs thirty), and merge outputs that hold the same value, so a
-//! `vec4(gl_VertexID)` input makes the fragment shader compute one channel for four (an rgba8
-//! pack costs 18 Mali-G610 instructions from it, 30 from an attribute).
+//! A fragment shader needs a vertex shader to link with: one is made that writes what the fragment
+//! shader reads, as a renderer's would, from values no compiler can know: on GL each input from a
+//! vertex attribute of its own, on Vulkan each from its own words of a storage buffer. For WGSL it
+//! is built from naga's IR of the fragment shader (its inputs' locations, types and interpolation)
+//! as WGSL, and translated as the fragment shader is; for GLSL ES input it is built from the
+//! fragment shader's `in` declarations, read one a line (the form naga and most shaders write; a
+//! declaration split over lines, or two on one line, is not seen: `gbuffer cost`'s help says so).
+//! Neither a constant nor one value for every component: Mesa's linkers propagate a constant output
+//! into the next stage (a pack of zeros costs two Adreno instructions where a pack of varyings
+//! costs thirty), and merge outputs that hold the same value, so a `vec4(gl_VertexID)` input makes
+//! the fragment shader compute one channel for four (an rgba8 pack costs 18 Mali-G610 instructions
+//! from it, 30 from an attribute).
 
 use std::sync::Arc;
 
@@ -176,15 +176,10 @@ impl Shader {
             (Stage::Fragment, None, Source::Wgsl { module, entry }) => {
                 let (module, _) = &**module;
                 let function = &entry_point(module, entry).function;
-                let vertex_wgsl = companion_vertex_wgsl(module, function, Inputs::Attributes);
-                let validated = wgsl_module::validate(&vertex_wgsl, Capabilities::empty())
-                    .map_err(|error| format!("the companion vertex shader: {error}"))?;
-                let options = glsl_stage::options_keeping_bindings(
-                    &validated.0,
-                    glsl::Version::new_gles(310),
-                );
-                let (module, info) = (&validated.0, &validated.1);
-                Some(glsl_stage::write((module, info), ShaderStage::Vertex, "main", &options)?.0)
+                let (module, info) = companion_vertex(module, function, Inputs::Attributes)?;
+                let options =
+                    glsl_stage::options_keeping_bindings(&module, glsl::Version::new_gles(310));
+                Some(glsl_stage::write((&module, &info), ShaderStage::Vertex, "main", &options)?.0)
             }
         };
         Ok(GlesForm { shader, vertex })
@@ -211,11 +206,8 @@ impl Shader {
                     .max()
                     .unwrap_or(0);
                 descriptors.push(format!("{set},0,storage"));
-                let vertex_wgsl =
-                    companion_vertex_wgsl(module, &entry_point.function, Inputs::Buffer(set));
                 let (vertex_module, vertex_info) =
-                    wgsl_module::validate(&vertex_wgsl, Capabilities::empty())
-                        .map_err(|error| format!("the companion vertex shader: {error}"))?;
+                    companion_vertex(module, &entry_point.function, Inputs::Buffer(set))?;
                 let vertex = spirv(&vertex_module, &vertex_info, ShaderStage::Vertex, "main")?;
                 let colors = match &self.colors {
                     Some(colors) => colors.clone(),
@@ -363,6 +355,18 @@ fn buffer_value((scalar, components): (&str, u32), word: &str) -> String {
         1 => words.join(""),
         _ => format!("{}({})", wgsl_type((scalar, components)), words.join(", ")),
     }
+}
+
+/// The companion vertex shader of `function` (a fragment entry point of `module`), reading
+/// `inputs`, validated: naga's module of [`companion_vertex_wgsl`].
+fn companion_vertex(
+    module: &naga::Module,
+    function: &naga::Function,
+    inputs: Inputs,
+) -> Result<(naga::Module, ModuleInfo), ShaderError> {
+    let wgsl = companion_vertex_wgsl(module, function, inputs);
+    wgsl_module::validate(&wgsl, Capabilities::empty())
+        .map_err(|error| format!("the companion vertex shader: {error}"))
 }
 
 /// A WGSL vertex shader, built from the fragment shader's IR, whose outputs are the fragment

@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 use gbuffer_core::{Direction, ScalarKind};
 
 use super::printer::Item;
-use super::{bit_field_code, bit_field_function, bit_word_value, declare, write_header};
+use super::{bit_field_code, bit_word_value, declare, write_header};
 use super::{subpass_input_type, Attachment, Include, Interface};
 use crate::emit::items::ItemKind;
 use crate::CompiledLayout;
@@ -125,7 +125,7 @@ fn write_accessors(
             .map(|(index, (field, (word, member)))| {
                 let read = &reads[word];
                 if field.bit_field().is_some() {
-                    let decode = bit_field_function(layout, Direction::Decode, index);
+                    let decode = layout.symbols().bit_field(Direction::Decode, index);
                     return format!("{decode}({})", bit_field_code(&format!("{read}.x"), member));
                 }
                 match field.ty.components {

@@ -77,12 +77,6 @@ fn bit_field_code(word: &str, member: Member) -> String {
     }
 }
 
-/// The GLSL name of bit field `field`'s encode or decode function: its WGSL name, which naga
-/// keeps (the translation checks it).
-fn bit_field_function(layout: &Layout, direction: Direction, field: usize) -> String {
-    layout.symbols().bit_field(direction, field)
-}
-
 /// A bit word's value in GLSL: each field's code from `value(field)`, shifted into place and
 /// combined.
 fn bit_word_value(layout: &Layout, word: &Word, value: impl Fn(usize) -> String) -> String {
@@ -90,7 +84,7 @@ fn bit_word_value(layout: &Layout, word: &Word, value: impl Fn(usize) -> String)
         .members
         .iter()
         .map(|member| {
-            let encode = bit_field_function(layout, Direction::Encode, member.field);
+            let encode = layout.symbols().bit_field(Direction::Encode, member.field);
             match member.offset {
                 0 => format!("{encode}({})", value(member.field)),
                 offset => format!("({encode}({}) << {offset}u)", value(member.field)),

@@ -10,7 +10,7 @@ use gbuffer_core::layout::Word;
 use gbuffer_core::{Direction, Named, ScalarKind, Symbols};
 
 use super::printer::Item;
-use super::{bit_field_code, bit_field_function, bit_word_value, declare, declared_type};
+use super::{bit_field_code, bit_word_value, declare, declared_type};
 use super::{write_header, Interface};
 use crate::emit::items::ItemKind;
 use crate::CompiledLayout;
@@ -157,7 +157,7 @@ fn write_pls_bit_field_accessors(
         if block != PlsBlock::Out {
             for member in &word.members {
                 let field = &layout.fields[member.field];
-                let decode = bit_field_function(layout, Direction::Decode, member.field);
+                let decode = layout.symbols().bit_field(Direction::Decode, member.field);
                 let load = symbols.load_pls(&names.fields[member.field]);
                 let start = out.len();
                 let _ = writeln!(

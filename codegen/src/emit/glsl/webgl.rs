@@ -19,7 +19,7 @@ use std::fmt::Write as _;
 
 use super::printer::Item;
 use super::unique;
-use super::{bit_field_code, bit_field_function, bit_word_value, declared_type};
+use super::{bit_field_code, bit_word_value, declared_type};
 use super::{declare, Include, Interface, TranslationError};
 use crate::emit::items::ItemKind;
 use crate::emit::wgsl::mode_suffix;
@@ -200,7 +200,7 @@ pub(super) fn include(
         let (word, member) = locations[index];
         let value = match (field.storage, interface.planes[word].format) {
             (Storage::Bits(_), _) => {
-                let decode = bit_field_function(layout, Direction::Decode, index);
+                let decode = layout.symbols().bit_field(Direction::Decode, index);
                 return Ok(format!("{decode}({})", bit_field_code(plane, member)));
             }
             (Storage::Word(_), PlaneFormat::Rgba8) => plane.to_string(),
