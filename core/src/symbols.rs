@@ -193,6 +193,23 @@ impl Symbols {
         glsl_identifier(&[&self.snake, glsl_word, "attachment"])
     }
 
+    /// What a word of bit fields is called in GLSL (its PLS member, its native attachment, its
+    /// WebGL plane's stem), from its fields' GLSL names: joined and ending in `_bits`
+    /// (`normal_roughness_bits`), or with `word` (the word's index) where the joined name
+    /// would meet another word's (`a_1_word2_bits`). A whole word is called after its field.
+    /// A field's name ending in `_` (naga's `field_0_`) is trimmed, so that no `__` appears.
+    pub fn bit_fields_word(glsl_fields: &[&str], word: Option<usize>) -> String {
+        let fields: Vec<&str> = glsl_fields
+            .iter()
+            .map(|field| field.trim_end_matches('_'))
+            .collect();
+        let joined = fields.join("_");
+        match word {
+            None => format!("{joined}_bits"),
+            Some(index) => format!("{joined}_word{index}_bits"),
+        }
+    }
+
     /// The pixel local storage block of the EXT includes (`MobileMetallicPixelLocalStorage`),
     /// from the texel struct's GLSL name (naga's, which may differ from [`Symbols::texel`]
     /// only where that is a GLSL keyword).
@@ -266,6 +283,14 @@ mod tests {
         assert_eq!(symbols.shade(), "shade_mobile_metallic");
         assert_eq!(symbols.encode_values(), "encode_mobile_metallic");
         assert_eq!(symbols.decode_values(), "decode_mobile_metallic");
+        assert_eq!(
+            Symbols::bit_fields_word(&["normal", "roughness"], None),
+            "normal_roughness_bits"
+        );
+        assert_eq!(
+            Symbols::bit_fields_word(&["a_", "b"], Some(2)),
+            "a_b_word2_bits"
+        );
         assert_eq!(
             Symbols::pixel_local_storage_block("MobileMetallic"),
             "MobileMetallicPixelLocalStorage"

@@ -2,14 +2,14 @@
 //! attachment, a WebGL plane is named after the word's fields, each name declared once.
 
 use gbuffer_core::layout::Word;
+use gbuffer_core::Symbols;
 
 use super::GlslNames;
 
 /// What each word is called in GLSL (its PLS member, its native attachment): a whole word its
-/// field's name, a word of bit fields its fields' names joined, ending in `_bits`. Joined names
-/// can meet another word's (fields `a_1` and `a_`, trimmed, both give `a_1_bits`; a field may be
-/// called `a_bits`): such a word is called `<joined>_word<index>_bits` instead, so every name is
-/// declared once.
+/// field's name, a word of bit fields [`Symbols::bit_fields_word`]. Joined names can meet
+/// another word's (fields `a_1` and `a_`, trimmed, both give `a_1_bits`; a field may be called
+/// `a_bits`): such a word takes its index, so every name is declared once.
 pub(crate) fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
     let whole: Vec<&str> = words
         .iter()
@@ -22,19 +22,16 @@ pub(crate) fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
             taken.push(names.fields[word.members[0].field].clone());
             continue;
         }
-        // naga's names may end in `_` (`field_0_`): trimmed, so that no `__` appears.
         let fields: Vec<&str> = word
             .members
             .iter()
-            .map(|member| names.fields[member.field].trim_end_matches('_'))
+            .map(|member| names.fields[member.field].as_str())
             .collect();
-        let joined = fields.join("_");
-        let name = format!("{joined}_bits");
+        let name = Symbols::bit_fields_word(&fields, None);
         let clashes = whole.contains(&name.as_str()) || taken.contains(&name);
-        taken.push(if clashes {
-            format!("{joined}_word{index}_bits")
-        } else {
-            name
+        taken.push(match clashes {
+            true => Symbols::bit_fields_word(&fields, Some(index)),
+            false => name,
         });
     }
     taken
