@@ -6,14 +6,14 @@
 //! [`check`](gbuffer_core::Layout::check) it, and hand it to the emitters:
 //!
 //! - [`emit`]: WGSL and Rust mirror emitters;
-//! - with the `tools` feature: `wgsl_module`, the one front door for WGSL (naga's parse and
-//!   validation, used by every package that takes WGSL in), and `glsl_stage`, a whole stage
-//!   of a validated module as GLSL by naga's writer;
-//! - with the `tools` feature (on by default): `layout_file` (layouts in TOML, read through
-//!   `gbuffer-files`), `output` (the
-//!   files the tool writes, atomically and only when changed), `staging` (a run's files, all
-//!   or none), the GLSL and
-//!   Rust-source emitters, `Builder` for build scripts (the `gbuffer codegen` command runs them).
+//! - with the `tools` feature (on by default): `CompiledLayout` (a layout's WGSL, naga's
+//!   module and the printed GLSL, built once and handed to every include), `wgsl_module`, the
+//!   one front door for WGSL (naga's parse and validation, used by every package that takes
+//!   WGSL in), `glsl_stage` (a whole stage of a validated module as GLSL by naga's writer),
+//!   `layout_file` (layouts in TOML, read through `gbuffer-files`), `output` (the files the
+//!   tool writes, atomically and only when changed), `staging` (a run's files, all or none),
+//!   the GLSL and Rust-source emitters, `Builder` for build scripts (the `gbuffer codegen`
+//!   command runs them).
 //!
 //! The model is named by one path, `gbuffer_core` (users of the facade: `gbuffer::layout`);
 //! this crate re-exports none of it.
