@@ -10,21 +10,34 @@
  *       GLSL ES through EGL surfaceless. Prints `renderer: ...`, `version: ...`, then for each
  *       shader `shader: N` and each KHR_debug message as `message: ...` (where Mesa's shader-db
  *       statistics arrive), or `error: ...` where it does not compile or link.
- *   shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--entry NAME] [--descriptor SET,BINDING,KIND]...
- *                       [--color FORMAT]... [--disassembly] [-- STAGE SHADER.spv ...]...
+ *   shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--entry NAME] [--vertex-entry NAME]
+ *                       [--descriptor SET,BINDING,KIND]...
+ *                       [--color FORMAT]... [--attribute FORMAT]... [--push-constants BYTES]
+ *                       [--rendering MODE] [--disassembly] [-- STAGE SHADER.spv ...]...
  *       SPIR-V through VK_KHR_pipeline_executable_properties. Prints `device: ...`,
  *       `driver: ...`, then for each shader `shader: N`, per executable `executable: NAME` and
  *       `statistic: NAME = VALUE`, with --disassembly `representation: NAME` followed by its
  *       text and `end-representation`, or `error: ...` where the pipeline cannot be created.
  *
+ *       MODE says what a graphics pipeline is created for: `render-pass` (the default), a
+ *       render pass object of one subpass whose input attachments are attachments of their own;
+ *       `local-read`, a dynamic rendering read through VK_KHR_dynamic_rendering_local_read,
+ *       input attachment index i being colour attachment i (as a fused G-buffer pass reads the
+ *       attachments it writes); `local-read-ordered`, that with rasterization-order colour
+ *       attachment access (VK_EXT_rasterization_order_attachment_access, or ARM's). A device
+ *       without what the mode needs gets the shader an `error:` line naming it. Each
+ *       --attribute is a vertex input at the next location, in a binding of its own; the push
+ *       constants are BYTES visible to every stage.
+ *
  * Several shaders separated by `--` compile in one process: starting the driver (under qemu,
  * most of a run) is paid once.
  *
- * STAGE is `vertex`, `fragment` or `compute`; NAME the SPIR-V entry point (default `main`; the
- * vertex shader's is `main`). A fragment shader needs a vertex shader to link
+ * STAGE is `vertex`, `fragment` or `compute`; NAME the SPIR-V entry point (default `main`, for
+ * the shader's and the vertex shader's alike). A fragment shader needs a vertex shader to link
  * against (GLSL ES links the pair; a Vulkan pipeline needs both). KIND is one of uniform,
- * storage, sampled, sampler, combined, storage-image, input-attachment; FORMAT one of r32ui,
- * rg32ui, rgba32ui, r32i, rgba32i, r32f, rgba32f, rgba16f, rgba8, rgb10a2, rg11b10f.
+ * storage, sampled, sampler, combined, storage-image, input-attachment; a colour's FORMAT one of
+ * r32ui, rg32ui, rgba32ui, r32i, rgba32i, r32f, rgba32f, rgba16f, rgba8, rgb10a2, rg11b10f; an
+ * attribute's one of r32ui, r32f, rg32f, rgb32f, rgba32f.
  *
  * Exit status: 0 when the driver started (each shader's own failure is its `error:` line), 1
  * when it did not (a one-line reason on stderr), 2 usage. Every API entry point is loaded with dlopen, so the program needs no GPU headers'
@@ -44,6 +57,35 @@
 #include <GLES3/gl32.h>
 #define VK_NO_PROTOTYPES
 #include <vulkan/vulkan.h>
+
+/* VK_KHR_dynamic_rendering_local_read (Vulkan 1.3.278, core in 1.4) is newer than Debian 12's
+ * headers (1.3.239): its names and structures as the Vulkan registry defines them. */
+#ifndef VK_KHR_dynamic_rendering_local_read
+#define VK_KHR_DYNAMIC_RENDERING_LOCAL_READ_EXTENSION_NAME "VK_KHR_dynamic_rendering_local_read"
+#define VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_LOCAL_READ_FEATURES_KHR                \
+    ((VkStructureType)1000232000)
+#define VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_LOCATION_INFO_KHR ((VkStructureType)1000232001)
+#define VK_STRUCTURE_TYPE_RENDERING_INPUT_ATTACHMENT_INDEX_INFO_KHR ((VkStructureType)1000232002)
+typedef struct {
+    VkStructureType sType;
+    void *pNext;
+    VkBool32 dynamicRenderingLocalRead;
+} VkPhysicalDeviceDynamicRenderingLocalReadFeaturesKHR;
+typedef struct {
+    VkStructureType sType;
+    const void *pNext;
+    uint32_t colorAttachmentCount;
+    const uint32_t *pColorAttachmentLocations;
+} VkRenderingAttachmentLocationInfoKHR;
+typedef struct {
+    VkStructureType sType;
+    const void *pNext;
+    uint32_t colorAttachmentCount;
+    const uint32_t *pColorAttachmentInputIndices;
+    const uint32_t *pDepthInputAttachmentIndex;
+    const uint32_t *pStencilInputAttachmentIndex;
+} VkRenderingInputAttachmentIndexInfoKHR;
+#endif
 
 /* While a shader is being compiled, a failure is that shader's: it is printed as its `error:`
  * line and the next shader goes on. Before (the driver starting), it ends the program. */
@@ -85,8 +127,9 @@ static void each_shader(int argc, char **argv, compile_function compile, void *c
 
 static void usage(void) {
     fputs("usage: shader-stats gl STAGE SHADER [VERTEX]\n"
-          "       shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--entry NAME]"
-          " [--descriptor SET,BINDING,KIND]... [--color FORMAT]... [--disassembly]\n",
+          "       shader-stats vulkan STAGE SHADER.spv [VERTEX.spv] [--entry NAME] [--vertex-entry NAME]"
+          " [--descriptor SET,BINDING,KIND]... [--color FORMAT]... [--attribute FORMAT]..."
+          " [--push-constants BYTES] [--rendering MODE] [--disassembly]\n",
           stderr);
     exit(2);
 }
@@ -291,6 +334,39 @@ static const struct named color_formats[] = {
     {NULL, 0},
 };
 
+/* A vertex attribute's format and its size in bytes. */
+struct attribute_format {
+    const char *name;
+    VkFormat format;
+    uint32_t bytes;
+};
+
+static const struct attribute_format attribute_formats[] = {
+    {"r32ui", VK_FORMAT_R32_UINT, 4},
+    {"r32f", VK_FORMAT_R32_SFLOAT, 4},
+    {"rg32f", VK_FORMAT_R32G32_SFLOAT, 8},
+    {"rgb32f", VK_FORMAT_R32G32B32_SFLOAT, 12},
+    {"rgba32f", VK_FORMAT_R32G32B32A32_SFLOAT, 16},
+    {NULL, 0, 0},
+};
+
+static struct attribute_format attribute_format(const char *name) {
+    for (const struct attribute_format *format = attribute_formats; format->name; format++)
+        if (!strcmp(name, format->name)) return *format;
+    usage();
+    return attribute_formats[0];
+}
+
+/* What a graphics pipeline is created for (--rendering). */
+enum rendering { RENDER_PASS, LOCAL_READ, LOCAL_READ_ORDERED };
+
+static const struct named renderings[] = {
+    {"render-pass", RENDER_PASS},
+    {"local-read", LOCAL_READ},
+    {"local-read-ordered", LOCAL_READ_ORDERED},
+    {NULL, 0},
+};
+
 /* The value `name` stands for in `table`; a name not there is a usage error. */
 static int named_value(const struct named *table, const char *name) {
     for (; table->name; table++)
@@ -324,7 +400,7 @@ static VkShaderModule shader_module(VkDevice device, const char *path) {
 
 /* One descriptor set layout per set number up to the highest named, empty where none is. */
 static VkPipelineLayout pipeline_layout(VkDevice device, const struct descriptor *descriptors,
-                                        unsigned count) {
+                                        unsigned count, uint32_t push_constant_bytes) {
     PFN_vkCreateDescriptorSetLayout create_set =
         (PFN_vkCreateDescriptorSetLayout)device_function(device, "vkCreateDescriptorSetLayout");
     PFN_vkCreatePipelineLayout create_layout =
@@ -352,9 +428,13 @@ static VkPipelineLayout pipeline_layout(VkDevice device, const struct descriptor
             .pBindings = bindings};
         CHECK(create_set(device, &info, NULL, &set_layouts[set]), "vkCreateDescriptorSetLayout");
     }
+    VkPushConstantRange push_constants = {.stageFlags = VK_SHADER_STAGE_ALL,
+                                          .size = push_constant_bytes};
     VkPipelineLayoutCreateInfo info = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
                                        .setLayoutCount = sets,
-                                       .pSetLayouts = set_layouts};
+                                       .pSetLayouts = set_layouts,
+                                       .pushConstantRangeCount = push_constant_bytes ? 1 : 0,
+                                       .pPushConstantRanges = &push_constants};
     VkPipelineLayout layout;
     CHECK(create_layout(device, &info, NULL, &layout), "vkCreatePipelineLayout");
     return layout;
@@ -411,23 +491,50 @@ static VkRenderPass render_pass(VkDevice device, const VkFormat *colors, unsigne
     return pass;
 }
 
-static VkPipeline graphics_pipeline(VkDevice device, VkShaderModule vertex,
-                                    VkShaderModule fragment, const char *entry,
-                                    VkPipelineLayout layout,
-                                    VkRenderPass pass, unsigned color_count,
+/* What a graphics pipeline is made of, from one group of the command line. */
+struct graphics {
+    VkShaderModule vertex, fragment;
+    const char *vertex_entry, *entry;
+    VkPipelineLayout layout;
+    const VkFormat *colors;
+    unsigned color_count;
+    /* Set 0's input-attachment descriptors, which under local read are the first colours. */
+    unsigned input_count;
+    const struct attribute_format *attributes;
+    unsigned attribute_count;
+    enum rendering rendering;
+    /* The render pass (RENDER_PASS only). */
+    VkRenderPass pass;
+};
+
+static VkPipeline graphics_pipeline(VkDevice device, const struct graphics *graphics,
                                     VkPipelineCreateFlags flags) {
     VkPipelineShaderStageCreateInfo stages[2] = {
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
          .stage = VK_SHADER_STAGE_VERTEX_BIT,
-         .module = vertex,
-         .pName = "main"},
+         .module = graphics->vertex,
+         .pName = graphics->vertex_entry},
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
          .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
-         .module = fragment,
-         .pName = entry},
+         .module = graphics->fragment,
+         .pName = graphics->entry},
     };
+    VkVertexInputBindingDescription bindings[MAX_ITEMS];
+    VkVertexInputAttributeDescription attributes[MAX_ITEMS];
+    for (unsigned i = 0; i < graphics->attribute_count; i++) {
+        bindings[i] = (VkVertexInputBindingDescription){
+            .binding = i,
+            .stride = graphics->attributes[i].bytes,
+            .inputRate = VK_VERTEX_INPUT_RATE_VERTEX};
+        attributes[i] = (VkVertexInputAttributeDescription){
+            .location = i, .binding = i, .format = graphics->attributes[i].format};
+    }
     VkPipelineVertexInputStateCreateInfo vertex_input = {
-        .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+        .vertexBindingDescriptionCount = graphics->attribute_count,
+        .pVertexBindingDescriptions = bindings,
+        .vertexAttributeDescriptionCount = graphics->attribute_count,
+        .pVertexAttributeDescriptions = attributes};
     VkPipelineInputAssemblyStateCreateInfo assembly = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
         .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
@@ -448,14 +555,38 @@ static VkPipeline graphics_pipeline(VkDevice device, VkShaderModule vertex,
         .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
         .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT};
     VkPipelineColorBlendAttachmentState blends[MAX_ITEMS];
-    for (unsigned i = 0; i < color_count; i++)
+    for (unsigned i = 0; i < graphics->color_count; i++)
         blends[i] = (VkPipelineColorBlendAttachmentState){.colorWriteMask = 0xf};
     VkPipelineColorBlendStateCreateInfo blend = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
-        .attachmentCount = color_count,
+        .attachmentCount = graphics->color_count,
         .pAttachments = blends};
+    /* Under local read: no render pass; each colour at its own location, input attachment
+     * index i reading colour i. */
+    uint32_t locations[MAX_ITEMS], input_indices[MAX_ITEMS];
+    for (unsigned i = 0; i < graphics->color_count; i++) {
+        locations[i] = i;
+        input_indices[i] = i < graphics->input_count ? i : VK_ATTACHMENT_UNUSED;
+    }
+    VkRenderingInputAttachmentIndexInfoKHR input_info = {
+        .sType = VK_STRUCTURE_TYPE_RENDERING_INPUT_ATTACHMENT_INDEX_INFO_KHR,
+        .colorAttachmentCount = graphics->color_count,
+        .pColorAttachmentInputIndices = input_indices};
+    VkRenderingAttachmentLocationInfoKHR location_info = {
+        .sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_LOCATION_INFO_KHR,
+        .pNext = &input_info,
+        .colorAttachmentCount = graphics->color_count,
+        .pColorAttachmentLocations = locations};
+    VkPipelineRenderingCreateInfo rendering = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO,
+        .pNext = &location_info,
+        .colorAttachmentCount = graphics->color_count,
+        .pColorAttachmentFormats = graphics->colors};
+    if (graphics->rendering == LOCAL_READ_ORDERED)
+        blend.flags = VK_PIPELINE_COLOR_BLEND_STATE_CREATE_RASTERIZATION_ORDER_ATTACHMENT_ACCESS_BIT_EXT;
     VkGraphicsPipelineCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+        .pNext = graphics->rendering == RENDER_PASS ? NULL : &rendering,
         .flags = flags,
         .stageCount = 2,
         .pStages = stages,
@@ -465,8 +596,8 @@ static VkPipeline graphics_pipeline(VkDevice device, VkShaderModule vertex,
         .pRasterizationState = &raster,
         .pMultisampleState = &multisample,
         .pColorBlendState = &blend,
-        .layout = layout,
-        .renderPass = pass};
+        .layout = graphics->layout,
+        .renderPass = graphics->pass};
     PFN_vkCreateGraphicsPipelines create =
         (PFN_vkCreateGraphicsPipelines)device_function(device, "vkCreateGraphicsPipelines");
     VkPipeline pipeline;
@@ -578,20 +709,30 @@ static void print_executables(VkDevice device, VkPipeline pipeline, int disassem
     free(executables);
 }
 
+/* What the device was opened with: a mode's pipelines are refused where it lacks what they
+ * need, by these reasons (NULL: offered). */
+static const char *local_read_missing = "no pipeline asked for local read";
+static const char *rasterization_order_missing = "no pipeline asked for rasterization order";
+
 /* One pipeline: STAGE SHADER.spv [VERTEX.spv] and its options. */
 static void vulkan_pipeline(void *context, int argc, char **argv) {
     VkDevice device = context;
     if (argc < 2) usage();
     const char *stage = argv[0], *shader = argv[1], *vertex = NULL, *entry = "main";
+    const char *vertex_entry = "main";
     struct descriptor descriptors[MAX_ITEMS];
     VkFormat colors[MAX_ITEMS];
-    unsigned descriptor_count = 0, color_count = 0;
+    struct attribute_format attributes[MAX_ITEMS];
+    unsigned descriptor_count = 0, color_count = 0, attribute_count = 0, push_constant_bytes = 0;
+    enum rendering rendering = RENDER_PASS;
     int disassembly = 0;
     for (int i = 2; i < argc; i++) {
         if (!strcmp(argv[i], "--disassembly")) {
             disassembly = 1;
         } else if (!strcmp(argv[i], "--entry") && i + 1 < argc) {
             entry = argv[++i];
+        } else if (!strcmp(argv[i], "--vertex-entry") && i + 1 < argc) {
+            vertex_entry = argv[++i];
         } else if (!strcmp(argv[i], "--descriptor") && i + 1 < argc) {
             char kind[32];
             unsigned set, binding;
@@ -604,6 +745,13 @@ static void vulkan_pipeline(void *context, int argc, char **argv) {
         } else if (!strcmp(argv[i], "--color") && i + 1 < argc) {
             if (color_count == MAX_ITEMS) usage();
             colors[color_count++] = (VkFormat)named_value(color_formats, argv[++i]);
+        } else if (!strcmp(argv[i], "--attribute") && i + 1 < argc) {
+            if (attribute_count == MAX_ITEMS) usage();
+            attributes[attribute_count++] = attribute_format(argv[++i]);
+        } else if (!strcmp(argv[i], "--push-constants") && i + 1 < argc) {
+            if (sscanf(argv[++i], "%u", &push_constant_bytes) != 1) usage();
+        } else if (!strcmp(argv[i], "--rendering") && i + 1 < argc) {
+            rendering = (enum rendering)named_value(renderings, argv[++i]);
         } else if (argv[i][0] != '-' && !vertex) {
             vertex = argv[i];
         } else {
@@ -613,27 +761,76 @@ static void vulkan_pipeline(void *context, int argc, char **argv) {
     int compute = !strcmp(stage, "compute");
     if (!compute && strcmp(stage, "fragment")) fail("Vulkan statistics are for fragment or compute");
     if (!compute && !vertex) fail("a fragment shader needs a vertex shader");
+    if (rendering != RENDER_PASS && local_read_missing)
+        fail("local read is not offered: %s", local_read_missing);
+    if (rendering == LOCAL_READ_ORDERED && rasterization_order_missing)
+        fail("rasterization-order attachment access is not offered: %s",
+             rasterization_order_missing);
 
     VkPipelineCreateFlags flags = VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
     if (disassembly) flags |= VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR;
-    VkPipelineLayout layout = pipeline_layout(device, descriptors, descriptor_count);
+    VkPipelineLayout layout =
+        pipeline_layout(device, descriptors, descriptor_count, push_constant_bytes);
     VkPipeline pipeline;
     if (compute) {
         pipeline = compute_pipeline(device, shader_module(device, shader), entry, layout, flags);
     } else {
-        VkRenderPass pass = render_pass(device, colors, color_count, descriptors,
-                                        descriptor_count);
-        pipeline = graphics_pipeline(device, shader_module(device, vertex),
-                                     shader_module(device, shader), entry, layout, pass,
-                                     color_count,
-                                     flags);
+        unsigned input_count = 0;
+        for (unsigned i = 0; i < descriptor_count; i++)
+            input_count += descriptors[i].type == VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT;
+        if (rendering != RENDER_PASS && input_count > color_count)
+            fail("%u input attachments but %u colours: under local read each input is a colour",
+                 input_count, color_count);
+        struct graphics graphics = {
+            .vertex = shader_module(device, vertex),
+            .fragment = shader_module(device, shader),
+            .vertex_entry = vertex_entry,
+            .entry = entry,
+            .layout = layout,
+            .colors = colors,
+            .color_count = color_count,
+            .input_count = input_count,
+            .attributes = attributes,
+            .attribute_count = attribute_count,
+            .rendering = rendering,
+            .pass = rendering == RENDER_PASS
+                        ? render_pass(device, colors, color_count, descriptors, descriptor_count)
+                        : VK_NULL_HANDLE,
+        };
+        pipeline = graphics_pipeline(device, &graphics, flags);
     }
     print_executables(device, pipeline, disassembly);
 }
 
+/* Whether any group of the command line asks for `mode` (or, for local read, its ordered
+ * form): the device is opened with what those pipelines need only when one does. */
+static int asks_for(int argc, char **argv, const char *mode) {
+    for (int i = 0; i + 1 < argc; i++)
+        if (!strcmp(argv[i], "--rendering") && !strncmp(argv[i + 1], mode, strlen(mode)))
+            return 1;
+    return 0;
+}
+
+/* Whether the device offers extension `name`. */
+static int offers_extension(VkInstance instance, VkPhysicalDevice physical, const char *name) {
+    PFN_vkEnumerateDeviceExtensionProperties enumerate =
+        (PFN_vkEnumerateDeviceExtensionProperties)instance_function(
+            instance, "vkEnumerateDeviceExtensionProperties");
+    uint32_t count = 0;
+    if (!enumerate || enumerate(physical, NULL, &count, NULL) != VK_SUCCESS) return 0;
+    VkExtensionProperties *extensions = calloc(count ? count : 1, sizeof *extensions);
+    int found = 0;
+    if (extensions && enumerate(physical, NULL, &count, extensions) == VK_SUCCESS)
+        for (uint32_t i = 0; i < count && !found; i++)
+            found = !strcmp(extensions[i].extensionName, name);
+    free(extensions);
+    return found;
+}
 
 static int run_vulkan(int argc, char **argv) {
     if (argc < 2) usage();
+    int local_read = asks_for(argc, argv, "local-read");
+    int rasterization_order = asks_for(argc, argv, "local-read-ordered");
     void *loader = library("libvulkan.so.1");
     instance_function = (PFN_vkGetInstanceProcAddr)dlsym(loader, "vkGetInstanceProcAddr");
     if (!instance_function) fail("libvulkan.so.1 has no vkGetInstanceProcAddr");
@@ -641,7 +838,9 @@ static int run_vulkan(int argc, char **argv) {
         (PFN_vkCreateInstance)instance_function(NULL, "vkCreateInstance");
     VkApplicationInfo application = {.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
                                      .pApplicationName = "shader-stats",
-                                     .apiVersion = VK_API_VERSION_1_1};
+                                     /* Dynamic rendering is core in 1.3. */
+                                     .apiVersion = local_read ? VK_API_VERSION_1_3
+                                                              : VK_API_VERSION_1_1};
     VkInstanceCreateInfo instance_info = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
                                           .pApplicationInfo = &application};
     VkInstance instance;
@@ -677,12 +876,76 @@ static int run_vulkan(int argc, char **argv) {
     VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable_feature = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR,
         .pipelineExecutableInfo = VK_TRUE};
-    const char *extensions[] = {VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME};
+    const char *extensions[4] = {VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME};
+    uint32_t extension_count = 1;
+    /* Local read, where a pipeline asks for it: dynamic rendering (core in 1.3), its local
+     * read, and rasterization order (EXT's, or ARM's it was promoted from), each enabled only
+     * where the device offers it; what is not offered is named to the pipelines that ask. */
+    VkPhysicalDeviceRasterizationOrderAttachmentAccessFeaturesEXT order_feature = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RASTERIZATION_ORDER_ATTACHMENT_ACCESS_FEATURES_EXT};
+    VkPhysicalDeviceDynamicRenderingLocalReadFeaturesKHR local_read_feature = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_LOCAL_READ_FEATURES_KHR};
+    VkPhysicalDeviceDynamicRenderingFeatures dynamic_rendering_feature = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
+    if (local_read) {
+        const char *order_extension =
+            offers_extension(instance, physical, "VK_EXT_rasterization_order_attachment_access")
+                ? "VK_EXT_rasterization_order_attachment_access"
+            : offers_extension(instance, physical, "VK_ARM_rasterization_order_attachment_access")
+                ? "VK_ARM_rasterization_order_attachment_access"
+                : NULL;
+        int offers_local_read =
+            offers_extension(instance, physical, VK_KHR_DYNAMIC_RENDERING_LOCAL_READ_EXTENSION_NAME);
+        /* What the device offers: the features of the extensions it has. */
+        dynamic_rendering_feature.pNext = offers_local_read ? &local_read_feature : NULL;
+        local_read_feature.pNext = order_extension ? &order_feature : NULL;
+        VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                              .pNext = &dynamic_rendering_feature};
+        if (properties.properties.apiVersion >= VK_API_VERSION_1_3) {
+            PFN_vkGetPhysicalDeviceFeatures2 features2 =
+                (PFN_vkGetPhysicalDeviceFeatures2)instance_function(
+                    instance, "vkGetPhysicalDeviceFeatures2");
+            features2(physical, &features);
+        }
+        if (properties.properties.apiVersion < VK_API_VERSION_1_3)
+            local_read_missing = "the device's Vulkan is older than 1.3 (dynamic rendering)";
+        else if (!offers_local_read)
+            local_read_missing = "the device lacks " VK_KHR_DYNAMIC_RENDERING_LOCAL_READ_EXTENSION_NAME;
+        else if (!dynamic_rendering_feature.dynamicRendering)
+            local_read_missing = "the device lacks the dynamicRendering feature";
+        else if (!local_read_feature.dynamicRenderingLocalRead)
+            local_read_missing = "the device lacks the dynamicRenderingLocalRead feature";
+        else
+            local_read_missing = NULL;
+        if (!order_extension)
+            rasterization_order_missing =
+                "the device lacks VK_EXT_rasterization_order_attachment_access (and ARM's)";
+        else if (!order_feature.rasterizationOrderColorAttachmentAccess)
+            rasterization_order_missing =
+                "the device lacks the rasterizationOrderColorAttachmentAccess feature";
+        else
+            rasterization_order_missing = NULL;
+        /* What is enabled: only what some pipeline asked for and the device offers. */
+        dynamic_rendering_feature.pNext = NULL;
+        local_read_feature.pNext = NULL;
+        if (!local_read_missing) {
+            extensions[extension_count++] = VK_KHR_DYNAMIC_RENDERING_LOCAL_READ_EXTENSION_NAME;
+            executable_feature.pNext = &dynamic_rendering_feature;
+            dynamic_rendering_feature.pNext = &local_read_feature;
+        }
+        if (!local_read_missing && rasterization_order && !rasterization_order_missing) {
+            extensions[extension_count++] = order_extension;
+            local_read_feature.pNext = &order_feature;
+            order_feature = (VkPhysicalDeviceRasterizationOrderAttachmentAccessFeaturesEXT){
+                .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RASTERIZATION_ORDER_ATTACHMENT_ACCESS_FEATURES_EXT,
+                .rasterizationOrderColorAttachmentAccess = VK_TRUE};
+        }
+    }
     VkDeviceCreateInfo device_info = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
                                       .pNext = &executable_feature,
                                       .queueCreateInfoCount = 1,
                                       .pQueueCreateInfos = &queue,
-                                      .enabledExtensionCount = 1,
+                                      .enabledExtensionCount = extension_count,
                                       .ppEnabledExtensionNames = extensions};
     VkDevice device;
     CHECK(create_device(physical, &device_info, NULL, &device),

@@ -37,7 +37,7 @@ use gbuffer_core::Named;
 use serde::Serialize;
 
 pub use run::{Setup, DEFAULT_ROOT};
-pub use shader::{GlesForm, Shader, ShaderError, VulkanForm};
+pub use shader::{GlesForm, Rendering, Shader, ShaderError, VulkanForm};
 pub use statistics::{parse, Cycles, Statistic, Statistics};
 pub use target::{Api, Architecture, Compiler, Target, DEFAULT_TARGETS, TARGETS};
 
@@ -261,11 +261,26 @@ fn prepare(
                 );
             }
             arguments.extend(["--entry".to_string(), form.entry]);
+            if let Some(entry) = form.vertex_entry {
+                arguments.extend(["--vertex-entry".to_string(), entry]);
+            }
             for descriptor in form.descriptors {
                 arguments.extend(["--descriptor".to_string(), descriptor]);
             }
             for color in form.colors {
                 arguments.extend(["--color".to_string(), color]);
+            }
+            for attribute in form.attributes {
+                arguments.extend(["--attribute".to_string(), attribute]);
+            }
+            if form.push_constant_bytes > 0 {
+                arguments.extend([
+                    "--push-constants".to_string(),
+                    form.push_constant_bytes.to_string(),
+                ]);
+            }
+            if form.rendering != Rendering::RenderPass {
+                arguments.extend(["--rendering".to_string(), form.rendering.name().to_string()]);
             }
             if disassembly {
                 arguments.push("--disassembly".to_string());

@@ -1,5 +1,6 @@
 //! A shader as each API's compiler sees it. WGSL is translated by naga, to GLSL ES 3.10 for GL
-//! (panfrost's newest) and to SPIR-V for Vulkan; GLSL ES is given to GL drivers as written.
+//! (panfrost's newest) and to SPIR-V for Vulkan; GLSL ES is given to GL drivers as written, and
+//! a pipeline already in SPIR-V (a renderer's, [`Shader::spirv`]) to Vulkan drivers.
 //! A fragment shader needs a vertex shader to link with: one is made that writes what the fragment
 //! shader reads, as a renderer's would, from values no compiler can know: on GL each input from a
 //! vertex attribute of its own, on Vulkan each from its own words of a storage buffer. For WGSL it
@@ -42,6 +43,8 @@ enum Source {
         module: Arc<(naga::Module, ModuleInfo)>,
         entry: String,
     },
+    /// A pipeline in SPIR-V, as its renderer creates it.
+    Spirv(Box<VulkanForm>),
 }
 
 /// The GL form: the stage's GLSL ES and, for a fragment shader, the vertex shader it links with.
@@ -53,8 +56,31 @@ pub struct GlesForm {
     pub vertex: Option<String>,
 }
 
+/// What a Vulkan graphics pipeline is created for (the helper's `--rendering`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Rendering {
+    /// A render pass object of one subpass, each input attachment an attachment of its own.
+    #[default]
+    RenderPass,
+    /// A dynamic rendering read through `VK_KHR_dynamic_rendering_local_read`, input
+    /// attachment index `i` reading colour attachment `i` (a fused G-buffer pass).
+    LocalRead,
+    /// [`Rendering::LocalRead`] with rasterization-order colour attachment access
+    /// (`VK_EXT_rasterization_order_attachment_access`, or ARM's).
+    LocalReadOrdered,
+}
+
+gbuffer_core::named!(
+    /// The helper's name of the mode: `render-pass`, `local-read`, `local-read-ordered`.
+    Rendering {
+        RenderPass => "render-pass",
+        LocalRead => "local-read",
+        LocalReadOrdered => "local-read-ordered",
+    }
+);
+
 /// The Vulkan form: SPIR-V, the vertex shader's, and the pipeline layout and attachments.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct VulkanForm {
     /// The shader's SPIR-V.
     pub shader: Vec<u32>,
@@ -62,10 +88,20 @@ pub struct VulkanForm {
     pub entry: String,
     /// The vertex shader's SPIR-V (fragment shaders only).
     pub vertex: Option<Vec<u32>>,
+    /// Its entry point's name, where it is not `main` (the helper's `--vertex-entry`).
+    pub vertex_entry: Option<String>,
     /// `SET,BINDING,KIND` for each resource (the helper's `--descriptor`).
     pub descriptors: Vec<String>,
     /// The colour attachments' formats by location (the helper's `--color`).
     pub colors: Vec<String>,
+    /// The vertex attributes' formats by location (the helper's `--attribute`: `r32ui`,
+    /// `rgb32f`...), each in a binding of its own; none for WGSL, whose companion vertex
+    /// shader reads a storage buffer.
+    pub attributes: Vec<String>,
+    /// The push constants' size in bytes, visible to every stage (none for WGSL).
+    pub push_constant_bytes: u32,
+    /// What the pipeline is created for.
+    pub rendering: Rendering,
 }
 
 /// Why a shader cannot be prepared: it does not parse, validate or translate.
@@ -77,6 +113,17 @@ impl Shader {
         Shader {
             stage,
             source: Source::Glsl(text.to_string()),
+            colors: None,
+            vertex: None,
+        }
+    }
+
+    /// A fragment shader's pipeline already in SPIR-V, with everything it is created with
+    /// (`form.vertex` must be given); it compiles only on Vulkan targets.
+    pub fn spirv(form: VulkanForm) -> Shader {
+        Shader {
+            stage: Stage::Fragment,
+            source: Source::Spirv(Box::new(form)),
             colors: None,
             vertex: None,
         }
@@ -161,6 +208,7 @@ impl Shader {
     /// The GLSL ES a GL driver compiles.
     pub fn gles(&self) -> Result<GlesForm, ShaderError> {
         let shader = match &self.source {
+            Source::Spirv(_) => return Err("SPIR-V is costed on Vulkan targets only".into()),
             Source::Glsl(text) => text.clone(),
             Source::Wgsl { module, entry } => {
                 let (module, info) = &**module;
@@ -173,6 +221,8 @@ impl Shader {
             (Stage::Compute, _, _) => None,
             (Stage::Fragment, Some(vertex), _) => Some(vertex.clone()),
             (Stage::Fragment, None, Source::Glsl(text)) => Some(companion_vertex_glsl(text)),
+            // Refused above.
+            (_, _, Source::Spirv(_)) => None,
             (Stage::Fragment, None, Source::Wgsl { module, entry }) => {
                 let (module, _) = &**module;
                 let function = &entry_point(module, entry).function;
@@ -187,8 +237,15 @@ impl Shader {
 
     /// The SPIR-V a Vulkan driver compiles, with what its pipeline needs.
     pub fn vulkan(&self) -> Result<VulkanForm, ShaderError> {
-        let Source::Wgsl { module, entry } = &self.source else {
-            return Err("GLSL ES is costed on GL targets only: give WGSL for Vulkan".into());
+        let (module, entry) = match &self.source {
+            Source::Spirv(form) if form.vertex.is_none() => {
+                return Err("a fragment shader's pipeline needs its vertex shader".into())
+            }
+            Source::Spirv(form) => return Ok((**form).clone()),
+            Source::Glsl(_) => {
+                return Err("GLSL ES is costed on GL targets only: give WGSL for Vulkan".into())
+            }
+            Source::Wgsl { module, entry } => (module, entry),
         };
         let (module, info) = &**module;
         let shader = spirv(module, info, naga_stage(self.stage), entry)?;
@@ -222,6 +279,7 @@ impl Shader {
             vertex,
             descriptors,
             colors,
+            ..VulkanForm::default()
         })
     }
 }

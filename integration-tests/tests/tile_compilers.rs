@@ -14,7 +14,8 @@
 //! - the fused renderer's five GLES programs for every layout it renders, on both fetch paths,
 //!   exactly as the GLES backend links them, on all four.
 //!
-//! Each must compile and link, and the compiler must report its statistics. No Mesa driver
+//! Each must compile and link, and the compiler must report its statistics. The fused Vulkan
+//! paths' pipelines go through turnip, RADV and panvk in `tile_compilers_vulkan`. No Mesa driver
 //! offers GL_EXT_shader_pixel_local_storage: the PLS includes are checked by glslang only
 //! (`codegen_outputs`). Outside CI a missing setup skips with the reason; under `CI=true` it
 //! fails.

@@ -16,7 +16,8 @@
 //! Clip space is y-down in Vulkan: the scene renders with `CLIP_Y_SIGN` -1.
 //!
 //! Here: the renderer, its uploads and the frame's commands; `plans` makes each path's render
-//! passes, `objects` the Vulkan objects they are built of.
+//! passes, `objects` the Vulkan objects they are built of, [`fused_pipelines`] the fused
+//! stages' compiled shaders and pipeline state.
 
 use std::time::Instant;
 
@@ -28,6 +29,7 @@ use gbuffer_gpu::vulkan::{
     StorageBuffer, Vulkan, FEEDBACK,
 };
 
+pub mod fused_pipelines;
 mod objects;
 mod plans;
 

@@ -116,58 +116,32 @@ impl VulkanRenderer {
         fragment: &str,
         draws_in: DrawsIn<'_>,
         layout: vk::PipelineLayout,
+        writes: (Depth, &[bool]),
+        size: (u32, u32),
+    ) -> Result<vk::Pipeline, String> {
+        let shaders = (
+            vertex_spirv(wgsl, vertex)?,
+            glslang(fragment, "frag", true)?,
+        );
+        self.pipeline_of_spirv(vertex, shaders, draws_in, layout, writes, size)
+    }
+
+    /// A pipeline of compiled shaders: `vertex` names the vertex stage's entry point (its
+    /// SPIR-V the first of `spirv`), whose [`vertex_input`] it takes.
+    pub(super) fn pipeline_of_spirv(
+        &self,
+        vertex: &str,
+        (vertex_spirv, fragment_spirv): (Vec<u8>, Vec<u8>),
+        draws_in: DrawsIn<'_>,
+        layout: vk::PipelineLayout,
         (depth, writes): (Depth, &[bool]),
         (width, height): (u32, u32),
     ) -> Result<vk::Pipeline, String> {
-        let vertex_module = self.vulkan.shader_module(&vertex_spirv(wgsl, vertex)?)?;
+        let vertex_module = self.vulkan.shader_module(&vertex_spirv)?;
         let vertex_entry = std::ffi::CString::new(vertex)
             .map_err(|_| format!("`{vertex}` is no entry point name"))?;
-        let fragment_module = self
-            .vulkan
-            .shader_module(&glslang(fragment, "frag", true)?)?;
-        let (bindings, attributes): (Vec<_>, Vec<_>) = match vertex {
-            "geometry_vertex" => (
-                vec![vk::VertexInputBindingDescription {
-                    binding: 0,
-                    stride: std::mem::size_of::<Vertex>() as u32,
-                    input_rate: vk::VertexInputRate::VERTEX,
-                }],
-                vec![
-                    vk::VertexInputAttributeDescription {
-                        location: 0,
-                        binding: 0,
-                        format: vk::Format::R32G32B32_SFLOAT,
-                        offset: 0,
-                    },
-                    vk::VertexInputAttributeDescription {
-                        location: 1,
-                        binding: 0,
-                        format: vk::Format::R32G32B32_SFLOAT,
-                        offset: 12,
-                    },
-                    vk::VertexInputAttributeDescription {
-                        location: 2,
-                        binding: 0,
-                        format: vk::Format::R32_UINT,
-                        offset: 24,
-                    },
-                ],
-            ),
-            "volume_vertex" => (
-                vec![vk::VertexInputBindingDescription {
-                    binding: 0,
-                    stride: 4,
-                    input_rate: vk::VertexInputRate::INSTANCE,
-                }],
-                vec![vk::VertexInputAttributeDescription {
-                    location: 0,
-                    binding: 0,
-                    format: vk::Format::R32_UINT,
-                    offset: 0,
-                }],
-            ),
-            _ => (Vec::new(), Vec::new()),
-        };
+        let fragment_module = self.vulkan.shader_module(&fragment_spirv)?;
+        let (bindings, attributes) = vertex_input(vertex);
         let depth = match depth {
             Depth::None => None,
             Depth::Write => Some((true, vk::CompareOp::LESS)),
@@ -187,6 +161,46 @@ impl VulkanRenderer {
     }
 }
 
+/// The vertex input of the renderer's vertex entry point `vertex`: the mesh's interleaved
+/// vertices (position, normal, material), a volume's index per instance, or nothing (the
+/// fullscreen triangle).
+pub(super) fn vertex_input(
+    vertex: &str,
+) -> (
+    Vec<vk::VertexInputBindingDescription>,
+    Vec<vk::VertexInputAttributeDescription>,
+) {
+    let attribute = |location, format, offset| vk::VertexInputAttributeDescription {
+        location,
+        binding: 0,
+        format,
+        offset,
+    };
+    match vertex {
+        "geometry_vertex" => (
+            vec![vk::VertexInputBindingDescription {
+                binding: 0,
+                stride: std::mem::size_of::<Vertex>() as u32,
+                input_rate: vk::VertexInputRate::VERTEX,
+            }],
+            vec![
+                attribute(0, vk::Format::R32G32B32_SFLOAT, 0),
+                attribute(1, vk::Format::R32G32B32_SFLOAT, 12),
+                attribute(2, vk::Format::R32_UINT, 24),
+            ],
+        ),
+        "volume_vertex" => (
+            vec![vk::VertexInputBindingDescription {
+                binding: 0,
+                stride: 4,
+                input_rate: vk::VertexInputRate::INSTANCE,
+            }],
+            vec![attribute(0, vk::Format::R32_UINT, 0)],
+        ),
+        _ => (Vec::new(), Vec::new()),
+    }
+}
+
 /// How a pipeline tests depth.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Depth {
@@ -203,7 +217,7 @@ pub(super) enum Depth {
 /// Vertex stage `entry` of the WGSL as naga's SPIR-V, clip space as the WGSL writes it (no
 /// coordinate adjustment, as the GLSL translations): the vertex and instance indices are
 /// SPIR-V's builtins, which GLSL would name differently for Vulkan than naga's GL names.
-fn vertex_spirv(wgsl: &str, entry: &str) -> Result<Vec<u8>, String> {
+pub(super) fn vertex_spirv(wgsl: &str, entry: &str) -> Result<Vec<u8>, String> {
     use naga::back::spv;
     let (module, info) = glsl::module(wgsl)?;
     let options = spv::Options {

@@ -7,17 +7,17 @@ use gbuffer_core::Named;
 
 use gbuffer_gpu::vulkan::{DrawsIn, RenderingAttachments};
 
+use super::fused_pipelines::{self, PUSH_CONSTANT_BYTES};
 use super::objects::Depth;
 use super::{
     clear_depth, clear_float, clear_uint, named, Begin, Draw, Pass, Plan, Rendering, StagePipeline,
     VulkanRenderer, DEPTH_FORMAT, OUTPUT_FORMAT, PACKED_FORMAT,
 };
 use crate::fused_programs::{fused_programs, FusedDialect};
-use crate::on_tile::{Path, Stage, TRANSLATION_ENTRY};
+use crate::on_tile::{Path, Stage};
 use crate::options::Options;
 use crate::recording::Attachment;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
-use crate::shaders::used_bindings;
 use crate::shaders::Positions;
 
 /// How a fused plan keeps the G-buffer in its one pass.
@@ -34,7 +34,7 @@ pub(super) enum Fused {
 
 impl VulkanRenderer {
     /// A fused path: one render pass (a render pass object's one subpass, or one dynamic
-    /// rendering), six pipelines, the G-buffer in transient attachments read back as input
+    /// rendering), five pipelines, the G-buffer in transient attachments read back as input
     /// attachments by the later draws.
     pub(super) fn fused_plan(
         &self,
@@ -178,9 +178,8 @@ impl VulkanRenderer {
 
         // Descriptors: the inputs the stages sample in set 0, the G-buffer inputs in set 1,
         // the volume index as a push constant.
-        let wgsl = &shaders.wgsl;
-        let sampled = used_bindings(wgsl, TRANSLATION_ENTRY);
-        let (set0_layout, set0) = self.sampled_set(&sampled, &[])?;
+        let pipelines = fused_pipelines::of_programs(&shaders)?;
+        let (set0_layout, set0) = self.sampled_set(&pipelines[0].sampled, &[])?;
         let input_views: Vec<vk::ImageView> = views[..targets as usize].to_vec();
         let input_layout = match fused {
             Fused::Subpass { .. } => vk::ImageLayout::GENERAL,
@@ -189,15 +188,15 @@ impl VulkanRenderer {
         let (set1_layout, set1) = self.input_attachment_set(&input_views, input_layout)?;
         let layout_handle = self
             .vulkan
-            .pipeline_layout(&[set0_layout, set1_layout], Some(4))?;
+            .pipeline_layout(&[set0_layout, set1_layout], Some(PUSH_CONSTANT_BYTES))?;
 
         let draws_in = match &begin {
             Begin::RenderPass { render_pass, .. } => DrawsIn::Subpass(*render_pass, 0),
             Begin::Rendering(_) => DrawsIn::Rendering(&rendering),
         };
         let mut pipeline_stages = Vec::new();
-        for program in &shaders.programs {
-            let (stage, fragment) = (program.stage, &program.fragment);
+        for compiled in pipelines {
+            let stage = compiled.stage;
             let depth = match stage {
                 Stage::Geometry => Depth::Write,
                 Stage::Sky => Depth::Sky,
@@ -205,10 +204,9 @@ impl VulkanRenderer {
             };
             let writes = stage.writes(layout, targets as usize, 4);
             let pipeline = self
-                .pipeline(
-                    wgsl,
+                .pipeline_of_spirv(
                     stage.vertex_entry(),
-                    fragment,
+                    (compiled.vertex, compiled.fragment),
                     draws_in,
                     layout_handle,
                     (depth, &writes),
