@@ -11,7 +11,8 @@
 //! more than one 8-bit step off against the lossless frame; the frame time on the adapter (the
 //! median of `gbuffer_gpu::timing`'s rounds, every layout timed once a round after warm-up
 //! rounds, as the renderer's bench times them); and a heat map of where the error sits. For the
-//! solved presets, also what the solver predicted for each quantity.
+//! solved presets, also what the solver predicted for each quantity. For the layouts the
+//! on-tile paths keep, each Vulkan path's frame time beside (`crate::vulkan_frames`).
 
 use crate::stdout::report_line;
 use std::path::Path;
@@ -27,6 +28,8 @@ use gbuffer_render::vulkan::VulkanRenderer;
 use gbuffer_render::wgpu::Renderer;
 use gbuffer_solver::presets::{solve_preset, PRESETS};
 use gbuffer_solver::Solution;
+
+use crate::vulkan_frames::{self, PathTimes};
 
 /// The frame size of the table.
 pub const SIZE: (u32, u32) = (1280, 720);
@@ -58,6 +61,19 @@ pub struct FrameRow {
     /// For a solved preset, each quantity's predicted error as the solver words it
     /// (`normal: 0.25 degrees`).
     pub predicted: Vec<String>,
+    /// Each Vulkan path's frame times, milliseconds, where the on-tile paths keep the layout
+    /// and Vulkan is there.
+    pub vulkan_frame_ms: Option<PathTimes>,
+}
+
+/// The frame table: its rows, and the Vulkan device that drew the on-tile paths (none without
+/// Vulkan).
+#[derive(Clone, Debug)]
+pub struct FrameTable {
+    /// One a layout.
+    pub rows: Vec<FrameRow>,
+    /// The Vulkan device's name, API and driver versions.
+    pub vulkan: Option<String>,
 }
 
 /// The packed layouts of the table, with their kind.
@@ -141,6 +157,7 @@ fn measure(
         frame_ms,
         heatmap: heatmap_name,
         predicted: Vec::new(),
+        vulkan_frame_ms: None,
     })
 }
 
@@ -183,13 +200,14 @@ fn predictions(solution: &Solution) -> Vec<String> {
 
 /// Times every layout's frame together by the protocol (`gbuffer_gpu::timing::time_items`:
 /// warm-up rounds, then each layout once a round, so that no clock change falls on one
-/// layout), then renders each and measures it, writing the heat maps into `folder`. The error
-/// says what is missing (the wgpu adapter) or what failed.
+/// layout), then renders each and measures it, writing the heat maps into `folder`, and times
+/// the Vulkan paths of those the on-tile paths keep. The error says what is missing (the wgpu
+/// adapter) or what failed.
 pub fn measure_all(
     folder: &Path,
     protocol: &Protocol,
     progress: &dyn Fn(&str),
-) -> Result<Vec<FrameRow>, String> {
+) -> Result<FrameTable, String> {
     let renderers = Renderers {
         wgpu: Renderer::new(progress)?,
         vulkan: match VulkanRenderer::new(progress) {
@@ -258,6 +276,7 @@ pub fn measure_all(
             .transpose()?;
         let lossless = scene_lossless.as_ref().unwrap_or(&packed_lossless);
         let frame_ms = time.map(|seconds| seconds * 1e3);
+        let tile_options = options(gbuffer.clone());
         let mut row = measure(
             &renderers,
             (name, kind),
@@ -268,9 +287,23 @@ pub fn measure_all(
         if let Some(solution) = &solution {
             row.predicted = predictions(solution);
         }
+        if let Some(vulkan) = &renderers.vulkan {
+            row.vulkan_frame_ms =
+                vulkan_frames::time_paths(vulkan, &tile_options, protocol, progress)?;
+        }
         rows.push(row);
     }
-    Ok(rows)
+    Ok(FrameTable {
+        rows,
+        vulkan: (renderers.vulkan.as_ref()).map(|vulkan| vulkan.describe().to_string()),
+    })
+}
+
+/// The rows the Vulkan paths were timed for, with their times.
+fn vulkan_rows(table: &FrameTable) -> Vec<(&str, &PathTimes)> {
+    (table.rows.iter())
+        .filter_map(|row| Some((row.layout.as_str(), row.vulkan_frame_ms.as_ref()?)))
+        .collect()
 }
 
 fn bandwidth(units: Option<f64>) -> String {
@@ -278,7 +311,8 @@ fn bandwidth(units: Option<f64>) -> String {
 }
 
 /// The table as printed on stdout.
-pub fn print(rows: &[FrameRow], adapter: &str) {
+pub fn print(table: &FrameTable, adapter: &str) {
+    let rows = &table.rows;
     report_line!(
         "\nframes at {}x{} against the lossless G-buffer (PSNR, largest error and share of \
          pixels over one 8-bit step), bandwidth units (width x height x 4 bytes) on wgpu and \
@@ -314,12 +348,14 @@ pub fn print(rows: &[FrameRow], adapter: &str) {
             row.predicted.join("; ")
         );
     }
+    if let Some(device) = &table.vulkan {
+        vulkan_frames::print(&vulkan_rows(table), device);
+    }
 }
 
 /// The rows as `report.json`'s `frames`.
-pub fn json(rows: &[FrameRow]) -> serde_json::Value {
-    let rows: Vec<serde_json::Value> = rows
-        .iter()
+pub fn json(table: &FrameTable) -> serde_json::Value {
+    let rows: Vec<serde_json::Value> = (table.rows.iter())
         .map(|row| {
             serde_json::json!({
                 "layout": row.layout,
@@ -339,6 +375,7 @@ pub fn json(rows: &[FrameRow]) -> serde_json::Value {
                 "frame_ms_max": row.frame_ms.max,
                 "heatmap": row.heatmap,
                 "predicted_errors": row.predicted,
+                "vulkan_frame_ms": row.vulkan_frame_ms.as_ref().map(vulkan_frames::json),
             })
         })
         .collect();
@@ -346,7 +383,8 @@ pub fn json(rows: &[FrameRow]) -> serde_json::Value {
 }
 
 /// The table in `report.md`, with each heat map linked.
-pub fn markdown(rows: &[FrameRow], adapter: &str, protocol: &Protocol) -> String {
+pub fn markdown(table: &FrameTable, adapter: &str, protocol: &Protocol) -> String {
+    let rows = &table.rows;
     let mut out = format!(
         "\n## Frames: what each layout costs the picture\n\n\
          The reference scene at {}x{}, each layout's frame against the lossless G-buffer's \
@@ -374,5 +412,8 @@ pub fn markdown(rows: &[FrameRow], adapter: &str, protocol: &Protocol) -> String
         ));
     }
     out.push('\n');
+    if let Some(device) = &table.vulkan {
+        out.push_str(&vulkan_frames::markdown(&vulkan_rows(table), device));
+    }
     out
 }

@@ -31,6 +31,7 @@ mod rows;
 mod stdout;
 mod table;
 mod timing;
+pub mod vulkan_frames;
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -115,6 +116,7 @@ pub fn run(folder: &Path) -> Result<(), String> {
     json["timing_consistent"] = serde_json::json!(inconsistencies.is_empty());
     json["timing_inconsistencies"] = serde_json::json!(inconsistencies);
     json["frames"] = frames::json(&frames);
+    json["frames_vulkan_device"] = serde_json::json!(frames.vulkan);
     json["frames_on_compilers"] = frame_shaders.json();
     json["white_furnace"] = furnace_json(&furnace);
     let mut markdown = markdown_report(

@@ -362,6 +362,11 @@ impl VulkanRenderer {
         Ok(renderer)
     }
 
+    /// The device's name, API and driver versions.
+    pub fn describe(&self) -> &str {
+        self.vulkan.describe()
+    }
+
     /// Renders a frame and reads it back, with the calls it made.
     pub fn render(&self, tile: &TileOptions) -> Result<(Frame, Recording), String> {
         let plan = self.plan(tile)?;
