@@ -24,11 +24,15 @@ fn options(layout: PackedLayout) -> Options {
     }
 }
 
-/// The times of `layout`'s paths on a device opened with `optional`, and what was reported.
+/// Each path, and whether it got a time.
+type Timed = Vec<(Path, bool)>;
+
+/// Which of `layout`'s paths got times on a device opened with `optional` (none: the on-tile
+/// paths do not keep the layout), and what was reported.
 fn times(
     optional: OptionalExtensions,
     layout: PackedLayout,
-) -> Option<(Option<Vec<(Path, bool)>>, Vec<String>)> {
+) -> Option<(Option<Timed>, Vec<String>)> {
     let vulkan = or_skip("Vulkan", Vulkan::with(optional))?;
     let renderer = VulkanRenderer::on(vulkan, &|_| {}).unwrap_or_else(|error| panic!("{error}"));
     let said = RefCell::new(Vec::new());
