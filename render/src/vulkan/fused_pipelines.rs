@@ -38,7 +38,7 @@ pub struct FusedPipeline {
     pub vertex_attributes: Vec<vk::Format>,
 }
 
-/// The fused paths' pipelines for `options`, one a stage in [`Stage::ALL`]'s order.
+/// The fused paths' pipelines for `options`, one a stage, in drawing order ([`Stage`]).
 pub fn fused_pipelines(options: &Options) -> Result<Vec<FusedPipeline>, String> {
     of_programs(&fused_programs(options, FusedDialect::VulkanSubpass)?)
 }
