@@ -12,8 +12,10 @@
 //!   driver and it reports no instruction counts): it builds the subpass path's sky and refuses
 //!   local read, its Vulkan being older than 1.3.
 //!
-//! A refusal is the helper's one-line reason, held here to what each driver offers. Each
-//! compiler turns a stage into as many instructions for every pass it builds.
+//! The helper gives each vertex attribute a binding of its own, read per vertex: the renderer
+//! reads the volume index per instance, which changes the vertex stage's fetch, not the
+//! fragment stage. A refusal is the helper's one-line reason, held here to what each driver
+//! offers. Each compiler turns a stage into as many instructions for every pass it builds.
 
 use ash::vk;
 use gbuffer_core::Named;
