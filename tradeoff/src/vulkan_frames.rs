@@ -76,8 +76,12 @@ pub fn time_paths(
     ))
 }
 
-fn median(time: &Option<Spread>) -> String {
-    time.map_or_else(|| "-".to_string(), |time| format!("{:.2}", time.median))
+/// A time's median in ms, followed by `unit`, or `-` where there is none.
+fn median(time: &Option<Spread>, unit: &str) -> String {
+    time.map_or_else(
+        || "-".to_string(),
+        |time| format!("{:.2}{unit}", time.median),
+    )
 }
 
 /// The layouts' rows: name and times, for those the on-tile paths keep.
@@ -97,7 +101,7 @@ pub fn print(rows: &Rows, device: &str) {
     for (layout, times) in rows {
         report_line!(
             "{layout:<28} {}",
-            columns(times.iter().map(|(_, time)| median(time)))
+            columns(times.iter().map(|(_, time)| median(time, "")))
         );
     }
 }
@@ -110,15 +114,13 @@ fn columns(cells: impl Iterator<Item = String>) -> String {
         .join(" ")
 }
 
-/// The table in `report.md`.
+/// The table in `report.md`, each time with its unit, by which the guide's copy of the table is
+/// held to it within a tolerance (a CPU's frame times follow its load).
 pub fn markdown(rows: &Rows, device: &str) -> String {
     if rows.is_empty() {
         return String::new();
     }
-    let names: Vec<String> = PATHS
-        .iter()
-        .map(|path| format!("{} ms", path.name()))
-        .collect();
+    let names: Vec<&str> = PATHS.iter().map(|path| path.name()).collect();
     let mut out = format!(
         "\nThe layouts the on-tile paths keep, on each Vulkan path at the same size and by the same \
          protocol: the median frame ms on {device} (`report.json`'s `vulkan_frame_ms` has each \
@@ -128,7 +130,7 @@ pub fn markdown(rows: &Rows, device: &str) -> String {
         " --: |".repeat(PATHS.len())
     );
     for (layout, times) in rows {
-        let cells: Vec<String> = times.iter().map(|(_, time)| median(time)).collect();
+        let cells: Vec<String> = times.iter().map(|(_, time)| median(time, " ms")).collect();
         out.push_str(&format!("| {layout} | {} |\n", cells.join(" | ")));
     }
     out
