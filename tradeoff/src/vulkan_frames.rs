@@ -3,7 +3,7 @@
 //! paths) at the table's size, by the same protocol as the wgpu frames: the bench's Vulkan rows
 //! at 1280x720, beside the layout's traffic. A path the device does not draw (local read without
 //! `VK_KHR_dynamic_rendering_local_read`, rasterization order without its extension) has no
-//! time, and the table says why once.
+//! time, and the report says why.
 
 use gbuffer_core::Named;
 use gbuffer_gpu::timing::{time_items, Protocol, Spread};
@@ -27,8 +27,8 @@ pub type PathTimes = Vec<(TilePath, Option<Spread>)>;
 
 /// Times the Vulkan paths of the layout `options` renders, if the on-tile paths keep it
 /// (`None` otherwise): every path it draws, each once a round after warm-up rounds
-/// ([`time_items`]), so that no clock change falls on one path. A path the device refuses is
-/// reported through `progress` with the reason.
+/// ([`time_items`]), so that no clock change falls on one path. A path the device cannot draw
+/// is reported through `progress` with the reason; any other failure is the error.
 pub fn time_paths(
     vulkan: &VulkanRenderer,
     options: &Options,
@@ -45,13 +45,12 @@ pub fn time_paths(
             options: options.clone(),
             path,
         };
-        match vulkan.timed_frame(&tile, &[]) {
-            Ok(frame) => {
-                frames.push(frame);
-                drawn.push(path);
-            }
-            Err(reason) => progress(&format!("frame table: no {} frames: {reason}", path.name())),
+        if let Some(reason) = vulkan.cannot_draw(path) {
+            progress(&format!("frame table: no {} frames: {reason}", path.name()));
+            continue;
         }
+        frames.push(vulkan.timed_frame(&tile, &[])?);
+        drawn.push(path);
     }
     let (warm, times) = time_items(protocol, frames.len(), &mut |index| frames[index].seconds())?;
     if !warm.settled {

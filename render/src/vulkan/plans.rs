@@ -33,6 +33,43 @@ pub(super) enum Fused {
 }
 
 impl VulkanRenderer {
+    /// Why the device cannot draw `path` (a local-read path without the extensions it needs),
+    /// or `None` where it can.
+    pub fn cannot_draw(&self, path: Path) -> Option<String> {
+        match path {
+            Path::LocalRead => self.local_read_commands(false).err(),
+            Path::LocalReadOrdered => self.local_read_commands(true).err(),
+            _ => None,
+        }
+    }
+
+    /// The local-read commands, or why the device cannot draw the local-read path (in
+    /// rasterization order where `rasterization_order`).
+    fn local_read_commands(
+        &self,
+        rasterization_order: bool,
+    ) -> Result<ash::khr::dynamic_rendering_local_read::Device, String> {
+        let path = if rasterization_order {
+            Path::LocalReadOrdered
+        } else {
+            Path::LocalRead
+        };
+        let local_read = self.vulkan.local_read().map_err(|why| {
+            format!(
+                "--path {} needs dynamic rendering with local read: {why}",
+                path.name()
+            )
+        })?;
+        if let (true, Err(why)) = (rasterization_order, &local_read.rasterization_order) {
+            return Err(format!(
+                "--path {} needs rasterization-order attachment access: {why} (--path \
+                 local-read draws with barriers instead)",
+                path.name()
+            ));
+        }
+        Ok(local_read.commands.clone())
+    }
+
     /// A fused path: one render pass (a render pass object's one subpass, or one dynamic
     /// rendering), five pipelines, the G-buffer in transient attachments read back as input
     /// attachments by the later draws.
@@ -53,27 +90,7 @@ impl VulkanRenderer {
         // The local-read paths' commands, checked before anything is made for them.
         let local_read = match fused {
             Fused::Subpass { .. } => None,
-            Fused::LocalRead { .. } => {
-                let path = if rasterization_order {
-                    Path::LocalReadOrdered
-                } else {
-                    Path::LocalRead
-                };
-                let local_read = self.vulkan.local_read().map_err(|why| {
-                    format!(
-                        "--path {} needs dynamic rendering with local read: {why}",
-                        path.name()
-                    )
-                })?;
-                if let (true, Err(why)) = (rasterization_order, &local_read.rasterization_order) {
-                    return Err(format!(
-                        "--path {} needs rasterization-order attachment access: {why} (--path \
-                         local-read draws with barriers instead)",
-                        path.name()
-                    ));
-                }
-                Some(local_read.commands.clone())
-            }
+            Fused::LocalRead { .. } => Some(self.local_read_commands(rasterization_order)?),
         };
         let model = layout.layout();
         // The same shaders for the subpass and the local-read paths: what differs is the
