@@ -394,12 +394,26 @@ mod tests {
                 .device
                 .features()
                 .contains(wgpu::Features::TIMESTAMP_QUERY);
-            let mut timer = Timer::new(&gpu, gbuffer_gpu::timing::Protocol::SHORT);
-            let rows = [
-                timer.add("cheap", cheap, &[], 1),
-                timer.add("dear", dear, &[], 1),
-            ];
-            let times = timer.run();
+            // One round the shared cores slowed can put the dear row's spread over its
+            // median: such a run is measured again, up to three times in all, as the packing
+            // times' test does; a row that never stands clear of its spread fails.
+            let mut attempt = 0;
+            let (rows, times) = loop {
+                attempt += 1;
+                let mut timer = Timer::new(&gpu, gbuffer_gpu::timing::Protocol::SHORT);
+                let rows = [
+                    timer.add("cheap", cheap, &[], 1),
+                    timer.add("dear", dear, &[], 1),
+                ];
+                let times = timer.run();
+                let dear_resolved = Stage::ALL
+                    .iter()
+                    .all(|&stage| (times[rows[1]].get(stage)).is_some_and(|time| time.resolved()));
+                if dear_resolved || attempt == 3 {
+                    break (rows, times);
+                }
+                eprintln!("the dear row did not resolve on attempt {attempt}: measuring again");
+            };
             assert_eq!(times.len(), 2);
             for &stage in Stage::ALL {
                 let [cheap, dear] = rows.map(|row| times[row].get(stage).unwrap());
