@@ -79,8 +79,14 @@ fn a_device_without_local_read_gets_no_local_read_times_and_says_why() {
     };
     let drawn = |path: Path| !matches!(path, Path::LocalRead | Path::LocalReadOrdered);
     assert_eq!(times, Some(PATHS.map(|path| (path, drawn(path))).to_vec()));
-    assert_eq!(said.len(), 2, "{said:?}");
-    assert!(said[0].starts_with("frame table: no local-read frames: --path local-read needs"));
+    // One line a path it cannot draw (a loaded machine may add that the times did not settle).
+    let refused: Vec<&String> = (said.iter())
+        .filter(|line| line.starts_with("frame table: no "))
+        .collect();
+    assert_eq!(refused.len(), 2, "{said:?}");
+    assert!(refused[0].starts_with("frame table: no local-read frames: --path local-read needs"));
+    assert!(refused[1]
+        .starts_with("frame table: no local-read-ordered frames: --path local-read-ordered needs"));
 }
 
 #[test]
