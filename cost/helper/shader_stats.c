@@ -440,8 +440,6 @@ static VkPipelineLayout pipeline_layout(VkDevice device, const struct descriptor
     return layout;
 }
 
-/* A render pass with one colour attachment a format, and the input attachments the shader
- * names (set 0's input-attachment descriptors, in binding order) as extra attachments. */
 /* An attachment of `format`, loaded and stored, in the general layout throughout: the render
  * pass exists only for the pipeline to be created against. */
 static VkAttachmentDescription attachment(VkFormat format) {
@@ -457,6 +455,8 @@ static VkAttachmentDescription attachment(VkFormat format) {
     };
 }
 
+/* A render pass with one colour attachment a format, and the input attachments the shader
+ * names (its input-attachment descriptors, in binding order) as extra attachments. */
 static VkRenderPass render_pass(VkDevice device, const VkFormat *colors, unsigned color_count,
                                 const struct descriptor *descriptors, unsigned descriptor_count) {
     VkAttachmentDescription attachments[2 * MAX_ITEMS];
@@ -901,13 +901,11 @@ static int run_vulkan(int argc, char **argv) {
         local_read_feature.pNext = order_extension ? &order_feature : NULL;
         VkPhysicalDeviceFeatures2 features = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
                                               .pNext = &dynamic_rendering_feature};
-        if (properties.properties.apiVersion >= VK_API_VERSION_1_3) {
-            PFN_vkGetPhysicalDeviceFeatures2 features2 =
-                (PFN_vkGetPhysicalDeviceFeatures2)instance_function(
-                    instance, "vkGetPhysicalDeviceFeatures2");
-            features2(physical, &features);
-        }
-        if (properties.properties.apiVersion < VK_API_VERSION_1_3)
+        int vulkan_1_3 = properties.properties.apiVersion >= VK_API_VERSION_1_3;
+        if (vulkan_1_3)
+            ((PFN_vkGetPhysicalDeviceFeatures2)instance_function(
+                instance, "vkGetPhysicalDeviceFeatures2"))(physical, &features);
+        if (!vulkan_1_3)
             local_read_missing = "the device's Vulkan is older than 1.3 (dynamic rendering)";
         else if (!offers_local_read)
             local_read_missing = "the device lacks " VK_KHR_DYNAMIC_RENDERING_LOCAL_READ_EXTENSION_NAME;

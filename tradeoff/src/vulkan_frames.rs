@@ -59,18 +59,13 @@ pub fn time_paths(
             warm.runs
         ));
     }
-    let mut times = drawn.into_iter().zip(times);
-    let mut next = times.next();
+    // `drawn` is in `PATHS`' order, and `times` in `drawn`'s.
+    let mut times = times
+        .into_iter()
+        .map(|time| time.map(|seconds| seconds * 1e3));
     Ok(Some(
-        PATHS
-            .iter()
-            .map(|&path| match next {
-                Some((drawn, time)) if drawn == path => {
-                    next = times.next();
-                    (path, Some(time.map(|seconds| seconds * 1e3)))
-                }
-                _ => (path, None),
-            })
+        (PATHS.iter())
+            .map(|path| (*path, drawn.contains(path).then(|| times.next()).flatten()))
             .collect(),
     ))
 }

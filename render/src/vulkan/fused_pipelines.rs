@@ -7,12 +7,12 @@
 use ash::vk;
 use gbuffer_gpu::tools::glslang;
 
-use super::objects::{vertex_input, vertex_spirv};
+use super::objects::{combined_image_bindings, vertex_input, vertex_spirv};
 use super::{OUTPUT_FORMAT, PACKED_FORMAT};
 use crate::fused_programs::{fused_programs, FusedDialect, FusedPrograms};
 use crate::on_tile::{Stage, TRANSLATION_ENTRY};
 use crate::options::Options;
-use crate::shaders::{used_bindings, CLAMPED_SAMPLER_BINDING, ENVIRONMENT_SAMPLER_BINDING};
+use crate::shaders::used_bindings;
 
 /// The push constants every fused stage's layout holds: the volume index (a `u32`).
 pub const PUSH_CONSTANT_BYTES: u32 = 4;
@@ -46,11 +46,7 @@ pub fn fused_pipelines(options: &Options) -> Result<Vec<FusedPipeline>, String> 
 /// The pipelines of the Vulkan fused programs `programs`.
 pub(super) fn of_programs(programs: &FusedPrograms) -> Result<Vec<FusedPipeline>, String> {
     let targets = programs.interface.attachments.len();
-    // GLSL combines each texture with its sampler: the samplers' own bindings are not bound.
-    let sampled: Vec<u32> = used_bindings(&programs.wgsl, TRANSLATION_ENTRY)
-        .into_iter()
-        .filter(|binding| ![ENVIRONMENT_SAMPLER_BINDING, CLAMPED_SAMPLER_BINDING].contains(binding))
-        .collect();
+    let sampled = combined_image_bindings(&used_bindings(&programs.wgsl, TRANSLATION_ENTRY));
     let colour_formats: Vec<vk::Format> = std::iter::repeat_n(PACKED_FORMAT, targets)
         .chain([OUTPUT_FORMAT])
         .collect();

@@ -23,12 +23,7 @@ impl VulkanRenderer {
         frame_textures: &[(u32, vk::ImageView)],
     ) -> Result<(vk::DescriptorSetLayout, vk::DescriptorSet), String> {
         let mut resources = Vec::new();
-        // GLSL combines each texture with its sampler.
-        let samplers = [ENVIRONMENT_SAMPLER_BINDING, CLAMPED_SAMPLER_BINDING];
-        for &binding in bindings
-            .iter()
-            .filter(|binding| !samplers.contains(binding))
-        {
+        for binding in combined_image_bindings(bindings) {
             if let Some((_, view)) = self.inputs.iter().find(|(input, _)| *input == binding) {
                 let sampler = if binding == ENVIRONMENT_BINDING {
                     self.environment_sampler
@@ -159,6 +154,15 @@ impl VulkanRenderer {
             size: (width, height),
         })
     }
+}
+
+/// The bindings of `bindings` that are combined image samplers in Vulkan's GLSL: GLSL combines
+/// each texture with its sampler, so the samplers' own bindings are not bound.
+pub(super) fn combined_image_bindings(bindings: &[u32]) -> Vec<u32> {
+    let samplers = [ENVIRONMENT_SAMPLER_BINDING, CLAMPED_SAMPLER_BINDING];
+    (bindings.iter().copied())
+        .filter(|binding| !samplers.contains(binding))
+        .collect()
 }
 
 /// The vertex input of the renderer's vertex entry point `vertex`: the mesh's interleaved
