@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # The measurements that want a real GPU, in one command: the trade-off study with its frame
-# table (`gbuffer report`) and the renderer's bench, written as one dated, adapter-named file.
+# table (`gbuffer report`), the renderer's bench and the packing times held against an
+# independent round trip, written as one dated, adapter-named file.
 #
 #   scripts/gpu-results.sh build          # here: release binaries into .gpu/ (no GPU needed)
 #   scripts/gpu-results.sh run [DIR]      # on the GPU machine: measure, write into DIR
 #   scripts/gpu-results.sh                # both, on a machine that has cargo and a GPU
 #
 # `run` writes DIR/<date>-<adapter>.md (the report's markdown, the frame table, the bench's
-# table), DIR/<date>-<adapter>.json (report.json) and DIR/<date>-<adapter>-heatmaps.tar (the
-# frame table's heat maps); DIR defaults to docs/gpu. It needs no Rust toolchain: it runs what
-# `build` put in .gpu/, so a machine that only runs binaries (the device tool's) can run it.
+# table, the independent round trip's table and verdict), DIR/<date>-<adapter>.json
+# (report.json) and DIR/<date>-<adapter>-heatmaps.tar (the frame table's heat maps); DIR
+# defaults to docs/gpu. It needs no Rust toolchain: it runs what `build` put in .gpu/, so a
+# machine that only runs binaries (the device tool's) can run it.
 # With a Vulkan loader and an NVIDIA driver, wgpu picks the GPU; WGPU_BACKEND=vulkan forces it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,16 +23,23 @@ build() {
     bench=$(cargo bench --no-run -p gbuffer-render --bench deferred --message-format=json 2>/dev/null |
         sed -n 's/.*"executable":"\([^"]*deferred-[^"]*\)".*/\1/p' | tail -n 1)
     [ -n "$bench" ] || { echo "gpu-results: cargo built no bench executable" >&2; exit 1; }
+    # The trade-off crate's tests, of which `run` runs one: the packing table against the
+    # independent round trip (`tradeoff/src/independent_harness.rs`), on the GPU's adapter.
+    local tradeoff_tests
+    tradeoff_tests=$(cargo test --release --no-run -p gbuffer-tradeoff --lib --message-format=json 2>/dev/null |
+        sed -n 's/.*"executable":"\([^"]*gbuffer_tradeoff-[^"]*\)".*/\1/p' | tail -n 1)
+    [ -n "$tradeoff_tests" ] || { echo "gpu-results: cargo built no trade-off test executable" >&2; exit 1; }
     mkdir -p .gpu
     cp target/release/gbuffer .gpu/gbuffer
     cp "$bench" .gpu/deferred-bench
+    cp "$tradeoff_tests" .gpu/tradeoff-tests
     # The scene presets the frame table solves, read from the source tree at run time.
-    echo "gpu-results: built .gpu/gbuffer and .gpu/deferred-bench"
+    echo "gpu-results: built .gpu/gbuffer, .gpu/deferred-bench and .gpu/tradeoff-tests"
 }
 
 run() {
     local folder=${1:-docs/gpu}
-    [ -x .gpu/gbuffer ] && [ -x .gpu/deferred-bench ] ||
+    [ -x .gpu/gbuffer ] && [ -x .gpu/deferred-bench ] && [ -x .gpu/tradeoff-tests ] ||
         { echo "gpu-results: run '$0 build' first (no .gpu/gbuffer)" >&2; exit 1; }
     local work
     work=$(mktemp -d)
@@ -43,6 +52,13 @@ run() {
     local name
     name="$(date -u +%Y-%m-%d)-$slug"
     .gpu/deferred-bench | tee "$work/bench.txt"
+    # The test prints its table whether it passes or not; a failure is a finding to keep, not a
+    # reason to lose the rest of the run.
+    local verdict="every conversion agrees (within 15%, or the spreads where wider)"
+    .gpu/tradeoff-tests --exact --nocapture \
+        independent_harness::tests::the_packing_times_agree_with_an_independent_round_trip \
+        >"$work/independent.txt" 2>&1 || verdict="SOME CONVERSIONS READ APART (the test failed)"
+    cat "$work/independent.txt"
     mkdir -p "$folder"
     {
         echo "# GPU results: $adapter, $(date -u +%Y-%m-%d)"
@@ -56,6 +72,15 @@ run() {
         echo
         echo '```text'
         cat "$work/bench.txt"
+        echo '```'
+        echo
+        echo "## The packing times against an independent round trip"
+        echo
+        echo "The report's pack plus unpack time of each conversion against one chain of its own"
+        echo "(\`tradeoff/src/independent_harness.rs\`), in ns a step: $verdict."
+        echo
+        echo '```text'
+        cat "$work/independent.txt"
         echo '```'
     } >"$folder/$name.md"
     cp "$work/report/report.json" "$folder/$name.json"
