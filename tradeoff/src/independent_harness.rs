@@ -6,14 +6,16 @@
 //! few instructions of glue that carry its output to the next step, and takes the glue's own
 //! time off (`crate::packing`). Here nothing of that is reused but the generated conversions:
 //! one compute shader of its own chains the round trip a renderer makes across its passes,
-//! `texel = unpack(pack(texel) with its word perturbed)`, where the perturbation (an
-//! exclusive or with the step's index and the invocation's, then the mask that keeps float
-//! channels finite) is a value the compiler cannot fold into either call; its own dispatch,
-//! timed by the wall clock around a synchronised submit, its chain doubled until doubling it
-//! adds [`TARGET_ADDED_S`] to a run, a step's time what doubling adds to the fastest of
-//! [`ROUNDS`] runs, less the same chain with the conversions left out. The report's pack time
-//! plus its unpack time must come within [`TOLERANCE`] of that step, or within the report's
-//! spreads where the adapter's noise makes them wider.
+//! `texel = unpack(pack(texel) with its word perturbed) times a factor`, where the
+//! perturbations (an exclusive or with the step's index and the invocation's, a product with
+//! an odd factor, then the mask that keeps float channels finite; a float factor; both factors
+//! 1 and read from a buffer) are values the compiler cannot fold into either call, nor through
+//! one step into the next; its own dispatch, timed by the wall clock around a synchronised
+//! submit, its chain doubled until doubling it adds [`TARGET_ADDED_S`] to a run, a step's time
+//! what doubling adds to the fastest of [`ROUNDS`] runs, less the same chain with the
+//! conversions left out, measured next to it. The report's pack time plus its unpack time must
+//! come within [`TOLERANCE`] of that step, or within the report's spreads where the adapter's
+//! noise makes them wider.
 
 use std::time::Instant;
 
@@ -114,9 +116,11 @@ impl<'a> RoundTrip<'a> {
             ],
         });
         let run = |steps: u32| {
-            self.gpu
-                .queue
-                .write_buffer(&self.steps, 0, bytemuck::cast_slice(&[steps, 0, 0, 0]));
+            self.gpu.queue.write_buffer(
+                &self.steps,
+                0,
+                bytemuck::cast_slice(&[steps, 1f32.to_bits(), 1, 0]),
+            );
             let mut encoder = device.create_command_encoder(&Default::default());
             {
                 let mut pass = encoder.begin_compute_pass(&Default::default());
@@ -151,43 +155,61 @@ impl<'a> RoundTrip<'a> {
     }
 }
 
-/// The round trip's shader for one format and mode, or with `None` the same chain without the
-/// conversions (the perturbation alone).
-fn round_trip_wgsl(conversion: Option<(Format, Conversions)>) -> String {
-    // The bare chain perturbs rgba8's full word, as r11f_g11f_b10f's exact form would.
-    let (format, conversions) = conversion.unwrap_or((Format::Rgba8, Conversions::Exact));
+/// The round trip's shader for `format`: with `Some(conversions)` the chain through that mode's
+/// conversions; with `None` the same chain's perturbations alone, the conversions replaced by
+/// the first channel's bits (the time taken off).
+///
+/// Each step perturbs both sides of the round trip with values the compiler cannot see: the
+/// packed word by the step's and the invocation's index and then times an odd factor read from
+/// the uniform buffer (1 at run time; then the mask that keeps float channels finite), the
+/// unpacked texel by a float factor read from it too (1.0). Without the float factor a
+/// compiler sees `pack(unpack(word))` whole across two steps: r11f_g11f_b10f's fast form
+/// widens each code into a half and narrows it back, which LLVM folds to the bits it started
+/// from (on lavapipe that chain read a quarter of the report's time). Without the odd factor
+/// the exclusive or, a bitwise operation, lets the compiler merge unpack's shifts and masks
+/// with pack's (then it read two thirds of the report's time); a product's bits depend on
+/// lower ones, which no shift undoes.
+fn round_trip_wgsl(format: Format, conversions: Option<Conversions>) -> String {
     let layout = one_field(format);
-    let (swizzle, pad) = match layout.fields[0].ty.components {
-        2 => (".xy", ", 0.0, 0.0"),
-        3 => (".xyz", ", 0.0"),
-        _ => ("", ""),
+    let components = layout.fields[0].ty.components;
+    let (swizzle, pad, rest) = match components {
+        2 => (".xy", ", 0.0, 0.0", ", value.y"),
+        3 => (".xyz", ", 0.0", ", value.yz"),
+        _ => ("", "", ", value.yzw"),
     };
     let mask = crate::packing::finite_mask(format);
-    let (declarations, start, step, end) = match conversion {
-        Some(_) => (
+    let (declarations, start, step, end) = match conversions {
+        Some(conversions) => (
             emit_with(&layout, conversions),
             format!("var texel = Texel(start{swizzle});"),
             format!(
                 "let words = pack_texel(texel);\n        \
-                 texel = unpack_texel(array<u32, 1>((words[0] ^ (step + id.x)) & {mask:#010x}u));"
+                 texel = unpack_texel(array<u32, 1>(((words[0] ^ (step + id.x)) * odd) & {mask:#010x}u));\n        \
+                 texel.value *= scale;"
             ),
             format!("ends[id.x] = vec4<f32>(texel.value{pad});"),
         ),
         None => (
             String::new(),
-            "var word = bitcast<u32>(start.x);".to_string(),
-            format!("word = (word ^ (step + id.x)) & {mask:#010x}u;"),
-            "ends[id.x] = vec4<f32>(bitcast<f32>(word), start.yzw);".to_string(),
+            format!("var value = start{swizzle};"),
+            format!(
+                "let word = bitcast<u32>(value.x);\n        \
+                 value = vec{components}<f32>(bitcast<f32>(((word ^ (step + id.x)) * odd) & {mask:#010x}u){rest}) * scale;"
+            ),
+            format!("ends[id.x] = vec4<f32>(value{pad});"),
         ),
     };
     format!(
         "{declarations}\n\
          @group(0) @binding(0) var<storage, read> starts: array<vec4<f32>>;\n\
+         // The chain's length, the bits of the texel's factor (1.0), the word's (1).\n\
          @group(0) @binding(1) var<uniform> steps: vec4<u32>;\n\
          @group(0) @binding(2) var<storage, read_write> ends: array<vec4<f32>>;\n\n\
          @compute @workgroup_size({WORKGROUP_SIZE})\n\
          fn main(@builtin(global_invocation_id) id: vec3<u32>) {{\n    \
              let start = starts[id.x];\n    \
+             let scale = bitcast<f32>(steps.y);\n    \
+             let odd = steps.z;\n    \
              {start}\n    \
              for (var step = 0u; step < steps.x; step++) {{\n        \
                  {step}\n    \
@@ -208,14 +230,19 @@ mod tests {
     #[test]
     fn every_round_trip_is_a_valid_shader() {
         for (format, conversions) in crate::packing::modes() {
-            let shader = round_trip_wgsl(Some((format, conversions)));
+            let shader = round_trip_wgsl(format, Some(conversions));
             gbuffer_validator::validate_wgsl(&shader)
                 .unwrap_or_else(|problem| panic!("{format:?} {conversions:?}: {problem}"));
-            assert!(shader.contains("unpack_texel(array<u32, 1>((words[0] ^ (step + id.x))"));
+            assert!(
+                shader.contains("unpack_texel(array<u32, 1>(((words[0] ^ (step + id.x)) * odd)")
+            );
+            assert!(shader.contains("texel.value *= scale;"), "{shader}");
+            let bare = round_trip_wgsl(format, None);
+            gbuffer_validator::validate_wgsl(&bare)
+                .unwrap_or_else(|problem| panic!("{format:?}: {problem}"));
+            assert!(!bare.contains("pack_texel"), "{bare}");
+            assert!(bare.contains(") * scale;"), "{bare}");
         }
-        let bare = round_trip_wgsl(None);
-        gbuffer_validator::validate_wgsl(&bare).unwrap_or_else(|problem| panic!("{problem}"));
-        assert!(!bare.contains("pack_texel"), "{bare}");
     }
 
     /// On the machine's adapter, for every format and mode, the report's pack time plus its
@@ -263,8 +290,7 @@ mod tests {
         let mut timer = Timer::new(gpu, gbuffer_gpu::timing::Protocol::FULL);
         crate::packing::time_rows(&mut timer);
         let times = crate::packing::conversion_times(&timer.run_in(&[Stage::Compute]));
-        let bare = round_trip.ns_per_step(&round_trip_wgsl(None));
-        let mut table = format!("bare chain {bare:.4} ns a step\n");
+        let mut table = String::new();
         let mut apart = Vec::new();
         for (conversion, (pack, unpack)) in crate::packing::modes().zip(times) {
             if !conversions.contains(&conversion) {
@@ -277,10 +303,12 @@ mod tests {
                 time.ns
             });
             let report = pack.median + unpack.median;
-            let own = round_trip.ns_per_step(&round_trip_wgsl(Some(conversion))) - bare;
+            let (format, conversions) = conversion;
+            let bare = round_trip.ns_per_step(&round_trip_wgsl(format, None));
+            let own = round_trip.ns_per_step(&round_trip_wgsl(format, Some(conversions))) - bare;
             let _ = writeln!(
                 table,
-                "{name:<22} report {report:.4} ({:.4} + {:.4}, spreads {:.4}, {:.4}) independent {own:.4} ({:+.1}%)",
+                "{name:<22} report {report:.4} ({:.4} + {:.4}, spreads {:.4}, {:.4}) independent {own:.4} ({:+.1}%, bare chain {bare:.4})",
                 pack.median,
                 unpack.median,
                 pack.width(),
