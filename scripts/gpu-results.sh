@@ -11,8 +11,11 @@
 # table, the independent round trip's table and verdict), DIR/<date>-<adapter>.json
 # (report.json) and DIR/<date>-<adapter>-heatmaps.tar (the frame table's heat maps); DIR
 # defaults to docs/gpu. It needs no Rust toolchain: it runs what `build` put in .gpu/, so a
-# machine that only runs binaries (the device tool's) can run it.
-# With a Vulkan loader and an NVIDIA driver, wgpu picks the GPU; WGPU_BACKEND=vulkan forces it.
+# machine that only runs binaries (the device tool's) can run it: carry .gpu/ there and run
+# `scripts/gpu-results.sh run "$OUT"`. `build` also fetches Debian's packages of the Vulkan
+# loader and of glslang and spirv-tools into .gpu/debs, which `run` unpacks where the machine
+# lacks them. With a Vulkan loader and an NVIDIA driver, wgpu picks the GPU;
+# WGPU_BACKEND=vulkan forces it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -33,14 +36,61 @@ build() {
     cp target/release/gbuffer .gpu/gbuffer
     cp "$bench" .gpu/deferred-bench
     cp "$tradeoff_tests" .gpu/tradeoff-tests
+    # The commit the binaries are built at, for the results' header: the GPU machine's copy of
+    # the tree may have no history, or another commit's.
+    local commit
+    commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+    git diff --quiet HEAD 2>/dev/null || commit="$commit with uncommitted changes"
+    echo "$commit" >.gpu/commit
+    debs
     # The scene presets the frame table solves, read from the source tree at run time.
     echo "gpu-results: built .gpu/gbuffer, .gpu/deferred-bench and .gpu/tradeoff-tests"
+}
+
+# What the GPU's machine may lack, as Debian 12's packages, into .gpu/debs (6 MB): the loaders
+# (Vulkan's, and glvnd's for EGL and GLES), which `run` unpacks into / where no Vulkan loader is
+# installed, and glslangValidator and spirv-opt (the renderer's Vulkan shaders), which it
+# unpacks under /tmp where they are not on PATH. apt's lists go to a folder of their own, so
+# the machine's are left alone. Without apt (another system) `run` needs them installed there.
+debs() {
+    local lists=/tmp/gpu-results-apt
+    local options=(-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 "-oDir::State::Lists=$lists")
+    mkdir -p "$lists/partial" .gpu/debs
+    if ! { apt-get "${options[@]}" update -qq &&
+        (cd .gpu/debs && apt-get "${options[@]}" download -qq \
+            libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2 glslang-tools spirv-tools); } \
+        >/dev/null 2>&1; then
+        rm -rf .gpu/debs
+        echo "gpu-results: could not fetch the loaders' and tools' packages with apt-get; the GPU's machine needs a Vulkan loader, glslangValidator and spirv-opt of its own" >&2
+        return
+    fi
+    echo "gpu-results: fetched $(ls .gpu/debs | wc -l) packages into .gpu/debs"
+}
+
+# Unpacks what .gpu/debs holds and the machine lacks (see `debs`).
+unpack_debs() {
+    [ -d .gpu/debs ] || return 0
+    if ! ldconfig -p | grep -q 'libvulkan\.so\.1'; then
+        for deb in .gpu/debs/lib*.deb; do
+            dpkg -x "$deb" /
+        done
+        ldconfig
+        echo "gpu-results: unpacked the loaders into /"
+    fi
+    if ! command -v glslangValidator >/dev/null || ! command -v spirv-opt >/dev/null; then
+        for deb in .gpu/debs/glslang-tools_*.deb .gpu/debs/spirv-tools_*.deb; do
+            dpkg -x "$deb" /tmp/gpu-results-tools
+        done
+        export PATH="/tmp/gpu-results-tools/usr/bin:$PATH"
+        echo "gpu-results: glslangValidator and spirv-opt from /tmp/gpu-results-tools"
+    fi
 }
 
 run() {
     local folder=${1:-docs/gpu}
     [ -x .gpu/gbuffer ] && [ -x .gpu/deferred-bench ] && [ -x .gpu/tradeoff-tests ] ||
         { echo "gpu-results: run '$0 build' first (no .gpu/gbuffer)" >&2; exit 1; }
+    unpack_debs
     local work
     work=$(mktemp -d)
     .gpu/gbuffer report --out "$work/report" | tee "$work/report.txt"
@@ -64,7 +114,7 @@ run() {
     {
         echo "# GPU results: $adapter, $(date -u +%Y-%m-%d)"
         echo
-        echo "Written by \`scripts/gpu-results.sh\` (commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown))."
+        echo "Written by \`scripts/gpu-results.sh\`, its binaries built at commit $(cat .gpu/commit 2>/dev/null || echo unknown)."
         echo "Compare ratios between rows, not absolute times with another machine's."
         echo
         cat "$work/report/report.md"
