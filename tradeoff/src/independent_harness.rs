@@ -167,7 +167,7 @@ impl<'a> RoundTrip<'a> {
 /// widens each code into a half and narrows it back, which LLVM folds to the bits it started
 /// from (on lavapipe that chain read a quarter of the report's time). Without the odd factor
 /// the exclusive or, a bitwise operation, lets the compiler merge unpack's shifts and masks
-/// with pack's (then it read two thirds of the report's time); a product's bits depend on
+/// with pack's (then it read 58% of the report's time); a product's bits depend on
 /// lower ones, which no shift undoes.
 fn round_trip_wgsl(format: Format, conversions: Option<Conversions>) -> String {
     let layout = one_field(format);
