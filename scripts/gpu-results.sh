@@ -19,32 +19,35 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# Copies the executable cargo builds for `cargo ARGS... --message-format=json` whose file name
+# starts with PREFIX to .gpu/NAME, without running it (cargo prints where it put it).
+copy_executable() {
+    local name=$1 prefix=$2
+    shift 2
+    local built
+    built=$(cargo "$@" --message-format=json 2>/dev/null |
+        sed -n "s/.*\"executable\":\"\([^\"]*\/$prefix-[^\"]*\)\".*/\1/p" | tail -n 1)
+    [ -n "$built" ] || { echo "gpu-results: cargo $* built no $prefix executable" >&2; exit 1; }
+    cp "$built" ".gpu/$name"
+}
+
 build() {
     cargo build --release -p gbuffer-cli --features report
-    # The bench's executable, without running it (cargo prints where it put it).
-    local bench
-    bench=$(cargo bench --no-run -p gbuffer-render --bench deferred --message-format=json 2>/dev/null |
-        sed -n 's/.*"executable":"\([^"]*deferred-[^"]*\)".*/\1/p' | tail -n 1)
-    [ -n "$bench" ] || { echo "gpu-results: cargo built no bench executable" >&2; exit 1; }
-    # The trade-off crate's tests, of which `run` runs one: the packing table against the
-    # independent round trip (`tradeoff/src/independent_harness.rs`), on the GPU's adapter.
-    local tradeoff_tests
-    tradeoff_tests=$(cargo test --release --no-run -p gbuffer-tradeoff --lib --message-format=json 2>/dev/null |
-        sed -n 's/.*"executable":"\([^"]*gbuffer_tradeoff-[^"]*\)".*/\1/p' | tail -n 1)
-    [ -n "$tradeoff_tests" ] || { echo "gpu-results: cargo built no trade-off test executable" >&2; exit 1; }
     mkdir -p .gpu
     cp target/release/gbuffer .gpu/gbuffer
-    cp "$bench" .gpu/deferred-bench
-    cp "$tradeoff_tests" .gpu/tradeoff-tests
+    copy_executable deferred-bench deferred bench --no-run -p gbuffer-render --bench deferred
+    # The trade-off crate's tests, of which `run` runs one: the packing table against the
+    # independent round trip (`tradeoff/src/independent_harness.rs`), on the GPU's adapter.
+    copy_executable tradeoff-tests gbuffer_tradeoff test --release --no-run -p gbuffer-tradeoff --lib
+    # (The scene presets the frame table solves are not copied: `run` reads them from the tree.)
     # The commit the binaries are built at, for the results' header: the GPU machine's copy of
     # the tree may have no history, or another commit's.
     local commit
     commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
     git diff --quiet HEAD 2>/dev/null || commit="$commit with uncommitted changes"
     echo "$commit" >.gpu/commit
-    debs
-    # The scene presets the frame table solves, read from the source tree at run time.
     echo "gpu-results: built .gpu/gbuffer, .gpu/deferred-bench and .gpu/tradeoff-tests"
+    debs
 }
 
 # What the GPU's machine may lack, as Debian 12's packages, into .gpu/debs (6 MB): the loaders
@@ -55,6 +58,7 @@ build() {
 debs() {
     local lists=/tmp/gpu-results-apt
     local options=(-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 "-oDir::State::Lists=$lists")
+    rm -rf .gpu/debs
     mkdir -p "$lists/partial" .gpu/debs
     if ! { apt-get "${options[@]}" update -qq &&
         (cd .gpu/debs && apt-get "${options[@]}" download -qq \
@@ -70,7 +74,9 @@ debs() {
 # Unpacks what .gpu/debs holds and the machine lacks (see `debs`).
 unpack_debs() {
     [ -d .gpu/debs ] || return 0
-    if ! ldconfig -p | grep -q 'libvulkan\.so\.1'; then
+    # grep reads all of ldconfig's list: with -q it would stop at the first match, and under
+    # pipefail the SIGPIPE of ldconfig would read as no loader.
+    if ! ldconfig -p | grep 'libvulkan\.so\.1' >/dev/null; then
         for deb in .gpu/debs/lib*.deb; do
             dpkg -x "$deb" /
         done
