@@ -5,7 +5,8 @@
 #
 #   scripts/gpu-results.sh build          # here: release binaries into .gpu/ (no GPU needed)
 #   scripts/gpu-results.sh run [DIR]      # on the GPU machine: measure, write into DIR
-#   scripts/gpu-results.sh                # both, on a machine that has cargo and a GPU
+#   scripts/gpu-results.sh adopt DIR      # here: DIR's results replace docs/gpu's in the guide
+#   scripts/gpu-results.sh                # build and run, on a machine that has cargo and a GPU
 #
 # `run` writes DIR/<date>-<adapter>.md (the report's markdown, the frame table, the bench's
 # table, the independent round trip's table and verdict), DIR/<date>-<adapter>.json
@@ -16,6 +17,13 @@
 # loader and of glslang and spirv-tools into .gpu/debs, which `run` unpacks where the machine
 # lacks them. With a Vulkan loader and an NVIDIA driver, wgpu picks the GPU;
 # WGPU_BACKEND=vulkan forces it.
+#
+# `adopt DIR` takes the .md and .json a run wrote into DIR (the device tool's files_at) in
+# place of docs/gpu's set: it removes the old files, renames the old file in every figures
+# marker and mention of the documents, and copies the new figures into the tables they show
+# (`.ci/check-figures --update`). What it cannot do it names: a table whose columns the new
+# file lacks, and the prose that quotes figures, are the writer's. The heat maps' tar stays out
+# of the repository (2 MB a run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -145,9 +153,54 @@ run() {
     echo "gpu-results: wrote $folder/$name.md, $name.json and $name-heatmaps.tar"
 }
 
+# The documents whose tables `.ci/check-figures` holds to their files.
+DOCUMENTS=(README.md bevy/README.md book/src/*.md docs/gpu/README.md)
+
+adopt() {
+    local from=${1%/}
+    local found
+    found=$(cd "$from" 2>/dev/null && ls -- [0-9][0-9][0-9][0-9]-[0-9][0-9]-[0-9][0-9]-*.md 2>/dev/null || true)
+    if [ -z "$found" ] || [ "$(printf '%s\n' "$found" | wc -l)" != 1 ]; then
+        echo "gpu-results: $from should hold the one <date>-<adapter>.md a run writes; it holds: $(echo ${found:-none})" >&2
+        exit 1
+    fi
+    local name=${found%.md}
+    [ -f "$from/$name.json" ] ||
+        { echo "gpu-results: $from/$name.md has no $name.json beside it" >&2; exit 1; }
+    local old_md old
+    for old_md in docs/gpu/[0-9][0-9][0-9][0-9]-[0-9][0-9]-[0-9][0-9]-*.md; do
+        [ -e "$old_md" ] || continue
+        old=$(basename "$old_md" .md)
+        [ "$old" = "$name" ] && continue
+        rm -f "docs/gpu/$old.md" "docs/gpu/$old.json" "docs/gpu/$old-heatmaps.tar"
+        # The markers and the prose's mentions of the file, by its path.
+        grep -l -F "docs/gpu/$old." "${DOCUMENTS[@]}" | xargs -r sed -i "s|docs/gpu/$old\.|docs/gpu/$name.|g" || true
+        echo "gpu-results: docs/gpu/$old.md and .json removed, the documents name docs/gpu/$name.md"
+    done
+    cp "$from/$name.md" "$from/$name.json" docs/gpu/
+    echo "gpu-results: docs/gpu/$name.md and .json copied from $from"
+    # Only the documents that quote the GPU's file: the others' files are other commands'.
+    local quoting
+    mapfile -t quoting < <(grep -l -F "<!-- figures: docs/gpu/$name.md" "${DOCUMENTS[@]}" || true)
+    local status=0
+    if ((${#quoting[@]})); then
+        .ci/check-figures --update "${quoting[@]}" || status=$?
+    else
+        echo "gpu-results: no document's figures marker names docs/gpu/$name.md" >&2
+        status=1
+    fi
+    echo "gpu-results: the new run: $(sed -n '1s/^# GPU results: //p' "docs/gpu/$name.md"); $(sed -n 's/^Written by `scripts\/gpu-results.sh`, //p' "docs/gpu/$name.md" | head -n 1)"
+    if ((status != 0)); then
+        echo "gpu-results: rewrite by hand the tables named above (their columns are not the new file's), then run .ci/check-figures" >&2
+    fi
+    echo "gpu-results: then read again, by hand, the prose that quotes the GPU's figures (book/src/speed-and-accuracy.md, 'On a real GPU'; book/src/fused-renderer.md's paths) and docs/gpu/README.md's 'What is here'"
+    return "$status"
+}
+
 case "${1:-all}" in
 build) build ;;
 run) run "${2:-}" ;;
+adopt) [ $# = 2 ] || { echo "usage: $0 adopt DIR" >&2; exit 2; }; adopt "$2" ;;
 all) build && run "${2:-}" ;;
-*) echo "usage: $0 [build | run [DIR] | all [DIR]]" >&2; exit 2 ;;
+*) echo "usage: $0 [build | run [DIR] | adopt DIR | all [DIR]]" >&2; exit 2 ;;
 esac
