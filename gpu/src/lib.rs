@@ -9,6 +9,7 @@ pub mod adapter;
 pub mod fullscreen;
 pub mod gles;
 pub mod harness;
+pub mod stages;
 pub mod timestamps;
 pub mod timing;
 pub mod tools;

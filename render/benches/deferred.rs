@@ -16,6 +16,7 @@
 use std::sync::LazyLock;
 
 use gbuffer_core::Named;
+use gbuffer_gpu::stages::{stage_times, StageTime};
 use gbuffer_gpu::timing::{time_items, Protocol, Spread};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
@@ -118,9 +119,10 @@ fn row(name: &str, recording: &Recording, times: [String; 2]) {
 /// Where the Vulkan paths' time goes, at 1280x720: the frame built up stage by stage (each
 /// fused stage, each two-pass pass) in the frame's order, from the render passes with nothing
 /// drawn to the whole frame, every one of those frames timed together; a stage's time is what it
-/// adds to the frame before it, so the stages' times sum to the whole frame's less the empty
-/// passes'. Where what a stage adds is within the two frames' spread, the table says it cannot
-/// separate the stage from the one before rather than print a figure.
+/// adds to the frame before it (`gbuffer_gpu::stages`): frames the rounds cannot tell apart are
+/// pooled, the pool's first stage carries what the pool adds and the others are printed `with
+/// the stage before`, so no stage's time is negative or taken by another, and the stages' times
+/// sum to the whole frame's less the empty passes', within the spread.
 fn stages(progress: &dyn Fn(&str)) {
     let vulkan = match VulkanRenderer::new(progress) {
         Ok(vulkan) => vulkan,
@@ -174,21 +176,34 @@ fn stages(progress: &dyn Fn(&str)) {
                 .iter()
                 .map(|spread| spread.map(|s| s * 1e3))
                 .collect();
-            let (empty, whole) = (spreads[0].median, spreads[names.len()].median);
             println!(
-                "{:<36} {whole:>14.2}",
-                format!("{} {}", path.name(), layout.name())
+                "{:<36} {:>14.2}",
+                format!("{} {}", path.name(), layout.name()),
+                spreads[names.len()].median
             );
-            println!("{:<36} {empty:>14.2}", "  render passes, nothing drawn");
-            for (index, name) in names.iter().enumerate() {
-                let (before, after) = (spreads[index], spreads[index + 1]);
-                let adds = after.median - before.median;
-                let cell = if adds > before.width().max(after.width()) {
-                    format!("{adds:>14.2} {:>7.0}%", 100.0 * adds / (whole - empty))
-                } else {
-                    format!("{:>23}", "within the spread")
+            println!(
+                "{:<36} {:>14.2}",
+                "  render passes, nothing drawn", spreads[0].median
+            );
+            let times = stage_times(&spreads);
+            // The stages' times sum to what the frame adds to the empty passes, pooled frames'
+            // means where the rounds could not separate them: the shares sum to 100%.
+            let drawn: f64 = times
+                .iter()
+                .map(|time| match time {
+                    StageTime::Adds(ms) => *ms,
+                    StageTime::WithTheStageBefore => 0.0,
+                })
+                .sum();
+            for (index, (name, time)) in names.iter().zip(&times).enumerate() {
+                let cell = match time {
+                    StageTime::Adds(ms) => format!("{ms:>14.2} {:>7.0}%", 100.0 * ms / drawn),
+                    StageTime::WithTheStageBefore => {
+                        format!("{:>23}", "with the stage before")
+                    }
                 };
-                println!("{:<36} {:>14.2} {cell}", format!("  {name}"), after.median);
+                let so_far = spreads[index + 1].median;
+                println!("{:<36} {so_far:>14.2} {cell}", format!("  {name}"));
             }
         }
     }
