@@ -23,7 +23,7 @@
 # marker and mention of the documents, and copies the new figures into the tables they show
 # (`.ci/check-figures --update`). What it cannot do it names: a table whose columns the new
 # file lacks, and the prose that quotes figures, are the writer's. The heat maps' tar stays out
-# of the repository (2 MB a run).
+# of the repository.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -153,8 +153,8 @@ run() {
     echo "gpu-results: wrote $folder/$name.md, $name.json and $name-heatmaps.tar"
 }
 
-# The documents whose tables `.ci/check-figures` holds to their files.
-DOCUMENTS=(README.md bevy/README.md book/src/*.md docs/gpu/README.md)
+# The documents that may name a run's file: those whose tables `.ci/check-figures` holds.
+DOCUMENTS=(README.md bevy/README.md book/src/*.md)
 
 adopt() {
     local from=${1%/}
@@ -179,16 +179,9 @@ adopt() {
     done
     cp "$from/$name.md" "$from/$name.json" docs/gpu/
     echo "gpu-results: docs/gpu/$name.md and .json copied from $from"
-    # Only the documents that quote the GPU's file: the others' files are other commands'.
-    local quoting
-    mapfile -t quoting < <(grep -l -F "<!-- figures: docs/gpu/$name.md" "${DOCUMENTS[@]}" || true)
+    # Only the tables that quote the GPU's file: the others' files are other commands'.
     local status=0
-    if ((${#quoting[@]})); then
-        .ci/check-figures --update "${quoting[@]}" || status=$?
-    else
-        echo "gpu-results: no document's figures marker names docs/gpu/$name.md" >&2
-        status=1
-    fi
+    .ci/check-figures --update --source "docs/gpu/$name.md" || status=$?
     echo "gpu-results: the new run: $(sed -n '1s/^# GPU results: //p' "docs/gpu/$name.md"); $(sed -n 's/^Written by `scripts\/gpu-results.sh`, //p' "docs/gpu/$name.md" | head -n 1)"
     if ((status != 0)); then
         echo "gpu-results: rewrite by hand the tables named above (their columns are not the new file's), then run .ci/check-figures" >&2

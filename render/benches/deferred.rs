@@ -16,7 +16,7 @@
 use std::sync::LazyLock;
 
 use gbuffer_core::Named;
-use gbuffer_gpu::stages::{stage_times, StageTime};
+use gbuffer_gpu::stages::stage_times;
 use gbuffer_gpu::timing::{time_items, Protocol, Spread};
 use gbuffer_render::gbuffers::{GBuffer, PackedLayout};
 use gbuffer_render::gles::GlesRenderer;
@@ -188,19 +188,11 @@ fn stages(progress: &dyn Fn(&str)) {
             let times = stage_times(&spreads);
             // The stages' times sum to what the frame adds to the empty passes, pooled frames'
             // means where the rounds could not separate them: the shares sum to 100%.
-            let drawn: f64 = times
-                .iter()
-                .map(|time| match time {
-                    StageTime::Adds(ms) => *ms,
-                    StageTime::WithTheStageBefore => 0.0,
-                })
-                .sum();
+            let drawn: f64 = times.iter().filter_map(|time| time.adds()).sum();
             for (index, (name, time)) in names.iter().zip(&times).enumerate() {
-                let cell = match time {
-                    StageTime::Adds(ms) => format!("{ms:>14.2} {:>7.0}%", 100.0 * ms / drawn),
-                    StageTime::WithTheStageBefore => {
-                        format!("{:>23}", "with the stage before")
-                    }
+                let cell = match time.adds() {
+                    Some(ms) => format!("{ms:>14.2} {:>7.0}%", 100.0 * ms / drawn),
+                    None => format!("{:>23}", "with the stage before"),
                 };
                 let so_far = spreads[index + 1].median;
                 println!("{:<36} {so_far:>14.2} {cell}", format!("  {name}"));
