@@ -53,6 +53,7 @@ pub(crate) fn timings_json(times: &timing::StageTimes) -> serde_json::Value {
                 "evaluations_per_second_at_least": bound.map(|bound| 1e9 / bound),
                 "evaluations_per_run": time.evaluations_per_run(),
                 "chain": time.chain,
+                "chains": time.chains,
                 "run_ms": time.run_ms,
                 "doubling_ratio": time.doubling_ratio,
                 "median_ns": resolved.then_some(time.ns.median),

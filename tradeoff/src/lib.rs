@@ -4,8 +4,8 @@
 //! `target/tradeoff/report.md`, `report.json` and PNG plots (or into `--out DIR`). Each row's error is measured
 //! against the f64 references over the stated domain; its cost is counted in naga IR
 //! expressions and SPIR-V instructions; its time is measured on the adapter at hand, in a
-//! compute dispatch and in a fullscreen draw's fragment shader (a dependent chain of
-//! evaluations grown until a run lasts 10 ms and twice the chain takes twice the time, every
+//! compute dispatch and in a fullscreen draw's fragment shader (four dependent chains of
+//! evaluations side by side, grown until a run lasts 10 ms and twice the chain takes twice the time, every
 //! row timed once in each of 7 rounds after a warm-up, `gbuffer_gpu::timing`'s protocol; the
 //! median round less the harness's own time, an upper bound `<X` where the doubling failed or
 //! the time does not stand clear of the rounds' spread; pairs whose times contradict the

@@ -148,7 +148,7 @@ impl<'a> Timer<'a> {
                     item.clock,
                     added,
                     Spread::of(runs)?.median,
-                    bench.invocations(),
+                    (Chain::Uniform.chains(), bench.invocations()),
                     item.calibration,
                 ))
             })

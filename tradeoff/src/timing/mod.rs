@@ -1,10 +1,11 @@
 //! Time per evaluation, by the one timing protocol (`gbuffer_gpu::timing`): on the adapter,
 //! in both stages, a shader that feeds each result into the next evaluation (so nothing is
-//! optimised away), its chain calibrated until a run lasts 10 ms and twice the chain takes
-//! twice the time, timed by timestamp queries at the pass's start and end where the device
-//! has them (wall clock around a synchronised submit otherwise, and the report says which): a
-//! compute dispatch of 2^20 invocations, and a fullscreen draw into a 1920x1080 target whose
-//! fragment shader runs the chain (G-buffer packing and lighting are fragment work, and some
+//! optimised away), four such chains side by side in each invocation, their length calibrated
+//! until a run lasts 10 ms and twice the chain takes twice the time, timed by timestamp
+//! queries at the pass's start and end where the device has them (wall clock around a
+//! synchronised submit otherwise, and the report says which): a compute dispatch of 2^20
+//! invocations, and a fullscreen draw into a 1920x1080 target whose fragment shader runs the
+//! chains (G-buffer packing and lighting are fragment work, and some
 //! GPUs run fragments on few of their units). Every row, the harness's own among them, is
 //! timed once a round after the clock has warmed up ([`Timer`]), each round at its chain and
 //! at twice its chain: a row's time is what the second chain adds, so a run's fixed cost (the
@@ -15,7 +16,7 @@ mod gpu;
 mod harness;
 
 pub use gpu::Timer;
-pub use harness::{fragment_harness, harness, BASELINE_ROW};
+pub use harness::{fragment_harness, harness, BASELINE_ROW, CHAINS};
 
 use std::time::Instant;
 
@@ -24,7 +25,9 @@ use gbuffer_core::Named;
 use gbuffer_gpu::timing::Spread;
 
 /// Invocations per dispatch: enough threads to fill a large GPU (an H100 holds 270,000), so
-/// that the time is the device's throughput and not one thread's latency.
+/// that the time is the device's throughput and not one thread's latency (which the chains
+/// side by side in each invocation also hide, where the adapter runs one thread's steps in
+/// order: `harness`).
 const INVOCATIONS: u32 = 1 << 20;
 /// The static costs' chain (the compute harness as counted).
 const CHAIN: u32 = 64;
@@ -75,8 +78,8 @@ gbuffer_core::named!(
     }
 );
 
-/// A row's time on the adapter, per evaluation and invocation, over the protocol's rounds of
-/// `chain` evaluations in each of `invocations`.
+/// A row's time on the adapter, per evaluation, over the protocol's rounds of `chains` chains
+/// of `chain` evaluations in each of `invocations`.
 #[derive(Clone, Copy, Debug)]
 pub struct GpuTime {
     /// The stage timed.
@@ -84,12 +87,14 @@ pub struct GpuTime {
     /// How it was timed.
     pub clock: Clock,
     /// What each round's run of twice the chain took beyond its run of the chain, divided by
-    /// the evaluations the chain adds (`chain` x `invocations`), in nanoseconds, over the
-    /// rounds: device nanoseconds per evaluation, the whole device's throughput (not one
-    /// invocation's latency), with no share of the run's fixed cost.
+    /// the evaluations the chain adds (`chains` x `chain` x `invocations`), in nanoseconds,
+    /// over the rounds: device nanoseconds per evaluation, the whole device's throughput (not
+    /// one invocation's latency), with no share of the run's fixed cost.
     pub ns: Spread,
-    /// Evaluations per invocation, as calibrated.
+    /// Steps of each chain, as calibrated.
     pub chain: u32,
+    /// Independent chains side by side in each invocation ([`CHAINS`] in the timed harness).
+    pub chains: u32,
     /// Invocations per run.
     pub invocations: u32,
     /// The median round's milliseconds for a run of the chain.
@@ -129,7 +134,7 @@ impl GpuTime {
 
     /// Evaluations per run, over the whole device.
     pub fn evaluations_per_run(&self) -> u64 {
-        u64::from(self.chain) * u64::from(self.invocations)
+        u64::from(self.chains) * u64::from(self.chain) * u64::from(self.invocations)
     }
 
     /// Evaluations per second over the whole device at the median run: a run's evaluations over
@@ -141,23 +146,24 @@ impl GpuTime {
         evaluations / run_seconds
     }
 
-    /// The time of runs of `calibration.chain` evaluations in each of `invocations`, from the
-    /// spread of the seconds that doubling the chain added to a run (`added`) and the median
-    /// run's seconds.
+    /// The time of runs of `chains` chains of `calibration.chain` evaluations in each of
+    /// `invocations`, from the spread of the seconds that doubling the chain added to a run
+    /// (`added`) and the median run's seconds.
     pub fn of_runs(
         stage: Stage,
         clock: Clock,
         added: Spread,
         run_seconds: f64,
-        invocations: u32,
+        (chains, invocations): (u32, u32),
         calibration: Calibration,
     ) -> GpuTime {
-        let ns_per_evaluation = 1e9 / (f64::from(invocations) * f64::from(calibration.chain));
+        let evaluations = f64::from(chains) * f64::from(calibration.chain) * f64::from(invocations);
         GpuTime {
             stage,
             clock,
-            ns: added.map(|seconds| seconds * ns_per_evaluation),
+            ns: added.map(|seconds| seconds * 1e9 / evaluations),
             chain: calibration.chain,
+            chains,
             invocations,
             run_ms: run_seconds * 1e3,
             doubling_ratio: calibration.doubling_ratio,
@@ -278,11 +284,11 @@ mod tests {
     use super::*;
     use gbuffer_core::Named;
 
-    /// Runs whose evaluations and times are known: 7 rounds whose doubled chain of 100
-    /// evaluations in each of 1000 invocations (1e5 a run) added 10 ms at the median give 100
-    /// ns per evaluation and 1e7 evaluations a second, whatever the run itself took (15 ms:
-    /// 5 of them fixed); with a harness whose chain adds 2 ms taken off, 80 ns and 1e5
-    /// evaluations in 8 ms.
+    /// Runs whose evaluations and times are known: 7 rounds whose doubled chains of 100
+    /// evaluations in each of 1000 invocations (1e5 a run, in 4 chains of 25) added 10 ms at
+    /// the median give 100 ns per evaluation and 1e7 evaluations a second, whatever the run
+    /// itself took (15 ms: 5 of them fixed); with a harness whose chain adds 2 ms taken off,
+    /// 80 ns and 1e5 evaluations in 8 ms.
     #[test]
     fn the_units_are_what_their_names_say() {
         let runs = vec![0.011, 0.0095, 0.010, 0.0102, 0.0099, 0.0105, 0.0098];
@@ -298,12 +304,13 @@ mod tests {
         assert!((less.evaluations_per_second() - 1e5 / 0.008).abs() < 1e-3);
     }
 
-    /// Runs of 100 evaluations in each of 1000 invocations, whose doubled chain added `runs`
-    /// seconds, a run of the chain lasting half as long again.
+    /// Runs of 4 chains of 25 evaluations in each of 1000 invocations (100 evaluations an
+    /// invocation), whose doubled chain added `runs` seconds, a run of the chain lasting half
+    /// as long again.
     fn of_runs(runs: Vec<f64>) -> GpuTime {
         let added = Spread::of(&runs).unwrap();
         let calibration = Calibration {
-            chain: 100,
+            chain: 25,
             doubling_ratio: 2.0,
             doubled: true,
         };
@@ -312,7 +319,7 @@ mod tests {
             Clock::Wall,
             added,
             1.5 * added.median,
-            1000,
+            (4, 1000),
             calibration,
         )
     }
@@ -350,6 +357,7 @@ mod tests {
                 max: median * 1.05,
             },
             chain: 64,
+            chains: CHAINS,
             invocations: INVOCATIONS,
             run_ms: 10.0,
             doubling_ratio: 2.0,
@@ -466,6 +474,7 @@ mod tests {
         let flowed = chapter.split_whitespace().collect::<Vec<_>>().join(" ");
         let full = gbuffer_gpu::timing::Protocol::FULL;
         for stated in [
+            format!("{CHAINS} chains side by side"),
             format!("2^{} invocations", INVOCATIONS.trailing_zeros()),
             format!("{FRAGMENT_WIDTH}x{FRAGMENT_HEIGHT} target"),
             format!("until a run lasts {} ms", TARGET_RUN * 1e3),
