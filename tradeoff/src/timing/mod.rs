@@ -262,21 +262,27 @@ pub fn inconsistencies(group: &[Timed]) -> Vec<String> {
     found
 }
 
-/// Nanoseconds per evaluation of a row's CPU mirror, chained as on the GPU (median of runs).
+/// Nanoseconds per evaluation of a row's CPU mirror, chained as on the GPU, [`CHAINS`] chains
+/// side by side so that the core overlaps them as the GPU's harness lets it (median of runs).
 pub fn cpu_ns_per_eval(evaluate: &dyn Fn(Vec4) -> Vec4) -> f64 {
-    const EVALUATIONS: u32 = 1 << 16;
+    const STEPS: u32 = 1 << 14;
     let mut times = Vec::new();
     for _ in 0..CPU_RUNS {
-        let mut x = Vec4::new(0.3, 0.6, 0.2, 0.7);
-        let start = Instant::now();
-        for _ in 0..EVALUATIONS {
-            let y = evaluate(std::hint::black_box(x));
-            x = (y * 0.25 + x * 0.75 + Vec4::splat(0.1)).fract();
+        let start = Vec4::new(0.3, 0.6, 0.2, 0.7);
+        let mut chains: [Vec4; CHAINS as usize] = std::array::from_fn(|chain| {
+            (start + Vec4::splat(chain as f32 / CHAINS as f32)).fract()
+        });
+        let begin = Instant::now();
+        for _ in 0..STEPS {
+            for x in &mut chains {
+                let y = evaluate(std::hint::black_box(*x));
+                *x = (y * 0.25 + *x * 0.75 + Vec4::splat(0.1)).fract();
+            }
         }
-        std::hint::black_box(x);
-        times.push(start.elapsed().as_secs_f64());
+        std::hint::black_box(chains);
+        times.push(begin.elapsed().as_secs_f64());
     }
-    Spread::of(&times).map_or(f64::NAN, |spread| spread.median) * 1e9 / f64::from(EVALUATIONS)
+    Spread::of(&times).map_or(f64::NAN, |spread| spread.median) * 1e9 / f64::from(STEPS * CHAINS)
 }
 
 #[cfg(test)]
@@ -491,6 +497,21 @@ mod tests {
                 "the speed chapter does not say `{stated}`"
             );
         }
+    }
+
+    /// The CPU mirror's time is per evaluation of its chains: eight square roots a step cost
+    /// more than none, and neither reads zero, negative or unbounded.
+    #[test]
+    fn the_cpu_mirrors_time_grows_with_its_work() {
+        let cheap = cpu_ns_per_eval(&|x| x);
+        let dear = cpu_ns_per_eval(&|x| {
+            (0..8).fold(x, |y, _| {
+                let y = y + Vec4::splat(0.5);
+                Vec4::new(y.x.sqrt(), y.y.sqrt(), y.z.sqrt(), y.w.sqrt())
+            })
+        });
+        assert!(cheap > 0.0 && dear.is_finite(), "{cheap} {dear}");
+        assert!(dear > cheap, "{dear} ns is not more than {cheap} ns");
     }
 
     #[test]
