@@ -123,6 +123,9 @@ run() {
     CI=true .gpu/tradeoff-tests --exact --nocapture \
         independent_harness::tests::the_packing_times_agree_with_an_independent_round_trip \
         >"$work/independent.txt" 2>&1 || verdict="SOME CONVERSIONS READ APART (the test failed)"
+    if grep -q "too busy a machine to tell" "$work/independent.txt"; then
+        verdict="$verdict, but for those the last lines name, whose rounds spread too wide to tell"
+    fi
     cat "$work/independent.txt"
     mkdir -p "$folder"
     {
