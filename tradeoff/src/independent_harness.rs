@@ -32,7 +32,7 @@ use crate::packing_cost::one_field;
 const INVOCATIONS: u32 = 1 << 20;
 const WORKGROUP_SIZE: u32 = 64;
 /// Round trips side by side in an invocation: on llvmpipe a second one took a step from 2.9
-/// to 2.1 ns (rgba8 exact), and a third, a fourth or an eighth added nothing measurable.
+/// to 2.1 ns (rgba8 exact), and four or eight read the same within the noise.
 const ROUND_TRIPS: u32 = 2;
 /// What doubling the chain must add to a run, once sized, in seconds.
 const TARGET_ADDED_S: f64 = 0.040;

@@ -148,7 +148,8 @@ impl<'a> Timer<'a> {
                     item.clock,
                     added,
                     Spread::of(runs)?.median,
-                    (Chain::Uniform.chains(), bench.invocations()),
+                    Chain::Uniform.chains(),
+                    bench.invocations(),
                     item.calibration,
                 ))
             })

@@ -5,8 +5,8 @@
 //! The timed form runs [`CHAINS`] such chains side by side in every invocation, each from its
 //! own start: one chain measures how long a step waits for the one before (its latency) where
 //! the adapter runs an invocation's steps one after another, as a CPU rasteriser does. On
-//! llvmpipe an rgba8 round trip read 2.9 ns in one chain and 2.1 ns a step in two, three,
-//! four or eight (the same code shape in rgb10_a2 read 2.4 ns in one): a lone chain's figure
+//! llvmpipe an rgba8 round trip read 2.9 ns in one chain and 2.1 ns a step in two, four or
+//! eight (rgb10_a2's, the same code with other constants, 2.4 ns in one): a lone chain's figure
 //! depends on how its steps' instructions happen to overlap, and the costs of two halves no
 //! longer add up to the whole. Independent chains give the out-of-order core (and a GPU's
 //! scheduler, which also has other warps) work to overlap, so a step's time is the adapter's

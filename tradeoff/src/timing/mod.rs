@@ -5,12 +5,12 @@
 //! queries at the pass's start and end where the device has them (wall clock around a
 //! synchronised submit otherwise, and the report says which): a compute dispatch of 2^20
 //! invocations, and a fullscreen draw into a 1920x1080 target whose fragment shader runs the
-//! chains (G-buffer packing and lighting are fragment work, and some
-//! GPUs run fragments on few of their units). Every row, the harness's own among them, is
-//! timed once a round after the clock has warmed up ([`Timer`]), each round at its chain and
-//! at twice its chain: a row's time is what the second chain adds, so a run's fixed cost (the
-//! launch, each invocation's loads and stores) is charged to no row however short its chain.
-//! On the CPU, the f32 mirror over the same kind of inputs.
+//! chains (G-buffer packing and lighting are fragment work, and some GPUs run fragments on few
+//! of their units). Every row, the harness's own among them, is timed once a round after the
+//! clock has warmed up ([`Timer`]), each round at its chain and at twice its chain: a row's
+//! time is what the second chain adds, so a run's fixed cost (the launch, each invocation's
+//! loads and stores) is charged to no row however short its chain. On the CPU, the f32 mirror
+//! over the same kind of inputs, in as many chains.
 
 mod gpu;
 mod harness;
@@ -154,7 +154,8 @@ impl GpuTime {
         clock: Clock,
         added: Spread,
         run_seconds: f64,
-        (chains, invocations): (u32, u32),
+        chains: u32,
+        invocations: u32,
         calibration: Calibration,
     ) -> GpuTime {
         let evaluations = f64::from(chains) * f64::from(calibration.chain) * f64::from(invocations);
@@ -325,7 +326,8 @@ mod tests {
             Clock::Wall,
             added,
             1.5 * added.median,
-            (4, 1000),
+            4,
+            1000,
             calibration,
         )
     }
