@@ -5,13 +5,13 @@
 //! against the f64 references over the stated domain; its cost is counted in naga IR
 //! expressions and SPIR-V instructions; its time is measured on the adapter at hand, in a
 //! compute dispatch and in a fullscreen draw's fragment shader (four dependent chains of
-//! evaluations side by side, grown until a run lasts 10 ms and twice the chain takes twice the time, every
-//! row timed once in each of 7 rounds after a warm-up, `gbuffer_gpu::timing`'s protocol; the
-//! median round less the harness's own time, an upper bound `<X` where the doubling failed or
-//! the time does not stand clear of the rounds' spread; pairs whose times contradict the
-//! order the instruction counts predict are listed) and for its f32 mirror on the CPU. The
-//! packing conversions get their own table: per format, exact and fast, their instructions,
-//! branches, error in codes and time per million texels.
+//! evaluations side by side, grown until a run lasts 10 ms and twice the chain takes twice the
+//! time, every row timed once in each of 7 rounds after a warm-up, `gbuffer_gpu::timing`'s
+//! protocol; the median round less the harness's own time, an upper bound `<X` where the
+//! doubling failed or the time does not stand clear of the rounds' spread; pairs whose times
+//! contradict the order the instruction counts predict are listed) and for its f32 mirror on
+//! the CPU. The packing conversions get their own table: per format, exact and fast, their
+//! instructions, branches, error in codes and time per million texels.
 
 pub mod compilers;
 mod consistency;

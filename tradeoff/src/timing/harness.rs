@@ -62,10 +62,7 @@ impl Chain {
     /// receives their sum, which keeps every chain live.
     fn body(self, start: &str, result: &str) -> String {
         let chains = self.chains();
-        let name = |chain: u32| match chains {
-            1 => "x".to_string(),
-            _ => format!("x{chain}"),
-        };
+        let name = |chain: u32| format!("x{chain}");
         let mut body = format!("    let start = {start};\n");
         for chain in 0..chains {
             let value = match chain {
@@ -174,7 +171,7 @@ mod tests {
         }
         for shader in [harness(BASELINE_ROW), fragment_harness(BASELINE_ROW)] {
             gbuffer_validator::validate_wgsl(&shader).unwrap_or_else(|problem| panic!("{problem}"));
-            assert!(shader.contains("var x = start;"), "{shader}");
+            assert!(shader.contains("var x0 = start;"), "{shader}");
             assert!(!shader.contains("x1"), "{shader}");
         }
     }

@@ -1,9 +1,9 @@
 //! Time per evaluation, by the one timing protocol (`gbuffer_gpu::timing`): on the adapter,
 //! in both stages, a shader that feeds each result into the next evaluation (so nothing is
-//! optimised away), four such chains side by side in each invocation, their length calibrated
-//! until a run lasts 10 ms and twice the chain takes twice the time, timed by timestamp
-//! queries at the pass's start and end where the device has them (wall clock around a
-//! synchronised submit otherwise, and the report says which): a compute dispatch of 2^20
+//! optimised away), [`CHAINS`] such chains side by side in each invocation, their length
+//! calibrated until a run lasts 10 ms and twice the chain takes twice the time, timed by
+//! timestamp queries at the pass's start and end where the device has them (wall clock around
+//! a synchronised submit otherwise, and the report says which): a compute dispatch of 2^20
 //! invocations, and a fullscreen draw into a 1920x1080 target whose fragment shader runs the
 //! chains (G-buffer packing and lighting are fragment work, and some GPUs run fragments on few
 //! of their units). Every row, the harness's own among them, is timed once a round after the
