@@ -119,7 +119,7 @@ run() {
     # The test prints its table whether it passes or not; a failure is a finding to keep, not a
     # reason to lose the rest of the run. Under CI=true it fails, rather than skips, without an
     # adapter, so that no verdict is written of a test that did not run.
-    local verdict="every conversion agrees (within 15%)"
+    local verdict="every conversion agrees in both stages (within 15%)"
     CI=true .gpu/tradeoff-tests --exact --nocapture \
         independent_harness::tests::the_packing_times_agree_with_an_independent_round_trip \
         >"$work/independent.txt" 2>&1 || verdict="SOME CONVERSIONS READ APART (the test failed)"
@@ -144,8 +144,8 @@ run() {
         echo
         echo "## The packing times against an independent round trip"
         echo
-        echo "The report's pack plus unpack time of each conversion against chains of its own"
-        echo "(\`tradeoff/src/independent_harness.rs\`), in ns a step: $verdict."
+        echo "The report's pack plus unpack time of each conversion, in each stage, against chains"
+        echo "of its own (\`tradeoff/src/independent_harness.rs\`), in ns a step: $verdict."
         echo
         echo '```text'
         cat "$work/independent.txt"

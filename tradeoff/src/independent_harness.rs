@@ -4,8 +4,9 @@
 //!
 //! The packing table times pack and unpack apart, each in the timing harness's chain with a
 //! few instructions of glue that carry its output to the next step, and takes the glue's own
-//! time off (`crate::packing`). Here nothing of that is reused but the generated conversions:
-//! one compute shader of its own chains the round trip a renderer makes across its passes,
+//! time off (`crate::packing`), in a compute dispatch and in a fullscreen draw's fragment
+//! shader. Here nothing of that is reused but the generated conversions: a shader of its own,
+//! in each stage, chains the round trip a renderer makes across its passes,
 //! `texel = unpack(pack(texel) with its word perturbed) times a factor`, where the
 //! perturbations (an exclusive or with the step's index and the invocation's, a product with
 //! an odd factor, then the mask that keeps float channels finite; a float factor; both factors
@@ -13,11 +14,12 @@
 //! one step into the next; [`ROUND_TRIPS`] such chains side by side in each invocation, each
 //! from another invocation's texel (one chain alone times the step's latency where the adapter
 //! runs an invocation's steps in order, as llvmpipe does, and latencies do not add); its own
-//! dispatch, timed by the wall clock around a synchronised submit, its chain doubled until
-//! doubling it adds [`TARGET_ADDED_S`] to a run, a step's time what doubling adds to the
-//! fastest of [`ROUNDS`] runs, less the same chains with the conversions left out, measured
-//! next to them. The report's pack time plus its unpack time must come within [`TOLERANCE`] of
-//! that step.
+//! dispatch, or its own draw over a target of as many pixels ([`TARGET_WIDTH`] square, where
+//! the report's is 1920x1080), timed by the wall clock around a synchronised submit, its chain
+//! doubled until doubling it adds [`TARGET_ADDED_S`] to a run, a step's time what doubling adds
+//! to the fastest of [`ROUNDS`] runs, less the same chains with the conversions left out,
+//! measured next to them. The report's pack time plus its unpack time, in each stage, must come
+//! within [`TOLERANCE`] of that stage's step.
 
 use std::time::Instant;
 
@@ -27,10 +29,16 @@ use gbuffer_core::{Conversions, Named};
 use gbuffer_gpu::Gpu;
 
 use crate::packing_cost::one_field;
+use crate::timing::Stage;
 
-/// Invocations of the dispatch: as many as the report's, enough to fill a large GPU.
+/// Invocations of the dispatch, and pixels of the draw: as many as the report's dispatch,
+/// enough to fill a large GPU.
 const INVOCATIONS: u32 = 1 << 20;
 const WORKGROUP_SIZE: u32 = 64;
+/// The draw's target is this many pixels square, [`INVOCATIONS`] in all.
+const TARGET_WIDTH: u32 = 1 << 10;
+/// The draw's target format: four floats, so that no output is rounded away.
+const TARGET_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// Round trips side by side in an invocation: on llvmpipe a second one took a step from 2.9
 /// to 2.1 ns (rgba8 exact), and four or eight read the same within the noise.
 const ROUND_TRIPS: u32 = 2;
@@ -44,13 +52,21 @@ const TOLERANCE: f64 = 0.15;
 /// Measurements of a conversion that reads apart, before the test fails.
 const ATTEMPTS: usize = 3;
 
-/// The round-trip chain on one adapter: its buffers, shared by every conversion's pipeline.
-/// Every run starts from the same texels (`starts`), so that no run's values are another's.
+/// The round-trip chain on one adapter: its buffers and the draw's target, shared by every
+/// conversion's pipelines. Every run starts from the same texels (`starts`), so that no run's
+/// values are another's.
 struct RoundTrip<'a> {
     gpu: &'a Gpu,
     starts: wgpu::Buffer,
     steps: wgpu::Buffer,
     ends: wgpu::Buffer,
+    target: wgpu::TextureView,
+}
+
+/// A round trip's pipeline in its stage.
+enum Pipeline {
+    Compute(wgpu::ComputePipeline),
+    Render(wgpu::RenderPipeline),
 }
 
 impl<'a> RoundTrip<'a> {
@@ -63,6 +79,20 @@ impl<'a> RoundTrip<'a> {
                 [t, (t * 5.3).fract(), (t * 11.7).fract(), (t * 2.9).fract()]
             })
             .collect();
+        let target = gpu.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("round trip target"),
+            size: wgpu::Extent3d {
+                width: TARGET_WIDTH,
+                height: INVOCATIONS / TARGET_WIDTH,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: TARGET_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
         RoundTrip {
             gpu,
             starts: gpu
@@ -84,41 +114,83 @@ impl<'a> RoundTrip<'a> {
                 usage: wgpu::BufferUsages::STORAGE,
                 mapped_at_creation: false,
             }),
+            target: target.create_view(&Default::default()),
         }
     }
 
-    /// Nanoseconds per step of one of `shader`'s chains, over the whole device.
-    fn ns_per_step(&self, shader: &str) -> f64 {
+    /// `shader`'s pipeline in `stage` (its entry points `main`, and `vertex` for the draw).
+    fn pipeline(&self, stage: Stage, shader: &str) -> Pipeline {
         let device = &self.gpu.device;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("round trip"),
             source: wgpu::ShaderSource::Wgsl(shader.into()),
         });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("round trip"),
-            layout: None,
-            module: &module,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: None,
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.starts.as_entire_binding(),
+        match stage {
+            Stage::Compute => Pipeline::Compute(device.create_compute_pipeline(
+                &wgpu::ComputePipelineDescriptor {
+                    label: Some("round trip"),
+                    layout: None,
+                    module: &module,
+                    entry_point: Some("main"),
+                    compilation_options: Default::default(),
+                    cache: None,
                 },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: self.steps.as_entire_binding(),
+            )),
+            Stage::Fragment => Pipeline::Render(device.create_render_pipeline(
+                &wgpu::RenderPipelineDescriptor {
+                    label: Some("round trip"),
+                    layout: None,
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some("vertex"),
+                        compilation_options: Default::default(),
+                        buffers: &[],
+                    },
+                    primitive: Default::default(),
+                    depth_stencil: None,
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some("main"),
+                        compilation_options: Default::default(),
+                        targets: &[Some(TARGET_FORMAT.into())],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
                 },
-                wgpu::BindGroupEntry {
+            )),
+        }
+    }
+
+    /// Nanoseconds per step of one of `shader`'s chains in `stage`, over the whole device.
+    fn ns_per_step(&self, stage: Stage, shader: &str) -> f64 {
+        let device = &self.gpu.device;
+        let pipeline = self.pipeline(stage, shader);
+        // The draw writes its target, not `ends`, which its shader does not declare.
+        let mut entries = vec![
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: self.starts.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: self.steps.as_entire_binding(),
+            },
+        ];
+        let layout = match &pipeline {
+            Pipeline::Compute(pipeline) => {
+                entries.push(wgpu::BindGroupEntry {
                     binding: 2,
                     resource: self.ends.as_entire_binding(),
-                },
-            ],
+                });
+                pipeline.get_bind_group_layout(0)
+            }
+            Pipeline::Render(pipeline) => pipeline.get_bind_group_layout(0),
+        };
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: None,
+            layout: &layout,
+            entries: &entries,
         });
         let run = |steps: u32| {
             self.gpu.queue.write_buffer(
@@ -127,11 +199,30 @@ impl<'a> RoundTrip<'a> {
                 bytemuck::cast_slice(&[steps, 1f32.to_bits(), 1, 0]),
             );
             let mut encoder = device.create_command_encoder(&Default::default());
-            {
-                let mut pass = encoder.begin_compute_pass(&Default::default());
-                pass.set_pipeline(&pipeline);
-                pass.set_bind_group(0, &bind_group, &[]);
-                pass.dispatch_workgroups(INVOCATIONS / WORKGROUP_SIZE, 1, 1);
+            match &pipeline {
+                Pipeline::Compute(pipeline) => {
+                    let mut pass = encoder.begin_compute_pass(&Default::default());
+                    pass.set_pipeline(pipeline);
+                    pass.set_bind_group(0, &bind_group, &[]);
+                    pass.dispatch_workgroups(INVOCATIONS / WORKGROUP_SIZE, 1, 1);
+                }
+                Pipeline::Render(pipeline) => {
+                    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                            view: &self.target,
+                            depth_slice: None,
+                            resolve_target: None,
+                            ops: wgpu::Operations {
+                                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                                store: wgpu::StoreOp::Store,
+                            },
+                        })],
+                        ..Default::default()
+                    });
+                    pass.set_pipeline(pipeline);
+                    pass.set_bind_group(0, &bind_group, &[]);
+                    pass.draw(0..3, 0..1);
+                }
             }
             let start = Instant::now();
             self.gpu.queue.submit([encoder.finish()]);
@@ -161,9 +252,11 @@ impl<'a> RoundTrip<'a> {
     }
 }
 
-/// The round trip's shader for `format`: with `Some(conversions)` the chain through that mode's
-/// conversions; with `None` the same chain's perturbations alone, the conversions replaced by
-/// the first channel's bits (the time taken off).
+/// The round trip's shader for `format` in `stage`: with `Some(conversions)` the chain through
+/// that mode's conversions; with `None` the same chain's perturbations alone, the conversions
+/// replaced by the first channel's bits (the time taken off). The compute form's invocation is
+/// its thread's index; the draw's, its pixel's, row by row, under a triangle that covers the
+/// target.
 ///
 /// Each step perturbs both sides of the round trip with values the compiler cannot see: the
 /// packed word by the step's and the invocation's index and then times an odd factor read from
@@ -175,7 +268,7 @@ impl<'a> RoundTrip<'a> {
 /// the exclusive or, a bitwise operation, lets the compiler merge unpack's shifts and masks
 /// with pack's (then it read 58% of the report's time); a product's bits depend on
 /// lower ones, which no shift undoes.
-fn round_trip_wgsl(format: Format, conversions: Option<Conversions>) -> String {
+fn round_trip_wgsl(format: Format, conversions: Option<Conversions>, stage: Stage) -> String {
     let layout = one_field(format);
     let declarations =
         conversions.map_or_else(String::new, |conversions| emit_with(&layout, conversions));
@@ -194,14 +287,36 @@ fn round_trip_wgsl(format: Format, conversions: Option<Conversions>) -> String {
         3 => ", 0.0",
         _ => "",
     };
+    let (entry, invocation, output) = match stage {
+        Stage::Compute => (
+            format!(
+                "@group(0) @binding(2) var<storage, read_write> ends: array<vec4<f32>>;\n\n\
+                 @compute @workgroup_size({WORKGROUP_SIZE})\n\
+                 fn main(@builtin(global_invocation_id) id: vec3<u32>) {{"
+            ),
+            "id.x".to_string(),
+            "ends[invocation] = ",
+        ),
+        Stage::Fragment => (
+            "// Corners (-1, -1), (3, -1) and (-1, 3): a triangle over the whole target.\n\
+             @vertex\n\
+             fn vertex(@builtin(vertex_index) corner: u32) -> @builtin(position) vec4<f32> {\n    \
+                 return vec4<f32>(f32(corner & 1u) * 4.0 - 1.0, f32(corner >> 1u) * 4.0 - 1.0, 0.0, 1.0);\n\
+             }\n\n\
+             @fragment\n\
+             fn main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {"
+                .to_string(),
+            format!("u32(position.y) * {TARGET_WIDTH}u + u32(position.x)"),
+            "return ",
+        ),
+    };
     format!(
         "{declarations}\n\
          @group(0) @binding(0) var<storage, read> starts: array<vec4<f32>>;\n\
          // The chain's length, the bits of the texel's factor (1.0), the word's (1).\n\
          @group(0) @binding(1) var<uniform> steps: vec4<u32>;\n\
-         @group(0) @binding(2) var<storage, read_write> ends: array<vec4<f32>>;\n\n\
-         @compute @workgroup_size({WORKGROUP_SIZE})\n\
-         fn main(@builtin(global_invocation_id) id: vec3<u32>) {{\n    \
+         {entry}\n    \
+             let invocation = {invocation};\n    \
              {starts}\n    \
              let scale = bitcast<f32>(steps.y);\n    \
              let odd = steps.z;\n    \
@@ -209,22 +324,22 @@ fn round_trip_wgsl(format: Format, conversions: Option<Conversions>) -> String {
              for (var step = 0u; step < steps.x; step++) {{\n        \
                  {step}\n    \
              }}\n    \
-             ends[id.x] = vec4<f32>({end}{pad});\n\
+             {output}vec4<f32>({end}{pad});\n\
          }}\n"
     )
 }
 
 /// Round trip `index`'s lines in [`round_trip_wgsl`]'s shader for a field of `components` of
-/// `format`, through the conversions or not: its start texel (`index` parts of the dispatch
-/// further on), its variable, its step and its value at the end, its names numbered (`texel1`,
-/// `words1`) but the first's.
+/// `format`, through the conversions or not: its start texel (`index` parts of the
+/// invocations further on), its variable, its step and its value at the end, its names
+/// numbered (`texel1`, `words1`) but the first's.
 fn round_trip_lines(format: Format, components: usize, converted: bool, index: u32) -> [String; 4] {
     let (n, texel) = match index {
-        0 => (String::new(), "id.x".to_string()),
+        0 => (String::new(), "invocation".to_string()),
         _ => (
             index.to_string(),
             format!(
-                "(id.x + {}u) % {INVOCATIONS}u",
+                "(invocation + {}u) % {INVOCATIONS}u",
                 index * (INVOCATIONS / ROUND_TRIPS)
             ),
         ),
@@ -242,7 +357,7 @@ fn round_trip_lines(format: Format, components: usize, converted: bool, index: u
             format!("var texel{n} = Texel(start{n}{swizzle});"),
             format!(
                 "let words{n} = pack_texel(texel{n});\n        \
-                 texel{n} = unpack_texel(array<u32, 1>(((words{n}[0] ^ (step + id.x)) * odd) & {mask:#010x}u));\n        \
+                 texel{n} = unpack_texel(array<u32, 1>(((words{n}[0] ^ (step + invocation)) * odd) & {mask:#010x}u));\n        \
                  texel{n}.value *= scale;"
             ),
             format!("texel{n}.value"),
@@ -253,7 +368,7 @@ fn round_trip_lines(format: Format, components: usize, converted: bool, index: u
             format!("var value{n} = start{n}{swizzle};"),
             format!(
                 "let word{n} = bitcast<u32>(value{n}.x);\n        \
-                 value{n} = vec{components}<f32>(bitcast<f32>(((word{n} ^ (step + id.x)) * odd) & {mask:#010x}u), value{n}{rest}) * scale;"
+                 value{n} = vec{components}<f32>(bitcast<f32>(((word{n} ^ (step + invocation)) * odd) & {mask:#010x}u), value{n}{rest}) * scale;"
             ),
             format!("value{n}"),
         ]
@@ -263,53 +378,67 @@ fn round_trip_lines(format: Format, components: usize, converted: bool, index: u
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::timing::{Stage, Timer};
+    use crate::timing::Timer;
     use std::fmt::Write as _;
 
-    /// Both shaders of every conversion are valid WGSL, only the conversion's chains call the
-    /// conversions, and each holds its [`ROUND_TRIPS`] chains from texels half the dispatch
-    /// apart, all of them kept.
+    /// Both shaders of every conversion, in both stages, are valid WGSL, only the conversion's
+    /// chains call the conversions, and each holds its [`ROUND_TRIPS`] chains from texels half
+    /// the invocations apart, all of them kept.
     #[test]
     fn every_round_trip_is_a_valid_shader() {
         for (format, conversions) in crate::packing::modes() {
-            let shader = round_trip_wgsl(format, Some(conversions));
-            gbuffer_validator::validate_wgsl(&shader)
-                .unwrap_or_else(|problem| panic!("{format:?} {conversions:?}: {problem}"));
-            for needle in [
-                "unpack_texel(array<u32, 1>(((words[0] ^ (step + id.x)) * odd)",
-                "unpack_texel(array<u32, 1>(((words1[0] ^ (step + id.x)) * odd)",
-                "texel.value *= scale;",
-                "texel1.value *= scale;",
-                "let start1 = starts[(id.x + 524288u) % 1048576u];",
-                "texel.value + texel1.value",
-            ] {
-                assert!(shader.contains(needle), "{needle}: {shader}");
-            }
-            assert!(!shader.contains("texel2"), "{shader}");
-            let bare = round_trip_wgsl(format, None);
-            gbuffer_validator::validate_wgsl(&bare)
-                .unwrap_or_else(|problem| panic!("{format:?}: {problem}"));
-            assert!(!bare.contains("pack_texel"), "{bare}");
-            for needle in [
-                "value = vec",
-                "value1 = vec",
-                ") * scale;",
-                "value + value1",
-            ] {
-                assert!(bare.contains(needle), "{needle}: {bare}");
+            for &stage in Stage::ALL {
+                let invocation = match stage {
+                    Stage::Compute => "let invocation = id.x;",
+                    Stage::Fragment => {
+                        "let invocation = u32(position.y) * 1024u + u32(position.x);"
+                    }
+                };
+                let shader = round_trip_wgsl(format, Some(conversions), stage);
+                gbuffer_validator::validate_wgsl(&shader).unwrap_or_else(|problem| {
+                    panic!("{format:?} {conversions:?} {stage:?}: {problem}")
+                });
+                for needle in [
+                    invocation,
+                    "unpack_texel(array<u32, 1>(((words[0] ^ (step + invocation)) * odd)",
+                    "unpack_texel(array<u32, 1>(((words1[0] ^ (step + invocation)) * odd)",
+                    "texel.value *= scale;",
+                    "texel1.value *= scale;",
+                    "let start1 = starts[(invocation + 524288u) % 1048576u];",
+                    "texel.value + texel1.value",
+                ] {
+                    assert!(shader.contains(needle), "{needle}: {shader}");
+                }
+                assert!(!shader.contains("texel2"), "{shader}");
+                let bare = round_trip_wgsl(format, None, stage);
+                gbuffer_validator::validate_wgsl(&bare)
+                    .unwrap_or_else(|problem| panic!("{format:?} {stage:?}: {problem}"));
+                assert!(!bare.contains("pack_texel"), "{bare}");
+                for needle in [
+                    invocation,
+                    "value = vec",
+                    "value1 = vec",
+                    ") * scale;",
+                    "value + value1",
+                ] {
+                    assert!(bare.contains(needle), "{needle}: {bare}");
+                }
             }
         }
     }
 
-    /// On the machine's adapter, for every format and mode, the report's pack time plus its
-    /// unpack time (compute stage, the full protocol, less the glue) within 15% of the
-    /// independent round trip's step. A folded row, a fixed cost charged to a short chain, or
-    /// a latency timed where throughput was meant, reads apart. Another process's load can
-    /// move one measurement and not the other (CI builds Bevy beside the tests; on lavapipe one
-    /// busy core put five conversions 17-40% apart), so a conversion that reads apart is
-    /// measured again, up to [`ATTEMPTS`] times. One apart every time fails, unless on the
-    /// last attempt the report's own rounds spread wider than the difference: then the
-    /// machine was too busy to tell, and the output names it.
+    /// A conversion in a stage: what the test compares.
+    type Case = ((Format, Conversions), Stage);
+
+    /// On the machine's adapter, for every format and mode in each stage, the report's pack
+    /// time plus its unpack time (the full protocol, less the glue) within 15% of the
+    /// independent round trip's step in that stage. A folded row, a fixed cost charged to a
+    /// short chain, or a latency timed where throughput was meant, reads apart. Another
+    /// process's load can move one measurement and not the other (CI builds Bevy beside the
+    /// tests; on lavapipe one busy core put five conversions 17-40% apart), so a case that
+    /// reads apart is measured again, up to [`ATTEMPTS`] times. One apart every time fails,
+    /// unless on the last attempt the report's own rounds spread wider than the difference:
+    /// then the machine was too busy to tell, and the output names it.
     #[test]
     fn the_packing_times_agree_with_an_independent_round_trip() {
         let _cores = crate::tests::CORES
@@ -319,17 +448,20 @@ mod tests {
             return;
         };
         let round_trip = RoundTrip::new(&gpu);
-        let mut conversions: Vec<(Format, Conversions)> = crate::packing::modes().collect();
+        let mut cases: Vec<Case> = Stage::ALL
+            .iter()
+            .flat_map(|&stage| crate::packing::modes().map(move |conversion| (conversion, stage)))
+            .collect();
         let mut apart = Vec::new();
         let mut tables = String::new();
         for attempt in 1..=ATTEMPTS {
             let table;
-            (apart, table) = compare(&gpu, &round_trip, &conversions);
+            (apart, table) = compare(&gpu, &round_trip, &cases);
             let _ = writeln!(tables, "attempt {attempt}:\n{table}");
             if apart.is_empty() {
                 break;
             }
-            conversions = apart.iter().map(|apart| apart.conversion).collect();
+            cases = apart.iter().map(|apart| apart.case).collect();
         }
         let (untold, apart): (Vec<Apart>, Vec<Apart>) = apart
             .into_iter()
@@ -338,7 +470,7 @@ mod tests {
             let _ = writeln!(
                 tables,
                 "{:?}: {:.4} ns apart, within the report's spread of {:.4} ns: too busy a machine to tell",
-                untold.conversion, untold.difference_ns, untold.spread_ns
+                untold.case, untold.difference_ns, untold.spread_ns
             );
         }
         eprintln!("{tables}");
@@ -349,57 +481,64 @@ mod tests {
         );
     }
 
-    /// A conversion more than [`TOLERANCE`] from the round trip: by how much, and how wide the
+    /// A case more than [`TOLERANCE`] from the round trip: by how much, and how wide the
     /// report's pack and unpack rounds spread.
     #[derive(Debug)]
     struct Apart {
-        conversion: (Format, Conversions),
+        case: Case,
         difference_ns: f64,
         spread_ns: f64,
     }
 
-    /// Times the report's rows and the round trips of `conversions`: those that read apart,
-    /// and a table of the figures.
-    fn compare(
-        gpu: &Gpu,
-        round_trip: &RoundTrip,
-        conversions: &[(Format, Conversions)],
-    ) -> (Vec<Apart>, String) {
+    /// Times the report's rows in the stages of `cases`, and the round trips of `cases`: those
+    /// that read apart, and a table of the figures, stage by stage.
+    fn compare(gpu: &Gpu, round_trip: &RoundTrip, cases: &[Case]) -> (Vec<Apart>, String) {
+        let stages: Vec<Stage> = Stage::ALL
+            .iter()
+            .copied()
+            .filter(|&stage| cases.iter().any(|case| case.1 == stage))
+            .collect();
         // The report's own protocol: 7 rounds, whose median one slow round cannot move.
         let mut timer = Timer::new(gpu, gbuffer_gpu::timing::Protocol::FULL);
         crate::packing::time_rows(&mut timer);
-        let times = crate::packing::conversion_times(&timer.run_in(&[Stage::Compute]));
+        let times = crate::packing::conversion_times(&timer.run_in(&stages));
         let mut table = String::new();
         let mut apart = Vec::new();
-        for (conversion, (pack, unpack)) in crate::packing::modes().zip(times) {
-            if !conversions.contains(&conversion) {
-                continue;
-            }
-            let name = format!("{} {}", conversion.0.name(), conversion.1.name());
-            let [pack, unpack] = [pack, unpack].map(|times| {
-                let time = times.compute.expect("a compute time");
-                assert!(time.doubled, "{name}: {time:?}");
-                time.ns
-            });
-            let report = pack.median + unpack.median;
-            let (format, conversions) = conversion;
-            let bare = round_trip.ns_per_step(&round_trip_wgsl(format, None));
-            let own = round_trip.ns_per_step(&round_trip_wgsl(format, Some(conversions))) - bare;
-            let _ = writeln!(
-                table,
-                "{name:<22} report {report:.4} ({:.4} + {:.4}, spreads {:.4}, {:.4}) independent {own:.4} ({:+.1}%, bare chain {bare:.4})",
-                pack.median,
-                unpack.median,
-                pack.width(),
-                unpack.width(),
-                100.0 * (report / own - 1.0)
-            );
-            if (report - own).abs() > TOLERANCE * own {
-                apart.push(Apart {
-                    conversion,
-                    difference_ns: (report - own).abs(),
-                    spread_ns: pack.width() + unpack.width(),
+        for &stage in &stages {
+            let _ = writeln!(table, "{}:", stage.name());
+            for (conversion, (pack, unpack)) in crate::packing::modes().zip(&times) {
+                let case = (conversion, stage);
+                if !cases.contains(&case) {
+                    continue;
+                }
+                let name = format!("{} {}", conversion.0.name(), conversion.1.name());
+                let [pack, unpack] = [pack, unpack].map(|times| {
+                    let time = times.get(stage).expect("a time in the stage");
+                    assert!(time.doubled, "{name} ({}): {time:?}", stage.name());
+                    time.ns
                 });
+                let report = pack.median + unpack.median;
+                let (format, conversions) = conversion;
+                let bare = round_trip.ns_per_step(stage, &round_trip_wgsl(format, None, stage));
+                let own = round_trip
+                    .ns_per_step(stage, &round_trip_wgsl(format, Some(conversions), stage))
+                    - bare;
+                let _ = writeln!(
+                    table,
+                    "{name:<22} report {report:.4} ({:.4} + {:.4}, spreads {:.4}, {:.4}) independent {own:.4} ({:+.1}%, bare chain {bare:.4})",
+                    pack.median,
+                    unpack.median,
+                    pack.width(),
+                    unpack.width(),
+                    100.0 * (report / own - 1.0)
+                );
+                if (report - own).abs() > TOLERANCE * own {
+                    apart.push(Apart {
+                        case,
+                        difference_ns: (report - own).abs(),
+                        spread_ns: pack.width() + unpack.width(),
+                    });
+                }
             }
         }
         (apart, table)
