@@ -118,7 +118,9 @@ impl<'a> RoundTrip<'a> {
         }
     }
 
-    /// `shader`'s pipeline in `stage` (its entry points `main`, and `vertex` for the draw).
+    /// `shader`'s pipeline in `stage` (its entry points `main`, and `vertex` for the draw). The
+    /// draw's triangle is the shader's own, not `gbuffer_gpu::fullscreen`'s, which the report's
+    /// draw uses: a triangle that covered less than its target would read apart here.
     fn pipeline(&self, stage: Stage, shader: &str) -> Pipeline {
         let device = &self.gpu.device;
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
