@@ -146,6 +146,16 @@ pub(crate) fn modes() -> impl Iterator<Item = (Format, Conversions)> {
 /// their indices in the timer's times, in that order (the glue's pack and unpack, then per
 /// row of the table its pack and its unpack), for [`conversion_times`].
 pub fn time_rows(timer: &mut timing::Timer) -> Vec<usize> {
+    let conversions: Vec<(Format, Conversions)> = modes().collect();
+    time_rows_of(timer, &conversions)
+}
+
+/// As [`time_rows`], for `conversions` alone (in their order): the glue, then each one's pack
+/// and unpack.
+pub(crate) fn time_rows_of(
+    timer: &mut timing::Timer,
+    conversions: &[(Format, Conversions)],
+) -> Vec<usize> {
     let mut indices: Vec<usize> = Direction::ALL
         .iter()
         .map(|&direction| {
@@ -153,27 +163,18 @@ pub fn time_rows(timer: &mut timing::Timer) -> Vec<usize> {
             timer.add(&name, &glue_wgsl(direction), &[], 1)
         })
         .collect();
-    indices.extend(
-        modes()
-            .flat_map(|(format, conversions)| {
-                Direction::ALL
-                    .iter()
-                    .map(move |&direction| (format, conversions, direction))
-            })
-            .map(|(format, conversions, direction)| {
-                timer.add(
-                    &format!(
-                        "{} {} {}",
-                        format.name(),
-                        conversions.name(),
-                        direction.name()
-                    ),
-                    &row_wgsl(format, conversions, direction),
-                    &[],
-                    1,
-                )
-            }),
-    );
+    for &(format, conversions) in conversions {
+        for &direction in Direction::ALL {
+            let name = format!(
+                "{} {} {}",
+                format.name(),
+                conversions.name(),
+                direction.name()
+            );
+            let wgsl = row_wgsl(format, conversions, direction);
+            indices.push(timer.add(&name, &wgsl, &[], 1));
+        }
+    }
     indices
 }
 
