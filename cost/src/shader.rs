@@ -207,32 +207,43 @@ impl Shader {
 
     /// The GLSL ES a GL driver compiles.
     pub fn gles(&self) -> Result<GlesForm, ShaderError> {
-        let shader = match &self.source {
-            Source::Spirv(_) => return Err("SPIR-V is costed on Vulkan targets only".into()),
-            Source::Glsl(text) => text.clone(),
+        match &self.source {
+            Source::Spirv(_) => Err("SPIR-V is costed on Vulkan targets only".into()),
+            Source::Glsl(text) => Ok(GlesForm {
+                shader: text.clone(),
+                vertex: self.vertex_or(|| Ok(companion_vertex_glsl(text)))?,
+            }),
             Source::Wgsl { module, entry } => {
                 let (module, info) = &**module;
                 let options =
                     glsl_stage::options_keeping_bindings(module, glsl::Version::new_gles(310));
-                glsl_stage::write((module, info), naga_stage(self.stage), entry, &options)?.0
+                let shader =
+                    glsl_stage::write((module, info), naga_stage(self.stage), entry, &options)?.0;
+                let vertex = self.vertex_or(|| {
+                    let function = &entry_point(module, entry).function;
+                    let (module, info) = companion_vertex(module, function, Inputs::Attributes)?;
+                    let options =
+                        glsl_stage::options_keeping_bindings(&module, glsl::Version::new_gles(310));
+                    let written =
+                        glsl_stage::write((&module, &info), ShaderStage::Vertex, "main", &options)?;
+                    Ok(written.0)
+                })?;
+                Ok(GlesForm { shader, vertex })
             }
-        };
-        let vertex = match (self.stage, &self.vertex, &self.source) {
-            (Stage::Compute, _, _) => None,
-            (Stage::Fragment, Some(vertex), _) => Some(vertex.clone()),
-            (Stage::Fragment, None, Source::Glsl(text)) => Some(companion_vertex_glsl(text)),
-            // Refused above.
-            (_, _, Source::Spirv(_)) => None,
-            (Stage::Fragment, None, Source::Wgsl { module, entry }) => {
-                let (module, _) = &**module;
-                let function = &entry_point(module, entry).function;
-                let (module, info) = companion_vertex(module, function, Inputs::Attributes)?;
-                let options =
-                    glsl_stage::options_keeping_bindings(&module, glsl::Version::new_gles(310));
-                Some(glsl_stage::write((&module, &info), ShaderStage::Vertex, "main", &options)?.0)
-            }
-        };
-        Ok(GlesForm { shader, vertex })
+        }
+    }
+
+    /// The GL vertex shader a fragment shader links with: the one given
+    /// ([`Shader::with_vertex`]), else `companion`'s; none for a compute shader.
+    fn vertex_or(
+        &self,
+        companion: impl FnOnce() -> Result<String, ShaderError>,
+    ) -> Result<Option<String>, ShaderError> {
+        match (self.stage, &self.vertex) {
+            (Stage::Compute, _) => Ok(None),
+            (Stage::Fragment, Some(vertex)) => Ok(Some(vertex.clone())),
+            (Stage::Fragment, None) => companion().map(Some),
+        }
     }
 
     /// The SPIR-V a Vulkan driver compiles, with what its pipeline needs.

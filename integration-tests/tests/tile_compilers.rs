@@ -148,9 +148,8 @@ fn fused_renderer_compiles_on_mali_and_adreno() {
             }
             for program in fused.programs {
                 let vertex = program
-                    .vertex
-                    .as_deref()
-                    .expect("GLES translates its vertex stages");
+                    .glsl_vertex()
+                    .unwrap_or_else(|error| panic!("{}: {error}", layout.name()));
                 let shader = Shader::glsl(Stage::Fragment, &program.fragment).with_vertex(vertex);
                 shaders.push((
                     format!("{} {} {}", layout.name(), path.name(), program.stage.name()),

@@ -136,6 +136,19 @@ pub struct FusedProgram {
     pub samplers: Vec<(String, u32)>,
 }
 
+impl FusedProgram {
+    /// The GLSL vertex shader a GL host links the program with: an error naming the stage for
+    /// a Vulkan program, whose vertex stage its backend writes as SPIR-V.
+    pub fn glsl_vertex(&self) -> Result<&str, String> {
+        self.vertex.as_deref().ok_or_else(|| {
+            format!(
+                "the {} program has no GLSL vertex shader: its dialect leaves the vertex stage to the Vulkan backend",
+                self.stage.name()
+            )
+        })
+    }
+}
+
 /// A fused path's programs and what its host needs to draw them.
 #[derive(Clone, Debug)]
 pub struct FusedPrograms {

@@ -57,7 +57,7 @@ pub fn export(options: &Options, inputs: &Inputs) -> Result<Vec<(String, Vec<u8>
             scene,
             "  {{ stage: {}, vertex: {}, fragment: {}, samplers: [{}] }},",
             json_string(program.stage.name()),
-            json_string(program.vertex.as_deref().unwrap_or_default()),
+            json_string(program.glsl_vertex()?),
             json_string(&program.fragment),
             samplers.join(", ")
         );

@@ -94,9 +94,11 @@ pub fn compile_frames() -> FrameShaders {
                 .programs
                 .iter()
                 .map(|program| {
-                    let shader = Shader::glsl(gbuffer_cost::Stage::Fragment, &program.fragment)
-                        .with_vertex(program.vertex.as_deref().unwrap_or_default());
-                    (program.stage, add(Ok(shader)))
+                    let shader = program.glsl_vertex().map(|vertex| {
+                        Shader::glsl(gbuffer_cost::Stage::Fragment, &program.fragment)
+                            .with_vertex(vertex)
+                    });
+                    (program.stage, add(shader))
                 })
                 .collect();
             let of = |stage: Stage| {

@@ -190,7 +190,7 @@ impl GlesRenderer {
         let fused = fused_programs(options, FusedDialect::Fetch(Include::FetchPacked))?;
         let interface = fused.interface;
         let geometry = &fused.programs[0];
-        let vertex = geometry.vertex.as_deref().unwrap_or_default();
+        let vertex = geometry.glsl_vertex()?;
         let program = self.gles.link(vertex, &geometry.fragment)?;
         let targets = interface.attachments.len();
         let formats: Vec<(u32, u32)> = interface

@@ -77,8 +77,10 @@ impl GlesRenderer {
             .collect();
         let mut programs = Vec::new();
         for source in sources {
-            let vertex = source.vertex.as_deref().unwrap_or_default();
-            match self.gles.link(vertex, &source.fragment) {
+            let linked = source
+                .glsl_vertex()
+                .and_then(|vertex| self.gles.link(vertex, &source.fragment));
+            match linked {
                 Ok(program) => programs.push((source.stage.name(), program)),
                 Err(error) => {
                     // SAFETY: programs of the current context.
