@@ -10,22 +10,21 @@
 #
 # `run` writes DIR/<date>-<adapter>.md (the report's markdown, the frame table, the bench's
 # table, the independent round trip's table and verdict), DIR/<date>-<adapter>.json
-# (report.json) and DIR/<date>-<adapter>-heatmaps.tar (the frame table's heat maps); DIR
-# defaults to docs/gpu. It needs no Rust toolchain: it runs what `build` put in .gpu/, so a
+# (report.json), DIR/<date>-<adapter>/ (the report's plots, which the .md shows) and
+# DIR/<date>-<adapter>-heatmaps.tar (the frame table's heat maps); DIR defaults to docs/gpu. It needs no Rust toolchain: it runs what `build` put in .gpu/, so a
 # machine that only runs binaries (the device tool's) can run it: carry .gpu/ there and run
 # `scripts/gpu-results.sh run "$OUT"`. `build` also fetches Debian's packages of the Vulkan
 # loader and of glslang and spirv-tools into .gpu/debs, which `run` unpacks where the machine
 # lacks them. With a Vulkan loader and an NVIDIA driver, wgpu picks the GPU;
 # WGPU_BACKEND=vulkan forces it.
 #
-# `adopt DIR` takes the .md and .json a run wrote into DIR (the device tool's files_at) in
-# place of docs/gpu's set: it removes the old files, renames the old file in every figures
+# `adopt DIR` takes the .md, .json and plots a run wrote into DIR (the device tool's files_at)
+# in place of docs/gpu's set: it removes the old files, renames the old file in every figures
 # marker and mention of the documents, and copies the new figures into the tables they show
 # (`.ci/check-figures --update`). What it cannot do it names: a table whose columns the new
-# file lacks, and the prose that quotes figures, are the writer's. The heat maps' tar stays out
-# of the repository.
+# file lacks, and the prose that quotes figures, are the writer's. The heat maps' tar (about
+# 2 MB a run, where the plots take 300 KB) stays out of the repository.
 set -euo pipefail
-cd "$(dirname "$0")/.."
 
 # Copies the executable cargo builds for `cargo ARGS... --message-format=json` whose file name
 # starts with PREFIX to .gpu/NAME, without running it (cargo prints where it put it).
@@ -128,13 +127,16 @@ run() {
     fi
     cat "$work/independent.txt"
     mkdir -p "$folder"
+    rm -rf "${folder:?}/$name"
+    mkdir "$folder/$name"
+    find "$work/report" -maxdepth 1 -name '*.png' ! -name 'frame-*-heatmap.png' -exec cp -t "$folder/$name" {} +
     {
         echo "# GPU results: $adapter, $(date -u +%Y-%m-%d)"
         echo
         echo "Written by \`scripts/gpu-results.sh\`, its binaries built at commit $(cat .gpu/commit 2>/dev/null || echo unknown)."
         echo "Compare ratios between rows, not absolute times with another machine's."
         echo
-        cat "$work/report/report.md"
+        report_markdown "$name" <"$work/report/report.md"
         echo
         echo "## The renderer's bench"
         echo
@@ -153,7 +155,16 @@ run() {
     } >"$folder/$name.md"
     cp "$work/report/report.json" "$folder/$name.json"
     (cd "$work/report" && tar -cf - frame-*-heatmap.png) >"$folder/$name-heatmaps.tar"
-    echo "gpu-results: wrote $folder/$name.md, $name.json and $name-heatmaps.tar"
+    echo "gpu-results: wrote $folder/$name.md, $name.json, $name/ (the plots) and $name-heatmaps.tar"
+}
+
+# The report's markdown, from standard input, as the run named $1 keeps it: each plot's image
+# link leads into the folder $1 beside the .md, where `run` copies the plots, and the frame
+# table names each heat map by its file in the tar, which the repository does not keep, where
+# a link would lead nowhere.
+report_markdown() {
+    sed -E -e "s#(!\[[^]]*\]\()([A-Za-z0-9_.-]+\.png\))#\1$1/\2#g" \
+        -e 's#\[png\]\((frame-[A-Za-z0-9_.-]+-heatmap\.png)\)#`\1`#g'
 }
 
 # The documents that may name a run's file: those whose tables `.ci/check-figures` holds.
@@ -175,13 +186,16 @@ adopt() {
         [ -e "$old_md" ] || continue
         old=$(basename "$old_md" .md)
         [ "$old" = "$name" ] && continue
-        rm -f "docs/gpu/$old.md" "docs/gpu/$old.json" "docs/gpu/$old-heatmaps.tar"
+        rm -rf "docs/gpu/$old.md" "docs/gpu/$old.json" "docs/gpu/$old-heatmaps.tar" "docs/gpu/${old:?}"
         # The markers and the prose's mentions of the file, by its path.
         grep -l -F "docs/gpu/$old." "${DOCUMENTS[@]}" | xargs -r sed -i "s|docs/gpu/$old\.|docs/gpu/$name.|g" || true
         echo "gpu-results: docs/gpu/$old.md and .json removed, the documents name docs/gpu/$name.md"
     done
     cp "$from/$name.md" "$from/$name.json" docs/gpu/
-    echo "gpu-results: docs/gpu/$name.md and .json copied from $from"
+    # The plots, where the run kept them (runs before its folder had none).
+    rm -rf "docs/gpu/${name:?}"
+    [ ! -d "$from/$name" ] || cp -r "$from/$name" docs/gpu/
+    echo "gpu-results: docs/gpu/$name.md, .json and its plots copied from $from"
     # Only the tables that quote the GPU's file: the others' files are other commands'.
     local status=0
     .ci/check-figures --update --source "docs/gpu/$name.md" || status=$?
@@ -193,6 +207,9 @@ adopt() {
     return "$status"
 }
 
+# Sourced (`.ci/check-gpu-adopt` tests report_markdown so), it only defines its functions.
+[ "${BASH_SOURCE[0]}" = "$0" ] || return 0
+cd "$(dirname "$0")/.."
 case "${1:-all}" in
 build) build ;;
 run) run "${2:-}" ;;
