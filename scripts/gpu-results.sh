@@ -11,8 +11,9 @@
 # `run` writes DIR/<date>-<adapter>.md (the report's markdown, the frame table, the bench's
 # table, the independent round trip's table and verdict), DIR/<date>-<adapter>.json
 # (report.json), DIR/<date>-<adapter>/ (the report's plots, which the .md shows) and
-# DIR/<date>-<adapter>-heatmaps.tar (the frame table's heat maps); DIR defaults to docs/gpu. It needs no Rust toolchain: it runs what `build` put in .gpu/, so a
-# machine that only runs binaries (the device tool's) can run it: carry .gpu/ there and run
+# DIR/<date>-<adapter>-heatmaps.tar (the frame table's heat maps); DIR defaults to docs/gpu.
+# It needs no Rust toolchain: it runs what `build` put in .gpu/, so a machine that only runs
+# binaries (the device tool's) can run it: carry .gpu/ there and run
 # `scripts/gpu-results.sh run "$OUT"`. `build` also fetches Debian's packages of the Vulkan
 # loader and of glslang and spirv-tools into .gpu/debs, which `run` unpacks where the machine
 # lacks them. With a Vulkan loader and an NVIDIA driver, wgpu picks the GPU;
@@ -189,7 +190,7 @@ adopt() {
         rm -rf "docs/gpu/$old.md" "docs/gpu/$old.json" "docs/gpu/$old-heatmaps.tar" "docs/gpu/${old:?}"
         # The markers and the prose's mentions of the file, by its path.
         grep -l -F "docs/gpu/$old." "${DOCUMENTS[@]}" | xargs -r sed -i "s|docs/gpu/$old\.|docs/gpu/$name.|g" || true
-        echo "gpu-results: docs/gpu/$old.md and .json removed, the documents name docs/gpu/$name.md"
+        echo "gpu-results: docs/gpu/$old.md, .json and plots removed, the documents name docs/gpu/$name.md"
     done
     cp "$from/$name.md" "$from/$name.json" docs/gpu/
     # The plots, where the run kept them (runs before its folder had none).
