@@ -215,18 +215,11 @@ impl Shader {
             }),
             Source::Wgsl { module, entry } => {
                 let (module, info) = &**module;
-                let options =
-                    glsl_stage::options_keeping_bindings(module, glsl::Version::new_gles(310));
-                let shader =
-                    glsl_stage::write((module, info), naga_stage(self.stage), entry, &options)?.0;
+                let shader = gles_310((module, info), naga_stage(self.stage), entry)?;
                 let vertex = self.vertex_or(|| {
                     let function = &entry_point(module, entry).function;
                     let (module, info) = companion_vertex(module, function, Inputs::Attributes)?;
-                    let options =
-                        glsl_stage::options_keeping_bindings(&module, glsl::Version::new_gles(310));
-                    let written =
-                        glsl_stage::write((&module, &info), ShaderStage::Vertex, "main", &options)?;
-                    Ok(written.0)
+                    gles_310((&module, &info), ShaderStage::Vertex, "main")
                 })?;
                 Ok(GlesForm { shader, vertex })
             }
@@ -302,6 +295,16 @@ fn entry_point<'a>(module: &'a naga::Module, entry: &str) -> &'a naga::EntryPoin
         .iter()
         .find(|point| point.name == entry)
         .expect("the entry point was found when the shader was made")
+}
+
+/// Entry point `entry` of `module` in GLSL ES 3.10 (panfrost's newest), its bindings kept.
+fn gles_310(
+    (module, info): (&naga::Module, &ModuleInfo),
+    stage: ShaderStage,
+    entry: &str,
+) -> Result<String, ShaderError> {
+    let options = glsl_stage::options_keeping_bindings(module, glsl::Version::new_gles(310));
+    Ok(glsl_stage::write((module, info), stage, entry, &options)?.0)
 }
 
 fn naga_stage(stage: Stage) -> ShaderStage {
