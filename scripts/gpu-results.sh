@@ -23,8 +23,8 @@
 # in place of docs/gpu's set: it removes the old files, renames the old file in every figures
 # marker and mention of the documents, and copies the new figures into the tables they show
 # (`.ci/check-figures --update`). What it cannot do it names: a table whose columns the new
-# file lacks, and the prose that quotes figures, are the writer's. The heat maps' tar (about
-# 2 MB a run, where the plots take 300 KB) stays out of the repository.
+# file lacks, and the prose that quotes figures, are the writer's. The heat maps' tar (the
+# bulk of a run's images) stays out of the repository.
 set -euo pipefail
 
 # Copies the executable cargo builds for `cargo ARGS... --message-format=json` whose file name
