@@ -43,6 +43,8 @@
 //!
 //! [`solve()`] picks a layout's bits for a scene in Bevy's terms ([`BevyScene`]), or lists what
 //! must give when 128 bits cannot hold it.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 // The README's Rust blocks, compiled (and run where they can) as doc tests.
 #[cfg(doctest)]

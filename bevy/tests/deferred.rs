@@ -10,7 +10,8 @@ use bevy::app::App;
 use scene::{features, spheres};
 
 use gbuffer::engine_layouts::BevyDeferred;
-use gbuffer::glam::{Vec3, Vec4};
+// Bevy's glam is the library's: these are `gbuffer::glam`'s types too.
+use bevy::math::{Vec3, Vec4};
 use gbuffer::GBufferLayout;
 use gbuffer_bevy::{functions, solve, GBufferPlugin, MappingError, Quantity};
 
@@ -420,7 +421,7 @@ fn the_readmes_layout_is_the_examples() {
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
     let body = readme
         .split_once("pub struct BevyFeatures {")
-        .and_then(|(_, rest)| rest.split_once("\n    }"))
+        .and_then(|(_, rest)| rest.split_once("\n}"))
         .expect("the README declares `BevyFeatures`")
         .0;
     let declared: Vec<(String, String)> = body
@@ -530,4 +531,53 @@ fn the_features_bevys_g_buffer_drops_render_through_a_layout() {
     eprintln!("{table}");
     write_file("features.md", &table);
     assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// One glam in a Bevy app: a system hands Bevy's own `Vec3`s (a `Transform`'s translation, a
+/// `Dir3`) to the CPU mirror of the example's layout, with no conversion, and the texel comes
+/// back as the layout's encodings round it: the octahedral normal within its 18 bits' half
+/// degree, the unorm base colour within half of its 6-bit step.
+#[test]
+fn a_bevy_system_packs_bevy_vec3s_with_the_cpu_mirror() {
+    use bevy::prelude::{Query, ResMut, Resource, Transform, Update};
+    use features::BevyFeatures;
+
+    #[derive(Resource, Default)]
+    struct Texels(Vec<(BevyFeatures, BevyFeatures)>);
+
+    fn pack_and_unpack(transforms: Query<&Transform>, mut texels: ResMut<Texels>) {
+        for transform in &transforms {
+            let normal: bevy::math::Dir3 = transform.forward();
+            let texel = BevyFeatures {
+                base_color: transform.translation,
+                normal: *normal,
+                clearcoat_normal: transform.up().into(),
+                ..BevyFeatures::unpack(&[0; 4])
+            };
+            texels.0.push((texel, BevyFeatures::unpack(&texel.pack())));
+        }
+    }
+
+    let mut app = App::new();
+    app.init_resource::<Texels>()
+        .add_systems(Update, pack_and_unpack);
+    app.world_mut().spawn(
+        Transform::from_translation(Vec3::new(0.25, 0.5, 0.75))
+            .looking_at(Vec3::new(1.0, -2.0, 3.0), Vec3::Y),
+    );
+    app.update();
+
+    let texels = &app.world().resource::<Texels>().0;
+    assert_eq!(texels.len(), 1, "the system ran once, over the one entity");
+    let (texel, back) = texels[0];
+    let step = 1.0 / 63.0;
+    assert!(
+        (back.base_color - texel.base_color).abs().max_element() <= step / 2.0 + 1e-6,
+        "{} came back as {}",
+        texel.base_color,
+        back.base_color
+    );
+    let degrees = |a: Vec3, b: Vec3| a.angle_between(b).to_degrees();
+    assert!(degrees(back.normal, texel.normal) < 0.5, "{} -> {}", texel.normal, back.normal);
+    assert!(degrees(back.clearcoat_normal, texel.clearcoat_normal) < 4.0);
 }

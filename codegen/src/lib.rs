@@ -17,6 +17,14 @@
 //!
 //! The model is named by one path, `gbuffer_core` (users of the facade: `gbuffer::layout`);
 //! this crate re-exports none of it.
+//!
+//! # Feature flags
+//!
+//! - `tools` (on by default): the compile step, layout files, the GLSL and Rust-source
+//!   emitters, the files the tools write and the build-script API (naga, TOML and
+//!   prettyplease come with it). The derive builds without it.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 #[cfg(feature = "tools")]
 mod builder;

@@ -20,6 +20,8 @@
 //! - [`Symbols`]: the names of the items generated for a layout.
 //!
 //! It depends on nothing: a user's runtime links no proc-macro2, quote or syn.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 pub mod bit_field;
 pub mod codecs;

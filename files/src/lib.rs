@@ -4,6 +4,8 @@
 //! without serde), and JSON string literals ([`json`], for generated JavaScript and the tools'
 //! JSON). The layout files (`gbuffer-codegen`), the scene files (`gbuffer-solver`), the
 //! validator's includes and the command line share them.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 pub mod input;
 pub mod json;

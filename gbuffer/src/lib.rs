@@ -59,6 +59,20 @@
 //! bit-identical everywhere.
 //!
 //! A layout over its budget does not compile, and the error lists every field's bits.
+//!
+//! # Feature flags
+//!
+//! - `wgpu`: every layout's wgpu helpers (`GBufferTargets`: target formats, textures,
+//!   bindings, the limits it needs and `LimitError`), and `gbuffer::wgpu`, the wgpu they are
+//!   written against.
+//! - `build`: `gbuffer::build`, layout files to includes and Rust mirrors from a build script.
+//!
+//! # The guide
+//!
+//! The guide is the repository's `book/` (an mdBook: `mdbook build book`), for users first:
+//! layouts and their formats and encodings, the wgpu and Bevy walkthroughs, the GLES, Vulkan
+//! and WebGL 2 includes, the shading library, the command line and the speed/accuracy trade,
+//! measured. Each package's own documentation links here.
 
 // The derive's expansion names `::gbuffer`; this lets the seed layouts below use it too.
 extern crate self as gbuffer;

@@ -4,6 +4,8 @@
 //! driver, a library, a tool) and the package that brings it, so a command can exit with a
 //! one-line reason where a test would fail. The harness shaders and their inputs, which run a
 //! layout's generated code over buffers, serve the trade-off study and the tests alike.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 pub mod adapter;
 pub mod fullscreen;

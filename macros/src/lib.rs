@@ -9,6 +9,8 @@
 //!
 //! Every problem becomes a `syn::Error` at its span, and all of them are reported together.
 //! The derive never panics.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 mod parse;
 

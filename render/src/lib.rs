@@ -7,6 +7,8 @@
 //! [`inputs`] baked once, the G-buffers ([`gbuffers`]), the WGSL of every pass ([`shaders`],
 //! translated to GLSL by [`glsl`] for GLES and Vulkan), and the [`recording`] of a frame's
 //! passes, from which its memory traffic is counted.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 pub mod coarse;
 pub mod conventions;

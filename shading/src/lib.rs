@@ -23,6 +23,8 @@
 //! The mirror and the reference are compiled from one source per module (`functions/<module>.rs`, included with the
 //! float type set to f32 or f64), so the formulas cannot drift apart. Module and function names
 //! are the WGSL's.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 /// The f32 mirrors of the WGSL functions.
 // The literals are the WGSL's, written as the shared source needs them for f64.

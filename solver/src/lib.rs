@@ -11,6 +11,8 @@
 //! - [`texel`]: the WGSL that stores the scene's values in that layout and reads them back;
 //! - [`lighting`]: a lighting shader with only the terms the scene uses;
 //! - [`file`](mod@file): scene descriptions in TOML, with file:line:column errors.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 pub mod description;
 pub mod file;

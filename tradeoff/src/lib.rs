@@ -12,6 +12,8 @@
 //! contradict the order the instruction counts predict are listed) and for its f32 mirror on
 //! the CPU. The packing conversions get their own table: per format, exact and fast, their
 //! instructions, branches, error in codes and time per million texels.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 pub mod compilers;
 mod consistency;

@@ -3,6 +3,8 @@
 //!
 //! The stages mirror naga's own: parse (front), validate, translate (back). Each problem is a
 //! [`Problem`] that names the stage and, where the source has one, the line and column.
+//!
+//! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 pub mod cost;
 pub mod diagnostic;

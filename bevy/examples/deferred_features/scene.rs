@@ -31,7 +31,8 @@ use bevy::winit::WinitPlugin;
 
 /// The layout, in a module of its own because its `Vec3`s are gbuffer's glam, not Bevy's.
 pub mod layout {
-    use gbuffer::glam::Vec3;
+    // Bevy's `Vec3`: the library is on Bevy's glam, so the derive takes it as its own.
+    use bevy::math::Vec3;
     use gbuffer::GBufferLayout;
 
     /// The G-buffer: Bevy's quantities the scene uses, fewer bits each, and what Bevy's own
