@@ -578,6 +578,11 @@ fn a_bevy_system_packs_bevy_vec3s_with_the_cpu_mirror() {
         back.base_color
     );
     let degrees = |a: Vec3, b: Vec3| a.angle_between(b).to_degrees();
-    assert!(degrees(back.normal, texel.normal) < 0.5, "{} -> {}", texel.normal, back.normal);
+    assert!(
+        degrees(back.normal, texel.normal) < 0.5,
+        "{} -> {}",
+        texel.normal,
+        back.normal
+    );
     assert!(degrees(back.clearcoat_normal, texel.clearcoat_normal) < 4.0);
 }
