@@ -34,7 +34,8 @@ fail() {
 # 1. Host packages, from backports where it has them.
 mapfile -t missing < <(missing_packages "${mesa_packages[@]}" -- "${host_packages[@]}")
 if ((${#missing[@]})); then
-    add_backports
+    add_backports cost-setup "the cost model needs Mesa 25.0's drm-shim and its compilers, for \
+the host and for arm64 under qemu-user: run it on Debian 12 (a container of it will do)"
     retry apt-get update -qq || fail "could not update the package lists"
     retry apt-get install -y -qq --no-install-recommends -t bookworm-backports "${missing[@]}" \
         >/dev/null || fail "could not install ${missing[*]}"

@@ -31,8 +31,17 @@ missing_packages() {
     done
 }
 
-# Adds Debian 12's backports to apt's sources (Mesa 25 and its drm-shim come from there).
+# Adds Debian 12's backports to apt's sources (Mesa 25 and its drm-shim come from there), on
+# Debian 12 alone: on any other system (Ubuntu, Debian 13, ...) bookworm's backports would mix
+# another release's packages into apt's sources, so it refuses, in one line naming the system,
+# $1 (who asks) and $2 (what to install there instead), and exits 1.
 add_backports() {
+    local system
+    system=$( (. /etc/os-release 2>/dev/null && echo "${ID:-unknown} ${VERSION_ID:-}") || echo unknown)
+    if [ "$system" != "debian 12" ]; then
+        echo "$1: this script installs Debian 12's packages, and this system is ${system% }: $2" >&2
+        exit 1
+    fi
     local sources=/etc/apt/sources.list.d/bookworm-backports.sources
     if [ ! -f "$sources" ]; then
         printf '%s\n' 'Types: deb' 'URIs: http://deb.debian.org/debian' \

@@ -19,7 +19,9 @@ if ((${#missing[@]} == 0)); then
     echo "install-drivers: Mesa 25, the loaders, glslang and spirv-tools are in place"
     exit 0
 fi
-add_backports
+add_backports install-drivers "install Mesa 25 or later (its Vulkan drivers, lavapipe, and its GL \
+and EGL drivers, llvmpipe), the Vulkan, EGL and GLES loaders, glslang and spirv-tools from \
+your system's packages"
 retry apt-get update -qq || { echo "install-drivers: could not update the package lists" >&2; exit 1; }
 # Backports' versions where it has them (Mesa's packages only), Debian 12's otherwise.
 retry apt-get install -y -qq --no-install-recommends -t bookworm-backports "${mesa[@]}" "${others[@]}" \

@@ -82,9 +82,9 @@ impl Values {
         use Encoding as E;
         match self {
             Values::Unit => !matches!(encoding, E::Uint | E::Sint | E::Bool | E::Octahedral),
-            Values::Direction => {
-                matches!(encoding, E::Octahedral | E::Snorm | E::Half | E::Float32)
-            }
+            // A direction is a `Vec3` in one 32-bit word: `half` and `float32` would take 48
+            // and 96 bits, so no layout can give it them.
+            Values::Direction => matches!(encoding, E::Octahedral | E::Snorm),
             Values::Unbounded => matches!(
                 encoding,
                 E::Half | E::Float32 | E::UnsignedFloat | E::Rgb9e5 | E::Rgbm(_) | E::LogLuminance
@@ -97,7 +97,7 @@ impl Values {
     pub fn encodings(self) -> &'static str {
         match self {
             Values::Unit => "unorm, snorm or a float encoding",
-            Values::Direction => "octahedral, snorm, half or float32",
+            Values::Direction => "octahedral or snorm",
             Values::Unbounded => {
                 "a float encoding (rgb9e5, unsigned_float, half, float32, rgbm, log_luminance)"
             }

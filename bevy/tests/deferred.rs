@@ -166,7 +166,7 @@ fn quantities_that_do_not_fit_are_named() {
     assert_eq!(
         error.to_string(),
         "layout `Misencoded`, field `clearcoat_normal`: `unorm` cannot hold `clearcoat_normal`; \
-         use octahedral, snorm, half or float32"
+         use octahedral or snorm"
     );
     let told =
         GBufferPlugin::<Misencoded>::new().with_field("clearcoat_normal", Quantity::BaseColor);

@@ -13,7 +13,8 @@
 use crate::glam::{Vec3, Vec4};
 use crate::GBufferLayout;
 
-/// Bevy's deferred G-buffer (`pbr_deferred_functions.wgsl`, the WebGL form that keeps depth):
+/// Bevy's deferred G-buffer (Bevy 0.20's `bevy_pbr::deferred::functions`, in
+/// `deferred/functions.wesl`; the WebGL form, which keeps depth):
 /// one `Rgba32Uint` texel. Word 0: base colour (in sRGB, as Bevy stores it) and perceptual
 /// roughness; word 1: emissive as rgb9e5; word 2: reflectance, metallic and occlusion in 4
 /// bits each beside a 20-bit depth; word 3: a 24-bit octahedral normal beside 8 bits of flags.

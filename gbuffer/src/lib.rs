@@ -33,9 +33,9 @@
 //!
 //! A `#[bits(N, encoding)]` field is N bits of a shared `r32ui` word: consecutive bit fields
 //! fill a word from its least significant bit up, and one that does not fit starts the next.
-//! The encodings are `unorm`, `snorm`, `uint`, `sint`, `bool`, `half`, `rgb9e5`, `octahedral`
-//! and `rgbm(range)` ([`layout::Encoding`]); [`engine_layouts`] declares Bevy's and HDRP's
-//! G-buffers with them:
+//! The encodings are `unorm`, `snorm`, `uint`, `sint`, `bool`, `half`, `float32`,
+//! `unsigned_float`, `rgb9e5`, `octahedral`, `rgbm(range)` and `log_luminance`
+//! ([`layout::Encoding`]); [`engine_layouts`] declares Bevy's and HDRP's G-buffers with them:
 //!
 //! ```
 //! use gbuffer::{GBufferLayout, glam::{Vec3, Vec4}};
@@ -69,10 +69,11 @@
 //!
 //! # The guide
 //!
-//! The guide is the repository's `book/` (an mdBook: `mdbook build book`), for users first:
-//! layouts and their formats and encodings, the wgpu and Bevy walkthroughs, the GLES, Vulkan
-//! and WebGL 2 includes, the shading library, the command line and the speed/accuracy trade,
-//! measured. Each package's own documentation links here.
+//! The guide is the repository's `book/` (an mdBook: `mdbook` from crates.io, then
+//! `mdbook build book`), for users first: layouts and their formats and encodings, the wgpu
+//! and Bevy walkthroughs, the GLES, Vulkan and WebGL 2 includes, the shading library, the
+//! command line and the speed/accuracy trade, measured. Each package's own documentation links
+//! here.
 
 // The derive's expansion names `::gbuffer`; this lets the seed layouts below use it too.
 extern crate self as gbuffer;

@@ -175,3 +175,22 @@ fn every_library_is_documented_with_all_its_features_on_docs_rs() {
         );
     }
 }
+
+/// The facade's front page names every encoding a bit field can take, as the derive spells it.
+#[test]
+fn the_facades_front_page_names_every_encoding() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let page = front_page(&root.join("gbuffer"), "src/lib.rs");
+    let sentence = page
+        .split_once("The encodings are ")
+        .and_then(|(_, rest)| rest.split_once("([`layout::Encoding`])"))
+        .expect("the front page lists the encodings: \"The encodings are ...\"")
+        .0;
+    let listed: Vec<&str> = sentence
+        .split('`')
+        .skip(1)
+        .step_by(2)
+        .map(|name| name.split('(').next().unwrap())
+        .collect();
+    assert_eq!(listed, gbuffer_core::Encoding::names());
+}
