@@ -33,7 +33,7 @@ pub struct Arguments {
     /// GLSL ES pixel local storage blocks (`<name>.pls_{inout,in,out}.glsl`).
     #[arg(long)]
     glsl_pls: bool,
-    /// GLSL ES framebuffer-fetch include (`<name>.fetch.glsl`).
+    /// GLSL ES framebuffer-fetch includes, packed and native (`<name>.fetch{,_native}.glsl`).
     #[arg(long)]
     glsl_fetch: bool,
     /// Vulkan GLSL subpass-input includes (`<name>.vulkan{,_native}.glsl`), each with what a host

@@ -194,3 +194,44 @@ fn the_facades_front_page_names_every_encoding() {
         .collect();
     assert_eq!(listed, gbuffer_core::Encoding::names());
 }
+
+/// The guide's feature flags page lists every feature of every published package, with its
+/// default, and nothing else.
+#[test]
+fn the_guides_feature_page_lists_every_feature() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let page = read(&root.join("book/src/feature-flags.md"));
+    let listed: BTreeSet<(String, String, bool)> = page
+        .lines()
+        .filter_map(|line| {
+            let cells: Vec<&str> = line.strip_prefix("| `")?.split(" | ").collect();
+            let package = cells.first()?.strip_suffix('`')?;
+            let feature = cells.get(1)?.strip_prefix('`')?.strip_suffix('`')?;
+            let default = match *cells.get(2)? {
+                "yes" => true,
+                "no" => false,
+                other => panic!("{package} `{feature}`: on by default is yes or no, not {other}"),
+            };
+            Some((package.to_string(), feature.to_string(), default))
+        })
+        .collect();
+    let mut declared = BTreeSet::new();
+    for (folder, _) in PUBLISHED {
+        let manifest = read(&root.join(folder).join("Cargo.toml"));
+        let package = section(&manifest, "package")
+            .iter()
+            .find_map(|line| line.strip_prefix("name = \""))
+            .and_then(|name| name.strip_suffix('"'))
+            .unwrap_or_else(|| panic!("{folder}/Cargo.toml names its package"))
+            .to_string();
+        let (features, default) = features(&manifest);
+        for feature in features {
+            let on = default.contains(&feature);
+            declared.insert((package.clone(), feature, on));
+        }
+    }
+    assert_eq!(
+        listed, declared,
+        "book/src/feature-flags.md, and the packages' Cargo.toml"
+    );
+}

@@ -182,3 +182,39 @@ fn help_describes_the_command() {
         assert!(help.contains(expected), "--help lacks {expected}:\n{help}");
     }
 }
+
+/// The guide's page of outputs (book/src/codegen-outputs.md) names, for each switch, exactly
+/// the files `gbuffer codegen` writes with it alone.
+#[test]
+fn the_guides_outputs_page_names_the_files_each_switch_writes() {
+    let page = std::fs::read_to_string(workspace().join("book/src/codegen-outputs.md")).unwrap();
+    let rows: Vec<(&str, Vec<String>)> = page
+        .lines()
+        .filter_map(|line| {
+            let cells: Vec<&str> = line.strip_prefix("| `--")?.split(" | ").collect();
+            let switch = cells.first()?.strip_suffix('`')?;
+            let files = (cells.get(1)?.split(", "))
+                .map(|file| file.trim_matches('`').replace("<name>", "mobile_metallic"))
+                .collect();
+            Some((switch, files))
+        })
+        .collect();
+    assert_eq!(rows.len(), 7, "a row per switch: {rows:?}");
+    let layout = workspace().join("codegen/layouts/mobile_metallic.toml");
+    for (switch, mut listed) in rows {
+        let out = tempfile::tempdir().unwrap();
+        codegen()
+            .arg(&layout)
+            .arg("--out")
+            .arg(out.path())
+            .arg(format!("--{switch}"))
+            .succeed();
+        let mut written: Vec<String> = std::fs::read_dir(out.path())
+            .unwrap()
+            .map(|entry| entry.unwrap().file_name().into_string().unwrap())
+            .collect();
+        written.sort();
+        listed.sort();
+        assert_eq!(written, listed, "--{switch}");
+    }
+}
