@@ -26,6 +26,10 @@
 //!
 //! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
+// On docs.rs (`--cfg docsrs`, Cargo.toml's [package.metadata.docs.rs]), each feature-gated item
+// says which feature it needs.
+#![cfg_attr(docsrs, feature(doc_cfg))]
+
 #[cfg(feature = "tools")]
 mod builder;
 #[cfg(feature = "tools")]

@@ -75,6 +75,10 @@
 //! command line and the speed/accuracy trade, measured. Each package's own documentation links
 //! here.
 
+// On docs.rs (`--cfg docsrs`, Cargo.toml's [package.metadata.docs.rs]), each feature-gated item
+// says which feature it needs.
+#![cfg_attr(docsrs, feature(doc_cfg))]
+
 // The derive's expansion names `::gbuffer`; this lets the seed layouts below use it too.
 extern crate self as gbuffer;
 

@@ -168,11 +168,23 @@ fn every_library_is_documented_with_all_its_features_on_docs_rs() {
             continue;
         }
         let manifest = read(&root.join(folder).join("Cargo.toml"));
-        assert_eq!(
-            section(&manifest, "package.metadata.docs.rs"),
-            ["all-features = true"],
+        let docs_rs = section(&manifest, "package.metadata.docs.rs");
+        assert!(
+            docs_rs.contains(&"all-features = true"),
             "{folder}/Cargo.toml: docs.rs documents the feature-gated API"
         );
+        // A package with features labels each gated item with its feature there.
+        if !features(&manifest).0.is_empty() && folder != &"cli" {
+            assert!(
+                docs_rs.contains(&r#"rustdoc-args = ["--cfg", "docsrs"]"#),
+                "{folder}/Cargo.toml: docs.rs builds with --cfg docsrs"
+            );
+            let source = read(&root.join(folder).join(page));
+            assert!(
+                source.contains("#![cfg_attr(docsrs, feature(doc_cfg))]"),
+                "{folder}/{page}: docs.rs labels what each feature turns on"
+            );
+        }
     }
 }
 
