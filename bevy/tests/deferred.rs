@@ -536,10 +536,14 @@ fn the_features_bevys_g_buffer_drops_render_through_a_layout() {
 /// One glam in a Bevy app: a system hands Bevy's own `Vec3`s (a `Transform`'s translation, a
 /// `Dir3`) to the CPU mirror of the example's layout, with no conversion, and the texel comes
 /// back as the layout's encodings round it: the octahedral normal within its 18 bits' half
-/// degree, the unorm base colour within half of its 6-bit step.
+/// degree, the unorm base colour within half of its 6-bit step. The system runs once on the
+/// app's world, not through a schedule: a schedule's executor would set up Bevy's global task
+/// pools before the rendering tests beside it set them up their own way (their shaders then
+/// failed to load).
 #[test]
 fn a_bevy_system_packs_bevy_vec3s_with_the_cpu_mirror() {
-    use bevy::prelude::{Query, ResMut, Resource, Transform, Update};
+    use bevy::ecs::system::RunSystemOnce;
+    use bevy::prelude::{Query, ResMut, Resource, Transform};
     use features::BevyFeatures;
 
     #[derive(Resource, Default)]
@@ -559,13 +563,14 @@ fn a_bevy_system_packs_bevy_vec3s_with_the_cpu_mirror() {
     }
 
     let mut app = App::new();
-    app.init_resource::<Texels>()
-        .add_systems(Update, pack_and_unpack);
+    app.init_resource::<Texels>();
     app.world_mut().spawn(
         Transform::from_translation(Vec3::new(0.25, 0.5, 0.75))
             .looking_at(Vec3::new(1.0, -2.0, 3.0), Vec3::Y),
     );
-    app.update();
+    app.world_mut()
+        .run_system_once(pack_and_unpack)
+        .expect("the system runs");
 
     let texels = &app.world().resource::<Texels>().0;
     assert_eq!(texels.len(), 1, "the system ran once, over the one entity");
