@@ -543,14 +543,12 @@ fn the_features_bevys_g_buffer_drops_render_through_a_layout() {
 #[test]
 fn a_bevy_system_packs_bevy_vec3s_with_the_cpu_mirror() {
     use bevy::ecs::system::RunSystemOnce;
-    use bevy::prelude::{Query, ResMut, Resource, Transform};
+    use bevy::prelude::{Query, Transform};
     use features::BevyFeatures;
 
-    #[derive(Resource, Default)]
-    struct Texels(Vec<(BevyFeatures, BevyFeatures)>);
-
-    fn pack_and_unpack(transforms: Query<&Transform>, mut texels: ResMut<Texels>) {
-        for transform in &transforms {
+    // Each entity's texel, and the texel its words unpack to.
+    fn pack_and_unpack(transforms: Query<&Transform>) -> Vec<(BevyFeatures, BevyFeatures)> {
+        let round_trip = |transform: &Transform| {
             let normal: bevy::math::Dir3 = transform.forward();
             let texel = BevyFeatures {
                 base_color: transform.translation,
@@ -558,21 +556,21 @@ fn a_bevy_system_packs_bevy_vec3s_with_the_cpu_mirror() {
                 clearcoat_normal: transform.up().into(),
                 ..BevyFeatures::unpack(&[0; 4])
             };
-            texels.0.push((texel, BevyFeatures::unpack(&texel.pack())));
-        }
+            (texel, BevyFeatures::unpack(&texel.pack()))
+        };
+        transforms.iter().map(round_trip).collect()
     }
 
     let mut app = App::new();
-    app.init_resource::<Texels>();
     app.world_mut().spawn(
         Transform::from_translation(Vec3::new(0.25, 0.5, 0.75))
             .looking_at(Vec3::new(1.0, -2.0, 3.0), Vec3::Y),
     );
-    app.world_mut()
+    let texels = app
+        .world_mut()
         .run_system_once(pack_and_unpack)
         .expect("the system runs");
 
-    let texels = &app.world().resource::<Texels>().0;
     assert_eq!(texels.len(), 1, "the system ran once, over the one entity");
     let (texel, back) = texels[0];
     let step = 1.0 / 63.0;
