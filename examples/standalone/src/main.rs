@@ -46,7 +46,8 @@ struct Wide {
 }
 
 fn main() -> ExitCode {
-    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = match pollster::block_on(instance.request_adapter(&Default::default())) {
         Ok(adapter) => adapter,
         Err(error) => {
@@ -60,16 +61,17 @@ fn main() -> ExitCode {
         eprintln!("{error}");
         return ExitCode::FAILURE;
     }
-    let (device, _queue) = match pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        required_limits: limits.clone(),
-        ..Default::default()
-    })) {
-        Ok(device) => device,
-        Err(error) => {
-            eprintln!("no device: {error}");
-            return ExitCode::FAILURE;
-        }
-    };
+    let (device, _queue) =
+        match pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            required_limits: limits.clone(),
+            ..Default::default()
+        })) {
+            Ok(device) => device,
+            Err(error) => {
+                eprintln!("no device: {error}");
+                return ExitCode::FAILURE;
+            }
+        };
     // gbuffer::wgpu is this crate's wgpu: the types are the same.
     let device: &gbuffer::wgpu::Device = &device;
     let targets = MobileMetallic::create_targets(device, 640, 360, wgpu::TextureUsages::empty());
