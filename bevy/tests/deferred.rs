@@ -413,32 +413,20 @@ fn layouts_render_in_bevys_deferred_renderer() {
     );
 }
 
-/// The README's first snippet declares the example's layout field for field: `#[bits(N,
-/// encoding)] pub name: Type`, in order.
+/// The README's app is the specular tint example, character for character: what CI runs from
+/// the README is what `cargo run --example specular_tint` runs.
 #[test]
-fn the_readmes_layout_is_the_examples() {
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
-    let body = readme
-        .split_once("pub struct BevyFeatures {")
-        .and_then(|(_, rest)| rest.split_once("\n}"))
-        .expect("the README declares `BevyFeatures`")
+fn the_readmes_app_is_the_specular_tint_example() {
+    let read = |path: &str| {
+        std::fs::read_to_string(format!("{}/{path}", env!("CARGO_MANIFEST_DIR"))).unwrap()
+    };
+    let readme = read("README.md");
+    let app = readme
+        .split_once("```rust,no_run\n")
+        .and_then(|(_, rest)| rest.split_once("```\n"))
+        .expect("the README shows its app in a ```rust,no_run block")
         .0;
-    let declared: Vec<(String, String)> = body
-        .lines()
-        .filter_map(|line| {
-            let (attribute, field) = line.trim().strip_prefix("#[bits(")?.split_once(")]")?;
-            let (bits, encoding) = attribute.split_once(", ")?;
-            let name = field.trim().strip_prefix("pub ")?.split_once(':')?.0;
-            Some((name.to_string(), format!("{bits}-bit {encoding}")))
-        })
-        .collect();
-    let example: Vec<(String, String)> = features::BevyFeatures::layout()
-        .fields
-        .iter()
-        .map(|field| (field.name.clone(), field.storage_name()))
-        .collect();
-    assert_eq!(declared, example);
+    assert_eq!(app, read("examples/specular_tint.rs"));
 }
 
 #[test]
