@@ -246,10 +246,8 @@ fn check(
     }
 }
 
-/// llvmpipe (Mesa 22.3, and 25.0 still) reads native 8- and 10-bit attachments correctly
-/// through framebuffer fetch, but a draw that writes such an attachment after fetching it
-/// stores wrong texels (often those of other pixels) unless every pixel holds the same value.
-/// The packed include (RGBA32UI) and the 16- and 32-bit formats are unaffected.
+/// The formats llvmpipe rewrites wrongly when a draw writes them after fetching them
+/// (book/src/driver-notes.md): native 8- and 10-bit attachments.
 fn llvmpipe_miswrites_after_fetch(format: Format) -> bool {
     matches!(
         format,
@@ -257,15 +255,9 @@ fn llvmpipe_miswrites_after_fetch(format: Format) -> bool {
     )
 }
 
-/// llvmpipe (Mesa 25.0) crashes (a SIGSEGV in LLVM, from the draw that compiles the shader)
-/// on a GLSL ES 3.00 fragment shader that fetches an `rgba8` attachment holding fewer than four
-/// components as its first and writes it back, as the native include's `store(load())` does,
-/// when that attachment is alone or has one beside it, of four 8- or 10-bit channels holding
-/// four components: layouts such as `[rgba8 vec2]` and `[rgba8 vec2, rgba8ui uvec4]`. The same
-/// shaders under 3.10 or 3.20, with four components first, in the other order, with a third
-/// attachment or a second of fewer components or another format compile and round-trip. Found
-/// by the random layouts (each shape in about 1 of 16 runs of the suite); reproduced
-/// deterministically one layout at a time.
+/// The shaders llvmpipe (Mesa 25.0) crashes compiling (book/src/driver-notes.md): under GLSL
+/// ES 3.00, the native include's `store(load())` of an `rgba8` attachment of fewer than four
+/// components first, alone or beside one of four 8- or 10-bit channels holding four components.
 fn llvmpipe_crashes_compiling(layout: &Layout, include: Include, preamble: &str) -> bool {
     let four_narrow_channels = |field: &Field| {
         field.ty.components == 4

@@ -470,15 +470,15 @@ mod tests {
         }
     }
 
-    /// The speed chapter states the protocol's figures; they are this module's and
+    /// The measuring chapter states the protocol's figures; they are this module's and
     /// `Protocol::FULL`'s, so changing one without the page fails here.
     #[test]
     fn the_guide_states_the_protocol_as_the_code_runs_it() {
         let chapter = std::fs::read_to_string(concat!(
             env!("CARGO_MANIFEST_DIR"),
-            "/../book/src/speed-and-accuracy.md"
+            "/../book/src/measuring.md"
         ))
-        .expect("the guide's speed chapter");
+        .expect("the guide's measuring chapter");
         let flowed = chapter.split_whitespace().collect::<Vec<_>>().join(" ");
         let full = gbuffer_gpu::timing::Protocol::FULL;
         for stated in [
@@ -496,7 +496,7 @@ mod tests {
         ] {
             assert!(
                 flowed.contains(&stated),
-                "the speed chapter does not say `{stated}`"
+                "the measuring chapter does not say `{stated}`"
             );
         }
     }
