@@ -40,7 +40,7 @@ use serde::Serialize;
 
 pub use run::{Setup, DEFAULT_ROOT};
 pub use shader::{GlesForm, Rendering, Shader, ShaderError, VulkanForm};
-pub use statistics::{parse, Cycles, Statistic, Statistics};
+pub use statistics::{parse, parse_vertex, Cycles, Statistic, Statistics};
 pub use target::{Api, Architecture, Compiler, Target, DEFAULT_TARGETS, TARGETS};
 
 use run::Scratch;
@@ -105,8 +105,12 @@ pub struct Measurement {
     /// The driver's own name for the device and its version (`Mali-G610 (Panfrost), OpenGL ES
     /// 3.1 Mesa 25.0.7-2~bpo12+1`).
     pub device: String,
-    /// What the compiler reported.
+    /// What the compiler reported: the shader's stage (a Vulkan pipeline's fragment stage).
     pub statistics: Statistics,
+    /// A Vulkan pipeline's vertex stage, where the shader had one and the driver reports
+    /// pipeline executables (turnip, RADV); `None` otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vertex: Option<Statistics>,
     /// The compiler's listing, when asked for (Vulkan's internal representations; on GL, what
     /// the compiler printed with its debug flags).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -184,10 +188,14 @@ pub fn measure(
                     shader.stage().name()
                 )
             })?;
+            let vertex = (target.api == Api::Vulkan)
+                .then(|| parse_vertex(target.compiler, &lines))
+                .flatten();
             Ok(Measurement {
                 target: target.name,
                 device: device.clone(),
                 statistics,
+                vertex,
                 disassembly: section.disassembly,
             })
         })

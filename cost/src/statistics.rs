@@ -161,8 +161,25 @@ pub fn parse(compiler: Compiler, stage: Stage, lines: &[&str]) -> Option<Statist
     let raw = match compiler {
         Compiler::Bifrost | Compiler::Valhall | Compiler::Ir3 => shader_db(lines, stage, compiler)?,
         Compiler::Nouveau => nouveau(lines, stage)?,
-        Compiler::Turnip | Compiler::Aco => executable(lines, stage)?,
+        Compiler::Turnip | Compiler::Aco => executable(lines, executable_names(stage))?,
     };
+    statistics(compiler, raw)
+}
+
+/// Reads the vertex stage's statistics of a Vulkan pipeline from the lines the helper printed
+/// for it: its `vertex` (RADV) or `VS` (turnip) executable. `None` for a compiler that reports
+/// no pipeline executables, or when no executable is the vertex stage's.
+pub fn parse_vertex(compiler: Compiler, lines: &[&str]) -> Option<Statistics> {
+    match compiler {
+        Compiler::Turnip | Compiler::Aco => {
+            statistics(compiler, executable(lines, &["vertex", "vs", "vert"])?)
+        }
+        Compiler::Bifrost | Compiler::Valhall | Compiler::Ir3 | Compiler::Nouveau => None,
+    }
+}
+
+/// The named statistics of one stage, from what its compiler printed.
+fn statistics(compiler: Compiler, raw: Vec<Statistic>) -> Option<Statistics> {
     let get = |name: &str| {
         raw.iter()
             .find(|statistic| statistic.name == name)
@@ -255,13 +272,18 @@ fn nouveau(lines: &[&str], stage: Stage) -> Option<Vec<Statistic>> {
         .collect()
 }
 
-/// `executable: NAME` then `statistic: NAME = VALUE` lines: the stage's executable (named
-/// `fragment`/`compute` by RADV, `FS`/`CS` by turnip).
-fn executable(lines: &[&str], stage: Stage) -> Option<Vec<Statistic>> {
-    let names: &[&str] = match stage {
+/// What RADV (`fragment`, `compute`) and turnip (`FS`, `CS`) call a stage's executable.
+fn executable_names(stage: Stage) -> &'static [&'static str] {
+    match stage {
         Stage::Fragment => &["fragment", "fs", "frag"],
         Stage::Compute => &["compute", "cs"],
-    };
+    }
+}
+
+/// `executable: NAME` then `statistic: NAME = VALUE` lines: the executable called one of
+/// `names` (lower case), or whose name's first word is one (turnip's `Binning VS` is not its
+/// `VS`).
+fn executable(lines: &[&str], names: &[&str]) -> Option<Vec<Statistic>> {
     let mut raw = None;
     for line in lines {
         if let Some(name) = line.strip_prefix("executable: ") {
@@ -382,5 +404,25 @@ mod tests {
             (statistics.instructions, statistics.registers),
             (47, Some(2))
         );
+        // A Vulkan pipeline's vertex stage: turnip's `VS`, not its `Binning VS`; RADV's `vertex`.
+        let pipeline = [
+            "executable: VS",
+            "statistic: Instruction Count = 9",
+            "executable: FS",
+            "statistic: Instruction Count = 95",
+            "executable: Binning VS",
+            "statistic: Instruction Count = 7",
+        ];
+        let vertex = parse_vertex(Compiler::Turnip, &pipeline).unwrap();
+        assert_eq!(vertex.instructions, 9);
+        let fragment = parse(Compiler::Turnip, Stage::Fragment, &pipeline).unwrap();
+        assert_eq!(fragment.instructions, 95);
+        let radv = ["executable: vertex", "statistic: Instructions = 219"];
+        assert_eq!(
+            parse_vertex(Compiler::Aco, &radv).unwrap().instructions,
+            219
+        );
+        assert!(parse_vertex(Compiler::Aco, &lines[2..]).is_none());
+        assert!(parse_vertex(Compiler::Valhall, &pipeline).is_none());
     }
 }

@@ -118,8 +118,8 @@ fn turnip_and_radv_build_every_fused_pipeline_for_each_pass() {
         let asked = RENDERINGS
             .iter()
             .flat_map(|rendering| pipelines.iter().map(move |pipeline| (rendering, pipeline)));
-        // Each stage's instruction count on the first pass it was built for.
-        let mut first: Vec<Option<u64>> = vec![None; pipelines.len()];
+        // Each stage's instruction counts (fragment, vertex) on the first pass it was built for.
+        let mut first: Vec<Option<(u64, u64)>> = vec![None; pipelines.len()];
         for (index, ((&rendering, pipeline), result)) in asked.zip(results).enumerate() {
             let what = format!("{name}, {} on {}", pipeline.stage.name(), rendering.name());
             match (result, refusal) {
@@ -130,10 +130,13 @@ fn turnip_and_radv_build_every_fused_pipeline_for_each_pass() {
                     panic!("{what}: built where the driver offers no rasterization order")
                 }
                 (Ok(measurement), _) => {
-                    let instructions = measurement.statistics.instructions;
-                    eprintln!("{what}: {instructions} instructions");
-                    assert!(instructions > 0, "{what}");
-                    // The shaders are the same on every pass; so is their code.
+                    let vertex = measurement
+                        .vertex
+                        .unwrap_or_else(|| panic!("{what}: no vertex stage's statistics"));
+                    let instructions = (measurement.statistics.instructions, vertex.instructions);
+                    eprintln!("{what}: {instructions:?} instructions (fragment, vertex)");
+                    assert!(instructions.0 > 0 && instructions.1 > 0, "{what}");
+                    // The shaders are the same on every pass; so is their code, in both stages.
                     let stage = &mut first[index % pipelines.len()];
                     assert_eq!(*stage.get_or_insert(instructions), instructions, "{what}");
                 }
