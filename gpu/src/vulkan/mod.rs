@@ -171,7 +171,14 @@ impl Vulkan {
             let graphics = families
                 .iter()
                 .position(|family| family.queue_flags.contains(vk::QueueFlags::GRAPHICS));
-            let (Some(family), vk::TRUE) = (graphics, features.fragment_stores_and_atomics) else {
+            // Storage writes from fragment shaders (the tests' readbacks), and independent
+            // blend: a pass that writes some of its attachments and not others gives them
+            // different write masks (VUID-VkPipelineColorBlendStateCreateInfo-pAttachments-00605).
+            let needed = (
+                features.fragment_stores_and_atomics,
+                features.independent_blend,
+            );
+            let (Some(family), (vk::TRUE, vk::TRUE)) = (graphics, needed) else {
                 seen.push(name);
                 continue;
             };
@@ -186,7 +193,9 @@ impl Vulkan {
             let queues = [vk::DeviceQueueCreateInfo::default()
                 .queue_family_index(family as u32)
                 .queue_priorities(&priorities)];
-            let enabled = vk::PhysicalDeviceFeatures::default().fragment_stores_and_atomics(true);
+            let enabled = vk::PhysicalDeviceFeatures::default()
+                .fragment_stores_and_atomics(true)
+                .independent_blend(true);
             let offered = local_read::Offered::query(
                 instance,
                 physical_device,
@@ -220,7 +229,8 @@ impl Vulkan {
             ));
         }
         Err(format!(
-            "no Vulkan device has a graphics queue and fragmentStoresAndAtomics (seen: {})",
+            "no Vulkan device has a graphics queue, fragmentStoresAndAtomics and independentBlend \
+             (seen: {})",
             seen.join(", ")
         ))
     }
