@@ -393,8 +393,8 @@ struct Measured {
     spread_ns: f64,
 }
 
-/// How far past [`TOLERANCE`] a difference may be excused, either way: a case whose times stand
-/// further apart than this fails whatever the spreads (a folded row read 3.7 times faster).
+/// The most the two times may stand apart, as a ratio either way, and still be excused: a case
+/// further apart fails whatever the spreads (a folded row read 3.7 times faster).
 const EXCUSE_CAP: f64 = 1.5;
 
 /// What the check says of one case.
