@@ -4,7 +4,8 @@
 //! layouts, and per format a layout of four words of that format alone; and, for the first two,
 //! the same bytes moved with no conversion at all (the floor memory sets). Criterion prints each
 //! one's throughput in texels (elements) per second; the run ends with a table of the rates and
-//! of pack's and unpack's shares of memcpy's, which it also writes to
+//! of pack's and unpack's shares of memcpy's, and one of the first two layouts' pack and unpack
+//! rates as shares of their floor's, measured in the same run; it also writes both to
 //! `target/figures/packing.md` for the guide. Run with `cargo bench -p gbuffer --bench packing`.
 
 // criterion_group! defines a public function it cannot document.
@@ -13,7 +14,7 @@
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use std::time::Duration;
+use std::time::{Duration, SystemTime};
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
@@ -106,88 +107,96 @@ impl Sample for IVec4 {
     }
 }
 
-/// A field's bits with no conversion, for the floor of a pack or an unpack: folded into one
-/// word (every component read, each with one exclusive or) and spread back (every component
-/// written, each a copy of the word's bits). What is left is reading and writing the bytes.
-trait Moved {
-    fn fold(self) -> u32;
-    fn spread(word: u32) -> Self;
-}
-
-impl Moved for f32 {
-    fn fold(self) -> u32 {
-        self.to_bits()
-    }
-    fn spread(word: u32) -> f32 {
-        f32::from_bits(word)
-    }
-}
-
-impl Moved for u32 {
-    fn fold(self) -> u32 {
-        self
-    }
-    fn spread(word: u32) -> u32 {
-        word
-    }
-}
-
-impl Moved for i32 {
-    fn fold(self) -> u32 {
-        self as u32
-    }
-    fn spread(word: u32) -> i32 {
-        word as i32
-    }
-}
-
-/// [`Moved`] for glam's vectors, component by component.
-macro_rules! moved_vectors {
-    ($($vector:ident of $scalar:ty, $($component:ident)+;)+) => {
-        $(
-            impl Moved for $vector {
-                fn fold(self) -> u32 {
-                    0 $(^ self.$component.fold())+
-                }
-                fn spread(word: u32) -> $vector {
-                    $vector::splat(<$scalar>::spread(word))
-                }
-            }
-        )+
-    };
-}
-
-moved_vectors! {
-    Vec2 of f32, x y;
-    Vec3 of f32, x y z;
-    Vec4 of f32, x y z w;
-    IVec4 of i32, x y z w;
-    UVec4 of u32, x y z w;
-}
-
-/// `pack_slice` and `unpack_slice` with no conversion: each word one field's [`Moved::fold`],
-/// each field its word's [`Moved::spread`]. Defined for layouts of one word a field.
+/// The floor of a pack and an unpack: a layout's bytes moved with no conversion. A texel is
+/// read as the `u32`s of its fields (`T` of them, a multiple of its `W` words; a layout
+/// qualifies when its fields fill it, with no padding) and folded into its words, word `j` the
+/// exclusive or of the texel's `u32`s `j`, `j + W`, ... (pack), or written back from them, each
+/// run of `W` `u32`s a copy of the words (unpack): every byte read and written once, in order,
+/// in loops the compiler turns into vector loads, exclusive ors and stores. What is left is
+/// what memory costs.
 trait BytesOnly: GBufferLayout + Sized {
     fn move_in(texels: &[Self], packed: &mut [Self::Packed]);
     fn move_out(packed: &[Self::Packed], texels: &mut [Self]);
 }
 
+fn fold_words<const T: usize, const W: usize>(texels: &[[u32; T]], packed: &mut [[u32; W]]) {
+    for (texel, words) in texels.iter().zip(packed) {
+        let mut folded = [0; W];
+        for run in texel.chunks_exact(W) {
+            for (word, value) in folded.iter_mut().zip(run) {
+                *word ^= value;
+            }
+        }
+        *words = folded;
+    }
+}
+
+fn spread_words<const T: usize, const W: usize>(packed: &[[u32; W]], texels: &mut [[u32; T]]) {
+    for (words, texel) in packed.iter().zip(texels) {
+        for run in texel.chunks_exact_mut(W) {
+            run.copy_from_slice(words);
+        }
+    }
+}
+
+/// [`BytesOnly`] for a layout of `$u32s` `u32`s (f32, u32 and i32 components) and `$words`
+/// words.
 macro_rules! bytes_only {
-    ($layout:ident { $($field:ident)+ }) => {
+    ($layout:ident, $u32s:literal, $words:literal) => {
         impl BytesOnly for $layout {
             fn move_in(texels: &[$layout], packed: &mut [Self::Packed]) {
-                for (texel, words) in texels.iter().zip(packed) {
-                    *words = [$(texel.$field.fold()),+];
-                }
+                // SAFETY: a texel is exactly its fields' `$u32s` u32s (the assertion: no
+                // padding, so every byte is initialised), aligned for u32 (its fields are).
+                let texels = unsafe { as_u32s::<$layout, $u32s>(texels) };
+                fold_words::<$u32s, $words>(texels, packed);
             }
             fn move_out(packed: &[Self::Packed], texels: &mut [$layout]) {
-                for (words, texel) in packed.iter().zip(texels) {
-                    let mut words = words.iter().copied();
-                    *texel = $layout { $($field: Moved::spread(words.next().expect("a word a field"))),+ };
-                }
+                // SAFETY: as above; any bits are a valid f32, u32 or i32 component.
+                let texels = unsafe { as_u32s_mut::<$layout, $u32s>(texels) };
+                spread_words::<$u32s, $words>(packed, texels);
             }
         }
     };
+}
+
+/// `texels` as arrays of `T` u32s.
+///
+/// # Safety
+///
+/// `L` must be `T` u32-aligned scalars with no padding.
+unsafe fn as_u32s<L: GBufferLayout, const T: usize>(texels: &[L]) -> &[[u32; T]] {
+    assert_no_padding::<L, T>();
+    // SAFETY: the caller's promise, and the same bytes.
+    unsafe { std::slice::from_raw_parts(texels.as_ptr().cast(), texels.len()) }
+}
+
+/// [`as_u32s`], to write.
+///
+/// # Safety
+///
+/// As [`as_u32s`]; and any bits of the u32s must be valid texels.
+unsafe fn as_u32s_mut<L: GBufferLayout, const T: usize>(texels: &mut [L]) -> &mut [[u32; T]] {
+    assert_no_padding::<L, T>();
+    // SAFETY: the caller's promise, and the same bytes.
+    unsafe { std::slice::from_raw_parts_mut(texels.as_mut_ptr().cast(), texels.len()) }
+}
+
+/// `L` is `T` u32s, a multiple of its words: its fields' components number `T` and fill its
+/// size.
+fn assert_no_padding<L: GBufferLayout, const T: usize>() {
+    let components: usize = L::layout()
+        .fields
+        .iter()
+        .map(|field| field.ty.components)
+        .sum();
+    assert!(
+        components == T
+            && size_of::<L>() == 4 * T
+            && align_of::<L>() >= 4
+            && T.is_multiple_of(L::WORDS),
+        "{} is not {T} u32s, a multiple of its words",
+        L::layout().name
+    );
 }
 
 /// The 256-bit layout of eight formats the speed goal names.
@@ -212,8 +221,8 @@ struct EightFormats {
     unorm_10_10_10_2: Vec4,
 }
 
-bytes_only!(MobileMetallic { light_accumulation depth normals_roughness albedo_metallic });
-bytes_only!(EightFormats { small_floats halves unorm_16 sint_8 uint_10_10_10_2 unorm_8 single unorm_10_10_10_2 });
+bytes_only!(MobileMetallic, 12, 4);
+bytes_only!(EightFormats, 24, 8);
 
 /// Layouts of four words of one format each, named after it: each format's own rate; and
 /// `one_format_groups`, which measures them in the order listed.
@@ -422,38 +431,70 @@ criterion_group! {
     targets = slices
 }
 
-/// Criterion's mean time of one iteration, in nanoseconds, from the estimates it saved.
-fn mean_nanoseconds(folder: &Path, group: &str, function: &str) -> Option<f64> {
+/// Criterion's mean time of one iteration, in nanoseconds, from the estimates it saved, if it
+/// saved them during this run (from `started` on): a filter that skips a group leaves an older
+/// run's estimates, which the tables must not put beside this run's.
+fn mean_nanoseconds(
+    folder: &Path,
+    group: &str,
+    function: &str,
+    started: SystemTime,
+) -> Option<f64> {
     let path = folder.join(group).join(function).join("new/estimates.json");
+    if std::fs::metadata(&path).ok()?.modified().ok()? < started {
+        return None;
+    }
     let estimates: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()?;
     estimates["mean"]["point_estimate"].as_f64()
 }
 
-/// The side-by-side table, as Markdown: millions of texels a second, and pack's and unpack's
-/// shares of memcpy's rate, for the layouts criterion has measured.
-fn table(criterion_folder: &Path) -> String {
+/// The rates of `group`'s functions ([`FUNCTIONS`]) in millions of texels a second, if this
+/// run measured them all.
+fn rates(criterion_folder: &Path, group: &str, started: SystemTime) -> Option<[f64; 3]> {
+    let rates: Option<Vec<f64>> = FUNCTIONS
+        .iter()
+        .map(|function| {
+            mean_nanoseconds(criterion_folder, group, function, started)
+                .map(|ns| TEXELS as f64 / ns * 1e3)
+        })
+        .collect();
+    rates?.try_into().ok()
+}
+
+/// The side-by-side tables, as Markdown, for the layouts this run measured: millions of texels
+/// a second, and pack's and unpack's shares of memcpy's rate; then, for the layouts measured
+/// beside their bytes moved with no conversion ([`bytes_only_group`]), pack's and unpack's
+/// rates as shares of that floor's, both from this run.
+fn tables(criterion_folder: &Path, started: SystemTime) -> String {
     let mut table = String::from(
         "| layout | pack_slice | unpack_slice | memcpy | pack / memcpy | unpack / memcpy |\n\
          |---|---|---|---|---|---|\n",
     );
-    for (group, name) in ROWS.lock().expect("one thread").iter() {
-        let rates: Option<Vec<f64>> = FUNCTIONS
-            .iter()
-            .map(|function| {
-                mean_nanoseconds(criterion_folder, group, function)
-                    .map(|ns| TEXELS as f64 / ns * 1e3)
-            })
-            .collect();
-        if let Some([pack, unpack, memcpy]) = rates.as_deref() {
-            table += &format!(
-                "| {name} | {pack:.0} Mtexel/s | {unpack:.0} Mtexel/s | {memcpy:.0} Mtexel/s | {:.0}% | {:.0}% |\n",
-                100.0 * pack / memcpy,
-                100.0 * unpack / memcpy
+    let mut floors = String::from(
+        "| layout | pack / floor | unpack / floor |\n\
+         |---|---|---|\n",
+    );
+    let rows = ROWS.lock().expect("one thread");
+    for (group, name) in rows.iter() {
+        let Some([pack, unpack, memcpy]) = rates(criterion_folder, group, started) else {
+            continue;
+        };
+        table += &format!(
+            "| {name} | {pack:.0} Mtexel/s | {unpack:.0} Mtexel/s | {memcpy:.0} Mtexel/s | {:.0}% | {:.0}% |\n",
+            100.0 * pack / memcpy,
+            100.0 * unpack / memcpy
+        );
+        let floor = format!("{group} bytes only");
+        if let Some([floor_pack, floor_unpack, _]) = rates(criterion_folder, &floor, started) {
+            floors += &format!(
+                "| {name} | {:.0}% | {:.0}% |\n",
+                100.0 * pack / floor_pack,
+                100.0 * unpack / floor_unpack
             );
         }
     }
-    table
+    format!("{table}\n{floors}")
 }
 
 /// The target folder: `CARGO_TARGET_DIR`, or three folders above the bench (target/release/deps).
@@ -466,6 +507,7 @@ fn target_folder() -> Option<PathBuf> {
 }
 
 fn main() {
+    let started = SystemTime::now();
     benches();
     Criterion::default().configure_from_args().final_summary();
     let Some(target) = target_folder() else {
@@ -474,7 +516,7 @@ fn main() {
     let criterion_folder = std::env::var_os("CRITERION_HOME")
         .map(PathBuf::from)
         .unwrap_or_else(|| target.join("criterion"));
-    let table = table(&criterion_folder);
+    let table = tables(&criterion_folder, started);
     println!("\n{TEXELS} texels, one thread; criterion's means\n\n{table}");
     let figures = target.join("figures");
     // Written beside and renamed, so that a failed write leaves no half table.
