@@ -3,9 +3,9 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use gbuffer_codegen::layout_file::{read_layout_file, FileError};
 use gbuffer_codegen::output::{generate, Output, WriteOutcome};
 use gbuffer_codegen::staging::Planned;
+use gbuffer_layout_file::{read_layout_file, FileError};
 
 use crate::output;
 

@@ -12,9 +12,9 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use gbuffer_codegen::layout_file::FileError;
 use gbuffer_codegen::output::{generate, GeneratedFile, Output};
 use gbuffer_core::Conversions;
+use gbuffer_layout_file::FileError;
 use gbuffer_solver::file::read_and_solve;
 use gbuffer_solver::lighting::{lighting_wgsl, Forms};
 

@@ -18,12 +18,12 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use crate::layout_file::{read_layout_file, FileError};
 use crate::output::{generate, write_if_changed, Output};
+use gbuffer_layout_file::{read_layout_file, FileError};
 
 /// Generates the includes of layout files from a build script.
 ///
-/// A layout file (see [`layout_file`](crate::layout_file) for its keys) and the WGSL and bit
+/// A layout file (see [`gbuffer_layout_file`] for its keys) and the WGSL and bit
 /// report of it, written into a folder of the caller's choosing rather than `OUT_DIR`:
 ///
 /// ```

@@ -129,8 +129,8 @@ fn validated(wgsl: &str) -> Result<(naga::Module, ModuleInfo), TranslationError>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::layout_file::read_layout_file;
     use gbuffer_core::Direction;
+    use gbuffer_layout_file::read_layout_file;
 
     /// The compiled value holds what its parts say: naga's module of the WGSL declares the
     /// layout's functions, the translation names them in GLSL (`mobile_metallic` keeps its

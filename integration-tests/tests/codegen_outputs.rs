@@ -10,13 +10,13 @@ use std::path::{Path, PathBuf};
 
 use gbuffer::layout::{Format, Layout};
 use gbuffer_codegen::emit::glsl::{self, Include, Interface, PlsBlock};
-use gbuffer_codegen::layout_file::read_layout_file;
 use gbuffer_codegen::output::{generate, Output};
 use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
 use gbuffer_core::Named;
 use gbuffer_gpu::harness::fragment_harness;
 use gbuffer_gpu::tools::{glslang, spirv_val};
+use gbuffer_layout_file::read_layout_file;
 use gbuffer_testkit::user_shaders::{preambles, scalars_of_texel};
 use proptest::prelude::*;
 

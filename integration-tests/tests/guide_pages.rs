@@ -6,8 +6,8 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use gbuffer_codegen::layout_file::parse_layout;
 use gbuffer_codegen::output::{generate, Output};
+use gbuffer_layout_file::parse_layout;
 
 const BOOK: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../book/src");
 

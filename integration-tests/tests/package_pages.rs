@@ -12,6 +12,7 @@ const PUBLISHED: &[(&str, &str)] = &[
     ("gbuffer", "src/lib.rs"),
     ("core", "src/lib.rs"),
     ("files", "src/lib.rs"),
+    ("layout-file", "src/lib.rs"),
     ("shading", "src/lib.rs"),
     ("macros", "src/lib.rs"),
     ("codegen", "src/lib.rs"),

@@ -28,9 +28,9 @@ use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::Path;
 
-use gbuffer_codegen::layout_file::{FileDiagnostic, FileError};
 use gbuffer_core::Named;
 use gbuffer_files::toml_table::{self, Entry, ShapeError, Table};
+use gbuffer_layout_file::{FileDiagnostic, FileError};
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 

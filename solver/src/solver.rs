@@ -73,7 +73,7 @@ impl Solution {
         format!(
             "# Solved by gbuffer for scene `{}`.\n{}",
             self.scene.name,
-            gbuffer_codegen::layout_file::to_toml(&self.layout, Conversions::Exact)
+            gbuffer_layout_file::to_toml(&self.layout, Conversions::Exact)
         )
     }
 

@@ -300,9 +300,8 @@ fn solved_layouts_are_layouts_of_the_vocabulary_written_out_and_read_back() {
         // The layout file reads back as the solved layout, so `gbuffer codegen` of it gives
         // the WGSL, GLSL and mirror of the solver's own layout.
         let text = solution.layout_file();
-        let file =
-            gbuffer_codegen::layout_file::parse_layout(&text, std::path::Path::new("solved.toml"))
-                .unwrap_or_else(|errors| panic!("{text}\n{errors:?}"));
+        let file = gbuffer_layout_file::parse_layout(&text, std::path::Path::new("solved.toml"))
+            .unwrap_or_else(|errors| panic!("{text}\n{errors:?}"));
         assert_eq!(file.layout, solution.layout, "{text}");
         // Each quantity is one field, or one per piece, as its representation stores it.
         for placement in &solution.placements {

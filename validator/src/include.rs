@@ -13,8 +13,8 @@
 
 use std::path::{Path, PathBuf};
 
-use gbuffer_codegen::layout_file::read_layout_file;
 use gbuffer_files::input::read_input;
+use gbuffer_layout_file::read_layout_file;
 
 use crate::{FileProblem, Stage};
 

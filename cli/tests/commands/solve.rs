@@ -40,7 +40,7 @@ fn writes_every_output_and_places_errors() {
     gbuffer_validator::validate_wgsl(&scene_wgsl).unwrap();
     // The layout file it writes is a layout `gbuffer codegen` reads.
     let layout_file = folder.path().join("mobile_metallic_scene.layout.toml");
-    let read = gbuffer_codegen::layout_file::read_layout_file(&layout_file).unwrap();
+    let read = gbuffer_layout_file::read_layout_file(&layout_file).unwrap();
     assert_eq!(read.layout.name, "MobileMetallicScene");
 
     let broken = folder.path().join("broken.toml");

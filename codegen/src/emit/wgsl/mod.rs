@@ -747,3 +747,31 @@ fn write_conversion_helpers(out: &mut String, layout: &Layout, conversions: Conv
         }
     }
 }
+
+#[cfg(all(test, feature = "tools"))]
+mod tests {
+    use super::*;
+
+    /// Listing 2.2 as its layout file gives it: two rgba8 fields, the third and fourth.
+    fn mobile_metallic() -> Layout {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("layouts/mobile_metallic.toml");
+        gbuffer_layout_file::read_layout_file(&path).unwrap().layout
+    }
+
+    #[test]
+    fn a_layouts_fast_conversions_reach_the_wgsl() {
+        let layout = mobile_metallic();
+        assert!(!emit_with(&layout, Conversions::Exact).contains("pack4x8unorm(c)"));
+        assert!(emit_with(&layout, Conversions::Fast).contains("pack4x8unorm(c)"));
+    }
+
+    #[test]
+    fn a_fields_own_conversions_reach_the_wgsl() {
+        let mut layout = mobile_metallic();
+        layout.fields[2].conversions = Some(Conversions::Fast);
+        assert!(emit_with(&layout, Conversions::Exact).contains(
+            "_encode_rgba8_fast_word(c: vec4<f32>) -> u32 {\n    return pack4x8unorm(c);"
+        ));
+    }
+}
