@@ -63,8 +63,9 @@
 //! # Feature flags
 //!
 //! - `wgpu`: every layout's wgpu helpers (`GBufferTargets`: target formats, textures,
-//!   bindings, the limits it needs and `LimitError`), and `gbuffer::wgpu`, the wgpu they are
-//!   written against.
+//!   bindings, the limits it needs and `LimitError`, the lighting pass's WGSL, which
+//!   `gbuffer-codegen`'s WGSL back end writes), and `gbuffer::wgpu`, the wgpu they are written
+//!   against.
 //! - `build`: `gbuffer::build`, layout files to includes and Rust mirrors from a build script.
 //!
 //! # The guide

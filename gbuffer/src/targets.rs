@@ -272,7 +272,7 @@ pub trait GBufferTargets: GBufferLayout {
     /// `load_<snake>_targets(pixel: vec2<u32>) -> <Name>Targets`, the words as stored, and
     /// `read_<snake>_targets(pixel: vec2<u32>) -> <Name>`, which loads and unpacks a texel.
     fn lighting_wgsl(group: u32, first_binding: u32) -> String {
-        lighting_wgsl(&Self::layout(), group, first_binding)
+        gbuffer_codegen::emit::wgsl::lighting_targets(&Self::layout(), group, first_binding)
     }
 
     /// Bytes per sample of the targets, as wgpu counts them against
@@ -354,6 +354,9 @@ pub fn create_targets(
     GBufferTextures { textures, views }
 }
 
+/// [`GBufferTargets::lighting_wgsl`] for `layout`: the WGSL back end's, under the trait's name.
+pub use gbuffer_codegen::emit::wgsl::lighting_targets as lighting_wgsl;
+
 /// [`GBufferTargets::bind_group_entries`]: the targets' views from `first_binding` on.
 pub fn bind_group_entries(
     first_binding: u32,
@@ -368,35 +371,4 @@ pub fn bind_group_entries(
             resource: BindingResource::TextureView(view),
         })
         .collect()
-}
-
-/// [`GBufferTargets::lighting_wgsl`] for `layout`.
-pub fn lighting_wgsl(layout: &Layout, group: u32, first_binding: u32) -> String {
-    let symbols = layout.symbols();
-    let name = symbols.texel();
-    let mut out =
-        format!("// The G-buffer targets of layout `{name}`, read by the lighting pass.\n");
-    let mut loads = Vec::new();
-    for index in 0..packed_target_formats(layout.words()).len() {
-        let binding = first_binding + index as u32;
-        let target = symbols.target(index);
-        out.push_str(&format!(
-            "@group({group}) @binding({binding}) var {target}: texture_2d<u32>;\n"
-        ));
-        loads.push(format!("textureLoad({target}, pixel, 0)"));
-    }
-    let (targets, load_targets) = (symbols.targets(), symbols.load_targets());
-    out.push_str(&format!(
-        "\n// The words at `pixel` as stored (channels a narrow target lacks read as 0 or 1 and lie\n\
-         // past the layout's words).\n\
-         fn {load_targets}(pixel: vec2<u32>) -> {targets} {{\n    \
-         return {targets}({});\n}}\n\n\
-         // The texel at `pixel`, unpacked.\n\
-         fn {}(pixel: vec2<u32>) -> {name} {{\n    \
-         return {}({load_targets}(pixel));\n}}\n",
-        loads.join(", "),
-        symbols.read_targets(),
-        symbols.unpack_targets(),
-    ));
-    out
 }

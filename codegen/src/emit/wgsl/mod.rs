@@ -17,6 +17,9 @@
 //! be concatenated into one module.
 
 mod bit_fields;
+mod targets;
+
+pub use targets::lighting_targets;
 
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
