@@ -4,8 +4,8 @@
 //! Run with `cargo run --release -p gbuffer-render --example seed_layouts`; add `-- --wgsl` to print the
 //! generated WGSL as well.
 
-use gbuffer::layout::Report;
 use gbuffer::seed_layouts;
+use gbuffer_core::report::Report;
 
 fn main() {
     let print_wgsl = std::env::args()

@@ -7,9 +7,9 @@
 //! band).
 
 use crate::conventions::seed::{Shading, Surface, SurfaceConvention, LIGHT_SCALE};
-use gbuffer::glam::{Vec3, Vec4};
 use gbuffer::GBufferLayout;
 use gbuffer_shading::mirror as m;
+use glam::{Vec3, Vec4};
 
 /// Listing 2.2 with a 16-bit octahedral normal (8 bits a coordinate) and 8-bit roughness in
 /// its third word.

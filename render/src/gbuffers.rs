@@ -10,11 +10,11 @@ use std::sync::Arc;
 
 use crate::conventions::seed::SurfaceConvention;
 use gbuffer::engine_layouts::{BevyDeferred, HdrpLit};
-use gbuffer::layout::{Layout, PackedTarget};
 use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
 use gbuffer_core::Named;
+use gbuffer_core::{Layout, PackedTarget};
 use gbuffer_solver::{Features, Solution};
 
 use crate::coarse::CoarseNormals;

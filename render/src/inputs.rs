@@ -7,11 +7,11 @@
 //!   the GGX lobe of roughness m / ENVIRONMENT_MIPS (Karis's split sum: n = v = r) with
 //!   PREFILTER_SAMPLES importance samples, as the seed stores its PMREM (Listing 2.6).
 
-use gbuffer::glam::DVec3;
 use gbuffer_core::codecs::half::half_from_f32;
 use gbuffer_core::codecs::unorm::unorm_from_f32;
 use gbuffer_shading::env_brdf_lut::EnvBrdfLut;
 use gbuffer_shading::mirror as m;
+use glam::DVec3;
 
 use crate::reference::{prefiltered_sky, PREFILTER_SAMPLES};
 use crate::scene::{self, ENVIRONMENT_MIPS, ENVIRONMENT_RANGE, LIGHT_MAP_EXTENT, LIGHT_MAP_RANGE};

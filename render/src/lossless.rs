@@ -8,9 +8,9 @@
 //! it renders on wgpu, through memory.
 
 use crate::conventions::seed::{Shading, Surface, SurfaceConvention};
-use gbuffer::glam::Vec3;
 use gbuffer::GBufferLayout;
 use gbuffer_shading::mirror as m;
+use glam::Vec3;
 
 /// Every quantity of a [`Surface`] the lighting reads, as an f32.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]

@@ -6,7 +6,7 @@
 //! (`row * COLUMNS + column`) or the ground ([`GROUND`]). Materials are functions of the object
 //! and the world position (`scene::surface_at`), so no texture coordinates are needed.
 
-use gbuffer::glam::DVec3;
+use glam::DVec3;
 
 use crate::scene::{sphere_centre, COLUMNS, GROUND, ROWS, SPHERE_RADIUS};
 

@@ -222,7 +222,7 @@ impl Stage {
     }
 
     /// The GLSL `main` of its fragment stage, over the layout's include (`load`, its
-    /// [`gbuffer::layout::Symbols::load`]),
+    /// [`gbuffer_core::Symbols::load`]),
     /// the translated stage functions and what the backend declares: `frame_colour` (the
     /// output), `volume_index` (the volume drawn), and `store`, statements writing `texel`.
     /// A decal's fragments that it does not paint are discarded.

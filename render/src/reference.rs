@@ -2,9 +2,9 @@
 //! without packing, without texture filtering, with every integral evaluated at the pixel: the full
 //! model a specialised lighting pass is measured against.
 
-use gbuffer::glam::DVec3;
 use gbuffer_shading::reference as r;
 use gbuffer_solver::{Feature, Features};
+use glam::DVec3;
 
 use crate::mesh::Mesh;
 use crate::options::{Frame, EXPOSURE};

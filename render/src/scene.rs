@@ -8,9 +8,9 @@
 //! The scene is written twice, in WGSL (`SCENE_WGSL`, for the G-buffer pass) and in Rust f64
 //! (for the reference), side by side: the same numbers, the same formulas.
 
-use gbuffer::glam::{DVec2, DVec3, DVec4};
 use gbuffer_shading::reference as r;
 use gbuffer_solver::{Feature, Features};
+use glam::{DVec2, DVec3, DVec4};
 
 /// Sphere grid: columns of roughness, rows of material.
 pub const COLUMNS: usize = 6;

@@ -4,8 +4,8 @@
 //! the shading library: nothing below is a second copy of it.
 
 use crate::conventions::seed::SURFACE_WGSL;
-use gbuffer::layout::Layout;
 use gbuffer_codegen::wgsl_module;
+use gbuffer_core::Layout;
 use gbuffer_core::Named;
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 use gbuffer_solver::lighting::{self, Forms};

@@ -3,9 +3,9 @@
 //! treat specially (keywords, reserved words, built-in functions, `main`, names ending in a
 //! digit or `_`, `gl_` prefixes, double underscores).
 
-use gbuffer::layout::{BitField, Encoding, Field, FieldType, Format, Layout, RgbmRange, Storage};
 use gbuffer::GBufferLayout;
 use gbuffer_core::Named;
+use gbuffer_core::{BitField, Encoding, Field, FieldType, Format, Layout, RgbmRange, Storage};
 use proptest::prelude::*;
 
 /// Field names that are valid in WGSL and Rust but that GLSL reserves or that naga renames;
@@ -93,7 +93,7 @@ pub const AWKWARD_LAYOUT_NAMES: &[&str] = &[
 /// [`Encoding::names`], `components` and `width` (any values) are folded into what the
 /// encoding allows.
 pub fn bit_field(encoding: usize, components: usize, width: u32) -> (Storage, FieldType) {
-    let float = |components| FieldType::new(gbuffer::layout::ScalarKind::Float, components);
+    let float = |components| FieldType::new(gbuffer_core::ScalarKind::Float, components);
     let per_component = |encoding: Encoding, lowest: u32, highest: u32| {
         let components = components % 4 + 1;
         let most = highest.min(32 / components as u32);
@@ -160,7 +160,7 @@ pub fn bit_field(encoding: usize, components: usize, width: u32) -> (Storage, Fi
                 bits: 1,
                 encoding: Encoding::Bool,
             },
-            FieldType::new(gbuffer::layout::ScalarKind::Bool, 1),
+            FieldType::new(gbuffer_core::ScalarKind::Bool, 1),
         ),
         other => panic!("random layouts do not know codec `{other}` yet: add it here"),
     };

@@ -63,8 +63,8 @@ pub fn gpu_with(limits: Option<wgpu::Limits>, features: wgpu::Features) -> Optio
     or_skip("a wgpu adapter", Gpu::open(&request))
 }
 
-use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
 use gbuffer::GBufferLayout;
+use glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
 
 /// One field of each of the twelve formats, every channel used.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]

@@ -2,9 +2,9 @@
 //! domain its arguments are sampled over, its f32 mirror, its f64 reference, and how close
 //! the adapter must come to the mirror.
 
-use gbuffer::glam::{DVec2, DVec3, DVec4, Vec2, Vec3, Vec4};
 use gbuffer_shading::mirror as m;
 use gbuffer_shading::reference as r;
+use glam::{DVec2, DVec3, DVec4, Vec2, Vec3, Vec4};
 
 use gbuffer_gpu::values::{fibonacci_sphere, halton};
 

@@ -2,8 +2,8 @@
 //! values, and the comparison of what a driver produced with the Rust mirror. The wgpu, Dawn,
 //! GLES and Vulkan tests share them, so every path is held to the same contract.
 
-use gbuffer::codecs::unsigned_float::EXPONENT_BITS;
-use gbuffer::layout::{Channel, Encoding, Format, Layout, ScalarKind, Storage};
+use gbuffer_core::codecs::unsigned_float::EXPONENT_BITS;
+use gbuffer_core::{Channel, Encoding, Format, Layout, ScalarKind, Storage};
 
 use gbuffer_gpu::harness::{
     compute_harness, expected_scalars, expected_words, field_code_errors, run_in_batches,

@@ -5,10 +5,10 @@
 
 use std::fmt::Write as _;
 
-use gbuffer::layout::{Layout, ScalarKind};
 use gbuffer_codegen::emit::glsl::{GlslNames, Include};
 use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
+use gbuffer_core::{Layout, ScalarKind};
 use gbuffer_gpu::harness::scalars_per_texel;
 
 /// The preambles a user may write before an include: every `#version` it supports, each

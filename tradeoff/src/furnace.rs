@@ -3,8 +3,8 @@
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::fmt::Write as _;
 
-use gbuffer::glam::DVec3;
 use gbuffer_shading::reference as r;
+use glam::DVec3;
 
 use crate::stdout::report_line;
 

@@ -23,8 +23,8 @@
 
 use std::time::Instant;
 
-use gbuffer::layout::Format;
 use gbuffer_codegen::emit::wgsl::emit_with;
+use gbuffer_core::Format;
 use gbuffer_core::{Conversions, Named};
 use gbuffer_gpu::Gpu;
 

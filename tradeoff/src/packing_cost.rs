@@ -5,8 +5,8 @@
 //! and the conditional branches. The engines' idiom for each format ([`builtin_form`]) is
 //! measured in the same harness, so the three columns compare like with like.
 
-use gbuffer::layout::{Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
 use gbuffer_core::Conversions;
+use gbuffer_core::{Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
 
 use gbuffer_gpu::harness::field_code_errors;
 use gbuffer_gpu::harness::{compute_harness, expected_words, run_in_batches, scalars_per_texel};

@@ -109,8 +109,8 @@ impl SurfaceConvention for HdrpLit {
 mod tests {
     use super::*;
     use crate::conventions::seed::round_trip;
-    use gbuffer::glam::Vec3;
     use gbuffer::GBufferLayout;
+    use glam::Vec3;
 
     fn surface(metallic: f32) -> Surface {
         Surface {

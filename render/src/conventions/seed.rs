@@ -10,12 +10,12 @@
 //! its Rust mirror ([`SurfaceConvention::encode`], [`SurfaceConvention::decode`]) over
 //! [`gbuffer_shading::mirror`], in the same order of operations.
 
-use gbuffer::glam::{Vec2, Vec3};
 use gbuffer::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
 use gbuffer::GBufferLayout;
 use gbuffer_shading::mirror as m;
+use glam::{Vec2, Vec3};
 
 /// Light accumulation stored in unorm channels (`rgb10_a2`) is stored as light / this, so
 /// light up to 4 (the brightest light map and emissive of the reference scene) survives;

@@ -22,8 +22,8 @@
 use std::time::Instant;
 
 use ash::vk;
-use gbuffer::layout::PackedTarget;
 use gbuffer_core::Named;
+use gbuffer_core::PackedTarget;
 use gbuffer_gpu::vulkan::{
     feedback_barrier, host_read_barrier, Access, ImageTransition, RenderingAttachments,
     StorageBuffer, Vulkan, FEEDBACK,

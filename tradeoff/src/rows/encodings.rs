@@ -1,9 +1,9 @@
 //! The encodings' rows: transfer curves through 8-bit storage, normal storage and HDR
 //! storage, each against the f64 reference over its domain.
 
-use gbuffer::glam::{DVec3, Vec3, Vec4};
-use gbuffer::layout::{BitField, Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
+use gbuffer_core::{BitField, Encoding, Field, FieldType, Format, Layout, ScalarKind, Storage};
 use gbuffer_shading::{mirror as m, reference as r};
+use glam::{DVec3, Vec3, Vec4};
 
 use gbuffer_gpu::values::halton;
 

@@ -1,12 +1,12 @@
 //! The whole layouts' rows: every seed and engine layout's displayed colour through its
 //! convention's round trip, against the unquantised surface.
 
-use gbuffer::glam::{DVec3, Vec2, Vec3};
-use gbuffer::layout::Layout;
+use gbuffer_core::Layout;
 use gbuffer_render::conventions::seed::{
     round_trip, Shading, Surface, SurfaceConvention, LIGHT_SCALE, SURFACE_WGSL,
 };
 use gbuffer_shading::{mirror as m, reference as r};
+use glam::{DVec3, Vec2, Vec3};
 
 use gbuffer_gpu::values::halton;
 

@@ -13,8 +13,8 @@ pub(crate) use layouts::layout_rows;
 
 use errors::Accumulator;
 
-use gbuffer::codecs::unorm;
-use gbuffer::glam::{DVec3, Vec3, Vec4};
+use gbuffer_core::codecs::unorm;
+use glam::{DVec3, Vec3, Vec4};
 
 use crate::plot::Plot;
 

@@ -1,9 +1,9 @@
 //! The shading approximations' rows: the environment BRDF (LUT sizes and the analytic fit),
 //! the specular lobe and the visibility term, each against the f64 reference.
 
-use gbuffer::glam::{DVec3, Vec3, Vec4};
 use gbuffer_shading::env_brdf_lut::EnvBrdfLut;
 use gbuffer_shading::{mirror as m, reference as r};
+use glam::{DVec3, Vec3, Vec4};
 
 use super::{wgsl, Accumulator, Row};
 use crate::plot::Plot;

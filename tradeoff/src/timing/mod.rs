@@ -20,9 +20,9 @@ pub use harness::{fragment_harness, harness, BASELINE_ROW, CHAINS};
 
 use std::time::Instant;
 
-use gbuffer::glam::Vec4;
 use gbuffer_core::Named;
 use gbuffer_gpu::timing::Spread;
+use glam::Vec4;
 
 /// Invocations per dispatch: enough threads to fill a large GPU (an H100 holds 270,000), so
 /// that the time is the device's throughput and not one thread's latency (which the chains
