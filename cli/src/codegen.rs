@@ -3,8 +3,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use gbuffer_codegen::output::{generate, Output, WriteOutcome};
-use gbuffer_codegen::staging::Planned;
+use gbuffer_build::output::{generate, Output, WriteOutcome};
+use gbuffer_build::staging::Planned;
 use gbuffer_layout_file::{read_layout_file, FileError};
 
 use crate::output;

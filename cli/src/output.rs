@@ -6,8 +6,8 @@ use std::io::{ErrorKind, Write};
 use std::path::Path;
 use std::process::ExitCode;
 
-use gbuffer_codegen::output::GeneratedFile;
-use gbuffer_codegen::staging::{write_all, Planned, StagingError};
+use gbuffer_build::output::GeneratedFile;
+use gbuffer_build::staging::{write_all, Planned, StagingError};
 
 /// Writes `text` to standard output and flushes it; `Err` when it could not be written
 /// (reported on standard error already).

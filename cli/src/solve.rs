@@ -12,7 +12,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use gbuffer_codegen::output::{generate, GeneratedFile, Output};
+use gbuffer_build::output::{generate, GeneratedFile, Output};
 use gbuffer_core::Conversions;
 use gbuffer_layout_file::FileError;
 use gbuffer_solver::file::read_and_solve;

@@ -21,8 +21,8 @@
 
 use std::path::{Path, PathBuf};
 
-pub use gbuffer_codegen::output::Output;
-pub use gbuffer_codegen::{BuildError, Builder};
+pub use gbuffer_build::output::Output;
+pub use gbuffer_build::{BuildError, Builder};
 
 /// Writes every output of each layout file into `OUT_DIR` and tells cargo to rerun the build
 /// script when one of the files changes. Returns the paths written (or already up to date).

@@ -9,8 +9,8 @@
 use std::path::{Path, PathBuf};
 
 use gbuffer::layout::{Format, Layout};
+use gbuffer_build::output::{generate, Output};
 use gbuffer_codegen::emit::glsl::{self, Include, Interface, PlsBlock};
-use gbuffer_codegen::output::{generate, Output};
 use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
 use gbuffer_core::Named;

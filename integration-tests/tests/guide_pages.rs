@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use gbuffer_codegen::output::{generate, Output};
+use gbuffer_build::output::{generate, Output};
 use gbuffer_layout_file::parse_layout;
 
 const BOOK: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../book/src");

@@ -8,7 +8,7 @@
 //! solver/scenes/desktop-256.toml --out integration-tests/solved` (then delete the other outputs).
 
 use gbuffer::GBufferLayout;
-use gbuffer_codegen::output::{generate, Output};
+use gbuffer_build::output::{generate, Output};
 use gbuffer_core::Conversions;
 use gbuffer_layout_file::read_layout_file;
 use gbuffer_testkit::workspace;

@@ -8,9 +8,9 @@
 
 use gbuffer::layout::{Direction, Layout, Symbols};
 use gbuffer::GBufferLayout;
+use gbuffer_build::output::{generate, Output};
 use gbuffer_codegen::emit::glsl::{Include, PlsBlock};
 use gbuffer_codegen::emit::items::{wgsl_items, ItemKind};
-use gbuffer_codegen::output::{generate, Output};
 use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
 use gbuffer_testkit::layouts::{seeds_and_every_format, AWKWARD_LAYOUT_NAMES};

@@ -7,8 +7,8 @@
 
 use std::path::Path;
 
-use gbuffer_codegen::output::{generate, Output};
-use gbuffer_codegen::staging::write_all;
+use gbuffer_build::output::{generate, Output};
+use gbuffer_build::staging::write_all;
 use gbuffer_layout_file::{read_layout_file, FileError};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};

@@ -4,7 +4,7 @@
 //! ```text
 //! // build.rs
 //! fn main() {
-//!     if let Err(error) = gbuffer_codegen::Builder::new().layout("layouts/mobile_metallic.toml").build() {
+//!     if let Err(error) = gbuffer_build::Builder::new().layout("layouts/mobile_metallic.toml").build() {
 //!         eprintln!("{error}");
 //!         std::process::exit(1);
 //!     }
@@ -27,8 +27,8 @@ use gbuffer_layout_file::{read_layout_file, FileError};
 /// report of it, written into a folder of the caller's choosing rather than `OUT_DIR`:
 ///
 /// ```
-/// use gbuffer_codegen::output::Output;
-/// use gbuffer_codegen::Builder;
+/// use gbuffer_build::output::Output;
+/// use gbuffer_build::Builder;
 ///
 /// let folder = std::env::temp_dir().join(format!("gbuffer-builder-{}", std::process::id()));
 /// std::fs::create_dir_all(&folder).unwrap();
@@ -94,7 +94,7 @@ pub enum BuildError {
         error: std::io::Error,
     },
     /// naga failed to translate the WGSL (a bug in this crate).
-    Translation(crate::emit::glsl::TranslationError),
+    Translation(gbuffer_codegen::emit::glsl::TranslationError),
 }
 
 impl fmt::Display for BuildError {

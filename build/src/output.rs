@@ -5,10 +5,10 @@
 use std::io;
 use std::path::{Path, PathBuf};
 
-use crate::emit::glsl::local_read::LocalRead;
-use crate::emit::glsl::{self, Include, TranslationError};
-use crate::emit::rust;
-use crate::CompiledLayout;
+use gbuffer_codegen::emit::glsl::local_read::LocalRead;
+use gbuffer_codegen::emit::glsl::{self, Include, TranslationError};
+use gbuffer_codegen::emit::rust;
+use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::layout::Layout;
 use gbuffer_core::report::Report;
 use gbuffer_core::Conversions;
