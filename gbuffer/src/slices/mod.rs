@@ -76,11 +76,13 @@ pub fn convert_lanes<L: Lanes<A, B, N>, A, B, const N: usize>(input: &[A], outpu
 
 /// How many texels ahead of the one being converted [`lanes`] asks for the input's and the
 /// output's cache lines (a few kilobytes at the layouts' 16 to 128 bytes a texel).
+#[cfg(target_arch = "x86_64")]
 const PREFETCH_TEXELS: usize = 64;
 
 #[inline(always)]
 fn lanes<L: Lanes<A, B, N>, I: Isa, A, B, const N: usize>(input: &[A], output: &mut [B]) {
     let whole = input.len() / N * N;
+    #[cfg(target_arch = "x86_64")]
     let ahead = Ahead::of(input, output);
     let (head, tail) = input.split_at(whole);
     let (out_head, out_tail) = output.split_at_mut(whole);
@@ -89,6 +91,7 @@ fn lanes<L: Lanes<A, B, N>, I: Isa, A, B, const N: usize>(input: &[A], output: &
         .zip(out_head.chunks_exact_mut(N))
         .enumerate()
     {
+        #[cfg(target_arch = "x86_64")]
         ahead.prefetch::<N>(chunk * N + PREFETCH_TEXELS);
         let from: &[A; N] = from.try_into().expect("chunks of N");
         let to: &mut [B; N] = to.try_into().expect("chunks of N");
@@ -108,7 +111,10 @@ fn lanes<L: Lanes<A, B, N>, I: Isa, A, B, const N: usize>(input: &[A], output: &
 /// CI's kind (2^20 texels, one thread, three runs each, ns a texel), without and with: Listing
 /// 2.2 packed in 7.7-8.3 and 5.6-5.7, unpacked in 5.4-5.5 and 4.6-4.8; the bench's eight-format
 /// layout packed in 15.3-16.1 and 11.4-11.7, unpacked in 17.5-18.1 and 11.5-11.7; with every
-/// byte in cache, 4.8 and 4.0, 10.2 and 9.7: what is left above those is memory.
+/// byte in cache, 4.8 and 4.0, 10.2 and 9.7: what is left above those is memory. Elsewhere
+/// the loop relies on the hardware's prefetcher (aarch64's prefetch intrinsic is not stable
+/// Rust).
+#[cfg(target_arch = "x86_64")]
 struct Ahead<A, B> {
     input: *const A,
     inputs: usize,
@@ -116,6 +122,7 @@ struct Ahead<A, B> {
     outputs: usize,
 }
 
+#[cfg(target_arch = "x86_64")]
 impl<A, B> Ahead<A, B> {
     #[inline(always)]
     fn of(input: &[A], output: &[B]) -> Self {
@@ -131,26 +138,21 @@ impl<A, B> Ahead<A, B> {
     /// (to write), where the slices reach so far.
     #[inline(always)]
     fn prefetch<const N: usize>(&self, index: usize) {
-        #[cfg(target_arch = "x86_64")]
-        {
-            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_ET0, _MM_HINT_T0};
-            if index < self.inputs {
-                for line in lines(self.input.wrapping_add(index), N * size_of::<A>()) {
-                    // SAFETY: a prefetch is a hint: it never faults and changes nothing a
-                    // program reads, whatever the address (the chunk's last lines may lie past
-                    // the slice; the pointer arithmetic wraps, never dereferenced).
-                    unsafe { _mm_prefetch::<_MM_HINT_T0>(line) };
-                }
-            }
-            if index < self.outputs {
-                for line in lines(self.output.wrapping_add(index), N * size_of::<B>()) {
-                    // SAFETY: as above; ET0 asks for the line to be written.
-                    unsafe { _mm_prefetch::<_MM_HINT_ET0>(line) };
-                }
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_ET0, _MM_HINT_T0};
+        if index < self.inputs {
+            for line in lines(self.input.wrapping_add(index), N * size_of::<A>()) {
+                // SAFETY: a prefetch is a hint: it never faults and changes nothing a program
+                // reads, whatever the address (the chunk's last lines may lie past the slice;
+                // the pointer arithmetic wraps, never dereferenced).
+                unsafe { _mm_prefetch::<_MM_HINT_T0>(line) };
             }
         }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = index;
+        if index < self.outputs {
+            for line in lines(self.output.wrapping_add(index), N * size_of::<B>()) {
+                // SAFETY: as above; ET0 asks for the line to be written.
+                unsafe { _mm_prefetch::<_MM_HINT_ET0>(line) };
+            }
+        }
     }
 }
 
