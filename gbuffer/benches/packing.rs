@@ -139,21 +139,22 @@ fn spread_words<const T: usize, const W: usize>(packed: &[[u32; W]], texels: &mu
     }
 }
 
-/// [`BytesOnly`] for a layout of `$u32s` `u32`s (f32, u32 and i32 components) and `$words`
+/// [`BytesOnly`] for a layout of f32, u32 and i32 components: its size in `u32`s, and its
 /// words.
 macro_rules! bytes_only {
-    ($layout:ident, $u32s:literal, $words:literal) => {
+    ($layout:ident) => {
         impl BytesOnly for $layout {
             fn move_in(texels: &[$layout], packed: &mut [Self::Packed]) {
-                // SAFETY: a texel is exactly its fields' `$u32s` u32s (the assertion: no
-                // padding, so every byte is initialised), aligned for u32 (its fields are).
-                let texels = unsafe { as_u32s::<$layout, $u32s>(texels) };
-                fold_words::<$u32s, $words>(texels, packed);
+                // SAFETY: a texel is exactly its fields' u32s (the assertion: no padding, so
+                // every byte is initialised), aligned for u32 (its fields are).
+                let texels = unsafe { as_u32s::<$layout, { size_of::<$layout>() / 4 }>(texels) };
+                fold_words(texels, packed);
             }
             fn move_out(packed: &[Self::Packed], texels: &mut [$layout]) {
                 // SAFETY: as above; any bits are a valid f32, u32 or i32 component.
-                let texels = unsafe { as_u32s_mut::<$layout, $u32s>(texels) };
-                spread_words::<$u32s, $words>(packed, texels);
+                let texels =
+                    unsafe { as_u32s_mut::<$layout, { size_of::<$layout>() / 4 }>(texels) };
+                spread_words(packed, texels);
             }
         }
     };
@@ -221,8 +222,8 @@ struct EightFormats {
     unorm_10_10_10_2: Vec4,
 }
 
-bytes_only!(MobileMetallic, 12, 4);
-bytes_only!(EightFormats, 24, 8);
+bytes_only!(MobileMetallic);
+bytes_only!(EightFormats);
 
 /// Layouts of four words of one format each, named after it: each format's own rate; and
 /// `one_format_groups`, which measures them in the order listed.
