@@ -107,8 +107,9 @@ fn lanes<L: Lanes<A, B, N>, I: Isa, A, B, const N: usize>(input: &[A], output: &
 /// Why: the conversions are a stream, each byte read once and each word written once, and the
 /// hardware's own prefetcher, which follows a stream, falls behind while a chunk's arithmetic
 /// runs; the conversion then waits for memory and computes in turn, and its time is the sum of
-/// the two. Asking for the lines [`PREFETCH_TEXELS`] ahead overlaps them. On a 2-core Xeon of
-/// CI's kind (2^20 texels, one thread, three runs each, ns a texel), without and with: Listing
+/// the two. Asking for the lines [`PREFETCH_TEXELS`] ahead overlaps them. Measured once, when
+/// this was added, on a 2-core Xeon of CI's kind (2^20 texels, one thread, three runs each, ns
+/// a texel), without and with: Listing
 /// 2.2 packed in 7.7-8.3 and 5.6-5.7, unpacked in 5.4-5.5 and 4.6-4.8; the bench's eight-format
 /// layout packed in 15.3-16.1 and 11.4-11.7, unpacked in 17.5-18.1 and 11.5-11.7; with every
 /// byte in cache, 4.8 and 4.0, 10.2 and 9.7: what is left above those is memory. Elsewhere
