@@ -486,10 +486,14 @@ mod tests {
     /// On the machine's adapter, for every format and mode in each stage, the report's pack
     /// time plus its unpack time (the full protocol, less the glue) within 15% of the
     /// independent round trip's step in that stage. A folded row, a fixed cost charged to a
-    /// short chain, or a latency timed where throughput was meant, reads apart. Another
-    /// process's load can move one measurement and not the other (CI builds Bevy beside the
-    /// tests; on lavapipe one busy core put five conversions 17-40% apart), so a case that
-    /// reads apart is measured again, up to [`ATTEMPTS`] times. An attempt settles a case when
+    /// short chain, or a latency timed where throughput was meant, reads apart.
+    ///
+    /// It compares two timings, so it needs the machine to itself, and `cargo test
+    /// --workspace` leaves it out: CI runs it alone, once the Bevy build that runs beside the
+    /// other steps has ended (`.ci/steps/timing`; beside that build, 13 of its 20 cases read
+    /// more than 15% apart on lavapipe). Even alone, another process's load can move one
+    /// measurement and not the other (on lavapipe one busy core put five conversions 17-40%
+    /// apart), so a case that reads apart is measured again, up to [`ATTEMPTS`] times. An attempt settles a case when
     /// it agrees, or when [`verdict`] excuses it (a CPU rasteriser, within [`EXCUSE_CAP`] and
     /// both sides' spreads), which the output names; what the last attempt still reads apart
     /// fails. An excused case is not measured again: under load a later attempt is as likely
@@ -500,6 +504,7 @@ mod tests {
     /// the fragment stage (where a loaded core once excused it) measured with a core loaded
     /// by a thread that spins beside the measurement.
     #[test]
+    #[ignore = "needs the machine to itself: `cargo test --workspace --lib -- --ignored --exact independent_harness::tests::the_packing_times_agree_with_an_independent_round_trip`"]
     fn the_packing_times_agree_with_an_independent_round_trip() {
         let _cores = crate::tests::CORES
             .lock()
