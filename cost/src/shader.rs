@@ -16,7 +16,7 @@
 
 use std::sync::Arc;
 
-use naga::back::{glsl, spv};
+use naga::back::spv;
 use naga::valid::{Capabilities, ModuleInfo};
 use naga::{AddressSpace, Binding, ImageClass, Interpolation, ScalarKind, ShaderStage, TypeInner};
 
@@ -303,8 +303,7 @@ fn gles_310(
     stage: ShaderStage,
     entry: &str,
 ) -> Result<String, ShaderError> {
-    let options = glsl_stage::options_keeping_bindings(module, glsl::Version::new_gles(310));
-    Ok(glsl_stage::write((module, info), stage, entry, &options)?.0)
+    Ok(glsl_stage::write((module, info), stage, entry, glsl_stage::Dialect::Gles)?.0)
 }
 
 fn naga_stage(stage: Stage) -> ShaderStage {

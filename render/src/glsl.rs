@@ -10,46 +10,9 @@
 
 use gbuffer_codegen::emit::glsl::printer::{self, Choice};
 use gbuffer_codegen::{glsl_stage, wgsl_module};
-use naga::back::glsl;
 
-/// Which GLSL a translation is for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Dialect {
-    /// GLSL ES 3.10 (the GLES backend runs on GLES 3.2; panfrost, whose compiler the cost model
-    /// runs, offers 3.10 at most; the shaders need nothing of 3.20).
-    Gles,
-    /// GLSL 450 for Vulkan (compiled to SPIR-V by glslang).
-    Vulkan,
-    /// GLSL ES 3.00, WebGL 2's: no binding qualifiers (the host sets each sampler uniform's
-    /// texture unit by name, from [`Translation::samplers`]) and no locations on varyings.
-    WebGl,
-}
-
-impl Dialect {
-    /// The `#version` line a shader of the dialect starts with.
-    pub fn version_line(self) -> &'static str {
-        match self {
-            Dialect::Gles => "#version 310 es",
-            Dialect::Vulkan => "#version 450",
-            Dialect::WebGl => "#version 300 es",
-        }
-    }
-
-    /// The declaration that runs a fused stage's depth test before its fragment shader, where
-    /// the dialect has it (GLSL ES 3.10 and GLSL 450; GLSL ES 3.00 does not), else nothing.
-    ///
-    /// A fragment shader that reads the attachments it writes (a subpass input, framebuffer
-    /// fetch) is otherwise shaded before its test: lavapipe then ran the whole lighting draw's
-    /// arithmetic for the sky's pixels too, which the test dropped afterwards, a third of that
-    /// draw's time at 1280x720. No fused stage writes depth from its shader, so testing first
-    /// changes no pixel (`discard` after an early test is allowed).
-    pub fn early_fragment_tests(self) -> &'static str {
-        match self {
-            Dialect::Gles | Dialect::Vulkan => "layout(early_fragment_tests) in;\n",
-            Dialect::WebGl => "",
-        }
-    }
-}
+/// Which GLSL a translation is for: the stage writer's dialects.
+pub use gbuffer_codegen::glsl_stage::Dialect;
 
 /// A translated stage: the GLSL, and the sampler uniforms naga declared with the binding of
 /// the texture each samples (GLES binds them to texture units by name).
@@ -84,13 +47,7 @@ pub fn translate(
         ));
     }
     let (module, info) = module(wgsl)?;
-    let version = match dialect {
-        Dialect::Gles => glsl::Version::new_gles(310),
-        Dialect::WebGl => glsl::Version::new_gles(300),
-        Dialect::Vulkan => glsl::Version::Desktop(450),
-    };
-    let options = glsl_stage::options_keeping_bindings(&module, version);
-    let (text, reflection) = glsl_stage::write((&module, &info), stage, entry, &options)?;
+    let (text, reflection) = glsl_stage::write((&module, &info), stage, entry, dialect)?;
     let mut samplers: Vec<(String, u32)> = reflection
         .texture_mapping
         .iter()

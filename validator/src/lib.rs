@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 pub use gbuffer_codegen::wgsl_module::GENERATED_CODE_CAPABILITIES;
 use gbuffer_codegen::{glsl_stage, wgsl_module};
 use gbuffer_core::Named;
-use naga::back::{glsl, hlsl, msl, spv};
+use naga::back::{hlsl, msl, spv};
 use naga::valid::{Capabilities, ModuleInfo};
 
 use diagnostic::{Handles, Label};
@@ -237,20 +237,17 @@ pub fn translate(validated: &Validated, backend: Backend) -> Result<String, Prob
         Backend::GlslEs => {
             let mut all = String::new();
             for entry_point in &module.entry_points {
-                let version = if entry_point.stage == naga::ShaderStage::Compute {
-                    310
+                // WebGL 2's GLSL ES 3.00, but for compute, which arrived in 3.10 (GLES 3.1).
+                let dialect = if entry_point.stage == naga::ShaderStage::Compute {
+                    glsl_stage::Dialect::Gles
                 } else {
-                    300
-                };
-                let options = glsl::Options {
-                    version: glsl::Version::new_gles(version),
-                    ..glsl::Options::default()
+                    glsl_stage::Dialect::WebGl
                 };
                 let (text, _) = glsl_stage::write(
                     (module, info),
                     entry_point.stage,
                     &entry_point.name,
-                    &options,
+                    dialect,
                 )
                 .map_err(problem)?;
                 all.push_str(&text);

@@ -185,13 +185,11 @@ fn names_are_the_ones_nagas_writer_gives() {
     );
     let (module, info) =
         wgsl_module::validate(&wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES).unwrap();
-    let options =
-        glsl_stage::options_keeping_bindings(&module, naga::back::glsl::Version::new_gles(300));
     let (naga_text, _) = glsl_stage::write(
         (&module, &info),
         naga::ShaderStage::Fragment,
         "probe_entry",
-        &options,
+        glsl_stage::Dialect::WebGl,
     )
     .unwrap();
     let ours = print(&module, &info, &Choice::default()).unwrap();
