@@ -51,9 +51,9 @@ const ROUNDS: usize = 7;
 const TOLERANCE: f64 = 0.15;
 /// Measurements of a conversion that reads apart, before the test fails: another process's load
 /// moves one side and not the other, and only the cases apart are measured again (a minute or
-/// two an attempt on lavapipe). Alone on a quiet 2-core machine, rgb10_a2 fast (compute) read
-/// 2.14, 1.56 and 1.00 times the independent figure in three attempts: a noisy row comes
-/// back within bounds, where a folded one reads apart every time.
+/// two an attempt on lavapipe). Measured once alone on a quiet 2-core machine, rgb10_a2 fast
+/// (compute) read 2.14, 1.56 and 1.00 times the independent figure in three attempts: a noisy
+/// row comes back within bounds, where a folded one reads apart every time.
 const ATTEMPTS: usize = 5;
 
 /// The round-trip chain on one adapter: its buffers and the draw's target, shared by every
@@ -493,14 +493,14 @@ mod tests {
     ///
     /// It compares two timings, so it needs the machine to itself, and `cargo test
     /// --workspace` leaves it out: CI runs it alone, once the Bevy build that runs beside the
-    /// other steps has ended (`.ci/steps/timing`; beside that build, 13 of its 20 cases read
-    /// more than 15% apart on lavapipe). Even alone, another process's load can move one
-    /// measurement and not the other (on lavapipe one busy core put five conversions 17-40%
-    /// apart), so a case that reads apart is measured again, up to [`ATTEMPTS`] times. An
-    /// attempt settles a case when it agrees, or when [`verdict`] excuses it (a CPU
-    /// rasteriser, within [`EXCUSE_CAP`] and both sides' spreads), which the output names;
-    /// what the last attempt still reads apart fails. An excused case is not measured again: under load a later attempt is as likely
-    /// to read it further apart as closer (CI once saw rgb10_a2 fast go from -17% to -36%).
+    /// other steps has ended (`.ci/steps/timing` says what it read beside that build). Even
+    /// alone, another process's load can move one measurement and not the other (on lavapipe
+    /// one busy core put five conversions 17-40% apart), so a case that reads apart is
+    /// measured again, up to [`ATTEMPTS`] times. An attempt settles a case when it agrees, or
+    /// when [`verdict`] excuses it (a CPU rasteriser, within [`EXCUSE_CAP`] and both sides'
+    /// spreads), which the output names; what the last attempt still reads apart fails. An
+    /// excused case is not measured again: under load a later attempt is as likely to read it
+    /// further apart as closer (CI once saw rgb10_a2 fast go from -17% to -36%).
     ///
     /// And the check cannot pass a folded row: rgb10_a2's exact row as measured, its report
     /// times divided by [`FOLD`], is apart in both stages of the first attempt, and again in

@@ -412,7 +412,8 @@ mod tests {
                 .contains(wgpu::Features::TIMESTAMP_QUERY);
             // One round the shared cores slowed can put the dear row's spread over its
             // median: such a run is measured again, up to three times in all, as the packing
-            // check does its conversions apart; a row that never stands clear of its spread fails.
+            // check does its conversions apart; a row that never stands clear of its spread
+            // fails.
             let mut attempt = 0;
             let (rows, times) = loop {
                 attempt += 1;
