@@ -4,7 +4,7 @@
 //!
 //! The flow is layout -> compiled layout -> emitters -> consumers: [`CompiledLayout::new`]
 //! writes the layout's WGSL with the chosen conversions, takes it in through the front door
-//! ([`crate::wgsl_module`]: naga's module and validation info), and prints its GLSL ES
+//! ([`gbuffer_translate::wgsl`]: naga's module and validation info), and prints its GLSL ES
 //! declarations from that module with the names GLSL gives them; the include emitters
 //! ([`CompiledLayout::include`]) write their attachments, blocks and accessors around that
 //! translation; the renderer, the cost model and the tests take the same value.
@@ -31,7 +31,7 @@ pub struct CompiledLayout {
     glsl: Translation,
     /// The bit fields' functions alone in GLSL ES (pixel local storage blocks put them
     /// beside their members), when the layout has bit fields.
-    bit_field_glsl: Option<(String, Vec<glsl::printer::Item>)>,
+    bit_field_glsl: Option<(String, Vec<gbuffer_translate::printer::Item>)>,
     /// What each word is called in GLSL ([`glsl::word_names`]).
     word_names: Vec<String>,
 }
@@ -47,9 +47,10 @@ impl CompiledLayout {
             .then(|| validated(&for_glsl))
             .transpose()?;
         let (glsl_module, glsl_info) = own_module.as_ref().unwrap_or(&module);
-        let glsl = glsl::translate::translate(layout, conversions, (glsl_module, glsl_info))?;
+        let glsl =
+            glsl::declarations::layout_declarations(layout, conversions, (glsl_module, glsl_info))?;
         let bit_field_glsl = match layout.has_bit_fields() {
-            true => Some(glsl::translate::translate_bit_field_functions(
+            true => Some(glsl::declarations::bit_field_declarations(
                 layout,
                 conversions,
             )?),
@@ -105,7 +106,9 @@ impl CompiledLayout {
     }
 
     /// The bit fields' functions alone in GLSL ES, when the layout has bit fields.
-    pub(crate) fn bit_field_glsl(&self) -> Option<&(String, Vec<glsl::printer::Item>)> {
+    pub(crate) fn bit_field_glsl(
+        &self,
+    ) -> Option<&(String, Vec<gbuffer_translate::printer::Item>)> {
         self.bit_field_glsl.as_ref()
     }
 
@@ -122,7 +125,7 @@ impl CompiledLayout {
 
 /// `wgsl` through the front door, naga's message as the error.
 fn validated(wgsl: &str) -> Result<(naga::Module, ModuleInfo), TranslationError> {
-    crate::wgsl_module::validate(wgsl, crate::wgsl_module::GENERATED_CODE_CAPABILITIES)
+    gbuffer_translate::wgsl::validate(wgsl, gbuffer_translate::wgsl::GENERATED_CODE_CAPABILITIES)
         .map_err(TranslationError)
 }
 

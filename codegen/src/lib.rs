@@ -8,10 +8,9 @@
 //!
 //! - [`emit`]: WGSL and Rust mirror emitters;
 //! - with the `tools` feature (on by default): `CompiledLayout` (a layout's WGSL, naga's
-//!   module and the printed GLSL, built once and handed to every include), `wgsl_module`, the
-//!   one front door for WGSL (naga's parse and validation, used by every package that takes
-//!   WGSL in), `glsl_stage` (a whole stage of a validated module as GLSL by naga's writer),
-//!   the GLSL and Rust-source emitters.
+//!   module and the printed GLSL, built once and handed to every include), the GLSL and
+//!   Rust-source emitters. WGSL comes in and GLSL goes out through `gbuffer-translate`, which
+//!   every package that translates a shader shares.
 //!
 //! Writing the files (`gbuffer codegen`'s, a build script's) is `gbuffer-build`'s, over these
 //! emitters: a library that compiles layouts builds none of it.
@@ -33,10 +32,6 @@
 #[cfg(feature = "tools")]
 mod compiled;
 pub mod emit;
-#[cfg(feature = "tools")]
-pub mod glsl_stage;
-#[cfg(feature = "tools")]
-pub mod wgsl_module;
 
 #[cfg(feature = "tools")]
 pub use compiled::CompiledLayout;

@@ -20,7 +20,7 @@ use naga::back::spv;
 use naga::valid::{Capabilities, ModuleInfo};
 use naga::{AddressSpace, Binding, ImageClass, Interpolation, ScalarKind, ShaderStage, TypeInner};
 
-use gbuffer_codegen::{glsl_stage, wgsl_module};
+use gbuffer_translate::{glsl_stage, wgsl};
 
 use crate::Stage;
 
@@ -131,13 +131,13 @@ impl Shader {
 
     /// WGSL's entry point `entry`; the stage is the entry point's. The module must validate.
     pub fn wgsl(text: &str, entry: &str) -> Result<Shader, ShaderError> {
-        let validated = wgsl_module::validate(text, wgsl_module::GENERATED_CODE_CAPABILITIES)?;
+        let validated = wgsl::validate(text, wgsl::GENERATED_CODE_CAPABILITIES)?;
         Shader::of_entry_point(Arc::new(validated), entry)
     }
 
     /// WGSL's one fragment or compute entry point; an error names them where there are several.
     pub fn wgsl_only_entry_point(text: &str) -> Result<Shader, ShaderError> {
-        let validated = wgsl_module::validate(text, wgsl_module::GENERATED_CODE_CAPABILITIES)?;
+        let validated = wgsl::validate(text, wgsl::GENERATED_CODE_CAPABILITIES)?;
         let names: Vec<String> = validated
             .0
             .entry_points
@@ -435,8 +435,8 @@ fn companion_vertex(
     function: &naga::Function,
     inputs: Inputs,
 ) -> Result<(naga::Module, ModuleInfo), ShaderError> {
-    let wgsl = companion_vertex_wgsl(module, function, inputs);
-    wgsl_module::validate(&wgsl, Capabilities::empty())
+    let source = companion_vertex_wgsl(module, function, inputs);
+    wgsl::validate(&source, Capabilities::empty())
         .map_err(|error| format!("the companion vertex shader: {error}"))
 }
 

@@ -130,12 +130,12 @@ fn fast_conversions_translate_everywhere_but_webgl2() {
         gbuffer_validator::Backend::Msl,
         gbuffer_validator::Backend::Hlsl,
     ] {
-        gbuffer_validator::translate(&validated, backend)
+        gbuffer_validator::write_backend(&validated, backend)
             .unwrap_or_else(|problem| panic!("{problem}"));
     }
     // GLSL ES 3.00 lacks packUnorm4x8 (ES 3.10 has it): naga cannot translate fast WGSL for
     // WebGL2. The codegen's GLSL includes carry their own fallback (`gles_includes.rs`).
-    let problem =
-        gbuffer_validator::translate(&validated, gbuffer_validator::Backend::GlslEs).unwrap_err();
+    let problem = gbuffer_validator::write_backend(&validated, gbuffer_validator::Backend::GlslEs)
+        .unwrap_err();
     assert!(problem.message.contains("packUnorm4x8"), "{problem}");
 }

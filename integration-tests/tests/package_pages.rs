@@ -14,6 +14,7 @@ const PUBLISHED: &[(&str, &str)] = &[
     ("files", "src/lib.rs"),
     ("layout-file", "src/lib.rs"),
     ("shading", "src/lib.rs"),
+    ("translate", "src/lib.rs"),
     ("macros", "src/lib.rs"),
     ("codegen", "src/lib.rs"),
     ("build", "src/lib.rs"),

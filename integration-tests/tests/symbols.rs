@@ -1,7 +1,7 @@
 //! Every name a layout's `Symbols` gives is an item the outputs define: callers ask
 //! `Symbols` for the names they call, so a name here that no emitter makes would fail only at
 //! run time, in a shader. The WGSL's items are read back through naga's parser
-//! (`gbuffer_codegen::emit::items::wgsl_items`: its functions, structs, constants and textures
+//! (`gbuffer_translate::items::wgsl_items`: its functions, structs, constants and textures
 //! by name); the GLSL includes, which no parser here reads, by their
 //! definitions' lines (`<type> <name>(<parameters>) {`), which the items each include says it
 //! declares (`Interface::declares`) are held to.
@@ -10,10 +10,10 @@ use gbuffer::layout::{Direction, Layout, Symbols};
 use gbuffer::GBufferLayout;
 use gbuffer_build::output::{generate, Output};
 use gbuffer_codegen::emit::glsl::{Include, PlsBlock};
-use gbuffer_codegen::emit::items::{wgsl_items, ItemKind};
 use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
 use gbuffer_testkit::layouts::{seeds_and_every_format, AWKWARD_LAYOUT_NAMES};
+use gbuffer_translate::items::{wgsl_items, ItemKind};
 
 /// The layouts checked: the seeds, the engines', every format and encoding, and the seed
 /// `MobileMetallic` under every name GLSL reserves.

@@ -8,7 +8,7 @@ use gbuffer_core::{Conversions, Named};
 use gbuffer_gpu::harness::fragment_harness;
 use gbuffer_testkit::layouts::seeds_and_every_format;
 use gbuffer_testkit::{AllFormats, EveryEncoding};
-use gbuffer_validator::{translate, validate_everywhere, validate_generated, Backend};
+use gbuffer_validator::{validate_everywhere, validate_generated, write_backend, Backend};
 use proptest::prelude::*;
 
 fn fixtures() -> Vec<(Layout, &'static str)> {
@@ -130,7 +130,7 @@ fn webgl2_output_is_glsl_es_300() {
         seed_layouts::MobileMetallic::WGSL,
     );
     let validated = validate_everywhere(&fragment_harness(&layout, wgsl)).unwrap();
-    let glsl = translate(&validated, Backend::GlslEs).unwrap();
+    let glsl = write_backend(&validated, Backend::GlslEs).unwrap();
     assert!(glsl.starts_with("#version 300 es"), "{glsl}");
 }
 

@@ -221,7 +221,7 @@ pub fn fused_programs(options: &Options, dialect: FusedDialect) -> Result<FusedP
             let mut samplers = stages.samplers.clone();
             let vertex = match dialect.translates_vertex() {
                 true => {
-                    let vertex = glsl::translate(
+                    let vertex = glsl::write_stage(
                         &wgsl,
                         naga::ShaderStage::Vertex,
                         stage.vertex_entry(),

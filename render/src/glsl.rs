@@ -8,16 +8,17 @@
 //! printed declarations leave out the items the include declares (its interface lists them),
 //! by their WGSL names, so each is declared once.
 
-use gbuffer_codegen::emit::glsl::printer::{self, Choice};
-use gbuffer_codegen::{glsl_stage, wgsl_module};
+use gbuffer_translate::printer::{self, Choice};
+use gbuffer_translate::{glsl_stage, wgsl};
 
 /// Which GLSL a translation is for: the stage writer's dialects.
-pub use gbuffer_codegen::glsl_stage::Dialect;
+pub use gbuffer_translate::glsl_stage::Dialect;
 
-/// A translated stage: the GLSL, and the sampler uniforms naga declared with the binding of
-/// the texture each samples (GLES binds them to texture units by name).
+/// GLSL written from the renderer's WGSL (a stage, or the declarations an entry point
+/// reaches), and the sampler uniforms it declares with the binding of the texture each samples
+/// (GLES binds them to texture units by name).
 #[derive(Clone, Debug)]
-pub struct Translation {
+pub struct GlslSource {
     /// The GLSL.
     pub text: String,
     /// (uniform name, binding of its texture in group 0).
@@ -26,7 +27,7 @@ pub struct Translation {
 
 /// Parses and validates WGSL, naming the problem with the source when it does not.
 pub fn module(wgsl: &str) -> Result<(naga::Module, naga::valid::ModuleInfo), String> {
-    wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES)
+    wgsl::validate(wgsl, wgsl::GENERATED_CODE_CAPABILITIES)
         .map_err(|error| format!("the renderer's WGSL: {error}"))
 }
 
@@ -35,12 +36,12 @@ pub fn module(wgsl: &str) -> Result<(naga::Module, naga::valid::ModuleInfo), Str
 /// resource of group 0 keeps its binding number. Vulkan's vertex stages are not GLSL here:
 /// naga writes GL's names of the vertex and instance indices, which Vulkan's GLSL renames, so
 /// the Vulkan backend takes them as naga's SPIR-V.
-pub fn translate(
+pub fn write_stage(
     wgsl: &str,
     stage: naga::ShaderStage,
     entry: &str,
     dialect: Dialect,
-) -> Result<Translation, String> {
+) -> Result<GlslSource, String> {
     if (dialect, stage) == (Dialect::Vulkan, naga::ShaderStage::Vertex) {
         return Err(format!(
             "`{entry}`: Vulkan's vertex stages are naga's SPIR-V, not GLSL (naga's GLSL names GL's vertex index)"
@@ -57,7 +58,7 @@ pub fn translate(
         })
         .collect();
     samplers.sort();
-    Ok(Translation { text, samplers })
+    Ok(GlslSource { text, samplers })
 }
 
 /// The declarations fragment entry point `entry` of `wgsl` reaches, for a hand-written `main`
@@ -68,7 +69,7 @@ pub fn fragment_declarations(
     entry: &str,
     dialect: Dialect,
     include: &gbuffer_codegen::emit::glsl::Interface,
-) -> Result<Translation, String> {
+) -> Result<GlslSource, String> {
     let (module, info) = module(wgsl)?;
     let leave_out: Vec<&str> = include
         .declares
@@ -89,7 +90,7 @@ pub fn fragment_declarations(
         .map(|(name, binding)| (name, binding.binding))
         .collect();
     samplers.sort();
-    Ok(Translation {
+    Ok(GlslSource {
         text: printed.text,
         samplers,
     })

@@ -4,13 +4,13 @@
 //! the shading library: nothing below is a second copy of it.
 
 use crate::conventions::seed::SURFACE_WGSL;
-use gbuffer_codegen::wgsl_module;
 use gbuffer_core::Layout;
 use gbuffer_core::Named;
 use gbuffer_gpu::fullscreen::FULLSCREEN_WGSL;
 use gbuffer_solver::lighting::{self, Forms};
 use gbuffer_solver::quantity::Quantity;
 use gbuffer_solver::Solution;
+use gbuffer_translate::wgsl;
 
 use crate::gbuffers::GBuffer;
 use crate::options::{IblForm, Options, SunForm, EXPOSURE};
@@ -159,7 +159,7 @@ fn display_colour(radiance: vec3<f32>) -> vec4<f32> {{
 /// The bindings of group 0 that `entry_point` of `wgsl` uses: what a pipeline with a derived
 /// layout expects in its bind group. The WGSL is the renderer's own, so it parses.
 pub fn used_bindings(wgsl: &str, entry_point: &str) -> Vec<u32> {
-    let (module, info) = wgsl_module::validate(wgsl, naga::valid::Capabilities::all())
+    let (module, info) = wgsl::validate(wgsl, naga::valid::Capabilities::all())
         .expect("the renderer's WGSL is valid");
     let index = module
         .entry_points

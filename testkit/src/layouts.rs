@@ -9,7 +9,7 @@ use gbuffer_core::{BitField, Encoding, Field, FieldType, Format, Layout, RgbmRan
 use proptest::prelude::*;
 
 /// Field names that are valid in WGSL and Rust but that GLSL reserves or that naga renames;
-/// [`awkward_field_names`] adds every GLSL ES reserved word the name check accepts.
+/// [`awkward_field_names`] adds every word GLSL reserves that the name check accepts.
 pub const AWKWARD_FIELD_NAMES: &[&str] = &[
     "sampler",
     "output",
@@ -62,11 +62,11 @@ pub const AWKWARD_FIELD_NAMES: &[&str] = &[
     "texel",
 ];
 
-/// [`AWKWARD_FIELD_NAMES`] and every word of [`gbuffer_core::naming::GLSL_RESERVED`] that a field
-/// may be named (not WGSL's or Rust's too).
+/// [`AWKWARD_FIELD_NAMES`] and every word GLSL reserves ([`gbuffer_translate::printer::GLSL_RESERVED`],
+/// naga's list) that a field may be named (not WGSL's or Rust's too).
 pub fn awkward_field_names() -> Vec<&'static str> {
     let mut names: Vec<&str> = AWKWARD_FIELD_NAMES.to_vec();
-    for name in gbuffer_core::naming::GLSL_RESERVED {
+    for name in gbuffer_translate::printer::GLSL_RESERVED {
         if gbuffer_core::naming::check_identifier(name).is_ok() && !names.contains(name) {
             names.push(name);
         }

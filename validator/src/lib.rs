@@ -14,9 +14,9 @@ pub mod include;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-pub use gbuffer_codegen::wgsl_module::GENERATED_CODE_CAPABILITIES;
-use gbuffer_codegen::{glsl_stage, wgsl_module};
 use gbuffer_core::Named;
+pub use gbuffer_translate::wgsl::GENERATED_CODE_CAPABILITIES;
+use gbuffer_translate::{glsl_stage, wgsl};
 use naga::back::{hlsl, msl, spv};
 use naga::valid::{Capabilities, ModuleInfo};
 
@@ -125,10 +125,10 @@ pub fn validate_generated(source: &str) -> Result<Validated, Problem> {
 fn validate_with(source: &str, extra: Capabilities) -> Result<Validated, Problem> {
     // Before naga, whose recursion a huge statement would overflow.
     expression_size::check(source)?;
-    match wgsl_module::parse_and_validate(source, extra) {
+    match wgsl::parse_and_validate(source, extra) {
         Ok((module, info)) => Ok(Validated { module, info }),
-        Err(wgsl_module::WgslError::Parse(error)) => Err(parse_problem(&error, source)),
-        Err(wgsl_module::WgslError::Validate(refused)) => {
+        Err(wgsl::WgslError::Parse(error)) => Err(parse_problem(&error, source)),
+        Err(wgsl::WgslError::Validate(refused)) => {
             let (module, error) = *refused;
             Err(validation_problem(&module, &error, source))
         }
@@ -200,10 +200,10 @@ fn validation_problem(
     }
 }
 
-/// Translates a validated module to `backend` and returns the text (for SPIR-V, a line with
-/// the binary's word count). GLSL needs an entry point: each one is translated in turn and
+/// Writes a validated module in `backend`'s language and returns the text (for SPIR-V, a line
+/// with the binary's word count). GLSL needs an entry point: each one is written in turn and
 /// the outputs concatenated; a module without entry points has no GLSL.
-pub fn translate(validated: &Validated, backend: Backend) -> Result<String, Problem> {
+pub fn write_backend(validated: &Validated, backend: Backend) -> Result<String, Problem> {
     let problem = |message: String| Problem {
         stage: Stage::Translate(backend),
         location: None,
@@ -444,7 +444,7 @@ fn check_resolved(
     Backend::ALL
         .iter()
         .copied()
-        .filter_map(|backend| translate(&validated, backend).err())
+        .filter_map(|backend| write_backend(&validated, backend).err())
         .map(place)
         .collect()
 }
@@ -479,7 +479,7 @@ fn place_label(resolved: &include::Resolved, label: &Label) -> Option<PlacedLabe
 pub fn validate_everywhere(source: &str) -> Result<Validated, Problem> {
     let validated = validate_wgsl(source)?;
     for &backend in Backend::ALL {
-        translate(&validated, backend)?;
+        write_backend(&validated, backend)?;
     }
     Ok(validated)
 }
@@ -503,7 +503,7 @@ mod tests {
     fn translates_a_fragment_shader_everywhere() {
         let source = "@fragment fn main() -> @location(0) vec4<u32> { return vec4<u32>(1u); }";
         let validated = validate_everywhere(source).unwrap();
-        assert!(translate(&validated, Backend::GlslEs)
+        assert!(write_backend(&validated, Backend::GlslEs)
             .unwrap()
             .contains("#version 300 es"));
     }

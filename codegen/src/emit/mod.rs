@@ -3,7 +3,5 @@
 
 #[cfg(feature = "tools")]
 pub mod glsl;
-#[cfg(feature = "tools")]
-pub mod items;
 pub mod rust;
 pub mod wgsl;

@@ -135,9 +135,9 @@ impl GlesRenderer {
         let lighting_wgsl =
             crate::shaders::lighting_pass_wgsl(options, crate::shaders::Positions::Texel)?;
         let program = |wgsl: &str, vertex: &str, fragment: &str| -> Result<glow::Program, String> {
-            let vertex = glsl::translate(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
+            let vertex = glsl::write_stage(wgsl, naga::ShaderStage::Vertex, vertex, Dialect::Gles)?;
             let fragment =
-                glsl::translate(wgsl, naga::ShaderStage::Fragment, fragment, Dialect::Gles)?;
+                glsl::write_stage(wgsl, naga::ShaderStage::Fragment, fragment, Dialect::Gles)?;
             self.gles.link(&vertex.text, &fragment.text)
         };
         let gbuffer = program(&gbuffer_wgsl, "geometry_vertex", "gbuffer_main")?;

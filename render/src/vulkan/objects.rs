@@ -95,7 +95,7 @@ impl VulkanRenderer {
         let bindings = used_bindings(wgsl, fragment);
         let (set_layout, set) = self.sampled_set(&bindings, frame_textures)?;
         let layout = self.vulkan.pipeline_layout(&[set_layout], None)?;
-        let glsl = glsl::translate(wgsl, naga::ShaderStage::Fragment, fragment, Dialect::Vulkan)?;
+        let glsl = glsl::write_stage(wgsl, naga::ShaderStage::Fragment, fragment, Dialect::Vulkan)?;
         let pipeline = self.pipeline(wgsl, vertex, &glsl.text, draws_in, layout, writes, size)?;
         Ok((pipeline, layout, set))
     }

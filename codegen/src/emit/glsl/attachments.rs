@@ -6,11 +6,11 @@ use std::fmt::Write as _;
 
 use gbuffer_core::{Direction, ScalarKind};
 
-use super::printer::Item;
 use super::{bit_field_code, bit_word_value, declare, write_header};
 use super::{subpass_input_type, Attachment, Include, Interface};
-use crate::emit::items::ItemKind;
 use crate::CompiledLayout;
+use gbuffer_translate::items::ItemKind;
+use gbuffer_translate::printer::Item;
 
 /// A framebuffer-fetch or subpass-input include: the header, one declaration per attachment,
 /// the translated functions, and `load_<snake>()` (and for fetch `store_<snake>()`).

@@ -130,7 +130,7 @@ pub struct Interface {
     /// Every declaration of the include's text, in its order: the attachments, planes or
     /// block, the translated types and functions, the accessors. Empty until the include is
     /// written ([`crate::CompiledLayout::include`] fills it).
-    pub declares: Vec<super::printer::Item>,
+    pub declares: Vec<gbuffer_translate::printer::Item>,
 }
 
 impl Interface {

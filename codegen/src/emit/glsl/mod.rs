@@ -17,27 +17,26 @@
 //! data too: [`Interface`].
 //!
 //! The functions are not written twice: the compiled layout ([`crate::CompiledLayout`]) holds
-//! naga's module of the layout's WGSL and its IR printed as GLSL ES by [`printer`] (exact or
-//! fast conversions), and every include pastes that one translation, so WGSL stays the one
-//! source of truth. Where GLSL reserves a name, the printer renames it as naga's GLSL writer
+//! naga's module of the layout's WGSL and its IR printed as GLSL ES by gbuffer-translate's
+//! printer (exact or fast conversions), and every include pastes that one translation, so WGSL
+//! stays the one source of truth. Where GLSL reserves a name, the printer renames it as naga's GLSL writer
 //! does (`sampler` -> `sampler_`, `main` -> `main_`, a name ending in a digit gets a `_`), and
 //! the hand-written parts take those names from it ([`GlslNames`]).
 
 mod attachments;
+pub(crate) mod declarations;
 mod interface;
 pub mod local_read;
 mod pixel_local_storage;
-pub mod printer;
-pub(crate) mod translate;
 pub mod webgl;
 mod word_names;
 
 use std::fmt::Write as _;
 
 pub use attachments::store_statements;
+pub use declarations::{GlslNames, Translation};
 pub use interface::{subpass_input_type, Attachment, Include, Interface};
 pub use pixel_local_storage::{pls_member_type, PlsBlock};
-pub use translate::{GlslNames, Translation};
 pub(crate) use word_names::{unique, word_names};
 
 use gbuffer_core::codecs::max_code;
@@ -45,9 +44,9 @@ use gbuffer_core::layout::{Layout, Member, Word};
 use gbuffer_core::Conversions;
 use gbuffer_core::{Direction, FieldType, ScalarKind};
 
-use crate::emit::items::ItemKind;
 use crate::CompiledLayout;
-use printer::Item;
+use gbuffer_translate::items::ItemKind;
+use gbuffer_translate::printer::Item;
 
 /// A field type's GLSL declaration type, with `highp` for floats and integers.
 fn declared_type(ty: FieldType) -> String {

@@ -9,11 +9,11 @@ use gbuffer_core::format::Format;
 use gbuffer_core::layout::Word;
 use gbuffer_core::{Direction, Named, ScalarKind, Symbols};
 
-use super::printer::Item;
 use super::{bit_field_code, bit_word_value, declare, declared_type};
 use super::{write_header, Interface};
-use crate::emit::items::ItemKind;
 use crate::CompiledLayout;
+use gbuffer_translate::items::ItemKind;
+use gbuffer_translate::printer::Item;
 
 /// Which of the three pixel local storage block forms to declare.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

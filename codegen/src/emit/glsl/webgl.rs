@@ -17,11 +17,9 @@
 
 use std::fmt::Write as _;
 
-use super::printer::Item;
 use super::unique;
 use super::{bit_field_code, bit_word_value, declared_type};
 use super::{declare, Include, Interface, TranslationError};
-use crate::emit::items::ItemKind;
 use crate::emit::wgsl::mode_suffix;
 use crate::CompiledLayout;
 use gbuffer_core::format::Format;
@@ -29,6 +27,8 @@ use gbuffer_core::layout::{Field, Layout, Storage};
 use gbuffer_core::report::webgl_planes;
 use gbuffer_core::{Direction, ScalarKind};
 use gbuffer_files::json::string;
+use gbuffer_translate::items::ItemKind;
+use gbuffer_translate::printer::Item;
 
 /// The format of a plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

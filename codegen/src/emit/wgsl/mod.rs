@@ -162,7 +162,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
 /// " for a, b"); `half_floats` says whether the code uses `pack2x16float` or `unpack2x16float`
 /// (`Codec::uses_binary16_builtins` of a field's codecs), which naga validates only with a
 /// capability `Capabilities::default()` leaves out
-/// (`gbuffer_codegen::wgsl_module::GENERATED_CODE_CAPABILITIES`).
+/// (`gbuffer_translate::wgsl::GENERATED_CODE_CAPABILITIES`).
 fn write_header(out: &mut String, layout: &Layout, fast: Option<&str>, half_floats: bool) {
     let _ = writeln!(
         out,

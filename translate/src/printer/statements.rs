@@ -8,7 +8,7 @@ use naga::proc::NameKey;
 use naga::valid::FunctionInfo;
 use naga::{Block, Expression, Function, Handle, Statement, TypeInner};
 
-use crate::emit::items::ItemKind;
+use crate::items::ItemKind;
 
 use super::{FromVersion310, FunctionContext, Printer, INDENT};
 

@@ -11,9 +11,10 @@ use std::sync::LazyLock;
 
 use naga::proc::KeywordSet;
 
-/// Every reserved identifier, once.
+/// Every identifier GLSL reserves (naga's list), once: the printer renames a WGSL name that
+/// is one.
 #[rustfmt::skip]
-pub(super) const RESERVED: &[&str] = &[
+pub const GLSL_RESERVED: &[&str] = &[
     "const", "uniform", "buffer", "shared", "attribute", "varying", "coherent", "volatile",
     "restrict", "readonly", "writeonly", "atomic_uint", "layout", "centroid", "flat", "smooth",
     "noperspective", "patch", "sample", "invariant", "precise", "break", "continue", "do", "for",
@@ -86,5 +87,5 @@ pub(super) const RESERVED: &[&str] = &[
     "allInvocationsEqual", "main", "naga_modf", "naga_frexp", "naga_vs_first_instance",
 ];
 
-/// [`RESERVED`] as the set naga's `Namer` takes.
-pub static RESERVED_SET: LazyLock<KeywordSet> = LazyLock::new(|| RESERVED.iter().collect());
+/// [`GLSL_RESERVED`] as the set naga's `Namer` takes.
+pub static RESERVED_SET: LazyLock<KeywordSet> = LazyLock::new(|| GLSL_RESERVED.iter().collect());

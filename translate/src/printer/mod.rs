@@ -30,7 +30,7 @@ use naga::proc::{CaseInsensitiveKeywordSet, KeywordSet, NameKey, Namer};
 use naga::valid::{FunctionInfo, ModuleInfo};
 use naga::{Block, Expression, Function, Handle, Module, Statement, TypeInner};
 
-use crate::emit::items::ItemKind;
+use crate::items::ItemKind;
 
 /// One level of indentation.
 const INDENT: &str = "    ";
@@ -270,6 +270,8 @@ impl FunctionContext<'_> {
 mod declarations;
 mod expressions;
 mod keywords;
+
+pub use keywords::GLSL_RESERVED;
 mod statements;
 #[cfg(test)]
 mod tests;

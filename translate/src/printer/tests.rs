@@ -1,11 +1,11 @@
 //! The printer against exact text, and its names against naga's GLSL writer's.
 
 use super::*;
-use crate::emit::items::ItemKind;
-use crate::{glsl_stage, wgsl_module};
+use crate::items::ItemKind;
+use crate::{glsl_stage, wgsl};
 
 fn printed(wgsl: &str, from_310: &[FromVersion310]) -> String {
-    let (module, info) = wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES)
+    let (module, info) = wgsl::validate(wgsl, wgsl::GENERATED_CODE_CAPABILITIES)
         .unwrap_or_else(|error| panic!("{error}"));
     let choice = Choice {
         from_310,
@@ -91,8 +91,7 @@ fn unreached() -> vec4<f32> { return textureSampleLevel(unused, lut_sampler, vec
 @fragment
 fn entry() -> @location(0) vec4<f32> { return vec4(lit(Texel(vec3(1.0))), 1.0); }
 ";
-    let (module, info) =
-        wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES).unwrap();
+    let (module, info) = wgsl::validate(wgsl, wgsl::GENERATED_CODE_CAPABILITIES).unwrap();
     let choice = Choice {
         entry_point: Some((naga::ShaderStage::Fragment, "entry")),
         leave_out: &["Texel", "from_include"],
@@ -159,14 +158,13 @@ const BUILTINS_AND_ODD_NAMES: [&str; 64] = [
 ];
 
 /// naga's GLSL writer is the reference: the renderer's and the user's shaders, which it
-/// translates, call the includes' items by the names it gives. For every word either list
+/// translates, call the includes' items by the names it gives. For every word the list
 /// reserves that WGSL allows as a name, a struct member so named is printed with the name
 /// naga's writer gives it.
 #[test]
 fn names_are_the_ones_nagas_writer_gives() {
-    let mut words: Vec<&str> = super::keywords::RESERVED
+    let mut words: Vec<&str> = GLSL_RESERVED
         .iter()
-        .chain(gbuffer_core::naming::GLSL_RESERVED)
         .copied()
         .chain(BUILTINS_AND_ODD_NAMES)
         .filter(|word| gbuffer_core::naming::check_identifier(word).is_ok())
@@ -183,8 +181,7 @@ fn names_are_the_ones_nagas_writer_gives() {
              var p: Probe;\n    return vec4<f32>(p.{});\n}}\n",
         words[0]
     );
-    let (module, info) =
-        wgsl_module::validate(&wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES).unwrap();
+    let (module, info) = wgsl::validate(&wgsl, wgsl::GENERATED_CODE_CAPABILITIES).unwrap();
     let (naga_text, _) = glsl_stage::write(
         (&module, &info),
         naga::ShaderStage::Fragment,
@@ -215,8 +212,7 @@ fn names_are_the_ones_nagas_writer_gives() {
 #[test]
 fn what_it_cannot_print_is_named() {
     let wgsl = "fn f(x: u32) -> u32 { return countLeadingZeros(x); }";
-    let (module, info) =
-        wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES).unwrap();
+    let (module, info) = wgsl::validate(wgsl, wgsl::GENERATED_CODE_CAPABILITIES).unwrap();
     let error = print(&module, &info, &Choice::default()).unwrap_err();
     assert!(
         error.contains("CountLeadingZeros") && error.contains("`f`"),

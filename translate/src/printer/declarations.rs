@@ -6,7 +6,7 @@ use std::fmt::Write;
 use naga::proc::NameKey;
 use naga::{ArraySize, Expression, Function, Handle, ScalarKind, Type, TypeInner};
 
-use crate::emit::items::ItemKind;
+use crate::items::ItemKind;
 
 use super::{Choice, FunctionContext, Item, Printer, INDENT};
 

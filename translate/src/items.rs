@@ -1,9 +1,8 @@
-//! What the emitters declare, as data: each item's kind, name and text. The GLSL printer
-//! records its items as it prints them ([`crate::emit::glsl::Translation::items`]), an include
-//! adds its attachments or block and its accessors as it writes them
-//! ([`crate::emit::glsl::Interface::declares`]); the WGSL is read back through naga's parser
-//! ([`wgsl_items`]). A caller asks for the items by name and kind instead of searching the
-//! text.
+//! What a shader text declares, as data: each item's kind, name and text. The GLSL printer
+//! records its items as it prints them ([`crate::printer::Printed::items`]; gbuffer-codegen's
+//! includes add their attachments, blocks and accessors as they write them); a WGSL text is
+//! read back through naga's parser ([`wgsl_items`]). A caller asks for the items by name and
+//! kind instead of searching the text.
 
 /// What kind of declaration an emitted item is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -38,8 +37,7 @@ pub struct WgslItem {
 /// back through naga's parser and validator (with the capabilities generated code needs).
 /// Entry points are not items: a shader has them, an emitted module does not.
 pub fn wgsl_items(wgsl: &str) -> Result<Vec<WgslItem>, String> {
-    use crate::wgsl_module;
-    let (module, _) = wgsl_module::validate(wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES)?;
+    let (module, _) = crate::wgsl::validate(wgsl, crate::wgsl::GENERATED_CODE_CAPABILITIES)?;
     let structs = module
         .types
         .iter()

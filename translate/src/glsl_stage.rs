@@ -1,7 +1,7 @@
 //! A whole stage of a validated module as GLSL, by naga's GLSL writer: the validator's
 //! portability check, the renderer's vertex and two-pass stages and the cost model's GLSL ES
 //! all write stages here, with the same options, so they translate alike. What a hand-written
-//! `main` or an include declares is printed from the module instead (`emit::glsl::printer`).
+//! `main` or an include declares is printed from the module instead ([`crate::printer`]).
 
 use naga::back::glsl;
 use naga::valid::ModuleInfo;

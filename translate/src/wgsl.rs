@@ -1,9 +1,8 @@
-//! The front door for WGSL: the one place it is taken in, by every package (the codegen's
-//! emitters and item lists, the validator, the renderer, the cost model). naga parses it and
-//! validates it with every flag and the capabilities a caller asks for; generated code needs
+//! WGSL in: the one place it is taken in, by every package (the codegen's compile step, the
+//! validator, the renderer, the cost model). naga parses it and validates it with every flag
+//! and the capabilities a caller asks for; generated code needs
 //! [`GENERATED_CODE_CAPABILITIES`]. A whole stage of the module then becomes GLSL through
-//! [`crate::glsl_stage`], and an include's declarations through the GLSL printer
-//! (`emit::glsl::printer`).
+//! [`crate::glsl_stage`], and declarations through [`crate::printer`].
 
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 

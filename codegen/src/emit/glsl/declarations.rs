@@ -1,19 +1,20 @@
-//! The layout's WGSL translated to GLSL ES, fit to paste into a user's shader: naga parses and
-//! validates the WGSL, and [`super::printer`] prints the module's declarations from naga's IR
-//! with explicit `highp`, and no `#version`, default precision or entry point.
+//! The layout's declarations in GLSL ES, fit to paste into a user's shader: naga parses and
+//! validates the layout's WGSL, and gbuffer-translate's printer ([`gbuffer_translate::printer`])
+//! prints the module's declarations from naga's IR with explicit `highp`, and no `#version`,
+//! default precision or entry point.
 //!
 //! GLSL reserves identifiers WGSL allows (`sampler` becomes `sampler_`, `main` becomes `main_`,
 //! names ending in a digit get a `_`, `__` is collapsed): the printer names each item as naga's
 //! writer does, and [`GlslNames`] hands the hand-written parts of an include (blocks,
 //! attachments, accessors) the names it gave the layout's structs.
 
-use super::printer::{self, Choice, FromVersion310, Item, Printed};
 use super::TranslationError;
-use crate::emit::items::ItemKind;
-use crate::wgsl_module;
 use gbuffer_core::format::Format;
 use gbuffer_core::layout::Layout;
 use gbuffer_core::{Conversions, Direction};
+use gbuffer_translate::items::ItemKind;
+use gbuffer_translate::printer::{self, Choice, FromVersion310, Item, Printed};
+use gbuffer_translate::wgsl;
 use naga::valid::ModuleInfo;
 
 /// The layout's types and functions in GLSL ES, and the names they were given.
@@ -72,7 +73,7 @@ pub struct GlslNames {
 /// Prints the layout's WGSL for GLSL ES 3.00 (`module`, validated) as GLSL ES declarations.
 /// GLSL ES 3.00 has no `packUnorm4x8`: under fast conversions that WGSL writes rgba8 in f32
 /// arithmetic, and the builtins take over from GLSL ES 3.10 up (`#if __VERSION__ >= 310`).
-pub(crate) fn translate(
+pub(crate) fn layout_declarations(
     layout: &Layout,
     conversions: Conversions,
     (module, info): (&naga::Module, &ModuleInfo),
@@ -127,13 +128,13 @@ pub(crate) fn translate(
 /// The bit fields' functions and their helpers alone, in GLSL ES declarations with explicit
 /// precision (for pixel local storage includes, whose block members share the global
 /// namespace with whatever the include declares).
-pub(crate) fn translate_bit_field_functions(
+pub(crate) fn bit_field_declarations(
     layout: &Layout,
     conversions: Conversions,
 ) -> Result<(String, Vec<Item>), TranslationError> {
     let wgsl = crate::emit::wgsl::bit_field_functions(layout, conversions);
-    let (module, info) = wgsl_module::validate(&wgsl, wgsl_module::GENERATED_CODE_CAPABILITIES)
-        .map_err(TranslationError)?;
+    let (module, info) =
+        wgsl::validate(&wgsl, wgsl::GENERATED_CODE_CAPABILITIES).map_err(TranslationError)?;
     let printed = print((&module, &info), &[])?;
     Ok((printed.text, printed.items))
 }
