@@ -94,7 +94,7 @@ pub enum BuildError {
         error: std::io::Error,
     },
     /// naga failed to translate the WGSL (a bug in this crate).
-    Translation(gbuffer_codegen::emit::glsl::TranslationError),
+    Translation(gbuffer_codegen::TranslationError),
 }
 
 impl fmt::Display for BuildError {

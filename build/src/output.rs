@@ -6,9 +6,10 @@ use std::io;
 use std::path::{Path, PathBuf};
 
 use gbuffer_codegen::emit::glsl::local_read::LocalRead;
-use gbuffer_codegen::emit::glsl::{self, Include, TranslationError};
+use gbuffer_codegen::emit::glsl::{self, Include};
 use gbuffer_codegen::emit::rust;
 use gbuffer_codegen::CompiledLayout;
+use gbuffer_codegen::TranslationError;
 use gbuffer_core::layout::Layout;
 use gbuffer_core::report::Report;
 use gbuffer_core::Conversions;
@@ -74,9 +75,9 @@ pub fn generate(
     conversions: Conversions,
     outputs: &[Output],
 ) -> Result<Vec<GeneratedFile>, TranslationError> {
-    let symbols = layout.symbols();
     // Compiled once, for every output: its WGSL is the file's, its translation every include's.
     let compiled = CompiledLayout::new(layout, conversions)?;
+    let symbols = compiled.lowered().symbols();
     let wgsl_file = compiled.wgsl().to_string() + "\n";
     let mut files = Vec::new();
     let mut add = |name: String, contents: String| {
@@ -95,28 +96,25 @@ pub fn generate(
                     .into_iter()
                     .filter(|include| output.includes(*include))
                 {
-                    let (text, interface) = compiled.include(include, 0)?;
-                    add(include.file_name(&symbols, "glsl"), text);
-                    if let Some(local_read) = LocalRead::of(layout, &interface, 0) {
-                        add(LocalRead::file_name(layout, include), local_read.to_json());
+                    let (text, interface) = glsl::include(&compiled, include, 0)?;
+                    add(include.file_name(symbols, "glsl"), text);
+                    if let Some(local_read) = LocalRead::of(&compiled, &interface, 0) {
+                        add(LocalRead::file_name(symbols, include), local_read.to_json());
                     }
                 }
             }
             Output::WebGlPixelLocalStorage => {
                 let include = Include::WebGlPixelLocalStorage;
-                let (text, interface) = compiled.include(include, 0)?;
-                add(include.file_name(&symbols, "glsl"), text);
+                let (text, interface) = glsl::include(&compiled, include, 0)?;
+                add(include.file_name(symbols, "glsl"), text);
                 add(
-                    include.file_name(&symbols, "js"),
-                    glsl::webgl::host_module(layout, &interface),
+                    include.file_name(symbols, "js"),
+                    glsl::webgl::host_module(&compiled, &interface),
                 );
             }
             Output::Rust => {
                 add(symbols.wgsl_file(), wgsl_file.clone());
-                add(
-                    symbols.file("rs"),
-                    rust::emit_source(layout, &symbols.wgsl_file()),
-                );
+                add(symbols.file("rs"), rust::emit_source(&compiled));
             }
             Output::Report => add(symbols.file("report.txt"), Report::new(layout).to_string()),
         }

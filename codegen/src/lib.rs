@@ -32,6 +32,8 @@
 #[cfg(feature = "tools")]
 mod compiled;
 pub mod emit;
+mod lowered;
 
 #[cfg(feature = "tools")]
-pub use compiled::CompiledLayout;
+pub use compiled::{CompiledLayout, GlslNames, Translation, TranslationError};
+pub use lowered::LoweredLayout;

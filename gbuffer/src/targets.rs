@@ -272,7 +272,7 @@ pub trait GBufferTargets: GBufferLayout {
     /// `load_<snake>_targets(pixel: vec2<u32>) -> <Name>Targets`, the words as stored, and
     /// `read_<snake>_targets(pixel: vec2<u32>) -> <Name>`, which loads and unpacks a texel.
     fn lighting_wgsl(group: u32, first_binding: u32) -> String {
-        gbuffer_codegen::emit::wgsl::lighting_targets(&Self::layout(), group, first_binding)
+        lighting_wgsl(&Self::layout(), group, first_binding)
     }
 
     /// Bytes per sample of the targets, as wgpu counts them against
@@ -354,8 +354,12 @@ pub fn create_targets(
     GBufferTextures { textures, views }
 }
 
-/// [`GBufferTargets::lighting_wgsl`] for `layout`: the WGSL back end's, under the trait's name.
-pub use gbuffer_codegen::emit::wgsl::lighting_targets as lighting_wgsl;
+/// [`GBufferTargets::lighting_wgsl`] for a layout known at run time (a checked one): the WGSL
+/// back end's `lighting_targets`, over the layout lowered here.
+pub fn lighting_wgsl(layout: &Layout, group: u32, first_binding: u32) -> String {
+    let lowered = gbuffer_codegen::LoweredLayout::new(layout);
+    gbuffer_codegen::emit::wgsl::lighting_targets(&lowered, group, first_binding)
+}
 
 /// [`GBufferTargets::bind_group_entries`]: the targets' views from `first_binding` on.
 pub fn bind_group_entries(

@@ -71,10 +71,11 @@ fn every_output_matches_its_snapshot() {
 
 /// Every include of a layout, with its interface.
 fn includes(layout: &Layout) -> Vec<(Include, String, Interface)> {
+    let compiled = CompiledLayout::new(layout, Conversions::Exact).unwrap();
     Include::ALL
         .into_iter()
         .map(|include| {
-            let (text, interface) = glsl::include(layout, include, 0).unwrap();
+            let (text, interface) = glsl::include(&compiled, include, 0).unwrap();
             (include, text, interface)
         })
         .collect()
@@ -123,7 +124,7 @@ fn check_vulkan_includes(layout: &Layout, conversions: Conversions) -> Result<()
     let compiled = CompiledLayout::new(layout, conversions).unwrap();
     let names = compiled.names();
     for include in [Include::SubpassPacked, Include::SubpassNative] {
-        let (text, _) = compiled.include(include, 0).unwrap();
+        let (text, _) = glsl::include(&compiled, include, 0).unwrap();
         for preamble in preambles(include) {
             let user = format!(
                 "layout(location = 0) out highp uvec4 user_output;
@@ -176,7 +177,7 @@ fn vulkan_includes_host_data_names_what_the_include_declares() {
                 .find(|file| file.name == glsl_name)
                 .unwrap()
                 .contents;
-            let json_name = glsl::local_read::LocalRead::file_name(&layout, include);
+            let json_name = glsl::local_read::LocalRead::file_name(&layout.symbols(), include);
             let json = &files
                 .iter()
                 .find(|file| file.name == json_name)
@@ -343,9 +344,7 @@ fn call_with_zeros(name: &str, line: &str) -> String {
 fn check_pls_blocks(layout: &Layout) -> Result<(), String> {
     let compiled = CompiledLayout::new(layout, Conversions::Exact).unwrap();
     for block in PlsBlock::ALL {
-        let (text, _) = compiled
-            .include(Include::PixelLocalStorage(block), 0)
-            .unwrap();
+        let (text, _) = glsl::include(&compiled, Include::PixelLocalStorage(block), 0).unwrap();
         let members = check_pls_block(&text, block, layout.budget)
             .map_err(|error| format!("{} {block:?}: {error}\n{text}", layout.name))?;
         let words = layout.word_contents();

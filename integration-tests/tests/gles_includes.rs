@@ -16,6 +16,7 @@
 
 use gbuffer::layout::{Field, Format, Layout, Storage};
 use gbuffer_codegen::emit::glsl::{self, Include, Interface};
+use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
 use gbuffer_gpu::gles::{Framebuffer, Gles};
 use gbuffer_gpu::harness::scalars_per_texel;
@@ -130,7 +131,8 @@ fn check(
     seed: u64,
     failures: &mut Vec<String>,
 ) {
-    let (_, interface) = glsl::include_with(layout, conversions, include, 0).unwrap();
+    let compiled = CompiledLayout::new(layout, conversions).unwrap();
+    let (_, interface) = glsl::include(&compiled, include, 0).unwrap();
     let draw_buffers = gles.limit(glow::MAX_DRAW_BUFFERS) as usize;
     if interface.attachments.len() > draw_buffers {
         eprintln!(

@@ -4,6 +4,8 @@
 
 use gbuffer::seed_layouts;
 use gbuffer_codegen::emit::glsl::{self, Include};
+use gbuffer_codegen::CompiledLayout;
+use gbuffer_core::Conversions;
 use gbuffer_gpu::gles::Gles;
 use gbuffer_testkit::or_skip;
 
@@ -41,7 +43,8 @@ fn with_include(include: Include, file: &str) -> Vec<String> {
         .map(|(layout, _)| layout)
         .find(|layout| layout.name == "MobileMetallic")
         .unwrap();
-    let (text, _) = glsl::include(&layout, include, 0).unwrap();
+    let compiled = CompiledLayout::new(&layout, Conversions::Exact).unwrap();
+    let (text, _) = glsl::include(&compiled, include, 0).unwrap();
     let line = format!("#include \"{file}\"");
     let blocks: Vec<String> = guide_glsl_blocks()
         .into_iter()

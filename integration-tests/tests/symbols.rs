@@ -9,6 +9,7 @@
 use gbuffer::layout::{Direction, Layout, Symbols};
 use gbuffer::GBufferLayout;
 use gbuffer_build::output::{generate, Output};
+use gbuffer_codegen::emit::glsl;
 use gbuffer_codegen::emit::glsl::{Include, PlsBlock};
 use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
@@ -119,8 +120,7 @@ fn every_glsl_name_is_defined_by_the_includes_that_read_or_write() {
         let compiled = CompiledLayout::new(&layout, Conversions::Exact).unwrap();
         let names = compiled.names();
         for include in Include::ALL {
-            let (text, interface) = compiled
-                .include(include, 0)
+            let (text, interface) = glsl::include(&compiled, include, 0)
                 .unwrap_or_else(|error| panic!("{} {include:?}: {error}", layout.name));
             let functions = glsl_functions(&text);
             let defined = |name: &str| functions.iter().any(|function| function == name);

@@ -21,6 +21,7 @@
 //! fails.
 
 use gbuffer_codegen::emit::glsl::{self, Include};
+use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::Conversions;
 use gbuffer_core::Named;
 use gbuffer_cost::{measure, CostError, Shader, Stage, Target};
@@ -76,10 +77,10 @@ fn fetch_includes_compile_on_mali_and_adreno() {
         let target = Target::named(name).unwrap();
         let mut shaders = Vec::new();
         for layout in seeds_and_every_format() {
-            for include in [Include::FetchPacked, Include::FetchNative] {
-                for conversions in [Conversions::Exact, Conversions::Fast] {
-                    let (_, interface) =
-                        glsl::include_with(&layout, conversions, include, 0).unwrap();
+            for conversions in [Conversions::Exact, Conversions::Fast] {
+                let compiled = CompiledLayout::new(&layout, conversions).unwrap();
+                for include in [Include::FetchPacked, Include::FetchNative] {
+                    let (_, interface) = glsl::include(&compiled, include, 0).unwrap();
                     if interface.attachments.len() > MAX_DRAW_BUFFERS {
                         continue;
                     }

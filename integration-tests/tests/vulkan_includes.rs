@@ -103,7 +103,7 @@ struct UserShaders {
 
 fn user_shaders(layout: &Layout, include: Include, preamble: &str) -> UserShaders {
     let compiled = CompiledLayout::new(layout, Conversions::Exact).unwrap();
-    let (text, interface) = compiled.include(include, 0).unwrap();
+    let (text, interface) = glsl::include(&compiled, include, 0).unwrap();
     let names = compiled.names();
     let output = OutputLayout::of(layout, &interface);
     let stride = output.stride();
@@ -214,7 +214,8 @@ fn check(
     seed: u64,
     failures: &mut Vec<String>,
 ) -> Option<AttachmentMemory> {
-    let (_, interface) = glsl::include(layout, include, 0).unwrap();
+    let compiled = CompiledLayout::new(layout, Conversions::Exact).unwrap();
+    let (_, interface) = glsl::include(&compiled, include, 0).unwrap();
     let count = interface.attachments.len();
     let limits = &vulkan.limits;
     let most = limits

@@ -116,8 +116,8 @@ fn cases(layout: &Layout, conversions: Conversions, seed: u64) -> Vec<Case> {
     };
     let include = Include::WebGlPixelLocalStorage;
     let compiled = CompiledLayout::new(layout, conversions).unwrap();
-    let (text, interface) = compiled.include(include, 0).unwrap();
-    let host = glsl::webgl::host_module(layout, &interface);
+    let (text, interface) = glsl::include(&compiled, include, 0).unwrap();
+    let host = glsl::webgl::host_module(&compiled, &interface);
     let texels = TEXELS_PER_ROW * ROWS;
     preambles(include)
         .into_iter()

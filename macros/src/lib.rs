@@ -38,9 +38,11 @@ fn expand(input: &syn::DeriveInput) -> syn::Result<proc_macro2::TokenStream> {
     if let Some(errors) = errors {
         return Err(errors);
     }
-    let wgsl = gbuffer_codegen::emit::wgsl::emit_with(&parsed.layout, parsed.conversions);
+    // Lowered once (its words, its fields' places, its names) for both emitters.
+    let lowered = gbuffer_codegen::LoweredLayout::new(&parsed.layout);
+    let wgsl = gbuffer_codegen::emit::wgsl::emit_lowered(&lowered, parsed.conversions);
     Ok(gbuffer_codegen::emit::rust::emit_impl(
-        &parsed.layout,
+        &lowered,
         quote::quote!(#wgsl),
         &parsed.crate_path,
     ))

@@ -10,6 +10,7 @@
 //! the declarations the stages' functions reach ([`glsl::fragment_declarations`], less what
 //! the include declares), the dialect's declarations and the stage's `main`.
 
+use gbuffer_codegen::emit::glsl::local_read::LocalRead;
 use gbuffer_codegen::emit::glsl::{self as includes, Include, Interface};
 use gbuffer_codegen::CompiledLayout;
 use gbuffer_core::{Conversions, Named};
@@ -160,6 +161,12 @@ pub struct FusedPrograms {
     pub wgsl: String,
     /// One program per stage, in [`Stage::ALL`]'s order.
     pub programs: Vec<FusedProgram>,
+    /// Vulkan's: where a dynamic rendering host puts each attachment and its input index (the
+    /// include's `.local_read.json`); `None` for the GL dialects.
+    pub local_read: Option<LocalRead>,
+    /// WebGL's: the JavaScript module that attaches the planes (the include's `.webgl_pls.js`);
+    /// `None` for the other dialects.
+    pub webgl_host: Option<String>,
 }
 
 /// The programs of the fused path of `dialect` for `options`.
@@ -170,9 +177,11 @@ pub fn fused_programs(options: &Options, dialect: FusedDialect) -> Result<FusedP
     let compiled =
         CompiledLayout::new(&model, Conversions::Exact).map_err(|error| error.to_string())?;
     let include = dialect.include();
-    let (include_text, interface) = compiled
-        .include(include, dialect.set())
-        .map_err(|error| error.to_string())?;
+    let (include_text, interface) =
+        includes::include(&compiled, include, dialect.set()).map_err(|error| error.to_string())?;
+    let local_read = LocalRead::of(&compiled, &interface, dialect.set());
+    let webgl_host = (dialect == FusedDialect::WebGlPixelLocalStorage)
+        .then(|| includes::webgl::host_module(&compiled, &interface));
     let wgsl = fused_wgsl(options, layout, -1.0);
     let stages = glsl::fragment_declarations(&wgsl, TRANSLATION_ENTRY, dialect.glsl(), &interface)?;
     let store = match dialect {
@@ -248,5 +257,7 @@ pub fn fused_programs(options: &Options, dialect: FusedDialect) -> Result<FusedP
         interface,
         wgsl,
         programs,
+        local_read,
+        webgl_host,
     })
 }

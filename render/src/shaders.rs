@@ -195,7 +195,11 @@ pub const GBUFFER_FIRST_BINDING: u32 = 10;
 /// loads them at `pixel` as a `<Name>Targets`.
 fn read_packed_targets(layout: &Layout) -> (String, String) {
     (
-        gbuffer_codegen::emit::wgsl::lighting_targets(layout, 0, GBUFFER_FIRST_BINDING),
+        gbuffer_codegen::emit::wgsl::lighting_targets(
+            &gbuffer_codegen::LoweredLayout::new(layout),
+            0,
+            GBUFFER_FIRST_BINDING,
+        ),
         format!("{}(vec2<u32>(pixel))", layout.symbols().load_targets()),
     )
 }

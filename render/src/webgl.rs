@@ -12,14 +12,12 @@
 
 use std::fmt::Write as _;
 
-use gbuffer_codegen::emit::glsl as includes;
 use gbuffer_core::Named;
 use gbuffer_files::json::string as json_string;
 
 use crate::fused_programs::{fused_programs, FusedDialect};
 use crate::inputs::{Inputs, Texels};
 use crate::mesh::Mesh;
-use crate::on_tile::tile_layout;
 use crate::options::Options;
 use crate::scene::{DECALS, POINT_LIGHT_COUNT};
 use crate::shaders::{ENVIRONMENT_BINDING, LIGHT_MAP_BINDING, LUT_BINDING};
@@ -27,9 +25,11 @@ use crate::shaders::{ENVIRONMENT_BINDING, LIGHT_MAP_BINDING, LUT_BINDING};
 /// The files the page loads for `options`: `scene.mjs` (the programs, the mesh, the inputs and
 /// the frame's size and draws) and `layout.webgl_pls.js` (the layout's host module).
 pub fn export(options: &Options, inputs: &Inputs) -> Result<Vec<(String, Vec<u8>)>, String> {
-    let layout = tile_layout(options)?.layout();
     let fused = fused_programs(options, FusedDialect::WebGlPixelLocalStorage)?;
-    let host = includes::webgl::host_module(&layout, &fused.interface);
+    let host = fused
+        .webgl_host
+        .clone()
+        .ok_or("the WebGL programs have no host module")?;
     let mesh = Mesh::scene();
     let mut scene = String::from(
         "// The fused frame's scene for web/fused.mjs, exported by gbuffer-render (render/src/webgl.rs):\n\

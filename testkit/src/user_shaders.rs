@@ -5,8 +5,9 @@
 
 use std::fmt::Write as _;
 
-use gbuffer_codegen::emit::glsl::{GlslNames, Include};
+use gbuffer_codegen::emit::glsl::{self, Include};
 use gbuffer_codegen::CompiledLayout;
+use gbuffer_codegen::GlslNames;
 use gbuffer_core::Conversions;
 use gbuffer_core::{Layout, ScalarKind};
 use gbuffer_gpu::harness::scalars_per_texel;
@@ -117,7 +118,7 @@ pub fn fetch_user_shaders(
     width: i32,
 ) -> (String, String) {
     let compiled = CompiledLayout::new(layout, conversions).unwrap();
-    let (text, _) = compiled.include(include, 0).unwrap();
+    let (text, _) = glsl::include(&compiled, include, 0).unwrap();
     let names = compiled.names();
     let symbols = layout.symbols();
     let (load, store_texel) = (symbols.load(), symbols.store());

@@ -10,8 +10,10 @@
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use gbuffer_core::layout::{Field, Layout, Storage};
+use gbuffer_core::layout::{Field, Storage};
 use gbuffer_core::{BitField, Encoding, FieldType, ScalarKind};
+
+use crate::LoweredLayout;
 
 /// The path of the `gbuffer` crate when the user names no other: `::gbuffer`.
 pub fn default_crate_path() -> TokenStream {
@@ -99,18 +101,19 @@ fn bit_field_tokens(bit_field: BitField, packing: &TokenStream) -> TokenStream {
 }
 
 /// `impl <krate>::GBufferLayout for <Name> { ... }`. The layout must have passed
-/// [`Layout::check`]; `wgsl` is an expression for its WGSL text (a literal, or an
+/// [`Layout::check`](gbuffer_core::Layout::check); `wgsl` is an expression for its WGSL text (a literal, or an
 /// `include_str!` of the file beside the generated source); `krate` is the path of the
 /// `gbuffer` crate ([`default_crate_path`] unless the user gives another).
-pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> TokenStream {
+pub fn emit_impl(lowered: &LoweredLayout, wgsl: TokenStream, krate: &TokenStream) -> TokenStream {
+    let layout = lowered.layout();
     let name = Ident::new(&layout.name, Span::call_site());
-    let words = Literal::usize_unsuffixed(layout.words());
-    let bits = Literal::u32_unsuffixed(layout.bits());
+    let words = Literal::usize_unsuffixed(lowered.words().len());
+    let bits = Literal::u32_unsuffixed(lowered.bits());
     let used_bits = Literal::u32_unsuffixed(layout.used_bits());
     let budget = Literal::u32_unsuffixed(layout.budget);
     let packing = quote!(#krate::layout);
 
-    let encoded_words = layout.word_contents().into_iter().map(|word| {
+    let encoded_words = lowered.words().iter().map(|word| {
         let codes = word.members.iter().map(|member| {
             let field = &layout.fields[member.field];
             let values = components(&quote!(self), field);
@@ -140,8 +143,7 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
     // A parameter is a pattern: a user's unit struct or const of the same name would capture
     // it. The reserved-looking name keeps clear of user items, as serde's `__deserializer`.
     let words_parameter = Ident::new("__gbuffer_words", Span::call_site());
-    let locations = layout.field_locations();
-    let decoded_fields = layout.fields.iter().zip(&locations).map(|(field, &(word, member))| {
+    let decoded_fields = layout.fields.iter().zip(lowered.locations()).map(|(field, &(word, member))| {
         let field_name = Ident::new(&field.name, Span::call_site());
         let ty = type_path(field.ty, krate);
         let word = Literal::usize_unsuffixed(word);
@@ -182,7 +184,7 @@ pub fn emit_impl(layout: &Layout, wgsl: TokenStream, krate: &TokenStream) -> Tok
         quote!(#field_name: #value)
     });
 
-    let (pack_slice, unpack_slice) = emit_slices(layout, krate);
+    let (pack_slice, unpack_slice) = emit_slices(lowered, krate);
 
     let described_fields = layout.fields.iter().map(|field| {
         let field_name = &field.name;
@@ -256,12 +258,13 @@ const SLICE_LANES: usize = 8;
 /// The texels left over go through `pack` and `unpack`. The conversions are static functions
 /// of a `Lanes` impl, not closures, so that they inline into the loop's copy compiled for
 /// AVX2, whose transposes (`Isa`) it passes them.
-fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStream) {
+fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, TokenStream) {
+    let layout = lowered.layout();
     let name = Ident::new(&layout.name, Span::call_site());
     let packing = quote!(#krate::layout);
     let private = quote!(#krate::__private);
     let lanes_n = Literal::usize_unsuffixed(SLICE_LANES);
-    let words = Literal::usize_unsuffixed(layout.words());
+    let words = Literal::usize_unsuffixed(lowered.words().len());
     let u32_ = quote!(::core::primitive::u32);
     let texels = Ident::new("__gbuffer_texels", Span::call_site());
     let index = Ident::new("__gbuffer_index", Span::call_site());
@@ -319,7 +322,7 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
         });
         quote!([#(#bits),*])
     });
-    let packed_words = layout.word_contents().into_iter().enumerate().map(|(word, contents)| {
+    let packed_words = lowered.words().iter().enumerate().map(|(word, contents)| {
         let word_ident = word_name(word);
         let members = contents.members.iter().map(|member| {
             let field = &layout.fields[member.field];
@@ -384,8 +387,7 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
     let words_parameter = Ident::new("__gbuffer_words", Span::call_site());
     // Per field, its components over the lanes, `__gbuffer_field<n>[c][lane]`: a format's
     // channel values (its components only), or a bit field's codec lanes as u32 bits (four).
-    let locations = layout.field_locations();
-    let decoded = layout.fields.iter().zip(&locations).enumerate().map(|(number, (field, &(word, member)))| {
+    let decoded = layout.fields.iter().zip(lowered.locations()).enumerate().map(|(number, (field, &(word, member)))| {
         let field_ident = field_name(number);
         let word = Literal::usize_unsuffixed(word);
         let word_lanes = quote!(__gbuffer_word_lanes[#word]);
@@ -502,7 +504,10 @@ fn emit_slices(layout: &Layout, krate: &TokenStream) -> (TokenStream, TokenStrea
 /// and a `#[pls(...)]` or `#[bits(...)]` attribute per field, public fields of `gbuffer`'s
 /// glam types. What the derive reads back as the same layout and WGSL.
 #[cfg(feature = "tools")]
-pub fn derive_source(layout: &Layout, conversions: gbuffer_core::layout::Conversions) -> String {
+pub fn derive_source(
+    layout: &gbuffer_core::Layout,
+    conversions: gbuffer_core::layout::Conversions,
+) -> String {
     use gbuffer_core::layout::Conversions;
     use gbuffer_core::Named;
 
@@ -552,10 +557,12 @@ pub fn derive_source(layout: &Layout, conversions: gbuffer_core::layout::Convers
 }
 
 /// A Rust source file for crates that do not use the derive: the struct, with public fields
-/// of `gbuffer`'s glam types, and its `GBufferLayout` impl, whose WGSL is included from
-/// `<wgsl_file>` beside it.
+/// of `gbuffer`'s glam types, and its `GBufferLayout` impl, whose WGSL is included from the
+/// file `gbuffer codegen` writes beside it ([`gbuffer_core::Symbols::wgsl_file`]).
 #[cfg(feature = "tools")]
-pub fn emit_source(layout: &Layout, wgsl_file: &str) -> String {
+pub fn emit_source(compiled: &crate::CompiledLayout) -> String {
+    let (lowered, layout) = (compiled.lowered(), compiled.layout());
+    let wgsl_file = lowered.symbols().wgsl_file();
     let krate = default_crate_path();
     let name = Ident::new(&layout.name, Span::call_site());
     let fields = layout.fields.iter().map(|field| {
@@ -570,12 +577,12 @@ pub fn emit_source(layout: &Layout, wgsl_file: &str) -> String {
     let header = format!(
         " G-buffer layout `{}`: {} words, {} bits ({} used) of a {}-bit budget. Generated by `gbuffer codegen` from the layout file: edit that, not this file.",
         layout.name,
-        layout.words(),
-        layout.bits(),
+        lowered.words().len(),
+        lowered.bits(),
         layout.used_bits(),
         layout.budget
     );
-    let implementation = emit_impl(layout, quote!(include_str!(#wgsl_file)), &krate);
+    let implementation = emit_impl(lowered, quote!(include_str!(#wgsl_file)), &krate);
     let tokens = quote! {
         #[doc = #header]
         #[derive(Clone, Copy, Debug, PartialEq)]

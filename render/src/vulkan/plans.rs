@@ -2,7 +2,7 @@
 //! object, the local-read paths' dynamic rendering), and the two-pass path's two render passes.
 
 use ash::vk;
-use gbuffer_codegen::emit::glsl::local_read::{LocalRead, ATTACHMENT_UNUSED};
+use gbuffer_codegen::emit::glsl::local_read::ATTACHMENT_UNUSED;
 use gbuffer_core::Named;
 
 use gbuffer_gpu::vulkan::{DrawsIn, RenderingAttachments};
@@ -92,7 +92,6 @@ impl VulkanRenderer {
             Fused::Subpass { .. } => None,
             Fused::LocalRead { .. } => Some(self.local_read_commands(rasterization_order)?),
         };
-        let model = layout.layout();
         // The same shaders for the subpass and the local-read paths: what differs is the
         // pipeline and the pass.
         let shaders = fused_programs(options, FusedDialect::VulkanSubpass)?;
@@ -160,7 +159,10 @@ impl VulkanRenderer {
         // The G-buffer attachments at the locations and input attachment indices the include's
         // host data gives (the codegen's `.local_read.json`); the output, at the next location,
         // is read by no shader.
-        let host = LocalRead::of(&model, interface, 1).expect("the include is Vulkan's");
+        let host = shaders
+            .local_read
+            .as_ref()
+            .ok_or("the Vulkan programs have no local-read host data")?;
         let rendering = RenderingAttachments {
             colour_formats: host
                 .attachments

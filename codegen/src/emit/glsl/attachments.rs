@@ -29,8 +29,8 @@ pub(super) fn attachments(
     let storage = if include.is_packed() {
         format!(
             "{} packed words in {} RGBA32UI attachment(s)",
-            layout.words(),
-            layout.targets()
+            compiled.lowered().words().len(),
+            compiled.lowered().targets()
         )
     } else if layout.has_bit_fields() {
         format!(
@@ -95,7 +95,7 @@ fn write_accessors(
     interface: &Interface,
 ) {
     let (layout, names) = (compiled.layout(), compiled.names());
-    let symbols = layout.symbols();
+    let symbols = compiled.lowered().symbols();
     let texel = &names.layout;
     let vulkan = interface.include.is_vulkan();
     let reads: Vec<String> = interface
@@ -120,12 +120,15 @@ fn write_accessors(
         let fields: Vec<String> = layout
             .fields
             .iter()
-            .zip(layout.field_locations())
+            .zip(compiled.lowered().locations())
             .enumerate()
-            .map(|(index, (field, (word, member)))| {
+            .map(|(index, (field, &(word, member)))| {
                 let read = &reads[word];
                 if field.bit_field().is_some() {
-                    let decode = layout.symbols().bit_field(Direction::Decode, index);
+                    let decode = compiled
+                        .lowered()
+                        .symbols()
+                        .bit_field(Direction::Decode, index);
                     return format!("{decode}({})", bit_field_code(&format!("{read}.x"), member));
                 }
                 match field.ty.components {
@@ -171,16 +174,21 @@ pub fn store_statements(
             out,
             "    {} targets = {}(texel);",
             names.targets,
-            layout.symbols().pack_targets()
+            compiled.lowered().symbols().pack_targets()
         );
         for (attachment, member) in interface.attachments.iter().zip(&names.target_members) {
             let _ = writeln!(out, "    {} = targets.{member};", output(attachment));
         }
         return out;
     }
-    for (word, attachment) in layout.word_contents().iter().zip(&interface.attachments) {
+    for (word, attachment) in compiled
+        .lowered()
+        .words()
+        .iter()
+        .zip(&interface.attachments)
+    {
         if word.is_bit_fields {
-            let value = bit_word_value(layout, word, |field| {
+            let value = bit_word_value(compiled.lowered().symbols(), word, |field| {
                 format!("texel.{}", names.fields[field])
             });
             let _ = writeln!(

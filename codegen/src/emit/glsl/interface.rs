@@ -129,7 +129,7 @@ pub struct Interface {
     pub planes: Vec<Plane>,
     /// Every declaration of the include's text, in its order: the attachments, planes or
     /// block, the translated types and functions, the accessors. Empty until the include is
-    /// written ([`crate::CompiledLayout::include`] fills it).
+    /// written ([`super::include`] fills it).
     pub declares: Vec<gbuffer_translate::printer::Item>,
 }
 
@@ -137,11 +137,10 @@ impl Interface {
     /// The interface of `include` for a compiled layout, with the GLSL names its words and
     /// fields were given.
     pub fn new(compiled: &crate::CompiledLayout, include: Include) -> Interface {
-        let layout = compiled.layout();
-        let symbols = layout.symbols();
+        let symbols = compiled.lowered().symbols();
         let attachments: Vec<Attachment> = match include {
             Include::PixelLocalStorage(_) | Include::WebGlPixelLocalStorage => Vec::new(),
-            Include::FetchPacked | Include::SubpassPacked => (0..layout.targets())
+            Include::FetchPacked | Include::SubpassPacked => (0..compiled.lowered().targets())
                 .map(|target| Attachment {
                     name: symbols.target(target),
                     index: target as u32,
@@ -149,9 +148,9 @@ impl Interface {
                 })
                 .collect(),
             Include::FetchNative | Include::SubpassNative => {
-                let words = layout.word_contents();
+                let words = compiled.lowered().words();
                 // Joined without `__`, which GLSL ES reserves (naga's names may end in `_`).
-                let attachment_names = super::unique(
+                let attachment_names = crate::compiled::unique(
                     compiled
                         .word_names()
                         .iter()

@@ -36,7 +36,8 @@
 use std::fmt::Write as _;
 
 use super::{Include, Interface};
-use gbuffer_core::layout::Layout;
+use crate::CompiledLayout;
+use gbuffer_core::Symbols;
 use gbuffer_files::json::string;
 
 /// A Vulkan enumerant or flag: its name in the C API and its value.
@@ -125,12 +126,14 @@ pub struct LocalRead {
 impl LocalRead {
     /// The host's mapping for a Vulkan include's `interface`, declared in descriptor set `set`;
     /// `None` for the other includes.
-    pub fn of(layout: &Layout, interface: &Interface, set: u32) -> Option<LocalRead> {
+    pub fn of(compiled: &CompiledLayout, interface: &Interface, set: u32) -> Option<LocalRead> {
         if !interface.include.is_vulkan() {
             return None;
         }
         Some(LocalRead {
-            include: interface.include.file_name(&layout.symbols(), "glsl"),
+            include: interface
+                .include
+                .file_name(compiled.lowered().symbols(), "glsl"),
             set,
             attachments: interface
                 .attachments
@@ -153,8 +156,8 @@ impl LocalRead {
 
     /// The file the host data is written to: `<snake>.vulkan.local_read.json` or
     /// `<snake>.vulkan_native.local_read.json`.
-    pub fn file_name(layout: &Layout, include: Include) -> String {
-        include.file_name(&layout.symbols(), "local_read.json")
+    pub fn file_name(symbols: &Symbols, include: Include) -> String {
+        include.file_name(symbols, "local_read.json")
     }
 
     /// The JSON document, with a trailing newline.

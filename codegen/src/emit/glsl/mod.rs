@@ -19,32 +19,30 @@
 //! The functions are not written twice: the compiled layout ([`crate::CompiledLayout`]) holds
 //! naga's module of the layout's WGSL and its IR printed as GLSL ES by gbuffer-translate's
 //! printer (exact or fast conversions), and every include pastes that one translation, so WGSL
-//! stays the one source of truth. Where GLSL reserves a name, the printer renames it as naga's GLSL writer
-//! does (`sampler` -> `sampler_`, `main` -> `main_`, a name ending in a digit gets a `_`), and
-//! the hand-written parts take those names from it ([`GlslNames`]).
+//! stays the one source of truth. Where GLSL reserves a name, the printer renames it as naga's
+//! GLSL writer does (`sampler` -> `sampler_`, `main` -> `main_`, a name ending in a digit gets a
+//! `_`), and the hand-written parts take those names from it ([`crate::GlslNames`]).
+//!
+//! Every function here reads a [`CompiledLayout`] (its lowered words, its names, its
+//! translation) and calls nothing of the compile step but its accessors.
 
 mod attachments;
-pub(crate) mod declarations;
 mod interface;
 pub mod local_read;
 mod pixel_local_storage;
 pub mod webgl;
-mod word_names;
 
 use std::fmt::Write as _;
 
 pub use attachments::store_statements;
-pub use declarations::{GlslNames, Translation};
 pub use interface::{subpass_input_type, Attachment, Include, Interface};
 pub use pixel_local_storage::{pls_member_type, PlsBlock};
-pub(crate) use word_names::{unique, word_names};
 
 use gbuffer_core::codecs::max_code;
-use gbuffer_core::layout::{Layout, Member, Word};
-use gbuffer_core::Conversions;
-use gbuffer_core::{Direction, FieldType, ScalarKind};
+use gbuffer_core::layout::{Member, Word};
+use gbuffer_core::{Direction, FieldType, ScalarKind, Symbols};
 
-use crate::CompiledLayout;
+use crate::{CompiledLayout, TranslationError};
 use gbuffer_translate::items::ItemKind;
 use gbuffer_translate::printer::Item;
 
@@ -78,12 +76,12 @@ fn bit_field_code(word: &str, member: Member) -> String {
 
 /// A bit word's value in GLSL: each field's code from `value(field)`, shifted into place and
 /// combined.
-fn bit_word_value(layout: &Layout, word: &Word, value: impl Fn(usize) -> String) -> String {
+fn bit_word_value(symbols: &Symbols, word: &Word, value: impl Fn(usize) -> String) -> String {
     let codes: Vec<String> = word
         .members
         .iter()
         .map(|member| {
-            let encode = layout.symbols().bit_field(Direction::Encode, member.field);
+            let encode = symbols.bit_field(Direction::Encode, member.field);
             match member.offset {
                 0 => format!("{encode}({})", value(member.field)),
                 offset => format!("({encode}({}) << {offset}u)", value(member.field)),
@@ -93,56 +91,17 @@ fn bit_word_value(layout: &Layout, word: &Word, value: impl Fn(usize) -> String)
     codes.join(" | ")
 }
 
-/// Why a layout's WGSL did not become GLSL: naga refused it, or the printer met a construct
-/// it has no form for (a bug either way, since the WGSL is generated valid).
-#[derive(Debug)]
-pub struct TranslationError(pub String);
-
-impl std::fmt::Display for TranslationError {
-    fn fmt(&self, out: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            out,
-            "the generated WGSL could not be translated to GLSL: {}",
-            self.0
-        )
-    }
-}
-
-impl std::error::Error for TranslationError {}
-
-/// The include's text and its interface, for a checked layout, with exact conversions.
-/// Vulkan includes put their input attachments in descriptor set `set` (binding = input
-/// attachment index). It compiles the layout for this one include: a caller that writes
-/// several compiles it once ([`CompiledLayout::include`]).
+/// The include's text and its interface, around the compiled layout's translation. Vulkan
+/// includes put their input attachments in descriptor set `set` (binding = input attachment
+/// index). A tool that writes several includes of a layout compiles it once and asks for each.
 pub fn include(
-    layout: &Layout,
-    include: Include,
-    set: u32,
-) -> Result<(String, Interface), TranslationError> {
-    include_with(layout, Conversions::Exact, include, set)
-}
-
-/// [`include()`] with the chosen conversions (pixel local storage blocks have none: the hardware
-/// converts).
-pub fn include_with(
-    layout: &Layout,
-    conversions: Conversions,
-    include: Include,
-    set: u32,
-) -> Result<(String, Interface), TranslationError> {
-    CompiledLayout::new(layout, conversions)?.include(include, set)
-}
-
-/// The include's text and its interface, around the compiled layout's translation
-/// ([`CompiledLayout::include`]).
-pub(crate) fn write_include(
     compiled: &CompiledLayout,
-    include: Include,
+    kind: Include,
     set: u32,
 ) -> Result<(String, Interface), TranslationError> {
-    let mut interface = Interface::new(compiled, include);
+    let mut interface = Interface::new(compiled, kind);
     let mut items = Vec::new();
-    let text = match include {
+    let text = match kind {
         Include::PixelLocalStorage(block) => {
             pixel_local_storage::pixel_local_storage(compiled, block, &interface, &mut items)
         }

@@ -82,7 +82,7 @@ pub(super) fn pixel_local_storage(
         &format!(
             "Pixel local storage of G-buffer layout `{}`: {} bits ({} used).",
             layout.name,
-            layout.bits(),
+            compiled.lowered().bits(),
             layout.used_bits()
         ),
         interface,
@@ -90,7 +90,7 @@ pub(super) fn pixel_local_storage(
     let block_start = out.len();
     let block_name = Symbols::pixel_local_storage_block(&names.layout);
     let _ = writeln!(out, "{} {block_name} {{", block.qualifier());
-    let words = layout.word_contents();
+    let words = compiled.lowered().words();
     for (word, name) in words.iter().zip(compiled.word_names()) {
         if word.is_bit_fields {
             let fields: Vec<String> = word
@@ -125,7 +125,7 @@ pub(super) fn pixel_local_storage(
     out.push_str("};\n");
     declare(items, ItemKind::Block, block_name, &out[block_start..]);
     if let Some(functions) = compiled.bit_field_glsl() {
-        write_pls_bit_field_accessors((&mut out, items), compiled, block, functions, &words);
+        write_pls_bit_field_accessors((&mut out, items), compiled, block, functions, words);
     }
     out
 }
@@ -142,7 +142,7 @@ fn write_pls_bit_field_accessors(
     words: &[Word],
 ) {
     let (layout, names) = (compiled.layout(), compiled.names());
-    let symbols = layout.symbols();
+    let symbols = compiled.lowered().symbols();
     let _ = writeln!(
         out,
         "\n// The bit fields' conversions, translated by naga from the layout's WGSL.\n"
@@ -157,7 +157,10 @@ fn write_pls_bit_field_accessors(
         if block != PlsBlock::Out {
             for member in &word.members {
                 let field = &layout.fields[member.field];
-                let decode = layout.symbols().bit_field(Direction::Decode, member.field);
+                let decode = compiled
+                    .lowered()
+                    .symbols()
+                    .bit_field(Direction::Decode, member.field);
                 let load = symbols.load_pls(&names.fields[member.field]);
                 let start = out.len();
                 let _ = writeln!(
@@ -183,7 +186,9 @@ fn write_pls_bit_field_accessors(
                     )
                 })
                 .collect();
-            let value = bit_word_value(layout, word, |field| names.fields[field].clone());
+            let value = bit_word_value(compiled.lowered().symbols(), word, |field| {
+                names.fields[field].clone()
+            });
             let store = symbols.store_pls(name);
             let start = out.len();
             let _ = writeln!(

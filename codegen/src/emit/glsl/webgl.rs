@@ -17,13 +17,14 @@
 
 use std::fmt::Write as _;
 
-use super::unique;
 use super::{bit_field_code, bit_word_value, declared_type};
-use super::{declare, Include, Interface, TranslationError};
+use super::{declare, Include, Interface};
+use crate::compiled::unique;
 use crate::emit::wgsl::mode_suffix;
 use crate::CompiledLayout;
+use crate::TranslationError;
 use gbuffer_core::format::Format;
-use gbuffer_core::layout::{Field, Layout, Storage};
+use gbuffer_core::layout::{Field, Storage};
 use gbuffer_core::report::webgl_planes;
 use gbuffer_core::{Direction, ScalarKind};
 use gbuffer_files::json::string;
@@ -85,7 +86,7 @@ pub struct Plane {
 /// What each field's load is called in the include: `load_pls_<layout>_<field>`, with the
 /// field's GLSL name (a name naga gave a trailing `_` loses it).
 pub fn field_loads(compiled: &CompiledLayout) -> Vec<String> {
-    let symbols = compiled.layout().symbols();
+    let symbols = compiled.lowered().symbols();
     unique(
         compiled
             .names()
@@ -99,8 +100,8 @@ pub fn field_loads(compiled: &CompiledLayout) -> Vec<String> {
 /// The planes of a compiled layout, in binding order.
 pub fn planes(compiled: &CompiledLayout) -> Vec<Plane> {
     let (layout, conversions) = (compiled.layout(), compiled.conversions());
-    let symbols = layout.symbols();
-    let words = layout.word_contents();
+    let symbols = compiled.lowered().symbols();
+    let words = compiled.lowered().words();
     let word_names = compiled.word_names();
     let plane_names = unique(word_names.iter().map(|name| symbols.plane(name)).collect());
     let stores = unique(
@@ -154,7 +155,7 @@ pub(super) fn include(
 ) -> Result<String, TranslationError> {
     let (layout, conversions) = (compiled.layout(), compiled.conversions());
     let (translation, names) = (compiled.glsl(), compiled.names());
-    let symbols = layout.symbols();
+    let symbols = compiled.lowered().symbols();
     let mut out = String::new();
     let native = interface
         .planes
@@ -191,8 +192,8 @@ pub(super) fn include(
     out.push_str(&translation.text);
     items.extend(translation.items.iter().cloned());
 
-    let words = layout.word_contents();
-    let locations = layout.field_locations();
+    let words = compiled.lowered().words();
+    let locations = compiled.lowered().locations();
     // Each field's value from the plane it lives in, given as an expression: a `highp uint`
     // for an r32ui plane, a `highp vec4` for an rgba8 one.
     let field_value = |index: usize, plane: &str| -> Result<String, TranslationError> {
@@ -200,7 +201,10 @@ pub(super) fn include(
         let (word, member) = locations[index];
         let value = match (field.storage, interface.planes[word].format) {
             (Storage::Bits(_), _) => {
-                let decode = layout.symbols().bit_field(Direction::Decode, index);
+                let decode = compiled
+                    .lowered()
+                    .symbols()
+                    .bit_field(Direction::Decode, index);
                 return Ok(format!("{decode}({})", bit_field_code(plane, member)));
             }
             (Storage::Word(_), PlaneFormat::Rgba8) => plane.to_string(),
@@ -244,7 +248,9 @@ pub(super) fn include(
             })
             .collect();
         let stored = if word.is_bit_fields {
-            let value = bit_word_value(layout, word, |field| names.fields[field].clone());
+            let value = bit_word_value(compiled.lowered().symbols(), word, |field| {
+                names.fields[field].clone()
+            });
             format!("uvec4({value}, 0u, 0u, 0u)")
         } else {
             let index = word.members[0].field;
@@ -276,7 +282,7 @@ pub(super) fn include(
         out,
         "\n// The texel in the planes, unpacked: each plane loaded once."
     );
-    let _ = writeln!(out, "{texel} {}() {{", layout.symbols().load());
+    let _ = writeln!(out, "{texel} {}() {{", compiled.lowered().symbols().load());
     for (binding, plane) in interface.planes.iter().enumerate() {
         let ty = match plane.format {
             PlaneFormat::R32ui => "highp uint",
@@ -291,12 +297,16 @@ pub(super) fn include(
     declare(
         items,
         ItemKind::Function,
-        layout.symbols().load(),
+        compiled.lowered().symbols().load(),
         &out[start..],
     );
     let start = out.len();
     let _ = writeln!(out, "\n// Writes a texel into the planes.");
-    let _ = writeln!(out, "void {}({texel} texel) {{", layout.symbols().store());
+    let _ = writeln!(
+        out,
+        "void {}({texel} texel) {{",
+        compiled.lowered().symbols().store()
+    );
     for (word, plane) in words.iter().zip(&interface.planes) {
         let arguments: Vec<String> = word
             .members
@@ -309,7 +319,7 @@ pub(super) fn include(
     declare(
         items,
         ItemKind::Function,
-        layout.symbols().store(),
+        compiled.lowered().symbols().store(),
         &out[start..],
     );
     Ok(out)
@@ -346,8 +356,9 @@ fn widened(name: &str, field: &Field, format: Format) -> String {
 
 /// The JavaScript ES module beside the include: the planes as data, and the host calls a WebGL
 /// 2 program makes around a pass that uses them, in the form Chromium ships.
-pub fn host_module(layout: &Layout, interface: &Interface) -> String {
-    let include_file = Include::WebGlPixelLocalStorage.file_name(&layout.symbols(), "glsl");
+pub fn host_module(compiled: &CompiledLayout, interface: &Interface) -> String {
+    let include_file =
+        Include::WebGlPixelLocalStorage.file_name(compiled.lowered().symbols(), "glsl");
     let mut out = String::new();
     let _ = writeln!(
         out,
@@ -360,7 +371,7 @@ pub fn host_module(layout: &Layout, interface: &Interface) -> String {
          // differ too, so only the extension object's constants are used, never numbers.\n\
          //\n\
          // {}.",
-        layout.name,
+        compiled.layout().name,
         webgl_planes(interface.planes.len())
     );
     out.push_str(

@@ -34,14 +34,22 @@ use gbuffer_core::{Direction, ScalarKind, Symbols};
 
 use gbuffer_core::Conversions;
 
+use crate::LoweredLayout;
+
 /// The WGSL of a layout with exact conversions. The layout must have passed [`Layout::check`].
 pub fn emit(layout: &Layout) -> String {
     emit_with(layout, Conversions::Exact)
 }
 
-/// The WGSL of a layout with the chosen conversions.
+/// The WGSL of a layout with the chosen conversions (lowered here: a caller that emits more
+/// from the same layout lowers it once and calls [`emit_lowered`]).
 pub fn emit_with(layout: &Layout, conversions: Conversions) -> String {
-    emit_for(layout, conversions, Target::Wgsl)
+    emit_lowered(&LoweredLayout::new(layout), conversions)
+}
+
+/// The WGSL of a lowered layout with the chosen conversions.
+pub fn emit_lowered(lowered: &LoweredLayout, conversions: Conversions) -> String {
+    emit_for(lowered, conversions, Target::Wgsl)
 }
 
 /// Who reads the emitted WGSL.
@@ -55,10 +63,14 @@ pub(crate) enum Target {
 }
 
 /// The WGSL of a layout with the chosen conversions, for `target`.
-pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target) -> String {
-    let symbols = layout.symbols();
+pub(crate) fn emit_for(
+    lowered: &LoweredLayout,
+    conversions: Conversions,
+    target: Target,
+) -> String {
+    let (layout, symbols) = (lowered.layout(), lowered.symbols());
     let name = symbols.texel();
-    let words = layout.words();
+    let words = lowered.words().len();
     let words_type = format!("array<u32, {words}>");
     let mut out = String::new();
 
@@ -95,31 +107,31 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
     let _ = writeln!(out, "// Packs a texel. {guarantee}");
     let _ = writeln!(out, "fn {}(v: {name}) -> {words_type} {{", symbols.pack());
     let _ = writeln!(out, "    return {words_type}(");
-    for word in layout.word_contents() {
+    for word in lowered.words() {
         let _ = writeln!(
             out,
             "        {}, // {}",
-            encode_word(&symbols, layout, &word.members, conversions),
-            layout.field_names(&word).join(", ")
+            encode_word(symbols, layout, &word.members, conversions),
+            layout.field_names(word).join(", ")
         );
     }
     out.push_str("    );\n}\n\n");
 
-    let locations = layout.field_locations();
+    let locations = lowered.locations();
     let _ = writeln!(out, "// Unpacks a texel.");
     let _ = writeln!(out, "fn {}(w: {words_type}) -> {name} {{", symbols.unpack());
     let _ = writeln!(out, "    return {name}(");
-    for (field, &(word, member)) in layout.fields.iter().zip(&locations) {
+    for (field, &(word, member)) in layout.fields.iter().zip(locations) {
         let _ = writeln!(
             out,
             "        {}, // {}",
-            decode_expression(&symbols, field, word, member, conversions),
+            decode_expression(symbols, field, word, member, conversions),
             field.name
         );
     }
     out.push_str("    );\n}\n\n");
 
-    for (field, &(word, member)) in layout.fields.iter().zip(&locations) {
+    for (field, &(word, member)) in layout.fields.iter().zip(locations) {
         let place = match field.storage {
             Storage::Word(_) => format!("word {word}"),
             Storage::Bits(_) => format!("bits {} of word {word}", member.bit_range()),
@@ -134,13 +146,13 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
         let _ = writeln!(
             out,
             "    return {};\n}}\n",
-            decode_expression(&symbols, field, word, member, conversions)
+            decode_expression(symbols, field, word, member, conversions)
         );
     }
 
-    write_targets(&mut out, layout);
+    write_targets(&mut out, lowered);
     write_format_helpers(&mut out, layout, conversions, target);
-    write_bit_field_functions(&mut out, layout, conversions);
+    write_bit_field_functions(&mut out, lowered, conversions);
     write_conversion_helpers(&mut out, layout, conversions);
     // One trailing newline.
     while out.ends_with("\n\n") {
@@ -154,7 +166,7 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
             .iter()
             .any(|codec| codec.uses_binary16_builtins)
     });
-    write_header(&mut header, layout, fast.as_deref(), half_floats);
+    write_header(&mut header, lowered, fast.as_deref(), half_floats);
     header + &out
 }
 
@@ -163,13 +175,14 @@ pub(crate) fn emit_for(layout: &Layout, conversions: Conversions, target: Target
 /// (`Codec::uses_binary16_builtins` of a field's codecs), which naga validates only with a
 /// capability `Capabilities::default()` leaves out
 /// (`gbuffer_translate::wgsl::GENERATED_CODE_CAPABILITIES`).
-fn write_header(out: &mut String, layout: &Layout, fast: Option<&str>, half_floats: bool) {
+fn write_header(out: &mut String, lowered: &LoweredLayout, fast: Option<&str>, half_floats: bool) {
+    let layout = lowered.layout();
     let _ = writeln!(
         out,
         "// G-buffer layout `{}`: {} words, {} bits ({} used) of a {}-bit budget.",
         layout.name,
-        layout.words(),
-        layout.bits(),
+        lowered.words().len(),
+        lowered.bits(),
         layout.used_bits(),
         layout.budget
     );
@@ -201,7 +214,7 @@ fn write_header(out: &mut String, layout: &Layout, fast: Option<&str>, half_floa
         .map(|field| field.name.len())
         .max()
         .unwrap_or(0);
-    for (index, word) in layout.word_contents().iter().enumerate() {
+    for (index, word) in lowered.words().iter().enumerate() {
         if word.is_bit_fields {
             let _ = writeln!(out, "//   word {index}: r32ui bit fields");
             for member in &word.members {
@@ -270,12 +283,12 @@ pub fn target_member(target: usize) -> String {
 }
 
 /// The fragment-output struct (one `vec4<u32>` per target of four words) and its converters.
-fn write_targets(out: &mut String, layout: &Layout) {
-    let symbols = layout.symbols();
+fn write_targets(out: &mut String, lowered: &LoweredLayout) {
+    let symbols = lowered.symbols();
     let name = symbols.texel();
     let targets_struct = symbols.targets();
-    let words = layout.words();
-    let targets = layout.targets();
+    let words = lowered.words().len();
+    let targets = lowered.targets();
     let _ = writeln!(
         out,
         "// The G-buffer pass's fragment output: one colour target per four words (Rgba32Uint, the"
@@ -671,10 +684,11 @@ fn mantissa_bits(channel: &Channel) -> u32 {
 /// The bit fields' encode and decode functions and the helpers they call, alone (no struct,
 /// no pack or unpack): what a pixel local storage include adds beside its block.
 #[cfg(feature = "tools")]
-pub(crate) fn bit_field_functions(layout: &Layout, conversions: Conversions) -> String {
+pub(crate) fn bit_field_functions(lowered: &LoweredLayout, conversions: Conversions) -> String {
+    let layout = lowered.layout();
     let prefix = layout.snake_name();
     let mut out = String::new();
-    write_bit_field_functions(&mut out, layout, conversions);
+    write_bit_field_functions(&mut out, lowered, conversions);
     let mut written = BTreeSet::new();
     for field in &layout.fields {
         if let Storage::Bits(bit_field) = field.storage {
@@ -689,12 +703,11 @@ pub(crate) fn bit_field_functions(layout: &Layout, conversions: Conversions) -> 
 }
 
 /// Each bit field's encode and decode functions.
-fn write_bit_field_functions(out: &mut String, layout: &Layout, conversions: Conversions) {
-    let symbols = layout.symbols();
-    for (index, field) in layout.fields.iter().enumerate() {
+fn write_bit_field_functions(out: &mut String, lowered: &LoweredLayout, conversions: Conversions) {
+    for (index, field) in lowered.layout().fields.iter().enumerate() {
         if let Storage::Bits(bit_field) = field.storage {
             out.push_str(&bit_fields::functions(
-                &symbols,
+                lowered.symbols(),
                 index,
                 field,
                 bit_field,

@@ -1,22 +1,21 @@
 //! What a lighting pass declares to read a layout's packed render targets (the wgpu helpers'
 //! targets: words 4t to 4t + 3 in target t), and the functions that load and unpack a texel.
 
-use gbuffer_core::format::PackedTarget;
-use gbuffer_core::layout::Layout;
+use crate::LoweredLayout;
 
-/// The lighting pass's WGSL for `layout`'s packed render targets, to put after the layout's
+/// The lighting pass's WGSL for a layout's packed render targets, to put after the layout's
 /// own WGSL ([`emit`](super::emit)): one `texture_2d<u32>` per target (`<snake>_target<t>`, in
 /// `group`, from `first_binding`), `load_<snake>_targets(pixel: vec2<u32>) -> <Name>Targets`,
 /// the words as stored, and `read_<snake>_targets(pixel: vec2<u32>) -> <Name>`, which loads
 /// and unpacks a texel. The facade's `GBufferTargets::lighting_wgsl` is this for a derived
 /// layout.
-pub fn lighting_targets(layout: &Layout, group: u32, first_binding: u32) -> String {
-    let symbols = layout.symbols();
+pub fn lighting_targets(lowered: &LoweredLayout, group: u32, first_binding: u32) -> String {
+    let symbols = lowered.symbols();
     let name = symbols.texel();
     let mut out =
         format!("// The G-buffer targets of layout `{name}`, read by the lighting pass.\n");
     let mut loads = Vec::new();
-    for index in 0..PackedTarget::count_for_words(layout.words()) {
+    for index in 0..lowered.targets() {
         let binding = first_binding + index as u32;
         let target = symbols.target(index);
         out.push_str(&format!(

@@ -8,14 +8,30 @@
 //! writer does, and [`GlslNames`] hands the hand-written parts of an include (blocks,
 //! attachments, accessors) the names it gave the layout's structs.
 
-use super::TranslationError;
+use crate::LoweredLayout;
 use gbuffer_core::format::Format;
-use gbuffer_core::layout::Layout;
 use gbuffer_core::{Conversions, Direction};
 use gbuffer_translate::items::ItemKind;
 use gbuffer_translate::printer::{self, Choice, FromVersion310, Item, Printed};
 use gbuffer_translate::wgsl;
 use naga::valid::ModuleInfo;
+
+/// Why a layout's WGSL did not become GLSL: naga refused it, or the printer met a construct
+/// it has no form for (a bug either way, since the WGSL is generated valid).
+#[derive(Debug)]
+pub struct TranslationError(pub String);
+
+impl std::fmt::Display for TranslationError {
+    fn fmt(&self, out: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            out,
+            "the generated WGSL could not be translated to GLSL: {}",
+            self.0
+        )
+    }
+}
+
+impl std::error::Error for TranslationError {}
 
 /// The layout's types and functions in GLSL ES, and the names they were given.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -73,14 +89,14 @@ pub struct GlslNames {
 /// Prints the layout's WGSL for GLSL ES 3.00 (`module`, validated) as GLSL ES declarations.
 /// GLSL ES 3.00 has no `packUnorm4x8`: under fast conversions that WGSL writes rgba8 in f32
 /// arithmetic, and the builtins take over from GLSL ES 3.10 up (`#if __VERSION__ >= 310`).
-pub(crate) fn layout_declarations(
-    layout: &Layout,
+pub(super) fn layout_declarations(
+    lowered: &LoweredLayout,
     conversions: Conversions,
     (module, info): (&naga::Module, &ModuleInfo),
 ) -> Result<Translation, TranslationError> {
     // rgba8's fast functions: the layout's own where its conversions are fast, and those of
     // fields that choose fast conversions against exact ones.
-    let symbols = layout.symbols();
+    let symbols = lowered.symbols();
     let fast_suffixes: &[&str] = match conversions {
         Conversions::Fast => &[""],
         Conversions::Exact => &["_fast"],
@@ -108,7 +124,7 @@ pub(crate) fn layout_declarations(
     ) else {
         return Err(TranslationError(format!(
             "the WGSL of `{}` declares no texel or targets struct",
-            layout.name
+            lowered.layout().name
         )));
     };
     let translation = Translation {
@@ -121,20 +137,16 @@ pub(crate) fn layout_declarations(
         },
         items: printed.items,
     };
-    check_bit_field_functions(&translation, layout)?;
+    check_bit_field_functions(&translation, lowered)?;
     Ok(translation)
 }
 
-/// The bit fields' functions and their helpers alone, in GLSL ES declarations with explicit
-/// precision (for pixel local storage includes, whose block members share the global
-/// namespace with whatever the include declares).
-pub(crate) fn bit_field_declarations(
-    layout: &Layout,
-    conversions: Conversions,
-) -> Result<(String, Vec<Item>), TranslationError> {
-    let wgsl = crate::emit::wgsl::bit_field_functions(layout, conversions);
+/// The bit fields' functions and their helpers alone (`wgsl`, their WGSL), in GLSL ES
+/// declarations with explicit precision (for pixel local storage includes, whose block members
+/// share the global namespace with whatever the include declares).
+pub(super) fn bit_field_declarations(wgsl: &str) -> Result<(String, Vec<Item>), TranslationError> {
     let (module, info) =
-        wgsl::validate(&wgsl, wgsl::GENERATED_CODE_CAPABILITIES).map_err(TranslationError)?;
+        wgsl::validate(wgsl, wgsl::GENERATED_CODE_CAPABILITIES).map_err(TranslationError)?;
     let printed = print((&module, &info), &[])?;
     Ok((printed.text, printed.items))
 }
@@ -155,10 +167,11 @@ fn print(
 /// no `__` (the includes call them by those names).
 fn check_bit_field_functions(
     translation: &Translation,
-    layout: &Layout,
+    lowered: &LoweredLayout,
 ) -> Result<(), TranslationError> {
-    let symbols = layout.symbols();
-    for (index, _) in layout
+    let symbols = lowered.symbols();
+    for (index, _) in lowered
+        .layout()
         .fields
         .iter()
         .enumerate()

@@ -1,26 +1,37 @@
 //! A layout compiled once: what every include, the renderer and the tools take from the
-//! codegen, made in one place and handed on, so that nothing parses or translates the same
-//! layout twice.
+//! codegen, made in one place and handed on, so that nothing lowers, parses or translates the
+//! same layout twice.
 //!
-//! The flow is layout -> compiled layout -> emitters -> consumers: [`CompiledLayout::new`]
-//! writes the layout's WGSL with the chosen conversions, takes it in through the front door
+//! The flow is layout -> lowered layout -> compiled layout -> back ends -> consumers:
+//! [`CompiledLayout::new`] lowers the layout ([`LoweredLayout`]: its words, its fields' places,
+//! its generated names), writes its WGSL with the chosen conversions (the source every other
+//! text derives from), takes it in through gbuffer-translate's front door
 //! ([`gbuffer_translate::wgsl`]: naga's module and validation info), and prints its GLSL ES
-//! declarations from that module with the names GLSL gives them; the include emitters
-//! ([`CompiledLayout::include`]) write their attachments, blocks and accessors around that
-//! translation; the renderer, the cost model and the tests take the same value.
+//! declarations from that module with the names GLSL gives them ([`declarations`]) and the
+//! GLSL names of its words ([`word_names`]). The back ends (`crate::emit::glsl`'s includes,
+//! local read and WebGL host module, the Rust source) read this value and call nothing here but
+//! its accessors; this module calls none of them.
+
+mod declarations;
+mod word_names;
+
+pub use declarations::{GlslNames, Translation, TranslationError};
+pub(crate) use word_names::unique;
 
 use naga::valid::ModuleInfo;
 
-use crate::emit::glsl::{self, GlslNames, Include, Interface, Translation, TranslationError};
 use crate::emit::wgsl::{self, Target};
+use crate::LoweredLayout;
 use gbuffer_core::layout::Layout;
 use gbuffer_core::Conversions;
+use gbuffer_translate::printer::Item;
 
-/// A checked layout with its conversions, compiled: its WGSL and naga's module of it, its GLSL
-/// ES translation with the names and items it declares, and the GLSL names of its words.
+/// A checked layout with its conversions, compiled: the layout lowered, its WGSL and naga's
+/// module of it, its GLSL ES translation with the names and items it declares, and the GLSL
+/// names of its words.
 #[derive(Debug)]
 pub struct CompiledLayout {
-    layout: Layout,
+    lowered: LoweredLayout,
     conversions: Conversions,
     /// The WGSL users include ([`wgsl::emit_with`]).
     wgsl: String,
@@ -31,8 +42,8 @@ pub struct CompiledLayout {
     glsl: Translation,
     /// The bit fields' functions alone in GLSL ES (pixel local storage blocks put them
     /// beside their members), when the layout has bit fields.
-    bit_field_glsl: Option<(String, Vec<gbuffer_translate::printer::Item>)>,
-    /// What each word is called in GLSL ([`glsl::word_names`]).
+    bit_field_glsl: Option<(String, Vec<Item>)>,
+    /// What each word is called in GLSL ([`word_names::word_names`]).
     word_names: Vec<String>,
 }
 
@@ -40,25 +51,25 @@ impl CompiledLayout {
     /// Compiles a checked layout with `conversions`. An error is a bug of the emitters (the
     /// WGSL is generated valid), named with naga's message.
     pub fn new(layout: &Layout, conversions: Conversions) -> Result<Self, TranslationError> {
-        let wgsl = wgsl::emit_with(layout, conversions);
+        let lowered = LoweredLayout::new(layout);
+        let wgsl = wgsl::emit_for(&lowered, conversions, Target::Wgsl);
         let module = validated(&wgsl)?;
-        let for_glsl = wgsl::emit_for(layout, conversions, Target::GlslEs300);
+        let for_glsl = wgsl::emit_for(&lowered, conversions, Target::GlslEs300);
         let own_module = (for_glsl != wgsl)
             .then(|| validated(&for_glsl))
             .transpose()?;
         let (glsl_module, glsl_info) = own_module.as_ref().unwrap_or(&module);
         let glsl =
-            glsl::declarations::layout_declarations(layout, conversions, (glsl_module, glsl_info))?;
+            declarations::layout_declarations(&lowered, conversions, (glsl_module, glsl_info))?;
         let bit_field_glsl = match layout.has_bit_fields() {
-            true => Some(glsl::declarations::bit_field_declarations(
-                layout,
-                conversions,
+            true => Some(declarations::bit_field_declarations(
+                &wgsl::bit_field_functions(&lowered, conversions),
             )?),
             false => None,
         };
-        let word_names = glsl::word_names(&layout.word_contents(), &glsl.names);
+        let word_names = word_names::word_names(lowered.words(), &glsl.names);
         Ok(CompiledLayout {
-            layout: layout.clone(),
+            lowered,
             conversions,
             wgsl,
             module,
@@ -68,9 +79,14 @@ impl CompiledLayout {
         })
     }
 
-    /// The layout.
+    /// The layout as declared.
     pub fn layout(&self) -> &Layout {
-        &self.layout
+        self.lowered.layout()
+    }
+
+    /// The layout lowered: its words, its fields' places and its generated names.
+    pub fn lowered(&self) -> &LoweredLayout {
+        &self.lowered
     }
 
     /// The conversions it was compiled with.
@@ -106,20 +122,8 @@ impl CompiledLayout {
     }
 
     /// The bit fields' functions alone in GLSL ES, when the layout has bit fields.
-    pub(crate) fn bit_field_glsl(
-        &self,
-    ) -> Option<&(String, Vec<gbuffer_translate::printer::Item>)> {
+    pub(crate) fn bit_field_glsl(&self) -> Option<&(String, Vec<Item>)> {
         self.bit_field_glsl.as_ref()
-    }
-
-    /// The include's text and its interface. Vulkan includes put their input attachments in
-    /// descriptor set `set` (binding = input attachment index).
-    pub fn include(
-        &self,
-        include: Include,
-        set: u32,
-    ) -> Result<(String, Interface), TranslationError> {
-        glsl::write_include(self, include, set)
     }
 }
 

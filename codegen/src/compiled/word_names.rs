@@ -10,7 +10,7 @@ use super::GlslNames;
 /// field's name, a word of bit fields [`Symbols::bit_fields_word`]. Joined names can meet
 /// another word's (fields `a_1` and `a_`, trimmed, both give `a_1_bits`; a field may be called
 /// `a_bits`): such a word takes its index, so every name is declared once.
-pub(crate) fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
+pub(super) fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
     let whole: Vec<&str> = words
         .iter()
         .filter(|word| !word.is_bit_fields)
