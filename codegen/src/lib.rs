@@ -6,11 +6,20 @@
 //! [`Layout`](gbuffer_core::Layout) and [`check`](gbuffer_core::Layout::check) it, and the
 //! emitters take it from there:
 //!
-//! - [`emit`]: WGSL and Rust mirror emitters;
-//! - with the `tools` feature (on by default): `CompiledLayout` (a layout's WGSL, naga's
-//!   module and the printed GLSL, built once and handed to every include), the GLSL and
-//!   Rust-source emitters. WGSL comes in and GLSL goes out through `gbuffer-translate`, which
-//!   every package that translates a shader shares.
+//! - [`LoweredLayout`] (`lowered.rs`): the layout lowered once, its words, each field's place
+//!   and the generated names, which every emitter reads instead of asking the model again;
+//! - [`emit`]: the back ends: the WGSL (`emit/wgsl/`; what a lighting pass declares to read the
+//!   packed targets in `targets.rs`) and the Rust mirror as tokens (`emit/rust.rs`), and with
+//!   `tools` the GLSL includes (`emit/glsl/`: which include writes what in `mod.rs`; EXT pixel
+//!   local storage, framebuffer fetch and subpass attachments, WebGL's pixel local storage and
+//!   its JavaScript host module, and what a Vulkan host sets to read an include under dynamic
+//!   rendering local read, a file each);
+//! - with the `tools` feature (on by default), the compile step, `CompiledLayout`
+//!   (`compiled/`): the lowered layout, its WGSL, naga's module of it, its GLSL declarations
+//!   with the names and items they declare and its words' GLSL names, made once and handed to
+//!   every back end; it calls the WGSL emitter and gbuffer-translate, never a back end that
+//!   reads it. WGSL comes in and GLSL goes out through `gbuffer-translate`, which every package
+//!   that translates a shader shares.
 //!
 //! Writing the files (`gbuffer codegen`'s, a build script's) is `gbuffer-build`'s, over these
 //! emitters: a library that compiles layouts builds none of it.

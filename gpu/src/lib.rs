@@ -5,6 +5,20 @@
 //! one-line reason where a test would fail. The harness shaders and their inputs, which run a
 //! layout's generated code over buffers, serve the trade-off study and the tests alike.
 //!
+//! # Where things are
+//!
+//! - the wgpu adapter: `adapter.rs`; GLES 3.2 through EGL: `gles.rs`; the Khronos tools:
+//!   `tools.rs`;
+//! - Vulkan through `ash`, `vulkan/`: opening the device and submitting work in `mod.rs`;
+//!   memory and images, buffers, render passes, descriptors, pipelines and barriers a file
+//!   each; dynamic rendering local read and rasterization order, what the device offers and
+//!   what is enabled, in `local_read.rs`;
+//! - the fullscreen triangle (`fullscreen.rs`), timestamp queries (`timestamps.rs`), and the one
+//!   timing protocol every printed time goes through (`timing.rs`: warm-up, rounds, the
+//!   doubling check, spreads);
+//! - the harness shaders that run a layout's code over buffers with their inputs
+//!   (`harness.rs`, `values.rs`).
+//!
 //! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 pub mod adapter;

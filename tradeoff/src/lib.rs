@@ -13,6 +13,22 @@
 //! the CPU. The packing conversions get their own table: per format, exact and fast, their
 //! instructions, branches, error in codes and time per million texels.
 //!
+//! # Where things are
+//!
+//! - the run: `lib.rs`; every approximation's and encoding's error in `rows/` (the row and its
+//!   shared WGSL in `mod.rs`, the error statistics, the encodings', the shading
+//!   approximations' and whole layouts' rows a file each);
+//! - cost and time: `measured.rs`; the timing harness, its calibration and the rows timed
+//!   together in `timing/`; the test that holds the packing rows to an independent round-trip
+//!   chain in `independent_harness.rs`; the check that lists times out of the instruction
+//!   counts' order in `consistency.rs`; packing costs; the GPU compilers' columns
+//!   (`compilers.rs`);
+//! - the white furnace (`furnace.rs`); the frame table (`frames.rs`: every layout's frame
+//!   against the lossless G-buffer's, with its traffic, time and heat map; `vulkan_frames.rs`:
+//!   each Vulkan path's frame time of the layouts the on-tile paths keep);
+//! - the outputs: `table.rs` on standard output, `json.rs`, `markdown.rs`, the plots in
+//!   `report_plots.rs`, drawn by `plot.rs`.
+//!
 //! [The guide](https://docs.rs/gbuffer#the-guide) shows how the packages fit together.
 
 pub mod compilers;
