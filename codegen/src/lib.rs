@@ -8,9 +8,11 @@
 //!
 //! - [`LoweredLayout`] (`lowered.rs`): the layout lowered once, its words, each field's place
 //!   and the generated names, which every emitter reads instead of asking the model again;
-//! - [`emit`]: the back ends: the WGSL (`emit/wgsl/`; what a lighting pass declares to read the
-//!   packed targets in `targets.rs`) and the Rust mirror as tokens (`emit/rust.rs`), and with
-//!   `tools` the GLSL includes (`emit/glsl/`: which include writes what in `mod.rs`; EXT pixel
+//! - [`wgsl`]: the layout's WGSL, written from the lowered layout: the text every other output
+//!   derives from (and, in `targets.rs`, what a lighting pass declares to read the packed
+//!   targets);
+//! - [`emit`]: the back ends: the Rust mirror as tokens (`emit/rust.rs`), and with `tools` the
+//!   GLSL includes (`emit/glsl/`: which include writes what in `mod.rs`; EXT pixel
 //!   local storage, framebuffer fetch and subpass attachments, WebGL's pixel local storage and
 //!   its JavaScript host module, and what a Vulkan host sets to read an include under dynamic
 //!   rendering local read, a file each);
@@ -42,6 +44,7 @@
 mod compiled;
 pub mod emit;
 mod lowered;
+pub mod wgsl;
 
 #[cfg(feature = "tools")]
 pub use compiled::{CompiledLayout, GlslNames, Translation, TranslationError};

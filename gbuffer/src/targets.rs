@@ -358,7 +358,7 @@ pub fn create_targets(
 /// back end's `lighting_targets`, over the layout lowered here.
 pub fn lighting_wgsl(layout: &Layout, group: u32, first_binding: u32) -> String {
     let lowered = gbuffer_codegen::LoweredLayout::new(layout);
-    gbuffer_codegen::emit::wgsl::lighting_targets(&lowered, group, first_binding)
+    gbuffer_codegen::wgsl::lighting_targets(&lowered, group, first_binding)
 }
 
 /// [`GBufferTargets::bind_group_entries`]: the targets' views from `first_binding` on.

@@ -423,7 +423,7 @@ fn every_format_has_the_extension_type() {
 #[test]
 fn naga_spirv_of_every_layout_passes_spirv_val() {
     for (_, layout) in layout_files() {
-        let wgsl = gbuffer_codegen::emit::wgsl::emit(&layout);
+        let wgsl = gbuffer_codegen::wgsl::emit(&layout);
         let validated =
             gbuffer_validator::validate_wgsl(&fragment_harness(&layout, &wgsl)).unwrap();
         let words = naga::back::spv::write_vec(

@@ -18,7 +18,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use gbuffer::layout::{Conversions, Layout};
 use gbuffer::GBufferLayout;
-use gbuffer_codegen::emit::wgsl::emit_with;
+use gbuffer_codegen::wgsl::emit_with;
 use gbuffer_core::Named;
 use gbuffer_gpu::harness::{compute_harness, scalars_per_texel};
 use gbuffer_gpu::values::Values;

@@ -124,7 +124,7 @@ fn solved_layouts_match_the_mirror_on_the_adapter() {
     for path in gbuffer_testkit::scene_presets() {
         let solution = gbuffer_solver::file::read_and_solve(&path).unwrap();
         let layout = solution.layout;
-        let wgsl = gbuffer_codegen::emit::wgsl::emit(&layout);
+        let wgsl = gbuffer_codegen::wgsl::emit(&layout);
         let mut values = Values::new(43);
         let inputs = every_encoding_inputs(&layout, 16384, &mut values);
         let failures = check(&gpu, &layout, &wgsl, inputs);
@@ -149,7 +149,7 @@ proptest! {
         let Some(gpu) = gbuffer_testkit::gpu() else {
             return Ok(());
         };
-        let wgsl = gbuffer_codegen::emit::wgsl::emit(&layout);
+        let wgsl = gbuffer_codegen::wgsl::emit(&layout);
         let mut values = Values::new(37);
         let inputs = every_encoding_inputs(&layout, 8192, &mut values);
         let failures = check(&gpu, &layout, &wgsl, inputs);

@@ -6,7 +6,7 @@
 
 use gbuffer::layout::{Conversions, Layout};
 use gbuffer::{seed_layouts, GBufferLayout};
-use gbuffer_codegen::emit::wgsl::emit_with;
+use gbuffer_codegen::wgsl::emit_with;
 use gbuffer_gpu::harness::scalars_per_texel;
 use gbuffer_gpu::values::Values;
 use gbuffer_gpu::Gpu;

@@ -44,7 +44,7 @@ fn every_wgsl_name_is_an_item_of_the_wgsl_and_the_lighting_source() {
         let symbols = layout.symbols();
         let wgsl = format!(
             "{}\n{}",
-            gbuffer_codegen::emit::wgsl::emit(&layout),
+            gbuffer_codegen::wgsl::emit(&layout),
             gbuffer::targets::lighting_wgsl(&layout, 0, 0)
         );
         let items = wgsl_items(&wgsl).unwrap_or_else(|error| panic!("{}: {error}", layout.name));

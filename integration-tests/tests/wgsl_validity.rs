@@ -69,7 +69,7 @@ fn the_header_names_the_half_float_capability_exactly_where_naga_needs_it() {
     );
     for layout in layouts {
         for &conversions in Conversions::ALL {
-            let wgsl = gbuffer_codegen::emit::wgsl::emit_with(&layout, conversions);
+            let wgsl = gbuffer_codegen::wgsl::emit_with(&layout, conversions);
             let says = wgsl.contains("Capabilities::SHADER_FLOAT16_IN_FLOAT32");
             let module = naga::front::wgsl::parse_str(&wgsl)
                 .unwrap_or_else(|error| panic!("{}", error.emit_to_string(&wgsl)));
@@ -140,7 +140,7 @@ proptest! {
     #[test]
     fn random_layouts_validate_and_translate_everywhere(layout in gbuffer_testkit::layouts::random_layout_with(16)) {
         prop_assert!(layout.check().is_empty(), "{:?}", layout.check());
-        let wgsl = gbuffer_codegen::emit::wgsl::emit(&layout);
+        let wgsl = gbuffer_codegen::wgsl::emit(&layout);
         let shader = fragment_harness(&layout, &wgsl);
         if let Err(problem) = validate_everywhere(&shader) {
             return Err(TestCaseError::fail(format!("{problem}\n{shader}")));

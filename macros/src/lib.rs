@@ -40,7 +40,7 @@ fn expand(input: &syn::DeriveInput) -> syn::Result<proc_macro2::TokenStream> {
     }
     // Lowered once (its words, its fields' places, its names) for both emitters.
     let lowered = gbuffer_codegen::LoweredLayout::new(&parsed.layout);
-    let wgsl = gbuffer_codegen::emit::wgsl::emit_lowered(&lowered, parsed.conversions);
+    let wgsl = gbuffer_codegen::wgsl::emit_lowered(&lowered, parsed.conversions);
     Ok(gbuffer_codegen::emit::rust::emit_impl(
         &lowered,
         quote::quote!(#wgsl),

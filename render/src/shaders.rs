@@ -191,11 +191,11 @@ fn write_packed_targets(layout: &Layout) -> (String, String) {
 pub const GBUFFER_FIRST_BINDING: u32 = 10;
 
 /// The lighting pass's bindings of a packed layout's targets, as the library's wgpu helpers
-/// declare them (`gbuffer_codegen::emit::wgsl::lighting_targets`), and the expression that
+/// declare them (`gbuffer_codegen::wgsl::lighting_targets`), and the expression that
 /// loads them at `pixel` as a `<Name>Targets`.
 fn read_packed_targets(layout: &Layout) -> (String, String) {
     (
-        gbuffer_codegen::emit::wgsl::lighting_targets(
+        gbuffer_codegen::wgsl::lighting_targets(
             &gbuffer_codegen::LoweredLayout::new(layout),
             0,
             GBUFFER_FIRST_BINDING,

@@ -26,7 +26,7 @@ pub fn texel_wgsl(solution: &Solution) -> String {
     let name = &layout.name;
     let symbols = layout.symbols();
     let values = solution.values_type();
-    let mut out = gbuffer_codegen::emit::wgsl::emit(layout);
+    let mut out = gbuffer_codegen::wgsl::emit(layout);
 
     let _ = writeln!(
         out,

@@ -23,7 +23,7 @@
 
 use std::time::Instant;
 
-use gbuffer_codegen::emit::wgsl::emit_with;
+use gbuffer_codegen::wgsl::emit_with;
 use gbuffer_core::Format;
 use gbuffer_core::{Conversions, Named};
 use gbuffer_gpu::Gpu;

@@ -9,7 +9,7 @@ use crate::stdout::report_line;
 use std::fmt::Write as _;
 
 use crate::packing_cost::{deviation, layout_cost, one_field, Cost, Deviation, CONVERTED_FORMATS};
-use gbuffer_codegen::emit::wgsl::emit_with;
+use gbuffer_codegen::wgsl::emit_with;
 use gbuffer_core::Conversions;
 use gbuffer_core::Format;
 use gbuffer_core::Named;

@@ -93,7 +93,7 @@ pub fn invocation_harness(texel_wgsl: &str, words: usize) -> String {
 
 /// The cost of `layout` (named `Texel`) under `conversions`.
 pub fn layout_cost(layout: &Layout, conversions: Conversions) -> Result<Cost, String> {
-    let wgsl = gbuffer_codegen::emit::wgsl::emit_with(layout, conversions);
+    let wgsl = gbuffer_codegen::wgsl::emit_with(layout, conversions);
     cost(&harness(&wgsl, layout.words()))
 }
 

@@ -245,7 +245,7 @@ impl Resolver {
                 match included.extension().and_then(|extension| extension.to_str()) {
                     Some("toml") => {
                         let file = read_layout_file(&included).map_err(|problem| error(format!("in included layout: {problem}")))?;
-                        let wgsl = gbuffer_codegen::emit::wgsl::emit_with(&file.layout, file.conversions);
+                        let wgsl = gbuffer_codegen::wgsl::emit_with(&file.layout, file.conversions);
                         self.resolved.push(&format!("<generated from {}>", included.display()), 1, &wgsl);
                     }
                     Some("wgsl") => {

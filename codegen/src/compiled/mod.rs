@@ -20,7 +20,7 @@ pub(crate) use word_names::unique;
 
 use naga::valid::ModuleInfo;
 
-use crate::emit::wgsl::{self, Target};
+use crate::wgsl::{self, Target};
 use crate::LoweredLayout;
 use gbuffer_core::layout::Layout;
 use gbuffer_core::Conversions;

@@ -1,7 +1,7 @@
-//! Emitters: each turns a checked [`gbuffer_core::Layout`] into source text or tokens: WGSL (the
-//! source of truth), the Rust mirror, and (with the `tools` feature) GLSL ES includes.
+//! The back ends: each reads a lowered or compiled layout and writes what a consumer takes:
+//! the Rust mirror, and (with the `tools` feature) the GLSL ES includes, the Vulkan local-read
+//! host data and the WebGL host module. None of them is called by the compile step.
 
 #[cfg(feature = "tools")]
 pub mod glsl;
 pub mod rust;
-pub mod wgsl;

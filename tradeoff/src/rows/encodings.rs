@@ -227,7 +227,7 @@ fn layout_round_trip(layout: &Layout, argument: &str) -> (String, String) {
     let ty = layout.fields[0].ty.wgsl();
     let helpers = format!(
         "{}\nfn {function}(value: {ty}) -> {ty} {{\n    return {}({}({}(value))).value;\n}}\n",
-        gbuffer_codegen::emit::wgsl::emit(layout),
+        gbuffer_codegen::wgsl::emit(layout),
         symbols.unpack(),
         symbols.pack(),
         symbols.texel()
@@ -269,7 +269,7 @@ pub(super) fn hdr_rows() -> Vec<Row> {
     let rg16f_symbols = rg16f.symbols();
     let rg16f_helpers = format!(
         "{}\nfn rg16f_round_trip(colour: vec3<f32>) -> vec3<f32> {{\n    let texel = {}({}({}(colour.rg, colour.b)));\n    return vec3<f32>(texel.red_green, texel.blue);\n}}\n",
-        gbuffer_codegen::emit::wgsl::emit(&rg16f),
+        gbuffer_codegen::wgsl::emit(&rg16f),
         rg16f_symbols.unpack(),
         rg16f_symbols.pack(),
         rg16f_symbols.texel()

@@ -20,7 +20,7 @@ use std::fmt::Write as _;
 use super::{bit_field_code, bit_word_value, declared_type};
 use super::{declare, Include, Interface};
 use crate::compiled::unique;
-use crate::emit::wgsl::mode_suffix;
+use crate::wgsl::mode_suffix;
 use crate::CompiledLayout;
 use crate::TranslationError;
 use gbuffer_core::format::Format;
