@@ -125,10 +125,7 @@ fn write_accessors(
             .map(|(index, (field, &(word, member)))| {
                 let read = &reads[word];
                 if field.bit_field().is_some() {
-                    let decode = compiled
-                        .lowered()
-                        .symbols()
-                        .bit_field(Direction::Decode, index);
+                    let decode = symbols.bit_field(Direction::Decode, index);
                     return format!("{decode}({})", bit_field_code(&format!("{read}.x"), member));
                 }
                 match field.ty.components {
@@ -167,28 +164,23 @@ pub fn store_statements(
     interface: &Interface,
     output: impl Fn(&Attachment) -> String,
 ) -> String {
-    let (layout, names) = (compiled.layout(), compiled.names());
+    let (layout, lowered, names) = (compiled.layout(), compiled.lowered(), compiled.names());
     let mut out = String::new();
     if interface.include.is_packed() {
         let _ = writeln!(
             out,
             "    {} targets = {}(texel);",
             names.targets,
-            compiled.lowered().symbols().pack_targets()
+            lowered.symbols().pack_targets()
         );
         for (attachment, member) in interface.attachments.iter().zip(&names.target_members) {
             let _ = writeln!(out, "    {} = targets.{member};", output(attachment));
         }
         return out;
     }
-    for (word, attachment) in compiled
-        .lowered()
-        .words()
-        .iter()
-        .zip(&interface.attachments)
-    {
+    for (word, attachment) in lowered.words().iter().zip(&interface.attachments) {
         if word.is_bit_fields {
-            let value = bit_word_value(compiled.lowered().symbols(), word, |field| {
+            let value = bit_word_value(lowered.symbols(), word, |field| {
                 format!("texel.{}", names.fields[field])
             });
             let _ = writeln!(

@@ -157,10 +157,7 @@ fn write_pls_bit_field_accessors(
         if block != PlsBlock::Out {
             for member in &word.members {
                 let field = &layout.fields[member.field];
-                let decode = compiled
-                    .lowered()
-                    .symbols()
-                    .bit_field(Direction::Decode, member.field);
+                let decode = symbols.bit_field(Direction::Decode, member.field);
                 let load = symbols.load_pls(&names.fields[member.field]);
                 let start = out.len();
                 let _ = writeln!(
@@ -186,9 +183,7 @@ fn write_pls_bit_field_accessors(
                     )
                 })
                 .collect();
-            let value = bit_word_value(compiled.lowered().symbols(), word, |field| {
-                names.fields[field].clone()
-            });
+            let value = bit_word_value(symbols, word, |field| names.fields[field].clone());
             let store = symbols.store_pls(name);
             let start = out.len();
             let _ = writeln!(

@@ -201,10 +201,7 @@ pub(super) fn include(
         let (word, member) = locations[index];
         let value = match (field.storage, interface.planes[word].format) {
             (Storage::Bits(_), _) => {
-                let decode = compiled
-                    .lowered()
-                    .symbols()
-                    .bit_field(Direction::Decode, index);
+                let decode = symbols.bit_field(Direction::Decode, index);
                 return Ok(format!("{decode}({})", bit_field_code(plane, member)));
             }
             (Storage::Word(_), PlaneFormat::Rgba8) => plane.to_string(),
@@ -248,9 +245,7 @@ pub(super) fn include(
             })
             .collect();
         let stored = if word.is_bit_fields {
-            let value = bit_word_value(compiled.lowered().symbols(), word, |field| {
-                names.fields[field].clone()
-            });
+            let value = bit_word_value(symbols, word, |field| names.fields[field].clone());
             format!("uvec4({value}, 0u, 0u, 0u)")
         } else {
             let index = word.members[0].field;
@@ -282,7 +277,7 @@ pub(super) fn include(
         out,
         "\n// The texel in the planes, unpacked: each plane loaded once."
     );
-    let _ = writeln!(out, "{texel} {}() {{", compiled.lowered().symbols().load());
+    let _ = writeln!(out, "{texel} {}() {{", symbols.load());
     for (binding, plane) in interface.planes.iter().enumerate() {
         let ty = match plane.format {
             PlaneFormat::R32ui => "highp uint",
@@ -294,19 +289,10 @@ pub(super) fn include(
         .map(|index| field_value(index, &format!("plane{}", locations[index].0)))
         .collect::<Result<_, _>>()?;
     let _ = writeln!(out, "    return {texel}({});\n}}", values.join(", "));
-    declare(
-        items,
-        ItemKind::Function,
-        compiled.lowered().symbols().load(),
-        &out[start..],
-    );
+    declare(items, ItemKind::Function, symbols.load(), &out[start..]);
     let start = out.len();
     let _ = writeln!(out, "\n// Writes a texel into the planes.");
-    let _ = writeln!(
-        out,
-        "void {}({texel} texel) {{",
-        compiled.lowered().symbols().store()
-    );
+    let _ = writeln!(out, "void {}({texel} texel) {{", symbols.store());
     for (word, plane) in words.iter().zip(&interface.planes) {
         let arguments: Vec<String> = word
             .members
@@ -316,12 +302,7 @@ pub(super) fn include(
         let _ = writeln!(out, "    {}({});", plane.store, arguments.join(", "));
     }
     out.push_str("}\n");
-    declare(
-        items,
-        ItemKind::Function,
-        compiled.lowered().symbols().store(),
-        &out[start..],
-    );
+    declare(items, ItemKind::Function, symbols.store(), &out[start..]);
     Ok(out)
 }
 
