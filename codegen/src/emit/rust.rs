@@ -362,7 +362,7 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
             #(#members)*
         }
     });
-    let word_idents: Vec<Ident> = (0..layout.words()).map(word_name).collect();
+    let word_idents: Vec<Ident> = (0..lowered.words().len()).map(word_name).collect();
     let pack_slice = quote! {
         fn pack_slice(#texels: &[Self], __gbuffer_packed: &mut [[#u32_; #words]]) {
             struct __GbufferPack;
