@@ -1,7 +1,7 @@
 //! A layout lowered once: what every emitter reads instead of asking the model again. The model
-//! ([`Layout`]) says what the user declared; the lowering works out, in one walk, which words
-//! the fields fill (each word's members and their bit ranges), where each field lies, and the
-//! names of the generated items ([`Symbols`]). The WGSL and Rust emitters take it whole; the
+//! ([`Layout`]) says what the user declared; the lowering asks it once which words the fields
+//! fill (each word's members and their bit ranges), where each field lies, and the names of
+//! the generated items ([`Symbols`]), and keeps the answers. The WGSL and Rust emitters take it whole; the
 //! compile step ([`crate::CompiledLayout`]) holds one and hands it to every include.
 
 use gbuffer_core::format::PackedTarget;
@@ -20,27 +20,10 @@ pub struct LoweredLayout {
 impl LoweredLayout {
     /// Lowers a layout that passed [`Layout::check`].
     pub fn new(layout: &Layout) -> LoweredLayout {
-        let words = layout.word_contents();
-        let mut locations = vec![
-            (
-                0,
-                Member {
-                    field: 0,
-                    offset: 0,
-                    bits: 0
-                }
-            );
-            layout.fields.len()
-        ];
-        for (index, word) in words.iter().enumerate() {
-            for member in &word.members {
-                locations[member.field] = (index, *member);
-            }
-        }
         LoweredLayout {
             layout: layout.clone(),
-            words,
-            locations,
+            words: layout.word_contents(),
+            locations: layout.field_locations(),
             symbols: layout.symbols(),
         }
     }
