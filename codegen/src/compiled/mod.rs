@@ -16,7 +16,6 @@ mod declarations;
 mod word_names;
 
 pub use declarations::{GlslNames, Translation, TranslationError};
-pub(crate) use word_names::unique;
 
 use naga::valid::ModuleInfo;
 

@@ -36,17 +36,3 @@ pub(super) fn word_names(words: &[Word], names: &GlslNames) -> Vec<String> {
     }
     taken
 }
-
-/// `names` with each one that repeats an earlier one given its index (`_2`), so that every
-/// identifier is declared once.
-pub(crate) fn unique(names: Vec<String>) -> Vec<String> {
-    let mut taken: Vec<String> = Vec::new();
-    for (index, name) in names.into_iter().enumerate() {
-        let name = match taken.contains(&name) {
-            true => gbuffer_core::naming::glsl_identifier(&[&name, &index.to_string()]),
-            false => name,
-        };
-        taken.push(name);
-    }
-    taken
-}

@@ -150,7 +150,7 @@ impl Interface {
             Include::FetchNative | Include::SubpassNative => {
                 let words = compiled.lowered().words();
                 // Joined without `__`, which GLSL ES reserves (naga's names may end in `_`).
-                let attachment_names = crate::compiled::unique(
+                let attachment_names = super::unique(
                     compiled
                         .word_names()
                         .iter()

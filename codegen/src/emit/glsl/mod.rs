@@ -194,6 +194,20 @@ fn write_header(out: &mut String, title: &str, interface: &Interface) {
     out.push('\n');
 }
 
+/// `names` with each one that repeats an earlier one given its index (`_2`), so that every
+/// identifier is declared once.
+fn unique(names: Vec<String>) -> Vec<String> {
+    let mut taken: Vec<String> = Vec::new();
+    for (index, name) in names.into_iter().enumerate() {
+        let name = match taken.contains(&name) {
+            true => gbuffer_core::naming::glsl_identifier(&[&name, &index.to_string()]),
+            false => name,
+        };
+        taken.push(name);
+    }
+    taken
+}
+
 /// Records an item the include writes by hand (no WGSL twin): its kind, name and text, from
 /// its comment to its end.
 fn declare(items: &mut Vec<Item>, kind: ItemKind, glsl: String, text: &str) {

@@ -17,9 +17,9 @@
 
 use std::fmt::Write as _;
 
+use super::unique;
 use super::{bit_field_code, bit_word_value, declared_type};
 use super::{declare, Include, Interface};
-use crate::compiled::unique;
 use crate::wgsl::mode_suffix;
 use crate::CompiledLayout;
 use crate::TranslationError;
