@@ -10,7 +10,8 @@
 //!   and the generated names, which every emitter reads instead of asking the model again;
 //! - [`wgsl`]: the layout's WGSL, written from the lowered layout: the text every other output
 //!   derives from (and, in `targets.rs`, what a lighting pass declares to read the packed
-//!   targets);
+//!   targets); each codec's WGSL is a file of [`wgsl::codecs`], its helpers named through the
+//!   layout's `Symbols` (the shading library takes its codecs' WGSL from there too);
 //! - [`emit`]: the back ends: the Rust mirror as tokens (`emit/rust.rs`), and with `tools` the
 //!   GLSL includes (`emit/glsl/`: which include writes what in `mod.rs`; EXT pixel
 //!   local storage, framebuffer fetch and subpass attachments, WebGL's pixel local storage and

@@ -7,8 +7,9 @@
 //! - [`FieldType`] and [`ScalarKind`]: the types a field can have, the vocabulary below the
 //!   rest (`field_type.rs`);
 //! - [`format`](mod@format): the twelve pixel local storage formats and their channels;
-//! - [`codecs`]: how values become bits, one file per codec (the mirror, the WGSL and the
-//!   tests), and [`Encoding`], the list that names them;
+//! - [`codecs`]: how values become bits, one file per codec (the contract, the mirror and
+//!   its tests; the WGSL is the codegen's WGSL back end's), and [`Encoding`], the list that
+//!   names them;
 //! - [`bit_field`]: fields of a few bits sharing an `r32ui` word, each encoded by a codec;
 //! - [`layout`]: fields, types, the words they fill, the bit budget and its checks;
 //! - [`naming`]: the identifiers the emitters derive from the layout's names;

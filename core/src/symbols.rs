@@ -141,6 +141,29 @@ impl Symbols {
         format!("{}_{}_field_{index}_bits", self.snake, direction.name())
     }
 
+    /// `<snake>_<lanes>_<name>`, WGSL: a codec's helper on `lanes` f32 lanes, as its template
+    /// spells it `PREFIX_LANES_<name>` (`mobile_metallic_f32x4_to_unorm`), the lanes as
+    /// [`Symbols::lanes`] spells them. The WGSL back end's codec files define these helpers
+    /// and name the ones they call from outside a template here.
+    pub fn codec_helper(&self, lanes: usize, name: &str) -> String {
+        format!("{}_{}_{name}", self.snake, Symbols::lanes(lanes))
+    }
+
+    /// `<snake>_<name>`, WGSL: a codec's function of one fixed shape, as its template spells it
+    /// `PREFIX_<name>` (`mobile_metallic_rgbm_from_f32x3`).
+    pub fn codec_function(&self, name: &str) -> String {
+        format!("{}_{name}", self.snake)
+    }
+
+    /// A lane count as codec helpers' names spell it: `f32`, `f32x2`, `f32x3`, `f32x4`. Never
+    /// at a name's end: naga_oil refuses a name that ends in a digit.
+    pub fn lanes(lanes: usize) -> String {
+        match lanes {
+            1 => "f32".to_string(),
+            n => format!("f32x{n}"),
+        }
+    }
+
     /// `shade_<snake>(values, view, position) -> vec3<f32>`, the solver's lighting WGSL
     /// (`gbuffer_solver::lighting`): a solved scene's shading with only the terms it uses.
     pub fn shade(&self) -> String {
@@ -279,6 +302,18 @@ mod tests {
         assert_eq!(
             symbols.bit_field(Direction::Decode, 6),
             "mobile_metallic_decode_field_6_bits"
+        );
+        assert_eq!(
+            symbols.codec_helper(4, "to_unorm"),
+            "mobile_metallic_f32x4_to_unorm"
+        );
+        assert_eq!(
+            symbols.codec_helper(1, "to_half"),
+            "mobile_metallic_f32_to_half"
+        );
+        assert_eq!(
+            symbols.codec_function("rgbm_from_f32x3"),
+            "mobile_metallic_rgbm_from_f32x3"
         );
         assert_eq!(symbols.shade(), "shade_mobile_metallic");
         assert_eq!(symbols.encode_values(), "encode_mobile_metallic");

@@ -20,8 +20,8 @@
 use std::fmt;
 use std::sync::LazyLock;
 
-use gbuffer_core::codecs::wgsl::Lanes;
-use gbuffer_core::codecs::{octahedral, rgb9e5, rgbm};
+use gbuffer_codegen::wgsl::codecs::{octahedral, rgb9e5, rgbm};
+use gbuffer_core::Symbols;
 
 /// The prefix of the codec functions the library's modules call (`shading_library_...`), as a
 /// layout's prefix names its own copies.
@@ -52,14 +52,15 @@ const FILES: [(&str, &str); 11] = [
 ];
 
 /// The WGSL of a codec a module names, its functions prefixed with [`CODEC_PREFIX`]: the
-/// library stores colours and normals with the layouts' own codecs, never a second copy.
+/// library stores colours and normals with the layouts' own codecs (the WGSL back end's,
+/// `gbuffer_codegen::wgsl::codecs`), never a second copy.
 fn codec_functions(codec: &str) -> Vec<String> {
+    // Named as a layout called `shading_library` would name its copies.
+    let symbols = Symbols::new(CODEC_PREFIX);
     match codec {
-        "rgb9e5" => rgb9e5::wgsl_functions(CODEC_PREFIX),
-        "rgbm" => rgbm::wgsl_functions(CODEC_PREFIX),
-        "octahedral" => [octahedral::WGSL_FOLD, octahedral::WGSL_UNFOLD]
-            .map(|text| Lanes(1).fill(text, CODEC_PREFIX))
-            .to_vec(),
+        "rgb9e5" => rgb9e5::exact_functions(&symbols),
+        "rgbm" => rgbm::exact_functions(&symbols),
+        "octahedral" => octahedral::map_functions(&symbols),
         other => panic!("a shading module names codec `{other}`, which it has no WGSL for"),
     }
 }

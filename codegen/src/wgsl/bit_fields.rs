@@ -1,6 +1,6 @@
 //! The WGSL of bit fields: per field an encode function that returns its code in the low
 //! bits and a decode function that takes it back, their bodies and helpers written by the
-//! field's codec ([`gbuffer_core::codecs`]). The pack function shifts each code into place and
+//! field's codec's file ([`codecs`](super::codecs)). The pack function shifts each code into place and
 //! combines a word's codes with `|`.
 //!
 //! Exact conversions keep the codecs' contracts bit for bit with integer operations only (the
@@ -10,25 +10,27 @@
 //! RGBM, which name some values by two codes, two steps of the decoded value).
 
 use gbuffer_core::bit_field::BitField;
-use gbuffer_core::codecs::wgsl::{self, Lanes};
 use gbuffer_core::layout::{Conversions, Field};
 use gbuffer_core::{Direction, Symbols};
 
+use super::codecs::{self, Lanes};
+
 /// The field's WGSL as its codec writes it, under `conversions`.
 fn codec_functions(
-    prefix: &str,
+    symbols: &Symbols,
     field: &Field,
     bit_field: BitField,
     conversions: Conversions,
-) -> wgsl::Functions {
+) -> codecs::Functions {
     let components = field.ty.components;
-    (bit_field.encoding.codec().wgsl)(&wgsl::BitField {
-        prefix,
+    let codec_field = codecs::BitField {
+        symbols,
         lanes: Lanes(components),
         each: bit_field.component_bits(components),
         fast: !conversions.is_exact_for_encoding(bit_field.encoding),
         range: bit_field.encoding.range(),
-    })
+    };
+    codecs::functions(bit_field.encoding, &codec_field)
 }
 
 /// The encode and decode functions of a bit field, under `conversions`.
@@ -40,8 +42,8 @@ pub(super) fn functions(
     conversions: Conversions,
 ) -> String {
     let ty = field.ty.wgsl();
-    let wgsl::Functions { encode, decode, .. } =
-        codec_functions(symbols.snake(), field, bit_field, conversions);
+    let codecs::Functions { encode, decode, .. } =
+        codec_functions(symbols, field, bit_field, conversions);
     let encode_name = symbols.bit_field(Direction::Encode, index);
     let decode_name = symbols.bit_field(Direction::Decode, index);
     let fast = !conversions.is_exact_for_encoding(bit_field.encoding);
@@ -57,10 +59,10 @@ pub(super) fn functions(
 /// The conversion helpers a bit field's functions call, each a complete WGSL text (the
 /// caller writes each distinct text once).
 pub(super) fn helpers(
-    prefix: &str,
+    symbols: &Symbols,
     field: &Field,
     bit_field: BitField,
     conversions: Conversions,
 ) -> Vec<String> {
-    codec_functions(prefix, field, bit_field, conversions).helpers
+    codec_functions(symbols, field, bit_field, conversions).helpers
 }

@@ -13,10 +13,12 @@
 //! cannot translate it). Their CPU twin is [`gbuffer_core::convert`]. Fast conversions
 //! ([`Conversions::Fast`]) use the builtins and the engines' f32 idioms instead.
 //!
-//! Helpers carry the layout's snake_case name as a prefix, so the WGSL of several layouts can
-//! be concatenated into one module.
+//! The helpers, each codec's written by its file in [`codecs`], carry the layout's snake_case
+//! name as a prefix (named through its `Symbols`), so the WGSL of several layouts can be
+//! concatenated into one module.
 
 mod bit_fields;
+pub mod codecs;
 mod targets;
 
 pub use targets::lighting_targets;
@@ -26,8 +28,8 @@ use std::fmt::Write as _;
 
 use gbuffer_core::Named;
 
-use gbuffer_core::codecs::wgsl::Lanes;
-use gbuffer_core::codecs::{half, max_code, small_float, unorm, unsigned_float, Encoding};
+use gbuffer_core::codecs::unsigned_float::EXPONENT_BITS;
+use gbuffer_core::codecs::{max_code, Encoding};
 use gbuffer_core::format::{Channel, Format};
 use gbuffer_core::layout::{Field, Layout, Member, Storage};
 use gbuffer_core::{Direction, ScalarKind, Symbols};
@@ -35,6 +37,7 @@ use gbuffer_core::{Direction, ScalarKind, Symbols};
 use gbuffer_core::Conversions;
 
 use crate::LoweredLayout;
+use codecs::{half, small_float, unorm, unsigned_float, Lanes};
 
 /// The WGSL of a layout with exact conversions. The layout must have passed [`Layout::check`].
 pub fn emit(layout: &Layout) -> String {
@@ -151,9 +154,9 @@ pub(crate) fn emit_for(
     }
 
     write_targets(&mut out, lowered);
-    write_format_helpers(&mut out, layout, conversions, target);
+    write_format_helpers(&mut out, lowered, conversions, target);
     write_bit_field_functions(&mut out, lowered, conversions);
-    write_conversion_helpers(&mut out, layout, conversions);
+    write_conversion_helpers(&mut out, lowered, conversions);
     // One trailing newline.
     while out.ends_with("\n\n") {
         out.pop();
@@ -162,9 +165,9 @@ pub(crate) fn emit_for(
     let mut header = String::new();
     let half_floats = layout.fields.iter().any(|field| {
         field
-            .codecs()
-            .iter()
-            .any(|codec| codec.uses_binary16_builtins)
+            .encodings()
+            .into_iter()
+            .any(codecs::uses_binary16_builtins)
     });
     write_header(&mut header, lowered, fast.as_deref(), half_floats);
     header + &out
@@ -172,7 +175,7 @@ pub(crate) fn emit_for(
 
 /// `fast` is None for exact conversions, or says which fields are fast (empty for all, or
 /// " for a, b"); `half_floats` says whether the code uses `pack2x16float` or `unpack2x16float`
-/// (`Codec::uses_binary16_builtins` of a field's codecs), which naga validates only with a
+/// ([`codecs::uses_binary16_builtins`] of a field's encodings), which naga validates only with a
 /// capability `Capabilities::default()` leaves out
 /// (`gbuffer_translate::wgsl::GENERATED_CODE_CAPABILITIES`).
 fn write_header(out: &mut String, lowered: &LoweredLayout, fast: Option<&str>, half_floats: bool) {
@@ -500,12 +503,11 @@ fn channel_literal(format: Format, scalar: &str, write: impl Fn(&Channel) -> Str
 /// One encode and one decode function per format the layout uses.
 fn write_format_helpers(
     out: &mut String,
-    layout: &Layout,
+    lowered: &LoweredLayout,
     conversions: Conversions,
     target: Target,
 ) {
-    let symbols = layout.symbols();
-    let prefix = symbols.snake();
+    let (layout, symbols) = (lowered.layout(), lowered.symbols());
     // Each format once per name suffix, with the conversions the suffix stands for.
     let functions: BTreeSet<(Format, &str, Conversions)> = layout
         .fields
@@ -562,7 +564,7 @@ fn write_format_helpers(
                 let _ = writeln!(
                     out,
                     "fn {encode}(c: {vector}) -> u32 {{\n{}}}\n",
-                    encode_body(prefix, format)
+                    encode_body(symbols, format)
                 );
             }
         }
@@ -576,7 +578,7 @@ fn write_format_helpers(
 
 /// The exact encode of a word: every channel's code at once, then the codes shifted into
 /// place and combined.
-fn encode_body(prefix: &str, format: Format) -> String {
+fn encode_body(symbols: &Symbols, format: Format) -> String {
     let channels = format.channels();
     let lanes = Lanes(channels.len());
     let first = channels[0];
@@ -603,13 +605,14 @@ fn encode_body(prefix: &str, format: Format) -> String {
         }
         Encoding::Unorm => format!(
             "{}(c, {}, {})",
-            lanes.helper(prefix, unorm::ENCODE_HELPER),
+            symbols.codec_helper(lanes.0, unorm::ENCODE_HELPER),
             channel_literal(format, "f32", |c| format!("{:?}", max_code(c.bits) as f32)),
             channel_literal(format, "f32", |c| format!("{:?}", (1u32 << c.bits) as f32))
         ),
-        Encoding::Half => format!("{}(c)", lanes.helper(prefix, half::ENCODE_HELPER)),
+        Encoding::Half => format!("{}(c)", symbols.codec_helper(lanes.0, half::ENCODE_HELPER)),
         Encoding::UnsignedFloat => {
-            format!("{}(c)", lanes.helper(prefix, unsigned_float::ENCODE_HELPER))
+            let helper = symbols.codec_helper(lanes.0, unsigned_float::ENCODE_HELPER);
+            format!("{helper}(c)")
         }
         other => unreachable!("a format's channels use per-component codecs, not {other}"),
     };
@@ -676,7 +679,7 @@ fn decode_body(format: Format) -> String {
 /// The mantissa bits of a small-float channel (half or unsigned float).
 fn mantissa_bits(channel: &Channel) -> u32 {
     match channel.encoding {
-        Encoding::UnsignedFloat => channel.bits - unsigned_float::EXPONENT_BITS,
+        Encoding::UnsignedFloat => channel.bits - EXPONENT_BITS,
         _ => 10,
     }
 }
@@ -685,14 +688,13 @@ fn mantissa_bits(channel: &Channel) -> u32 {
 /// no pack or unpack): what a pixel local storage include adds beside its block.
 #[cfg(feature = "tools")]
 pub(crate) fn bit_field_functions(lowered: &LoweredLayout, conversions: Conversions) -> String {
-    let layout = lowered.layout();
-    let prefix = layout.snake_name();
+    let symbols = lowered.symbols();
     let mut out = String::new();
     write_bit_field_functions(&mut out, lowered, conversions);
     let mut written = BTreeSet::new();
-    for field in &layout.fields {
+    for field in &lowered.layout().fields {
         if let Storage::Bits(bit_field) = field.storage {
-            for helper in bit_fields::helpers(&prefix, field, bit_field, mode(field, conversions)) {
+            for helper in bit_fields::helpers(symbols, field, bit_field, mode(field, conversions)) {
                 if written.insert(helper.clone()) {
                     out.push_str(&helper);
                 }
@@ -719,8 +721,8 @@ fn write_bit_field_functions(out: &mut String, lowered: &LoweredLayout, conversi
 
 /// The conversion helpers of the layout's exact formats (unorm's per lane count, the small
 /// floats' with their format's constants written out) and of its bit fields, each once.
-fn write_conversion_helpers(out: &mut String, layout: &Layout, conversions: Conversions) {
-    let prefix = layout.snake_name();
+fn write_conversion_helpers(out: &mut String, lowered: &LoweredLayout, conversions: Conversions) {
+    let (layout, symbols) = (lowered.layout(), lowered.symbols());
     let exact: BTreeSet<Format> = layout
         .fields
         .iter()
@@ -733,7 +735,7 @@ fn write_conversion_helpers(out: &mut String, layout: &Layout, conversions: Conv
         .map(|format| Lanes(format.channels().len()))
         .collect::<BTreeSet<Lanes>>()
         .into_iter()
-        .map(|lanes| lanes.fill(unorm::WGSL_ENCODE, &prefix))
+        .map(|lanes| lanes.fill(unorm::WGSL_ENCODE, symbols))
         .collect();
     for format in exact {
         let (name, wrapper) = match format.channels()[0].encoding {
@@ -742,14 +744,12 @@ fn write_conversion_helpers(out: &mut String, layout: &Layout, conversions: Conv
             _ => continue,
         };
         let mantissas: Vec<u32> = format.channels().iter().map(mantissa_bits).collect();
-        helpers.extend(small_float::wgsl_helpers(
-            &prefix, name, wrapper, &mantissas,
-        ));
+        helpers.extend(small_float::helpers(symbols, name, wrapper, &mantissas));
     }
     for field in &layout.fields {
         if let Storage::Bits(bit_field) = field.storage {
             helpers.extend(bit_fields::helpers(
-                &prefix,
+                symbols,
                 field,
                 bit_field,
                 mode(field, conversions),

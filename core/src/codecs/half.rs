@@ -2,14 +2,13 @@
 //! kept, saturating at +-65504 (never infinity); NaN gives 0. The decode is exact. The `rg16f`
 //! format is built from it.
 //!
-//! The exact WGSL rounds with [`small_float`](super::small_float)'s integer algorithm, because
+//! The exact WGSL (gbuffer-codegen's `wgsl::codecs::half`) rounds with [`small_float`](super::small_float)'s integer algorithm, because
 //! WGSL lets `pack2x16float` round either way; the fast form is `pack2x16float`, the
 //! adapter's rounding (which may flush denormals and overflow to infinity). Both decode with
 //! `unpack2x16float`, which widening makes exact, and which naga validates only with
 //! `Capabilities::SHADER_FLOAT16_IN_FLOAT32`.
 
 use super::small_float::{f32_from_small_float, small_float_from_magnitude};
-use super::wgsl::{BitField, Functions};
 use super::{Codec, F32_INFINITY_BITS};
 
 /// f32 to the 16-bit code of an IEEE binary16, sign kept, saturating at +-65504. NaN gives 0.
@@ -33,29 +32,6 @@ pub fn f32_from_half(code: u32) -> f32 {
     f32::from_bits(magnitude.to_bits() | ((code & 0x8000) << 16))
 }
 
-/// The name of [`WGSL_ENCODE`]'s function, for [`Lanes::helper`](super::wgsl::Lanes::helper).
-pub const ENCODE_HELPER: &str = "to_half";
-
-/// The exact encode, per lane (`PREFIX_LANES_to_half`): the sign beside the magnitude's
-/// rounding (`PREFIX_LANES_round_to_unsigned_half`, from [`small_float::wgsl_helpers`]).
-///
-/// [`small_float::wgsl_helpers`]: super::small_float::wgsl_helpers
-pub const WGSL_ENCODE: &str = "\
-// IEEE binary16 from f32, sign kept, saturating at +-65504; NaN gives 0.
-fn PREFIX_LANES_to_half(value: FLOATS) -> UINTS {
-    let bits = bitcast<UINTS>(value);
-    let magnitude = bits & UINTS(0x7fffffffu);
-    let signed = PREFIX_LANES_round_to_unsigned_half(magnitude) | ((bits >> UINTS(16u)) & UINTS(0x8000u));
-    return signed * UINTS(magnitude <= UINTS(0x7f800000u));
-}
-
-";
-
-/// The helpers of the exact encode of `lanes` halves.
-pub fn wgsl_helpers(prefix: &str, lanes: usize) -> Vec<String> {
-    super::small_float::wgsl_helpers(prefix, "unsigned_half", WGSL_ENCODE, &vec![10; lanes])
-}
-
 /// The half codec: 16 bits a component.
 pub const CODEC: Codec = Codec::floats(
     "half",
@@ -64,37 +40,8 @@ pub const CODEC: Codec = Codec::floats(
         |value, _| half_from_f32(value),
         |code, _| f32_from_half(code),
     ),
-    wgsl,
 )
-.with_fast_form()
-.with_binary16_builtins();
-
-/// A half bit field's WGSL: the exact encode, or `pack2x16float`; `unpack2x16float`.
-fn wgsl(field: &BitField) -> Functions {
-    let lanes = field.lanes;
-    let scalar = lanes.0 == 1;
-    let encode = match (field.fast, scalar) {
-        (true, true) => "    return pack2x16float(vec2<f32>(value, 0.0));\n".to_string(),
-        (true, false) => "    return pack2x16float(value);\n".to_string(),
-        (false, _) => format!(
-            "    let codes = {}(value);\n    return {};\n",
-            lanes.helper(field.prefix, ENCODE_HELPER),
-            field.joined("codes")
-        ),
-    };
-    let decode = match scalar {
-        true => "    return unpack2x16float(code).x;\n",
-        false => "    return unpack2x16float(code);\n",
-    };
-    Functions {
-        encode,
-        decode: decode.to_string(),
-        helpers: match field.fast {
-            true => Vec::new(),
-            false => wgsl_helpers(field.prefix, lanes.0),
-        },
-    }
-}
+.with_fast_form();
 
 #[cfg(test)]
 mod tests {

@@ -2,7 +2,6 @@
 //! 2^(n-1) - 1]` and stored as an `n`-bit two's complement, sign-extended back. 1 to 32 bits
 //! per component. The integer formats (`rgba8ui`, `rg16i`, `r32ui`, ...) are built from them.
 
-use super::wgsl::{BitField, Functions};
 use super::{max_code, Codec, Conversion, Shape};
 use crate::field_type::ScalarKind;
 
@@ -31,7 +30,6 @@ pub const UINT: Codec = Codec::new(
     ScalarKind::Uint,
     Shape::PerComponent(1, 32),
     Conversion::Integers(uint_saturate, |code, _| code),
-    uint_wgsl,
 );
 
 /// The signed integer codec: lanes are `i32`s' bits.
@@ -43,49 +41,7 @@ pub const SINT: Codec = Codec::new(
         |lane, each| sint_saturate(lane as i32, each),
         |code, each| i32_from_sint(code, each) as u32,
     ),
-    sint_wgsl,
 );
-
-/// An unsigned bit field's WGSL: `min`, and the codes split.
-fn uint_wgsl(field: &BitField) -> Functions {
-    Functions {
-        encode: format!(
-            "    let codes = min(value, {});\n    return {};\n",
-            field.lanes.splat(max_code(field.each)),
-            field.joined("codes")
-        ),
-        decode: format!("{}    return codes;\n", field.split_codes()),
-        helpers: Vec::new(),
-    }
-}
-
-/// A signed bit field's WGSL: `clamp`, and the codes sign-extended.
-fn sint_wgsl(field: &BitField) -> Functions {
-    let lanes = field.lanes;
-    let highest = i64::from(max_code(field.each) >> 1);
-    let bound = |value: i64| lanes.literal("i32", &[value.to_string()]);
-    let to_bits = match lanes.0 {
-        1 => "bitcast<u32>".to_string(),
-        _ => format!("bitcast<{}>", lanes.of("u32")),
-    };
-    Functions {
-        encode: format!(
-            "    let codes = {to_bits}(clamp(value, {}, {})) & {};\n    return {};\n",
-            bound(-highest - 1),
-            bound(highest),
-            lanes.splat(max_code(field.each)),
-            field.joined("codes")
-        ),
-        // The top bit moved to bit 31, then shifted back arithmetically.
-        decode: format!(
-            "{}    return bitcast<{}>(codes << {up}) >> {up};\n",
-            field.split_codes(),
-            lanes.of("i32"),
-            up = lanes.splat(32 - field.each)
-        ),
-        helpers: Vec::new(),
-    }
-}
 
 #[cfg(test)]
 mod tests {

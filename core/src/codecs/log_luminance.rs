@@ -8,9 +8,9 @@
 //! The logarithm is the float's own bits read as a fixed-point number (the exponent field is
 //! the octave, the mantissa its linear fraction), so both ways are exact in integers: every
 //! adapter stores the mirror's bits, and the decode is exact. This codec was added as the
-//! codecs' module says a new one is: this file and one line in the list.
+//! codecs' module says a new one is: this file, one line in the list, and its WGSL's file in
+//! the WGSL back end.
 
-use super::wgsl::{BitField, Functions};
 use super::{max_code, Codec, LightStorage, F32_INFINITY_BITS};
 
 /// The bits of 2^-16, the bottom of the range (code 1).
@@ -19,7 +19,7 @@ const BOTTOM_BITS: u32 = 111 << 23;
 /// The shift from a float's bits above [`BOTTOM_BITS`] to a code of `bits` bits: 23 mantissa
 /// bits and 5 of octave above, `bits` kept.
 #[inline(always)]
-fn shift(bits: u32) -> u32 {
+pub fn shift(bits: u32) -> u32 {
     28 - bits
 }
 
@@ -46,59 +46,13 @@ pub fn f32_from_log_luminance(code: u32, bits: u32) -> f32 {
     f32::from_bits(((code - 1) << shift(bits)) + BOTTOM_BITS)
 }
 
-/// The encode and decode, per lane (`PREFIX_LANES_to_log_luminance`,
-/// `PREFIX_LANES_from_log_luminance`).
-pub const WGSL: &str = "\
-// Log luminance encode, per lane: the piecewise-linear log2 of the value over [2^-16, 2^16),
-// which is its float's bits above 2^-16's read as fixed point, rounded half up to `shift` bits
-// fewer, plus one (code 0 holds zero); exact, in integers. NaN and negatives (as unsigned
-// integers, above infinity's bits), zero and values under 2^-16 give 0; the top saturates.
-fn PREFIX_LANES_to_log_luminance(value: FLOATS, shift: UINTS, max_code: UINTS) -> UINTS {
-    let bits = bitcast<UINTS>(value);
-    let held = UINTS(bits <= UINTS(0x7f800000u)) * UINTS(bits >= UINTS(0x37800000u));
-    let offset = min(bits, UINTS(0x7f800000u)) - UINTS(0x37800000u);
-    let code = min(((offset + ((UINTS(1u) << shift) >> UINTS(1u))) >> shift) + UINTS(1u), max_code);
-    return code * held;
-}
-
-// Log luminance decode, per lane, exact: the float whose bits are code - 1 steps above 2^-16's,
-// zero for code 0 (the bits are zeroed before they become a float).
-fn PREFIX_LANES_from_log_luminance(code: UINTS, shift: UINTS) -> FLOATS {
-    let bits = (((code - UINTS(1u)) << shift) + UINTS(0x37800000u)) * UINTS(code != UINTS(0u));
-    return bitcast<FLOATS>(bits);
-}
-
-";
-
 /// The log luminance codec.
 pub const CODEC: Codec = Codec::floats(
     "log_luminance",
     (6, 24),
     (log_luminance_from_f32, f32_from_log_luminance),
-    wgsl,
 )
 .with_light_storage(light_storage);
-
-/// A log luminance bit field's WGSL: the per-lane encode and decode.
-fn wgsl(field: &BitField) -> Functions {
-    let (prefix, lanes, each) = (field.prefix, field.lanes, field.each);
-    Functions {
-        encode: format!(
-            "    let codes = {prefix}_{}_to_log_luminance(value, {}, {});\n    return {};\n",
-            lanes.name(),
-            lanes.splat(shift(each)),
-            lanes.splat(max_code(each)),
-            field.joined("codes")
-        ),
-        decode: format!(
-            "{}    return {prefix}_{}_from_log_luminance(codes, {});\n",
-            field.split_codes(),
-            lanes.name(),
-            lanes.splat(shift(each))
-        ),
-        helpers: vec![lanes.fill(WGSL, prefix)],
-    }
-}
 
 /// Three components of 6 to 10 bits (one word): rounding to the nearest of 2^(n - 5)
 /// steps an octave is within 2^-(n - 4) of the value, relative; values under 2^-16 are

@@ -1,9 +1,10 @@
 //! The codecs: how a value becomes the bits of a channel or a bit field, one file each.
 //!
-//! A codec's file holds all of it, as Bevy keeps one shader file per codec: the contract (its
-//! doc), the Rust mirror (the encode and decode the derive and the CPU call), the WGSL text the
-//! emitters write (exact, and fast where it has a fast form; GLSL is translated from it), and
-//! the unit tests that hold the mirror against an independent reference.
+//! A codec's file holds the model's part of it: the contract (its doc, the formula and its
+//! precision), the Rust mirror (the encode and decode the derive and the CPU call), and the unit
+//! tests that hold the mirror against an independent reference. Its WGSL (exact, and fast where
+//! it has a fast form; GLSL is translated from it) is the WGSL back end's, in a file of the same
+//! name under gbuffer-codegen's `wgsl/codecs/`, which keeps this contract.
 //!
 //! The whole-word formats are built from the same codecs: a format's channels are codecs at
 //! fixed widths ([`crate::format`]), so `rgba8` is four 8-bit [`unorm`]s and
@@ -12,10 +13,11 @@
 //! # Adding a codec
 //!
 //! Write one file here that builds its [`Codec`] as a constant (`pub const CODEC: Codec =
-//! Codec::floats(...)`, with its mirror's functions and its WGSL), and add one line to the list
-//! at the end of this file. The derive and layout files then accept its name, the WGSL and GLSL
-//! emitters write it, the Rust mirror packs it, and where it offers light storage the solver's
-//! catalogue lists it. [`log_luminance`] was added this way.
+//! Codec::floats(...)`, with its mirror's functions), add one line to the list at the end of
+//! this file, and write its WGSL in one file of gbuffer-codegen's `wgsl/codecs/` (the back
+//! end's match over [`Encoding`] names what is missing). The derive and layout files then
+//! accept its name, the WGSL and GLSL emitters write it, the Rust mirror packs it, and where it
+//! offers light storage the solver's catalogue lists it. [`log_luminance`] was added this way.
 
 pub mod boolean;
 pub mod float32;
@@ -30,7 +32,6 @@ pub mod small_float;
 pub mod snorm;
 pub mod unorm;
 pub mod unsigned_float;
-pub mod wgsl;
 
 use crate::field_type::{FieldType, ScalarKind};
 
@@ -64,7 +65,7 @@ pub(crate) fn significand_and_exponent(bits: u32) -> (u32, u32) {
     )
 }
 
-/// One codec: its name, what it holds, its Rust mirror and its WGSL. Each codec's file builds
+/// One codec: its name, what it holds and its Rust mirror. Each codec's file builds
 /// its own as a constant (`CODEC`) with the constructors below.
 ///
 /// Values travel as *lanes*: each component's bits in a `u32` (an `f32`'s bits, a `u32`, an
@@ -79,18 +80,11 @@ pub struct Codec {
     pub scalar_kind: ScalarKind,
     /// The types and widths it takes.
     pub shape: Shape,
-    /// Whether fast conversions change its WGSL (float arithmetic and builtins in place of
-    /// the exact integer algorithm).
+    /// Whether it has a fast form: conversions a layout or field may ask for that trade the
+    /// exact algorithm for the adapter's float arithmetic and builtins, within a stated bound.
     pub has_fast_form: bool,
-    /// Whether its WGSL calls `unpack2x16float` or `pack2x16float` (a decode that widens its
-    /// codes into binary16, a fast encode that rounds through it), which naga validates only
-    /// with `Capabilities::SHADER_FLOAT16_IN_FLOAT32`: the generated WGSL's header says so.
-    pub uses_binary16_builtins: bool,
     /// The Rust mirror.
     pub conversion: Conversion,
-    /// The WGSL of a bit field: its encode and decode functions' bodies and the helpers they
-    /// call.
-    pub wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
     /// The bit fields it offers the solver for light (a `vec3` of linear HDR values, one width
     /// per component each) with their error bounds, given the scene's smallest light value
     /// that matters; empty where it stores no light this way.
@@ -148,16 +142,13 @@ impl Codec {
         scalar_kind: ScalarKind,
         shape: Shape,
         conversion: Conversion,
-        wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
     ) -> Codec {
         Codec {
             name,
             scalar_kind,
             shape,
             has_fast_form: false,
-            uses_binary16_builtins: false,
             conversion,
-            wgsl,
             light_storage: no_light_storage,
         }
     }
@@ -167,11 +158,10 @@ impl Codec {
         name: &'static str,
         (low, high): (u32, u32),
         (encode, decode): FloatConversions,
-        wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
     ) -> Codec {
         let shape = Shape::PerComponent(low, high);
         let conversion = Conversion::Floats(encode, decode);
-        Codec::new(name, ScalarKind::Float, shape, conversion, wgsl)
+        Codec::new(name, ScalarKind::Float, shape, conversion)
     }
 
     /// A codec of a whole `Vec3`, of `shape`.
@@ -179,24 +169,15 @@ impl Codec {
         name: &'static str,
         shape: Shape,
         (encode, decode): VectorConversions,
-        wgsl: fn(&wgsl::BitField) -> wgsl::Functions,
     ) -> Codec {
         let conversion = Conversion::Vector(encode, decode);
-        Codec::new(name, ScalarKind::Float, shape, conversion, wgsl)
+        Codec::new(name, ScalarKind::Float, shape, conversion)
     }
 
     /// The codec with a fast form.
     pub const fn with_fast_form(self) -> Codec {
         Codec {
             has_fast_form: true,
-            ..self
-        }
-    }
-
-    /// The codec, its WGSL calling `unpack2x16float` or `pack2x16float`.
-    pub const fn with_binary16_builtins(self) -> Codec {
-        Codec {
-            uses_binary16_builtins: true,
             ..self
         }
     }
@@ -513,7 +494,7 @@ impl Encoding {
         self.codec().scalar_kind
     }
 
-    /// Whether fast conversions change its WGSL.
+    /// Whether it has a fast form ([`Codec::has_fast_form`]).
     pub fn has_fast_form(self) -> bool {
         self.codec().has_fast_form
     }

@@ -4,10 +4,7 @@
 //! [`unsigned_float`](super::unsigned_float) (`r11f_g11f_b10f`'s 6 and 5 bits, no sign) are
 //! built on it; the decode of both is exact.
 
-use std::collections::BTreeSet;
-
 use super::small_integer_from_f32;
-use super::wgsl::Lanes;
 
 /// The largest relative error of an unsigned float with `mantissa_bits` of mantissa above its
 /// denormals: half an ulp, `2^-(mantissa_bits + 1)` (r11f: 2^-7, b10f: 2^-6, half: 2^-11).
@@ -26,7 +23,7 @@ pub fn small_float_max_code(mantissa_bits: u32) -> u32 {
 /// 5-bit exponent (bias 15) and `mantissa_bits` of mantissa (1 to 10): round to nearest even,
 /// denormals kept, saturating at the largest finite code. NaN gives 0.
 ///
-/// The WGSL's algorithm ([`WGSL_ROUND`]): normal results round the f32 bits in integer
+/// The WGSL's algorithm (gbuffer-codegen's `wgsl::codecs::small_float`): normal results round the f32 bits in integer
 /// arithmetic, rebiasing the exponent in the same add (a carry moves into the exponent, as it
 /// should); denormal results scale the value by a power of two, exactly, and round it to
 /// nearest even. Each path gives at least the code where the other applies (under 2^-14 the
@@ -76,85 +73,6 @@ pub fn f32_from_small_float(code: u32, mantissa_bits: u32) -> f32 {
     // All ones for a denormal, as a mask: an `if` here stays a branch in the loops.
     let is_denormal = u32::from(placed < 1 << 23).wrapping_neg();
     f32::from_bits((denormal.to_bits() & is_denormal) | (normal & !is_denormal))
-}
-
-/// The rounding, per lane (`PREFIX_LANES_round_to_NAME`); the other placeholders are per-lane
-/// literals (see [`wgsl_helpers`]).
-pub const WGSL_ROUND: &str = "\
-// Rounds non-negative f32s, given as bits, to floats with a 5-bit exponent (bias 15) and
-// MANTISSA_BITS bits of mantissa: to nearest even, denormals kept, saturating at the largest finite
-// code (never infinity); the caller maps NaN. Normal results round the f32 bits in integer
-// arithmetic, rebiasing the exponent in the same add (a carry moves into the exponent, as it
-// should). Denormal results scale the value by a power of two, exactly, and round it to
-// nearest even from its floor and fraction, both exact: not with `round`, whose direction at
-// an exact half a translator may leave to the driver (Tint writes GLSL's round(), which GLSL
-// ES leaves open at ties). No step depends on how the adapter rounds. Each path gives at least
-// the code where the other applies (under 2^-14 the rebias wraps around; from 2^-14 up the
-// scaled value is at least the code), so `min` picks the right one. The scaled value is capped
-// at 2^16, above every code, before it becomes an integer: WGSL's conversion saturates, but
-// naga's GLSL and SPIR-V write the bare conversion, which is undefined out of range (SwiftShader
-// gives 0 where lavapipe saturates).
-fn PREFIX_LANES_round_to_NAME(magnitude: UINTS) -> UINTS {
-    let odd = (magnitude >> SHIFT) & UINTS(1u);
-    let normal = ((magnitude + ROUNDING_AND_REBIAS + odd) >> SHIFT) + SMALLEST_NORMAL;
-    let scaled = min(bitcast<FLOATS>(magnitude) * DENORMAL_SCALE, FLOATS(65536.0));
-    let whole = floor(scaled);
-    let fraction = scaled - whole;
-    let up = UINTS(fraction > FLOATS(0.5)) | (UINTS(fraction == FLOATS(0.5)) & UINTS(whole) & UINTS(1u));
-    let denormal = UINTS(whole) + up;
-    return min(min(normal, denormal), MAX_CODE);
-}
-
-";
-
-/// The helpers that round f32s to small floats of the given mantissa widths (one lane each)
-/// and `wrapper`, which calls them, with their constants written out: `NAME` names the pair
-/// (`PREFIX_LANES_round_to_NAME`, and the wrapper's own function).
-pub fn wgsl_helpers(prefix: &str, name: &str, wrapper: &str, mantissas: &[u32]) -> Vec<String> {
-    let lanes = Lanes(mantissas.len());
-    let literal = |scalar: &str, write: &dyn Fn(u32) -> String| {
-        let values: Vec<String> = mantissas.iter().map(|&bits| write(bits)).collect();
-        lanes.literal(scalar, &values)
-    };
-    let distinct: BTreeSet<u32> = mantissas.iter().copied().collect();
-    let distinct: Vec<String> = distinct.iter().map(u32::to_string).collect();
-    let constants = [
-        ("MANTISSA_BITS", distinct.join(" or ")),
-        (
-            "ROUNDING_AND_REBIAS",
-            literal("u32", &|bits| {
-                let shift = 23 - bits;
-                format!(
-                    "{:#x}u",
-                    ((1u32 << (shift - 1)) - 1).wrapping_sub(113 << 23)
-                )
-            }),
-        ),
-        ("SHIFT", literal("u32", &|bits| format!("{}u", 23 - bits))),
-        (
-            "DENORMAL_SCALE",
-            literal("f32", &|bits| format!("{:?}", ((14 + bits) as f32).exp2())),
-        ),
-        (
-            "MAX_CODE",
-            literal("u32", &|bits| format!("{}u", (31 << bits) - 1)),
-        ),
-        (
-            "SMALLEST_NORMAL",
-            literal("u32", &|bits| format!("{}u", 1 << bits)),
-        ),
-        ("NAME", name.to_string()),
-    ];
-    [WGSL_ROUND, wrapper]
-        .iter()
-        .map(|template| {
-            let mut helper = lanes.fill(template, prefix);
-            for (placeholder, value) in &constants {
-                helper = helper.replace(placeholder, value);
-            }
-            helper
-        })
-        .collect()
 }
 
 #[cfg(test)]

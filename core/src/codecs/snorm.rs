@@ -8,7 +8,6 @@
 
 use super::integer::i32_from_sint;
 use super::unorm::unorm_from_f32;
-use super::wgsl::{BitField, Functions};
 use super::{max_code, Codec};
 
 /// Signed normalized encode, GL's formula `round(clamp(value, -1, 1) * (2^(bits - 1) - 1))`
@@ -31,60 +30,8 @@ pub fn f32_from_snorm(code: u32, bits: u32) -> f32 {
     (i32_from_sint(code, bits) as f32 / (max_code(bits) >> 1) as f32).max(-1.0)
 }
 
-/// The exact encode and the decode, per lane (`PREFIX_LANES_to_snorm`,
-/// `PREFIX_LANES_from_snorm`); the encode calls unorm's.
-pub const WGSL: &str = "\
-// Signed normalized encode, per lane: GL's round(clamp(value, -1, 1) * (2^(bits - 1) - 1)),
-// halves away from zero, exact: the magnitude's unorm code at bits - 1 bits (NaN's is 0),
-// negated in the bits-bit two's complement for a set sign bit (a multiply-free negation, as
-// GLSL ES 3.00 has no `select` on integer vectors). magnitude_max and two_to_magnitude_bits
-// are to_unorm's parameters at bits - 1 bits; mask is 2^bits - 1.
-fn PREFIX_LANES_to_snorm(value: FLOATS, magnitude_max: FLOATS, two_to_magnitude_bits: FLOATS, mask: UINTS) -> UINTS {
-    let value_bits = bitcast<UINTS>(value);
-    let magnitude = bitcast<FLOATS>(value_bits & UINTS(0x7fffffffu));
-    let code = PREFIX_LANES_to_unorm(magnitude, magnitude_max, two_to_magnitude_bits);
-    let negative = value_bits >> UINTS(31u);
-    return ((code ^ (UINTS(0u) - negative)) + negative) & mask;
-}
-
-// Signed normalized decode: max(code / (2^(bits - 1) - 1), -1), the code sign-extended by
-// moving its top bit to bit 31 and shifting back arithmetically (up is 32 - bits).
-fn PREFIX_LANES_from_snorm(code: UINTS, up: UINTS, reciprocal: FLOATS) -> FLOATS {
-    let signed = bitcast<SINTS>(code << up) >> up;
-    return max(FLOATS(signed) * reciprocal, FLOATS(-1.0));
-}
-
-";
-
 /// The snorm codec.
-pub const CODEC: Codec = Codec::floats("snorm", (2, 24), (snorm_from_f32, f32_from_snorm), wgsl);
-
-/// A snorm bit field's WGSL: the exact encode and the decode helpers, per lane.
-fn wgsl(field: &BitField) -> Functions {
-    let (prefix, lanes, each) = (field.prefix, field.lanes, field.each);
-    let max = max_code(each);
-    Functions {
-        encode: format!(
-            "    let codes = {prefix}_{}_to_snorm(value, {}, {}, {});\n    return {};\n",
-            lanes.name(),
-            lanes.splat_f32((max >> 1) as f32),
-            lanes.splat_f32((1u32 << (each - 1)) as f32),
-            lanes.splat(max),
-            field.joined("codes")
-        ),
-        decode: format!(
-            "{}    return {prefix}_{}_from_snorm(codes, {}, {});\n",
-            field.split_codes(),
-            lanes.name(),
-            lanes.splat(32 - each),
-            field.reciprocal(each - 1)
-        ),
-        helpers: vec![
-            lanes.fill(super::unorm::WGSL_ENCODE, prefix),
-            lanes.fill(WGSL, prefix),
-        ],
-    }
-}
+pub const CODEC: Codec = Codec::floats("snorm", (2, 24), (snorm_from_f32, f32_from_snorm));
 
 #[cfg(test)]
 mod tests {

@@ -16,7 +16,7 @@ pub use check::{check_budget, fitting_types, Diagnostic, Subject, MAX_FIELDS};
 pub use conversions::Conversions;
 
 use crate::bit_field::BitField;
-use crate::codecs::Codec;
+use crate::codecs::Encoding;
 use crate::field_type::FieldType;
 use crate::format::Format;
 use crate::named::Named;
@@ -72,15 +72,15 @@ impl Field {
         }
     }
 
-    /// The codecs of its channels (a format's) or of its bit field, in order.
-    pub fn codecs(&self) -> Vec<&'static Codec> {
+    /// The encodings of its channels (a format's) or of its bit field, in order.
+    pub fn encodings(&self) -> Vec<Encoding> {
         match self.storage {
             Storage::Word(format) => format
                 .channels()
                 .iter()
-                .map(|channel| channel.encoding.codec())
+                .map(|channel| channel.encoding)
                 .collect(),
-            Storage::Bits(field) => vec![field.encoding.codec()],
+            Storage::Bits(field) => vec![field.encoding],
         }
     }
 

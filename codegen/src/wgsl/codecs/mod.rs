@@ -1,32 +1,47 @@
-//! What the codecs' WGSL is written with: the placeholders of their helper templates, the
-//! lanes a helper works on, and the pieces a bit field's functions are made of.
+//! The codecs' WGSL: one file per codec, as Bevy keeps one shader file per codec, each holding
+//! its helper templates and what a bit field of it calls. The contract each one keeps and its
+//! Rust mirror are the codec's file of the same name in `gbuffer_core::codecs`, which states
+//! the formula; the WGSL here keeps it bit for bit (exact conversions) or within the codec's
+//! stated bound (fast ones), and the GPU tests hold every one against the mirror on a driver.
 //!
 //! A helper template is WGSL with placeholders: `PREFIX` (the layout's snake_case name, so
 //! that several layouts' code can share one module), `LANES` (`f32`, `f32x2`, ... in helper
-//! names; no name may end in a digit, which naga_oil refuses), and `UINTS`, `SINTS`, `FLOATS`
-//! (the scalar or vector types of those lanes). One instruction converts every lane.
+//! names, [`Symbols::lanes`]), and `UINTS`, `SINTS`, `FLOATS` (the scalar or vector types of
+//! those lanes). One instruction converts every lane. What calls a helper from outside its
+//! template names it through the layout's [`Symbols`] ([`Symbols::codec_helper`],
+//! [`Symbols::codec_function`]), with the helper's name beside its template
+//! (`unorm::ENCODE_HELPER`).
+//!
+//! # Adding a codec
+//!
+//! Beside its file in `gbuffer_core::codecs` (the contract and the mirror), write one file here
+//! with its WGSL and add its arm to [`functions`].
 
-use super::max_code;
+pub mod boolean;
+pub mod float32;
+pub mod half;
+pub mod integer;
+pub mod log_luminance;
+pub mod octahedral;
+pub mod rgb9e5;
+pub mod rgbm;
+pub mod scaled_quotient;
+pub mod small_float;
+pub mod snorm;
+pub mod unorm;
+pub mod unsigned_float;
+
+use gbuffer_core::codecs::{max_code, Encoding};
+use gbuffer_core::Symbols;
 
 /// The lanes a helper works on: a scalar for one, a vector for several.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub struct Lanes(pub usize);
 
 impl Lanes {
-    /// The lane count's name in helper names: `f32`, `f32x2`, `f32x3`, `f32x4`.
+    /// The lane count as helper names spell it ([`Symbols::lanes`]): `f32`, `f32x2`, ...
     pub fn name(self) -> String {
-        match self.0 {
-            1 => "f32".to_string(),
-            n => format!("f32x{n}"),
-        }
-    }
-
-    /// The name of helper `name` (`to_unorm`) for these lanes, as a template spells it
-    /// `PREFIX_LANES_<name>` and [`Lanes::fill`] fills it: `<prefix>_<lanes>_<name>`
-    /// (`mobile_metallic_f32x4_to_unorm`). What calls a template's helper from outside it names
-    /// it here, with the helper's constant beside its template (`unorm::ENCODE_HELPER`).
-    pub fn helper(self, prefix: &str, name: &str) -> String {
-        format!("{prefix}_{}_{name}", self.name())
+        Symbols::lanes(self.0)
     }
 
     /// The WGSL type with `scalar` in every lane.
@@ -59,10 +74,11 @@ impl Lanes {
         self.literal("f32", &[format!("{value:?}")])
     }
 
-    /// `template` with its placeholders filled for these lanes.
-    pub fn fill(self, template: &str, prefix: &str) -> String {
+    /// `template` with its placeholders filled for these lanes and the names of `symbols`'
+    /// layout: `PREFIX_LANES_to_unorm` becomes [`Symbols::codec_helper`]'s name.
+    pub fn fill(self, template: &str, symbols: &Symbols) -> String {
         template
-            .replace("PREFIX", prefix)
+            .replace("PREFIX", symbols.snake())
             .replace("LANES", &self.name())
             .replace("SINTS", &self.of("i32"))
             .replace("FLOATS", &self.of("f32"))
@@ -73,8 +89,8 @@ impl Lanes {
 /// A bit field as its codec's WGSL sees it.
 #[derive(Clone, Copy, Debug)]
 pub struct BitField<'a> {
-    /// The layout's prefix for helper names.
-    pub prefix: &'a str,
+    /// The layout's names: its helpers' prefix.
+    pub symbols: &'a Symbols,
     /// One lane per component of the field's type.
     pub lanes: Lanes,
     /// The bits of one component's code (of one coordinate, for octahedral).
@@ -106,6 +122,31 @@ impl Functions {
             helpers: Vec::new(),
         }
     }
+}
+
+/// The WGSL of a bit field of `encoding`: each codec's file writes its own.
+pub fn functions(encoding: Encoding, field: &BitField) -> Functions {
+    match encoding {
+        Encoding::Unorm => unorm::functions(field),
+        Encoding::Snorm => snorm::functions(field),
+        Encoding::Uint => integer::uint_functions(field),
+        Encoding::Sint => integer::sint_functions(field),
+        Encoding::Bool => boolean::functions(field),
+        Encoding::Half => half::functions(field),
+        Encoding::Float32 => float32::functions(field),
+        Encoding::UnsignedFloat => unsigned_float::functions(field),
+        Encoding::Rgb9e5 => rgb9e5::functions(field),
+        Encoding::Octahedral => octahedral::functions(field),
+        Encoding::Rgbm(_) => rgbm::functions(field),
+        Encoding::LogLuminance => log_luminance::functions(field),
+    }
+}
+
+/// Whether the WGSL of `encoding` calls `unpack2x16float` or `pack2x16float` (a decode that
+/// widens its codes into binary16, a fast encode that rounds through it), which naga validates
+/// only with `Capabilities::SHADER_FLOAT16_IN_FLOAT32`: the generated WGSL's header says so.
+pub fn uses_binary16_builtins(encoding: Encoding) -> bool {
+    matches!(encoding, Encoding::Half | Encoding::UnsignedFloat)
 }
 
 impl BitField<'_> {
@@ -147,25 +188,39 @@ impl BitField<'_> {
     pub fn reciprocal(&self, bits: u32) -> String {
         self.lanes.splat_f32(1.0 / max_code(bits) as f32)
     }
+
+    /// The name of codec helper `name` on this field's lanes ([`Symbols::codec_helper`]).
+    pub fn helper(&self, name: &str) -> String {
+        self.symbols.codec_helper(self.lanes.0, name)
+    }
+
+    /// `template` filled for this field's lanes and layout.
+    pub fn fill(&self, template: &str) -> String {
+        self.lanes.fill(template, self.symbols)
+    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::{half, small_float, unorm, unsigned_float};
-    use super::Lanes;
+    use super::{half, small_float, unorm, unsigned_float, Lanes};
+    use gbuffer_core::Symbols;
 
-    /// The helpers' names that callers outside the templates use are the ones the templates
-    /// define, once filled.
+    /// The helpers' names that callers outside the templates spell through [`Symbols`] are
+    /// the ones the templates define, once filled.
     #[test]
     fn the_named_helpers_are_the_ones_the_templates_define() {
+        let symbols = Symbols::new("P");
         for lanes in (1..=4).map(Lanes) {
             let defines = |text: &str, name: &str| {
-                let definition = format!("fn {}(", lanes.helper("p", name));
+                let definition = format!("fn {}(", symbols.codec_helper(lanes.0, name));
                 assert!(text.contains(&definition), "{definition} in:\n{text}");
             };
-            defines(&lanes.fill(unorm::WGSL_ENCODE, "p"), unorm::ENCODE_HELPER);
+            defines(
+                &lanes.fill(unorm::WGSL_ENCODE, &symbols),
+                unorm::ENCODE_HELPER,
+            );
             let mantissas = vec![10; lanes.0];
-            let helpers = |name, wrapper| small_float::wgsl_helpers("p", name, wrapper, &mantissas);
+            let helpers = |name, wrapper| small_float::helpers(&symbols, name, wrapper, &mantissas);
             defines(
                 &helpers("unsigned_half", half::WGSL_ENCODE).concat(),
                 half::ENCODE_HELPER,
