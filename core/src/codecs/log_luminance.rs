@@ -16,8 +16,8 @@ use super::{max_code, Codec, LightStorage, F32_INFINITY_BITS};
 /// The bits of 2^-16, the bottom of the range (code 1).
 const BOTTOM_BITS: u32 = 111 << 23;
 
-/// The shift from a float's bits above [`BOTTOM_BITS`] to a code of `bits` bits: 23 mantissa
-/// bits and 5 of octave above, `bits` kept.
+/// The shift from a float's bits above those of 2^-16 (code 1) to a code of `bits` bits: 23
+/// mantissa bits and 5 of octave above, `bits` kept.
 #[inline(always)]
 pub fn shift(bits: u32) -> u32 {
     28 - bits

@@ -1,6 +1,6 @@
 //! Octahedral normals (`gbuffer_core::codecs::octahedral`; Cigolle et al. 2014). The exact
 //! encode is the integer algorithm of the mirror, `octahedral_from_f32`, with
-//! [`scaled_quotient`](super::scaled_quotient) rounding each coordinate; the fast encode is the
+//! [`scaled_quotient`] rounding each coordinate; the fast encode is the
 //! map in f32 arithmetic ([`WGSL_FOLD`], the mirror's `octahedral_fold`); the decode unfolds
 //! ([`WGSL_UNFOLD`]) and normalizes. The shading library's `octahedral_encode` and
 //! `octahedral_decode` (module `normals`) are the map's two halves ([`map_functions`]).

@@ -1,5 +1,5 @@
 //! RGBM (`gbuffer_core::codecs::rgbm`; Karis 2009), laid out as rgba8. The exact encode is
-//! the mirror's fixed-point algorithm with [`scaled_quotient`](super::scaled_quotient)
+//! the mirror's fixed-point algorithm with [`scaled_quotient`]
 //! rounding the ratios; the fast encode is Karis's f32 arithmetic; the decode is f32
 //! arithmetic. The shading library's `rgbm_encode` and `rgbm_decode` (module `hdr`, for rgba8
 //! render targets and textures) are this WGSL ([`exact_functions`]): the exact encode's codes

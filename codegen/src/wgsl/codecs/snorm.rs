@@ -1,5 +1,5 @@
 //! Signed normalized (`gbuffer_core::codecs::snorm`): the magnitude is unorm's exact code at
-//! one bit fewer ([`unorm::WGSL_ENCODE`](super::unorm::WGSL_ENCODE)), the sign applied to the
+//! one bit fewer ([`unorm::WGSL_ENCODE`]), the sign applied to the
 //! code; the decode sign-extends and scales.
 
 use gbuffer_core::codecs::max_code;
