@@ -16,6 +16,7 @@ const PUBLISHED: &[(&str, &str)] = &[
     ("shading", "src/lib.rs"),
     ("translate", "src/lib.rs"),
     ("macros", "src/lib.rs"),
+    ("runtime", "src/lib.rs"),
     ("codegen", "src/lib.rs"),
     ("build", "src/lib.rs"),
     ("validator", "src/lib.rs"),

@@ -4,8 +4,8 @@
 //! Run with `cargo run --release -p gbuffer-render --example seed_layouts`; add `-- --wgsl` to print the
 //! generated WGSL as well.
 
-use gbuffer::seed_layouts;
 use gbuffer_core::report::Report;
+use gbuffer_runtime::seed_layouts;
 
 fn main() {
     let print_wgsl = std::env::args()

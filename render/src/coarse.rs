@@ -1,4 +1,4 @@
-//! A deliberately coarse layout: Listing 2.2 ([`gbuffer::seed_layouts::MobileMetallic`]) with
+//! A deliberately coarse layout: Listing 2.2 ([`gbuffer_runtime::seed_layouts::MobileMetallic`]) with
 //! its normal in 2 x 8 octahedral bits instead of three 8-bit unorm channels. The octahedral
 //! map spends its codes on the sphere more evenly than three unorm components do, but 256
 //! codes a coordinate leave steps of about 0.7 degrees at the octahedron's centre and twice
@@ -7,14 +7,14 @@
 //! band).
 
 use crate::conventions::seed::{Shading, Surface, SurfaceConvention, LIGHT_SCALE};
-use gbuffer::GBufferLayout;
+use gbuffer_macros::GBufferLayout;
 use gbuffer_shading::mirror as m;
 use glam::{Vec3, Vec4};
 
 /// Listing 2.2 with a 16-bit octahedral normal (8 bits a coordinate) and 8-bit roughness in
 /// its third word.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 128)]
+#[gbuffer(budget = 128, crate = "gbuffer_runtime")]
 pub struct CoarseNormals {
     /// Light accumulation over [`LIGHT_SCALE`], as Listing 2.2.
     #[pls(rgb10_a2)]
@@ -71,7 +71,7 @@ impl SurfaceConvention for CoarseNormals {
 mod tests {
     use super::*;
     use crate::conventions::seed::round_trip;
-    use gbuffer::seed_layouts::MobileMetallic;
+    use gbuffer_runtime::seed_layouts::MobileMetallic;
 
     /// Its normals come back further off than Listing 2.2's, over normals facing the viewer.
     #[test]

@@ -9,12 +9,12 @@
 use std::sync::Arc;
 
 use crate::conventions::seed::SurfaceConvention;
-use gbuffer::engine_layouts::{BevyDeferred, HdrpLit};
-use gbuffer::seed_layouts::{
-    ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
-};
 use gbuffer_core::Named;
 use gbuffer_core::{Layout, PackedTarget};
+use gbuffer_runtime::engine_layouts::{BevyDeferred, HdrpLit};
+use gbuffer_runtime::seed_layouts::{
+    ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
+};
 use gbuffer_solver::{Features, Solution};
 
 use crate::coarse::CoarseNormals;
@@ -49,9 +49,9 @@ pub enum PackedLayout {
     FutureSpecular,
     /// Arm's pixel local storage block.
     ArmTileBlock,
-    /// Bevy's deferred G-buffer, its WebGL2 form ([`gbuffer::engine_layouts::BevyDeferred`]).
+    /// Bevy's deferred G-buffer, its WebGL2 form ([`gbuffer_runtime::engine_layouts::BevyDeferred`]).
     BevyDeferred,
-    /// Unity HDRP's Lit G-buffer ([`gbuffer::engine_layouts::HdrpLit`]).
+    /// Unity HDRP's Lit G-buffer ([`gbuffer_runtime::engine_layouts::HdrpLit`]).
     HdrpLit,
     /// Not a shipped layout: Listing 2.2 with 2 x 8-bit octahedral normals
     /// ([`crate::coarse`]), a layout the picture should show.
@@ -344,7 +344,9 @@ impl GBuffer {
     /// The render targets of the G-buffer pass.
     pub fn target_formats(&self) -> Vec<wgpu::TextureFormat> {
         match self.layout() {
-            Some(layout) => gbuffer::targets::packed_target_formats(layout.words()).to_vec(),
+            Some(layout) => {
+                gbuffer_runtime::targets::packed_target_formats(layout.words()).to_vec()
+            }
             None => vec![
                 wgpu::TextureFormat::Rgba16Float,
                 wgpu::TextureFormat::Rgba8Unorm,

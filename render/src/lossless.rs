@@ -8,13 +8,13 @@
 //! it renders on wgpu, through memory.
 
 use crate::conventions::seed::{Shading, Surface, SurfaceConvention};
-use gbuffer::GBufferLayout;
+use gbuffer_macros::GBufferLayout;
 use gbuffer_shading::mirror as m;
 use glam::Vec3;
 
 /// Every quantity of a [`Surface`] the lighting reads, as an f32.
 #[derive(GBufferLayout, Clone, Copy, Debug, PartialEq)]
-#[gbuffer(budget = 384)]
+#[gbuffer(budget = 384, crate = "gbuffer_runtime")]
 pub struct Lossless {
     /// Light accumulation, red (linear HDR).
     #[pls(r32f)]
@@ -96,6 +96,7 @@ impl SurfaceConvention for Lossless {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use gbuffer_runtime::GBufferLayout;
 
     /// The round trip is the identity: what goes in comes out, bit for bit (a test of the
     /// layout's r32f words, which hold an f32 unchanged).

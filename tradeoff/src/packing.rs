@@ -382,9 +382,9 @@ pub fn compile_on_compilers() -> CompiledPacking {
             shaders.push(harness(&builtin, 1));
         }
     }
-    for (layout, _) in gbuffer::seed_layouts::all()
+    for (layout, _) in gbuffer_runtime::seed_layouts::all()
         .into_iter()
-        .chain(gbuffer::engine_layouts::all())
+        .chain(gbuffer_runtime::engine_layouts::all())
     {
         let mut renamed = layout.clone();
         renamed.name = "Texel".into();

@@ -1,5 +1,5 @@
 //! How the renderer's [`Surface`] goes into the two engine layouts
-//! ([`gbuffer::engine_layouts`]), by each engine's own conventions, so that the reference renderer
+//! ([`gbuffer_runtime::engine_layouts`]), by each engine's own conventions, so that the reference renderer
 //! and the trade-off study can show what an engine's G-buffer costs the picture:
 //!
 //! - **Bevy** ([`BevyDeferred`], its WebGL2 form), as `bevy_pbr`'s deferred functions store
@@ -20,7 +20,7 @@
 //! same order of operations.
 
 use super::seed::{Shading, Surface, SurfaceConvention};
-use gbuffer::engine_layouts::{BevyDeferred, HdrpLit};
+use gbuffer_runtime::engine_layouts::{BevyDeferred, HdrpLit};
 use gbuffer_shading::mirror as m;
 
 /// Bevy's `reflectance` for dielectrics: f0 = 0.16 x 0.5² = 0.04.
@@ -109,7 +109,7 @@ impl SurfaceConvention for HdrpLit {
 mod tests {
     use super::*;
     use crate::conventions::seed::round_trip;
-    use gbuffer::GBufferLayout;
+    use gbuffer_runtime::GBufferLayout;
     use glam::Vec3;
 
     fn surface(metallic: f32) -> Surface {

@@ -10,10 +10,10 @@
 //! its Rust mirror ([`SurfaceConvention::encode`], [`SurfaceConvention::decode`]) over
 //! [`gbuffer_shading::mirror`], in the same order of operations.
 
-use gbuffer::seed_layouts::{
+use gbuffer_runtime::seed_layouts::{
     ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic, SpecularWorkflow,
 };
-use gbuffer::GBufferLayout;
+use gbuffer_runtime::GBufferLayout;
 use gbuffer_shading::mirror as m;
 use glam::{Vec2, Vec3};
 

@@ -265,7 +265,7 @@ impl Renderer {
             (true, false),
         );
         // The layout's targets as the library makes them, copied out afterwards.
-        let targets = gbuffer::targets::create_targets(
+        let targets = gbuffer_runtime::targets::create_targets(
             &self.device,
             &layout,
             options.width,

@@ -72,7 +72,7 @@ impl Passes {
         let gbuffer_views: Vec<wgpu::TextureView> = match options.gbuffer.layout() {
             // A packed layout's targets, as the library's wgpu helpers make them.
             Some(layout) => {
-                gbuffer::targets::create_targets(
+                gbuffer_runtime::targets::create_targets(
                     device,
                     &layout,
                     options.width,

@@ -94,9 +94,11 @@ impl LayoutRow {
 }
 
 pub(crate) fn layout_rows() -> Vec<Row> {
-    use gbuffer::engine_layouts::{BevyDeferred, HdrpLit};
-    use gbuffer::seed_layouts::{ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic};
     use gbuffer_render::coarse::CoarseNormals;
+    use gbuffer_runtime::engine_layouts::{BevyDeferred, HdrpLit};
+    use gbuffer_runtime::seed_layouts::{
+        ArmTileBlock, FutureMetallic, FutureSpecular, MobileMetallic,
+    };
     // Each layout by its own convention (`gbuffer_render::conventions::seed`,
     // `gbuffer_render::conventions::engine`), as the renderer stores it.
     let layouts = [

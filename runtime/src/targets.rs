@@ -9,6 +9,8 @@
 //! attachments.
 //!
 //! ```no_run
+//! # extern crate gbuffer_runtime as gbuffer; // as the facade re-exports it, with the derive
+//! # use gbuffer_macros::GBufferLayout;
 //! use gbuffer::{GBufferLayout, GBufferTargets, glam::{Vec3, Vec4}, wgpu};
 //!
 //! #[derive(GBufferLayout, Clone, Copy)]
@@ -166,6 +168,8 @@ impl std::error::Error for LimitError {}
 /// sample, within WebGPU's default limits (32 bytes) and refused by a device that allows 16:
 ///
 /// ```
+/// # extern crate gbuffer_runtime as gbuffer; // as the facade re-exports it, with the derive
+/// # use gbuffer_macros::GBufferLayout;
 /// use gbuffer::{GBufferLayout, GBufferTargets, glam::{Vec3, Vec4}, wgpu};
 ///
 /// #[derive(GBufferLayout)]
