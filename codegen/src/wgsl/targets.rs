@@ -7,8 +7,8 @@ use crate::LoweredLayout;
 /// own WGSL ([`emit`](super::emit)): one `texture_2d<u32>` per target (`<snake>_target<t>`, in
 /// `group`, from `first_binding`), `load_<snake>_targets(pixel: vec2<u32>) -> <Name>Targets`,
 /// the words as stored, and `read_<snake>_targets(pixel: vec2<u32>) -> <Name>`, which loads
-/// and unpacks a texel. The facade's `GBufferTargets::lighting_wgsl` is this for a derived
-/// layout.
+/// and unpacks a texel. `GBufferTargets::lighting_wgsl` (gbuffer-runtime's, which the facade
+/// re-exports) is this for a derived layout.
 pub fn lighting_targets(lowered: &LoweredLayout, group: u32, first_binding: u32) -> String {
     let symbols = lowered.symbols();
     let name = symbols.texel();
