@@ -65,8 +65,8 @@ pub(crate) fn significand_and_exponent(bits: u32) -> (u32, u32) {
     )
 }
 
-/// One codec: its name, what it holds and its Rust mirror. Each codec's file builds
-/// its own as a constant (`CODEC`) with the constructors below.
+/// One codec: its name, what it holds and its Rust mirror. Each codec's file builds its own as a
+/// constant (`CODEC`) with the constructors below.
 ///
 /// Values travel as *lanes*: each component's bits in a `u32` (an `f32`'s bits, a `u32`, an
 /// `i32` as `u32`, a `bool` as 0 or 1), up to four. `each` is the width of one component's

@@ -7,7 +7,8 @@ use gbuffer_core::codecs::max_code;
 
 use super::{BitField, Functions};
 
-/// The name of [`WGSL_ENCODE`]'s function, for [`Symbols::codec_helper`](gbuffer_core::Symbols::codec_helper).
+/// The name of [`WGSL_ENCODE`]'s function, for
+/// [`Symbols::codec_helper`](gbuffer_core::Symbols::codec_helper).
 pub const ENCODE_HELPER: &str = "to_unorm";
 
 /// The exact encode, per lane (`PREFIX_LANES_to_unorm`).
