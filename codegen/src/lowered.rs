@@ -1,8 +1,8 @@
 //! A layout lowered once: what every emitter reads instead of asking the model again. The model
 //! ([`Layout`]) says what the user declared; the lowering asks it once which words the fields
 //! fill (each word's members and their bit ranges), where each field lies, and the names of
-//! the generated items ([`Symbols`]), and keeps the answers. The WGSL and Rust emitters take it whole; the
-//! compile step ([`crate::CompiledLayout`]) holds one and hands it to every include.
+//! the generated items ([`Symbols`]), and keeps the answers. The WGSL and Rust emitters take it
+//! whole; the compile step ([`crate::CompiledLayout`]) holds one and hands it to every include.
 
 use gbuffer_core::format::PackedTarget;
 use gbuffer_core::layout::{Layout, Member, Word};

@@ -155,8 +155,8 @@ pub(crate) fn emit_for(
 
     write_targets(&mut out, lowered);
     write_format_helpers(&mut out, lowered, conversions, target);
-    write_bit_field_functions(&mut out, lowered, conversions);
-    write_conversion_helpers(&mut out, lowered, conversions);
+    let bit_field_helpers = write_bit_field_functions(&mut out, lowered, conversions);
+    write_conversion_helpers(&mut out, lowered, conversions, bit_field_helpers);
     // One trailing newline.
     while out.ends_with("\n\n") {
         out.pop();
@@ -688,40 +688,55 @@ fn mantissa_bits(channel: &Channel) -> u32 {
 /// no pack or unpack): what a pixel local storage include adds beside its block.
 #[cfg(feature = "tools")]
 pub(crate) fn bit_field_functions(lowered: &LoweredLayout, conversions: Conversions) -> String {
-    let symbols = lowered.symbols();
     let mut out = String::new();
-    write_bit_field_functions(&mut out, lowered, conversions);
-    let mut written = BTreeSet::new();
-    for field in &lowered.layout().fields {
-        if let Storage::Bits(bit_field) = field.storage {
-            for helper in bit_fields::helpers(symbols, field, bit_field, mode(field, conversions)) {
-                if written.insert(helper.clone()) {
-                    out.push_str(&helper);
-                }
-            }
-        }
-    }
+    let helpers = write_bit_field_functions(&mut out, lowered, conversions);
+    write_each_once(&mut out, helpers);
     out
 }
 
-/// Each bit field's encode and decode functions.
-fn write_bit_field_functions(out: &mut String, lowered: &LoweredLayout, conversions: Conversions) {
+/// Each bit field's encode and decode functions; returns the helpers they call, for the caller
+/// to write after the functions.
+fn write_bit_field_functions(
+    out: &mut String,
+    lowered: &LoweredLayout,
+    conversions: Conversions,
+) -> Vec<String> {
+    let mut helpers = Vec::new();
     for (index, field) in lowered.layout().fields.iter().enumerate() {
         if let Storage::Bits(bit_field) = field.storage {
-            out.push_str(&bit_fields::functions(
+            let (text, field_helpers) = bit_fields::functions(
                 lowered.symbols(),
                 index,
                 field,
                 bit_field,
                 mode(field, conversions),
-            ));
+            );
+            out.push_str(&text);
+            helpers.extend(field_helpers);
+        }
+    }
+    helpers
+}
+
+/// Each distinct text of `texts` once, in order.
+fn write_each_once(out: &mut String, texts: Vec<String>) {
+    let mut written = BTreeSet::new();
+    for text in texts {
+        if written.insert(text.clone()) {
+            out.push_str(&text);
         }
     }
 }
 
 /// The conversion helpers of the layout's exact formats (unorm's per lane count, the small
-/// floats' with their format's constants written out) and of its bit fields, each once.
-fn write_conversion_helpers(out: &mut String, lowered: &LoweredLayout, conversions: Conversions) {
+/// floats' with their format's constants written out) and then its bit fields' (as
+/// [`write_bit_field_functions`] returned them), each once.
+fn write_conversion_helpers(
+    out: &mut String,
+    lowered: &LoweredLayout,
+    conversions: Conversions,
+    bit_field_helpers: Vec<String>,
+) {
     let (layout, symbols) = (lowered.layout(), lowered.symbols());
     let exact: BTreeSet<Format> = layout
         .fields
@@ -746,22 +761,8 @@ fn write_conversion_helpers(out: &mut String, lowered: &LoweredLayout, conversio
         let mantissas: Vec<u32> = format.channels().iter().map(mantissa_bits).collect();
         helpers.extend(small_float::helpers(symbols, name, wrapper, &mantissas));
     }
-    for field in &layout.fields {
-        if let Storage::Bits(bit_field) = field.storage {
-            helpers.extend(bit_fields::helpers(
-                symbols,
-                field,
-                bit_field,
-                mode(field, conversions),
-            ));
-        }
-    }
-    let mut written = BTreeSet::new();
-    for helper in helpers {
-        if written.insert(helper.clone()) {
-            out.push_str(&helper);
-        }
-    }
+    helpers.extend(bit_field_helpers);
+    write_each_once(out, helpers);
 }
 
 #[cfg(all(test, feature = "tools"))]
