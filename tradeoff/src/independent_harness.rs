@@ -485,6 +485,28 @@ mod tests {
         }
     }
 
+    /// The speed chapter restates the check's rule: its tolerance, its attempts and its
+    /// excuse cap read there as these constants hold them, so a change to one shows there.
+    #[test]
+    fn the_speed_chapter_states_the_checks_constants() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../book/src/speed-and-accuracy.md"
+        );
+        let chapter = std::fs::read_to_string(path).expect("the speed chapter");
+        let chapter = chapter.split_whitespace().collect::<Vec<_>>().join(" ");
+        const NUMBERS: [&str; 10] = [
+            "zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine",
+        ];
+        for stated in [
+            format!("target) within {}%,", (TOLERANCE * 100.0).round()),
+            format!("measured again, up to {} times", NUMBERS[ATTEMPTS]),
+            format!("within {EXCUSE_CAP} times of each other"),
+        ] {
+            assert!(chapter.contains(&stated), "{path} does not say {stated:?}");
+        }
+    }
+
     /// A conversion in a stage: what the test compares.
     type Case = ((Format, Conversions), Stage);
 
