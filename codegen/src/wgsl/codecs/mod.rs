@@ -39,11 +39,6 @@ use gbuffer_core::Symbols;
 pub struct Lanes(pub usize);
 
 impl Lanes {
-    /// The lane count as helper names spell it ([`Symbols::lanes`]): `f32`, `f32x2`, ...
-    pub fn name(self) -> String {
-        Symbols::lanes(self.0)
-    }
-
     /// The WGSL type with `scalar` in every lane.
     pub fn of(self, scalar: &str) -> String {
         match self.0 {
@@ -79,7 +74,7 @@ impl Lanes {
     pub fn fill(self, template: &str, symbols: &Symbols) -> String {
         template
             .replace("PREFIX", symbols.snake())
-            .replace("LANES", &self.name())
+            .replace("LANES", &Symbols::lanes(self.0))
             .replace("SINTS", &self.of("i32"))
             .replace("FLOATS", &self.of("f32"))
             .replace("UINTS", &self.of("u32"))
