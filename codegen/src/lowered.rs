@@ -5,7 +5,7 @@
 //! whole; the compile step ([`crate::CompiledLayout`]) holds one and hands it to every include.
 
 use gbuffer_core::format::PackedTarget;
-use gbuffer_core::layout::{Layout, Member, Word};
+use gbuffer_core::layout::{field_locations_in, Layout, Member, Word};
 use gbuffer_core::Symbols;
 
 /// A checked layout with its words, its fields' places and its generated names worked out.
@@ -20,10 +20,11 @@ pub struct LoweredLayout {
 impl LoweredLayout {
     /// Lowers a layout that passed [`Layout::check`].
     pub fn new(layout: &Layout) -> LoweredLayout {
+        let words = layout.word_contents();
         LoweredLayout {
             layout: layout.clone(),
-            words: layout.word_contents(),
-            locations: layout.field_locations(),
+            locations: field_locations_in(&words, layout.fields.len()),
+            words,
             symbols: layout.symbols(),
         }
     }

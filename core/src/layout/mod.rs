@@ -218,25 +218,9 @@ impl Layout {
             .collect()
     }
 
-    /// Per field, its word and its member entry there.
+    /// Per field, its word and its member entry there ([`field_locations_in`] of its words).
     pub fn field_locations(&self) -> Vec<(usize, Member)> {
-        let mut locations = vec![
-            (
-                0,
-                Member {
-                    field: 0,
-                    offset: 0,
-                    bits: 0
-                }
-            );
-            self.fields.len()
-        ];
-        for (word, contents) in self.word_contents().iter().enumerate() {
-            for member in &contents.members {
-                locations[member.field] = (word, *member);
-            }
-        }
-        locations
+        field_locations_in(&self.word_contents(), self.fields.len())
     }
 
     /// Bits the layout occupies: 32 per word.
@@ -268,6 +252,24 @@ impl Layout {
     pub fn symbols(&self) -> Symbols {
         Symbols::new(&self.name)
     }
+}
+
+/// Per field of a layout of `fields` fields, its word and its member entry there, read from the
+/// layout's words ([`Layout::word_contents`]): for a caller that holds the words already, so
+/// that they are not worked out again.
+pub fn field_locations_in(words: &[Word], fields: usize) -> Vec<(usize, Member)> {
+    let empty = Member {
+        field: 0,
+        offset: 0,
+        bits: 0,
+    };
+    let mut locations = vec![(0, empty); fields];
+    for (word, contents) in words.iter().enumerate() {
+        for member in &contents.members {
+            locations[member.field] = (word, *member);
+        }
+    }
+    locations
 }
 
 #[cfg(test)]
