@@ -123,7 +123,7 @@ pub trait GBufferLayout: Sized {
     /// When the slices' lengths differ.
     fn pack_slice(texels: &[Self], packed: &mut [Self::Packed]) {
         __private::check_slice_lengths("pack_slice", texels.len(), packed.len());
-        slices::convert_lanes::<slices::Pack<Self>, _, _, 1>(texels, packed);
+        slices::convert_lanes::<slices::Pack<Self>, _, _>(texels, packed);
     }
 
     /// Unpacks `packed` into `texels`, texel i from `packed[i]`, each as [`Self::unpack`]
@@ -134,7 +134,7 @@ pub trait GBufferLayout: Sized {
     /// When the slices' lengths differ.
     fn unpack_slice(packed: &[Self::Packed], texels: &mut [Self]) {
         __private::check_slice_lengths("unpack_slice", texels.len(), packed.len());
-        slices::convert_lanes::<slices::Unpack<Self>, _, _, 1>(packed, texels);
+        slices::convert_lanes::<slices::Unpack<Self>, _, _>(packed, texels);
     }
 
     /// The bit report: per field the format, bits and used bits; the total against the
@@ -187,7 +187,48 @@ pub struct WeslModule {
 /// semantic versioning.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::slices::{convert_lanes, Isa, Lanes};
+    pub use crate::slices::{convert_lanes, force_simd, Isa, Lanes, Simd};
+
+    /// Each field's first column in the derived slices' rows of a texel's `u32` bits, given
+    /// its offset in the texel and its components: `offset / 4`, so that a row is the texel's
+    /// bytes, where that places every component in its own column (the texel is exactly its
+    /// components' `u32`s, each field's in order); the fields one after another otherwise.
+    /// Either way a bijection of the components onto the columns.
+    pub const fn row_columns<const F: usize>(
+        offsets: [usize; F],
+        components: [usize; F],
+        size: usize,
+    ) -> [usize; F] {
+        let mut in_order = [0; F];
+        let mut in_memory = [0; F];
+        // Which columns the memory order covers, as bits (a texel has at most 128 components
+        // of 32 bits: 4096 bits).
+        let mut covered = 0u128;
+        let mut total = 0;
+        let mut fits = true;
+        let mut field = 0;
+        while field < F {
+            in_order[field] = total;
+            total += components[field];
+            in_memory[field] = offsets[field] / 4;
+            let mut component = 0;
+            while component < components[field] {
+                let column = in_memory[field] + component;
+                if offsets[field] % 4 != 0 || column >= 128 || covered & (1 << column) != 0 {
+                    fits = false;
+                } else {
+                    covered |= 1 << column;
+                }
+                component += 1;
+            }
+            field += 1;
+        }
+        if fits && size == 4 * total && total <= 128 && covered.count_ones() as usize == total {
+            in_memory
+        } else {
+            in_order
+        }
+    }
 
     /// Panics, naming the call and the lengths, unless they agree.
     pub fn check_slice_lengths(call: &str, texels: usize, packed: usize) {

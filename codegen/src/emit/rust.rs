@@ -244,26 +244,24 @@ pub fn emit_impl(lowered: &LoweredLayout, wgsl: TokenStream, krate: &TokenStream
     }
 }
 
-/// Texels the derived `pack_slice` and `unpack_slice` convert at once: eight f32 lanes fill an
-/// AVX2 register.
-const SLICE_LANES: usize = 8;
-
-/// `pack_slice` and `unpack_slice`, eight texels at a time. Packing, the eight texels'
-/// components become rows of lane bits (one row per texel, the fields' components in order)
-/// and are transposed to one array of eight lanes per component; each word's channels (or
-/// bit fields) are converted over the eight lanes at once (`Channel::encode_lanes`,
-/// `BitField::encode_lanes`, with each channel and bit field a constant), the same conversions
-/// as `pack` lane by lane, which the compiler turns into vector instructions; the words'
-/// lanes are transposed back to each texel's words. Unpacking runs the same steps backwards.
-/// The texels left over go through `pack` and `unpack`. The conversions are static functions
-/// of a `Lanes` impl, not closures, so that they inline into the loop's copy compiled for
-/// AVX2, whose transposes (`Isa`) it passes them.
+/// `pack_slice` and `unpack_slice`, `N` texels at a time (the loop's copy for the CPU picks
+/// `N`: sixteen with AVX-512, eight elsewhere). Packing, the texels' components become rows of
+/// lane bits (one row per texel, the fields' components in order) and are turned into one
+/// array of `N` lanes per component (`Isa::lanes`); each word's channels (or bit fields) are
+/// converted over the lanes at once (`Isa::encode`, which ORs in `Channel::encode_lanes`'s codes
+/// unless the CPU has an exact form of its own, and `BitField::encode_lanes`, with each channel and
+/// bit field a constant), the same conversions as `pack` lane by lane, which the compiler turns
+/// into vector instructions; the words' lanes are turned back into each texel's words
+/// (`Isa::rows`). Unpacking runs the same steps backwards. The texels left over go through
+/// `pack` and `unpack`. The conversions are static functions of a `Lanes` impl, not closures,
+/// so that they inline into the loop's copies compiled for AVX2 and AVX-512, whose `Isa` they
+/// are passed.
 fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, TokenStream) {
     let layout = lowered.layout();
     let name = Ident::new(&layout.name, Span::call_site());
     let packing = quote!(#krate::layout);
     let private = quote!(#krate::__private);
-    let lanes_n = Literal::usize_unsuffixed(SLICE_LANES);
+    let lanes_n = Ident::new("N", Span::call_site());
     let words = Literal::usize_unsuffixed(lowered.words().len());
     let u32_ = quote!(::core::primitive::u32);
     let texels = Ident::new("__gbuffer_texels", Span::call_site());
@@ -272,16 +270,32 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
     let rows = Ident::new("__gbuffer_rows", Span::call_site());
     let word_name = |word: usize| format_ident!("__gbuffer_word{}", word);
     let field_name = |field: usize| format_ident!("__gbuffer_field{}", field);
-    // Each field's first row column: its components follow one another.
-    let first_column: Vec<usize> = layout
+    // Each field's first row column, `__GBUFFER_COLUMNS[field]`: where the texel's memory
+    // holds it when its bytes are exactly its components, so that a row is the texel's bytes
+    // and the loops' loads and stores move whole runs of them (the fields' order otherwise).
+    let offsets = layout.fields.iter().map(|field| {
+        let field = Ident::new(&field.name, Span::call_site());
+        quote!(::core::mem::offset_of!(#name, #field))
+    });
+    let components_of = layout
         .fields
         .iter()
-        .scan(0, |next, field| {
-            let first = *next;
-            *next += field.ty.components;
-            Some(first)
-        })
-        .collect();
+        .map(|field| Literal::usize_unsuffixed(field.ty.components));
+    let field_count = Literal::usize_unsuffixed(layout.fields.len());
+    let row_columns = quote! {
+        const __GBUFFER_COLUMNS: [::core::primitive::usize; #field_count] = #private::row_columns(
+            [#(#offsets),*],
+            [#(#components_of),*],
+            ::core::mem::size_of::<#name>(),
+        );
+    };
+    let column_of = |number: usize, component: usize| {
+        let (number, component) = (
+            Literal::usize_unsuffixed(number),
+            Literal::usize_unsuffixed(component),
+        );
+        quote!(__GBUFFER_COLUMNS[#number] + #component)
+    };
     let columns =
         Literal::usize_unsuffixed(layout.fields.iter().map(|field| field.ty.components).sum());
     // Component `component` of field `number` over the lanes, as the field's scalar
@@ -296,7 +310,7 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
             };
             return quote!([#zero; #lanes_n]);
         }
-        let column = Literal::usize_unsuffixed(first_column[number] + component);
+        let column = column_of(number, component);
         if as_bits {
             return quote!(#lanes[#column]);
         }
@@ -311,17 +325,25 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
         })
     };
 
-    let texel_rows = (0..SLICE_LANES).map(|texel| {
-        let texel = Literal::usize_unsuffixed(texel);
-        let texel = quote!(#texels[#texel]);
-        let bits = layout.fields.iter().flat_map(|field| {
+    let texel_row = {
+        let texel = quote!(#texels[#index]);
+        let sets = layout.fields.iter().enumerate().flat_map(|(number, field)| {
             components(&texel, field)
                 .into_iter()
                 .take(field.ty.components)
-                .map(|value| lane_bits(value, field.ty.scalar))
+                .enumerate()
+                .map(move |(component, value)| {
+                    let column = column_of(number, component);
+                    let bits = lane_bits(value, field.ty.scalar);
+                    quote!(__gbuffer_row[#column] = #bits;)
+                })
         });
-        quote!([#(#bits),*])
-    });
+        quote!({
+            let mut __gbuffer_row = [0; #columns];
+            #(#sets)*
+            __gbuffer_row
+        })
+    };
     let packed_words = lowered.words().iter().enumerate().map(|(word, contents)| {
         let word_ident = word_name(word);
         let members = contents.members.iter().map(|member| {
@@ -334,10 +356,7 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
                         let format = variant(format);
                         quote! {{
                             const __GBUFFER_CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
-                            let __gbuffer_codes = __GBUFFER_CHANNEL.encode_lanes::<#scalar, #lanes_n>(#values);
-                            for #index in 0..#lanes_n {
-                                #word_ident[#index] |= __gbuffer_codes[#index];
-                            }
+                            I::encode::<#scalar, #lanes_n>(__GBUFFER_CHANNEL, #values, &mut #word_ident);
                         }}
                     });
                     quote!(#(#channels)*)
@@ -365,14 +384,15 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
     let word_idents: Vec<Ident> = (0..lowered.words().len()).map(word_name).collect();
     let pack_slice = quote! {
         fn pack_slice(#texels: &[Self], __gbuffer_packed: &mut [[#u32_; #words]]) {
+            #row_columns
             struct __GbufferPack;
-            impl #private::Lanes<#name, [#u32_; #words], #lanes_n> for __GbufferPack {
+            impl #private::Lanes<#name, [#u32_; #words]> for __GbufferPack {
                 #[inline(always)]
-                fn many<I: #private::Isa>(#texels: &[#name; #lanes_n], __gbuffer_packed: &mut [[#u32_; #words]; #lanes_n]) {
-                    let #rows: [[#u32_; #columns]; #lanes_n] = [#(#texel_rows),*];
-                    let #lanes: [[#u32_; #lanes_n]; #columns] = I::transpose(&#rows);
+                fn many<I: #private::Isa, const #lanes_n: usize>(#texels: &[#name; #lanes_n], __gbuffer_packed: &mut [[#u32_; #words]; #lanes_n]) {
+                    let #rows: [[#u32_; #columns]; #lanes_n] = ::core::array::from_fn(|#index| #texel_row);
+                    let #lanes: [[#u32_; #lanes_n]; #columns] = I::lanes(&#rows);
                     #(#packed_words)*
-                    *__gbuffer_packed = I::transpose(&[#(#word_idents),*]);
+                    *__gbuffer_packed = I::rows(&[#(#word_idents),*]);
                 }
                 #[inline(always)]
                 fn one(__gbuffer_texel: &#name) -> [#u32_; #words] {
@@ -380,7 +400,7 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
                 }
             }
             #private::check_slice_lengths("pack_slice", #texels.len(), __gbuffer_packed.len());
-            #private::convert_lanes::<__GbufferPack, _, _, #lanes_n>(#texels, __gbuffer_packed);
+            #private::convert_lanes::<__GbufferPack, _, _>(#texels, __gbuffer_packed);
         }
     };
 
@@ -399,7 +419,7 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
                 let channels = (0..field.ty.components).map(|channel| {
                     quote! {{
                         const __GBUFFER_CHANNEL: #packing::Channel = #packing::Format::#format.channels()[#channel];
-                        __GBUFFER_CHANNEL.decode_lanes::<#scalar, #lanes_n>(#word_lanes)
+                        I::decode::<#scalar, #lanes_n>(__GBUFFER_CHANNEL, #word_lanes)
                     }}
                 });
                 quote!(let #field_ident: [[#scalar; #lanes_n]; #components] = [#(#channels),*];)
@@ -429,10 +449,11 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
         .enumerate()
         .flat_map(|(number, field)| {
             let field_lanes = field_name(number);
-            let (index, lanes_n) = (&index, &lanes_n);
+            let (index, lanes_n, lanes, column_of) = (&index, &lanes_n, &lanes, &column_of);
             (0..field.ty.components).map(move |component| {
+                let column = column_of(number, component);
                 let component = Literal::usize_unsuffixed(component);
-                match field.storage {
+                let value = match field.storage {
                     Storage::Bits(_) => quote!(#field_lanes[#component]),
                     Storage::Word(_) => {
                         let bits =
@@ -445,7 +466,8 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
                             __gbuffer_bits
                         })
                     }
-                }
+                };
+                quote!(#lanes[#column] = #value;)
             })
         });
     let built_fields: Vec<TokenStream> = layout
@@ -455,7 +477,7 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
         .map(|(number, field)| {
             let field_ident = Ident::new(&field.name, Span::call_site());
             let component = |component: usize| {
-                let column = Literal::usize_unsuffixed(first_column[number] + component);
+                let column = column_of(number, component);
                 from_lane_bits(quote!(#rows[#index][#column]), field.ty.scalar)
             };
             let value = if field.ty.components == 1 {
@@ -468,25 +490,22 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
             quote!(#field_ident: #value)
         })
         .collect();
-    // Lane by lane, unrolled: each texel whole, the layout need not be `Default`.
-    let built_texels = (0..SLICE_LANES).map(|lane| {
-        let lane = Literal::usize_unsuffixed(lane);
-        quote! {{
-            let #index = #lane;
-            #texels[#index] = #name { #(#built_fields),* };
-        }}
-    });
     let unpack_slice = quote! {
         fn unpack_slice(__gbuffer_packed: &[[#u32_; #words]], #texels: &mut [Self]) {
+            #row_columns
             struct __GbufferUnpack;
-            impl #private::Lanes<[#u32_; #words], #name, #lanes_n> for __GbufferUnpack {
+            impl #private::Lanes<[#u32_; #words], #name> for __GbufferUnpack {
                 #[inline(always)]
-                fn many<I: #private::Isa>(#words_parameter: &[[#u32_; #words]; #lanes_n], #texels: &mut [#name; #lanes_n]) {
-                    let __gbuffer_word_lanes: [[#u32_; #lanes_n]; #words] = I::transpose(#words_parameter);
+                fn many<I: #private::Isa, const #lanes_n: usize>(#words_parameter: &[[#u32_; #words]; #lanes_n], #texels: &mut [#name; #lanes_n]) {
+                    let __gbuffer_word_lanes: [[#u32_; #lanes_n]; #words] = I::lanes(#words_parameter);
                     #(#decoded)*
-                    let #lanes: [[#u32_; #lanes_n]; #columns] = [#(#decoded_lanes),*];
-                    let #rows: [[#u32_; #columns]; #lanes_n] = I::transpose(&#lanes);
-                    #(#built_texels)*
+                    let mut #lanes: [[#u32_; #lanes_n]; #columns] = [[0; #lanes_n]; #columns];
+                    #(#decoded_lanes)*
+                    let #rows: [[#u32_; #columns]; #lanes_n] = I::rows(&#lanes);
+                    // Each texel whole: the layout need not be `Default`.
+                    for #index in 0..#lanes_n {
+                        #texels[#index] = #name { #(#built_fields),* };
+                    }
                 }
                 #[inline(always)]
                 fn one(__gbuffer_one: &[#u32_; #words]) -> #name {
@@ -494,7 +513,7 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
                 }
             }
             #private::check_slice_lengths("unpack_slice", #texels.len(), __gbuffer_packed.len());
-            #private::convert_lanes::<__GbufferUnpack, _, _, #lanes_n>(__gbuffer_packed, #texels);
+            #private::convert_lanes::<__GbufferUnpack, _, _>(__gbuffer_packed, #texels);
         }
     };
     (pack_slice, unpack_slice)

@@ -1,77 +1,154 @@
 //! The loops behind [`GBufferLayout::pack_slice`] and [`GBufferLayout::unpack_slice`], and
-//! their copies compiled for AVX2.
+//! their copies compiled for AVX2 and for AVX-512.
 //!
-//! The derived loop converts eight texels at a time in three steps: the texels' components
-//! become rows of lane bits, one row per texel, and are transposed to one array per component
-//! over the eight texels; each channel is converted over its eight lanes at once (vector
-//! instructions); the words are transposed back to one array per texel. The transposes are
-//! the set of [`Isa`] the loop runs on: plain loops anywhere, or AVX2's shuffles, which move
-//! eight lanes in a handful of instructions where the compiler, left alone, inserts and
-//! extracts them one at a time.
+//! The derived loop converts `N` texels at a time in three steps: the texels' components
+//! become rows of lane bits, one row per texel, and are turned into one array per component
+//! over the `N` texels (lanes); each channel is converted over its lanes at once (vector
+//! instructions); the words' lanes are turned back into one array per texel. The set of
+//! instructions the loop runs on ([`Isa`]) does the turning, with its shuffles, and may
+//! convert a channel in a form of its own, exact as the mirror is: plain loops anywhere (eight
+//! texels at a time); AVX2's shuffles (eight), which move eight lanes in a handful of
+//! instructions where the compiler, left alone, inserts and extracts them one at a time; or
+//! AVX-512 (sixteen), whose rounding control makes the unorm conversions a few instructions
+//! each ([`avx512`]).
 
+#[cfg(target_arch = "x86_64")]
+mod avx512;
 mod transpose;
 
 use std::marker::PhantomData;
 
+use gbuffer_core::convert::Scalar;
+use gbuffer_core::format::Channel;
+
 use crate::GBufferLayout;
 
-/// The instructions a loop over texels runs on: how it transposes a matrix of `u32`, rows
-/// to columns. Implemented by this crate alone: the AVX2 form is only ever chosen after a run
-/// time check.
+/// The instructions a loop over texels runs on: how it turns rows of `u32` (one per texel)
+/// into lanes (one array per column) and back, and how it converts a channel over its lanes.
+/// Implemented by this crate alone: the AVX2 and AVX-512 forms are only ever chosen after a
+/// run time check.
 pub trait Isa {
-    /// `matrix` transposed: `[c][r]` of the result is `[r][c]` of `matrix`.
-    fn transpose<const R: usize, const C: usize>(matrix: &[[u32; C]; R]) -> [[u32; R]; C];
+    /// `rows` as lanes: `[c]` holds column `c` of every row, each row in a lane of the Isa's
+    /// choosing (the lanes are converted one by one, so their order is free; [`Isa::rows`]
+    /// puts them back).
+    fn lanes<const R: usize, const C: usize>(rows: &[[u32; C]; R]) -> [[u32; R]; C];
+    /// The rows of `lanes`, in the order [`Isa::lanes`] took them: `rows(&lanes(m)) == m`.
+    fn rows<const R: usize, const C: usize>(lanes: &[[u32; R]; C]) -> [[u32; C]; R];
+
+    /// ORs `channel`'s codes of `N` values, in place, into `words`: the codes
+    /// [`Channel::encode_lanes`] gives, bit for bit.
+    #[inline(always)]
+    fn encode<S: Scalar, const N: usize>(channel: Channel, values: [S; N], words: &mut [u32; N]) {
+        for (word, code) in words.iter_mut().zip(channel.encode_lanes(values)) {
+            *word |= code;
+        }
+    }
+
+    /// `channel`'s values in `N` words, as [`Channel::decode_lanes`] gives them, bit for bit.
+    #[inline(always)]
+    fn decode<S: Scalar, const N: usize>(channel: Channel, words: [u32; N]) -> [S; N] {
+        channel.decode_lanes(words)
+    }
 }
 
-/// Plain loops, for any CPU.
+/// Plain loops, for any CPU; the lanes in the rows' order.
 struct Portable;
 
 impl Isa for Portable {
     #[inline(always)]
-    fn transpose<const R: usize, const C: usize>(matrix: &[[u32; C]; R]) -> [[u32; R]; C] {
-        transpose::portable(matrix)
+    fn lanes<const R: usize, const C: usize>(rows: &[[u32; C]; R]) -> [[u32; R]; C] {
+        transpose::portable(rows)
+    }
+
+    #[inline(always)]
+    fn rows<const R: usize, const C: usize>(lanes: &[[u32; R]; C]) -> [[u32; C]; R] {
+        transpose::portable(lanes)
     }
 }
 
-/// AVX2's shuffles. Only [`convert_lanes`] names it, after checking that the CPU has AVX2.
+/// AVX2's shuffles; the lanes in the rows' order. Only [`convert_lanes`] names it, after
+/// checking that the CPU has AVX2.
 #[cfg(target_arch = "x86_64")]
 struct Avx2;
 
 #[cfg(target_arch = "x86_64")]
 impl Isa for Avx2 {
     #[inline(always)]
-    fn transpose<const R: usize, const C: usize>(matrix: &[[u32; C]; R]) -> [[u32; R]; C] {
+    fn lanes<const R: usize, const C: usize>(rows: &[[u32; C]; R]) -> [[u32; R]; C] {
         // SAFETY: `Avx2` is private to this module, which runs code generic over it only
         // inside `lanes_with_avx2`, after `convert_lanes` has checked that the CPU has AVX2.
-        unsafe { transpose::avx2(matrix) }
+        unsafe { transpose::avx2(rows) }
     }
+
+    #[inline(always)]
+    fn rows<const R: usize, const C: usize>(lanes: &[[u32; R]; C]) -> [[u32; C]; R] {
+        // SAFETY: as above.
+        unsafe { transpose::avx2(lanes) }
+    }
+}
+
+/// Which copy of the loop runs: [`Simd::Best`] (the default) picks the widest the CPU has.
+/// Tests force the others, to hold each to the mirror on a CPU that has them all.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Simd {
+    /// The widest the CPU has: AVX-512, AVX2, or plain loops.
+    Best,
+    /// Plain loops.
+    Portable,
+    /// AVX2, where the CPU has it (plain loops where not).
+    Avx2,
+}
+
+/// The copy [`convert_lanes`] runs: [`Simd::Best`] unless a test forced another.
+static FORCED: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
+
+/// Makes [`convert_lanes`] run `simd`'s copy from now on, in every thread. For tests that
+/// hold each copy to the mirror.
+pub fn force_simd(simd: Simd) {
+    let code = match simd {
+        Simd::Best => 0,
+        Simd::Portable => 1,
+        Simd::Avx2 => 2,
+    };
+    FORCED.store(code, std::sync::atomic::Ordering::Relaxed);
 }
 
 /// A conversion of texels `N` at a time, and of one: the two must agree on every texel.
 /// A trait of static functions, not closures: called directly, the `#[inline(always)]`
-/// implementations inline into the copy of the loop compiled for AVX2 and are compiled for
-/// AVX2 with it (a closure stays a function of its own, compiled for the baseline).
-pub trait Lanes<A, B, const N: usize> {
+/// implementations inline into the copies of the loop compiled for AVX2 and AVX-512 and are
+/// compiled for them with it (a closure stays a function of its own, compiled for the
+/// baseline).
+pub trait Lanes<A, B> {
     /// `N` texels at once, written in place (a returned array would be copied there), with
-    /// the transposes of `I`.
-    fn many<I: Isa>(input: &[A; N], output: &mut [B; N]);
+    /// the lanes and conversions of `I`.
+    fn many<I: Isa, const N: usize>(input: &[A; N], output: &mut [B; N]);
     /// One texel, for the ones left over.
     fn one(input: &A) -> B;
 }
 
-/// Writes `output[i] = L::one(&input[i])` for every i, `N` at a time through `L::many` and
-/// the rest through `L::one`; on x86-64 CPUs with AVX2 (checked at run time) through a copy
-/// compiled for AVX2, whose per-lane shifts, rounding, blends and shuffles the conversions and
-/// transposes need.
+/// Writes `output[i] = L::one(&input[i])` for every i, many at a time through `L::many` and
+/// the rest through `L::one`: on x86-64 CPUs with AVX-512 (checked at run time) sixteen at a
+/// time through a copy compiled for it, with AVX2 eight at a time through a copy compiled for
+/// AVX2 (the per-lane shifts, rounding, blends and shuffles the conversions and turns need),
+/// elsewhere eight at a time in plain loops.
 #[inline(always)]
-pub fn convert_lanes<L: Lanes<A, B, N>, A, B, const N: usize>(input: &[A], output: &mut [B]) {
+pub fn convert_lanes<L: Lanes<A, B>, A, B>(input: &[A], output: &mut [B]) {
     #[cfg(target_arch = "x86_64")]
-    if std::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2, checked just above.
-        unsafe { lanes_with_avx2::<L, A, B, N>(input, output) };
-        return;
+    {
+        let forced = FORCED.load(std::sync::atomic::Ordering::Relaxed);
+        if forced == 0 && avx512::available() {
+            // SAFETY: the CPU has the features `lanes_with_avx512` is compiled for, checked
+            // just above.
+            unsafe { lanes_with_avx512::<L, A, B>(input, output) };
+            return;
+        }
+        if forced != 1 && std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2, checked just above.
+            unsafe { lanes_with_avx2::<L, A, B>(input, output) };
+            return;
+        }
     }
-    lanes::<L, Portable, A, B, N>(input, output);
+    lanes::<L, Portable, A, B, 8>(input, output);
 }
 
 /// How many texels ahead of the one being converted [`lanes`] asks for the input's and the
@@ -80,7 +157,7 @@ pub fn convert_lanes<L: Lanes<A, B, N>, A, B, const N: usize>(input: &[A], outpu
 const PREFETCH_TEXELS: usize = 64;
 
 #[inline(always)]
-fn lanes<L: Lanes<A, B, N>, I: Isa, A, B, const N: usize>(input: &[A], output: &mut [B]) {
+fn lanes<L: Lanes<A, B>, I: Isa, A, B, const N: usize>(input: &[A], output: &mut [B]) {
     let whole = input.len() / N * N;
     #[cfg(target_arch = "x86_64")]
     let ahead = Ahead::of(input, output);
@@ -95,7 +172,7 @@ fn lanes<L: Lanes<A, B, N>, I: Isa, A, B, const N: usize>(input: &[A], output: &
         ahead.prefetch::<N>(chunk * N + PREFETCH_TEXELS);
         let from: &[A; N] = from.try_into().expect("chunks of N");
         let to: &mut [B; N] = to.try_into().expect("chunks of N");
-        L::many::<I>(from, to);
+        L::many::<I, N>(from, to);
     }
     for (from, to) in tail.iter().zip(out_tail) {
         *to = L::one(from);
@@ -171,17 +248,28 @@ fn lines<T>(start: *const T, bytes: usize) -> impl Iterator<Item = *const i8> {
 /// The CPU must have AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn lanes_with_avx2<L: Lanes<A, B, N>, A, B, const N: usize>(input: &[A], output: &mut [B]) {
-    lanes::<L, Avx2, A, B, N>(input, output);
+unsafe fn lanes_with_avx2<L: Lanes<A, B>, A, B>(input: &[A], output: &mut [B]) {
+    lanes::<L, Avx2, A, B, 8>(input, output);
+}
+
+/// # Safety
+///
+/// The CPU must have what [`avx512::available`] checks.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512vl,avx512bw,avx512dq,avx2,fma")]
+unsafe fn lanes_with_avx512<L: Lanes<A, B>, A, B>(input: &[A], output: &mut [B]) {
+    lanes::<L, avx512::Avx512, A, B, 16>(input, output);
 }
 
 /// The trait's own `pack_slice`, for layouts implemented by hand: a texel at a time.
 pub struct Pack<T>(PhantomData<T>);
 
-impl<T: GBufferLayout> Lanes<T, T::Packed, 1> for Pack<T> {
+impl<T: GBufferLayout> Lanes<T, T::Packed> for Pack<T> {
     #[inline(always)]
-    fn many<I: Isa>(input: &[T; 1], output: &mut [T::Packed; 1]) {
-        output[0] = input[0].pack();
+    fn many<I: Isa, const N: usize>(input: &[T; N], output: &mut [T::Packed; N]) {
+        for (texel, packed) in input.iter().zip(output) {
+            *packed = texel.pack();
+        }
     }
     #[inline(always)]
     fn one(input: &T) -> T::Packed {
@@ -192,10 +280,12 @@ impl<T: GBufferLayout> Lanes<T, T::Packed, 1> for Pack<T> {
 /// The trait's own `unpack_slice`.
 pub struct Unpack<T>(PhantomData<T>);
 
-impl<T: GBufferLayout> Lanes<T::Packed, T, 1> for Unpack<T> {
+impl<T: GBufferLayout> Lanes<T::Packed, T> for Unpack<T> {
     #[inline(always)]
-    fn many<I: Isa>(input: &[T::Packed; 1], output: &mut [T; 1]) {
-        output[0] = T::unpack(&input[0]);
+    fn many<I: Isa, const N: usize>(input: &[T::Packed; N], output: &mut [T; N]) {
+        for (packed, texel) in input.iter().zip(output) {
+            *texel = T::unpack(packed);
+        }
     }
     #[inline(always)]
     fn one(input: &T::Packed) -> T {

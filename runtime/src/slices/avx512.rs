@@ -1,0 +1,438 @@
+//! The loop's copy for AVX-512: sixteen texels at a time, the rows turned into lanes 4x4 at a
+//! time within each 128-bit quarter of a register, and the unorm channels converted in a few
+//! instructions each, exact as the mirror is.
+//!
+//! Why the unorm conversions differ from the mirror's algorithm (`codecs::unorm`), and why it
+//! is the same result:
+//! - Encode. The code is `floor(x * max + 0.5)` of the clamped value. AVX-512 rounds a fused
+//!   multiply-add in the direction an instruction names (Intel's SDM, "static rounding
+//!   mode"); rounded down, `RD(x * max + 0.5)` lies between the exact sum and the largest
+//!   integer below it (that integer is a float: it is at most 2^23), so its integer part,
+//!   which truncation gives, is the exact floor. The mirror, which has only rounding to
+//!   nearest, needs a second product to check its candidate; here one instruction suffices.
+//! - Decode. The code is `code / max` correctly rounded. Rounding to nearest, `q = code * r`
+//!   with `r` the rounded reciprocal is within an ulp of the quotient; the remainder
+//!   `code - q * max` is then exact in one fused multiply-add, and `q + remainder * r`,
+//!   rounded once, is the correctly rounded quotient (Markstein's correction, "IA-64 and
+//!   Elementary Functions", 2000, theorem 8.10 of Muller et al.'s "Handbook of Floating-Point
+//!   Arithmetic"). The mirror computes it in f64 instead, which takes twice the registers.
+//!   Both are tested against the mirror for every code of every width (the tests below) and
+//!   through the derived slices for every f32 (`gbuffer/tests/slices_every_f32.rs`).
+//!
+//! A register of sixteen floats is sixteen texels; with 512-bit registers only two of the
+//! CPU's vector ports run (Intel's optimisation manual, "Skylake server microarchitecture"),
+//! so the wider registers pay where they save instructions, as these conversions do.
+
+use std::arch::x86_64::*;
+
+use gbuffer_core::convert::Scalar;
+use gbuffer_core::format::Channel;
+use gbuffer_core::{Encoding, ScalarKind};
+
+use super::Isa;
+
+/// Whether the CPU has what [`super::lanes_with_avx512`] is compiled for.
+#[inline(always)]
+pub fn available() -> bool {
+    std::is_x86_feature_detected!("avx512f")
+        && std::is_x86_feature_detected!("avx512vl")
+        && std::is_x86_feature_detected!("avx512bw")
+        && std::is_x86_feature_detected!("avx512dq")
+        && std::is_x86_feature_detected!("avx2")
+        && std::is_x86_feature_detected!("fma")
+}
+
+/// The AVX-512 form: rows to lanes within 128-bit quarters, and the unorm conversions above.
+/// Only [`super::convert_lanes`] runs code generic over it, after [`available`].
+///
+/// Its lane order: in each block of sixteen rows, row `4j + k` goes to lane `4k + j` (a 4x4
+/// transpose of the row's index), which is what the in-quarter shuffles give without a
+/// shuffle across quarters; rows past the last whole block keep their place.
+pub struct Avx512;
+
+impl Isa for Avx512 {
+    #[inline(always)]
+    fn lanes<const R: usize, const C: usize>(rows: &[[u32; C]; R]) -> [[u32; R]; C] {
+        // SAFETY: see `Avx512`: the CPU has AVX-512F.
+        unsafe { lanes(rows) }
+    }
+
+    #[inline(always)]
+    fn rows<const R: usize, const C: usize>(lanes: &[[u32; R]; C]) -> [[u32; C]; R] {
+        // SAFETY: as above.
+        unsafe { rows(lanes) }
+    }
+
+    #[inline(always)]
+    fn encode<S: Scalar, const N: usize>(channel: Channel, values: [S; N], words: &mut [u32; N]) {
+        if channel.encoding != Encoding::Unorm || N != 16 {
+            for (word, code) in words.iter_mut().zip(channel.encode_lanes(values)) {
+                *word |= code;
+            }
+            return;
+        }
+        // A unorm channel holds floats: each value as the codec's f32 lane, as `Scalar::encode`
+        // takes it (for an f32 field, itself).
+        let floats: [f32; 16] =
+            std::array::from_fn(|lane| f32::from_bits(values[lane].to_lane(ScalarKind::Float)));
+        let words: &mut [u32; 16] = (&mut words[..16]).try_into().expect("sixteen lanes");
+        // SAFETY: as above.
+        unsafe { or_unorm_codes(floats, channel.bits, channel.offset, words) };
+    }
+
+    #[inline(always)]
+    fn decode<S: Scalar, const N: usize>(channel: Channel, words: [u32; N]) -> [S; N] {
+        if channel.encoding != Encoding::Unorm || N != 16 {
+            return channel.decode_lanes(words);
+        }
+        let mask = channel.mask();
+        let codes: [u32; 16] = std::array::from_fn(|lane| (words[lane] >> channel.offset) & mask);
+        // SAFETY: as above.
+        let floats = unsafe { f32_from_unorm(codes, channel.bits) };
+        let mut values = [S::default(); N];
+        for (value, float) in values.iter_mut().zip(floats) {
+            *value = S::from_lane(float.to_bits(), ScalarKind::Float);
+        }
+        values
+    }
+}
+
+/// ORs the `bits`-bit unorm codes of sixteen values, shifted left by `offset`, into `words`.
+/// (The shift and OR are written here, in the registers, rather than left to the caller's
+/// loops, which the compiler vectorises across channels instead of lanes.)
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn or_unorm_codes(values: [f32; 16], bits: u32, offset: u32, words: &mut [u32; 16]) {
+    let codes = unorm_codes(values, bits);
+    // SAFETY: `words` is sixteen readable and writable u32; neither access needs alignment.
+    unsafe {
+        let placed = _mm512_sllv_epi32(codes, _mm512_set1_epi32(offset as i32));
+        let old = _mm512_loadu_si512(words.as_ptr().cast());
+        _mm512_storeu_si512(words.as_mut_ptr().cast(), _mm512_or_si512(old, placed));
+    }
+}
+
+/// The `bits`-bit unorm codes of sixteen values, as [`unorm_codes`] gives them.
+#[cfg(test)]
+#[target_feature(enable = "avx512f")]
+fn unorm_from_f32(values: [f32; 16], bits: u32) -> [u32; 16] {
+    let mut out = [0u32; 16];
+    // SAFETY: `out` is sixteen writable u32; the store needs no alignment.
+    unsafe { _mm512_storeu_si512(out.as_mut_ptr().cast(), unorm_codes(values, bits)) };
+    out
+}
+
+/// The `bits`-bit unorm codes of sixteen values: `floor(clamp(x, 0, 1) * max + 0.5)`, NaN
+/// giving 0, through one multiply-add rounded down (the module's comment says why it is
+/// exact). `bits` from 1 to 23, as the codec allows.
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn unorm_codes(values: [f32; 16], bits: u32) -> __m512i {
+    let max = ((1u32 << bits) - 1) as f32;
+    // SAFETY: `values` is sixteen readable f32; the load needs no alignment.
+    let x = unsafe { _mm512_loadu_ps(values.as_ptr()) };
+    // `max` returns its second operand where either is NaN, and +0 for -0: NaN and negatives
+    // become +0. Then above 1 (infinity too) becomes 1.
+    let x = _mm512_min_ps(_mm512_max_ps(x, _mm512_setzero_ps()), _mm512_set1_ps(1.0));
+    let sum = _mm512_fmadd_round_ps::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(
+        x,
+        _mm512_set1_ps(max),
+        _mm512_set1_ps(0.5),
+    );
+    // From 0.5 to max + 0.5: truncation is the floor, and the code fits a signed lane.
+    _mm512_cvttps_epi32(sum)
+}
+
+/// The values of sixteen `bits`-bit unorm codes: `code / max` correctly rounded, through
+/// Markstein's correction of the product by the reciprocal (the module's comment says why).
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn f32_from_unorm(codes: [u32; 16], bits: u32) -> [f32; 16] {
+    let max = ((1u32 << bits) - 1) as f32;
+    let reciprocal = 1.0 / max;
+    // SAFETY: `codes` is sixteen readable u32; the load needs no alignment.
+    let codes = unsafe { _mm512_loadu_si512(codes.as_ptr().cast()) };
+    // Below 2^23: exact as floats, and positive as signed lanes.
+    let code = _mm512_cvtepi32_ps(codes);
+    let (max, reciprocal) = (_mm512_set1_ps(max), _mm512_set1_ps(reciprocal));
+    let estimate = _mm512_mul_ps(code, reciprocal);
+    let remainder = _mm512_fnmadd_ps(estimate, max, code);
+    let quotient = _mm512_fmadd_ps(remainder, reciprocal, estimate);
+    let mut out = [0f32; 16];
+    // SAFETY: `out` is sixteen writable f32; the store needs no alignment.
+    unsafe { _mm512_storeu_ps(out.as_mut_ptr(), quotient) };
+    out
+}
+
+/// Rows `row..row + 4` at columns `column..column + 4`, one row per 128-bit quarter.
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn load_quarters<const R: usize, const C: usize>(
+    rows: &[[u32; C]; R],
+    row: usize,
+    column: usize,
+) -> __m512 {
+    let quarter = |r: usize| {
+        let lanes: &[u32; 4] = rows[row + r][column..column + 4]
+            .try_into()
+            .expect("four lanes");
+        // SAFETY: `lanes` is four readable u32; the load needs no alignment.
+        unsafe { _mm_loadu_ps(lanes.as_ptr().cast()) }
+    };
+    let mut value = _mm512_castps128_ps512(quarter(0));
+    value = _mm512_insertf32x4::<1>(value, quarter(1));
+    value = _mm512_insertf32x4::<2>(value, quarter(2));
+    _mm512_insertf32x4::<3>(value, quarter(3))
+}
+
+/// [`load_quarters`] backwards: the register's quarters to rows `row..row + 4`.
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn store_quarters<const R: usize, const C: usize>(
+    rows: &mut [[u32; C]; R],
+    row: usize,
+    column: usize,
+    value: __m512,
+) {
+    let quarters = [
+        _mm512_castps512_ps128(value),
+        _mm512_extractf32x4_ps::<1>(value),
+        _mm512_extractf32x4_ps::<2>(value),
+        _mm512_extractf32x4_ps::<3>(value),
+    ];
+    for (r, quarter) in quarters.into_iter().enumerate() {
+        let lanes: &mut [u32; 4] = (&mut rows[row + r][column..column + 4])
+            .try_into()
+            .expect("four lanes");
+        // SAFETY: `lanes` is four writable u32; the store needs no alignment.
+        unsafe { _mm_storeu_ps(lanes.as_mut_ptr().cast(), quarter) };
+    }
+}
+
+/// Within each 128-bit quarter, the 4x4 transpose of the four registers' quarters: quarter
+/// `k` of result `c` holds element `c` of quarter `k` of each input, in the inputs' order.
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn transpose_quarters(x: [__m512; 4]) -> [__m512; 4] {
+    let low01 = _mm512_castps_pd(_mm512_unpacklo_ps(x[0], x[1]));
+    let high01 = _mm512_castps_pd(_mm512_unpackhi_ps(x[0], x[1]));
+    let low23 = _mm512_castps_pd(_mm512_unpacklo_ps(x[2], x[3]));
+    let high23 = _mm512_castps_pd(_mm512_unpackhi_ps(x[2], x[3]));
+    [
+        _mm512_castpd_ps(_mm512_unpacklo_pd(low01, low23)),
+        _mm512_castpd_ps(_mm512_unpackhi_pd(low01, low23)),
+        _mm512_castpd_ps(_mm512_unpacklo_pd(high01, high23)),
+        _mm512_castpd_ps(_mm512_unpackhi_pd(high01, high23)),
+    ]
+}
+
+/// The lane of row `row` of a block of sixteen: `4k + j` for row `4j + k` (its own inverse).
+#[inline(always)]
+fn lane_of(row: usize) -> usize {
+    4 * (row % 4) + row / 4
+}
+
+/// [`Isa::lanes`] of [`Avx512`].
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn lanes<const R: usize, const C: usize>(rows: &[[u32; C]; R]) -> [[u32; R]; C] {
+    let mut out = [[0; R]; C];
+    let mut block = 0;
+    while block + 16 <= R {
+        let mut column = 0;
+        while column + 4 <= C {
+            // Register j: rows 4j..4j + 4 of the block, one a quarter; transposed, result c
+            // holds column c with row 4j + k in lane 4k + j.
+            let quarters: [__m512; 4] =
+                std::array::from_fn(|j| load_quarters(rows, block + 4 * j, column));
+            for (c, value) in transpose_quarters(quarters).into_iter().enumerate() {
+                let lanes: &mut [u32; 16] = (&mut out[column + c][block..block + 16])
+                    .try_into()
+                    .expect("sixteen lanes");
+                // SAFETY: `lanes` is sixteen writable u32; the store needs no alignment.
+                unsafe { _mm512_storeu_ps(lanes.as_mut_ptr().cast(), value) };
+            }
+            column += 4;
+        }
+        for c in column..C {
+            for row in 0..16 {
+                out[c][block + lane_of(row)] = rows[block + row][c];
+            }
+        }
+        block += 16;
+    }
+    for row in block..R {
+        for c in 0..C {
+            out[c][row] = rows[row][c];
+        }
+    }
+    out
+}
+
+/// [`Isa::rows`] of [`Avx512`]: [`lanes`] backwards (the same shuffles: the order is its own
+/// inverse).
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn rows<const R: usize, const C: usize>(lanes: &[[u32; R]; C]) -> [[u32; C]; R] {
+    let mut out = [[0; C]; R];
+    let mut block = 0;
+    while block + 16 <= R {
+        let mut column = 0;
+        while column + 4 <= C {
+            let columns: [__m512; 4] = std::array::from_fn(|c| {
+                let lanes: &[u32; 16] = lanes[column + c][block..block + 16]
+                    .try_into()
+                    .expect("sixteen lanes");
+                // SAFETY: `lanes` is sixteen readable u32; the load needs no alignment.
+                unsafe { _mm512_loadu_ps(lanes.as_ptr().cast()) }
+            });
+            // Result j: quarter k holds row 4j + k's four columns.
+            for (j, value) in transpose_quarters(columns).into_iter().enumerate() {
+                store_quarters(&mut out, block + 4 * j, column, value);
+            }
+            column += 4;
+        }
+        for c in column..C {
+            for row in 0..16 {
+                out[block + row][c] = lanes[c][block + lane_of(row)];
+            }
+        }
+        block += 16;
+    }
+    for row in block..R {
+        for c in 0..C {
+            out[row][c] = lanes[c][row];
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use gbuffer_core::codecs::unorm;
+
+    /// Whether this CPU can run the tests; where it cannot, they say so and pass, as the
+    /// copy they test never runs there.
+    fn runs_here(test: &str) -> bool {
+        let here = available();
+        if !here {
+            eprintln!("{test}: this CPU has no AVX-512; the AVX-512 copy cannot run here");
+        }
+        here
+    }
+
+    #[test]
+    fn the_lanes_go_back_to_their_rows() {
+        if !runs_here("the_lanes_go_back_to_their_rows") {
+            return;
+        }
+        fn check<const R: usize, const C: usize>() {
+            let mut matrix = [[0u32; C]; R];
+            for (r, row) in matrix.iter_mut().enumerate() {
+                for (c, value) in row.iter_mut().enumerate() {
+                    *value = (r * 1000 + c) as u32;
+                }
+            }
+            // SAFETY: `runs_here` checked the CPU.
+            let (lanes, back) = unsafe {
+                let lanes = lanes(&matrix);
+                (lanes, rows(&lanes))
+            };
+            assert_eq!(back, matrix, "{R}x{C}");
+            // Every column holds each row once, in the documented lane.
+            for (c, column) in lanes.iter().enumerate() {
+                for r in 0..R {
+                    let lane = if r < R / 16 * 16 {
+                        r / 16 * 16 + lane_of(r % 16)
+                    } else {
+                        r
+                    };
+                    assert_eq!(column[lane], (r * 1000 + c) as u32, "{R}x{C} row {r}");
+                }
+            }
+        }
+        check::<16, 1>();
+        check::<16, 4>();
+        check::<16, 7>();
+        check::<16, 12>();
+        check::<16, 24>();
+        check::<32, 5>();
+        check::<17, 4>();
+        check::<3, 4>();
+    }
+
+    /// Every f32 whose code changes between two neighbours' is where a wrong rounding would
+    /// show; all of [0, 1] at 8 and 10 bits is too many for a unit test, so: every code's two
+    /// boundaries and the floats beside them, every width, against the mirror; and a million
+    /// spread values. `slices_every_f32` runs every f32 through the derived slices.
+    #[test]
+    fn the_unorm_encode_is_the_mirrors_at_every_boundary() {
+        if !runs_here("the_unorm_encode_is_the_mirrors_at_every_boundary") {
+            return;
+        }
+        let specials = [
+            0.0,
+            -0.0,
+            -1.0,
+            f32::NAN,
+            -f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            1.0,
+            2.0,
+            f32::from_bits(1),
+            f32::MIN_POSITIVE,
+        ];
+        for bits in 1..=23 {
+            let max = (1u32 << bits) - 1;
+            let mut values: Vec<f32> = specials.to_vec();
+            for code in (0..=max).step_by((max as usize / 4096).max(1)) {
+                let boundary = (f64::from(code) + 0.5) / f64::from(max);
+                let near = boundary as f32;
+                values.extend([near.next_down(), near, near.next_up()]);
+            }
+            values.extend((0..100_000u32).map(|i| f32::from_bits(0x3f80_0000 - i * 10_651)));
+            for chunk in values.chunks(16) {
+                let mut lanes = [0.5f32; 16];
+                lanes[..chunk.len()].copy_from_slice(chunk);
+                // SAFETY: `runs_here` checked the CPU.
+                let codes = unsafe { unorm_from_f32(lanes, bits) };
+                for (value, code) in lanes.into_iter().zip(codes) {
+                    assert_eq!(
+                        code,
+                        unorm::unorm_from_f32(value, bits),
+                        "{value:e} ({:#x}) at {bits} bits",
+                        value.to_bits()
+                    );
+                }
+            }
+        }
+    }
+
+    /// Every code of every width, against the mirror's decode (itself tested against f32
+    /// division, correctly rounded).
+    #[test]
+    fn the_unorm_decode_is_the_mirrors_for_every_code() {
+        if !runs_here("the_unorm_decode_is_the_mirrors_for_every_code") {
+            return;
+        }
+        for bits in 1..=23 {
+            let max = (1u32 << bits) - 1;
+            let codes: Vec<u32> = (0..=max).collect();
+            for chunk in codes.chunks(16) {
+                let mut lanes = [0u32; 16];
+                lanes[..chunk.len()].copy_from_slice(chunk);
+                // SAFETY: `runs_here` checked the CPU.
+                let values = unsafe { f32_from_unorm(lanes, bits) };
+                for (code, value) in lanes.into_iter().zip(values) {
+                    assert_eq!(
+                        value.to_bits(),
+                        unorm::f32_from_unorm(code, bits).to_bits(),
+                        "code {code} of {bits} bits"
+                    );
+                }
+            }
+        }
+    }
+}
