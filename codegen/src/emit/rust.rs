@@ -327,17 +327,21 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
 
     let texel_row = {
         let texel = quote!(#texels[#index]);
-        let sets = layout.fields.iter().enumerate().flat_map(|(number, field)| {
-            components(&texel, field)
-                .into_iter()
-                .take(field.ty.components)
-                .enumerate()
-                .map(move |(component, value)| {
-                    let column = column_of(number, component);
-                    let bits = lane_bits(value, field.ty.scalar);
-                    quote!(__gbuffer_row[#column] = #bits;)
-                })
-        });
+        let sets = layout
+            .fields
+            .iter()
+            .enumerate()
+            .flat_map(|(number, field)| {
+                components(&texel, field)
+                    .into_iter()
+                    .take(field.ty.components)
+                    .enumerate()
+                    .map(move |(component, value)| {
+                        let column = column_of(number, component);
+                        let bits = lane_bits(value, field.ty.scalar);
+                        quote!(__gbuffer_row[#column] = #bits;)
+                    })
+            });
         quote!({
             let mut __gbuffer_row = [0; #columns];
             #(#sets)*

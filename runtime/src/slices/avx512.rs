@@ -66,8 +66,21 @@ impl Isa for Avx512 {
     #[inline(always)]
     fn encode<S: Scalar, const N: usize>(channel: Channel, values: [S; N], words: &mut [u32; N]) {
         if channel.encoding != Encoding::Unorm || N != 16 {
-            for (word, code) in words.iter_mut().zip(channel.encode_lanes(values)) {
-                *word |= code;
+            // Eight lanes at a time: the compiler vectorises the other codecs' encodes over
+            // eight lanes better than over sixteen (three times as fast for half and the small
+            // floats, the bench's one-format rows; their decodes, the other way round, stay
+            // at sixteen).
+            if N % 8 != 0 {
+                for (word, code) in words.iter_mut().zip(channel.encode_lanes(values)) {
+                    *word |= code;
+                }
+                return;
+            }
+            for eight in (0..N).step_by(8) {
+                let values: [S; 8] = std::array::from_fn(|lane| values[eight + lane]);
+                for (word, code) in words[eight..].iter_mut().zip(channel.encode_lanes(values)) {
+                    *word |= code;
+                }
             }
             return;
         }
