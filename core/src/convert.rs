@@ -126,9 +126,10 @@ impl Format {
 
 /// Many texels at once: the same conversions as [`Format::encode`] and [`Format::decode`],
 /// lane by lane over `N` texels, one channel at a time. The derived `pack_slice` and
-/// `unpack_slice` call them on eight texels at a time with each channel a constant: the codec
-/// is then known at compile time, its conversion inlined, and the loop over the lanes becomes
-/// vector instructions (the per-texel form converts one texel's channels in turn, in scalar
+/// `unpack_slice` call them on eight texels at a time with each channel a constant (where the
+/// CPU has no exact form of its own, as AVX-512's for unorm): the codec is then known at
+/// compile time, its conversion inlined, and the loop over the lanes becomes vector
+/// instructions (the per-texel form converts one texel's channels in turn, in scalar
 /// code). Each lane's result is the per-texel function's, bit for bit: the same code runs on
 /// every lane, and Rust never contracts or reorders float arithmetic.
 impl Channel {

@@ -1,10 +1,13 @@
 //! `pack_slice` and `unpack_slice` against `pack` and `unpack` for every f32 and every word:
-//! the slices' vector code (eight texels at a time) and the texel code, not one bit apart.
+//! the slices' vector code (each copy of it the CPU can run: AVX-512's sixteen texels at a
+//! time and AVX2's eight on every f32 and word, plain loops' eight on one in eight) and the
+//! texel code, not one bit apart.
 //! Exhaustive, so it runs in an optimised build: `cargo test --release -p gbuffer --test
 //! slices_every_f32` (CI's `exhaustive` step). In a debug build it is ignored, saying so.
 //! `integration-tests/tests/slices.rs` holds the slices to the texels on the edge cases and the
 //! seed layouts in every build.
 
+use gbuffer::__private::{force_simd, Simd};
 use gbuffer::GBufferLayout;
 
 /// One field of each unorm and float format, every channel of a texel holding the same value.
@@ -64,8 +67,9 @@ impl UnormsAndFloats {
     }
 }
 
-/// Every f32 through every channel of every unorm and float format, by the slices (eight texels
-/// at a time, in vector instructions) and by `pack` (a texel at a time): not one bit apart.
+/// Every f32 through every channel of every unorm and float format, by the slices (many texels
+/// at a time, in vector instructions, through each copy) and by `pack` (a texel at a time):
+/// not one bit apart.
 /// Then every 32-bit word through every channel's decode, compared by the bits of the floats.
 /// The f32s run on two threads.
 #[test]
@@ -87,41 +91,57 @@ fn the_slices_agree_with_the_texels_on_every_f32_and_every_word() {
         differences != [0; N]
     }
 
+    // Each copy of the loop this CPU can run: the widest it has (AVX-512 where it has it) and
+    // AVX2, forced, on every chunk; plain loops, forced, on one chunk in eight, spread over
+    // the f32s (the same source as the AVX2 copy's, compiled for the baseline CPU, whose
+    // missing rounding instructions make it as slow as the other two together). Each chunk's
+    // texel results are computed once for all.
+    let copies = |start: u64| {
+        let portable = (start / CHUNK) % 16 < 2;
+        [Simd::Best, Simd::Avx2, Simd::Portable]
+            .into_iter()
+            .filter(move |&simd| simd != Simd::Portable || portable)
+    };
     const CHUNK: u64 = 1 << 20;
     // Worker 0 takes the even chunks and worker 1 the odd, so that both end together.
     let worker = |worker: u64| {
         let mut texels = vec![UnormsAndFloats::splat(0.0); CHUNK as usize];
         let mut packed = vec![[0; 6]; CHUNK as usize];
+        let mut expected = packed.clone();
         let mut back = texels.clone();
+        let mut expected_bits = vec![[0; 16]; CHUNK as usize];
         for start in (worker * CHUNK..1 << 32).step_by(2 * CHUNK as usize) {
             for (offset, texel) in texels.iter_mut().enumerate() {
                 *texel = UnormsAndFloats::splat(f32::from_bits((start + offset as u64) as u32));
             }
-            UnormsAndFloats::pack_slice(&texels, &mut packed);
-            if differ(
-                texels
-                    .iter()
-                    .zip(&packed)
-                    .map(|(texel, words)| (texel.pack(), *words)),
-            ) {
-                for (texel, words) in texels.iter().zip(&packed) {
-                    assert_eq!(*words, texel.pack(), "{texel:?}");
+            for (texel, words) in texels.iter().zip(&mut expected) {
+                *words = texel.pack();
+            }
+            for simd in copies(start) {
+                force_simd(simd);
+                UnormsAndFloats::pack_slice(&texels, &mut packed);
+                if differ(expected.iter().copied().zip(packed.iter().copied())) {
+                    for (texel, words) in texels.iter().zip(&packed) {
+                        assert_eq!(*words, texel.pack(), "{simd:?}: {texel:?}");
+                    }
                 }
             }
             for (offset, words) in packed.iter_mut().enumerate() {
                 *words = [(start + offset as u64) as u32; 6];
             }
-            UnormsAndFloats::unpack_slice(&packed, &mut back);
             // By their bits, so that NaNs compare too.
-            let unpacked = |words| UnormsAndFloats::unpack(words).bits();
-            if differ(
-                packed
-                    .iter()
-                    .zip(&back)
-                    .map(|(words, texel)| (unpacked(words), texel.bits())),
-            ) {
-                for (words, texel) in packed.iter().zip(&back) {
-                    assert_eq!(texel.bits(), unpacked(words), "{words:?}");
+            for (words, bits) in packed.iter().zip(&mut expected_bits) {
+                *bits = UnormsAndFloats::unpack(words).bits();
+            }
+            for simd in copies(start) {
+                force_simd(simd);
+                UnormsAndFloats::unpack_slice(&packed, &mut back);
+                let unpacked = back.iter().map(UnormsAndFloats::bits);
+                if differ(expected_bits.iter().copied().zip(unpacked)) {
+                    for (words, texel) in packed.iter().zip(&back) {
+                        let bits = UnormsAndFloats::unpack(words).bits();
+                        assert_eq!(texel.bits(), bits, "{simd:?}: {words:?}");
+                    }
                 }
             }
         }

@@ -22,6 +22,9 @@ mod layouts {
     pub struct usize;
     pub struct str;
     pub struct channels;
+    // The slices' loop's generic parameters' names.
+    pub struct N;
+    pub struct I;
     pub struct words;
     pub mod core {}
     pub mod std {}

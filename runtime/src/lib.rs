@@ -113,9 +113,10 @@ pub trait GBufferLayout: Sized {
     /// Packs `texels` into `packed`, texel i into `packed[i]`, each as [`Self::pack`] packs
     /// it, bit for bit: a whole G-buffer at once, for uploads and readbacks
     /// (`bytemuck::cast_slice` turns the packed texels into the bytes of `Rgba32Uint` targets).
-    /// The derive converts eight texels at a time, each channel over the eight in vector
-    /// instructions; on x86-64 CPUs with AVX2 (checked at run time) it runs a copy compiled for
-    /// AVX2. Single-threaded and allocation-free: split an image over threads to use more
+    /// The derive converts many texels at a time, each channel over them in vector
+    /// instructions: on x86-64 CPUs with AVX-512 (checked at run time) sixteen at a time in a
+    /// copy compiled for it, with AVX2 eight in a copy compiled for AVX2, elsewhere eight in
+    /// plain loops. Single-threaded and allocation-free: split an image over threads to use more
     /// cores (the guide shows how).
     ///
     /// # Panics
@@ -127,7 +128,7 @@ pub trait GBufferLayout: Sized {
     }
 
     /// Unpacks `packed` into `texels`, texel i from `packed[i]`, each as [`Self::unpack`]
-    /// unpacks it; with AVX2 where the CPU has it, as [`Self::pack_slice`].
+    /// unpacks it; with AVX-512 or AVX2 where the CPU has them, as [`Self::pack_slice`].
     ///
     /// # Panics
     ///

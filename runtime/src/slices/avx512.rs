@@ -77,7 +77,9 @@ impl Isa for Avx512 {
                 return;
             }
             for eight in (0..N).step_by(8) {
-                let values: [S; 8] = std::array::from_fn(|lane| values[eight + lane]);
+                let mut part = [S::default(); 8];
+                part.copy_from_slice(&values[eight..eight + 8]);
+                let values = part;
                 for (word, code) in words[eight..].iter_mut().zip(channel.encode_lanes(values)) {
                     *word |= code;
                 }
@@ -86,8 +88,10 @@ impl Isa for Avx512 {
         }
         // A unorm channel holds floats: each value as the codec's f32 lane, as `Scalar::encode`
         // takes it (for an f32 field, itself).
-        let floats: [f32; 16] =
-            std::array::from_fn(|lane| f32::from_bits(values[lane].to_lane(ScalarKind::Float)));
+        let mut floats = [0f32; 16];
+        for (float, value) in floats.iter_mut().zip(values) {
+            *float = f32::from_bits(value.to_lane(ScalarKind::Float));
+        }
         let words: &mut [u32; 16] = (&mut words[..16]).try_into().expect("sixteen lanes");
         // SAFETY: as above.
         unsafe { or_unorm_codes(floats, channel.bits, channel.offset, words) };
@@ -99,7 +103,10 @@ impl Isa for Avx512 {
             return channel.decode_lanes(words);
         }
         let mask = channel.mask();
-        let codes: [u32; 16] = std::array::from_fn(|lane| (words[lane] >> channel.offset) & mask);
+        let mut codes = [0u32; 16];
+        for (code, word) in codes.iter_mut().zip(words) {
+            *code = (word >> channel.offset) & mask;
+        }
         // SAFETY: as above.
         let floats = unsafe { f32_from_unorm(codes, channel.bits) };
         let mut values = [S::default(); N];

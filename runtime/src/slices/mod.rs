@@ -88,7 +88,8 @@ impl Isa for Avx2 {
 }
 
 /// Which copy of the loop runs: [`Simd::Best`] (the default) picks the widest the CPU has.
-/// Tests force the others, to hold each to the mirror on a CPU that has them all.
+/// Tests force the others ([`force_simd`]), to hold each to the mirror on a CPU that has them
+/// all.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Simd {
     /// The widest the CPU has: AVX-512, AVX2, or plain loops.
@@ -99,18 +100,16 @@ pub enum Simd {
     Avx2,
 }
 
-/// The copy [`convert_lanes`] runs: [`Simd::Best`] unless a test forced another.
-static FORCED: std::sync::atomic::AtomicU8 = std::sync::atomic::AtomicU8::new(0);
+thread_local! {
+    /// The copy [`convert_lanes`] runs in this thread: [`Simd::Best`] unless a test forced
+    /// another.
+    static FORCED: std::cell::Cell<Simd> = const { std::cell::Cell::new(Simd::Best) };
+}
 
-/// Makes [`convert_lanes`] run `simd`'s copy from now on, in every thread. For tests that
-/// hold each copy to the mirror.
+/// Makes [`convert_lanes`] run `simd`'s copy from now on, in the calling thread. For tests
+/// that hold each copy to the mirror.
 pub fn force_simd(simd: Simd) {
-    let code = match simd {
-        Simd::Best => 0,
-        Simd::Portable => 1,
-        Simd::Avx2 => 2,
-    };
-    FORCED.store(code, std::sync::atomic::Ordering::Relaxed);
+    FORCED.set(simd);
 }
 
 /// A conversion of texels `N` at a time, and of one: the two must agree on every texel.
@@ -135,14 +134,14 @@ pub trait Lanes<A, B> {
 pub fn convert_lanes<L: Lanes<A, B>, A, B>(input: &[A], output: &mut [B]) {
     #[cfg(target_arch = "x86_64")]
     {
-        let forced = FORCED.load(std::sync::atomic::Ordering::Relaxed);
-        if forced == 0 && avx512::available() {
+        let forced = FORCED.get();
+        if forced == Simd::Best && avx512::available() {
             // SAFETY: the CPU has the features `lanes_with_avx512` is compiled for, checked
             // just above.
             unsafe { lanes_with_avx512::<L, A, B>(input, output) };
             return;
         }
-        if forced != 1 && std::is_x86_feature_detected!("avx2") {
+        if forced != Simd::Portable && std::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above.
             unsafe { lanes_with_avx2::<L, A, B>(input, output) };
             return;
