@@ -1,6 +1,8 @@
 //! `pack_slice` and `unpack_slice`: a whole G-buffer at once, texel by texel the same words as
-//! `pack` and `unpack`, and a clear panic when the lengths disagree.
+//! `pack` and `unpack`, through each copy of the loop this CPU can run (AVX-512, AVX2, plain
+//! loops), and a clear panic when the lengths disagree.
 
+use gbuffer::__private::{force_simd, Simd};
 use gbuffer::seed_layouts::{FutureMetallic, MobileMetallic};
 use gbuffer::GBufferLayout;
 use gbuffer_gpu::harness::scalars_per_texel;
@@ -23,7 +25,7 @@ fn texels<L: GBufferLayout + Copy>(count: usize) -> Vec<L> {
         .collect()
 }
 
-fn check<L: GBufferLayout + Copy + PartialEq + std::fmt::Debug>()
+fn check<L: GBufferLayout + Copy + PartialEq + std::fmt::Debug>(simd: Simd)
 where
     L::Packed: PartialEq + std::fmt::Debug,
 {
@@ -32,22 +34,26 @@ where
     let mut packed = vec![texels[0].pack(); texels.len()];
     L::pack_slice(&texels, &mut packed);
     for (texel, words) in texels.iter().zip(&packed) {
-        assert_eq!(*words, texel.pack());
+        assert_eq!(*words, texel.pack(), "{simd:?}");
     }
     let mut back = vec![texels[0]; texels.len()];
     L::unpack_slice(&packed, &mut back);
     // Compared by their words, so that NaN fields compare too: the texels were unpacked from
     // the mirror's words, so packing what came back gives the same words.
     for (words, texel) in packed.iter().zip(&back) {
-        assert_eq!(texel.pack(), *words);
+        assert_eq!(texel.pack(), *words, "{simd:?}");
     }
 }
 
 #[test]
 fn slices_pack_and_unpack_as_texels_do() {
-    check::<MobileMetallic>();
-    check::<FutureMetallic>();
-    check::<gbuffer_testkit::AllFormats>();
+    // The copy is forced for this test's thread alone.
+    for simd in [Simd::Best, Simd::Avx2, Simd::Portable] {
+        force_simd(simd);
+        check::<MobileMetallic>(simd);
+        check::<FutureMetallic>(simd);
+        check::<gbuffer_testkit::AllFormats>(simd);
+    }
 }
 
 #[test]
