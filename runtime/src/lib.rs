@@ -215,7 +215,10 @@ pub mod __private {
             let mut component = 0;
             while component < components[field] {
                 let column = in_memory[field] + component;
-                if offsets[field] % 4 != 0 || column >= 128 || covered & (1 << column) != 0 {
+                if !offsets[field].is_multiple_of(4)
+                    || column >= 128
+                    || covered & (1 << column) != 0
+                {
                     fits = false;
                 } else {
                     covered |= 1 << column;

@@ -340,7 +340,10 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
     let texel_rows = (0..groups).map(|group| {
         let first = group * ROW_GROUP;
         let width = Literal::usize_unsuffixed(ROW_GROUP.min(total_columns - first));
-        let (group, first) = (Literal::usize_unsuffixed(group), Literal::usize_unsuffixed(first));
+        let (group, first) = (
+            Literal::usize_unsuffixed(group),
+            Literal::usize_unsuffixed(first),
+        );
         let texel = quote!(#texels[#index]);
         let (column_of, group, first, row_group) = (&column_of, &group, &first, &row_group);
         let sets = layout

@@ -70,7 +70,7 @@ impl Isa for Avx512 {
             // eight lanes better than over sixteen (three times as fast for half and the small
             // floats, the bench's one-format rows; their decodes, the other way round, stay
             // at sixteen).
-            if N % 8 != 0 {
+            if !N.is_multiple_of(8) {
                 for (word, code) in words.iter_mut().zip(channel.encode_lanes(values)) {
                     *word |= code;
                 }
