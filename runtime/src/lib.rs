@@ -191,47 +191,33 @@ pub mod __private {
     pub use crate::slices::{convert_lanes, force_simd, Isa, Lanes, Simd};
 
     /// Each field's first column in the derived slices' rows of a texel's `u32` bits, given
-    /// its offset in the texel and its components: `offset / 4`, so that a row is the texel's
-    /// bytes, where that places every component in its own column (the texel is exactly its
-    /// components' `u32`s, each field's in order); the fields one after another otherwise.
-    /// Either way a bijection of the components onto the columns.
+    /// the fields' offsets in the texel and their components: the fields in the order the
+    /// texel's memory holds them (by offset, declared order among equals), each one's
+    /// components one after another. A row's runs of columns are then runs of the texel's
+    /// bytes (the whole texel, where it is exactly its components' `u32`s), which the loops
+    /// load and store whole.
     pub const fn row_columns<const F: usize>(
         offsets: [usize; F],
         components: [usize; F],
-        size: usize,
     ) -> [usize; F] {
-        let mut in_order = [0; F];
-        let mut in_memory = [0; F];
-        // Which columns the memory order covers, as bits (a texel has at most 128 components
-        // of 32 bits: 4096 bits).
-        let mut covered = 0u128;
-        let mut total = 0;
-        let mut fits = true;
+        let mut columns = [0; F];
         let mut field = 0;
         while field < F {
-            in_order[field] = total;
-            total += components[field];
-            in_memory[field] = offsets[field] / 4;
-            let mut component = 0;
-            while component < components[field] {
-                let column = in_memory[field] + component;
-                if !offsets[field].is_multiple_of(4)
-                    || column >= 128
-                    || covered & (1 << column) != 0
+            // The components of the fields before it in memory.
+            let mut column = 0;
+            let mut other = 0;
+            while other < F {
+                if offsets[other] < offsets[field]
+                    || (offsets[other] == offsets[field] && other < field)
                 {
-                    fits = false;
-                } else {
-                    covered |= 1 << column;
+                    column += components[other];
                 }
-                component += 1;
+                other += 1;
             }
+            columns[field] = column;
             field += 1;
         }
-        if fits && size == 4 * total && total <= 128 && covered.count_ones() as usize == total {
-            in_memory
-        } else {
-            in_order
-        }
+        columns
     }
 
     /// Panics, naming the call and the lengths, unless they agree.

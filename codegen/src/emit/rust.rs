@@ -265,7 +265,6 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
     let packing = quote!(#krate::layout);
     let private = quote!(#krate::__private);
     let lanes_n = Ident::new("N", Span::call_site());
-    let row_group = Literal::usize_unsuffixed(ROW_GROUP);
     let words = Literal::usize_unsuffixed(lowered.words().len());
     let u32_ = quote!(::core::primitive::u32);
     let texels = Ident::new("__gbuffer_texels", Span::call_site());
@@ -274,31 +273,74 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
     let rows = Ident::new("__gbuffer_rows", Span::call_site());
     let word_name = |word: usize| format_ident!("__gbuffer_word{}", word);
     let field_name = |field: usize| format_ident!("__gbuffer_field{}", field);
-    // Each field's first row column, `__GBUFFER_COLUMNS[field]`: where the texel's memory
-    // holds it when its bytes are exactly its components, so that a row is the texel's bytes
-    // and the loops' loads and stores move whole runs of them (the fields' order otherwise).
-    let offsets = layout.fields.iter().map(|field| {
-        let field = Ident::new(&field.name, Span::call_site());
-        quote!(::core::mem::offset_of!(#name, #field))
-    });
-    let components_of = layout
-        .fields
-        .iter()
-        .map(|field| Literal::usize_unsuffixed(field.ty.components));
-    let field_count = Literal::usize_unsuffixed(layout.fields.len());
-    let row_columns = quote! {
-        const __GBUFFER_COLUMNS: [::core::primitive::usize; #field_count] = #private::row_columns(
-            [#(#offsets),*],
-            [#(#components_of),*],
-            ::core::mem::size_of::<#name>(),
-        );
+    // The fields in groups of at most `ROW_GROUP` components, in their order, a field never
+    // split: packing builds each group's rows with its own `from_fn` and turns them into its
+    // own lanes (`__gbuffer_lanes<g>`). The compiler inlines a closure of a dozen components
+    // into the loop's AVX copies, where it reads each texel's fields straight into the
+    // transposes, but leaves a larger one a function of its own, compiled for the baseline
+    // CPU, whose rows it stores and loads again (the eight-format layout's 24 components
+    // packed at two thirds of the speed). Unpacking turns all its lanes into rows at once.
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    let mut filled = ROW_GROUP;
+    for (number, field) in layout.fields.iter().enumerate() {
+        if filled + field.ty.components > ROW_GROUP {
+            groups.push(Vec::new());
+            filled = 0;
+        }
+        filled += field.ty.components;
+        groups.last_mut().expect("a group").push(number);
+    }
+    let group_of = |number: usize| {
+        let group = groups
+            .iter()
+            .position(|members| members.contains(&number))
+            .expect("every field in a group");
+        let place = groups[group].iter().position(|&member| member == number);
+        (group, place.expect("in its group"))
     };
+    // Each field's first row column in its group (`__GBUFFER_COLUMNS<g>[place]`), or in the
+    // whole row (`__GBUFFER_COLUMNS[field]`): the fields in the order the texel's memory holds
+    // them, so that a row's runs of columns are runs of the texel's bytes and the loops' loads
+    // and stores move them whole.
+    let columns_const = |ident: Ident, members: &[usize]| {
+        let offsets = members.iter().map(|&number| {
+            let field = Ident::new(&layout.fields[number].name, Span::call_site());
+            quote!(::core::mem::offset_of!(#name, #field))
+        });
+        let components_of = members
+            .iter()
+            .map(|&number| Literal::usize_unsuffixed(layout.fields[number].ty.components));
+        let count = Literal::usize_unsuffixed(members.len());
+        quote! {
+            const #ident: [::core::primitive::usize; #count] =
+                #private::row_columns([#(#offsets),*], [#(#components_of),*]);
+        }
+    };
+    let every_field: Vec<usize> = (0..layout.fields.len()).collect();
+    let row_columns = columns_const(format_ident!("__GBUFFER_COLUMNS"), &every_field);
+    let group_columns = groups.iter().enumerate().map(|(group, members)| {
+        columns_const(format_ident!("__GBUFFER_COLUMNS{}", group), members)
+    });
+    let group_columns = quote!(#(#group_columns)*);
     let column_of = |number: usize, component: usize| {
         let (number, component) = (
             Literal::usize_unsuffixed(number),
             Literal::usize_unsuffixed(component),
         );
         quote!(__GBUFFER_COLUMNS[#number] + #component)
+    };
+    // Component `component` of field `number` as a packing loop's lanes hold it, in its group.
+    let group_lane = |number: usize, component: usize| {
+        let (group, place) = group_of(number);
+        let (lanes, columns) = (
+            format_ident!("__gbuffer_lanes{}", group),
+            format_ident!("__GBUFFER_COLUMNS{}", group),
+        );
+        let (place, component) = (
+            Literal::usize_unsuffixed(place),
+            Literal::usize_unsuffixed(component),
+        );
+        quote!(#lanes[#columns[#place] + #component])
     };
     let columns =
         Literal::usize_unsuffixed(layout.fields.iter().map(|field| field.ty.components).sum());
@@ -314,12 +356,12 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
             };
             return quote!([#zero; #lanes_n]);
         }
-        let column = column_of(number, component);
+        let lanes = group_lane(number, component);
         if as_bits {
-            return quote!(#lanes[#column]);
+            return lanes;
         }
         let zero = scalar_zero(field.ty.scalar);
-        let value = from_lane_bits(quote!(#lanes[#column][#index]), field.ty.scalar);
+        let value = from_lane_bits(quote!(#lanes[#index]), field.ty.scalar);
         quote!({
             let mut __gbuffer_values = [#zero; #lanes_n];
             for #index in 0..#lanes_n {
@@ -329,72 +371,37 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
         })
     };
 
-    // The rows in groups of at most `ROW_GROUP` columns, each built by its own `from_fn`: the
-    // compiler inlines a closure of a dozen components into the loop's AVX copies, where it
-    // reads each texel's fields straight into the transposes, but leaves a larger one a
-    // function of its own, compiled for the baseline CPU, whose rows it stores and loads
-    // again (the eight-format layout's 24 components packed at two thirds of the speed).
-    // A component goes to the group its column falls in (a constant the compiler folds).
-    let total_columns: usize = layout.fields.iter().map(|field| field.ty.components).sum();
-    let groups = total_columns.div_ceil(ROW_GROUP);
-    let texel_rows = (0..groups).map(|group| {
-        let first = group * ROW_GROUP;
-        let width = Literal::usize_unsuffixed(ROW_GROUP.min(total_columns - first));
-        let (group, first) = (
-            Literal::usize_unsuffixed(group),
-            Literal::usize_unsuffixed(first),
-        );
-        let texel = quote!(#texels[#index]);
-        let (column_of, group, first, row_group) = (&column_of, &group, &first, &row_group);
-        let sets = layout
-            .fields
+    let texel_rows = groups.iter().enumerate().map(|(group, members)| {
+        let width: usize = members
             .iter()
-            .enumerate()
-            .flat_map(|(number, field)| {
-                components(&texel, field)
-                    .into_iter()
-                    .take(field.ty.components)
-                    .enumerate()
-                    .map(move |(component, value)| {
-                        let column = column_of(number, component);
-                        let bits = lane_bits(value, field.ty.scalar);
-                        if groups == 1 {
-                            return quote!(__gbuffer_row[#column] = #bits;);
-                        }
-                        quote! {
-                            if (#column) / #row_group == #group {
-                                __gbuffer_row[#column - #first] = #bits;
-                            }
-                        }
-                    })
-            });
-        let rows = quote! {
-            ::core::array::from_fn(|#index| {
+            .map(|&number| layout.fields[number].ty.components)
+            .sum();
+        let width = Literal::usize_unsuffixed(width);
+        let texel = quote!(#texels[#index]);
+        let columns = format_ident!("__GBUFFER_COLUMNS{}", group);
+        let sets = members.iter().enumerate().flat_map(|(place, &number)| {
+            let field = &layout.fields[number];
+            let place = Literal::usize_unsuffixed(place);
+            let columns = &columns;
+            components(&texel, field)
+                .into_iter()
+                .take(field.ty.components)
+                .enumerate()
+                .map(move |(component, value)| {
+                    let component = Literal::usize_unsuffixed(component);
+                    let bits = lane_bits(value, field.ty.scalar);
+                    quote!(__gbuffer_row[#columns[#place] + #component] = #bits;)
+                })
+        });
+        let group_lanes = format_ident!("__gbuffer_lanes{}", group);
+        quote! {
+            let #group_lanes: [[#u32_; #lanes_n]; #width] = I::lanes(&::core::array::from_fn(|#index| {
                 let mut __gbuffer_row = [0; #width];
                 #(#sets)*
                 __gbuffer_row
-            })
-        };
-        if groups == 1 {
-            // One group: its lanes are all of them, with no copy between.
-            return quote!(let #lanes: [[#u32_; #lanes_n]; #width] = I::lanes(&#rows););
-        }
-        let group_ident = format_ident!("__gbuffer_group{}", group.to_string());
-        quote! {
-            let #group_ident: [[#u32_; #lanes_n]; #width] = I::lanes(&#rows);
-            for (#lanes, #group_ident) in #lanes[#first..].iter_mut().zip(#group_ident) {
-                *#lanes = #group_ident;
-            }
+            }));
         }
     });
-    let texel_rows = if groups == 1 {
-        quote!(#(#texel_rows)*)
-    } else {
-        quote! {
-            let mut #lanes: [[#u32_; #lanes_n]; #columns] = [[0; #lanes_n]; #columns];
-            #(#texel_rows)*
-        }
-    };
     let packed_words = lowered.words().iter().enumerate().map(|(word, contents)| {
         let word_ident = word_name(word);
         let members = contents.members.iter().map(|member| {
@@ -435,12 +442,12 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
     let word_idents: Vec<Ident> = (0..lowered.words().len()).map(word_name).collect();
     let pack_slice = quote! {
         fn pack_slice(#texels: &[Self], __gbuffer_packed: &mut [[#u32_; #words]]) {
-            #row_columns
+            #group_columns
             struct __GbufferPack;
             impl #private::Lanes<#name, [#u32_; #words]> for __GbufferPack {
                 #[inline(always)]
                 fn many<I: #private::Isa, const #lanes_n: ::core::primitive::usize>(#texels: &[#name; #lanes_n], __gbuffer_packed: &mut [[#u32_; #words]; #lanes_n]) {
-                    #texel_rows
+                    #(#texel_rows)*
                     #(#packed_words)*
                     *__gbuffer_packed = I::rows(&[#(#word_idents),*]);
                 }
