@@ -14,10 +14,14 @@
 //!   with `r` the rounded reciprocal is within an ulp of the quotient; the remainder
 //!   `code - q * max` is then exact in one fused multiply-add, and `q + remainder * r`,
 //!   rounded once, is the correctly rounded quotient (Markstein's correction, "IA-64 and
-//!   Elementary Functions", 2000, theorem 8.10 of Muller et al.'s "Handbook of Floating-Point
-//!   Arithmetic"). The mirror computes it in f64 instead, which takes twice the registers.
-//!   Both are tested against the mirror for every code of every width (the tests below) and
-//!   through the derived slices for every f32 (`gbuffer/tests/slices_every_f32.rs`).
+//!   Elementary Functions", 2000; the division chapter of Muller et al.'s "Handbook of
+//!   Floating-Point Arithmetic"). The mirror computes it in f64 instead, which takes twice
+//!   the registers.
+//!
+//! Both are held to the mirror: the decode on every code of every width and the encode on
+//! both sides of every code's boundaries at every width (the tests below), and both on every
+//! f32 and every word through the formats' widths in the derived slices
+//! (`gbuffer/tests/slices_every_f32.rs`).
 //!
 //! A register of sixteen floats is sixteen texels; with 512-bit registers only two of the
 //! CPU's vector ports run (Intel's optimisation manual, "Skylake server microarchitecture"),
