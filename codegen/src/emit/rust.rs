@@ -249,16 +249,17 @@ const ROW_GROUP: usize = 12;
 
 /// `pack_slice` and `unpack_slice`, `N` texels at a time (the loop's copy for the CPU picks
 /// `N`: sixteen with AVX-512, eight elsewhere). Packing, the texels' components become rows of
-/// lane bits (one row per texel, the fields' components in order) and are turned into one
-/// array of `N` lanes per component (`Isa::lanes`); each word's channels (or bit fields) are
-/// converted over the lanes at once (`Isa::encode`, which ORs in `Channel::encode_lanes`'s codes
-/// unless the CPU has an exact form of its own, and `BitField::encode_lanes`, with each channel and
-/// bit field a constant), the same conversions as `pack` lane by lane, which the compiler turns
-/// into vector instructions; the words' lanes are turned back into each texel's words
-/// (`Isa::rows`). Unpacking runs the same steps backwards. The texels left over go through
-/// `pack` and `unpack`. The conversions are static functions of a `Lanes` impl, not closures,
-/// so that they inline into the loop's copies compiled for AVX2 and AVX-512, whose `Isa` they
-/// are passed.
+/// lane bits (one row per texel, the fields in the order the texel's memory holds them, in
+/// groups of whole fields) and are turned into one array of `N` lanes per component
+/// (`Isa::lanes`); each word's channels (or bit fields) are converted over the lanes at once
+/// (`Isa::encode`, which ORs in `Channel::encode_lanes`'s codes unless the CPU has an exact
+/// form of its own, and `BitField::encode_lanes`, with each channel and bit field a constant),
+/// the same conversions as `pack` lane by lane, which the compiler turns into vector
+/// instructions; the words' lanes are turned back into each texel's words (`Isa::rows`).
+/// Unpacking runs the same steps backwards. The texels left over go through `pack` and
+/// `unpack`. The conversions are static functions of a `Lanes` impl, not closures, so that
+/// they inline into the loop's copies compiled for AVX2 and AVX-512, whose `Isa` they are
+/// passed.
 fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, TokenStream) {
     let layout = lowered.layout();
     let name = Ident::new(&layout.name, Span::call_site());
