@@ -244,6 +244,18 @@ pub fn emit_impl(lowered: &LoweredLayout, wgsl: TokenStream, krate: &TokenStream
     }
 }
 
+/// The row column of component `component` of the field at `place` of a row columns constant
+/// (`__GBUFFER_COLUMNS[place] + component`; the first component without the `+ 0`, which
+/// Clippy calls an identity operation in the user's crate).
+fn column_in(columns: &Ident, place: usize, component: usize) -> TokenStream {
+    let place = Literal::usize_unsuffixed(place);
+    if component == 0 {
+        return quote!(#columns[#place]);
+    }
+    let component = Literal::usize_unsuffixed(component);
+    quote!(#columns[#place] + #component)
+}
+
 /// The most columns of a texel's row `pack_slice` builds at once (see `emit_slices`).
 const ROW_GROUP: usize = 12;
 
@@ -324,11 +336,7 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
     });
     let group_columns = quote!(#(#group_columns)*);
     let column_of = |number: usize, component: usize| {
-        let (number, component) = (
-            Literal::usize_unsuffixed(number),
-            Literal::usize_unsuffixed(component),
-        );
-        quote!(__GBUFFER_COLUMNS[#number] + #component)
+        column_in(&format_ident!("__GBUFFER_COLUMNS"), number, component)
     };
     // Component `component` of field `number` as a packing loop's lanes hold it, in its group.
     let group_lane = |number: usize, component: usize| {
@@ -337,11 +345,8 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
             format_ident!("__gbuffer_lanes{}", group),
             format_ident!("__GBUFFER_COLUMNS{}", group),
         );
-        let (place, component) = (
-            Literal::usize_unsuffixed(place),
-            Literal::usize_unsuffixed(component),
-        );
-        quote!(#lanes[#columns[#place] + #component])
+        let column = column_in(&columns, place, component);
+        quote!(#lanes[#column])
     };
     let columns =
         Literal::usize_unsuffixed(layout.fields.iter().map(|field| field.ty.components).sum());
@@ -382,16 +387,15 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
         let columns = format_ident!("__GBUFFER_COLUMNS{}", group);
         let sets = members.iter().enumerate().flat_map(|(place, &number)| {
             let field = &layout.fields[number];
-            let place = Literal::usize_unsuffixed(place);
             let columns = &columns;
             components(&texel, field)
                 .into_iter()
                 .take(field.ty.components)
                 .enumerate()
                 .map(move |(component, value)| {
-                    let component = Literal::usize_unsuffixed(component);
+                    let column = column_in(columns, place, component);
                     let bits = lane_bits(value, field.ty.scalar);
-                    quote!(__gbuffer_row[#columns[#place] + #component] = #bits;)
+                    quote!(__gbuffer_row[#column] = #bits;)
                 })
         });
         let group_lanes = format_ident!("__gbuffer_lanes{}", group);
