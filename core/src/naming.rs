@@ -96,6 +96,15 @@ pub fn check_layout_name(name: &str) -> Result<(), String> {
         ));
     }
     let snake = snake_case(name);
+    // The generated names join the snake name and a suffix with `_`: `__` inside it, or a
+    // trailing `_`, puts `__` in every one, which GLSL reserves (naga's GLSL writer renames
+    // such identifiers, and the includes' functions would not be found).
+    if snake.contains("__") || snake.ends_with('_') {
+        return Err(format!(
+            "gives GLSL names containing `__` (`{snake}_target0`), which GLSL reserves: \
+             rename it without a doubled or trailing `_`"
+        ));
+    }
     if snake == "gl" || snake.starts_with("gl_") {
         return Err(format!(
             "gives GLSL names starting with `gl_` (`{snake}_target0`), which GLSL reserves: \
@@ -516,6 +525,15 @@ mod tests {
         assert!(check_layout_name("MobileMetallic").is_ok());
         assert!(check_layout_name("main").is_ok(), "GLSL renames it");
         assert!(check_layout_name("vec4").unwrap_err().contains("`vec4`"));
+        for doubled in ["Spe__xcularWorkflow", "SpecularWorkflow_", "Mobile_Metallic"] {
+            let error = check_layout_name(doubled);
+            if doubled == "Mobile_Metallic" {
+                // `mobile_metallic`: the `_` before a capital is not doubled.
+                assert!(error.is_ok(), "{doubled}: {error:?}");
+            } else {
+                assert!(error.unwrap_err().contains("`__`"), "{doubled}");
+            }
+        }
         assert!(check_layout_name("clamp").unwrap_err().contains("`clamp`"));
         assert!(check_layout_name("GlState")
             .unwrap_err()
