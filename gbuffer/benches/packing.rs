@@ -5,8 +5,9 @@
 //! the same bytes moved with no conversion at all (the floor memory sets). Criterion prints each
 //! one's throughput in texels (elements) per second; the run ends with a table of the rates and
 //! of pack's and unpack's shares of memcpy's, and one of the first two layouts' pack and unpack
-//! rates as shares of their floor's, measured in the same run; it also writes both to
-//! `target/figures/packing.md` for the guide. Run with `cargo bench -p gbuffer --bench packing`.
+//! rates as shares of their floor's, each conversion timed back to back with its floor in
+//! rounds (`shares_of_floor`); it also writes both to `target/figures/packing.md` for the
+//! guide. Run with `cargo bench -p gbuffer --bench packing`.
 
 // criterion_group! defines a public function it cannot document.
 #![allow(missing_docs)]
@@ -14,7 +15,7 @@
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use std::time::{Duration, SystemTime};
+use std::time::{Duration, Instant, SystemTime};
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
@@ -306,14 +307,75 @@ fn layout_group<L: GBufferLayout + Copy>(
 }
 
 /// [`layout_group`] of the layout's bytes moved with no conversion ([`BytesOnly`]): the rates
-/// memory allows its pack and unpack.
+/// memory allows its pack and unpack; then the conversions' shares of them, timed back to back
+/// ([`shares_of_floor`]).
 fn bytes_only_group<L: BytesOnly + Copy>(
     criterion: &mut Criterion,
     label: &'static str,
-    make: impl Fn(usize) -> L,
+    make: impl Fn(usize) -> L + Copy,
 ) {
     let group = (format!("{} bytes only", group_name::<L>()), label);
     measure(criterion, group, L::move_in, L::move_out, make);
+    let shares = shares_of_floor(make);
+    SHARES
+        .lock()
+        .expect("one thread")
+        .push((group_name::<L>(), shares));
+}
+
+/// The rounds [`shares_of_floor`] times, after [`WARM_UP_ROUNDS`] it does not count; fewer
+/// where `GBUFFER_TIMING=short` asks.
+fn rounds() -> usize {
+    match std::env::var_os("GBUFFER_TIMING") {
+        Some(value) if value == "short" => 5,
+        _ => 31,
+    }
+}
+
+/// Rounds run before [`shares_of_floor`] counts: the caches, the branch predictors and the
+/// CPU's clock settle.
+const WARM_UP_ROUNDS: usize = 3;
+
+/// Each layout's pack and unpack as shares of its floor's rate, by criterion group: the
+/// medians and the quartiles over [`rounds`] rounds.
+static SHARES: Mutex<Vec<(String, Shares)>> = Mutex::new(Vec::new());
+
+/// A conversion's rate as shares of its floor's: pack's and unpack's `[lower quartile,
+/// median, upper quartile]`, each a share (1.0: as fast as the floor).
+type Shares = [[f64; 3]; 2];
+
+/// Pack's and unpack's rates as shares of the floor's ([`BytesOnly`]), timed in rounds: each
+/// round times one pass of `TEXELS` texels through the conversion and one through its floor,
+/// back to back (which goes first alternates), and its share is the floor's time over the
+/// conversion's; the shares are the median and quartiles over the rounds.
+///
+/// Why rounds, not criterion's two means: a machine shared with others (a virtual machine's
+/// neighbours, its memory bus) changes speed from second to second; two rates measured several
+/// seconds apart then differ by that change as much as by the conversion (on CI's kind of
+/// machine the same layout's floor moved by 3x between runs), while two passes a few
+/// milliseconds apart see the same machine. The median ignores the rounds a burst of other
+/// load hit.
+fn shares_of_floor<L: BytesOnly + Copy>(make: impl Fn(usize) -> L) -> Shares {
+    let texels: Vec<L> = (0..TEXELS).map(make).collect();
+    let mut packed = vec![texels[0].pack(); TEXELS];
+    let mut unpacked = texels.clone();
+    let mut shares = [Vec::new(), Vec::new()];
+    for round in 0..WARM_UP_ROUNDS + rounds() {
+        let pack = time(|| L::pack_slice(black_box(&texels), black_box(&mut packed)));
+        let floor = time(|| L::move_in(black_box(&texels), black_box(&mut packed)));
+        // The unpack pair in the other order, so that neither side always goes first.
+        let floor_out = time(|| L::move_out(black_box(&packed), black_box(&mut unpacked)));
+        let unpack = time(|| L::unpack_slice(black_box(&packed), black_box(&mut unpacked)));
+        if round >= WARM_UP_ROUNDS {
+            shares[0].push(floor / pack);
+            shares[1].push(floor_out / unpack);
+        }
+    }
+    shares.map(|mut shares| {
+        shares.sort_by(f64::total_cmp);
+        let at = |fraction: f64| shares[((shares.len() - 1) as f64 * fraction).round() as usize];
+        [at(0.25), at(0.5), at(0.75)]
+    })
 }
 
 /// Pack through `pack`, unpack through `unpack`, and copy `TEXELS` texels of `make(i)`:
@@ -463,35 +525,47 @@ fn rates(criterion_folder: &Path, group: &str, started: SystemTime) -> Option<[f
     rates?.try_into().ok()
 }
 
+/// The seconds `run` takes.
+fn time(run: impl FnOnce()) -> f64 {
+    let start = Instant::now();
+    run();
+    start.elapsed().as_secs_f64()
+}
+
 /// The side-by-side tables, as Markdown, for the layouts this run measured: millions of texels
 /// a second, and pack's and unpack's shares of memcpy's rate; then, for the layouts measured
 /// beside their bytes moved with no conversion ([`bytes_only_group`]), pack's and unpack's
-/// rates as shares of that floor's, both from this run.
+/// rates as shares of that floor's, timed back to back ([`shares_of_floor`]): the medians, and
+/// the quartiles, over the rounds.
 fn tables(criterion_folder: &Path, started: SystemTime) -> String {
     let mut table = String::from(
         "| layout | pack_slice | unpack_slice | memcpy | pack / memcpy | unpack / memcpy |\n\
          |---|---|---|---|---|---|\n",
     );
     let mut floors = String::from(
-        "| layout | pack / floor | unpack / floor |\n\
-         |---|---|---|\n",
+        "| layout | pack / floor | unpack / floor | pack, quartiles | unpack, quartiles |\n\
+         |---|---|---|---|---|\n",
     );
     let rows = ROWS.lock().expect("one thread");
+    let shares = SHARES.lock().expect("one thread");
+    let percent = |share: f64| 100.0 * share;
     for (group, name) in rows.iter() {
-        let Some([pack, unpack, memcpy]) = rates(criterion_folder, group, started) else {
-            continue;
-        };
-        table += &format!(
-            "| {name} | {pack:.0} Mtexel/s | {unpack:.0} Mtexel/s | {memcpy:.0} Mtexel/s | {:.0}% | {:.0}% |\n",
-            100.0 * pack / memcpy,
-            100.0 * unpack / memcpy
-        );
-        let floor = format!("{group} bytes only");
-        if let Some([floor_pack, floor_unpack, _]) = rates(criterion_folder, &floor, started) {
+        if let Some([pack, unpack, memcpy]) = rates(criterion_folder, group, started) {
+            table += &format!(
+                "| {name} | {pack:.0} Mtexel/s | {unpack:.0} Mtexel/s | {memcpy:.0} Mtexel/s | {:.0}% | {:.0}% |\n",
+                100.0 * pack / memcpy,
+                100.0 * unpack / memcpy
+            );
+        }
+        if let Some((_, [pack, unpack])) = shares.iter().find(|(layout, _)| layout == group) {
             floors += &format!(
-                "| {name} | {:.0}% | {:.0}% |\n",
-                100.0 * pack / floor_pack,
-                100.0 * unpack / floor_unpack
+                "| {name} | {:.0}% | {:.0}% | {:.0}-{:.0}% | {:.0}-{:.0}% |\n",
+                percent(pack[1]),
+                percent(unpack[1]),
+                percent(pack[0]),
+                percent(pack[2]),
+                percent(unpack[0]),
+                percent(unpack[2]),
             );
         }
     }
@@ -518,7 +592,10 @@ fn main() {
         .map(PathBuf::from)
         .unwrap_or_else(|| target.join("criterion"));
     let table = tables(&criterion_folder, started);
-    println!("\n{TEXELS} texels, one thread; criterion's means\n\n{table}");
+    println!(
+        "\n{TEXELS} texels, one thread; criterion's means, then shares of the floor over {} rounds\n\n{table}",
+        rounds()
+    );
     let figures = target.join("figures");
     // Written beside and renamed, so that a failed write leaves no half table.
     let partial = figures.join("packing.md.partial");
