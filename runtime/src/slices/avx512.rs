@@ -1,6 +1,8 @@
 //! The loop's copy for AVX-512: sixteen texels at a time, the rows turned into lanes 4x4 at a
 //! time within each 128-bit quarter of a register, and the unorm channels converted in a few
-//! instructions each, exact as the mirror is.
+//! instructions each, exact as the mirror is; so are the encodes of the integer channels
+//! (clamps), the halves (AVX-512's own conversion, clamped) and the small floats (that
+//! conversion rounding to odd, then an integer rounding), each beside its function below.
 //!
 //! Why the unorm conversions differ from the mirror's algorithm (`codecs::unorm`), and why it
 //! is the same result:
@@ -18,9 +20,10 @@
 //!   Floating-Point Arithmetic"). The mirror computes it in f64 instead, which takes twice
 //!   the registers.
 //!
-//! Both are held to the mirror: the decode on every code of every width and the encode on
-//! both sides of every code's boundaries at every width (the tests below), and both on every
-//! f32 and every word through the formats' widths in the derived slices
+//! All are held to the mirror: the unorm decode on every code of every width, the unorm
+//! encode on both sides of every code's boundaries at every width, the half and small-float
+//! encodes on both sides of every half's midpoints, the integer clamps at every width's edges
+//! (the tests below); and the float formats on every f32 and every word in the derived slices
 //! (`gbuffer/tests/slices_every_f32.rs`).
 //!
 //! A register of sixteen floats is sixteen texels; with 512-bit registers only two of the
@@ -29,6 +32,7 @@
 
 use std::arch::x86_64::*;
 
+use gbuffer_core::codecs::{max_code, unsigned_float};
 use gbuffer_core::convert::Scalar;
 use gbuffer_core::format::Channel;
 use gbuffer_core::{Encoding, ScalarKind};
@@ -69,36 +73,37 @@ impl Isa for Avx512 {
 
     #[inline(always)]
     fn encode<S: Scalar, const N: usize>(channel: Channel, values: [S; N], words: &mut [u32; N]) {
-        if channel.encoding != Encoding::Unorm || N != 16 {
-            // Eight lanes at a time: the compiler vectorises the other codecs' encodes over
-            // eight lanes better than over sixteen (three times as fast for half and the small
-            // floats, the bench's one-format rows; their decodes, the other way round, stay
-            // at sixteen).
-            if !N.is_multiple_of(8) {
-                for (word, code) in words.iter_mut().zip(channel.encode_lanes(values)) {
-                    *word |= code;
-                }
-                return;
+        let bits = channel.bits;
+        // Each value as its codec's lane, as `Scalar::encode` takes it: an f32's bits for the
+        // float codecs (for an f32 field, itself), a u32 or an i32's bits for the integer ones.
+        let lanes = |kind: ScalarKind| {
+            let mut lanes = [0u32; 16];
+            for (lane, value) in lanes.iter_mut().zip(values) {
+                *lane = value.to_lane(kind);
             }
-            for eight in (0..N).step_by(8) {
-                let mut part = [S::default(); 8];
-                part.copy_from_slice(&values[eight..eight + 8]);
-                let values = part;
-                for (word, code) in words[eight..].iter_mut().zip(channel.encode_lanes(values)) {
-                    *word |= code;
-                }
+            lanes
+        };
+        let mantissa_bits = bits.wrapping_sub(unsigned_float::EXPONENT_BITS);
+        // SAFETY (each call): see `Avx512`: the CPU has AVX-512F.
+        let codes = match channel.encoding {
+            _ if N != 16 => None,
+            Encoding::Unorm => Some(unsafe { unorm_codes(lanes(ScalarKind::Float), bits) }),
+            Encoding::Uint => Some(unsafe { uint_codes(lanes(ScalarKind::Uint), bits) }),
+            Encoding::Sint => Some(unsafe { sint_codes(lanes(ScalarKind::Sint), bits) }),
+            Encoding::Half => Some(unsafe { half_codes(lanes(ScalarKind::Float)) }),
+            Encoding::UnsignedFloat if mantissa_bits <= 8 => {
+                Some(unsafe { unsigned_float_codes(lanes(ScalarKind::Float), mantissa_bits) })
             }
-            return;
+            _ => None,
+        };
+        match codes {
+            Some(codes) => {
+                let words: &mut [u32; 16] = (&mut words[..]).try_into().expect("N is 16");
+                // SAFETY: as above.
+                unsafe { or_codes(codes, channel.offset, words) };
+            }
+            None => eight_at_a_time(channel, values, words),
         }
-        // A unorm channel holds floats: each value as the codec's f32 lane, as `Scalar::encode`
-        // takes it (for an f32 field, itself).
-        let mut floats = [0f32; 16];
-        for (float, value) in floats.iter_mut().zip(values) {
-            *float = f32::from_bits(value.to_lane(ScalarKind::Float));
-        }
-        let words: &mut [u32; 16] = (&mut words[..16]).try_into().expect("sixteen lanes");
-        // SAFETY: as above.
-        unsafe { or_unorm_codes(floats, channel.bits, channel.offset, words) };
     }
 
     #[inline(always)]
@@ -121,13 +126,37 @@ impl Isa for Avx512 {
     }
 }
 
-/// ORs the `bits`-bit unorm codes of sixteen values, shifted left by `offset`, into `words`.
-/// (The shift and OR are written here, in the registers, rather than left to the caller's
-/// loops, which the compiler vectorises across channels instead of lanes.)
+/// [`Isa::encode`] through the mirror's own code ([`Channel::encode_lanes`]), eight lanes at
+/// a time where `N` allows: the codecs this module has no form of its own for. (The compiler
+/// vectorises their per-lane code over eight lanes better than over sixteen: the small floats
+/// at nine and ten mantissa bits, `snorm`, the shared-exponent and the other wide codecs.)
+#[inline(always)]
+fn eight_at_a_time<S: Scalar, const N: usize>(
+    channel: Channel,
+    values: [S; N],
+    words: &mut [u32; N],
+) {
+    if !N.is_multiple_of(8) {
+        for (word, code) in words.iter_mut().zip(channel.encode_lanes(values)) {
+            *word |= code;
+        }
+        return;
+    }
+    for eight in (0..N).step_by(8) {
+        let mut part = [S::default(); 8];
+        part.copy_from_slice(&values[eight..eight + 8]);
+        for (word, code) in words[eight..].iter_mut().zip(channel.encode_lanes(part)) {
+            *word |= code;
+        }
+    }
+}
+
+/// ORs sixteen codes, shifted left by `offset`, into `words`. (The shift and OR are written
+/// here, in the registers, rather than left to the caller's loops, which the compiler
+/// vectorises across channels instead of lanes.)
 #[target_feature(enable = "avx512f")]
 #[inline]
-fn or_unorm_codes(values: [f32; 16], bits: u32, offset: u32, words: &mut [u32; 16]) {
-    let codes = unorm_codes(values, bits);
+fn or_codes(codes: __m512i, offset: u32, words: &mut [u32; 16]) {
     // SAFETY: `words` is sixteen readable and writable u32; neither access needs alignment.
     unsafe {
         let placed = _mm512_sllv_epi32(codes, _mm512_set1_epi32(offset as i32));
@@ -136,13 +165,105 @@ fn or_unorm_codes(values: [f32; 16], bits: u32, offset: u32, words: &mut [u32; 1
     }
 }
 
+/// Sixteen lanes in a register.
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn load(lanes: [u32; 16]) -> __m512i {
+    // SAFETY: `lanes` is sixteen readable u32; the load needs no alignment.
+    unsafe { _mm512_loadu_si512(lanes.as_ptr().cast()) }
+}
+
+/// The `bits`-bit codes of sixteen u32s: each clamped to the largest, as
+/// `integer::uint_saturate`.
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn uint_codes(lanes: [u32; 16], bits: u32) -> __m512i {
+    _mm512_min_epu32(load(lanes), _mm512_set1_epi32(max_code(bits) as i32))
+}
+
+/// The `bits`-bit two's complement codes of sixteen i32s (as their bits): each clamped to the
+/// range of `bits` bits, as `integer::sint_saturate`.
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn sint_codes(lanes: [u32; 16], bits: u32) -> __m512i {
+    let highest = (max_code(bits) >> 1) as i32;
+    let clamped = _mm512_min_epi32(
+        _mm512_max_epi32(load(lanes), _mm512_set1_epi32(-highest - 1)),
+        _mm512_set1_epi32(highest),
+    );
+    _mm512_and_si512(clamped, _mm512_set1_epi32(max_code(bits) as i32))
+}
+
+/// The binary16 codes of sixteen f32s (as their bits), as `half::half_from_f32`: AVX-512's
+/// conversion, rounding to nearest even with denormals kept (Intel's SDM, `VCVTPS2PH`), of
+/// the value clamped to +-65504 (the codec saturates where the conversion would give
+/// infinity); NaN gives 0.
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn half_codes(lanes: [u32; 16]) -> __m512i {
+    let x = _mm512_castsi512_ps(load(lanes));
+    let ordered = _mm512_cmp_ps_mask::<_CMP_ORD_Q>(x, x);
+    let largest = _mm512_set1_ps(65504.0);
+    let clamped = _mm512_min_ps(
+        _mm512_max_ps(x, _mm512_sub_ps(_mm512_setzero_ps(), largest)),
+        largest,
+    );
+    let halves = _mm512_cvtps_ph::<{ _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC }>(clamped);
+    _mm512_maskz_mov_epi32(ordered, _mm512_cvtepu16_epi32(halves))
+}
+
+/// The unsigned small float codes (a 5-bit exponent over `mantissa_bits`, 1 to 8) of sixteen
+/// f32s (as their bits), as `unsigned_float::unsigned_float_from_f32`: rounded to nearest
+/// even in two steps that cannot round twice. First to a half (10 mantissa bits) towards zero,
+/// its last bit set where that dropped anything ("round to odd"); then, in integer arithmetic,
+/// the half's bits to `mantissa_bits`, to nearest even. A half has at least two bits more than
+/// the code, which makes the two roundings one (Boldo and Melquiond, "Emulation of FMA and
+/// correctly rounded sums: proved algorithms using rounding to odd", IEEE Transactions on
+/// Computers, 2008); the half's denormals are the code's, on a grid four or more times finer.
+/// Negatives and NaN give 0 and values past the largest code saturate, by the clamp first.
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn unsigned_float_codes(lanes: [u32; 16], mantissa_bits: u32) -> __m512i {
+    // The largest code's value: exponent 30 (2^15), every mantissa bit set.
+    let largest =
+        f32::from_bits((142 << 23) | (((1 << mantissa_bits) - 1) << (23 - mantissa_bits)));
+    let x = _mm512_castsi512_ps(load(lanes));
+    // `max` returns its second operand where either is NaN, and +0 for -0 (see `unorm_codes`).
+    let x = _mm512_min_ps(
+        _mm512_max_ps(x, _mm512_setzero_ps()),
+        _mm512_set1_ps(largest),
+    );
+    let halves = _mm512_cvtps_ph::<{ _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC }>(x);
+    let inexact = _mm512_cmp_ps_mask::<_CMP_NEQ_UQ>(_mm512_cvtph_ps(halves), x);
+    let one = _mm512_set1_epi32(1);
+    let half = _mm512_mask_or_epi32(
+        _mm512_cvtepu16_epi32(halves),
+        inexact,
+        _mm512_cvtepu16_epi32(halves),
+        one,
+    );
+    let shift = 10 - mantissa_bits;
+    let odd = _mm512_and_si512(
+        _mm512_srlv_epi32(half, _mm512_set1_epi32(shift as i32)),
+        one,
+    );
+    let rounding = _mm512_set1_epi32((1 << (shift - 1)) - 1);
+    let sum = _mm512_add_epi32(_mm512_add_epi32(half, rounding), odd);
+    _mm512_srlv_epi32(sum, _mm512_set1_epi32(shift as i32))
+}
+
 /// The `bits`-bit unorm codes of sixteen values, as [`unorm_codes`] gives them.
 #[cfg(test)]
 #[target_feature(enable = "avx512f")]
 fn unorm_from_f32(values: [f32; 16], bits: u32) -> [u32; 16] {
     let mut out = [0u32; 16];
     // SAFETY: `out` is sixteen writable u32; the store needs no alignment.
-    unsafe { _mm512_storeu_si512(out.as_mut_ptr().cast(), unorm_codes(values, bits)) };
+    unsafe {
+        _mm512_storeu_si512(
+            out.as_mut_ptr().cast(),
+            unorm_codes(values.map(f32::to_bits), bits),
+        )
+    };
     out
 }
 
@@ -151,10 +272,9 @@ fn unorm_from_f32(values: [f32; 16], bits: u32) -> [u32; 16] {
 /// exact). `bits` from 1 to 23, as the codec allows.
 #[target_feature(enable = "avx512f")]
 #[inline]
-fn unorm_codes(values: [f32; 16], bits: u32) -> __m512i {
-    let max = ((1u32 << bits) - 1) as f32;
-    // SAFETY: `values` is sixteen readable f32; the load needs no alignment.
-    let x = unsafe { _mm512_loadu_ps(values.as_ptr()) };
+fn unorm_codes(lanes: [u32; 16], bits: u32) -> __m512i {
+    let max = max_code(bits) as f32;
+    let x = _mm512_castsi512_ps(load(lanes));
     // `max` returns its second operand where either is NaN, and +0 for -0: NaN and negatives
     // become +0. Then above 1 (infinity too) becomes 1.
     let x = _mm512_min_ps(_mm512_max_ps(x, _mm512_setzero_ps()), _mm512_set1_ps(1.0));
@@ -431,6 +551,125 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    /// The codes of `lanes` as `codes` gives them, stored.
+    fn stored(codes: __m512i) -> [u32; 16] {
+        let mut out = [0u32; 16];
+        // SAFETY: `out` is sixteen writable u32; the store needs no alignment.
+        unsafe { _mm512_storeu_si512(out.as_mut_ptr().cast(), codes) };
+        out
+    }
+
+    /// Floats where the half and small-float roundings turn: the specials, both sides of
+    /// every power of two a half can hold and of the midpoints between a half's neighbours
+    /// around them, and a spread of every magnitude. `slices_every_f32` runs every f32.
+    fn float_cases() -> Vec<f32> {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            f32::NAN,
+            -f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::MIN_POSITIVE,
+            f32::from_bits(1),
+            65504.0,
+            65519.0,
+            65520.0,
+            65024.0,
+            64512.0,
+            1e9,
+            -1e9,
+        ];
+        for half in 0..0x7c00u32 {
+            let value = gbuffer_core::codecs::half::f32_from_half(half);
+            let next = gbuffer_core::codecs::half::f32_from_half(half + 1);
+            let middle = ((f64::from(value) + f64::from(next)) / 2.0) as f32;
+            for x in [value, middle, middle.next_down(), middle.next_up()] {
+                values.extend([x, -x]);
+            }
+        }
+        values.extend((0..200_000u32).map(|i| f32::from_bits(i.wrapping_mul(21_475))));
+        values
+    }
+
+    /// Runs `fast` on `values` sixteen at a time and holds each code to `mirror`'s.
+    fn check(
+        values: &[u32],
+        fast: impl Fn([u32; 16]) -> __m512i,
+        mirror: impl Fn(u32) -> u32,
+        what: &str,
+    ) {
+        for chunk in values.chunks(16) {
+            let mut lanes = [0u32; 16];
+            lanes[..chunk.len()].copy_from_slice(chunk);
+            for (lane, code) in lanes.into_iter().zip(stored(fast(lanes))) {
+                assert_eq!(code, mirror(lane), "{what}: lane {lane:#x}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_half_encode_is_the_mirrors() {
+        if !runs_here("the_half_encode_is_the_mirrors") {
+            return;
+        }
+        let values: Vec<u32> = float_cases().into_iter().map(f32::to_bits).collect();
+        // SAFETY: `runs_here` checked the CPU.
+        let fast = |lanes| unsafe { half_codes(lanes) };
+        let mirror = |lane| gbuffer_core::codecs::half::half_from_f32(f32::from_bits(lane));
+        check(&values, fast, mirror, "half");
+    }
+
+    #[test]
+    fn the_small_float_encode_is_the_mirrors() {
+        if !runs_here("the_small_float_encode_is_the_mirrors") {
+            return;
+        }
+        let values: Vec<u32> = float_cases().into_iter().map(f32::to_bits).collect();
+        for mantissa_bits in 1..=8 {
+            // SAFETY: `runs_here` checked the CPU.
+            let fast = |lanes| unsafe { unsigned_float_codes(lanes, mantissa_bits) };
+            let mirror =
+                |lane| unsigned_float::unsigned_float_from_f32(f32::from_bits(lane), mantissa_bits);
+            check(
+                &values,
+                fast,
+                mirror,
+                &format!("{mantissa_bits} mantissa bits"),
+            );
+        }
+    }
+
+    #[test]
+    fn the_integer_encodes_are_the_mirrors() {
+        if !runs_here("the_integer_encodes_are_the_mirrors") {
+            return;
+        }
+        use gbuffer_core::codecs::integer::{sint_saturate, uint_saturate};
+        let mut values = vec![0u32, 1, u32::MAX, i32::MAX as u32, i32::MIN as u32];
+        for bits in 1..=32u32 {
+            let max = max_code(bits);
+            for edge in [max, max >> 1, !(max >> 1)] {
+                values.extend([edge.wrapping_sub(1), edge, edge.wrapping_add(1)]);
+            }
+        }
+        values.extend((0..10_000u32).map(|i| i.wrapping_mul(429_497)));
+        for bits in 1..=32 {
+            // SAFETY: `runs_here` checked the CPU.
+            let fast = |lanes| unsafe { uint_codes(lanes, bits) };
+            check(
+                &values,
+                fast,
+                |lane| uint_saturate(lane, bits),
+                &format!("uint {bits}"),
+            );
+            // SAFETY: as above.
+            let fast = |lanes| unsafe { sint_codes(lanes, bits) };
+            let mirror = |lane| sint_saturate(lane as i32, bits);
+            check(&values, fast, mirror, &format!("sint {bits}"));
         }
     }
 

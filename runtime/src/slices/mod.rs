@@ -10,7 +10,8 @@
 //! texels at a time); AVX2's shuffles (eight), which move eight lanes in a handful of
 //! instructions where the compiler, left alone, inserts and extracts them one at a time; or
 //! AVX-512 (sixteen), whose rounding control makes the unorm conversions a few instructions
-//! each ([`avx512`]).
+//! each, and whose own instructions encode the integer, half and small-float channels
+//! ([`avx512`]).
 
 #[cfg(target_arch = "x86_64")]
 mod avx512;
