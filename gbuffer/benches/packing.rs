@@ -13,11 +13,13 @@
 #![allow(missing_docs)]
 
 use std::hint::black_box;
+use std::marker::PhantomData;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::{Duration, Instant, SystemTime};
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
+use gbuffer::__private::{convert_lanes, Isa, Lanes};
 use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
 use gbuffer::seed_layouts::{ArmTileBlock, FutureMetallic, MobileMetallic, SpecularWorkflow};
 use gbuffer::GBufferLayout;
@@ -113,7 +115,10 @@ impl Sample for IVec4 {
 /// qualifies when its fields fill it, with no padding) and folded into its words, word `j` the
 /// exclusive or of the texel's `u32`s `j`, `j + W`, ... (pack), or written back from them, each
 /// run of `W` `u32`s a copy of the words (unpack): every byte read and written once, in order,
-/// in loops the compiler turns into vector loads, exclusive ors and stores. What is left is
+/// in loops the compiler turns into vector loads, exclusive ors and stores. They run through
+/// the conversions' own loop (`__private::convert_lanes`: the same chunks of texels, the same
+/// copy for the CPU, the same prefetches), so that what differs is the conversion alone; a
+/// plain loop, without the prefetches, moved the bytes up to a quarter slower. What is left is
 /// what memory costs.
 trait BytesOnly: GBufferLayout + Sized {
     fn move_in(texels: &[Self], packed: &mut [Self::Packed]);
@@ -140,22 +145,71 @@ fn spread_words<const T: usize, const W: usize>(packed: &[[u32; W]], texels: &mu
     }
 }
 
+/// [`fold_words`] as the conversions' loop runs a pack ([`Lanes`]).
+struct Fold<L>(PhantomData<L>);
+
+/// [`spread_words`] as the conversions' loop runs an unpack.
+struct Spread<L>(PhantomData<L>);
+
 /// [`BytesOnly`] for a layout of f32, u32 and i32 components: its size in `u32`s, and its
 /// words.
 macro_rules! bytes_only {
     ($layout:ident) => {
         impl BytesOnly for $layout {
             fn move_in(texels: &[$layout], packed: &mut [Self::Packed]) {
-                // SAFETY: a texel is exactly its fields' u32s (the assertion: no padding, so
-                // every byte is initialised), aligned for u32 (its fields are).
+                assert_no_padding::<$layout, { size_of::<$layout>() / 4 }>();
+                convert_lanes::<Fold<$layout>, _, _>(texels, packed);
+            }
+            fn move_out(packed: &[Self::Packed], texels: &mut [$layout]) {
+                assert_no_padding::<$layout, { size_of::<$layout>() / 4 }>();
+                convert_lanes::<Spread<$layout>, _, _>(packed, texels);
+            }
+        }
+
+        impl Lanes<$layout, <$layout as GBufferLayout>::Packed> for Fold<$layout> {
+            #[inline(always)]
+            fn many<I: Isa, const N: usize>(
+                texels: &[$layout; N],
+                packed: &mut [<$layout as GBufferLayout>::Packed; N],
+            ) {
+                // SAFETY: a texel is exactly its fields' u32s (`move_in`'s assertion: no
+                // padding, so every byte is initialised), aligned for u32 (its fields are).
                 let texels = unsafe { as_u32s::<$layout, { size_of::<$layout>() / 4 }>(texels) };
                 fold_words(texels, packed);
             }
-            fn move_out(packed: &[Self::Packed], texels: &mut [$layout]) {
-                // SAFETY: as above; any bits are a valid f32, u32 or i32 component.
+            #[inline(always)]
+            fn one(texel: &$layout) -> <$layout as GBufferLayout>::Packed {
+                let mut packed = [Default::default()];
+                // SAFETY: as in `many`.
+                let texel = unsafe {
+                    as_u32s::<$layout, { size_of::<$layout>() / 4 }>(std::slice::from_ref(texel))
+                };
+                fold_words(texel, &mut packed);
+                packed[0]
+            }
+        }
+
+        impl Lanes<<$layout as GBufferLayout>::Packed, $layout> for Spread<$layout> {
+            #[inline(always)]
+            fn many<I: Isa, const N: usize>(
+                packed: &[<$layout as GBufferLayout>::Packed; N],
+                texels: &mut [$layout; N],
+            ) {
+                // SAFETY: as in `Fold`; and any bits are a valid f32, u32 or i32 component.
                 let texels =
                     unsafe { as_u32s_mut::<$layout, { size_of::<$layout>() / 4 }>(texels) };
                 spread_words(packed, texels);
+            }
+            #[inline(always)]
+            fn one(packed: &<$layout as GBufferLayout>::Packed) -> $layout {
+                // SAFETY: the texel's fields are f32, u32 and i32 components, for which zero
+                // bits are a value.
+                let mut texel: [$layout; 1] = unsafe { std::mem::zeroed() };
+                // SAFETY: as in `many`.
+                let words =
+                    unsafe { as_u32s_mut::<$layout, { size_of::<$layout>() / 4 }>(&mut texel) };
+                spread_words(std::slice::from_ref(packed), words);
+                texel[0]
             }
         }
     };
@@ -165,9 +219,9 @@ macro_rules! bytes_only {
 ///
 /// # Safety
 ///
-/// `L` must be `T` u32-aligned scalars with no padding.
-unsafe fn as_u32s<L: GBufferLayout, const T: usize>(texels: &[L]) -> &[[u32; T]] {
-    assert_no_padding::<L, T>();
+/// `L` must be `T` u32-aligned scalars with no padding ([`assert_no_padding`]).
+#[inline(always)]
+unsafe fn as_u32s<L, const T: usize>(texels: &[L]) -> &[[u32; T]] {
     // SAFETY: the caller's promise, and the same bytes.
     unsafe { std::slice::from_raw_parts(texels.as_ptr().cast(), texels.len()) }
 }
@@ -177,8 +231,8 @@ unsafe fn as_u32s<L: GBufferLayout, const T: usize>(texels: &[L]) -> &[[u32; T]]
 /// # Safety
 ///
 /// As [`as_u32s`]; and any bits of the u32s must be valid texels.
-unsafe fn as_u32s_mut<L: GBufferLayout, const T: usize>(texels: &mut [L]) -> &mut [[u32; T]] {
-    assert_no_padding::<L, T>();
+#[inline(always)]
+unsafe fn as_u32s_mut<L, const T: usize>(texels: &mut [L]) -> &mut [[u32; T]] {
     // SAFETY: the caller's promise, and the same bytes.
     unsafe { std::slice::from_raw_parts_mut(texels.as_mut_ptr().cast(), texels.len()) }
 }
