@@ -104,16 +104,29 @@ impl Isa for Avx512 {
 
     #[inline(always)]
     fn decode<S: Scalar, const N: usize>(channel: Channel, words: [u32; N]) -> [S; N] {
-        if channel.encoding != Encoding::Unorm || N != 16 {
+        let bits = channel.bits;
+        let codes = || {
+            let mut codes = [0u32; 16];
+            for (code, word) in codes.iter_mut().zip(words) {
+                *code = (word >> channel.offset) & channel.mask();
+            }
+            codes
+        };
+        // SAFETY (each call): see `Avx512`: the CPU has AVX-512F.
+        let floats = match channel.encoding {
+            _ if N != 16 => None,
+            Encoding::Unorm => Some(unsafe { f32_from_unorm(codes(), bits) }),
+            Encoding::Half => Some(unsafe { f32_from_half(codes()) }),
+            // A code shifted up to ten mantissa bits is a half's bit pattern (the codec's
+            // module says so): the same conversion.
+            Encoding::UnsignedFloat => {
+                Some(unsafe { f32_from_half(codes().map(|code| code << (15 - bits))) })
+            }
+            _ => None,
+        };
+        let Some(floats) = floats else {
             return channel.decode_lanes(words);
-        }
-        let mask = channel.mask();
-        let mut codes = [0u32; 16];
-        for (code, word) in codes.iter_mut().zip(words) {
-            *code = (word >> channel.offset) & mask;
-        }
-        // SAFETY: as above.
-        let floats = unsafe { f32_from_unorm(codes, channel.bits) };
+        };
         let mut values = [S::default(); N];
         for (value, float) in values.iter_mut().zip(floats) {
             *value = S::from_lane(float.to_bits(), ScalarKind::Float);
@@ -264,6 +277,31 @@ fn f32_from_unorm(codes: [u32; 16], bits: u32) -> [f32; 16] {
     let mut out = [0f32; 16];
     // SAFETY: `out` is sixteen writable f32; the store needs no alignment.
     unsafe { _mm512_storeu_ps(out.as_mut_ptr(), quotient) };
+    out
+}
+
+/// The values of sixteen binary16 codes (in their low 16 bits), exactly, as
+/// `half::f32_from_half`: AVX-512's conversion (Intel's SDM, `VCVTPH2PS`), which widens
+/// exactly, denormals included; but for exponent 31, whose bits are placed directly, because
+/// the conversion sets a signalling NaN's quiet bit and the mirror keeps the payload as it is.
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn f32_from_half(codes: [u32; 16]) -> [f32; 16] {
+    let codes = load(codes);
+    let converted = _mm512_cvtph_ps(_mm512_cvtepi32_epi16(codes));
+    let exponent = _mm512_set1_epi32(0x7c00);
+    let special = _mm512_cmpeq_epi32_mask(_mm512_and_si512(codes, exponent), exponent);
+    // Sign to bit 31, exponent 255, the ten mantissa bits at the top of the f32's 23.
+    let sign = _mm512_slli_epi32::<16>(_mm512_and_si512(codes, _mm512_set1_epi32(0x8000)));
+    let mantissa = _mm512_slli_epi32::<13>(_mm512_and_si512(codes, _mm512_set1_epi32(0x3ff)));
+    let placed = _mm512_or_si512(
+        _mm512_or_si512(sign, mantissa),
+        _mm512_set1_epi32(0x7f80_0000),
+    );
+    let values = _mm512_mask_blend_ps(special, converted, _mm512_castsi512_ps(placed));
+    let mut out = [0f32; 16];
+    // SAFETY: `out` is sixteen writable f32; the store needs no alignment.
+    unsafe { _mm512_storeu_ps(out.as_mut_ptr(), values) };
     out
 }
 
@@ -609,6 +647,40 @@ mod tests {
             let fast = |lanes| unsafe { sint_codes(lanes, bits) };
             let mirror = |lane| sint_saturate(lane as i32, bits);
             check(&values, fast, mirror, &format!("sint {bits}"));
+        }
+    }
+
+    /// Every half and every small-float code of every width, against the mirror's decodes,
+    /// bit for bit (NaNs' payloads included).
+    #[test]
+    fn the_half_and_small_float_decodes_are_the_mirrors_for_every_code() {
+        if !runs_here("the_half_and_small_float_decodes_are_the_mirrors_for_every_code") {
+            return;
+        }
+        use gbuffer_core::codecs::{half, small_float};
+        let decode = |codes: &[u32], shift: u32, mirror: &dyn Fn(u32) -> f32, what: &str| {
+            for chunk in codes.chunks(16) {
+                let mut lanes = [0u32; 16];
+                lanes[..chunk.len()].copy_from_slice(chunk);
+                // SAFETY: `runs_here` checked the CPU.
+                let values = unsafe { f32_from_half(lanes.map(|code| code << shift)) };
+                for (code, value) in lanes.into_iter().zip(values) {
+                    let expected = mirror(code).to_bits();
+                    assert_eq!(value.to_bits(), expected, "{what}: code {code:#x}");
+                }
+            }
+        };
+        let codes: Vec<u32> = (0..1 << 16).collect();
+        decode(&codes, 0, &half::f32_from_half, "half");
+        for bits in 6..=15 {
+            let codes: Vec<u32> = (0..1 << bits).collect();
+            let mirror = |code| small_float::f32_from_small_float(code, bits - 5);
+            decode(
+                &codes,
+                15 - bits,
+                &mirror,
+                &format!("{bits}-bit small float"),
+            );
         }
     }
 
