@@ -49,7 +49,10 @@ where
 fn slices_pack_and_unpack_as_texels_do() {
     // The copy is forced for this test's thread alone.
     for simd in [Simd::Best, Simd::Avx2, Simd::Portable] {
-        force_simd(simd);
+        if !force_simd(simd) {
+            eprintln!("{simd:?}: this CPU lacks it; its copy is not tested here");
+            continue;
+        }
         check::<MobileMetallic>(simd);
         check::<FutureMetallic>(simd);
         check::<gbuffer_testkit::AllFormats>(simd);

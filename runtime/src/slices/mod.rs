@@ -97,7 +97,7 @@ pub enum Simd {
     Best,
     /// Plain loops.
     Portable,
-    /// AVX2, where the CPU has it (plain loops where not).
+    /// AVX2 (plain loops on a CPU without it, where [`force_simd`] says so).
     Avx2,
 }
 
@@ -108,9 +108,19 @@ thread_local! {
 }
 
 /// Makes [`convert_lanes`] run `simd`'s copy from now on, in the calling thread. For tests
-/// that hold each copy to the mirror.
-pub fn force_simd(simd: Simd) {
+/// that hold each copy to the mirror. Returns whether this CPU has that copy: where it does
+/// not (AVX2 on a CPU without it), the loop runs plain loops, and a test of that copy would
+/// test those instead: it should say so and skip it.
+#[must_use = "a copy the CPU lacks runs plain loops: a test of it should skip"]
+pub fn force_simd(simd: Simd) -> bool {
     FORCED.set(simd);
+    match simd {
+        Simd::Best | Simd::Portable => true,
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2 => std::is_x86_feature_detected!("avx2"),
+        #[cfg(not(target_arch = "x86_64"))]
+        Simd::Avx2 => false,
+    }
 }
 
 /// A conversion of texels `N` at a time, and of one: the two must agree on every texel.
