@@ -224,21 +224,6 @@ fn half_codes(lanes: [u32; 16]) -> __m512i {
     _mm512_maskz_mov_epi32(ordered, _mm512_cvtepu16_epi32(halves))
 }
 
-/// The `bits`-bit unorm codes of sixteen values, as [`unorm_codes`] gives them.
-#[cfg(test)]
-#[target_feature(enable = "avx512f")]
-fn unorm_from_f32(values: [f32; 16], bits: u32) -> [u32; 16] {
-    let mut out = [0u32; 16];
-    // SAFETY: `out` is sixteen writable u32; the store needs no alignment.
-    unsafe {
-        _mm512_storeu_si512(
-            out.as_mut_ptr().cast(),
-            unorm_codes(values.map(f32::to_bits), bits),
-        )
-    };
-    out
-}
-
 /// The `bits`-bit unorm codes of sixteen values: `floor(clamp(x, 0, 1) * max + 0.5)`, NaN
 /// giving 0, through one multiply-add rounded down (the module's comment says why it is
 /// exact). `bits` from 1 to 23, as the codec allows.
@@ -538,7 +523,7 @@ mod tests {
                 let mut lanes = [0.5f32; 16];
                 lanes[..chunk.len()].copy_from_slice(chunk);
                 // SAFETY: `runs_here` checked the CPU.
-                let codes = unsafe { unorm_from_f32(lanes, bits) };
+                let codes = stored(unsafe { unorm_codes(lanes.map(f32::to_bits), bits) });
                 for (value, code) in lanes.into_iter().zip(codes) {
                     assert_eq!(
                         code,
