@@ -613,7 +613,7 @@ fn tables(criterion_folder: &Path, started: SystemTime) -> String {
         }
         if let Some((_, [pack, unpack])) = shares.iter().find(|(layout, _)| layout == group) {
             floors += &format!(
-                "| {name} | {:.0}% | {:.0}% | {:.0}-{:.0}% | {:.0}-{:.0}% |\n",
+                "| {name} | {:.0}% | {:.0}% | {:.0}% to {:.0}% | {:.0}% to {:.0}% |\n",
                 percent(pack[1]),
                 percent(unpack[1]),
                 percent(pack[0]),
