@@ -2,13 +2,13 @@
 //! texels, against copying the packed bytes (what an upload or a readback costs at the least),
 //! for Listing 2.2 (`MobileMetallic`), a 256-bit layout of eight formats, the other seed
 //! layouts, and per format a layout of four words of that format alone; and, for the first two,
-//! the same bytes moved with no conversion at all (the floor memory sets). Criterion prints each
-//! one's throughput in texels (elements) per second; the run ends with a table of the rates and
-//! of pack's and unpack's shares of memcpy's, and one of the first two layouts' pack and unpack
-//! rates as shares of their floor's, each conversion timed back to back with its floor in
-//! rounds (`shares_of_floor`); it also writes both to `target/figures/packing.md` for the
-//! guide. Run with `cargo bench -p gbuffer --bench packing`.
-
+//! the same bytes moved with no conversion at all (the floor memory sets, `BytesOnly`).
+//! Criterion prints each one's throughput in texels (elements) per second; the run ends with a
+//! table of the rates and of pack's and unpack's shares of memcpy's, and one of the first two
+//! layouts' pack and unpack rates as shares of their floor's, each conversion timed back to
+//! back with the floor's two loops in rounds (`shares_of_floor`); it also writes both to
+//! `target/figures/packing.md` for the guide. Run with `cargo bench -p gbuffer --bench
+//! packing`.
 // criterion_group! defines a public function it cannot document.
 #![allow(missing_docs)]
 
@@ -115,14 +115,26 @@ impl Sample for IVec4 {
 /// qualifies when its fields fill it, with no padding) and folded into its words, word `j` the
 /// exclusive or of the texel's `u32`s `j`, `j + W`, ... (pack), or written back from them, each
 /// run of `W` `u32`s a copy of the words (unpack): every byte read and written once, in order,
-/// in loops the compiler turns into vector loads, exclusive ors and stores. They run through
-/// the conversions' own loop (`__private::convert_lanes`: the same chunks of texels, the same
-/// copy for the CPU, the same prefetches), so that what differs is the conversion alone; a
-/// plain loop, without the prefetches, moved the bytes up to a quarter slower. What is left is
-/// what memory costs.
+/// in loops the compiler turns into vector loads, exclusive ors and stores.
+///
+/// Two loops move them ([`Mover`]), because neither is the faster on every CPU: the
+/// conversions' own loop, with its software prefetches, and a plain loop that leaves the
+/// fetching to the hardware's prefetcher. [`shares_of_floor`] times both each round and takes
+/// the faster as the floor.
 trait BytesOnly: GBufferLayout + Sized {
-    fn move_in(texels: &[Self], packed: &mut [Self::Packed]);
-    fn move_out(packed: &[Self::Packed], texels: &mut [Self]);
+    fn move_in(mover: Mover, texels: &[Self], packed: &mut [Self::Packed]);
+    fn move_out(mover: Mover, packed: &[Self::Packed], texels: &mut [Self]);
+}
+
+/// A loop that moves a layout's bytes with no conversion ([`BytesOnly`]).
+#[derive(Clone, Copy, Debug)]
+enum Mover {
+    /// Through the conversions' loop (`__private::convert_lanes`: the same chunks of texels,
+    /// the same copy for the CPU, the same prefetches), so that what differs from a
+    /// conversion is the conversion alone.
+    ConversionsLoop,
+    /// One pass over the slices, with no software prefetch.
+    Plain,
 }
 
 fn fold_words<const T: usize, const W: usize>(texels: &[[u32; T]], packed: &mut [[u32; W]]) {
@@ -156,13 +168,52 @@ struct Spread<L>(PhantomData<L>);
 macro_rules! bytes_only {
     ($layout:ident) => {
         impl BytesOnly for $layout {
-            fn move_in(texels: &[$layout], packed: &mut [Self::Packed]) {
+            fn move_in(mover: Mover, texels: &[$layout], packed: &mut [Self::Packed]) {
                 assert_no_padding::<$layout, { size_of::<$layout>() / 4 }>();
-                convert_lanes::<Fold<$layout>, _, _>(texels, packed);
+                match mover {
+                    Mover::ConversionsLoop => convert_lanes::<Fold<$layout>, _, _>(texels, packed),
+                    // SAFETY: no padding, just asserted.
+                    Mover::Plain => fold_words(unsafe { Fold::<$layout>::u32s(texels) }, packed),
+                }
             }
-            fn move_out(packed: &[Self::Packed], texels: &mut [$layout]) {
+
+            fn move_out(mover: Mover, packed: &[Self::Packed], texels: &mut [$layout]) {
                 assert_no_padding::<$layout, { size_of::<$layout>() / 4 }>();
-                convert_lanes::<Spread<$layout>, _, _>(packed, texels);
+                match mover {
+                    Mover::ConversionsLoop => {
+                        convert_lanes::<Spread<$layout>, _, _>(packed, texels)
+                    }
+                    // SAFETY: no padding, just asserted.
+                    Mover::Plain => {
+                        spread_words(packed, unsafe { Fold::<$layout>::u32s_mut(texels) })
+                    }
+                }
+            }
+        }
+
+        impl Fold<$layout> {
+            /// `texels` as arrays of their `u32`s.
+            ///
+            /// # Safety
+            ///
+            /// The layout must have no padding ([`assert_no_padding`]; `move_in` and
+            /// `move_out` assert it before they call anything that calls this).
+            #[inline(always)]
+            unsafe fn u32s(texels: &[$layout]) -> &[[u32; size_of::<$layout>() / 4]] {
+                // SAFETY: a texel is exactly its fields' u32s (the caller's promise: no
+                // padding, so every byte is initialised), aligned for u32 (its fields are).
+                unsafe { std::slice::from_raw_parts(texels.as_ptr().cast(), texels.len()) }
+            }
+
+            /// [`Self::u32s`], to write.
+            ///
+            /// # Safety
+            ///
+            /// As [`Self::u32s`].
+            #[inline(always)]
+            unsafe fn u32s_mut(texels: &mut [$layout]) -> &mut [[u32; size_of::<$layout>() / 4]] {
+                // SAFETY: as in `u32s`; and any bits are a valid f32, u32 or i32 component.
+                unsafe { std::slice::from_raw_parts_mut(texels.as_mut_ptr().cast(), texels.len()) }
             }
         }
 
@@ -172,19 +223,18 @@ macro_rules! bytes_only {
                 texels: &[$layout; N],
                 packed: &mut [<$layout as GBufferLayout>::Packed; N],
             ) {
-                // SAFETY: a texel is exactly its fields' u32s (`move_in`'s assertion: no
-                // padding, so every byte is initialised), aligned for u32 (its fields are).
-                let texels = unsafe { as_u32s::<$layout, { size_of::<$layout>() / 4 }>(texels) };
-                fold_words(texels, packed);
+                // SAFETY: the callers of `convert_lanes` asserted no padding (`move_in`).
+                fold_words(unsafe { Self::u32s(texels) }, packed);
             }
+
             #[inline(always)]
             fn one(texel: &$layout) -> <$layout as GBufferLayout>::Packed {
                 let mut packed = [Default::default()];
                 // SAFETY: as in `many`.
-                let texel = unsafe {
-                    as_u32s::<$layout, { size_of::<$layout>() / 4 }>(std::slice::from_ref(texel))
-                };
-                fold_words(texel, &mut packed);
+                fold_words(
+                    unsafe { Self::u32s(std::slice::from_ref(texel)) },
+                    &mut packed,
+                );
                 packed[0]
             }
         }
@@ -195,46 +245,22 @@ macro_rules! bytes_only {
                 packed: &[<$layout as GBufferLayout>::Packed; N],
                 texels: &mut [$layout; N],
             ) {
-                // SAFETY: as in `Fold`; and any bits are a valid f32, u32 or i32 component.
-                let texels =
-                    unsafe { as_u32s_mut::<$layout, { size_of::<$layout>() / 4 }>(texels) };
-                spread_words(packed, texels);
+                // SAFETY: the callers of `convert_lanes` asserted no padding (`move_out`).
+                spread_words(packed, unsafe { Fold::<$layout>::u32s_mut(texels) });
             }
+
             #[inline(always)]
             fn one(packed: &<$layout as GBufferLayout>::Packed) -> $layout {
                 // SAFETY: the texel's fields are f32, u32 and i32 components, for which zero
                 // bits are a value.
                 let mut texel: [$layout; 1] = unsafe { std::mem::zeroed() };
                 // SAFETY: as in `many`.
-                let words =
-                    unsafe { as_u32s_mut::<$layout, { size_of::<$layout>() / 4 }>(&mut texel) };
+                let words = unsafe { Fold::<$layout>::u32s_mut(&mut texel) };
                 spread_words(std::slice::from_ref(packed), words);
                 texel[0]
             }
         }
     };
-}
-
-/// `texels` as arrays of `T` u32s.
-///
-/// # Safety
-///
-/// `L` must be `T` u32-aligned scalars with no padding ([`assert_no_padding`]).
-#[inline(always)]
-unsafe fn as_u32s<L, const T: usize>(texels: &[L]) -> &[[u32; T]] {
-    // SAFETY: the caller's promise, and the same bytes.
-    unsafe { std::slice::from_raw_parts(texels.as_ptr().cast(), texels.len()) }
-}
-
-/// [`as_u32s`], to write.
-///
-/// # Safety
-///
-/// As [`as_u32s`]; and any bits of the u32s must be valid texels.
-#[inline(always)]
-unsafe fn as_u32s_mut<L, const T: usize>(texels: &mut [L]) -> &mut [[u32; T]] {
-    // SAFETY: the caller's promise, and the same bytes.
-    unsafe { std::slice::from_raw_parts_mut(texels.as_mut_ptr().cast(), texels.len()) }
 }
 
 /// `L` is `T` u32s, a multiple of its words: its fields' components number `T` and fill its
@@ -346,35 +372,72 @@ fn group_name<L: GBufferLayout>() -> String {
     format!("{} ({} words)", L::layout().name, L::WORDS)
 }
 
-/// The table's rows, in the order the layouts were measured: each layout's criterion group and
-/// its name in the table.
-static ROWS: Mutex<Vec<(String, &'static str)>> = Mutex::new(Vec::new());
+/// A row of the tables: a layout's criterion group, its name in the tables and, for a layout
+/// measured beside its floor ([`floor_groups`]), its conversions' shares of the floor.
+struct Row {
+    group: String,
+    label: &'static str,
+    shares: Option<Shares>,
+}
 
-/// Pack, unpack and copy `TEXELS` texels of `make(i)`, the row `label` of the table.
+/// The tables' rows, in the order the layouts were measured.
+static ROWS: Mutex<Vec<Row>> = Mutex::new(Vec::new());
+
+/// Adds `row` to [`ROWS`].
+fn push_row(group: String, label: &'static str, shares: Option<Shares>) {
+    let row = Row {
+        group,
+        label,
+        shares,
+    };
+    ROWS.lock().expect("one thread").push(row);
+}
+
+/// Pack, unpack and copy `TEXELS` texels of `make(i)`, the row `label` of the tables.
 fn layout_group<L: GBufferLayout + Copy>(
     criterion: &mut Criterion,
     label: &'static str,
     make: impl Fn(usize) -> L,
 ) {
-    let group = (group_name::<L>(), label);
-    measure(criterion, group, L::pack_slice, L::unpack_slice, make);
+    measure(
+        criterion,
+        group_name::<L>(),
+        L::pack_slice,
+        L::unpack_slice,
+        make,
+    );
+    push_row(group_name::<L>(), label, None);
 }
 
-/// [`layout_group`] of the layout's bytes moved with no conversion ([`BytesOnly`]): the rates
-/// memory allows its pack and unpack; then the conversions' shares of them, timed back to back
-/// ([`shares_of_floor`]).
-fn bytes_only_group<L: BytesOnly + Copy>(
+/// [`layout_group`], the row `labels[0]`, and the same of the layout's bytes moved with no
+/// conversion through the conversions' loop ([`BytesOnly`]), the row `labels[1]`; then, where
+/// criterion's filter let the layout's group run, the conversions' shares of the floor, timed
+/// back to back ([`shares_of_floor`]).
+fn floor_groups<L: BytesOnly + Copy>(
     criterion: &mut Criterion,
-    label: &'static str,
+    labels: [&'static str; 2],
     make: impl Fn(usize) -> L + Copy,
 ) {
-    let group = (format!("{} bytes only", group_name::<L>()), label);
-    measure(criterion, group, L::move_in, L::move_out, make);
-    let shares = shares_of_floor(make);
-    SHARES
-        .lock()
-        .expect("one thread")
-        .push((group_name::<L>(), shares));
+    let ran = measure(
+        criterion,
+        group_name::<L>(),
+        L::pack_slice,
+        L::unpack_slice,
+        make,
+    );
+    let bytes_only = format!("{} bytes only", group_name::<L>());
+    let move_in =
+        |texels: &[L], packed: &mut [L::Packed]| L::move_in(Mover::ConversionsLoop, texels, packed);
+    let move_out = |packed: &[L::Packed], texels: &mut [L]| {
+        L::move_out(Mover::ConversionsLoop, packed, texels)
+    };
+    measure(criterion, bytes_only.clone(), move_in, move_out, make);
+    push_row(
+        group_name::<L>(),
+        labels[0],
+        ran.then(|| shares_of_floor(make)),
+    );
+    push_row(bytes_only, labels[1], None);
 }
 
 /// The rounds [`shares_of_floor`] times, after [`WARM_UP_ROUNDS`] it does not count; fewer
@@ -390,25 +453,21 @@ fn rounds() -> usize {
 /// CPU's clock settle.
 const WARM_UP_ROUNDS: usize = 3;
 
-/// Each layout's pack and unpack as shares of its floor's rate, by criterion group: the
-/// medians and the quartiles over [`rounds`] rounds.
-static SHARES: Mutex<Vec<(String, Shares)>> = Mutex::new(Vec::new());
-
 /// A conversion's rate as shares of its floor's: pack's and unpack's `[lower quartile,
 /// median, upper quartile]`, each a share (1.0: as fast as the floor).
 type Shares = [[f64; 3]; 2];
 
 /// Pack's and unpack's rates as shares of the floor's ([`BytesOnly`]), timed in rounds: each
-/// round times one pass of `TEXELS` texels through the conversion and one through its floor,
-/// back to back (which goes first alternates), and its share is the floor's time over the
-/// conversion's; the shares are the median and quartiles over the rounds.
+/// round times one pass of `TEXELS` texels through the conversion and one through each of the
+/// floor's loops ([`Mover`]), back to back (which goes first alternates), and its share is the
+/// faster loop's time over the conversion's; the shares are the median and quartiles over the
+/// rounds.
 ///
 /// Why rounds, not criterion's two means: a machine shared with others (a virtual machine's
 /// neighbours, its memory bus) changes speed from second to second; two rates measured several
 /// seconds apart then differ by that change as much as by the conversion (on CI's kind of
-/// machine the same layout's floor moved by 3x between runs), while two passes a few
-/// milliseconds apart see the same machine. The median ignores the rounds a burst of other
-/// load hit.
+/// machine the same layout's floor moved by 3x between runs), while passes a few milliseconds
+/// apart see the same machine. The median ignores the rounds a burst of other load hit.
 fn shares_of_floor<L: BytesOnly + Copy>(make: impl Fn(usize) -> L) -> Shares {
     let texels: Vec<L> = (0..TEXELS).map(make).collect();
     let mut packed = vec![texels[0].pack(); TEXELS];
@@ -416,13 +475,15 @@ fn shares_of_floor<L: BytesOnly + Copy>(make: impl Fn(usize) -> L) -> Shares {
     let mut shares = [Vec::new(), Vec::new()];
     for round in 0..WARM_UP_ROUNDS + rounds() {
         let pack = time(|| L::pack_slice(black_box(&texels), black_box(&mut packed)));
-        let floor = time(|| L::move_in(black_box(&texels), black_box(&mut packed)));
-        // The unpack pair in the other order, so that neither side always goes first.
-        let floor_out = time(|| L::move_out(black_box(&packed), black_box(&mut unpacked)));
+        let floor = [Mover::ConversionsLoop, Mover::Plain]
+            .map(|mover| time(|| L::move_in(mover, black_box(&texels), black_box(&mut packed))));
+        // The unpack in the other order, so that neither side always goes first.
+        let floor_out = [Mover::Plain, Mover::ConversionsLoop]
+            .map(|mover| time(|| L::move_out(mover, black_box(&packed), black_box(&mut unpacked))));
         let unpack = time(|| L::unpack_slice(black_box(&packed), black_box(&mut unpacked)));
         if round >= WARM_UP_ROUNDS {
-            shares[0].push(floor / pack);
-            shares[1].push(floor_out / unpack);
+            shares[0].push(floor[0].min(floor[1]) / pack);
+            shares[1].push(floor_out[0].min(floor_out[1]) / unpack);
         }
     }
     shares.map(|mut shares| {
@@ -433,23 +494,22 @@ fn shares_of_floor<L: BytesOnly + Copy>(make: impl Fn(usize) -> L) -> Shares {
 }
 
 /// Pack through `pack`, unpack through `unpack`, and copy `TEXELS` texels of `make(i)`:
-/// criterion's group `group`, the row `label` of the table.
+/// criterion's group `group`. Returns whether criterion ran them (its filter may skip them).
 fn measure<L: GBufferLayout + Copy>(
     criterion: &mut Criterion,
-    (group, label): (String, &'static str),
-    pack: fn(&[L], &mut [L::Packed]),
-    unpack: fn(&[L::Packed], &mut [L]),
+    group: String,
+    pack: impl Fn(&[L], &mut [L::Packed]),
+    unpack: impl Fn(&[L::Packed], &mut [L]),
     make: impl Fn(usize) -> L,
-) {
-    ROWS.lock()
-        .expect("one thread")
-        .push((group.clone(), label));
+) -> bool {
     let texels: Vec<L> = (0..TEXELS).map(make).collect();
     let mut packed = vec![texels[0].pack(); TEXELS];
     let mut unpacked = texels.clone();
+    let mut ran = false;
     let mut group = criterion.benchmark_group(group);
     group.throughput(Throughput::Elements(TEXELS as u64));
     group.bench_function(BenchmarkId::from_parameter(FUNCTIONS[0]), |bench| {
+        ran = true;
         bench.iter(|| pack(black_box(&texels), black_box(&mut packed)))
     });
     group.bench_function(BenchmarkId::from_parameter(FUNCTIONS[1]), |bench| {
@@ -460,6 +520,7 @@ fn measure<L: GBufferLayout + Copy>(
         bench.iter(|| black_box(&mut packed).copy_from_slice(black_box(&source)))
     });
     group.finish();
+    ran
 }
 
 fn mobile_metallic(i: usize) -> MobileMetallic {
@@ -485,16 +546,20 @@ fn eight_formats(i: usize) -> EightFormats {
 }
 
 fn slices(criterion: &mut Criterion) {
-    layout_group(criterion, "MobileMetallic (Listing 2.2)", mobile_metallic);
-    bytes_only_group(
+    floor_groups(
         criterion,
-        "Listing 2.2's bytes, no conversion",
+        [
+            "MobileMetallic (Listing 2.2)",
+            "Listing 2.2's bytes, no conversion",
+        ],
         mobile_metallic,
     );
-    layout_group(criterion, "eight formats, 256 bits", eight_formats);
-    bytes_only_group(
+    floor_groups(
         criterion,
-        "eight formats' bytes, no conversion",
+        [
+            "eight formats, 256 bits",
+            "eight formats' bytes, no conversion",
+        ],
         eight_formats,
     );
     layout_group(criterion, "SpecularWorkflow", |i| SpecularWorkflow {
@@ -588,7 +653,7 @@ fn time(run: impl FnOnce()) -> f64 {
 
 /// The side-by-side tables, as Markdown, for the layouts this run measured: millions of texels
 /// a second, and pack's and unpack's shares of memcpy's rate; then, for the layouts measured
-/// beside their bytes moved with no conversion ([`bytes_only_group`]), pack's and unpack's
+/// beside their bytes moved with no conversion ([`floor_groups`]), pack's and unpack's
 /// rates as shares of that floor's, timed back to back ([`shares_of_floor`]): the medians, and
 /// the quartiles, over the rounds.
 fn tables(criterion_folder: &Path, started: SystemTime) -> String {
@@ -600,10 +665,13 @@ fn tables(criterion_folder: &Path, started: SystemTime) -> String {
         "| layout | pack / floor | unpack / floor | pack, quartiles | unpack, quartiles |\n\
          |---|---|---|---|---|\n",
     );
-    let rows = ROWS.lock().expect("one thread");
-    let shares = SHARES.lock().expect("one thread");
     let percent = |share: f64| 100.0 * share;
-    for (group, name) in rows.iter() {
+    for Row {
+        group,
+        label: name,
+        shares,
+    } in ROWS.lock().expect("one thread").iter()
+    {
         if let Some([pack, unpack, memcpy]) = rates(criterion_folder, group, started) {
             table += &format!(
                 "| {name} | {pack:.0} Mtexel/s | {unpack:.0} Mtexel/s | {memcpy:.0} Mtexel/s | {:.0}% | {:.0}% |\n",
@@ -611,7 +679,7 @@ fn tables(criterion_folder: &Path, started: SystemTime) -> String {
                 100.0 * unpack / memcpy
             );
         }
-        if let Some((_, [pack, unpack])) = shares.iter().find(|(layout, _)| layout == group) {
+        if let Some([pack, unpack]) = shares {
             floors += &format!(
                 "| {name} | {:.0}% | {:.0}% | {:.0}% to {:.0}% | {:.0}% to {:.0}% |\n",
                 percent(pack[1]),
