@@ -73,66 +73,66 @@ impl Isa for Avx512 {
 
     #[inline(always)]
     fn encode<S: Scalar, const N: usize>(channel: Channel, values: [S; N], words: &mut [u32; N]) {
-        let bits = channel.bits;
-        // Each value as its codec's lane, as `Scalar::encode` takes it: an f32's bits for the
-        // float codecs (for an f32 field, itself), a u32 or an i32's bits for the integer ones.
-        let lanes = |kind: ScalarKind| {
-            let mut lanes = [0u32; 16];
-            for (lane, value) in lanes.iter_mut().zip(values) {
-                *lane = value.to_lane(kind);
-            }
-            lanes
-        };
-        // SAFETY (each call): see `Avx512`: the CPU has AVX-512F.
-        let codes = match channel.encoding {
-            _ if N != 16 => None,
-            Encoding::Unorm => Some(unsafe { unorm_codes(lanes(ScalarKind::Float), bits) }),
-            Encoding::Uint => Some(unsafe { uint_codes(lanes(ScalarKind::Uint), bits) }),
-            Encoding::Sint => Some(unsafe { sint_codes(lanes(ScalarKind::Sint), bits) }),
-            Encoding::Half => Some(unsafe { half_codes(lanes(ScalarKind::Float)) }),
-            _ => None,
-        };
-        match codes {
-            Some(codes) => {
-                let words: &mut [u32; 16] = (&mut words[..]).try_into().expect("N is 16");
+        if let Ok(words) = <&mut [u32; 16]>::try_from(&mut words[..]) {
+            let bits = channel.bits;
+            // Each value as its codec's lane, as `Scalar::encode` takes it: an f32's bits for
+            // the float codecs (for an f32 field, itself), a u32 or an i32's bits for the
+            // integer ones.
+            let lanes = |kind: ScalarKind| sixteen(values, |value| value.to_lane(kind));
+            // SAFETY (each call): see `Avx512`: the CPU has AVX-512F.
+            let codes = match channel.encoding {
+                Encoding::Unorm => Some(unsafe { unorm_codes(lanes(ScalarKind::Float), bits) }),
+                Encoding::Uint => Some(unsafe { uint_codes(lanes(ScalarKind::Uint), bits) }),
+                Encoding::Sint => Some(unsafe { sint_codes(lanes(ScalarKind::Sint), bits) }),
+                Encoding::Half => Some(unsafe { half_codes(lanes(ScalarKind::Float)) }),
+                _ => None,
+            };
+            if let Some(codes) = codes {
                 // SAFETY: as above.
                 unsafe { or_codes(codes, channel.offset, words) };
+                return;
             }
-            None => eight_at_a_time(channel, values, words),
         }
+        eight_at_a_time(channel, values, words);
     }
 
     #[inline(always)]
     fn decode<S: Scalar, const N: usize>(channel: Channel, words: [u32; N]) -> [S; N] {
-        let bits = channel.bits;
-        let codes = || {
-            let mut codes = [0u32; 16];
-            for (code, word) in codes.iter_mut().zip(words) {
-                *code = (word >> channel.offset) & channel.mask();
+        if N == 16 {
+            let bits = channel.bits;
+            let codes = || sixteen(words, |word| (word >> channel.offset) & channel.mask());
+            // SAFETY (each call): see `Avx512`: the CPU has AVX-512F.
+            let floats = match channel.encoding {
+                Encoding::Unorm => Some(unsafe { f32_from_unorm(codes(), bits) }),
+                Encoding::Half => Some(unsafe { f32_from_half(codes()) }),
+                // A code shifted up to ten mantissa bits is a half's bit pattern (the codec's
+                // module says so): the same conversion.
+                Encoding::UnsignedFloat => {
+                    Some(unsafe { f32_from_half(codes().map(|code| code << (15 - bits))) })
+                }
+                _ => None,
+            };
+            if let Some(floats) = floats {
+                let mut values = [S::default(); N];
+                for (value, float) in values.iter_mut().zip(floats) {
+                    *value = S::from_lane(float.to_bits(), ScalarKind::Float);
+                }
+                return values;
             }
-            codes
-        };
-        // SAFETY (each call): see `Avx512`: the CPU has AVX-512F.
-        let floats = match channel.encoding {
-            _ if N != 16 => None,
-            Encoding::Unorm => Some(unsafe { f32_from_unorm(codes(), bits) }),
-            Encoding::Half => Some(unsafe { f32_from_half(codes()) }),
-            // A code shifted up to ten mantissa bits is a half's bit pattern (the codec's
-            // module says so): the same conversion.
-            Encoding::UnsignedFloat => {
-                Some(unsafe { f32_from_half(codes().map(|code| code << (15 - bits))) })
-            }
-            _ => None,
-        };
-        let Some(floats) = floats else {
-            return channel.decode_lanes(words);
-        };
-        let mut values = [S::default(); N];
-        for (value, float) in values.iter_mut().zip(floats) {
-            *value = S::from_lane(float.to_bits(), ScalarKind::Float);
         }
-        values
+        channel.decode_lanes(words)
     }
+}
+
+/// The first sixteen of `values`, each through `lane`: a register's lanes. (The callers call
+/// it where `N` is 16.)
+#[inline(always)]
+fn sixteen<T: Copy, const N: usize>(values: [T; N], lane: impl Fn(T) -> u32) -> [u32; 16] {
+    let mut lanes = [0u32; 16];
+    for (lane_value, value) in lanes.iter_mut().zip(values) {
+        *lane_value = lane(value);
+    }
+    lanes
 }
 
 /// [`Isa::encode`] through the mirror's own code ([`Channel::encode_lanes`]), eight lanes at
@@ -215,10 +215,9 @@ fn sint_codes(lanes: [u32; 16], bits: u32) -> __m512i {
 fn half_codes(lanes: [u32; 16]) -> __m512i {
     let x = _mm512_castsi512_ps(load(lanes));
     let ordered = _mm512_cmp_ps_mask::<_CMP_ORD_Q>(x, x);
-    let largest = _mm512_set1_ps(65504.0);
     let clamped = _mm512_min_ps(
-        _mm512_max_ps(x, _mm512_sub_ps(_mm512_setzero_ps(), largest)),
-        largest,
+        _mm512_max_ps(x, _mm512_set1_ps(-65504.0)),
+        _mm512_set1_ps(65504.0),
     );
     let halves = _mm512_cvtps_ph::<{ _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC }>(clamped);
     _mm512_maskz_mov_epi32(ordered, _mm512_cvtepu16_epi32(halves))
