@@ -377,18 +377,18 @@ fn group_name<L: GBufferLayout>() -> String {
 struct Row {
     group: String,
     label: &'static str,
-    shares: Option<Shares>,
+    floor: Option<Floor>,
 }
 
 /// The tables' rows, in the order the layouts were measured.
 static ROWS: Mutex<Vec<Row>> = Mutex::new(Vec::new());
 
 /// Adds `row` to [`ROWS`].
-fn push_row(group: String, label: &'static str, shares: Option<Shares>) {
+fn push_row(group: String, label: &'static str, floor: Option<Floor>) {
     let row = Row {
         group,
         label,
-        shares,
+        floor,
     };
     ROWS.lock().expect("one thread").push(row);
 }
@@ -457,40 +457,64 @@ const WARM_UP_ROUNDS: usize = 3;
 /// median, upper quartile]`, each a share (1.0: as fast as the floor).
 type Shares = [[f64; 3]; 2];
 
+/// What [`shares_of_floor`] measured of a layout.
+struct Floor {
+    shares: Shares,
+    /// The floor's loops' median times, nanoseconds a texel: pack's and unpack's, each
+    /// `[conversions' loop, plain loop]` ([`Mover`]).
+    nanoseconds: [[f64; 2]; 2],
+}
+
 /// Pack's and unpack's rates as shares of the floor's ([`BytesOnly`]), timed in rounds: each
 /// round times one pass of `TEXELS` texels through the conversion and one through each of the
-/// floor's loops ([`Mover`]), back to back (which goes first alternates), and its share is the
-/// faster loop's time over the conversion's; the shares are the median and quartiles over the
-/// rounds.
+/// floor's loops ([`Mover`]), back to back (the unpack's in the pack's order reversed, so that
+/// neither side always goes first), and its share is the faster loop's time over the
+/// conversion's; the shares are the median and quartiles over the rounds.
 ///
 /// Why rounds, not criterion's two means: a machine shared with others (a virtual machine's
 /// neighbours, its memory bus) changes speed from second to second; two rates measured several
 /// seconds apart then differ by that change as much as by the conversion (on CI's kind of
 /// machine the same layout's floor moved by 3x between runs), while passes a few milliseconds
 /// apart see the same machine. The median ignores the rounds a burst of other load hit.
-fn shares_of_floor<L: BytesOnly + Copy>(make: impl Fn(usize) -> L) -> Shares {
+fn shares_of_floor<L: BytesOnly + Copy>(make: impl Fn(usize) -> L) -> Floor {
     let texels: Vec<L> = (0..TEXELS).map(make).collect();
     let mut packed = vec![texels[0].pack(); TEXELS];
     let mut unpacked = texels.clone();
     let mut shares = [Vec::new(), Vec::new()];
+    let mut floors: [[Vec<f64>; 2]; 2] = Default::default();
+    const MOVERS: [Mover; 2] = [Mover::ConversionsLoop, Mover::Plain];
     for round in 0..WARM_UP_ROUNDS + rounds() {
         let pack = time(|| L::pack_slice(black_box(&texels), black_box(&mut packed)));
-        let floor = [Mover::ConversionsLoop, Mover::Plain]
+        let floor = MOVERS
             .map(|mover| time(|| L::move_in(mover, black_box(&texels), black_box(&mut packed))));
         // The unpack in the other order, so that neither side always goes first.
-        let floor_out = [Mover::Plain, Mover::ConversionsLoop]
-            .map(|mover| time(|| L::move_out(mover, black_box(&packed), black_box(&mut unpacked))));
+        let mut floor_out = [0.0; 2];
+        for (at, mover) in MOVERS.into_iter().enumerate().rev() {
+            floor_out[at] =
+                time(|| L::move_out(mover, black_box(&packed), black_box(&mut unpacked)));
+        }
         let unpack = time(|| L::unpack_slice(black_box(&packed), black_box(&mut unpacked)));
         if round >= WARM_UP_ROUNDS {
             shares[0].push(floor[0].min(floor[1]) / pack);
             shares[1].push(floor_out[0].min(floor_out[1]) / unpack);
+            for (times, measured) in floors.iter_mut().zip([floor, floor_out]) {
+                for (times, seconds) in times.iter_mut().zip(measured) {
+                    times.push(seconds * 1e9 / TEXELS as f64);
+                }
+            }
         }
     }
-    shares.map(|mut shares| {
-        shares.sort_by(f64::total_cmp);
-        let at = |fraction: f64| shares[((shares.len() - 1) as f64 * fraction).round() as usize];
-        [at(0.25), at(0.5), at(0.75)]
-    })
+    Floor {
+        shares: shares.map(quartiles),
+        nanoseconds: floors.map(|direction| direction.map(|times| quartiles(times)[1])),
+    }
+}
+
+/// The lower quartile, the median and the upper quartile of `values`.
+fn quartiles(mut values: Vec<f64>) -> [f64; 3] {
+    values.sort_by(f64::total_cmp);
+    let at = |fraction: f64| values[((values.len() - 1) as f64 * fraction).round() as usize];
+    [at(0.25), at(0.5), at(0.75)]
 }
 
 /// Pack through `pack`, unpack through `unpack`, and copy `TEXELS` texels of `make(i)`:
@@ -669,7 +693,7 @@ fn tables(criterion_folder: &Path, started: SystemTime) -> String {
     for Row {
         group,
         label: name,
-        shares,
+        floor,
     } in ROWS.lock().expect("one thread").iter()
     {
         if let Some([pack, unpack, memcpy]) = rates(criterion_folder, group, started) {
@@ -679,7 +703,11 @@ fn tables(criterion_folder: &Path, started: SystemTime) -> String {
                 100.0 * unpack / memcpy
             );
         }
-        if let Some([pack, unpack]) = shares {
+        if let Some(Floor {
+            shares: [pack, unpack],
+            ..
+        }) = floor
+        {
             floors += &format!(
                 "| {name} | {:.0}% | {:.0}% | {:.0}% to {:.0}% | {:.0}% to {:.0}% |\n",
                 percent(pack[1]),
@@ -692,6 +720,27 @@ fn tables(criterion_folder: &Path, started: SystemTime) -> String {
         }
     }
     format!("{table}\n{floors}")
+}
+
+/// The floor's two loops' median times for the layouts measured beside their floor, a line
+/// each: which loop the shares' floor was, mostly, on this CPU.
+fn floor_times() -> String {
+    let mut lines = String::new();
+    for row in ROWS.lock().expect("one thread").iter() {
+        if let Some(Floor {
+            nanoseconds: [[pack_loop, pack_plain], [unpack_loop, unpack_plain]],
+            ..
+        }) = row.floor
+        {
+            lines += &format!(
+                "{}: the floor in ns a texel, the conversions' loop and the plain loop: \
+                 pack {pack_loop:.2} and {pack_plain:.2}, unpack {unpack_loop:.2} and \
+                 {unpack_plain:.2}\n",
+                row.label
+            );
+        }
+    }
+    lines
 }
 
 /// The target folder: `CARGO_TARGET_DIR`, or three folders above the bench (target/release/deps).
@@ -718,6 +767,7 @@ fn main() {
         "\n{TEXELS} texels, one thread; criterion's means, then shares of the floor over {} rounds\n\n{table}",
         rounds()
     );
+    println!("{}", floor_times());
     let figures = target.join("figures");
     // Written beside and renamed, so that a failed write leaves no half table.
     let partial = figures.join("packing.md.partial");
