@@ -460,9 +460,9 @@ type Shares = [[f64; 3]; 2];
 /// What [`shares_of_floor`] measured of a layout.
 struct Floor {
     shares: Shares,
-    /// The floor's loops' median times, nanoseconds a texel: pack's and unpack's, each
-    /// `[conversions' loop, plain loop]` ([`Mover`]).
-    nanoseconds: [[f64; 2]; 2],
+    /// The median times, nanoseconds a texel: pack's and unpack's, each `[the conversion, the
+    /// floor through the conversions' loop, the floor through the plain loop]` ([`Mover`]).
+    nanoseconds: [[f64; 3]; 2],
 }
 
 /// Pack's and unpack's rates as shares of the floor's ([`BytesOnly`]), timed in rounds: each
@@ -481,7 +481,7 @@ fn shares_of_floor<L: BytesOnly + Copy>(make: impl Fn(usize) -> L) -> Floor {
     let mut packed = vec![texels[0].pack(); TEXELS];
     let mut unpacked = texels.clone();
     let mut shares = [Vec::new(), Vec::new()];
-    let mut floors: [[Vec<f64>; 2]; 2] = Default::default();
+    let mut times: [[Vec<f64>; 3]; 2] = Default::default();
     const MOVERS: [Mover; 2] = [Mover::ConversionsLoop, Mover::Plain];
     for round in 0..WARM_UP_ROUNDS + rounds() {
         let pack = time(|| L::pack_slice(black_box(&texels), black_box(&mut packed)));
@@ -497,7 +497,11 @@ fn shares_of_floor<L: BytesOnly + Copy>(make: impl Fn(usize) -> L) -> Floor {
         if round >= WARM_UP_ROUNDS {
             shares[0].push(floor[0].min(floor[1]) / pack);
             shares[1].push(floor_out[0].min(floor_out[1]) / unpack);
-            for (times, measured) in floors.iter_mut().zip([floor, floor_out]) {
+            let measured = [
+                [pack, floor[0], floor[1]],
+                [unpack, floor_out[0], floor_out[1]],
+            ];
+            for (times, measured) in times.iter_mut().zip(measured) {
                 for (times, seconds) in times.iter_mut().zip(measured) {
                     times.push(seconds * 1e9 / TEXELS as f64);
                 }
@@ -506,7 +510,7 @@ fn shares_of_floor<L: BytesOnly + Copy>(make: impl Fn(usize) -> L) -> Floor {
     }
     Floor {
         shares: shares.map(quartiles),
-        nanoseconds: floors.map(|direction| direction.map(|times| quartiles(times)[1])),
+        nanoseconds: times.map(|direction| direction.map(|times| quartiles(times)[1])),
     }
 }
 
@@ -722,22 +726,25 @@ fn tables(criterion_folder: &Path, started: SystemTime) -> String {
     format!("{table}\n{floors}")
 }
 
-/// The floor's two loops' median times for the layouts measured beside their floor, a line
-/// each: which loop the shares' floor was, mostly, on this CPU.
+/// The median times behind the shares, for the layouts measured beside their floor, a line
+/// each: the conversion's, and the floor's through each loop (which of them was the floor, on
+/// this CPU).
 fn floor_times() -> String {
     let mut lines = String::new();
     for row in ROWS.lock().expect("one thread").iter() {
-        if let Some(Floor {
-            nanoseconds: [[pack_loop, pack_plain], [unpack_loop, unpack_plain]],
-            ..
-        }) = row.floor
-        {
+        if let Some(Floor { nanoseconds, .. }) = row.floor {
             lines += &format!(
-                "{}: the floor in ns a texel, the conversions' loop and the plain loop: \
-                 pack {pack_loop:.2} and {pack_plain:.2}, unpack {unpack_loop:.2} and \
-                 {unpack_plain:.2}\n",
+                "{}, ns a texel (the conversion; the floor through the conversions' loop, \
+                 through the plain loop):",
                 row.label
             );
+            for (direction, [conversion, conversions_loop, plain]) in
+                ["pack", "unpack"].into_iter().zip(nanoseconds)
+            {
+                lines +=
+                    &format!(" {direction} {conversion:.2}; {conversions_loop:.2}, {plain:.2}.");
+            }
+            lines += "\n";
         }
     }
     lines
