@@ -222,8 +222,9 @@ fn lanes<L: Lanes<A, B>, I: Isa, A, B, const N: usize>(input: &[A], output: &mut
 /// of Zen 4 (the packing bench's printed medians of 31 rounds, ns a texel, three runs with and
 /// three without, alternating): Listing 2.2 packed in 3.4-3.6 and 2.3-2.6, unpacked in 2.6-3.1
 /// and 2.3-2.5; the eight-format layout packed in 8.2-8.4 and 5.5-5.6, unpacked in 4.9-5.2 and
-/// 4.4-4.9. Its hardware prefetcher keeps up with the streams by itself, and the software's
-/// requests only crowd it. So the loop asks ahead on Intel's CPUs alone ([`Ahead::of`]);
+/// 4.4-4.9. Its hardware prefetcher seems to keep up with the streams by itself, the software's
+/// requests only crowding it (that virtual machine had no counters to tell). So the loop asks
+/// ahead on Intel's CPUs alone ([`Ahead::of`]);
 /// elsewhere it relies on the hardware's prefetcher (aarch64's prefetch intrinsic is not stable
 /// Rust).
 #[cfg(target_arch = "x86_64")]
@@ -286,7 +287,7 @@ fn intel() -> bool {
     static INTEL: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     *INTEL.get_or_init(|| {
         // SAFETY: `cpuid` runs on every x86-64 CPU, and leaf 0 on every one. (A safe function
-        // from Rust 1.94 on; the block keeps the crate building on its `rust-version`.)
+        // in newer Rust than the crate's `rust-version`, where it is not: hence the allow.)
         #[allow(unused_unsafe)]
         let leaf = unsafe { std::arch::x86_64::__cpuid(0) };
         let vendor: Vec<u8> = [leaf.ebx, leaf.edx, leaf.ecx]
@@ -353,5 +354,25 @@ impl<T: GBufferLayout> Lanes<T::Packed, T> for Unpack<T> {
     #[inline(always)]
     fn one(input: &T::Packed) -> T {
         T::unpack(input)
+    }
+}
+
+#[cfg(all(test, target_arch = "x86_64", target_os = "linux"))]
+mod tests {
+    /// [`super::intel`] against the vendor the kernel read (`/proc/cpuinfo`'s `vendor_id`).
+    #[test]
+    fn the_vendor_is_the_kernels() {
+        let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").expect("Linux's /proc/cpuinfo");
+        let vendor = cpuinfo
+            .lines()
+            .find_map(|line| line.strip_prefix("vendor_id"))
+            .and_then(|rest| rest.split(':').nth(1))
+            .expect("a vendor_id line")
+            .trim();
+        assert_eq!(
+            super::intel(),
+            vendor == "GenuineIntel",
+            "vendor_id {vendor}"
+        );
     }
 }
