@@ -199,34 +199,32 @@ fn lanes<L: Lanes<A, B>, I: Isa, A, B, const N: usize>(input: &[A], output: &mut
 
 /// The two slices of a conversion, as addresses to prefetch from.
 ///
-/// Why: the conversions are a stream, each byte read once and each word written once, and the
-/// hardware's own prefetcher, which follows a stream, falls behind while a chunk's arithmetic
-/// runs; the conversion then waits for memory and computes in turn, and its time is the sum of
-/// the two. Asking for the lines [`PREFETCH_TEXELS`] ahead overlaps them. Measured once, when
-/// this was added, on a 2-core Xeon of CI's kind (2^20 texels, one thread, three runs each, ns
-/// a texel), without and with: Listing
-/// 2.2 packed in 7.7-8.3 and 5.6-5.7, unpacked in 5.4-5.5 and 4.6-4.8; the bench's eight-format
-/// layout packed in 15.3-16.1 and 11.4-11.7, unpacked in 17.5-18.1 and 11.5-11.7; with every
-/// byte in cache, 4.8 and 4.0, 10.2 and 9.7: what is left above those is memory.
+/// Why: the conversions are a stream, each byte read once and each word written once, and on
+/// Intel's CPUs the hardware's own prefetcher, which follows a stream, falls behind while a chunk's
+/// arithmetic runs; the conversion then waits for memory and computes in turn, and its time is the
+/// sum of the two. Asking for the lines [`PREFETCH_TEXELS`] ahead overlaps them. Measured once,
+/// when this was added, on a 2-core Xeon (2^20 texels, one thread, three runs each, ns a texel),
+/// without and with: Listing 2.2 packed in 7.7-8.3 and 5.6-5.7, unpacked in 5.4-5.5 and 4.6-4.8;
+/// the bench's eight-format layout packed in 15.3-16.1 and 11.4-11.7, unpacked in 17.5-18.1 and
+/// 11.5-11.7; with every byte in cache, 4.8 and 4.0, 10.2 and 9.7: what is left above those is
+/// memory.
 ///
-/// A first-level prefetch holds one of the core's few outstanding first-level misses until its
-/// line arrives, so those alone keep only a few kilobytes in flight; the input's lines are
-/// also asked for [`PREFETCH_FAR_TEXELS`] ahead into the second-level cache, which keeps many
-/// more. The first-level requests go first: asked after the far ones, they measured no gain.
-/// Measured when that was added (the same machine, pack's rate as a share of the same bytes
-/// moved by a plain loop with no prefetch, three runs, each a median of 31 rounds), without
-/// and with: Listing 2.2 packed at 98-103% and 112-118%, the eight-format layout at 94-98% and
-/// 107-112%.
+/// A first-level prefetch holds one of the core's few outstanding first-level misses until its line
+/// arrives, so those alone keep only a few kilobytes in flight; the input's lines are also asked
+/// for [`PREFETCH_FAR_TEXELS`] ahead into the second-level cache, which keeps many more. The
+/// first-level requests go first: asked after the far ones, they measured no gain. Measured when
+/// that was added (the same machine, pack's rate as a share of the same bytes moved by a plain loop
+/// with no prefetch, three runs, each a median of 31 rounds), without and with: Listing 2.2 packed
+/// at 98-103% and 112-118%, the eight-format layout at 94-98% and 107-112%.
 ///
-/// On AMD's CPUs the same prefetches made every conversion slower: measured on a 2-core EPYC
-/// of Zen 4 (the packing bench's printed medians of 31 rounds, ns a texel, three runs with and
-/// three without, alternating): Listing 2.2 packed in 3.4-3.6 and 2.3-2.6, unpacked in 2.6-3.1
-/// and 2.3-2.5; the eight-format layout packed in 8.2-8.4 and 5.5-5.6, unpacked in 4.9-5.2 and
-/// 4.4-4.9. Its hardware prefetcher seems to keep up with the streams by itself, the software's
-/// requests only crowding it (that virtual machine had no counters to tell). So the loop asks
-/// ahead on Intel's CPUs alone ([`Ahead::of`]);
-/// elsewhere it relies on the hardware's prefetcher (aarch64's prefetch intrinsic is not stable
-/// Rust).
+/// On AMD's CPUs the same prefetches made every conversion slower: measured on a 2-core EPYC of Zen
+/// 4 (the packing bench's printed medians of 31 rounds, ns a texel, three runs with and three
+/// without, alternating): Listing 2.2 packed in 3.4-3.6 and 2.3-2.6, unpacked in 2.6-3.1 and
+/// 2.3-2.5; the eight-format layout packed in 8.2-8.4 and 5.5-5.6, unpacked in 4.9-5.2 and 4.4-4.9.
+/// Its hardware prefetcher seems to keep up with the streams by itself, the software's requests
+/// only crowding it (that virtual machine had no counters to tell). So the loop asks ahead on
+/// Intel's CPUs alone ([`Ahead::of`]); elsewhere it relies on the hardware's prefetcher (aarch64's
+/// prefetch intrinsic is not stable Rust).
 #[cfg(target_arch = "x86_64")]
 struct Ahead<A, B> {
     input: *const A,
