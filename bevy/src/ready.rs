@@ -7,6 +7,7 @@
 use bevy::app::App;
 use bevy::render::render_resource::{CachedPipelineState, PipelineCache, PipelineDescriptor};
 use bevy::render::RenderApp;
+use bevy::shader::ShaderCacheError;
 
 /// Where a headless app's rendering stands ([`readiness`]).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -22,7 +23,8 @@ pub enum Readiness {
 
 /// Where `app`'s rendering stands, or why it cannot be told: the render app must be inside
 /// `app` (add `DefaultPlugins` without `PipelinedRenderingPlugin`, which moves it to a thread
-/// of its own), and a pipeline that failed to compile is an error naming its shader's message.
+/// of its own), and a pipeline that failed to compile is an error naming its shader's message
+/// (one whose shader is still loading is waiting: Bevy tries it again).
 ///
 /// A count that stays the same over several updates says that nothing new was asked for:
 /// materials are specialised once their assets are on the GPU, so one settled update alone
@@ -42,6 +44,13 @@ pub fn readiness(app: &App) -> Result<Readiness, String> {
     for pipeline in cache.pipelines() {
         match &pipeline.state {
             CachedPipelineState::Ok(_) => pipelines += 1,
+            // Bevy queues these again on its next update (`PipelineCache::process_queue`,
+            // bevy_render 0.20.1): a shader, or one it imports, is still on its way from the
+            // asset server. Not a failure: how early it is seen depends on the loader's timing.
+            CachedPipelineState::Err(
+                ShaderCacheError::ShaderNotLoaded(_)
+                | ShaderCacheError::ShaderImportNotYetAvailable,
+            ) => return Ok(Readiness::Waiting),
             CachedPipelineState::Err(error) => {
                 let label = match &pipeline.descriptor {
                     PipelineDescriptor::RenderPipelineDescriptor(render) => &render.label,
