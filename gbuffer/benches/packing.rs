@@ -399,14 +399,18 @@ fn layout_group<L: GBufferLayout + Copy>(
     label: &'static str,
     make: impl Fn(usize) -> L,
 ) {
-    measure(
-        criterion,
-        group_name::<L>(),
-        L::pack_slice,
-        L::unpack_slice,
-        make,
-    );
+    measure_layout(criterion, make);
     push_row(group_name::<L>(), label, None);
+}
+
+/// Criterion's group of `L`'s conversions ([`measure`] of its `pack_slice` and `unpack_slice`):
+/// whether the filter let it run.
+fn measure_layout<L: GBufferLayout + Copy>(
+    criterion: &mut Criterion,
+    make: impl Fn(usize) -> L,
+) -> bool {
+    let group = group_name::<L>();
+    measure(criterion, group, L::pack_slice, L::unpack_slice, make)
 }
 
 /// [`layout_group`], the row `labels[0]`, and the same of the layout's bytes moved with no
@@ -418,25 +422,16 @@ fn floor_groups<L: BytesOnly + Copy>(
     labels: [&'static str; 2],
     make: impl Fn(usize) -> L + Copy,
 ) {
-    let ran = measure(
-        criterion,
-        group_name::<L>(),
-        L::pack_slice,
-        L::unpack_slice,
-        make,
-    );
-    let bytes_only = format!("{} bytes only", group_name::<L>());
+    let ran = measure_layout(criterion, make);
+    let group = group_name::<L>();
+    let bytes_only = format!("{group} bytes only");
     let move_in =
         |texels: &[L], packed: &mut [L::Packed]| L::move_in(Mover::ConversionsLoop, texels, packed);
     let move_out = |packed: &[L::Packed], texels: &mut [L]| {
         L::move_out(Mover::ConversionsLoop, packed, texels)
     };
     measure(criterion, bytes_only.clone(), move_in, move_out, make);
-    push_row(
-        group_name::<L>(),
-        labels[0],
-        ran.then(|| shares_of_floor(make)),
-    );
+    push_row(group, labels[0], ran.then(|| shares_of_floor(make)));
     push_row(bytes_only, labels[1], None);
 }
 
