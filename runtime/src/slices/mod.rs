@@ -288,11 +288,8 @@ fn intel() -> bool {
         // in newer Rust than the crate's `rust-version`, where it is not: hence the allow.)
         #[allow(unused_unsafe)]
         let leaf = unsafe { std::arch::x86_64::__cpuid(0) };
-        let vendor: Vec<u8> = [leaf.ebx, leaf.edx, leaf.ecx]
-            .iter()
-            .flat_map(|register| register.to_le_bytes())
-            .collect();
-        vendor == b"GenuineIntel"
+        // The twelve bytes, four to a register, little-endian.
+        [leaf.ebx, leaf.edx, leaf.ecx] == [*b"Genu", *b"ineI", *b"ntel"].map(u32::from_le_bytes)
     })
 }
 
