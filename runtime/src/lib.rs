@@ -188,7 +188,7 @@ pub struct WeslModule {
 /// semantic versioning.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::slices::{convert_lanes, force_simd, Isa, Lanes, Simd};
+    pub use crate::slices::{convert_lanes, force_simd, Isa, Lanes, Row, Simd, Words};
 
     /// Each field's first column in the derived slices' rows of a texel's `u32` bits, given
     /// the fields' offsets in the texel and their components: the fields in the order the

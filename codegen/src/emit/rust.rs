@@ -261,17 +261,17 @@ const ROW_GROUP: usize = 12;
 
 /// `pack_slice` and `unpack_slice`, `N` texels at a time (the loop's copy for the CPU picks
 /// `N`: sixteen with AVX-512, eight elsewhere). Packing, the texels' components become rows of
-/// lane bits (one row per texel, the fields in the order the texel's memory holds them, in
-/// groups of whole fields) and are turned into one array of `N` lanes per component
-/// (`Isa::lanes`); each word's channels (or bit fields) are converted over the lanes at once
+/// lane bits (one row per texel through a `Row` impl per group of whole fields, the fields in
+/// the order the texel's memory holds them) and are turned into one array of `N` lanes per
+/// component (`Isa::lanes`); each word's channels (or bit fields) are converted over the lanes at once
 /// (`Isa::encode`, which ORs in `Channel::encode_lanes`'s codes unless the CPU has an exact
 /// form of its own, and `BitField::encode_lanes`, with each channel and bit field a constant),
 /// the same conversions as `pack` lane by lane, which the compiler turns into vector
 /// instructions; the words' lanes are turned back into each texel's words (`Isa::rows`).
 /// Unpacking runs the same steps backwards. The texels left over go through `pack` and
-/// `unpack`. The conversions are static functions of a `Lanes` impl, not closures, so that
-/// they inline into the loop's copies compiled for AVX2 and AVX-512, whose `Isa` they are
-/// passed.
+/// `unpack`. The rows and the conversions are static functions of `Row` and `Lanes` impls, not
+/// closures, so that they inline into the loop's copies compiled for AVX2 and AVX-512, whose
+/// `Isa` they are passed.
 fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, TokenStream) {
     let layout = lowered.layout();
     let name = Ident::new(&layout.name, Span::call_site());
@@ -287,12 +287,11 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
     let word_name = |word: usize| format_ident!("__gbuffer_word{}", word);
     let field_name = |field: usize| format_ident!("__gbuffer_field{}", field);
     // The fields in groups of at most `ROW_GROUP` components, in their order, a field never
-    // split: packing builds each group's rows with its own `from_fn` and turns them into its
-    // own lanes (`__gbuffer_lanes<g>`). The compiler inlines a closure of a dozen components
-    // into the loop's AVX copies, where it reads each texel's fields straight into the
-    // transposes, but leaves a larger one a function of its own, compiled for the baseline
-    // CPU, whose rows it stores and loads again (the eight-format layout's 24 components
-    // packed at two thirds of the speed). Unpacking turns all its lanes into rows at once.
+    // split: packing reads each group's rows through its own `Row` impl (`__GbufferRow<g>`)
+    // and turns them into its own lanes (`__gbuffer_lanes<g>`). The AVX2 copy's transposes
+    // keep a dozen columns in registers; with the eight-format layout's 24 components in one
+    // row they spilled, and its pack took twice as long (6.4 and 13 ns a texel in cache, on a
+    // Zen 4 EPYC). Unpacking turns all its lanes into rows at once.
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut filled = ROW_GROUP;
     for (number, field) in layout.fields.iter().enumerate() {
@@ -383,12 +382,12 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
             .map(|&number| layout.fields[number].ty.components)
             .sum();
         let width = Literal::usize_unsuffixed(width);
-        let texel = quote!(#texels[#index]);
+        let texel = Ident::new("__gbuffer_texel", Span::call_site());
         let columns = format_ident!("__GBUFFER_COLUMNS{}", group);
         let sets = members.iter().enumerate().flat_map(|(place, &number)| {
             let field = &layout.fields[number];
             let columns = &columns;
-            components(&texel, field)
+            components(&quote!(#texel), field)
                 .into_iter()
                 .take(field.ty.components)
                 .enumerate()
@@ -398,15 +397,27 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
                     quote!(__gbuffer_row[#column] = #bits;)
                 })
         });
+        let row = format_ident!("__GbufferRow{}", group);
         let group_lanes = format_ident!("__gbuffer_lanes{}", group);
-        quote! {
-            let #group_lanes: [[#u32_; #lanes_n]; #width] = I::lanes(&::core::array::from_fn(|#index| {
-                let mut __gbuffer_row = [0; #width];
-                #(#sets)*
-                __gbuffer_row
-            }));
-        }
+        let row_impl = quote! {
+            struct #row;
+            impl #private::Row<#name, #width> for #row {
+                #[inline(always)]
+                fn row(#texel: &#name) -> [#u32_; #width] {
+                    let mut __gbuffer_row = [0; #width];
+                    #(#sets)*
+                    __gbuffer_row
+                }
+            }
+        };
+        // `{ N }`: bare, a user's type named `N` beside the derive would be taken for the
+        // argument (the hygiene test has one); braced, it is the loop's const parameter.
+        let lanes = quote! {
+            let #group_lanes: [[#u32_; #lanes_n]; #width] = I::lanes::<_, #row, { #lanes_n }, #width>(#texels);
+        };
+        (row_impl, lanes)
     });
+    let (row_impls, texel_rows): (Vec<_>, Vec<_>) = texel_rows.unzip();
     let packed_words = lowered.words().iter().enumerate().map(|(word, contents)| {
         let word_ident = word_name(word);
         let members = contents.members.iter().map(|member| {
@@ -448,6 +459,7 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
     let pack_slice = quote! {
         fn pack_slice(#texels: &[Self], __gbuffer_packed: &mut [[#u32_; #words]]) {
             #group_columns
+            #(#row_impls)*
             struct __GbufferPack;
             impl #private::Lanes<#name, [#u32_; #words]> for __GbufferPack {
                 #[inline(always)]
@@ -559,7 +571,7 @@ fn emit_slices(lowered: &LoweredLayout, krate: &TokenStream) -> (TokenStream, To
             impl #private::Lanes<[#u32_; #words], #name> for __GbufferUnpack {
                 #[inline(always)]
                 fn many<I: #private::Isa, const #lanes_n: ::core::primitive::usize>(#words_parameter: &[[#u32_; #words]; #lanes_n], #texels: &mut [#name; #lanes_n]) {
-                    let __gbuffer_word_lanes: [[#u32_; #lanes_n]; #words] = I::lanes(#words_parameter);
+                    let __gbuffer_word_lanes: [[#u32_; #lanes_n]; #words] = I::lanes::<_, #private::Words, { #lanes_n }, #words>(#words_parameter);
                     #(#decoded)*
                     let mut #lanes: [[#u32_; #lanes_n]; #columns] = [[0; #lanes_n]; #columns];
                     #(#decoded_lanes)*

@@ -2,7 +2,7 @@
 //! their copies compiled for AVX2 and for AVX-512.
 //!
 //! The derived loop converts `N` texels at a time in three steps: the texels' components
-//! become rows of lane bits, one row per texel, and are turned into one array per component
+//! become rows of lane bits, one row per texel ([`Row`]), and are turned into one array per component
 //! over the `N` texels (lanes); each channel is converted over its lanes at once (vector
 //! instructions); the words' lanes are turned back into one array per texel. The set of
 //! instructions the loop runs on ([`Isa`]) does the turning, with its shuffles, and may
@@ -24,16 +24,38 @@ use gbuffer_core::format::Channel;
 
 use crate::GBufferLayout;
 
+/// A texel's components as a row of `u32` bits, `C` of them, one per column: what
+/// [`Isa::lanes`] turns into lanes. The derive implements it per group of a layout's fields
+/// ([`Words`] for a packed texel's words), with `#[inline(always)]`: a static function, not a
+/// closure, so that it inlines into the loop's copies compiled for AVX2 and AVX-512 however
+/// often they call it, and the AVX-512 copy reads each texel's components straight into its
+/// registers.
+pub trait Row<T, const C: usize> {
+    /// `texel`'s row.
+    fn row(texel: &T) -> [u32; C];
+}
+
+/// A packed texel's words as its row: the unpacking loops' [`Row`].
+pub struct Words;
+
+impl<const C: usize> Row<[u32; C], C> for Words {
+    #[inline(always)]
+    fn row(words: &[u32; C]) -> [u32; C] {
+        *words
+    }
+}
+
 /// The instructions a loop over texels runs on: how it turns rows of `u32` (one per texel)
 /// into lanes (one array per column) and back, and how it converts a channel over its lanes.
 /// Implemented by this crate alone: the AVX2 and AVX-512 forms are only ever chosen after a
 /// run time check.
 pub trait Isa {
-    /// `rows` as lanes: `[c]` holds column `c` of every row, each row in a lane of the Isa's
-    /// choosing (the lanes are converted one by one, so their order is free; [`Isa::rows`]
-    /// puts them back).
-    fn lanes<const R: usize, const C: usize>(rows: &[[u32; C]; R]) -> [[u32; R]; C];
-    /// The rows of `lanes`, in the order [`Isa::lanes`] took them: `rows(&lanes(m)) == m`.
+    /// The rows of `texels` ([`Row::row`] of each) as lanes: `[c]` holds column `c` of every
+    /// row, each row in a lane of the Isa's choosing (the lanes are converted one by one, so
+    /// their order is free; [`Isa::rows`] puts them back).
+    fn lanes<T, W: Row<T, C>, const R: usize, const C: usize>(texels: &[T; R]) -> [[u32; R]; C];
+    /// The rows of `lanes`, in the order [`Isa::lanes`] took them: `rows(&lanes(m)) == m`
+    /// (for `m` read through [`Words`]).
     fn rows<const R: usize, const C: usize>(lanes: &[[u32; R]; C]) -> [[u32; C]; R];
 
     /// ORs `channel`'s codes of `N` values, in place, into `words`: the codes
@@ -57,8 +79,8 @@ struct Portable;
 
 impl Isa for Portable {
     #[inline(always)]
-    fn lanes<const R: usize, const C: usize>(rows: &[[u32; C]; R]) -> [[u32; R]; C] {
-        transpose::portable(rows)
+    fn lanes<T, W: Row<T, C>, const R: usize, const C: usize>(texels: &[T; R]) -> [[u32; R]; C] {
+        transpose::portable(&std::array::from_fn(|texel| W::row(&texels[texel])))
     }
 
     #[inline(always)]
@@ -75,10 +97,11 @@ struct Avx2;
 #[cfg(target_arch = "x86_64")]
 impl Isa for Avx2 {
     #[inline(always)]
-    fn lanes<const R: usize, const C: usize>(rows: &[[u32; C]; R]) -> [[u32; R]; C] {
+    fn lanes<T, W: Row<T, C>, const R: usize, const C: usize>(texels: &[T; R]) -> [[u32; R]; C] {
+        let rows = std::array::from_fn(|texel| W::row(&texels[texel]));
         // SAFETY: `Avx2` is private to this module, which runs code generic over it only
         // inside `lanes_with_avx2`, after `convert_lanes` has checked that the CPU has AVX2.
-        unsafe { transpose::avx2(rows) }
+        unsafe { transpose::avx2(&rows) }
     }
 
     #[inline(always)]
