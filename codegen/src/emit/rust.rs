@@ -263,10 +263,10 @@ const ROW_GROUP: usize = 12;
 /// `N`: sixteen with AVX-512, eight elsewhere). Packing, the texels' components become rows of
 /// lane bits (one row per texel through a `Row` impl per group of whole fields, the fields in
 /// the order the texel's memory holds them) and are turned into one array of `N` lanes per
-/// component (`Isa::lanes`); each word's channels (or bit fields) are converted over the lanes at once
-/// (`Isa::encode`, which ORs in `Channel::encode_lanes`'s codes unless the CPU has an exact
-/// form of its own, and `BitField::encode_lanes`, with each channel and bit field a constant),
-/// the same conversions as `pack` lane by lane, which the compiler turns into vector
+/// component (`Isa::lanes`); each word's channels (or bit fields) are converted over the lanes
+/// at once (`Isa::encode`, which ORs in `Channel::encode_lanes`'s codes unless the CPU has an
+/// exact form of its own, and `BitField::encode_lanes`, with each channel and bit field a
+/// constant), the same conversions as `pack` lane by lane, which the compiler turns into vector
 /// instructions; the words' lanes are turned back into each texel's words (`Isa::rows`).
 /// Unpacking runs the same steps backwards. The texels left over go through `pack` and
 /// `unpack`. The rows and the conversions are static functions of `Row` and `Lanes` impls, not

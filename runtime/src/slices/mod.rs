@@ -2,9 +2,9 @@
 //! their copies compiled for AVX2 and for AVX-512.
 //!
 //! The derived loop converts `N` texels at a time in three steps: the texels' components
-//! become rows of lane bits, one row per texel ([`Row`]), and are turned into one array per component
-//! over the `N` texels (lanes); each channel is converted over its lanes at once (vector
-//! instructions); the words' lanes are turned back into one array per texel. The set of
+//! become rows of lane bits, one row per texel ([`Row`]), and are turned into one array per
+//! component over the `N` texels (lanes); each channel is converted over its lanes at once
+//! (vector instructions); the words' lanes are turned back into one array per texel. The set of
 //! instructions the loop runs on ([`Isa`]) does the turning, with its shuffles, and may
 //! convert a channel in a form of its own, exact as the mirror is: plain loops anywhere (eight
 //! texels at a time); AVX2's shuffles (eight), which move eight lanes in a handful of
