@@ -391,8 +391,19 @@ fn lanes<T, W: Row<T, C>, const R: usize, const C: usize>(texels: &[T; R]) -> [[
                 W::row(&texels[at + 2]),
                 W::row(&texels[at + 3]),
             ];
-            for (q, register) in registers.iter_mut().take(C.div_ceil(4)).enumerate() {
-                register[j] = quarters(&rows, 4 * q);
+            if C == 4 {
+                // Four rows of four columns, one after another, are a register: one load
+                // where `quarters` makes four and three inserts (a 4-word layout's unpack:
+                // Listing 2.2's took 1.75 ns a texel in cache instead of 2.2).
+                let mut together = [0; 16];
+                for (four, row) in together.chunks_exact_mut(4).zip(&rows) {
+                    four.copy_from_slice(row);
+                }
+                registers[0][j] = _mm512_castsi512_ps(load(together));
+            } else {
+                for (q, register) in registers.iter_mut().take(C.div_ceil(4)).enumerate() {
+                    register[j] = quarters(&rows, 4 * q);
+                }
             }
         }
         // Transposed, result c of register q holds column 4q + c, row 4j + k in lane 4k + j.
