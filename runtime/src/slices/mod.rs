@@ -45,6 +45,13 @@ impl<const C: usize> Row<[u32; C], C> for Words {
     }
 }
 
+/// `texels`' rows, as an array: what the AVX2 and plain transposes take (the AVX-512 form reads
+/// the rows itself, four at a time).
+#[inline(always)]
+fn rows_of<T, W: Row<T, C>, const R: usize, const C: usize>(texels: &[T; R]) -> [[u32; C]; R] {
+    std::array::from_fn(|texel| W::row(&texels[texel]))
+}
+
 /// The instructions a loop over texels runs on: how it turns rows of `u32` (one per texel)
 /// into lanes (one array per column) and back, and how it converts a channel over its lanes.
 /// Implemented by this crate alone: the AVX2 and AVX-512 forms are only ever chosen after a
@@ -80,7 +87,7 @@ struct Portable;
 impl Isa for Portable {
     #[inline(always)]
     fn lanes<T, W: Row<T, C>, const R: usize, const C: usize>(texels: &[T; R]) -> [[u32; R]; C] {
-        transpose::portable(&std::array::from_fn(|texel| W::row(&texels[texel])))
+        transpose::portable(&rows_of::<T, W, R, C>(texels))
     }
 
     #[inline(always)]
@@ -98,7 +105,7 @@ struct Avx2;
 impl Isa for Avx2 {
     #[inline(always)]
     fn lanes<T, W: Row<T, C>, const R: usize, const C: usize>(texels: &[T; R]) -> [[u32; R]; C] {
-        let rows = std::array::from_fn(|texel| W::row(&texels[texel]));
+        let rows = rows_of::<T, W, R, C>(texels);
         // SAFETY: `Avx2` is private to this module, which runs code generic over it only
         // inside `lanes_with_avx2`, after `convert_lanes` has checked that the CPU has AVX2.
         unsafe { transpose::avx2(&rows) }
