@@ -399,18 +399,25 @@ fn layout_group<L: GBufferLayout + Copy>(
     label: &'static str,
     make: impl Fn(usize) -> L,
 ) {
-    measure_layout(criterion, make);
-    push_row(group_name::<L>(), label, None);
+    let group = group_name::<L>();
+    measure_layout(criterion, &group, make);
+    push_row(group, label, None);
 }
 
-/// Criterion's group of `L`'s conversions ([`measure`] of its `pack_slice` and `unpack_slice`):
-/// whether the filter let it run.
+/// `L`'s conversions in criterion's group `group` ([`measure`] of its `pack_slice` and
+/// `unpack_slice`): whether the filter let it run.
 fn measure_layout<L: GBufferLayout + Copy>(
     criterion: &mut Criterion,
+    group: &str,
     make: impl Fn(usize) -> L,
 ) -> bool {
-    let group = group_name::<L>();
-    measure(criterion, group, L::pack_slice, L::unpack_slice, make)
+    measure(
+        criterion,
+        group.to_owned(),
+        L::pack_slice,
+        L::unpack_slice,
+        make,
+    )
 }
 
 /// [`layout_group`], the row `labels[0]`, and the same of the layout's bytes moved with no
@@ -422,8 +429,8 @@ fn floor_groups<L: BytesOnly + Copy>(
     labels: [&'static str; 2],
     make: impl Fn(usize) -> L + Copy,
 ) {
-    let ran = measure_layout(criterion, make);
     let group = group_name::<L>();
+    let ran = measure_layout(criterion, &group, make);
     let bytes_only = format!("{group} bytes only");
     let move_in =
         |texels: &[L], packed: &mut [L::Packed]| L::move_in(Mover::ConversionsLoop, texels, packed);
