@@ -15,6 +15,9 @@
 use std::hint::black_box;
 use std::marker::PhantomData;
 use std::path::{Path, PathBuf};
+
+mod rounds;
+use rounds::{rounds, target_folder, write_figures, WARM_UP_ROUNDS};
 use std::sync::Mutex;
 use std::time::{Duration, Instant, SystemTime};
 
@@ -442,19 +445,6 @@ fn floor_groups<L: BytesOnly + Copy>(
     push_row(bytes_only, labels[1], None);
 }
 
-/// The rounds [`shares_of_floor`] times, after [`WARM_UP_ROUNDS`] it does not count; fewer
-/// where `GBUFFER_TIMING=short` asks.
-fn rounds() -> usize {
-    match std::env::var_os("GBUFFER_TIMING") {
-        Some(value) if value == "short" => 5,
-        _ => 31,
-    }
-}
-
-/// Rounds run before [`shares_of_floor`] counts: the caches, the branch predictors and the
-/// CPU's clock settle.
-const WARM_UP_ROUNDS: usize = 3;
-
 /// A conversion's rate as shares of its floor's: pack's and unpack's `[lower quartile,
 /// median, upper quartile]`, each a share (1.0: as fast as the floor).
 type Shares = [[f64; 3]; 2];
@@ -752,15 +742,6 @@ fn floor_times() -> String {
     lines
 }
 
-/// The target folder: `CARGO_TARGET_DIR`, or three folders above the bench (target/release/deps).
-fn target_folder() -> Option<PathBuf> {
-    if let Some(folder) = std::env::var_os("CARGO_TARGET_DIR") {
-        return Some(PathBuf::from(folder));
-    }
-    let exe = std::env::current_exe().ok()?;
-    Some(exe.parent()?.parent()?.parent()?.to_path_buf())
-}
-
 fn main() {
     let started = SystemTime::now();
     benches();
@@ -777,14 +758,5 @@ fn main() {
         rounds()
     );
     println!("{}", floor_times());
-    let figures = target.join("figures");
-    // Written beside and renamed, so that a failed write leaves no half table.
-    let partial = figures.join("packing.md.partial");
-    let written = std::fs::create_dir_all(&figures)
-        .and_then(|()| std::fs::write(&partial, &table))
-        .and_then(|()| std::fs::rename(&partial, figures.join("packing.md")));
-    match written {
-        Ok(()) => println!("written to {}", figures.join("packing.md").display()),
-        Err(error) => eprintln!("cannot write {}: {error}", figures.display()),
-    }
+    write_figures(&target, "packing.md", &table);
 }
