@@ -154,8 +154,8 @@ fn time(
     passes: usize,
     beside: &mut [f32; CHUNK],
 ) -> f64 {
-    // SAFETY: `MobileMetallic` is twelve f32 and no padding (asserted in `main`), so its bytes
-    // are twelve u32.
+    // SAFETY: `MobileMetallic` is twelve f32 and no padding (its size is theirs, asserted in
+    // `table`), so its bytes are twelve u32, in some order, which the fold does not mind.
     let raw: &[Texel] = unsafe { std::slice::from_raw_parts(texels.as_ptr().cast(), texels.len()) };
     let start = Instant::now();
     for _ in 0..passes {
@@ -187,7 +187,7 @@ fn listing_2_2(index: usize) -> MobileMetallic {
 }
 
 /// Each form's time in cache and from memory, timed in rounds (each round times every form
-/// once each way, back to back, so that a change in the machine's speed lands on all of
+/// once in cache and once from memory, back to back, so that a change in the machine's speed lands on all of
 /// them), as the table's rows: the medians over the rounds, nanoseconds a texel, and from
 /// memory the fold's time over the form's (its share of the fold), the median of each round's.
 fn table() -> String {
