@@ -227,7 +227,7 @@ fn table() -> String {
     let medians: Vec<[f64; 3]> = times.into_iter().map(|form| form.map(median)).collect();
     let fold_in_cache = medians[0][0];
     let mut table = String::from(
-        "| form | in cache | above the fold, in cache | from memory | from memory, share of the fold |\n\
+        "| form | in cache, a texel | above the fold, in cache | from memory, a texel | from memory, share of the fold |\n\
          |---|---|---|---|---|\n",
     );
     for (form, [cached, from_memory, share]) in FORMS.into_iter().zip(medians) {
