@@ -187,9 +187,10 @@ fn listing_2_2(index: usize) -> MobileMetallic {
 }
 
 /// Each form's time in cache and from memory, timed in rounds (each round times every form
-/// once in cache and once from memory, back to back, so that a change in the machine's speed lands on all of
-/// them), as the table's rows: the medians over the rounds, nanoseconds a texel, and from
-/// memory the fold's time over the form's (its share of the fold), the median of each round's.
+/// once in cache and once from memory, back to back, so that a change in the machine's speed
+/// lands on all of them), as the table's rows: the medians over the rounds, nanoseconds a
+/// texel, and from memory the fold's time over the form's (its share of the fold), the median
+/// of each round's.
 fn table() -> String {
     assert_eq!(
         size_of::<MobileMetallic>(),
