@@ -15,17 +15,19 @@
 use std::hint::black_box;
 use std::marker::PhantomData;
 use std::path::{Path, PathBuf};
-
-mod rounds;
-use rounds::{rounds, target_folder, write_figures, WARM_UP_ROUNDS};
 use std::sync::Mutex;
-use std::time::{Duration, Instant, SystemTime};
+use std::time::{Duration, SystemTime};
 
 use criterion::{criterion_group, BenchmarkId, Criterion, Throughput};
 use gbuffer::__private::{convert_lanes, Isa, Lanes};
 use gbuffer::glam::{IVec2, IVec4, UVec2, UVec4, Vec2, Vec3, Vec4};
 use gbuffer::seed_layouts::{ArmTileBlock, FutureMetallic, MobileMetallic, SpecularWorkflow};
 use gbuffer::GBufferLayout;
+
+mod floor;
+mod rounds;
+use floor::fold_words;
+use rounds::{quartiles, rounds, target_folder, time, write_figures, WARM_UP_ROUNDS};
 
 const TEXELS: usize = 1 << 20;
 
@@ -138,18 +140,6 @@ enum Mover {
     ConversionsLoop,
     /// One pass over the slices, with no software prefetch.
     Plain,
-}
-
-fn fold_words<const T: usize, const W: usize>(texels: &[[u32; T]], packed: &mut [[u32; W]]) {
-    for (texel, words) in texels.iter().zip(packed) {
-        let mut folded = [0; W];
-        for run in texel.chunks_exact(W) {
-            for (word, value) in folded.iter_mut().zip(run) {
-                *word ^= value;
-            }
-        }
-        *words = folded;
-    }
 }
 
 fn spread_words<const T: usize, const W: usize>(packed: &[[u32; W]], texels: &mut [[u32; T]]) {
@@ -506,13 +496,6 @@ fn shares_of_floor<L: BytesOnly + Copy>(make: impl Fn(usize) -> L) -> Floor {
     }
 }
 
-/// The lower quartile, the median and the upper quartile of `values`.
-fn quartiles(mut values: Vec<f64>) -> [f64; 3] {
-    values.sort_by(f64::total_cmp);
-    let at = |fraction: f64| values[((values.len() - 1) as f64 * fraction).round() as usize];
-    [at(0.25), at(0.5), at(0.75)]
-}
-
 /// Pack through `pack`, unpack through `unpack`, and copy `TEXELS` texels of `make(i)`:
 /// criterion's group `group`. Returns whether criterion ran them (its filter may skip them).
 fn measure<L: GBufferLayout + Copy>(
@@ -662,13 +645,6 @@ fn rates(criterion_folder: &Path, group: &str, started: SystemTime) -> Option<[f
         })
         .collect();
     rates?.try_into().ok()
-}
-
-/// The seconds `run` takes.
-fn time(run: impl FnOnce()) -> f64 {
-    let start = Instant::now();
-    run();
-    start.elapsed().as_secs_f64()
 }
 
 /// The side-by-side tables, as Markdown, for the layouts this run measured: millions of texels

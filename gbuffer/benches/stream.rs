@@ -1,7 +1,7 @@
 //! Why a conversion can stand under its floor: what arithmetic beside a stream of loads does
-//! to the stream. Listing 2.2's bytes are folded into its words as the packing bench's floor
-//! folds them (`packing.rs`, `fold_words`: each word the exclusive or of the texel's `u32`s
-//! that fall on it, no conversion), sixteen texels at a time, with rounds of arithmetic added
+//! to the stream. Listing 2.2's bytes are folded into its words by the packing bench's floor
+//! (`floor::fold_words`: each word the exclusive or of the texel's `u32`s that fall on it, no
+//! conversion), sixteen texels at a time, with rounds of arithmetic added
 //! to each chunk of sixteen: either beside the fold (on numbers no load feeds) or on the
 //! folded words before they are stored (as a pack's arithmetic is). Each form is timed with
 //! every byte in cache, which gives what its arithmetic costs, and from memory, which gives
@@ -17,14 +17,15 @@
 #![allow(missing_docs)]
 
 use std::hint::black_box;
-use std::time::Instant;
 
 use gbuffer::glam::{Vec3, Vec4};
 use gbuffer::seed_layouts::MobileMetallic;
 use gbuffer::GBufferLayout;
 
+mod floor;
 mod rounds;
-use rounds::{rounds, target_folder, write_figures, WARM_UP_ROUNDS};
+use floor::fold_words;
+use rounds::{quartiles, rounds, target_folder, time, write_figures, WARM_UP_ROUNDS};
 
 /// Texels a pass from memory: 48 MiB of texels and 16 of words, beyond the caches of the
 /// machines this runs on.
@@ -95,18 +96,6 @@ fn round_of_arithmetic(numbers: &mut [f32; CHUNK]) {
     }
 }
 
-/// A texel's words: the exclusive or of its `u32`s that fall on each (the floor's fold).
-#[inline(always)]
-fn fold(texel: &Texel) -> Words {
-    let mut words = [0; 4];
-    for run in texel.chunks_exact(4) {
-        for (word, value) in words.iter_mut().zip(run) {
-            *word ^= value;
-        }
-    }
-    words
-}
-
 /// The fold with `arithmetic` over `texels` into `words`; `beside` carries the numbers of
 /// [`Arithmetic::Beside`] from one call to the next, so that no round is dead code.
 #[inline(never)]
@@ -120,9 +109,7 @@ fn fold_with(
         .chunks_exact(CHUNK)
         .zip(words.chunks_exact_mut(CHUNK))
     {
-        for (texel, words) in chunk.iter().zip(out.iter_mut()) {
-            *words = fold(texel);
-        }
+        fold_words(chunk, out);
         match arithmetic {
             Arithmetic::None => {}
             Arithmetic::Beside(rounds) => {
@@ -147,7 +134,7 @@ fn fold_with(
 }
 
 /// `form` over all of `texels`, into `words`, `passes` times: the seconds it took.
-fn time(
+fn seconds(
     form: Form,
     texels: &[MobileMetallic],
     words: &mut [Words],
@@ -157,22 +144,16 @@ fn time(
     // SAFETY: `MobileMetallic` is twelve f32 and no padding (its size is theirs, asserted in
     // `table`), so its bytes are twelve u32, in some order, which the fold does not mind.
     let raw: &[Texel] = unsafe { std::slice::from_raw_parts(texels.as_ptr().cast(), texels.len()) };
-    let start = Instant::now();
-    for _ in 0..passes {
-        match form {
-            Form::Pack => MobileMetallic::pack_slice(black_box(texels), black_box(&mut *words)),
-            Form::Fold(arithmetic) => {
-                fold_with(arithmetic, black_box(raw), black_box(&mut *words), beside)
+    time(|| {
+        for _ in 0..passes {
+            match form {
+                Form::Pack => MobileMetallic::pack_slice(black_box(texels), black_box(&mut *words)),
+                Form::Fold(arithmetic) => {
+                    fold_with(arithmetic, black_box(raw), black_box(&mut *words), beside)
+                }
             }
         }
-    }
-    start.elapsed().as_secs_f64()
-}
-
-/// The median of `values`.
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
+    })
 }
 
 fn listing_2_2(index: usize) -> MobileMetallic {
@@ -206,14 +187,14 @@ fn table() -> String {
     for round in 0..WARM_UP_ROUNDS + rounds() {
         let mut fold_from_memory = 0.0;
         for (form, times) in FORMS.into_iter().zip(&mut times) {
-            let cached = time(
+            let cached = seconds(
                 form,
                 &texels[..CACHED],
                 &mut words[..CACHED],
                 TEXELS / CACHED,
                 &mut beside,
             );
-            let from_memory = time(form, &texels, &mut words, 1, &mut beside);
+            let from_memory = seconds(form, &texels, &mut words, 1, &mut beside);
             if let Form::Fold(Arithmetic::None) = form {
                 fold_from_memory = from_memory;
             }
@@ -225,7 +206,10 @@ fn table() -> String {
         }
     }
     black_box(beside);
-    let medians: Vec<[f64; 3]> = times.into_iter().map(|form| form.map(median)).collect();
+    let medians: Vec<[f64; 3]> = times
+        .into_iter()
+        .map(|form| form.map(|times| quartiles(times)[1]))
+        .collect();
     let fold_in_cache = medians[0][0];
     let mut table = String::from(
         "| form | in cache, a texel | above the fold, in cache | from memory, a texel | from memory, share of the fold |\n\

@@ -1,7 +1,8 @@
-//! What the package's benches share: the rounds they time their passes in, and where they
-//! write the tables the guide shows (`.ci/check-figures` holds the guide's tables to them).
+//! What the package's benches share: the rounds they time their passes in, how they time and
+//! summarise them, and where they write the tables the guide shows (`.ci/check-figures` holds the guide's tables to them).
 
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 /// The rounds a bench times and counts, after [`WARM_UP_ROUNDS`]; fewer where
 /// `GBUFFER_TIMING=short` asks, as CI does: it checks the tables' shape, not their figures.
@@ -15,6 +16,20 @@ pub fn rounds() -> usize {
 /// Rounds run before a bench counts: the caches, the branch predictors and the CPU's clock
 /// settle.
 pub const WARM_UP_ROUNDS: usize = 3;
+
+/// The seconds `run` takes.
+pub fn time(run: impl FnOnce()) -> f64 {
+    let start = Instant::now();
+    run();
+    start.elapsed().as_secs_f64()
+}
+
+/// The lower quartile, the median and the upper quartile of `values`.
+pub fn quartiles(mut values: Vec<f64>) -> [f64; 3] {
+    values.sort_by(f64::total_cmp);
+    let at = |fraction: f64| values[((values.len() - 1) as f64 * fraction).round() as usize];
+    [at(0.25), at(0.5), at(0.75)]
+}
 
 /// The target folder: `CARGO_TARGET_DIR`, or three folders above the bench (target/release/deps).
 pub fn target_folder() -> Option<PathBuf> {
