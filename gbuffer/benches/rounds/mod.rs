@@ -1,5 +1,6 @@
 //! What the package's benches share: the rounds they time their passes in, how they time and
-//! summarise them, and where they write the tables the guide shows (`.ci/check-figures` holds the guide's tables to them).
+//! summarise them, and where they write the tables the guide shows (`.ci/check-figures` holds
+//! the guide's tables to them).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
