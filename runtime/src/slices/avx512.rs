@@ -298,12 +298,10 @@ fn quarters<const C: usize>(rows: &[[u32; C]; 4], column: usize) -> __m512 {
         // Rows of four columns, one after another, are the register: one load where the
         // quarters below take four and three inserts (a 4-word layout's unpack: Listing 2.2's
         // took 1.75 ns a texel in cache instead of 2.2).
-        let mut together = [0; 16];
-        for (four, row) in together.chunks_exact_mut(4).zip(rows) {
-            four.copy_from_slice(row);
-        }
-        // SAFETY: the callers run with AVX-512F (`lanes`, compiled for it, inlines this).
-        return unsafe { _mm512_castsi512_ps(load(together)) };
+        // SAFETY: four rows of four `u32`, one after another: sixteen readable `u32`; the load
+        // needs no alignment; the callers run with AVX-512F (`lanes`, compiled for it, inlines
+        // this).
+        return unsafe { _mm512_loadu_ps(rows.as_ptr().cast()) };
     }
     let quarter = |r: usize| {
         let mut lanes = [0u32; 4];
